@@ -1,0 +1,20 @@
+# Every dependency comes from a Debian 12 package (scripts/setup.sh installs them) through its
+# CMake config or pkg-config. Nothing is downloaded at configure time.
+find_package(PkgConfig REQUIRED)
+find_package(glm CONFIG REQUIRED)                 # libglm-dev
+find_package(nlohmann_json 3.10 CONFIG REQUIRED)  # nlohmann-json3-dev
+find_package(CLI11 CONFIG REQUIRED)               # libcli11-dev
+find_package(TinyGLTF CONFIG REQUIRED)            # libtinygltf-dev
+find_package(Threads REQUIRED)
+pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)   # libosmesa6-dev
+pkg_check_modules(GLFW3 REQUIRED IMPORTED_TARGET glfw3)     # libglfw3-dev (window only)
+
+# stb (libstb-dev) ships headers and a shared library; we only use stb_image_write's header.
+find_path(STB_INCLUDE_DIR stb/stb_image_write.h REQUIRED)
+
+if(OCCSIM_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)             # libgtest-dev, libgmock-dev
+endif()
+if(OCCSIM_BUILD_BENCHMARKS)
+  find_package(benchmark CONFIG REQUIRED)         # libbenchmark-dev
+endif()

@@ -1,0 +1,8 @@
+# occsim_set_warnings(target): the project's warning policy, one place for every target.
+function(occsim_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
+                                           -Wcast-align -Wnull-dereference)
+  if(OCCSIM_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
