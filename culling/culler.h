@@ -1,0 +1,45 @@
+// The culler interface: one frame's visibility decisions over a BspTree, carried out through a
+// RenderDevice. Implementations keep their own per-node state (sized by reset()), use simulation
+// time (never wall-clock time) for every decision, and are deterministic given the device's
+// answers.
+#pragma once
+
+#include "culling/bsp_tree.h"
+#include "culling/frustum.h"
+#include "culling/render_device.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace occsim {
+
+struct CullView {
+    glm::vec3 eye{0.0f};
+    Frustum frustum{};
+    float near_radius = 0.0f;  // eye to a near-plane corner; see nearPlaneTouchesBox()
+};
+
+struct CullFrame {
+    uint64_t frame_index = 0;
+    double time_s = 0.0;  // simulation time: frame_index * dt
+    CullView view;
+    // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
+    // cullers whose needsGroundTruth() is true (the Ideal oracle); empty otherwise.
+    std::span<const uint8_t> ground_truth_visible;
+};
+
+class Culler {
+public:
+    virtual ~Culler() = default;
+    virtual std::string_view name() const = 0;
+    virtual bool needsGroundTruth() const { return false; }
+    // Called once the tree is built, before the first frame; clears all per-node state.
+    virtual void reset(const BspTree& tree) = 0;
+    virtual void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) = 0;
+};
+
+}  // namespace occsim
