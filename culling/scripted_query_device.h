@@ -1,0 +1,49 @@
+// A RenderDevice with a known visibility function, for testing culling logic without OpenGL.
+// It never renders anything; a query's result is the number of visible objects whose box overlaps
+// any of the query's boxes (a stand-in for "samples passed"), so a query over a node's bounds is
+// non-zero exactly when a visible object lies in (or overlaps) that node. Results become ready
+// after a fixed number of later commands (draws or queries), like the deterministic latency mode
+// of the GL device; fetching one earlier counts as a wait.
+#pragma once
+
+#include "culling/render_device.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace occsim {
+
+class ScriptedQueryDevice final : public RenderDevice {
+public:
+    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : latency_(latency_commands) {}
+
+    // The current frame's truth: which objects are visible, and every object's box.
+    void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
+
+    void drawObject(uint32_t object) override;
+    QueryId issueQuery(std::span<const Aabb> boxes) override;
+    bool isQueryReady(QueryId id) override;
+    uint64_t queryResult(QueryId id) override;
+
+    // What the culler did since the last clearLog().
+    const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
+    const std::vector<Aabb>& queriedBoxes() const { return queried_; }
+    void clearLog();
+    uint32_t pendingQueries() const;
+
+private:
+    struct Pending {
+        uint64_t issued_at;
+        uint64_t result;
+        bool in_use;
+    };
+    uint32_t latency_;
+    uint64_t commands_ = 0;
+    std::vector<uint8_t> visible_;
+    std::vector<Aabb> boxes_;
+    std::vector<Pending> queries_;
+    std::vector<uint32_t> drawn_;
+    std::vector<Aabb> queried_;
+};
+
+}  // namespace occsim

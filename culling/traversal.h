@@ -1,0 +1,57 @@
+// Pieces every hierarchical culler shares: front-to-back child order, frustum classification
+// that is inherited by the children of a node fully inside, and drawing one node's own objects
+// with a per-object frustum test.
+#pragma once
+
+#include "culling/bsp_tree.h"
+#include "culling/culler.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace occsim {
+
+struct NodeVisit {
+    uint32_t node;
+    bool inside_frustum;  // an ancestor (or the node) is fully inside: no frustum test needed
+};
+
+// Pushes the children of `node` onto a LIFO stack so that the child on the eye's side of the
+// split plane is popped first (front to back).
+inline void pushChildrenFrontToBack(const BspTree& tree, uint32_t node, glm::vec3 eye,
+                                    bool inside_frustum, std::vector<NodeVisit>& stack) {
+    const BspNode& n = tree.node(node);
+    if (n.isLeaf()) return;
+    const bool eye_below = eye[n.axis] < n.split;
+    const uint32_t first = n.child[eye_below ? 0 : 1];
+    const uint32_t second = n.child[eye_below ? 1 : 0];
+    stack.push_back({second, inside_frustum});
+    stack.push_back({first, inside_frustum});
+}
+
+// Outside: skip the subtree. Otherwise reports whether the node is fully inside (so its subtree
+// needs no further frustum tests). Empty subtrees count as outside.
+inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const Frustum& frustum,
+                          bool* fully_inside) {
+    const Aabb& b = tree.bounds(visit.node);
+    if (isEmpty(b)) return false;
+    if (visit.inside_frustum) {
+        *fully_inside = true;
+        return true;
+    }
+    const FrustumTest t = classify(frustum, b);
+    *fully_inside = t == FrustumTest::Inside;
+    return t != FrustumTest::Outside;
+}
+
+// Draws the objects stored in `node` itself (not its children) that pass the frustum.
+inline void drawNodeObjects(const BspTree& tree, uint32_t node, const Frustum& frustum,
+                            bool inside_frustum, RenderDevice& device) {
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        if (inside_frustum || classify(frustum, tree.objectBox(o)) != FrustumTest::Outside) {
+            device.drawObject(o);
+        }
+    }
+}
+
+}  // namespace occsim

@@ -1,0 +1,86 @@
+#include "render/gl_query_device.h"
+
+#include "render/gl_api.h"
+
+#include <chrono>
+
+namespace occsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+GlQueryDevice::GlQueryDevice(GlRenderer& renderer, LatencyMode latency)
+    : renderer_(renderer), latency_(latency) {}
+
+GlQueryDevice::~GlQueryDevice() {
+    if (!gl_queries_.empty()) {
+        glDeleteQueries(static_cast<GLsizei>(gl_queries_.size()), gl_queries_.data());
+    }
+}
+
+uint32_t GlQueryDevice::queriesInFlight() const {
+    return static_cast<uint32_t>(gl_queries_.size() - free_ids_.size());
+}
+
+void GlQueryDevice::drawObject(uint32_t object) {
+    const auto start = Clock::now();
+    renderer_.drawObject(object);
+    ++commands_;
+    ++counters_.objects_drawn;
+    counters_.triangles_drawn += renderer_.triangleCount(object);
+    counters_.submit_seconds += secondsSince(start);
+}
+
+QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes) {
+    const auto start = Clock::now();
+    QueryId id;
+    if (!free_ids_.empty()) {
+        id = free_ids_.back();
+        free_ids_.pop_back();
+    } else {
+        id = static_cast<QueryId>(gl_queries_.size());
+        GLuint q = 0;
+        glGenQueries(1, &q);
+        gl_queries_.push_back(q);
+        issued_at_.push_back(0);
+    }
+    glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]);
+    for (const Aabb& box : boxes) renderer_.drawQueryBox(box);
+    glEndQuery(GL_SAMPLES_PASSED);
+    issued_at_[id] = commands_++;
+    ++counters_.queries_issued;
+    counters_.query_boxes += boxes.size();
+    counters_.submit_seconds += secondsSince(start);
+    return id;
+}
+
+bool GlQueryDevice::isQueryReady(QueryId id) {
+    if (latency_.deterministic) {
+        return commands_ - issued_at_[id] > latency_.latency_commands;
+    }
+    GLuint available = GL_FALSE;
+    glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available);
+    return available == GL_TRUE;
+}
+
+uint64_t GlQueryDevice::queryResult(QueryId id) {
+    const bool ready = isQueryReady(id);
+    const auto start = Clock::now();
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(gl_queries_[id], GL_QUERY_RESULT, &samples);
+    if (!ready) {
+        ++counters_.results_waited;
+        counters_.wait_seconds += secondsSince(start);
+    }
+    ++counters_.results_fetched;
+    free_ids_.push_back(id);
+    return samples;
+}
+
+}  // namespace occsim

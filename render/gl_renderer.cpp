@@ -1,0 +1,319 @@
+#include "render/gl_renderer.h"
+
+#include "render/gl_api.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace occsim {
+namespace {
+
+// Object colour comes from its ID so every object looks distinct in captures without per-object
+// uniforms; lighting is a head light, two-sided because some meshes are open (the teapot's lid).
+const char* kDrawVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_model_view;
+uniform mat4 u_projection;
+out vec3 v_normal;
+void main() {
+    vec4 p = u_model_view * vec4(a_position, 1.0);
+    v_normal = mat3(u_model_view) * a_normal;
+    gl_Position = u_projection * p;
+}
+)";
+
+const char* kDrawFragmentShader = R"(#version 330 core
+in vec3 v_normal;
+uniform uint u_object_id;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out uint o_object_id;
+vec3 idColor(uint id) {
+    uint h = id * 2654435761u;
+    h ^= h >> 15;
+    return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.6
+           + 0.35;
+}
+void main() {
+    float light = 0.25 + 0.75 * abs(normalize(v_normal).z);
+    o_color = vec4(idColor(u_object_id) * light, 1.0);
+    o_object_id = u_object_id;
+}
+)";
+
+const char* kQueryVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_model_view;
+uniform mat4 u_projection;
+void main() { gl_Position = u_projection * (u_model_view * vec4(a_position, 1.0)); }
+)";
+
+const char* kQueryFragmentShader = R"(#version 330 core
+void main() {}
+)";
+
+GLuint compileShader(GLenum type, const char* source) {
+    GLuint shader = glCreateShader(type);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+        glDeleteShader(shader);
+        throw std::runtime_error(std::string("shader compile failed: ") + log);
+    }
+    return shader;
+}
+
+GLuint linkProgram(const char* vertex_source, const char* fragment_source) {
+    GLuint vs = compileShader(GL_VERTEX_SHADER, vertex_source);
+    GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment_source);
+    GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        glGetProgramInfoLog(program, sizeof log, nullptr, log);
+        glDeleteProgram(program);
+        throw std::runtime_error(std::string("shader link failed: ") + log);
+    }
+    return program;
+}
+
+GLuint makeRenderbuffer(GLenum format, uint32_t width, uint32_t height) {
+    GLuint rb = 0;
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, format, static_cast<GLsizei>(width),
+                          static_cast<GLsizei>(height));
+    return rb;
+}
+
+}  // namespace
+
+glm::mat4 reverseZPerspective(float fov_y_radians, float aspect, float near_plane,
+                              float far_plane) {
+    const float f = 1.0f / std::tan(0.5f * fov_y_radians);
+    glm::mat4 p(0.0f);
+    p[0][0] = f / aspect;
+    p[1][1] = f;
+    p[2][2] = near_plane / (far_plane - near_plane);
+    p[3][2] = far_plane * near_plane / (far_plane - near_plane);
+    p[2][3] = -1.0f;
+    return p;
+}
+
+GlRenderer::GlRenderer(uint32_t width, uint32_t height) : width_(width), height_(height) {
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    color_rb_ = makeRenderbuffer(GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb_);
+    id_rb_ = makeRenderbuffer(GL_R32UI, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, id_rb_);
+    depth_rb_ = makeRenderbuffer(GL_DEPTH_COMPONENT32F, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, buffers);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw std::runtime_error("OpenGL: the colour + object-ID + float-depth framebuffer is incomplete");
+    }
+    checkGl("framebuffer set-up");
+
+    draw_program_ = linkProgram(kDrawVertexShader, kDrawFragmentShader);
+    draw_model_view_loc_ = glGetUniformLocation(draw_program_, "u_model_view");
+    draw_projection_loc_ = glGetUniformLocation(draw_program_, "u_projection");
+    draw_object_id_loc_ = glGetUniformLocation(draw_program_, "u_object_id");
+    query_program_ = linkProgram(kQueryVertexShader, kQueryFragmentShader);
+    query_model_view_loc_ = glGetUniformLocation(query_program_, "u_model_view");
+    query_projection_loc_ = glGetUniformLocation(query_program_, "u_projection");
+
+    // The unit cube [0,1]^3 that every query box is drawn from.
+    const float corners[8 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0,
+                                  0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+    const uint8_t faces[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    glGenVertexArrays(1, &box_vao_);
+    glBindVertexArray(box_vao_);
+    glGenBuffers(1, &box_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, box_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+    glGenBuffers(1, &box_ibo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, box_ibo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof faces, faces, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindVertexArray(0);
+
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height));
+    checkGl("renderer set-up");
+}
+
+GlRenderer::~GlRenderer() {
+    glDeleteProgram(draw_program_);
+    glDeleteProgram(query_program_);
+    const GLuint buffers[] = {mesh_vbo_, mesh_ibo_, box_vbo_, box_ibo_};
+    glDeleteBuffers(4, buffers);
+    const GLuint arrays[] = {mesh_vao_, box_vao_};
+    glDeleteVertexArrays(2, arrays);
+    const GLuint rbs[] = {color_rb_, id_rb_, depth_rb_};
+    glDeleteRenderbuffers(3, rbs);
+    glDeleteFramebuffers(1, &fbo_);
+}
+
+void GlRenderer::uploadMeshes(std::span<const MeshData> meshes) {
+    // Interleaved position + normal; all meshes share one buffer pair and one VAO so that a draw
+    // is only a uniform update and a draw call.
+    std::vector<float> vertices;
+    std::vector<uint32_t> indices;
+    meshes_.clear();
+    for (const MeshData& mesh : meshes) {
+        if (mesh.normals.size() != mesh.positions.size()) {
+            throw std::invalid_argument("mesh has a different number of normals and positions");
+        }
+        MeshRange range{static_cast<uint32_t>(indices.size()),
+                        static_cast<uint32_t>(mesh.indices.size()),
+                        static_cast<int32_t>(vertices.size() / 6)};
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            const glm::vec3& p = mesh.positions[i];
+            const glm::vec3& n = mesh.normals[i];
+            vertices.insert(vertices.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+        }
+        indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+        meshes_.push_back(range);
+    }
+    if (mesh_vao_ == 0) {
+        glGenVertexArrays(1, &mesh_vao_);
+        glGenBuffers(1, &mesh_vbo_);
+        glGenBuffers(1, &mesh_ibo_);
+    }
+    glBindVertexArray(mesh_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, mesh_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+                 vertices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh_ibo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
+                 indices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    glBindVertexArray(0);
+    state_ = State::None;
+    checkGl("mesh upload");
+}
+
+void GlRenderer::setObjectMeshes(std::span<const uint32_t> mesh_of_object) {
+    for (uint32_t m : mesh_of_object) {
+        if (m >= meshes_.size()) throw std::out_of_range("object refers to a mesh never uploaded");
+    }
+    object_mesh_.assign(mesh_of_object.begin(), mesh_of_object.end());
+}
+
+uint32_t GlRenderer::triangleCount(uint32_t object) const {
+    return meshes_[object_mesh_[object]].index_count / 3;
+}
+
+void GlRenderer::setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view) {
+    view_ = view;
+    object_model_view_ = object_model_view;
+    state_ = State::None;  // the projection uniform must be re-sent
+}
+
+void GlRenderer::beginFrame() {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    const float background[4] = {0.12f, 0.13f, 0.16f, 1.0f};
+    const GLuint no_object[4] = {0, 0, 0, 0};
+    const float far_depth = 0.0f;  // reverse-Z
+    glClearBufferfv(GL_COLOR, 0, background);
+    glClearBufferuiv(GL_COLOR, 1, no_object);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    state_ = State::None;
+}
+
+void GlRenderer::useDrawState() {
+    if (state_ == State::Draw) return;
+    glUseProgram(draw_program_);
+    glUniformMatrix4fv(draw_projection_loc_, 1, GL_FALSE, &view_.projection[0][0]);
+    glBindVertexArray(mesh_vao_);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_GREATER);
+    state_ = State::Draw;
+}
+
+void GlRenderer::useQueryState() {
+    if (state_ == State::Query) return;
+    glUseProgram(query_program_);
+    glUniformMatrix4fv(query_projection_loc_, 1, GL_FALSE, &view_.projection[0][0]);
+    glBindVertexArray(box_vao_);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_GEQUAL);
+    state_ = State::Query;
+}
+
+void GlRenderer::drawObject(uint32_t object) {
+    useDrawState();
+    const MeshRange& mesh = meshes_[object_mesh_[object]];
+    glUniformMatrix4fv(draw_model_view_loc_, 1, GL_FALSE, &object_model_view_[object][0][0]);
+    glUniform1ui(draw_object_id_loc_, object + 1);
+    glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(size_t{mesh.first_index} * 4),
+                             mesh.base_vertex);
+}
+
+void GlRenderer::drawQueryBox(const Aabb& box) {
+    useQueryState();
+    // Dilate a little so that zero-extent boxes still rasterise and edges shared with occluders
+    // count as visible; a larger box only makes the query more conservative.
+    const glm::dvec3 lo(box.min), hi(box.max);
+    const double pad = 1e-4 * glm::max(1.0, glm::length(hi - lo)) +
+                       1e-6 * glm::length(0.5 * (lo + hi) - view_.eye);
+    const glm::vec3 offset(lo - pad - view_.eye);
+    const glm::vec3 size(hi - lo + 2.0 * pad);
+    glm::mat4 model_view = view_.view_rotation * glm::translate(glm::mat4(1.0f), offset) *
+                           glm::scale(glm::mat4(1.0f), size);
+    glUniformMatrix4fv(query_model_view_loc_, 1, GL_FALSE, &model_view[0][0]);
+    glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr);
+}
+
+void GlRenderer::finish() { glFinish(); }
+
+void GlRenderer::readObjectIds(std::vector<uint32_t>& ids) const {
+    ids.resize(size_t{width_} * height_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    glReadBuffer(GL_COLOR_ATTACHMENT1);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED_INTEGER,
+                 GL_UNSIGNED_INT, ids.data());
+    checkGl("glReadPixels(object IDs)");
+}
+
+void GlRenderer::readColor(std::vector<uint8_t>& rgba) const {
+    rgba.resize(size_t{width_} * height_ * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RGBA,
+                 GL_UNSIGNED_BYTE, rgba.data());
+    checkGl("glReadPixels(colour)");
+}
+
+}  // namespace occsim

@@ -1,0 +1,88 @@
+// The OpenGL renderer: one framebuffer with colour (RGBA8), object ID (R32UI: object index + 1,
+// 0 = background) and float depth; all meshes in one vertex and one index buffer; one draw call
+// per object. Needs a current GlContext.
+//
+// Conventions: right-handed world, y up, metres. Rendering is camera-relative (object matrices
+// are computed in double relative to the eye, then cast to float) with reverse-Z (clip control
+// 0..1, depth cleared to 0, GL_GREATER) into a 32-bit float depth buffer, so precision holds far
+// from the origin and over large near/far ratios. Occlusion-query boxes use GL_GEQUAL, so a box
+// face coplanar with an occluder counts as visible (conservative).
+#pragma once
+
+#include "culling/aabb.h"
+#include "render/mesh_data.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace occsim {
+
+struct ViewSetup {
+    glm::dvec3 eye{0.0};
+    glm::mat4 view_rotation{1.0f};  // world to view without translation
+    glm::mat4 projection{1.0f};     // reverse-Z, see reverseZPerspective()
+};
+
+// Perspective projection with reverse-Z for clip control GL_ZERO_TO_ONE: near maps to depth 1,
+// far to depth 0.
+glm::mat4 reverseZPerspective(float fov_y_radians, float aspect, float near_plane, float far_plane);
+
+class GlRenderer {
+public:
+    GlRenderer(uint32_t width, uint32_t height);
+    ~GlRenderer();
+    GlRenderer(const GlRenderer&) = delete;
+    GlRenderer& operator=(const GlRenderer&) = delete;
+
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    uint32_t framebuffer() const { return fbo_; }
+
+    // Uploads the meshes once (replacing earlier ones); object i draws mesh mesh_of_object[i].
+    void uploadMeshes(std::span<const MeshData> meshes);
+    void setObjectMeshes(std::span<const uint32_t> mesh_of_object);
+    uint32_t triangleCount(uint32_t object) const;
+    uint32_t objectCount() const { return static_cast<uint32_t>(object_mesh_.size()); }
+
+    // Per frame: the view and every object's camera-relative model-view matrix. The span must
+    // stay valid until the frame's last draw.
+    void setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view);
+
+    void beginFrame();  // binds the framebuffer, clears colour, IDs and depth
+    void drawObject(uint32_t object);
+    void drawQueryBox(const Aabb& box);  // inside glBeginQuery/glEndQuery, writes nothing
+    void finish();                       // glFinish
+
+    // Read back the last frame (row 0 at the bottom, as GL returns it).
+    void readObjectIds(std::vector<uint32_t>& ids) const;
+    void readColor(std::vector<uint8_t>& rgba) const;
+
+private:
+    enum class State : uint8_t { None, Draw, Query };
+    void useDrawState();
+    void useQueryState();
+
+    uint32_t width_ = 0, height_ = 0;
+    uint32_t fbo_ = 0, color_rb_ = 0, id_rb_ = 0, depth_rb_ = 0;
+    uint32_t draw_program_ = 0, query_program_ = 0;
+    int draw_model_view_loc_ = -1, draw_projection_loc_ = -1, draw_object_id_loc_ = -1;
+    int query_model_view_loc_ = -1, query_projection_loc_ = -1;
+    uint32_t mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
+    uint32_t box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0;
+
+    struct MeshRange {
+        uint32_t first_index;
+        uint32_t index_count;
+        int32_t base_vertex;
+    };
+    std::vector<MeshRange> meshes_;
+    std::vector<uint32_t> object_mesh_;
+    ViewSetup view_;
+    std::span<const glm::mat4> object_model_view_;
+    State state_ = State::None;
+};
+
+}  // namespace occsim

@@ -1,0 +1,70 @@
+// Headless GL through OSMesa. OSMesa needs a client buffer to make a context current; occsim
+// renders into its own framebuffer object, so that buffer only exists to satisfy the API.
+#include "render/gl_api.h"
+#include "render/gl_context.h"
+
+#include <GL/osmesa.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace occsim {
+namespace {
+
+class OsMesaContext final : public GlContext {
+public:
+    OsMesaContext(uint32_t width, uint32_t height) : buffer_(size_t{width} * height * 4) {
+        const int attribs[] = {OSMESA_FORMAT,
+                               OSMESA_RGBA,
+                               OSMESA_DEPTH_BITS,
+                               0,
+                               OSMESA_STENCIL_BITS,
+                               0,
+                               OSMESA_PROFILE,
+                               OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION,
+                               4,
+                               OSMESA_CONTEXT_MINOR_VERSION,
+                               5,
+                               0};
+        context_ = OSMesaCreateContextAttribs(attribs, nullptr);
+        if (context_ == nullptr) {
+            throw std::runtime_error("OSMesa: cannot create an OpenGL 4.5 core context");
+        }
+        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE,
+                               static_cast<GLsizei>(width), static_cast<GLsizei>(height))) {
+            OSMesaDestroyContext(context_);
+            throw std::runtime_error("OSMesa: cannot make the context current");
+        }
+        std::string error;
+        if (!loadGlFunctions(
+                [](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); },
+                &error)) {
+            OSMesaDestroyContext(context_);
+            throw std::runtime_error("OSMesa: " + error);
+        }
+    }
+    ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+    OsMesaContext(const OsMesaContext&) = delete;
+    OsMesaContext& operator=(const OsMesaContext&) = delete;
+
+    std::string rendererName() const override {
+        const GLubyte* r = glGetString(GL_RENDERER);
+        const GLubyte* v = glGetString(GL_VERSION);
+        return std::string(reinterpret_cast<const char*>(r)) + ", OpenGL " +
+               reinterpret_cast<const char*>(v);
+    }
+    void present(uint32_t, uint32_t, uint32_t) override {}
+
+private:
+    std::vector<unsigned char> buffer_;
+    OSMesaContext context_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<GlContext> createOsMesaContext(uint32_t width, uint32_t height) {
+    return std::make_unique<OsMesaContext>(width, height);
+}
+
+}  // namespace occsim
