@@ -1,0 +1,94 @@
+// A scenario: everything one headless run needs, parsed strictly from a JSON file (see
+// docs/scenario-format.md). Units: seconds, metres, degrees, pixels. Every field has the default
+// documented there; parseScenario() rejects unknown keys, wrong types, out-of-range values,
+// NaN/infinite numbers and missing files with a ScenarioError naming the file and JSON pointer.
+#pragma once
+
+#include "culling/aabb.h"
+#include "culling/bsp_tree.h"
+#include "culling/culler_factory.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// One line: "<file>: <json pointer>: <what was expected>".
+class ScenarioError : public std::runtime_error {
+public:
+    ScenarioError(const std::string& file, const std::string& pointer, const std::string& message)
+        : std::runtime_error(file + ": " + (pointer.empty() ? "/" : pointer) + ": " + message) {}
+};
+
+struct CameraKeyframe {
+    double time_s = 0.0;
+    glm::dvec3 position{0.0};
+    glm::dvec3 target{0.0, 0.0, -1.0};
+};
+
+struct CameraSpec {
+    double fov_y_deg = 60.0;  // vertical field of view, (0, 180)
+    double near_m = 0.1;
+    double far_m = 1000.0;
+    std::vector<CameraKeyframe> keyframes;  // at least one, times strictly increasing
+    bool loop = false;                      // wrap around after the last keyframe
+};
+
+// The teapot field of both papers: `count` teapots of random size and orientation placed
+// uniformly (seeded) in a box.
+struct TeapotFieldSpec {
+    uint32_t count = 1000;
+    Aabb region{glm::vec3(-50, 0, -200), glm::vec3(50, 10, 0)};
+    double size_min_m = 1.0;  // teapot height
+    double size_max_m = 3.0;
+    uint32_t tessellation = 6;  // segments per Bézier patch side
+};
+
+struct SceneSourceSpec {
+    std::string type = "teapots";  // the only type for now; glTF and other generators follow
+    TeapotFieldSpec teapots;
+};
+
+enum class MotionType : uint8_t { Bounce, Orbit };
+
+struct MoverSpec {
+    uint32_t source = 0;     // index into scene.sources
+    double fraction = 0.0;   // share of the source's objects that move, [0, 1]
+    MotionType motion = MotionType::Bounce;
+    double speed_min_mps = 1.0;
+    double speed_max_mps = 4.0;
+    // Bounce: the box movers stay in (default: the source's region). Orbit: radius range.
+    bool has_region = false;
+    Aabb region;
+    double radius_min_m = 2.0;
+    double radius_max_m = 8.0;
+};
+
+struct Scenario {
+    std::filesystem::path file;      // where it was read from (paths inside resolve against it)
+    std::string name;                // default: the file name without extension
+    uint64_t seed = 1;
+    uint32_t frames = 300;
+    double dt_s = 1.0 / 30.0;        // simulation time step
+    uint32_t warmup_frames = 10;     // excluded from timing summaries (not from error counts)
+    uint32_t width = 640;
+    uint32_t height = 480;
+    CameraSpec camera;
+    std::vector<SceneSourceSpec> sources;
+    std::vector<MoverSpec> movers;
+    std::string algorithm = "statistical";
+    CullerOptions culler;
+    BspBuildOptions bsp;
+    nlohmann::json expect;           // kept verbatim for regression runs (null when absent)
+};
+
+// Throws ScenarioError.
+Scenario parseScenarioFile(const std::filesystem::path& file);
+Scenario parseScenarioText(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace occsim
