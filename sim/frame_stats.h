@@ -1,0 +1,52 @@
+// What one frame of one algorithm cost and how wrong it was, and the summary over a run.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+struct FrameStats {
+    uint32_t frame = 0;
+    double time_s = 0.0;         // simulation time
+    double frame_ms = 0.0;       // wall clock: frame start to glFinish, culled render only
+    double cull_cpu_ms = 0.0;    // culler's own CPU time (traversal minus submission and waits)
+    double wait_ms = 0.0;        // blocked on query results
+    double update_ms = 0.0;      // movers, BSP reinsertion and refit (outside frame_ms)
+    uint64_t queries = 0;
+    uint64_t objects_drawn = 0;
+    uint64_t triangles = 0;
+    uint64_t moved_objects = 0;
+    uint64_t node_changes = 0;   // reinsertions that moved an object to another BSP node
+    // Error against ground truth; -1 when error was not measured.
+    int64_t error_pixels = -1;
+    int64_t missed_objects = -1;
+    int64_t visible_objects = -1;  // objects with at least one pixel in ground truth
+};
+
+struct Distribution {
+    double mean = 0, median = 0, p95 = 0, min = 0, max = 0;
+};
+
+Distribution distributionOf(std::vector<double> values);
+
+struct RunSummary {
+    std::string algorithm;
+    uint32_t frames = 0;          // all frames
+    uint32_t timed_frames = 0;    // frames after warm-up, over which timing figures are taken
+    Distribution frame_ms;
+    double cull_cpu_ms_mean = 0, wait_ms_mean = 0, update_ms_mean = 0;
+    double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
+    bool error_measured = false;
+    int64_t error_pixels_total = 0;
+    int64_t error_pixels_worst = 0;
+    uint32_t error_worst_frame = 0;
+    uint32_t frames_with_error = 0;
+    int64_t missed_objects_total = 0;
+};
+
+RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
+                     uint32_t warmup_frames);
+
+}  // namespace occsim

@@ -1,0 +1,161 @@
+// occsim: the simulator executable. Commands: run, bench, info. Bad input (flags, scenario files)
+// ends with one line on stderr and exit code 2; runtime failures (OpenGL, output) with exit 1.
+#include "culling/culler_factory.h"
+#include "sim/runner.h"
+#include "sim/scenario.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+constexpr int kExitFailure = 1;
+
+struct BadInput : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::string joinNames(const std::vector<std::string>& names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+void checkAlgorithm(const std::string& flag, const std::string& name) {
+    for (const auto& known : occsim::cullerNames()) {
+        if (known == name) return;
+    }
+    throw BadInput(flag + ": unknown algorithm '" + name + "'; expected one of: " +
+                   joinNames(occsim::cullerNames()));
+}
+
+std::string commandLine(int argc, char** argv) {
+    std::ostringstream out;
+    for (int i = 0; i < argc; ++i) out << (i ? " " : "") << argv[i];
+    return out.str();
+}
+
+struct CommonFlags {
+    std::string scenario;
+    bool error = false;
+    std::string out;
+    uint32_t frames = 0;
+    std::vector<uint32_t> capture;
+    int deterministic_latency = -1;
+};
+
+void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
+    cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
+    cmd->add_flag("--error", flags.error,
+                  "Measure image error against a ground-truth render of every frame (outside the timing)");
+    cmd->add_option("--out", flags.out, "Output folder (default: out/<scenario>/<command>)");
+    cmd->add_option("--frames", flags.frames, "Run this many frames instead of the scenario's")
+        ->check(CLI::Range(1u, 10000000u));
+    cmd->add_option("--capture", flags.capture, "Save these frames' colour buffers as PNG")
+        ->delimiter(',');
+    cmd->add_option("--deterministic-latency", flags.deterministic_latency,
+                    "A query result counts as ready only after N later draw calls (reproducible counts)")
+        ->check(CLI::Range(0, 1000000));
+}
+
+occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenario& scenario,
+                                  const std::string& default_subdir, const std::string& command) {
+    occsim::BenchOptions o;
+    o.measure_error = flags.error;
+    if (flags.frames > 0) o.frames = flags.frames;
+    o.capture_frames = flags.capture;
+    if (flags.deterministic_latency >= 0) {
+        o.latency.deterministic = true;
+        o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
+    }
+    o.out_dir = flags.out.empty() ? std::filesystem::path("out") / scenario.name / default_subdir
+                                  : std::filesystem::path(flags.out);
+    o.command_line = command;
+    o.progress = ::isatty(STDERR_FILENO) != 0;
+    return o;
+}
+
+int runCommand(const CommonFlags& flags, const std::vector<std::string>& algorithms,
+               const std::string& subdir, const std::string& command) {
+    const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
+    occsim::BenchOptions options = benchOptions(flags, scenario, subdir, command);
+    options.algorithms = algorithms;
+    const occsim::BenchResult result = occsim::runBenchmark(scenario, options);
+    const auto& first = result.runs.front().summary;
+    std::printf("%s: %u frames (%u timed after %u warm-up), %s\n", scenario.name.c_str(), first.frames,
+                first.timed_frames, first.frames - first.timed_frames, result.renderer.c_str());
+    std::printf("%s", result.table.c_str());
+    std::printf("written: %s/{frames.csv,summary.json}\n", options.out_dir.string().c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Help for every command");
+
+    CommonFlags run_flags;
+    std::string run_algorithm;
+    CLI::App* run = app.add_subcommand("run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
+    addCommonFlags(run, run_flags);
+    run->add_option("--algo", run_algorithm,
+                    "Culling algorithm (default: the scenario's): " + joinNames(occsim::cullerNames()));
+
+    CommonFlags bench_flags;
+    std::vector<std::string> bench_algorithms;
+    CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
+    addCommonFlags(bench, bench_flags);
+    bench->add_option("--algos", bench_algorithms, "Algorithms to compare (default: all)")->delimiter(',');
+
+    std::string info_scenario;
+    CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
+    info->add_option("scenario", info_scenario, "Scenario file (JSON)")->required();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "occsim: %s (see occsim --help)\n", e.what());
+        return kExitBadInput;
+    }
+
+    const std::string command = commandLine(argc, argv);
+    try {
+        if (*run) {
+            const occsim::Scenario probe = occsim::parseScenarioFile(run_flags.scenario);
+            const std::string algorithm = run_algorithm.empty() ? probe.algorithm : run_algorithm;
+            checkAlgorithm("--algo", algorithm);
+            return runCommand(run_flags, {algorithm}, "run-" + algorithm, command);
+        }
+        if (*bench) {
+            if (bench_algorithms.empty()) bench_algorithms = occsim::cullerNames();
+            for (const auto& a : bench_algorithms) checkAlgorithm("--algos", a);
+            return runCommand(bench_flags, bench_algorithms, "bench", command);
+        }
+        if (*info) {
+            std::printf("%s", occsim::describeScenario(occsim::parseScenarioFile(info_scenario)).c_str());
+            return 0;
+        }
+    } catch (const occsim::ScenarioError& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const BadInput& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitFailure;
+    }
+    return kExitFailure;
+}

@@ -1,0 +1,33 @@
+// Turning per-frame figures into what a person reads: the comparison table, frames.csv and
+// summary.json. Formatting only; nothing here measures anything.
+#pragma once
+
+#include "sim/frame_stats.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+struct RunRecord {
+    RunSummary summary;
+    std::vector<FrameStats> frames;
+};
+
+// The benchmark table (plain text, aligned): one row per algorithm, with speedup over VFC and
+// ratio to Ideal when those algorithms are among the records.
+std::string formatComparisonTable(const std::vector<RunRecord>& runs);
+
+// CSV with a header, one row per frame per algorithm.
+std::string framesCsv(const std::vector<RunRecord>& runs);
+
+nlohmann::json summaryJson(const std::vector<RunRecord>& runs);
+
+// Speedup over VFC (VFC mean / this mean) and ratio to Ideal (this mean / Ideal mean); 0 when
+// the reference is not among the runs.
+double speedupOverVfc(const std::vector<RunRecord>& runs, const RunSummary& s);
+double ratioToIdeal(const std::vector<RunRecord>& runs, const RunSummary& s);
+
+}  // namespace occsim

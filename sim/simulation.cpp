@@ -1,0 +1,160 @@
+#include "sim/simulation.h"
+
+#include "culling/basic_cullers.h"
+#include "sim/camera_path.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cmath>
+
+namespace occsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height) {
+    const CameraPose pose = sampleCameraPath(camera, time_s);
+    const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
+    // Looking straight up or down: y cannot be the up vector, take z.
+    const glm::dvec3 up = std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    const double aspect = static_cast<double>(width) / height;
+    const double fov = glm::radians(camera.fov_y_deg);
+
+    FrameView view;
+    view.render.eye = pose.position;
+    view.render.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), forward, up));
+    view.render.projection = reverseZPerspective(static_cast<float>(fov), static_cast<float>(aspect),
+                                                 static_cast<float>(camera.near_m),
+                                                 static_cast<float>(camera.far_m));
+    // Culling uses the conventional OpenGL projection; frustum planes live in world space.
+    const glm::dmat4 view_projection = glm::perspective(fov, aspect, camera.near_m, camera.far_m) *
+                                       glm::lookAt(pose.position, pose.position + forward, up);
+    view.cull.eye = glm::vec3(pose.position);
+    view.cull.frustum = frustumFromViewProjection(glm::mat4(view_projection));
+    const double tan_half = std::tan(0.5 * fov);
+    // Distance from the eye to a near-plane corner, with 1% to spare.
+    view.cull.near_radius = static_cast<float>(
+        1.01 * camera.near_m * std::sqrt(1.0 + tan_half * tan_half * (1.0 + aspect * aspect)));
+    return view;
+}
+
+void uploadScene(const Scene& scene, GlRenderer& renderer) {
+    renderer.uploadMeshes(scene.meshes);
+    renderer.setObjectMeshes(scene.object_mesh);
+}
+
+Simulation::Simulation(const Scene& scene, const Scenario& scenario, std::unique_ptr<Culler> culler,
+                       GlRenderer& renderer, const SimulationOptions& options)
+    : scene_(scene),
+      scenario_(scenario),
+      culler_(std::move(culler)),
+      ground_truth_culler_(std::make_unique<VfcCuller>()),
+      renderer_(renderer),
+      options_(options),
+      device_(renderer, options.latency),
+      ground_truth_device_(renderer, LatencyMode{}),
+      state_(initialState(scene)) {
+    tree_.build(state_.boxes, scenario.bsp);
+    culler_->reset(tree_);
+    ground_truth_culler_->reset(tree_);
+    model_view_.resize(scene.objectCount());
+}
+
+void Simulation::prepareView(const FrameView& view) {
+    // Camera-relative model-view matrices, composed in double: precise far from the origin.
+    const glm::dmat4 rotation(view.render.view_rotation);
+    const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -view.render.eye);
+    for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+        model_view_[o] = glm::mat4(rotation * to_eye * modelMatrix(state_.poses[o]));
+    }
+    renderer_.setView(view.render, model_view_);
+}
+
+void Simulation::renderGroundTruth(const CullFrame& frame) {
+    renderer_.beginFrame();
+    ground_truth_culler_->cullAndRender(tree_, frame, ground_truth_device_);
+    renderer_.readObjectIds(ground_truth_ids_);
+    ground_truth_visible_.assign(scene_.objectCount(), 0);
+    for (uint32_t id : ground_truth_ids_) {
+        if (id != 0) ground_truth_visible_[id - 1] = 1;
+    }
+}
+
+FrameStats Simulation::step() {
+    FrameStats stats;
+    stats.frame = frame_;
+    stats.time_s = frame_ * scenario_.dt_s;
+
+    // 1. The world moves (not on frame 0: it shows the initial state). Skipped without movers.
+    const auto update_start = Clock::now();
+    if (frame_ > 0 && !state_.movers.empty()) {
+        const uint64_t moved_before = tree_.stats().reinserts_moved;
+        stepMovers(scene_, state_, scenario_.dt_s);
+        for (const Mover& mover : state_.movers) tree_.reinsert(mover.object, state_.boxes[mover.object]);
+        tree_.refitDirtyBounds();
+        stats.moved_objects = state_.movers.size();
+        stats.node_changes = tree_.stats().reinserts_moved - moved_before;
+    }
+    stats.update_ms = msSince(update_start);
+
+    const FrameView view = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height);
+    prepareView(view);
+    CullFrame frame;
+    frame.frame_index = frame_;
+    frame.time_s = stats.time_s;
+    frame.view = view.cull;
+
+    // 2. Ground truth, outside the timing, when error is measured or the culler is the oracle.
+    const bool ground_truth = options_.measure_error || culler_->needsGroundTruth();
+    if (ground_truth) {
+        renderGroundTruth(frame);
+        frame.ground_truth_visible = ground_truth_visible_;
+    }
+
+    // 3. The measured frame: culled render to glFinish.
+    device_.resetCounters();
+    const auto frame_start = Clock::now();
+    renderer_.beginFrame();
+    const auto cull_start = Clock::now();
+    culler_->cullAndRender(tree_, frame, device_);
+    const double cull_ms = msSince(cull_start);
+    renderer_.finish();
+    stats.frame_ms = msSince(frame_start);
+
+    const DeviceCounters& c = device_.counters();
+    stats.wait_ms = c.wait_seconds * 1e3;
+    stats.cull_cpu_ms = std::max(0.0, cull_ms - (c.submit_seconds + c.wait_seconds) * 1e3);
+    stats.queries = c.queries_issued;
+    stats.objects_drawn = c.objects_drawn;
+    stats.triangles = c.triangles_drawn;
+
+    // 4. Error: object-ID buffers compared pixel by pixel.
+    if (options_.measure_error) {
+        renderer_.readObjectIds(culled_ids_);
+        int64_t differing = 0;
+        culled_visible_.assign(scene_.objectCount(), 0);
+        for (size_t i = 0; i < culled_ids_.size(); ++i) {
+            differing += culled_ids_[i] != ground_truth_ids_[i];
+            if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
+        }
+        int64_t missed = 0, visible = 0;
+        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+            visible += ground_truth_visible_[o];
+            missed += ground_truth_visible_[o] && !culled_visible_[o];
+        }
+        stats.error_pixels = differing;
+        stats.missed_objects = missed;
+        stats.visible_objects = visible;
+    }
+    ++frame_;
+    return stats;
+}
+
+}  // namespace occsim
