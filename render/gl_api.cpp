@@ -23,6 +23,13 @@ bool loadGlFunctions(GlProcLoader loader, std::string* error) {
     return true;
 }
 
+std::string glRendererDescription() {
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    return std::string(renderer ? renderer : "unknown renderer") + ", OpenGL " +
+           (version ? version : "unknown version");
+}
+
 void checkGl(const char* what) {
     GLenum err = glGetError();
     if (err != GL_NO_ERROR) {

@@ -3,6 +3,8 @@
 // Code calls them by their usual names; the macros below route those names to our pointers.
 #pragma once
 
+#include "render/gl_loader.h"
+
 #include <GL/glcorearb.h>
 
 #include <string>
@@ -146,12 +148,6 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #define glGetQueryObjectui64v occsim_glGetQueryObjectui64v
 
 namespace occsim {
-
-using GlProcLoader = void* (*)(const char* name);
-
-// Loads every entry point through `loader` for the current context. Returns false and names the
-// first missing function in *error.
-bool loadGlFunctions(GlProcLoader loader, std::string* error);
 
 // Throws std::runtime_error naming `what` (the GL call) and the error code when glGetError() is
 // set. Used after set-up calls, not in the per-draw hot path.

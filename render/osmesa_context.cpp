@@ -1,7 +1,7 @@
 // Headless GL through OSMesa. OSMesa needs a client buffer to make a context current; occsim
 // renders into its own framebuffer object, so that buffer only exists to satisfy the API.
-#include "render/gl_api.h"
 #include "render/gl_context.h"
+#include "render/gl_loader.h"
 
 #include <GL/osmesa.h>
 
@@ -49,10 +49,7 @@ public:
     OsMesaContext& operator=(const OsMesaContext&) = delete;
 
     std::string rendererName() const override {
-        const GLubyte* r = glGetString(GL_RENDERER);
-        const GLubyte* v = glGetString(GL_VERSION);
-        return std::string(reinterpret_cast<const char*>(r)) + ", OpenGL " +
-               reinterpret_cast<const char*>(v);
+        return glRendererDescription();
     }
     void present(uint32_t, uint32_t, uint32_t) override {}
 
