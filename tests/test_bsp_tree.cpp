@@ -1,0 +1,727 @@
+// BspTree: the structural contract in bsp_tree.h, checked from scratch after a build and after
+// thousands of random moves, plus the split rules, reinsert walks, dirty marking, statistics and
+// option validation.
+#include "culling/bsp_tree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace occsim {
+namespace {
+
+constexpr uint32_t kNone = BspTree::kNone;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+
+bool sameBox(const Aabb& a, const Aabb& b) {
+    return a.min.x == b.min.x && a.min.y == b.min.y && a.min.z == b.min.z && a.max.x == b.max.x &&
+           a.max.y == b.max.y && a.max.z == b.max.z;
+}
+
+bool isInfiniteBox(const Aabb& b) {
+    return sameBox(b, makeAabb(glm::vec3(-kInf), glm::vec3(kInf)));
+}
+
+::testing::Message describe(const Aabb& b) {
+    return ::testing::Message() << "[(" << b.min.x << ", " << b.min.y << ", " << b.min.z
+                                << ") .. (" << b.max.x << ", " << b.max.y << ", " << b.max.z
+                                << ")]";
+}
+
+std::vector<uint32_t> ancestorsAndSelf(const BspTree& tree, uint32_t node) {
+    std::vector<uint32_t> path;
+    for (uint32_t n = node; n != kNone; n = tree.node(n).parent) path.push_back(n);
+    return path;
+}
+
+// Checks every documented invariant of a tree whose bounds have been refitted, recomputing
+// everything from the object boxes. Uses ASSERT-style early exits via the return value so a
+// broken tree produces one readable failure instead of thousands.
+void expectTreeInvariants(const BspTree& tree) {
+    const uint32_t node_count = tree.nodeCount();
+    const uint32_t object_count = tree.objectCount();
+    ASSERT_GE(node_count, 1u);
+
+    // Structure: parents, children, depths, cells.
+    const BspNode& root = tree.node(tree.root());
+    EXPECT_EQ(root.parent, kNone);
+    EXPECT_EQ(root.depth, 0u);
+    uint32_t deepest = 0;
+    for (uint32_t n = 0; n < node_count; ++n) {
+        const BspNode& node = tree.node(n);
+        deepest = std::max(deepest, node.depth);
+        ASSERT_FALSE(node.bounds_dirty) << "node " << n << " still dirty after refit";
+        ASSERT_EQ(node.child[0] == kNone, node.child[1] == kNone) << "node " << n;
+        if (n != tree.root()) {
+            ASSERT_LT(node.parent, n) << "parent index must be smaller than the child's";
+            const BspNode& parent = tree.node(node.parent);
+            ASSERT_TRUE(parent.child[0] == n || parent.child[1] == n)
+                << "node " << n << " is not a child of its parent " << node.parent;
+            ASSERT_EQ(node.depth, parent.depth + 1) << "node " << n;
+        }
+        if (node.isLeaf()) continue;
+        for (int side = 0; side < 2; ++side) {
+            const uint32_t c = node.child[side];
+            ASSERT_GT(c, n) << "child index must be larger than the parent's";
+            ASSERT_LT(c, node_count);
+            ASSERT_EQ(tree.node(c).parent, n) << "child " << c << " of node " << n;
+        }
+        // Children split the cell at `split` along `axis`, strictly inside it.
+        const Aabb& cell = node.cell;
+        const int axis = node.axis;
+        ASSERT_LT(axis, 3);
+        ASSERT_GT(node.split, cell.min[axis]) << "node " << n;
+        ASSERT_LT(node.split, cell.max[axis]) << "node " << n;
+        Aabb below = cell;
+        Aabb above = cell;
+        below.max[axis] = node.split;
+        above.min[axis] = node.split;
+        EXPECT_TRUE(sameBox(tree.node(node.child[0]).cell, below)) << "node " << n;
+        EXPECT_TRUE(sameBox(tree.node(node.child[1]).cell, above)) << "node " << n;
+    }
+    EXPECT_EQ(tree.maxDepth(), deepest);
+
+    // Lists: every object in exactly one list, nodeOf() and object_count agree.
+    std::vector<int> times_listed(object_count, 0);
+    for (uint32_t n = 0; n < node_count; ++n) {
+        uint32_t listed = 0;
+        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
+            ASSERT_LT(o, object_count) << "node " << n << " lists a bad object index";
+            ASSERT_LE(++listed, object_count) << "node " << n << "'s list has a cycle";
+            ++times_listed[o];
+            ASSERT_EQ(tree.nodeOf(o), n) << "object " << o << " is listed in node " << n;
+        }
+        ASSERT_EQ(listed, tree.node(n).object_count) << "node " << n;
+    }
+    for (uint32_t o = 0; o < object_count; ++o) {
+        ASSERT_EQ(times_listed[o], 1) << "object " << o << " listed " << times_listed[o] << " times";
+    }
+
+    // Placement: the deepest node whose cell contains the box; the root for boxes it cannot place.
+    const Aabb& root_cell = root.cell;
+    for (uint32_t o = 0; o < object_count; ++o) {
+        const Aabb& box = tree.objectBox(o);
+        const uint32_t n = tree.nodeOf(o);
+        const BspNode& node = tree.node(n);
+        if (!isFiniteAndOrdered(box) || !contains(root_cell, box)) {
+            ASSERT_EQ(n, tree.root()) << "object " << o << " " << describe(box);
+            continue;
+        }
+        ASSERT_TRUE(contains(node.cell, box))
+            << "object " << o << " " << describe(box) << " is in node " << n
+            << " whose cell does not contain it";
+        if (!node.isLeaf()) {
+            for (uint32_t c : node.child) {
+                ASSERT_FALSE(contains(tree.node(c).cell, box))
+                    << "object " << o << " " << describe(box) << " sits in node " << n
+                    << " but child " << c << " contains it";
+            }
+        }
+    }
+
+    // Bounds: tight union of own boxes and children's bounds, infinite over non-finite boxes.
+    std::vector<Aabb> expected(node_count);
+    for (uint32_t n = node_count; n-- > 0;) {
+        Aabb b;
+        bool infinite = false;
+        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
+            const Aabb& box = tree.objectBox(o);
+            if (isFiniteAndOrdered(box)) {
+                extend(b, box);
+            } else {
+                infinite = true;
+            }
+        }
+        const BspNode& node = tree.node(n);
+        if (!node.isLeaf()) {
+            for (uint32_t c : node.child) {
+                extend(b, expected[c]);
+                infinite |= isInfiniteBox(expected[c]);
+            }
+        }
+        expected[n] = infinite ? makeAabb(glm::vec3(-kInf), glm::vec3(kInf)) : b;
+    }
+    for (uint32_t n = 0; n < node_count; ++n) {
+        const Aabb& bounds = tree.bounds(n);
+        ASSERT_TRUE(sameBox(bounds, expected[n]))
+            << "node " << n << " bounds " << describe(bounds) << ", recomputed "
+            << describe(expected[n]);
+        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
+            if (isFiniteAndOrdered(tree.objectBox(o))) {
+                ASSERT_TRUE(contains(bounds, tree.objectBox(o))) << "node " << n << " object " << o;
+            }
+        }
+        if (!tree.node(n).isLeaf()) {
+            for (uint32_t c : tree.node(n).child) {
+                ASSERT_TRUE(contains(bounds, tree.bounds(c))) << "node " << n << " child " << c;
+            }
+        }
+    }
+}
+
+// A random scene: boxes of widely varying size, some with zero extent on every axis (points) and
+// some flat on one axis.
+std::vector<Aabb> randomScene(std::mt19937& rng, size_t count, glm::vec3 world_half_size) {
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::uniform_real_distribution<float> log_size(std::log(0.05f), std::log(20.0f));
+    std::vector<Aabb> boxes;
+    boxes.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+        const glm::vec3 centre = world_half_size * glm::vec3(unit(rng), unit(rng), unit(rng));
+        glm::vec3 size(std::exp(log_size(rng)), std::exp(log_size(rng)), std::exp(log_size(rng)));
+        if (i % 10 == 0) size = glm::vec3(0.0f);           // a point
+        if (i % 10 == 1) size[static_cast<int>(i % 3)] = 0.0f;  // flat
+        boxes.push_back(makeAabb(centre - 0.5f * size, centre + 0.5f * size));
+    }
+    return boxes;
+}
+
+Aabb translated(const Aabb& b, glm::vec3 by) { return makeAabb(b.min + by, b.max + by); }
+
+// A box touching (or, with zero thickness, lying on) the split plane of a random inner node.
+Aabb onRandomSplitPlane(const BspTree& tree, std::mt19937& rng, const Aabb& box) {
+    std::vector<uint32_t> inner;
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        if (!tree.node(n).isLeaf()) inner.push_back(n);
+    }
+    const BspNode& node = tree.node(inner[rng() % inner.size()]);
+    const int axis = node.axis;
+    // Centred in the node's cell on the other axes so that the box stays inside it.
+    const glm::vec3 cell_centre = center(node.cell);
+    const glm::vec3 half = 0.25f * glm::min(extent(box), extent(node.cell));
+    Aabb out = makeAabb(cell_centre - half, cell_centre + half);
+    const float thickness = out.max[axis] - out.min[axis];
+    switch (rng() % 3) {
+        case 0:  // touching from below
+            out.max[axis] = node.split;
+            out.min[axis] = std::max(node.split - thickness, node.cell.min[axis]);
+            break;
+        case 1:  // touching from above
+            out.min[axis] = node.split;
+            out.max[axis] = std::min(node.split + thickness, node.cell.max[axis]);
+            break;
+        default:  // zero thickness, on the plane
+            out.min[axis] = out.max[axis] = node.split;
+            break;
+    }
+    return out;
+}
+
+const char* ruleName(BspSplitRule rule) { return rule == BspSplitRule::Sah ? "Sah" : "Median"; }
+
+class BspTreeRandomMoves : public ::testing::TestWithParam<BspSplitRule> {};
+
+TEST_P(BspTreeRandomMoves, EveryObjectLivesInDeepestContainingNodeAfter10000RandomMoves) {
+    std::mt19937 rng(GetParam() == BspSplitRule::Sah ? 4242u : 1717u);
+    const glm::vec3 world_half_size(100.0f, 40.0f, 70.0f);
+    std::vector<Aabb> boxes = randomScene(rng, 2000, world_half_size);
+
+    BspBuildOptions options;
+    options.split_rule = GetParam();
+    options.max_depth = 16;
+    options.max_objects_per_leaf = 4;
+    BspTree tree;
+    tree.build(boxes, options);
+    ASSERT_GT(tree.nodeCount(), 100u) << "the scene should split into many cells";
+    expectTreeInvariants(tree);
+    if (HasFatalFailure()) return;
+
+    // A few objects on split planes right away.
+    for (uint32_t o = 0; o < 50; ++o) {
+        boxes[o] = onRandomSplitPlane(tree, rng, boxes[o]);
+        tree.reinsert(o, boxes[o]);
+    }
+    tree.refitDirtyBounds();
+    expectTreeInvariants(tree);
+    if (HasFatalFailure()) return;
+
+    std::normal_distribution<float> step(0.0f, 1.5f);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<uint32_t> non_finite;  // objects currently holding a non-finite box
+    int moved_out_of_root = 0;
+    int made_non_finite = 0;
+    int made_finite_again = 0;
+    for (int move = 1; move <= 10000; ++move) {
+        const uint32_t roll = rng() % 100;
+        uint32_t object = rng() % tree.objectCount();
+        Aabb box = boxes[object];
+        if (!non_finite.empty() && roll < 3) {
+            // A non-finite object becomes finite again, somewhere in the world.
+            const size_t k = rng() % non_finite.size();
+            object = non_finite[k];
+            non_finite.erase(non_finite.begin() + static_cast<std::ptrdiff_t>(k));
+            const glm::vec3 centre = world_half_size * glm::vec3(unit(rng), unit(rng), unit(rng));
+            box = makeAabb(centre - 0.5f, centre + 0.5f);
+            ++made_finite_again;
+        } else if (!isFiniteAndOrdered(box)) {
+            continue;  // leave non-finite objects to the branch above
+        } else if (roll < 5) {
+            // NaN, infinite or inverted.
+            switch (rng() % 3) {
+                case 0: box.min.y = kNan; break;
+                case 1: box.max.x = kInf; break;
+                default: std::swap(box.min.z, box.max.z); box.min.z += 1.0f; break;
+            }
+            non_finite.push_back(object);
+            ++made_non_finite;
+        } else if (roll < 10) {
+            // Far outside the root cell.
+            box = translated(box, glm::vec3(0.0f, 5.0f * world_half_size.y, 0.0f));
+            ++moved_out_of_root;
+        } else if (roll < 18) {
+            // A big jump to anywhere in the world.
+            const glm::vec3 centre = world_half_size * glm::vec3(unit(rng), unit(rng), unit(rng));
+            box = translated(box, centre - center(box));
+        } else if (roll < 24) {
+            box = onRandomSplitPlane(tree, rng, box);
+        } else {
+            // A small random-walk step.
+            box = translated(box, glm::vec3(step(rng), step(rng), step(rng)));
+        }
+        boxes[object] = box;
+        tree.reinsert(object, box);
+
+        if (move % 100 == 0) tree.refitDirtyBounds();  // like one refit per frame
+        if (move % 2500 == 0) {
+            tree.refitDirtyBounds();
+            expectTreeInvariants(tree);
+            if (HasFatalFailure()) return;
+        }
+    }
+    tree.refitDirtyBounds();
+    expectTreeInvariants(tree);
+    if (HasFatalFailure()) return;
+
+    // The run must have exercised the interesting cases.
+    EXPECT_GT(moved_out_of_root, 100);
+    EXPECT_GT(made_non_finite, 50);
+    EXPECT_GT(made_finite_again, 20);
+    for (uint32_t o = 0; o < tree.objectCount(); ++o) {
+        EXPECT_TRUE(sameBox(tree.objectBox(o), boxes[o]) || !isFiniteAndOrdered(boxes[o]))
+            << "object " << o << " box not stored";
+    }
+    if (!non_finite.empty()) {
+        EXPECT_TRUE(isInfiniteBox(tree.bounds(tree.root())))
+            << "a non-finite object must make the root bounds infinite";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(SplitRules, BspTreeRandomMoves,
+                         ::testing::Values(BspSplitRule::Median, BspSplitRule::Sah),
+                         [](const ::testing::TestParamInfo<BspSplitRule>& param_info) {
+                             return std::string(ruleName(param_info.param));
+                         });
+
+TEST(BspTree, MedianRuleSplitsTheLongestCellAxisAtTheMedianObjectCentre) {
+    // Distinct points in a scene long in x: the root split is on x, and half the points lie on
+    // each side of it.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> x(-100.0f, 100.0f);
+    std::uniform_real_distribution<float> yz(-10.0f, 10.0f);
+    std::vector<Aabb> points;
+    for (int i = 0; i < 1001; ++i) {
+        const glm::vec3 p(x(rng), yz(rng), yz(rng));
+        points.push_back(makeAabb(p, p));
+    }
+    BspTree tree;
+    tree.build(points, BspBuildOptions{});
+    const BspNode& root = tree.node(tree.root());
+    ASSERT_FALSE(root.isLeaf());
+    EXPECT_EQ(root.axis, 0);
+    int below = 0;
+    int above = 0;
+    for (const Aabb& p : points) (p.min.x <= root.split ? below : above)++;
+    EXPECT_LE(std::abs(below - above), 2) << "below " << below << ", above " << above;
+
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        const BspNode& node = tree.node(n);
+        if (node.isLeaf()) continue;
+        const glm::vec3 size = extent(node.cell);
+        EXPECT_EQ(size[node.axis], std::max(size.x, std::max(size.y, size.z)))
+            << "node " << n << " did not split its longest axis";
+    }
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, SahRuleCutsBetweenADenseAndASparseClusterWhereMedianCutsTheDenseOne) {
+    // 1000 small boxes in x in [0, 1], 10 in x in [9, 10]. The median lies inside the dense
+    // cluster; the surface area heuristic prefers a plane that wraps the dense cluster tightly.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 1010; ++i) {
+        const float x = (i < 1000 ? 0.0f : 9.0f) + 0.9f * unit(rng);
+        const glm::vec3 low(x, 0.9f * unit(rng), 0.9f * unit(rng));
+        boxes.push_back(makeAabb(low, low + glm::vec3(0.1f * unit(rng))));
+    }
+    BspBuildOptions options;
+    options.split_rule = BspSplitRule::Sah;
+    BspTree sah;
+    sah.build(boxes, options);
+    options.split_rule = BspSplitRule::Median;
+    BspTree median;
+    median.build(boxes, options);
+
+    ASSERT_FALSE(sah.node(0).isLeaf());
+    EXPECT_EQ(sah.node(0).axis, 0);
+    EXPECT_GT(sah.node(0).split, 1.0f);
+    EXPECT_LT(sah.node(0).split, 9.0f);
+    EXPECT_EQ(sah.node(0).object_count, 0u) << "no box straddles the gap";
+
+    ASSERT_FALSE(median.node(0).isLeaf());
+    EXPECT_EQ(median.node(0).axis, 0);
+    EXPECT_LT(median.node(0).split, 1.0f);
+
+    expectTreeInvariants(sah);
+    expectTreeInvariants(median);
+}
+
+TEST(BspTree, SahRuleChargesStraddlersToTheParentSoItAvoidsCuttingThroughManyObjects) {
+    // 1000 thin rods spanning the scene in x, and 1000 small boxes spread through it. Any x plane
+    // leaves every rod straddling in the root; a y or z plane cuts almost nothing. A heuristic
+    // that forgot the straddlers' cost would find the x planes as cheap as the others.
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> coordinate(0.0f, 10.0f);
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 1000; ++i) {
+        const float y = coordinate(rng);
+        const float z = coordinate(rng);
+        boxes.push_back(makeAabb({0.0f, y, z}, {10.0f, y + 0.05f, z + 0.05f}));
+    }
+    for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 low(coordinate(rng), coordinate(rng), coordinate(rng));
+        boxes.push_back(makeAabb(low, low + glm::vec3(0.05f)));
+    }
+    BspBuildOptions options;
+    options.split_rule = BspSplitRule::Sah;
+    BspTree tree;
+    tree.build(boxes, options);
+    ASSERT_FALSE(tree.node(0).isLeaf());
+    EXPECT_NE(tree.node(0).axis, 0);
+    EXPECT_LT(tree.node(0).object_count, 50u);
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, RootCellIsTheSceneBoundsEnlargedByTheMarginOnEachSide) {
+    const std::vector<Aabb> boxes = {
+        makeAabb({-10.0f, 0.0f, 5.0f}, {-8.0f, 2.0f, 6.0f}),
+        makeAabb({10.0f, 4.0f, -5.0f}, {12.0f, 6.0f, -4.0f}),
+        makeAabb(glm::vec3(kNan), glm::vec3(kNan)),  // ignored by the root cell
+        makeAabb(glm::vec3(-1e9f), glm::vec3(kInf)),  // so is this
+    };
+    BspBuildOptions options;
+    options.root_margin = 0.25f;
+    BspTree tree;
+    tree.build(boxes, options);
+    const Aabb& cell = tree.node(0).cell;
+    // Scene bounds (-10, 0, -5) .. (12, 6, 6): extent (22, 6, 11).
+    EXPECT_FLOAT_EQ(cell.min.x, -10.0f - 5.5f);
+    EXPECT_FLOAT_EQ(cell.max.x, 12.0f + 5.5f);
+    EXPECT_FLOAT_EQ(cell.min.y, 0.0f - 1.5f);
+    EXPECT_FLOAT_EQ(cell.max.y, 6.0f + 1.5f);
+    EXPECT_FLOAT_EQ(cell.min.z, -5.0f - 2.75f);
+    EXPECT_FLOAT_EQ(cell.max.z, 6.0f + 2.75f);
+    EXPECT_EQ(tree.nodeOf(2), tree.root());
+    EXPECT_EQ(tree.nodeOf(3), tree.root());
+    EXPECT_TRUE(isInfiniteBox(tree.bounds(0)));
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, CellsNeverDegenerateForFlatScenesOrScenesWithoutFiniteBoxes) {
+    // Every box in the plane y = 3, and all points on one line along x.
+    std::vector<Aabb> flat;
+    for (int i = 0; i < 200; ++i) {
+        const float x = static_cast<float>(i);
+        flat.push_back(makeAabb({x, 3.0f, 0.0f}, {x, 3.0f, 0.0f}));
+    }
+    BspBuildOptions options;
+    options.root_margin = 0.0f;
+    BspTree tree;
+    tree.build(flat, options);
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        const glm::vec3 size = extent(tree.node(n).cell);
+        EXPECT_GT(size.x, 0.0f) << "node " << n;
+        EXPECT_GT(size.y, 0.0f) << "node " << n;
+        EXPECT_GT(size.z, 0.0f) << "node " << n;
+    }
+    EXPECT_GT(tree.nodeCount(), 1u);
+    expectTreeInvariants(tree);
+
+    // No finite box at all: a unit cube at the origin (plus margin), one leaf holding everything.
+    const std::vector<Aabb> none = {Aabb{}, makeAabb(glm::vec3(kNan), glm::vec3(1.0f))};
+    BspTree empty_tree;
+    empty_tree.build(none, BspBuildOptions{});
+    const Aabb& cell = empty_tree.node(0).cell;
+    EXPECT_TRUE(contains(cell, makeAabb(glm::vec3(-0.5f), glm::vec3(0.5f))));
+    EXPECT_LT(glm::length(extent(cell)), 3.0f);
+    EXPECT_EQ(empty_tree.nodeCount(), 1u);
+    EXPECT_EQ(empty_tree.node(0).object_count, 2u);
+    expectTreeInvariants(empty_tree);
+
+    BspTree no_objects;
+    no_objects.build({}, BspBuildOptions{});
+    EXPECT_EQ(no_objects.nodeCount(), 1u);
+    EXPECT_TRUE(isEmpty(no_objects.bounds(0)));
+    expectTreeInvariants(no_objects);
+}
+
+TEST(BspTree, BuildStopsAtMaxDepthAndAtMaxObjectsPerLeaf) {
+    std::mt19937 rng(3);
+    const std::vector<Aabb> boxes = randomScene(rng, 3000, glm::vec3(50.0f));
+    for (BspSplitRule rule : {BspSplitRule::Median, BspSplitRule::Sah}) {
+        BspBuildOptions options;
+        options.split_rule = rule;
+        options.max_depth = 3;
+        options.max_objects_per_leaf = 1;
+        BspTree shallow;
+        shallow.build(boxes, options);
+        EXPECT_EQ(shallow.maxDepth(), 3u) << ruleName(rule);
+        EXPECT_LE(shallow.nodeCount(), 15u) << ruleName(rule);
+
+        options.max_depth = 0;
+        BspTree root_only;
+        root_only.build(boxes, options);
+        EXPECT_EQ(root_only.nodeCount(), 1u) << ruleName(rule);
+        EXPECT_EQ(root_only.maxDepth(), 0u) << ruleName(rule);
+
+        options.max_depth = 64;
+        options.max_objects_per_leaf = 3000;
+        BspTree one_leaf;
+        one_leaf.build(boxes, options);
+        EXPECT_EQ(one_leaf.nodeCount(), 1u) << ruleName(rule);
+
+        // A subtree is split only while it holds more than max_objects_per_leaf objects.
+        options.max_objects_per_leaf = 8;
+        BspTree tree;
+        tree.build(boxes, options);
+        std::vector<uint32_t> subtree_objects(tree.nodeCount(), 0);
+        for (uint32_t n = tree.nodeCount(); n-- > 0;) {
+            subtree_objects[n] += tree.node(n).object_count;
+            if (n != 0) subtree_objects[tree.node(n).parent] += subtree_objects[n];
+        }
+        for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+            if (!tree.node(n).isLeaf()) {
+                EXPECT_GT(subtree_objects[n], 8u) << ruleName(rule) << " node " << n;
+            }
+        }
+        expectTreeInvariants(tree);
+    }
+}
+
+TEST(BspTree, IdenticalObjectsDoNotCauseUselessSplits) {
+    // Splitting can never separate identical boxes, so the tree must stay a single leaf instead
+    // of running down to max_depth.
+    for (BspSplitRule rule : {BspSplitRule::Median, BspSplitRule::Sah}) {
+        for (const Aabb& box : {makeAabb(glm::vec3(1.0f), glm::vec3(1.0f)),
+                                makeAabb(glm::vec3(1.0f), glm::vec3(2.0f))}) {
+            const std::vector<Aabb> boxes(100, box);
+            BspBuildOptions options;
+            options.split_rule = rule;
+            options.max_depth = 64;
+            BspTree tree;
+            tree.build(boxes, options);
+            EXPECT_EQ(tree.nodeCount(), 1u) << ruleName(rule);
+            expectTreeInvariants(tree);
+        }
+    }
+}
+
+// A tree over a random scene for the reinsert tests.
+struct SmallWorld {
+    std::vector<Aabb> boxes;
+    BspTree tree;
+
+    explicit SmallWorld(uint32_t seed) {
+        std::mt19937 rng(seed);
+        boxes = randomScene(rng, 1000, glm::vec3(50.0f));
+        tree.build(boxes, BspBuildOptions{});
+    }
+
+    // An object stored in a leaf at depth >= 3 with a box of non-zero size.
+    uint32_t deepLeafObject() const {
+        for (uint32_t o = 0; o < tree.objectCount(); ++o) {
+            const BspNode& node = tree.node(tree.nodeOf(o));
+            if (node.isLeaf() && node.depth >= 3 && glm::all(glm::greaterThan(
+                                                        extent(boxes[o]), glm::vec3(0.0f)))) {
+                return o;
+            }
+        }
+        return kNone;
+    }
+};
+
+TEST(BspTree, ReinsertWithinTheSameCellKeepsTheNodeAndWalksOneNode) {
+    SmallWorld world(21);
+    BspTree& tree = world.tree;
+    const uint32_t object = world.deepLeafObject();
+    ASSERT_NE(object, kNone);
+    const uint32_t node = tree.nodeOf(object);
+
+    // Shrinking the box towards its centre keeps it inside the same cell.
+    const Aabb& old_box = world.boxes[object];
+    const glm::vec3 c = center(old_box);
+    const Aabb smaller = makeAabb(glm::mix(old_box.min, c, 0.5f), glm::mix(old_box.max, c, 0.5f));
+    const BspStats before = tree.stats();
+    tree.reinsert(object, smaller);
+    EXPECT_EQ(tree.nodeOf(object), node);
+    EXPECT_EQ(tree.stats().reinserts, before.reinserts + 1);
+    EXPECT_EQ(tree.stats().reinserts_moved, before.reinserts_moved);
+    EXPECT_LE(tree.stats().nodes_walked - before.nodes_walked, 2u);
+    EXPECT_TRUE(sameBox(tree.objectBox(object), smaller));
+
+    // The bounds shrink on refit.
+    tree.refitDirtyBounds();
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, ReinsertMarksOldAndNewNodesAndTheirAncestorsDirtyEachOnce) {
+    SmallWorld world(22);
+    BspTree& tree = world.tree;
+    const uint32_t object = world.deepLeafObject();
+    ASSERT_NE(object, kNone);
+    const uint32_t old_node = tree.nodeOf(object);
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) ASSERT_FALSE(tree.node(n).bounds_dirty);
+
+    // Mirror the object to the opposite corner of the world: a different deep node.
+    const Aabb& box = world.boxes[object];
+    const Aabb mirrored = makeAabb(-box.max, -box.min);
+    tree.reinsert(object, mirrored);
+    const uint32_t new_node = tree.nodeOf(object);
+    ASSERT_NE(new_node, old_node);
+
+    std::set<uint32_t> expected_dirty;
+    for (uint32_t n : ancestorsAndSelf(tree, old_node)) expected_dirty.insert(n);
+    for (uint32_t n : ancestorsAndSelf(tree, new_node)) expected_dirty.insert(n);
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        EXPECT_EQ(tree.node(n).bounds_dirty, expected_dirty.count(n) == 1) << "node " << n;
+    }
+
+    // Reinserting again in place adds no new dirty nodes (each is listed once), so the refit
+    // recomputes exactly the dirty set.
+    tree.reinsert(object, mirrored);
+    const uint64_t refit_before = tree.stats().nodes_refit;
+    tree.refitDirtyBounds();
+    EXPECT_EQ(tree.stats().nodes_refit - refit_before, expected_dirty.size());
+    expectTreeInvariants(tree);
+
+    // Nothing dirty: a refit does nothing.
+    tree.refitDirtyBounds();
+    EXPECT_EQ(tree.stats().nodes_refit - refit_before, expected_dirty.size());
+}
+
+TEST(BspTree, StatsCountReinsertsMovesWalkedNodesAndRefits) {
+    SmallWorld world(23);
+    BspTree& tree = world.tree;
+    tree.resetStats();
+    EXPECT_EQ(tree.stats().reinserts, 0u);
+    EXPECT_EQ(tree.stats().nodes_refit, 0u);
+
+    const uint32_t object = world.deepLeafObject();
+    ASSERT_NE(object, kNone);
+    const uint32_t depth = tree.node(tree.nodeOf(object)).depth;
+
+    // Same box: counted, not moved, one node walked.
+    tree.reinsert(object, world.boxes[object]);
+    EXPECT_EQ(tree.stats().reinserts, 1u);
+    EXPECT_EQ(tree.stats().reinserts_moved, 0u);
+    EXPECT_EQ(tree.stats().nodes_walked, 1u);
+
+    // Out of the root cell: walks up to the root (depth + 1 nodes) and moves.
+    tree.reinsert(object, translated(world.boxes[object], glm::vec3(1000.0f, 0.0f, 0.0f)));
+    EXPECT_EQ(tree.stats().reinserts, 2u);
+    EXPECT_EQ(tree.stats().reinserts_moved, 1u);
+    EXPECT_EQ(tree.nodeOf(object), tree.root());
+    EXPECT_EQ(tree.stats().nodes_walked, 1u + depth + 1u);
+
+    // Back again: walks down from the root to where it was (depth + 1 nodes).
+    const uint64_t walked = tree.stats().nodes_walked;
+    tree.reinsert(object, world.boxes[object]);
+    EXPECT_EQ(tree.stats().reinserts_moved, 2u);
+    EXPECT_EQ(tree.stats().nodes_walked - walked, depth + 1u);
+
+    // Refit counts one per dirty node.
+    uint32_t dirty = 0;
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) dirty += tree.node(n).bounds_dirty ? 1 : 0;
+    EXPECT_EQ(dirty, depth + 1u);
+    tree.refitDirtyBounds();
+    EXPECT_EQ(tree.stats().nodes_refit, dirty);
+    expectTreeInvariants(tree);
+
+    tree.resetStats();
+    EXPECT_EQ(tree.stats().reinserts, 0u);
+    EXPECT_EQ(tree.stats().reinserts_moved, 0u);
+    EXPECT_EQ(tree.stats().nodes_walked, 0u);
+    EXPECT_EQ(tree.stats().nodes_refit, 0u);
+}
+
+TEST(BspTree, NonFiniteBoxMakesBoundsInfiniteUntilItBecomesFiniteAgain) {
+    SmallWorld world(24);
+    BspTree& tree = world.tree;
+    const uint32_t object = world.deepLeafObject();
+    ASSERT_NE(object, kNone);
+    const uint32_t leaf = tree.nodeOf(object);
+
+    Aabb broken = world.boxes[object];
+    broken.max.z = kNan;
+    tree.reinsert(object, broken);
+    EXPECT_EQ(tree.nodeOf(object), tree.root());
+    tree.refitDirtyBounds();
+    EXPECT_TRUE(isInfiniteBox(tree.bounds(tree.root())));
+    EXPECT_FALSE(isInfiniteBox(tree.bounds(leaf)));
+    expectTreeInvariants(tree);
+
+    tree.reinsert(object, world.boxes[object]);
+    EXPECT_EQ(tree.nodeOf(object), leaf);
+    tree.refitDirtyBounds();
+    EXPECT_FALSE(isInfiniteBox(tree.bounds(tree.root())));
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, OptionValidationRejectsOutOfRangeValuesAndNamesTheOption) {
+    EXPECT_TRUE(BspBuildOptions{}.isValid(nullptr));
+    std::string error;
+    EXPECT_TRUE(BspBuildOptions{}.isValid(&error));
+
+    struct Case {
+        BspBuildOptions options;
+        const char* option_name;
+    };
+    std::vector<Case> cases;
+    auto add = [&cases](const char* option_name, auto change) {
+        BspBuildOptions o;
+        change(o);
+        cases.push_back({o, option_name});
+    };
+    add("max_depth", [](BspBuildOptions& o) { o.max_depth = 65; });
+    add("max_depth", [](BspBuildOptions& o) { o.max_depth = UINT32_MAX; });
+    add("max_objects_per_leaf", [](BspBuildOptions& o) { o.max_objects_per_leaf = 0; });
+    add("root_margin", [](BspBuildOptions& o) { o.root_margin = -0.01f; });
+    add("root_margin", [](BspBuildOptions& o) { o.root_margin = 10.5f; });
+    add("root_margin", [](BspBuildOptions& o) { o.root_margin = kNan; });
+    add("root_margin", [](BspBuildOptions& o) { o.root_margin = kInf; });
+    for (const Case& c : cases) {
+        error.clear();
+        EXPECT_FALSE(c.options.isValid(&error)) << c.option_name;
+        EXPECT_NE(error.find(c.option_name), std::string::npos) << "message: " << error;
+        EXPECT_FALSE(c.options.isValid(nullptr)) << c.option_name;
+    }
+    // Range ends are valid.
+    BspBuildOptions edges;
+    edges.max_depth = 64;
+    edges.max_objects_per_leaf = 1;
+    edges.root_margin = 10.0f;
+    EXPECT_TRUE(edges.isValid(nullptr));
+    edges.max_depth = 0;
+    edges.root_margin = 0.0f;
+    EXPECT_TRUE(edges.isValid(nullptr));
+}
+
+}  // namespace
+}  // namespace occsim
