@@ -1,5 +1,6 @@
 #include "culling/scripted_query_device.h"
 
+#include <algorithm>
 #include <cassert>
 #include <utility>
 
@@ -35,6 +36,7 @@ QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes) {
     queries_[id] = {commands_++, samples, true};
     ++counters_.queries_issued;
     counters_.query_boxes += boxes.size();
+    max_pending_ = std::max(max_pending_, pendingQueries());
     return id;
 }
 

@@ -20,6 +20,7 @@ public:
     // The current frame's truth: which objects are visible, and every object's box.
     void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
 
+    using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes) override;
     bool isQueryReady(QueryId id) override;
@@ -30,6 +31,8 @@ public:
     const std::vector<Aabb>& queriedBoxes() const { return queried_; }
     void clearLog();
     uint32_t pendingQueries() const;
+    // The most queries that were ever in flight at once (issued, result not yet fetched).
+    uint32_t maxPendingQueries() const { return max_pending_; }
 
 private:
     struct Pending {
@@ -39,6 +42,7 @@ private:
     };
     uint32_t latency_;
     uint64_t commands_ = 0;
+    uint32_t max_pending_ = 0;
     std::vector<uint8_t> visible_;
     std::vector<Aabb> boxes_;
     std::vector<Pending> queries_;

@@ -18,6 +18,7 @@ public:
     GlQueryDevice(const GlQueryDevice&) = delete;
     GlQueryDevice& operator=(const GlQueryDevice&) = delete;
 
+    using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes) override;
     bool isQueryReady(QueryId id) override;

@@ -1,0 +1,46 @@
+// Shared set-up for culler tests: random object boxes, a tree over them, and cameras.
+#pragma once
+
+#include "culling/bsp_tree.h"
+#include "culling/culler.h"
+#include "culling/frustum.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <random>
+#include <vector>
+
+namespace occsim::testing {
+
+inline std::vector<Aabb> randomBoxes(uint32_t count, uint32_t seed, float extent = 100.0f) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-extent, extent), size(0.1f, 3.0f);
+    std::vector<Aabb> boxes;
+    for (uint32_t i = 0; i < count; ++i) {
+        glm::vec3 lo(pos(rng), pos(rng) * 0.1f, pos(rng));
+        boxes.push_back({lo, lo + glm::vec3(size(rng), size(rng), size(rng))});
+    }
+    return boxes;
+}
+
+inline CullView makeView(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f, float near = 0.1f,
+                         float far = 1000.0f, float aspect = 4.0f / 3.0f) {
+    CullView view;
+    view.eye = eye;
+    const glm::mat4 vp = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
+                         glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    view.frustum = frustumFromViewProjection(vp);
+    const float t = std::tan(glm::radians(fov_deg) * 0.5f);
+    view.near_radius = 1.01f * near * std::sqrt(1.0f + t * t * (1.0f + aspect * aspect));
+    return view;
+}
+
+inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) {
+    CullFrame frame;
+    frame.view = view;
+    frame.frame_index = index;
+    frame.time_s = time_s;
+    return frame;
+}
+
+}  // namespace occsim::testing
