@@ -66,9 +66,15 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const auto start = Clock::now();
     auto last_progress = start;
     // Interleaved: frame f of every algorithm before frame f + 1 of any.
+    // Every simulation runs the same world in lockstep, so one ground-truth render per frame
+    // serves them all.
+    bool any_needs_truth = false;
+    for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
     for (uint32_t f = 0; f < scenario.frames; ++f) {
+        for (auto& sim : sims) sim->advance();
+        const GroundTruthFrame* truth = any_needs_truth ? &sims.front()->renderGroundTruth() : nullptr;
         for (size_t a = 0; a < sims.size(); ++a) {
-            frames[a].push_back(sims[a]->step());
+            frames[a].push_back(sims[a]->renderFrame(truth));
             if (std::find(options.capture_frames.begin(), options.capture_frames.end(), f) !=
                 options.capture_frames.end()) {
                 renderer.readColor(rgba);
@@ -120,6 +126,10 @@ std::string describeScenario(const Scenario& scenario) {
         objects_in_leaves += node.object_count;
         max_in_leaf = std::max(max_in_leaf, node.object_count);
     }
+    // Where objects live by node depth: straddlers of a split stay in inner nodes, and an object
+    // high in the tree is drawn whenever its (large) node is visible.
+    std::vector<uint32_t> by_depth(tree.maxDepth() + 1, 0);
+    for (uint32_t o = 0; o < tree.objectCount(); ++o) ++by_depth[tree.node(tree.nodeOf(o)).depth];
     const Aabb& b = tree.bounds(tree.root());
     std::ostringstream out;
     char line[256];
@@ -135,6 +145,9 @@ std::string describeScenario(const Scenario& scenario) {
                   leaves ? static_cast<double>(objects_in_leaves) / leaves : 0.0, max_in_leaf,
                   scene.objectCount() - objects_in_leaves);
     out << line;
+    out << "objects/depth";
+    for (size_t d = 0; d < by_depth.size(); ++d) out << ' ' << d << ':' << by_depth[d];
+    out << "\n";
     std::snprintf(line, sizeof line, "bounds        (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)\n", b.min.x,
                   b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
     out << line;

@@ -77,22 +77,17 @@ void Simulation::prepareView(const FrameView& view) {
     renderer_.setView(view.render, model_view_);
 }
 
-void Simulation::renderGroundTruth(const CullFrame& frame) {
-    renderer_.beginFrame();
-    ground_truth_culler_->cullAndRender(tree_, frame, ground_truth_device_);
-    renderer_.readObjectIds(ground_truth_ids_);
-    ground_truth_visible_.assign(scene_.objectCount(), 0);
-    for (uint32_t id : ground_truth_ids_) {
-        if (id != 0) ground_truth_visible_[id - 1] = 1;
-    }
+bool Simulation::needsGroundTruth() const {
+    return options_.measure_error || culler_->needsGroundTruth();
 }
 
-FrameStats Simulation::step() {
-    FrameStats stats;
+void Simulation::advance() {
+    FrameStats& stats = pending_;
+    stats = FrameStats{};
     stats.frame = frame_;
     stats.time_s = frame_ * scenario_.dt_s;
 
-    // 1. The world moves (not on frame 0: it shows the initial state). Skipped without movers.
+    // The world moves (not on frame 0: it shows the initial state). Skipped without movers.
     const auto update_start = Clock::now();
     if (frame_ > 0 && !state_.movers.empty()) {
         const uint64_t moved_before = tree_.stats().reinserts_moved;
@@ -104,26 +99,49 @@ FrameStats Simulation::step() {
     }
     stats.update_ms = msSince(update_start);
 
-    const FrameView view = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height);
-    prepareView(view);
-    CullFrame frame;
-    frame.frame_index = frame_;
-    frame.time_s = stats.time_s;
-    frame.view = view.cull;
+    view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height);
+    cull_frame_ = CullFrame{};
+    cull_frame_.frame_index = frame_;
+    cull_frame_.time_s = stats.time_s;
+    cull_frame_.view = view_.cull;
+    advanced_ = true;
+}
 
-    // 2. Ground truth, outside the timing, when error is measured or the culler is the oracle.
-    const bool ground_truth = options_.measure_error || culler_->needsGroundTruth();
-    if (ground_truth) {
-        renderGroundTruth(frame);
-        frame.ground_truth_visible = ground_truth_visible_;
+const GroundTruthFrame& Simulation::renderGroundTruth() {
+    prepareView(view_);
+    renderer_.beginFrame();
+    ground_truth_culler_->cullAndRender(tree_, cull_frame_, ground_truth_device_);
+    renderer_.readObjectIds(ground_truth_.ids);
+    ground_truth_.visible.assign(scene_.objectCount(), 0);
+    for (uint32_t id : ground_truth_.ids) {
+        if (id != 0) ground_truth_.visible[id - 1] = 1;
+    }
+    return ground_truth_;
+}
+
+FrameStats Simulation::step() {
+    advance();
+    return renderFrame(nullptr);
+}
+
+FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
+    if (!advanced_) advance();
+    FrameStats stats = pending_;
+
+    // Ground truth, outside the timing, when error is measured or the culler is the oracle.
+    const GroundTruthFrame* truth = nullptr;
+    if (needsGroundTruth()) {
+        truth = shared ? shared : &renderGroundTruth();
+        cull_frame_.ground_truth_visible = truth->visible;
     }
 
-    // 3. The measured frame: culled render to glFinish.
+    // The measured frame: culled render to glFinish.
+    prepareView(view_);
     device_.resetCounters();
     const auto frame_start = Clock::now();
     renderer_.beginFrame();
     const auto cull_start = Clock::now();
-    culler_->cullAndRender(tree_, frame, device_);
+    culler_->cullAndRender(tree_, cull_frame_, device_);
     const double cull_ms = msSince(cull_start);
     renderer_.finish();
     stats.frame_ms = msSince(frame_start);
@@ -135,26 +153,31 @@ FrameStats Simulation::step() {
     stats.objects_drawn = c.objects_drawn;
     stats.triangles = c.triangles_drawn;
 
-    // 4. Error: object-ID buffers compared pixel by pixel.
-    if (options_.measure_error) {
-        renderer_.readObjectIds(culled_ids_);
-        int64_t differing = 0;
-        culled_visible_.assign(scene_.objectCount(), 0);
-        for (size_t i = 0; i < culled_ids_.size(); ++i) {
-            differing += culled_ids_[i] != ground_truth_ids_[i];
-            if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
-        }
-        int64_t missed = 0, visible = 0;
-        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
-            visible += ground_truth_visible_[o];
-            missed += ground_truth_visible_[o] && !culled_visible_[o];
-        }
-        stats.error_pixels = differing;
-        stats.missed_objects = missed;
-        stats.visible_objects = visible;
-    }
+    if (options_.measure_error) measureError(*truth, stats);
     ++frame_;
+    advanced_ = false;
     return stats;
+}
+
+// Object-ID buffers compared pixel by pixel; an object counts as missed when ground truth saw it
+// and the culled frame shows none of its pixels (a culled frame draws a subset of the objects, so
+// an object it drew that ground truth sees cannot be hidden in it).
+void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) {
+    renderer_.readObjectIds(culled_ids_);
+    int64_t differing = 0;
+    culled_visible_.assign(scene_.objectCount(), 0);
+    for (size_t i = 0; i < culled_ids_.size(); ++i) {
+        differing += culled_ids_[i] != truth.ids[i];
+        if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
+    }
+    int64_t missed = 0, visible = 0;
+    for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+        visible += truth.visible[o];
+        missed += truth.visible[o] && !culled_visible_[o];
+    }
+    stats.error_pixels = differing;
+    stats.missed_objects = missed;
+    stats.visible_objects = visible;
 }
 
 }  // namespace occsim

@@ -31,6 +31,12 @@ struct FrameView {
 
 FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height);
 
+// Ground truth of one frame: the VFC render's object IDs and which objects it saw.
+struct GroundTruthFrame {
+    std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
+    std::vector<uint8_t> visible;  // per object
+};
+
 class Simulation {
 public:
     // The renderer must have the scene's meshes uploaded (uploadScene()).
@@ -39,6 +45,16 @@ public:
 
     // Renders the next frame and returns its figures. Call while !done().
     FrameStats step();
+
+    // step() in two halves, so that simulations running in lockstep over the same world can share
+    // one ground-truth render per frame: advance() moves the world and sets up the view;
+    // renderFrame() renders (and measures) it. With `shared` null the simulation renders its own
+    // ground truth when it needs one.
+    void advance();
+    bool needsGroundTruth() const;
+    const GroundTruthFrame& renderGroundTruth();  // for the current (advanced) frame
+    FrameStats renderFrame(const GroundTruthFrame* shared);
+
     bool done() const { return frame_ >= scenario_.frames; }
     uint32_t frame() const { return frame_; }
 
@@ -48,7 +64,7 @@ public:
 
 private:
     void prepareView(const FrameView& view);
-    void renderGroundTruth(const CullFrame& frame);
+    void measureError(const GroundTruthFrame& truth, FrameStats& stats);
 
     const Scene& scene_;
     const Scenario& scenario_;
@@ -61,11 +77,14 @@ private:
     WorldState state_;
     BspTree tree_;
     uint32_t frame_ = 0;
+    bool advanced_ = false;     // advance() ran for frame_, renderFrame() not yet
+    FrameStats pending_;        // the figures advance() gathered for frame_
+    CullFrame cull_frame_;
+    FrameView view_;
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;
-    std::vector<uint32_t> ground_truth_ids_;
+    GroundTruthFrame ground_truth_;
     std::vector<uint32_t> culled_ids_;
-    std::vector<uint8_t> ground_truth_visible_;
     std::vector<uint8_t> culled_visible_;
 };
 
