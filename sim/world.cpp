@@ -42,14 +42,21 @@ SourceRange addTeapotField(const TeapotFieldSpec& spec, uint64_t seed, Scene& sc
     return range;
 }
 
-// Picks round(fraction * count) distinct objects of the range (partial Fisher-Yates), sorted.
-std::vector<uint32_t> pickObjects(const SourceRange& range, double fraction, Rng& rng) {
-    std::vector<uint32_t> ids(range.count);
-    std::iota(ids.begin(), ids.end(), range.first);
-    const auto wanted = static_cast<uint32_t>(std::lround(fraction * range.count));
-    for (uint32_t i = 0; i < wanted; ++i) std::swap(ids[i], ids[i + rng.below(range.count - i)]);
+// Picks round(fraction * count) distinct objects of the range that do not move yet (partial
+// Fisher-Yates; fewer when not enough are left), sorted, and marks them as moving.
+std::vector<uint32_t> pickObjects(const SourceRange& range, double fraction, Rng& rng,
+                                  std::vector<uint8_t>& moving) {
+    std::vector<uint32_t> ids;
+    for (uint32_t o = range.first; o < range.first + range.count; ++o) {
+        if (!moving[o]) ids.push_back(o);
+    }
+    const auto free_count = static_cast<uint32_t>(ids.size());
+    const auto wanted =
+        std::min(free_count, static_cast<uint32_t>(std::lround(fraction * range.count)));
+    for (uint32_t i = 0; i < wanted; ++i) std::swap(ids[i], ids[i + rng.below(free_count - i)]);
     ids.resize(wanted);
     std::sort(ids.begin(), ids.end());
+    for (uint32_t o : ids) moving[o] = 1;
     return ids;
 }
 
@@ -67,12 +74,13 @@ Scene buildScene(const Scenario& scenario) {
         const SceneSourceSpec& source = scenario.sources[s];
         ranges.push_back(addTeapotField(source.teapots, deriveSeed(scenario.seed, s, kPlacement), scene));
     }
+    std::vector<uint8_t> moving(scene.objectCount(), 0);  // an object gets one motion at most
     for (size_t m = 0; m < scenario.movers.size(); ++m) {
         const MoverSpec& spec = scenario.movers[m];
         const SourceRange& range = ranges.at(spec.source);
         Rng pick(deriveSeed(scenario.seed, m, kMoverPick));
         Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
-        for (uint32_t object : pickObjects(range, spec.fraction, pick)) {
+        for (uint32_t object : pickObjects(range, spec.fraction, pick, moving)) {
             const double speed = motion.uniform(spec.speed_min_mps, spec.speed_max_mps);
             Mover mover{object, BounceMotion{}};
             if (spec.motion == MotionType::Bounce) {

@@ -1,0 +1,102 @@
+// The occsim executable as a user meets it: bad input ends with one line and exit code 2, good
+// input writes whole files.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+#include <sys/wait.h>
+
+namespace {
+
+struct Outcome {
+    int exit_code = -1;
+    std::string output;  // stdout and stderr together
+};
+
+Outcome runOccsim(const std::string& args) {
+    const std::string command = std::string(OCCSIM_EXE) + " " + args + " 2>&1";
+    Outcome out;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return out;
+    std::array<char, 4096> buffer{};
+    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
+    const int status = pclose(pipe);
+    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return out;
+}
+
+const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+
+std::filesystem::path tempPath(const std::string& name) {
+    const auto p = std::filesystem::temp_directory_path() / ("occsim-cli-" + name);
+    std::filesystem::remove_all(p);
+    return p;
+}
+
+size_t lineCount(const std::string& s) {
+    size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+TEST(Cli, UnknownAlgorithmIsOneLineNamingTheFlagAndTheChoicesWithExitCode2) {
+    const Outcome o = runOccsim("run " + kSmall + " --algo fastest --out " + tempPath("a").string());
+    EXPECT_EQ(o.exit_code, 2);
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("--algo"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("statistical"), std::string::npos) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(tempPath("a")));
+}
+
+TEST(Cli, MissingScenarioFileNamesTheFileWithExitCode2) {
+    const Outcome o = runOccsim("bench /no/such/scenario.json");
+    EXPECT_EQ(o.exit_code, 2);
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("/no/such/scenario.json"), std::string::npos) << o.output;
+}
+
+TEST(Cli, MalformedScenarioNamesFileAndPlaceWithExitCode2AndWritesNothing) {
+    const auto dir = tempPath("bad");
+    std::filesystem::create_directories(dir);
+    const auto file = dir / "bad.json";
+    std::ofstream(file) << "{\n  \"format_version\": 1,\n  \"frames\": 0\n}\n";
+    const auto out = dir / "out";
+    const Outcome o = runOccsim("run " + file.string() + " --out " + out.string());
+    EXPECT_EQ(o.exit_code, 2);
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("bad.json"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("/frames"), std::string::npos) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, BadFlagsAreOneLineWithExitCode2) {
+    const std::vector<std::string> cases = {"bench " + kSmall + " --frames 0",
+                                            "bench " + kSmall + " --frmaes 3",
+                                            "run " + kSmall + " --frames ten", "fly " + kSmall, ""};
+    for (const std::string& args : cases) {
+        const Outcome o = runOccsim(args);
+        EXPECT_EQ(o.exit_code, 2) << args << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << args << ": " << o.output;
+    }
+}
+
+TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
+    const auto out = tempPath("ok");
+    const Outcome o = runOccsim("run " + kSmall + " --algo statistical --frames 5 --error --out " + out.string());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("statistical"), std::string::npos) << o.output;
+    EXPECT_TRUE(std::filesystem::exists(out / "frames.csv"));
+    EXPECT_TRUE(std::filesystem::exists(out / "summary.json"));
+}
+
+TEST(Cli, InfoPrintsTheSceneWithoutRendering) {
+    const Outcome o = runOccsim("info " + kSmall);
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("triangles"), std::string::npos) << o.output;
+}
+
+}  // namespace

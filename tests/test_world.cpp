@@ -1,0 +1,167 @@
+// Scene building, movers and the camera path: deterministic, bounded, smooth.
+#include "sim/camera_path.h"
+#include "sim/frame_stats.h"
+#include "sim/scenario.h"
+#include "sim/world.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace occsim {
+namespace {
+
+Scenario smallScenario(uint64_t seed = 3) {
+    Scenario s;
+    s.seed = seed;
+    SceneSourceSpec source;
+    source.teapots.count = 200;
+    source.teapots.region = {glm::vec3(-20, 0, -50), glm::vec3(20, 5, 0)};
+    source.teapots.tessellation = 2;
+    s.sources.push_back(source);
+    MoverSpec bounce;
+    bounce.fraction = 0.25;
+    bounce.motion = MotionType::Bounce;
+    MoverSpec orbit;
+    orbit.fraction = 0.1;
+    orbit.motion = MotionType::Orbit;
+    s.movers = {bounce, orbit};
+    s.camera.keyframes.push_back({});
+    return s;
+}
+
+TEST(Scene, TeapotFieldIsDeterministicPerSeedAndDiffersAcrossSeeds) {
+    const Scene a = buildScene(smallScenario(3));
+    const Scene b = buildScene(smallScenario(3));
+    const Scene c = buildScene(smallScenario(4));
+    ASSERT_EQ(a.objectCount(), 200u);
+    for (uint32_t o = 0; o < a.objectCount(); ++o) {
+        EXPECT_EQ(a.initial_poses[o].position, b.initial_poses[o].position);
+        EXPECT_EQ(a.initial_poses[o].scale, b.initial_poses[o].scale);
+    }
+    EXPECT_NE(a.initial_poses[0].position, c.initial_poses[0].position);
+    ASSERT_EQ(a.initial_movers.size(), b.initial_movers.size());
+    for (size_t m = 0; m < a.initial_movers.size(); ++m) {
+        EXPECT_EQ(a.initial_movers[m].object, b.initial_movers[m].object);
+    }
+}
+
+TEST(Scene, PlacesTeapotsInsideTheRegionWithSizesInRange) {
+    const Scenario s = smallScenario();
+    const Scene scene = buildScene(s);
+    const TeapotFieldSpec& spec = s.sources[0].teapots;
+    for (const ObjectPose& p : scene.initial_poses) {
+        EXPECT_TRUE(contains(spec.region, glm::vec3(p.position)));
+        EXPECT_GE(p.scale, spec.size_min_m);
+        EXPECT_LE(p.scale, spec.size_max_m);
+    }
+    EXPECT_EQ(scene.triangle_count, 200u * scene.meshes[0].triangleCount());
+}
+
+TEST(Scene, MoverFractionsPickDistinctObjectsAndNeverTwoMotionsForOne) {
+    const Scene scene = buildScene(smallScenario());
+    EXPECT_EQ(scene.initial_movers.size(), 50u + 20u);  // 25% and 10% of 200
+    std::vector<int> seen(scene.objectCount());
+    for (const Mover& m : scene.initial_movers) ++seen[m.object];
+    for (int count : seen) EXPECT_LE(count, 1) << "an object carries one motion at most";
+}
+
+TEST(Movers, BouncersStayInTheirRegionEvenWithHugeSteps) {
+    const Scene scene = buildScene(smallScenario());
+    WorldState state = initialState(scene);
+    for (double dt : {0.01, 0.5, 7.3, 1000.0}) {
+        for (int i = 0; i < 50; ++i) stepMovers(scene, state, dt);
+        for (const Mover& m : state.movers) {
+            if (const auto* b = std::get_if<BounceMotion>(&m.motion)) {
+                const glm::dvec3 p = state.poses[m.object].position;
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_GE(p[axis], b->region.min[axis] - 1e-9) << "dt " << dt;
+                    EXPECT_LE(p[axis], b->region.max[axis] + 1e-9) << "dt " << dt;
+                }
+            }
+        }
+    }
+}
+
+TEST(Movers, OrbitersKeepTheirRadiusAndSpeedAndBoxesFollowThem) {
+    const Scene scene = buildScene(smallScenario());
+    WorldState state = initialState(scene);
+    const WorldState before = state;
+    stepMovers(scene, state, 0.1);
+    for (size_t i = 0; i < state.movers.size(); ++i) {
+        const Mover& m = state.movers[i];
+        const auto* orbit = std::get_if<OrbitMotion>(&m.motion);
+        if (!orbit) continue;
+        const glm::dvec3 p = state.poses[m.object].position;
+        EXPECT_NEAR(glm::length(glm::dvec2(p.x - orbit->center.x, p.z - orbit->center.z)), orbit->radius_m, 1e-9);
+        const double travelled = glm::length(p - before.poses[m.object].position);
+        EXPECT_NEAR(travelled, std::abs(orbit->angular_speed) * orbit->radius_m * 0.1, 1e-3);
+        const Aabb expected = worldBox(scene.mesh_bounds[0], state.poses[m.object]);
+        EXPECT_EQ(state.boxes[m.object].min, expected.min);
+    }
+}
+
+TEST(CameraPath, PassesThroughKeyframesAndHoldsAtTheEnds) {
+    CameraSpec camera;
+    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
+                        {3.0, {10, 0, -20}, {0, 0, -20}}};
+    EXPECT_EQ(sampleCameraPath(camera, -1.0).position, glm::dvec3(0, 0, 0));
+    EXPECT_EQ(sampleCameraPath(camera, 1.0).position, glm::dvec3(10, 0, 0));
+    EXPECT_EQ(sampleCameraPath(camera, 3.0).position, glm::dvec3(10, 0, -20));
+    EXPECT_EQ(sampleCameraPath(camera, 99.0).position, glm::dvec3(10, 0, -20));
+    const glm::dvec3 mid = sampleCameraPath(camera, 2.0).position;
+    EXPECT_GT(mid.x, 5.0);
+    EXPECT_LT(mid.z, -5.0);
+}
+
+TEST(CameraPath, IsContinuousAcrossKeyframes) {
+    CameraSpec camera;
+    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
+                        {2.0, {10, 5, -10}, {0, 0, -20}}, {4.0, {0, 0, -30}, {0, 0, -40}}};
+    for (double t = 0.0; t < 4.0; t += 0.001) {
+        const double step = glm::length(sampleCameraPath(camera, t + 0.001).position -
+                                         sampleCameraPath(camera, t).position);
+        EXPECT_LT(step, 0.05) << "jump at t = " << t;
+    }
+}
+
+TEST(CameraPath, LoopsWhenAsked) {
+    CameraSpec camera;
+    camera.loop = true;
+    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
+                        {2.0, {0, 0, 0}, {0, 0, -1}}};
+    const glm::dvec3 a = sampleCameraPath(camera, 0.7).position;
+    const glm::dvec3 b = sampleCameraPath(camera, 2.7).position;
+    EXPECT_NEAR(glm::length(a - b), 0.0, 1e-9);
+}
+
+TEST(Distribution, MeanMedianAndNearestRankP95) {
+    std::vector<double> v;
+    for (int i = 1; i <= 100; ++i) v.push_back(i);
+    const Distribution d = distributionOf(v);
+    EXPECT_DOUBLE_EQ(d.mean, 50.5);
+    EXPECT_DOUBLE_EQ(d.median, 50.5);
+    EXPECT_DOUBLE_EQ(d.p95, 95.0);
+    EXPECT_DOUBLE_EQ(d.min, 1.0);
+    EXPECT_DOUBLE_EQ(d.max, 100.0);
+    EXPECT_DOUBLE_EQ(distributionOf({3.0}).p95, 3.0);
+}
+
+TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
+    std::vector<FrameStats> frames(10);
+    for (uint32_t i = 0; i < 10; ++i) {
+        frames[i].frame = i;
+        frames[i].frame_ms = i < 3 ? 1000.0 : 10.0;
+        frames[i].error_pixels = i == 1 ? 7 : 0;
+        frames[i].missed_objects = i == 1 ? 1 : 0;
+    }
+    const RunSummary s = summarize("x", frames, 3);
+    EXPECT_EQ(s.timed_frames, 7u);
+    EXPECT_DOUBLE_EQ(s.frame_ms.mean, 10.0);
+    EXPECT_EQ(s.error_pixels_total, 7);
+    EXPECT_EQ(s.error_worst_frame, 1u);
+    EXPECT_EQ(s.frames_with_error, 1u);
+}
+
+}  // namespace
+}  // namespace occsim
