@@ -18,11 +18,12 @@
 
 namespace occsim {
 
-// One line: "<file>: <json pointer>: <what was expected>".
+// One line: "<file>: <json pointer>: <what was expected>", or "<file>: <what went wrong>" for
+// errors about the file as a whole (cannot open it, not JSON), which have no pointer.
 class ScenarioError : public std::runtime_error {
 public:
     ScenarioError(const std::string& file, const std::string& pointer, const std::string& message)
-        : std::runtime_error(file + ": " + (pointer.empty() ? "/" : pointer) + ": " + message) {}
+        : std::runtime_error(file + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
 };
 
 struct CameraKeyframe {

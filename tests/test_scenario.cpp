@@ -41,10 +41,11 @@ std::string errorForText(const std::string& text) {
 
 std::string errorFor(const json& scenario) { return errorForText(scenario.dump(2)); }
 
-// The message must be "<file>: <pointer>: ..." and contain `fragment`.
+// The message must be "<file>: <pointer>: ..." (just "<file>: ..." for errors about the whole
+// file, pointer "") and contain `fragment`.
 void expectError(const std::string& message, const std::string& pointer,
                  const std::string& fragment) {
-    const std::string prefix = std::string(kFile) + ": " + pointer + ": ";
+    const std::string prefix = std::string(kFile) + ": " + (pointer.empty() ? "" : pointer + ": ");
     EXPECT_EQ(message.rfind(prefix, 0), 0u) << "message: " << message << "\nexpected prefix: "
                                             << prefix;
     EXPECT_NE(message.find(fragment), std::string::npos)
@@ -92,7 +93,7 @@ TEST(ScenarioFile, MissingFileSaysItCannotBeOpened) {
         FAIL() << "expected a ScenarioError";
     } catch (const ScenarioError& e) {
         const std::string message = e.what();
-        EXPECT_EQ(message.rfind(missing.string() + ": /: cannot open file: ", 0), 0u) << message;
+        EXPECT_EQ(message.rfind(missing.string() + ": cannot open file: ", 0), 0u) << message;
         EXPECT_NE(message.find("No such file"), std::string::npos) << message;
     }
 }
@@ -109,12 +110,12 @@ TEST(ScenarioFile, ReadsAFileFromDiskAndNamesItAfterTheStem) {
 TEST(ScenarioSyntax, InvalidJsonReportsLineAndColumn) {
     const std::string text = "{\n  \"format_version\": 1,\n  \"frames\": 30x\n}\n";
     const std::string message = errorForText(text);
-    expectError(message, "/", "invalid JSON at line 3, column 15: ");
+    expectError(message, "", "invalid JSON at line 3, column 15: ");
 }
 
 TEST(ScenarioSyntax, TrailingCommaIsInvalidJson) {
     const std::string text = "{\n  \"format_version\": 1,\n}";
-    expectError(errorForText(text), "/", "invalid JSON at line 3, column 1: ");
+    expectError(errorForText(text), "", "invalid JSON at line 3, column 1: ");
 }
 
 TEST(ScenarioSyntax, DuplicateKeyIsRejected) {
@@ -142,7 +143,7 @@ TEST(ScenarioSyntax, NumberOverflowingInsideAnArrayNamesTheElement) {
 }
 
 TEST(ScenarioSyntax, TopLevelValueMustBeAnObject) {
-    expectError(errorForText("[1, 2, 3]"), "/", "expected an object, got an array of 3 elements");
+    expectError(errorForText("[1, 2, 3]"), "", "expected an object, got an array of 3 elements");
 }
 
 // --- Keys ----------------------------------------------------------------------------------
