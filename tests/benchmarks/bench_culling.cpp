@@ -1,0 +1,101 @@
+// Micro-benchmarks of the CPU side of culling (no OpenGL): BSP reinsertion and refit, batch
+// frustum classification, and a statistical-culler traversal on the scripted query device.
+// Run: ./build/release/tests/benchmarks/bench_culling
+#include "culling/bsp_tree.h"
+#include "culling/frustum.h"
+#include "culling/scripted_query_device.h"
+#include "culling/statistical_culler.h"
+
+#include <benchmark/benchmark.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <random>
+#include <vector>
+
+namespace occsim {
+namespace {
+
+std::vector<Aabb> field(uint32_t count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> x(-35, 35), y(0, 8), z(-200, 0), size(1.0f, 2.5f);
+    std::vector<Aabb> boxes;
+    for (uint32_t i = 0; i < count; ++i) {
+        const glm::vec3 lo(x(rng), y(rng), z(rng));
+        const float s = size(rng);
+        boxes.push_back({lo, lo + glm::vec3(1.5f * s, s, 1.5f * s)});
+    }
+    return boxes;
+}
+
+void BM_BspReinsertMovedObjects(benchmark::State& state) {
+    const auto objects = static_cast<uint32_t>(state.range(0));
+    std::vector<Aabb> boxes = field(objects, 1);
+    BspTree tree;
+    BspBuildOptions options;
+    options.split_rule = BspSplitRule::Sah;
+    tree.build(boxes, options);
+    const uint32_t movers = objects / 5;
+    const glm::vec3 step(0.1f, 0.0f, -0.07f);
+    for (auto _ : state) {
+        for (uint32_t o = 0; o < movers; ++o) {
+            boxes[o].min += step;
+            boxes[o].max += step;
+            tree.reinsert(o, boxes[o]);
+        }
+        tree.refitDirtyBounds();
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * movers);
+}
+BENCHMARK(BM_BspReinsertMovedObjects)->Arg(3000)->Arg(30000);
+
+void BM_FrustumClassifyBatch(benchmark::State& state) {
+    const auto count = static_cast<size_t>(state.range(0));
+    const std::vector<Aabb> boxes = field(static_cast<uint32_t>(count), 2);
+    std::vector<float> mnx, mny, mnz, mxx, mxy, mxz;
+    for (const Aabb& b : boxes) {
+        mnx.push_back(b.min.x); mny.push_back(b.min.y); mnz.push_back(b.min.z);
+        mxx.push_back(b.max.x); mxy.push_back(b.max.y); mxz.push_back(b.max.z);
+    }
+    const Frustum f = frustumFromViewProjection(
+        glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 400.0f) *
+        glm::lookAt(glm::vec3(0, 3, 8), glm::vec3(0, 2, -30), glm::vec3(0, 1, 0)));
+    std::vector<FrustumTest> out(count);
+    for (auto _ : state) {
+        classifyBatch(f, mnx.data(), mny.data(), mnz.data(), mxx.data(), mxy.data(), mxz.data(), count,
+                      out.data());
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(count));
+}
+BENCHMARK(BM_FrustumClassifyBatch)->Arg(3000)->Arg(100000);
+
+void BM_StatisticalTraversal(benchmark::State& state) {
+    const std::vector<Aabb> boxes = field(3000, 3);
+    BspTree tree;
+    tree.build(boxes, BspBuildOptions{});
+    std::vector<uint8_t> visible(boxes.size());
+    for (size_t i = 0; i < visible.size(); i += 10) visible[i] = 1;
+    ScriptedQueryDevice device(8);
+    device.setVisibility(visible, boxes);
+    StatisticalCuller culler;
+    culler.reset(tree);
+    CullFrame frame;
+    frame.view.eye = glm::vec3(0, 3, 8);
+    frame.view.frustum = frustumFromViewProjection(
+        glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 400.0f) *
+        glm::lookAt(frame.view.eye, glm::vec3(0, 2, -30), glm::vec3(0, 1, 0)));
+    frame.view.near_radius = 0.3f;
+    uint64_t index = 0;
+    for (auto _ : state) {
+        frame.frame_index = index;
+        frame.time_s = static_cast<double>(index++) / 30.0;
+        device.clearLog();
+        culler.cullAndRender(tree, frame, device);
+    }
+}
+BENCHMARK(BM_StatisticalTraversal);
+
+}  // namespace
+}  // namespace occsim
+
+BENCHMARK_MAIN();
