@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh release
+bash scripts/build.sh release occsim
 exec ./build/release/sim/occsim bench scenarios/teapots.json --error "$@"
