@@ -3,51 +3,34 @@
 namespace occsim {
 
 void VfcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    stack_.clear();
-    stack_.push_back({tree.root(), false});
-    while (!stack_.empty()) {
-        const NodeVisit visit = stack_.back();
-        stack_.pop_back();
-        bool inside = false;
-        if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) continue;
-        drawNodeObjects(tree, visit.node, frame.view.frustum, inside, device);
-        pushChildrenFrontToBack(tree, visit.node, frame.view.eye, inside, stack_);
-    }
+    traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
+        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+        return true;
+    });
 }
 
 void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
-    stack_.clear();
-    stack_.push_back({tree.root(), false});
-    while (!stack_.empty()) {
-        const NodeVisit visit = stack_.back();
-        stack_.pop_back();
-        bool inside = false;
-        if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) continue;
+    traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
         const Aabb& box = tree.bounds(visit.node);
-        if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
-            if (device.queryResult(device.issueQuery(box)) == 0) continue;
+        if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius) &&
+            device.queryResult(device.issueQuery(box)) == 0) {
+            return false;  // occluded: skip the subtree
         }
-        drawNodeObjects(tree, visit.node, frame.view.frustum, inside, device);
-        pushChildrenFrontToBack(tree, visit.node, frame.view.eye, inside, stack_);
-    }
+        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+        return true;
+    });
 }
 
 void IdealCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    stack_.clear();
-    stack_.push_back({tree.root(), false});
-    while (!stack_.empty()) {
-        const NodeVisit visit = stack_.back();
-        stack_.pop_back();
-        bool inside = false;
-        if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) continue;
+    traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
         for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone; o = tree.nextObject(o)) {
             if (o < frame.ground_truth_visible.size() && frame.ground_truth_visible[o]) {
                 device.drawObject(o);
             }
         }
-        pushChildrenFrontToBack(tree, visit.node, frame.view.eye, inside, stack_);
-    }
+        return true;
+    });
 }
 
 }  // namespace occsim

@@ -44,6 +44,23 @@ inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const Fru
     return t != FrustumTest::Outside;
 }
 
+// Front-to-back traversal of the nodes that pass the frustum: `visit(visit)` is called with the
+// node's inherited "fully inside" flag set, and returns true to descend into its children.
+template <class Visit>
+void traverseFrontToBack(const BspTree& tree, const CullView& view, std::vector<NodeVisit>& stack,
+                         Visit&& visit) {
+    stack.clear();
+    stack.push_back({tree.root(), false});
+    while (!stack.empty()) {
+        NodeVisit node = stack.back();
+        stack.pop_back();
+        bool inside = false;
+        if (!nodeInFrustum(tree, node, view.frustum, &inside)) continue;
+        node.inside_frustum = inside;
+        if (visit(node)) pushChildrenFrontToBack(tree, node.node, view.eye, inside, stack);
+    }
+}
+
 // Draws the objects stored in `node` itself (not its children) that pass the frustum.
 inline void drawNodeObjects(const BspTree& tree, uint32_t node, const Frustum& frustum,
                             bool inside_frustum, RenderDevice& device) {

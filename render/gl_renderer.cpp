@@ -247,30 +247,23 @@ void GlRenderer::beginFrame() {
     state_ = State::None;
 }
 
-void GlRenderer::useDrawState() {
-    if (state_ == State::Draw) return;
-    glUseProgram(draw_program_);
-    glUniformMatrix4fv(draw_projection_loc_, 1, GL_FALSE, &view_.projection[0][0]);
-    glBindVertexArray(mesh_vao_);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_GREATER);
-    state_ = State::Draw;
-}
-
-void GlRenderer::useQueryState() {
-    if (state_ == State::Query) return;
-    glUseProgram(query_program_);
-    glUniformMatrix4fv(query_projection_loc_, 1, GL_FALSE, &view_.projection[0][0]);
-    glBindVertexArray(box_vao_);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_GEQUAL);
-    state_ = State::Query;
+void GlRenderer::useState(State wanted) {
+    if (state_ == wanted) return;
+    // Drawing writes colour, IDs and depth; query boxes write nothing and pass on equal depth.
+    const bool draw = wanted == State::Draw;
+    glUseProgram(draw ? draw_program_ : query_program_);
+    glUniformMatrix4fv(draw ? draw_projection_loc_ : query_projection_loc_, 1, GL_FALSE,
+                       &view_.projection[0][0]);
+    glBindVertexArray(draw ? mesh_vao_ : box_vao_);
+    const GLboolean write = draw ? GL_TRUE : GL_FALSE;
+    glColorMask(write, write, write, write);
+    glDepthMask(write);
+    glDepthFunc(draw ? GL_GREATER : GL_GEQUAL);
+    state_ = wanted;
 }
 
 void GlRenderer::drawObject(uint32_t object) {
-    useDrawState();
+    useState(State::Draw);
     const MeshRange& mesh = meshes_[object_mesh_[object]];
     glUniformMatrix4fv(draw_model_view_loc_, 1, GL_FALSE, &object_model_view_[object][0][0]);
     glUniform1ui(draw_object_id_loc_, object + 1);
@@ -280,7 +273,7 @@ void GlRenderer::drawObject(uint32_t object) {
 }
 
 void GlRenderer::drawQueryBox(const Aabb& box) {
-    useQueryState();
+    useState(State::Query);
     // Dilate a little so that zero-extent boxes still rasterise and edges shared with occluders
     // count as visible; a larger box only makes the query more conservative.
     const glm::dvec3 lo(box.min), hi(box.max);

@@ -62,8 +62,7 @@ public:
 
 private:
     enum class State : uint8_t { None, Draw, Query };
-    void useDrawState();
-    void useQueryState();
+    void useState(State wanted);
 
     uint32_t width_ = 0, height_ = 0;
     uint32_t fbo_ = 0, color_rb_ = 0, id_rb_ = 0, depth_rb_ = 0;
