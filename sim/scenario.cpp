@@ -7,6 +7,7 @@
 #include "sim/scenario.h"
 
 #include "sim/json_reader.h"
+#include "sim/scenario_parts.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -25,13 +26,14 @@ constexpr uint64_t kMaxFrames = 10'000'000;
 constexpr double kMaxDt = 10.0;
 constexpr uint64_t kMinViewport = 16;
 constexpr uint64_t kMaxViewport = 8192;
-constexpr uint64_t kMaxTeapots = 1'000'000;
-constexpr uint64_t kMaxTessellation = 64;
 constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 constexpr uint32_t kDefaultWarmupFrames = 10;
 
-const std::vector<std::string> kSourceTypes = {"teapots"};
-const std::vector<std::string> kMotionTypes = {"bounce", "orbit"};
+const std::vector<std::string> kSourceTypes = {"teapots", "gltf", "city", "library", "plant"};
+const std::vector<std::string> kMotionTypes = {"bounce", "orbit", "path", "random_walk", "spin"};
+const std::vector<std::string> kSpawnShapes = {"teapot", "box", "sphere"};
+constexpr uint64_t kMaxSpawn = 1'000'000;
+constexpr uint32_t kOrbitKeyframesPerTurn = 16;
 const std::vector<std::string> kSplitRules = {"median", "sah"};
 
 // Read first, before any other key, so that a file written for a newer format fails with
@@ -51,23 +53,6 @@ glm::vec3 toFloatPoint(const JsonValueReader& at, const glm::dvec3& p) {
         at.fail("coordinates must fit in a 32-bit float (|x| < 3.4e38)");
     }
     return result;
-}
-
-Aabb readRegion(const JsonValueReader& value) {
-    JsonObjectReader region = value.asObject();
-    const JsonValueReader min_at = region.required("min");
-    const JsonValueReader max_at = region.required("max");
-    const Aabb box{toFloatPoint(min_at, min_at.asVec3()), toFloatPoint(max_at, max_at.asVec3())};
-    region.finish();
-    for (int axis = 0; axis < 3; ++axis) {
-        if (box.min[axis] > box.max[axis]) {
-            region.failHere("expected min <= max on every axis, but min." +
-                            std::string(1, "xyz"[axis]) + " = " + formatNumber(box.min[axis]) +
-                            " > max." + std::string(1, "xyz"[axis]) + " = " +
-                            formatNumber(box.max[axis]));
-        }
-    }
-    return box;
 }
 
 void readRunSettings(JsonObjectReader& top, Scenario& s) {
@@ -122,6 +107,39 @@ std::vector<CameraKeyframe> readKeyframes(const JsonArrayReader& array) {
     return keys;
 }
 
+// "orbit": a closed circle around `center` (16 keyframes per turn, looped), looking at `target`.
+std::vector<CameraKeyframe> orbitKeyframes(JsonObjectReader orbit, CameraSpec& spec) {
+    const glm::dvec3 center = orbit.requiredVec3("center");
+    const double radius = orbit.requiredNumber("radius", NumberRange::greaterThan(0.0));
+    const double height = orbit.number("height", 0.0);
+    const double period = orbit.requiredNumber("period", NumberRange::greaterThan(0.0));
+    const glm::dvec3 target = orbit.vec3("target", center);
+    orbit.finish();
+    std::vector<CameraKeyframe> keys;
+    for (uint32_t i = 0; i <= kOrbitKeyframesPerTurn; ++i) {
+        const double angle = 2.0 * 3.14159265358979323846 * i / kOrbitKeyframesPerTurn;
+        const glm::dvec3 position =
+            center + glm::dvec3(radius * std::cos(angle), height, radius * std::sin(angle));
+        if (position == target) orbit.fail("target", "the orbit passes through the target");
+        keys.push_back({period * i / kOrbitKeyframesPerTurn, position, target});
+    }
+    spec.loop = true;
+    return keys;
+}
+
+// "fly": a straight flight from `from` to `to` over `duration` seconds, looking ahead.
+std::vector<CameraKeyframe> flyKeyframes(JsonObjectReader fly) {
+    const glm::dvec3 from = fly.requiredVec3("from");
+    const glm::dvec3 to = fly.requiredVec3("to");
+    const double duration = fly.requiredNumber("duration", NumberRange::greaterThan(0.0));
+    const double look_ahead = fly.number("look_ahead", 50.0, NumberRange::greaterThan(0.0));
+    fly.finish();
+    if (from == to) fly.fail("to", "'to' must differ from 'from'");
+    const glm::dvec3 direction = glm::normalize(to - from);
+    return {{0.0, from, from + look_ahead * direction},
+            {duration, to, to + look_ahead * direction}};
+}
+
 CameraSpec readCamera(JsonObjectReader camera) {
     CameraSpec spec;
     spec.fov_y_deg = camera.number("fov_y", spec.fov_y_deg, NumberRange::open(0.0, 180.0));
@@ -136,49 +154,111 @@ CameraSpec readCamera(JsonObjectReader camera) {
         camera.fail(far_given ? "far" : "near", message);
     }
     spec.loop = camera.boolean("loop", spec.loop);
-    spec.keyframes = readKeyframes(camera.array("keyframes"));
+    const int paths = camera.has("keyframes") + camera.has("orbit") + camera.has("fly");
+    if (paths != 1) {
+        camera.failHere("expected exactly one of 'keyframes', 'orbit' or 'fly', got " +
+                        std::to_string(paths));
+    }
+    if (camera.has("keyframes")) {
+        spec.keyframes = readKeyframes(camera.array("keyframes"));
+    } else if (camera.has("orbit")) {
+        spec.keyframes = orbitKeyframes(camera.object("orbit"), spec);
+    } else {
+        spec.keyframes = flyKeyframes(camera.object("fly"));
+    }
     camera.finish();
     return spec;
 }
 
-TeapotFieldSpec readTeapots(JsonObjectReader& source) {
-    TeapotFieldSpec spec;
-    spec.count = static_cast<uint32_t>(source.unsignedInteger("count", spec.count, 1, kMaxTeapots));
-    if (const auto region = source.optional("region")) spec.region = readRegion(*region);
-    const auto size = source.range("size", {spec.size_min_m, spec.size_max_m},
-                                   NumberRange::greaterThan(0.0));
-    spec.size_min_m = size.first;
-    spec.size_max_m = size.second;
-    spec.tessellation = static_cast<uint32_t>(
-        source.unsignedInteger("tessellation", spec.tessellation, 1, kMaxTessellation));
-    return spec;
-}
-
-SceneSourceSpec readSource(const JsonValueReader& value) {
+SceneSourceSpec readSource(const JsonValueReader& value, const std::filesystem::path& dir) {
     JsonObjectReader source = value.asObject();
     SceneSourceSpec spec;
-    spec.type = source.requiredEnumeration("type", kSourceTypes);
-    spec.teapots = readTeapots(source);  // the only type so far
+    const std::string type = source.requiredEnumeration("type", kSourceTypes);
+    if (type == "teapots") {
+        spec.type = SourceType::Teapots;
+        spec.spec = readTeapotField(source);
+    } else if (type == "gltf") {
+        spec.type = SourceType::Gltf;
+        spec.spec = readGltfSource(source, dir);
+    } else if (type == "city") {
+        spec.type = SourceType::City;
+        spec.spec = readCity(source);
+    } else if (type == "library") {
+        spec.type = SourceType::Library;
+        spec.spec = readLibrary(source);
+    } else {
+        spec.type = SourceType::Plant;
+        spec.spec = readPlant(source);
+    }
     source.finish();
     return spec;
 }
 
-std::vector<SceneSourceSpec> readScene(JsonObjectReader scene) {
+std::vector<SceneSourceSpec> readScene(JsonObjectReader scene, const std::filesystem::path& dir) {
     const JsonArrayReader array = scene.array("sources");
     array.requireAtLeast(1, "source");
     std::vector<SceneSourceSpec> sources;
-    for (std::size_t i = 0; i < array.size(); ++i) sources.push_back(readSource(array.at(i)));
+    for (std::size_t i = 0; i < array.size(); ++i) sources.push_back(readSource(array.at(i), dir));
     scene.finish();
     return sources;
 }
 
-// The keys that belong to the other motion type are errors, not ignored: a "radius" on a
-// bouncing mover means the author expected an orbit.
-void rejectOtherMotionKey(JsonObjectReader& mover, const char* key, const char* motion,
-                          const char* owner) {
-    if (!mover.has(key)) return;
-    mover.fail(key, std::string("'") + key + "' is not allowed with motion \"" + motion +
-                        "\"; it applies to motion \"" + owner + "\" only");
+// Keys that belong to another motion are errors, not ignored: a "radius" on a bouncing mover
+// means the author expected an orbit.
+struct MotionKey {
+    const char* key;
+    const char* motions;  // the motions it applies to, as written in the message
+    bool (*applies)(MotionType);
+};
+
+const MotionKey kMotionKeys[] = {
+    {"speed", "bounce, orbit, path, random_walk", [](MotionType m) { return m != MotionType::Spin; }},
+    {"region", "bounce, random_walk",
+     [](MotionType m) { return m == MotionType::Bounce || m == MotionType::RandomWalk; }},
+    {"radius", "orbit", [](MotionType m) { return m == MotionType::Orbit; }},
+    {"waypoints", "path", [](MotionType m) { return m == MotionType::Path; }},
+    {"turn_rate", "random_walk", [](MotionType m) { return m == MotionType::RandomWalk; }},
+    {"spin", "spin", [](MotionType m) { return m == MotionType::Spin; }},
+};
+
+MotionType motionFromName(const std::string& name) {
+    if (name == "bounce") return MotionType::Bounce;
+    if (name == "orbit") return MotionType::Orbit;
+    if (name == "path") return MotionType::Path;
+    if (name == "random_walk") return MotionType::RandomWalk;
+    return MotionType::Spin;
+}
+
+void readSelection(JsonObjectReader& mover, MoverSpec& spec) {
+    const int given = mover.has("fraction") + mover.has("objects") + mover.has("spawn");
+    if (given != 1) {
+        mover.failHere("expected exactly one of 'fraction', 'objects' or 'spawn' (which objects "
+                       "move), got " + std::to_string(given));
+    }
+    if (mover.has("fraction")) {
+        spec.selection = MoverSelection::Fraction;
+        spec.fraction = mover.requiredNumber("fraction", NumberRange::closed(0.0, 1.0));
+    } else if (mover.has("objects")) {
+        spec.selection = MoverSelection::Objects;
+        const JsonArrayReader objects = mover.array("objects");
+        objects.requireAtLeast(1, "object index");
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            spec.objects.push_back(static_cast<uint32_t>(objects.at(i).asUnsigned(0, kMaxUint32)));
+        }
+    } else {
+        spec.selection = MoverSelection::Spawn;
+        JsonObjectReader spawn = mover.object("spawn");
+        spec.spawn.count = static_cast<uint32_t>(spawn.requiredUnsignedInteger("count", 1, kMaxSpawn));
+        const std::string shape = spawn.enumeration("shape", kSpawnShapes, "teapot");
+        spec.spawn.shape = shape == "teapot" ? SpawnShape::Teapot
+                           : shape == "box"  ? SpawnShape::Box
+                                             : SpawnShape::Sphere;
+        const auto size = spawn.range("size", {spec.spawn.size_min_m, spec.spawn.size_max_m},
+                                      NumberRange::greaterThan(0.0));
+        spec.spawn.size_min_m = size.first;
+        spec.spawn.size_max_m = size.second;
+        spawn.finish();
+    }
 }
 
 MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
@@ -191,26 +271,38 @@ MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
         at.failExpected("an index into scene.sources, which has " + std::to_string(source_count) +
                         (source_count == 1 ? " entry" : " entries"));
     }
-    spec.fraction = mover.number("fraction", spec.fraction, NumberRange::closed(0.0, 1.0));
-    const bool orbit = mover.requiredEnumeration("motion", kMotionTypes) == "orbit";
-    spec.motion = orbit ? MotionType::Orbit : MotionType::Bounce;
+    readSelection(mover, spec);
+    spec.motion = motionFromName(mover.requiredEnumeration("motion", kMotionTypes));
+    const std::string motion_name = mover.required("motion").asString();
+    for (const MotionKey& k : kMotionKeys) {
+        if (!k.applies(spec.motion) && mover.has(k.key)) {
+            mover.fail(k.key, std::string("'") + k.key + "' is not allowed with motion \"" +
+                                  motion_name + "\"; it applies to " + k.motions + " only");
+        }
+    }
     const auto speed = mover.range("speed", {spec.speed_min_mps, spec.speed_max_mps},
                                    NumberRange::atLeast(0.0));
     spec.speed_min_mps = speed.first;
     spec.speed_max_mps = speed.second;
-    if (orbit) {
-        rejectOtherMotionKey(mover, "region", "orbit", "bounce");
-        const auto radius = mover.range("radius", {spec.radius_min_m, spec.radius_max_m},
-                                        NumberRange::greaterThan(0.0));
-        spec.radius_min_m = radius.first;
-        spec.radius_max_m = radius.second;
-    } else {
-        rejectOtherMotionKey(mover, "radius", "bounce", "orbit");
-        if (const auto region = mover.optional("region")) {
-            spec.region = readRegion(*region);
-            spec.has_region = true;
+    if (const auto region = mover.optional("region")) {
+        spec.region = readRegion(*region);
+        spec.has_region = true;
+    }
+    const auto radius = mover.range("radius", {spec.radius_min_m, spec.radius_max_m},
+                                    NumberRange::greaterThan(0.0));
+    spec.radius_min_m = radius.first;
+    spec.radius_max_m = radius.second;
+    if (const auto waypoints = mover.optionalArray("waypoints")) {
+        waypoints->requireAtLeast(2, "waypoint");
+        for (std::size_t i = 0; i < waypoints->size(); ++i) {
+            spec.waypoints.push_back(waypoints->at(i).asVec3());
         }
     }
+    spec.turn_rate_deg_s = mover.number("turn_rate", spec.turn_rate_deg_s, NumberRange::atLeast(0.0));
+    const auto spin = mover.range("spin", {spec.spin_min_deg_s, spec.spin_max_deg_s},
+                                  NumberRange::atLeast(0.0));
+    spec.spin_min_deg_s = spin.first;
+    spec.spin_max_deg_s = spin.second;
     mover.finish();
     return spec;
 }
@@ -223,33 +315,6 @@ std::vector<MoverSpec> readMovers(JsonObjectReader& top, std::size_t source_coun
         movers.push_back(readMover(array->at(i), source_count));
     }
     return movers;
-}
-
-StatisticalOptions readStatistical(JsonObjectReader reader) {
-    StatisticalOptions o;
-    o.base_time_s = reader.number("base_time", o.base_time_s);
-    o.decay_a = reader.number("decay_a", o.decay_a);
-    o.decay_b = reader.number("decay_b", o.decay_b);
-    o.history_length =
-        static_cast<uint32_t>(reader.unsignedInteger("history_length", o.history_length, 0,
-                                                     kMaxUint32));
-    o.max_statistics_age_s = reader.number("max_statistics_age", o.max_statistics_age_s);
-    o.queries_before_restart = static_cast<uint32_t>(
-        reader.unsignedInteger("queries_before_restart", o.queries_before_restart, 0, kMaxUint32));
-    reader.finish();
-    std::string why;
-    if (!o.isValid(&why)) reader.failHere(why);
-    return o;
-}
-
-void readCulling(JsonObjectReader& top, Scenario& s) {
-    auto culling = top.optionalObject("culling");
-    if (!culling) return;
-    s.algorithm = culling->enumeration("algorithm", cullerNames(), s.algorithm);
-    if (auto statistical = culling->optionalObject("statistical")) {
-        s.culler.statistical = readStatistical(std::move(*statistical));
-    }
-    culling->finish();
 }
 
 BspBuildOptions readBsp(JsonObjectReader& top) {
@@ -312,6 +377,23 @@ std::string readFile(const std::filesystem::path& file) {
 
 }  // namespace
 
+Aabb readRegion(const JsonValueReader& value) {
+    JsonObjectReader region = value.asObject();
+    const JsonValueReader min_at = region.required("min");
+    const JsonValueReader max_at = region.required("max");
+    const Aabb box{toFloatPoint(min_at, min_at.asVec3()), toFloatPoint(max_at, max_at.asVec3())};
+    region.finish();
+    for (int axis = 0; axis < 3; ++axis) {
+        if (box.min[axis] > box.max[axis]) {
+            region.failHere("expected min <= max on every axis, but min." +
+                            std::string(1, "xyz"[axis]) + " = " + formatNumber(box.min[axis]) +
+                            " > max." + std::string(1, "xyz"[axis]) + " = " +
+                            formatNumber(box.max[axis]));
+        }
+    }
+    return box;
+}
+
 Scenario parseScenarioText(const std::string& text, const std::filesystem::path& file) {
     const std::string file_name = file.string();
     const Json root = parseStrictJson(text, file_name);
@@ -324,7 +406,7 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     readRunSettings(top, s);
     readViewport(top, s);
     s.camera = readCamera(top.object("camera"));
-    s.sources = readScene(top.object("scene"));
+    s.sources = readScene(top.object("scene"), file.parent_path());
     s.movers = readMovers(top, s.sources.size());
     readCulling(top, s);
     s.bsp = readBsp(top);

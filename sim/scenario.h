@@ -7,6 +7,8 @@
 #include "culling/aabb.h"
 #include "culling/bsp_tree.h"
 #include "culling/culler_factory.h"
+#include "sim/generators.h"
+#include "sim/gltf_source.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +16,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace occsim {
@@ -36,8 +39,10 @@ struct CameraSpec {
     double fov_y_deg = 60.0;  // vertical field of view, (0, 180)
     double near_m = 0.1;
     double far_m = 1000.0;
-    std::vector<CameraKeyframe> keyframes;  // at least one, times strictly increasing
-    bool loop = false;                      // wrap around after the last keyframe
+    // At least one, times strictly increasing. Given directly, or made by the parser from the
+    // "orbit" and "fly" helpers (docs/scenario-format.md).
+    std::vector<CameraKeyframe> keyframes;
+    bool loop = false;  // wrap around after the last keyframe (whose pose should equal the first)
 };
 
 // The teapot field of both papers: `count` teapots of random size and orientation placed
@@ -50,24 +55,46 @@ struct TeapotFieldSpec {
     uint32_t tessellation = 6;  // segments per Bézier patch side
 };
 
+enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };
+
 struct SceneSourceSpec {
-    std::string type = "teapots";  // the only type for now; glTF and other generators follow
-    TeapotFieldSpec teapots;
+    SourceType type = SourceType::Teapots;
+    std::variant<TeapotFieldSpec, GltfSourceSpec, CitySpec, LibrarySpec, PlantSpec> spec;
 };
 
-enum class MotionType : uint8_t { Bounce, Orbit };
+enum class MotionType : uint8_t { Bounce, Orbit, Path, RandomWalk, Spin };
+
+// Which objects a mover spec moves: a share of a source's objects, listed objects of a source, or
+// new objects it spawns.
+enum class MoverSelection : uint8_t { Fraction, Objects, Spawn };
+
+enum class SpawnShape : uint8_t { Teapot, Box, Sphere };
+
+struct SpawnSpec {
+    uint32_t count = 0;
+    SpawnShape shape = SpawnShape::Teapot;
+    double size_min_m = 1.0;  // height of each spawned object
+    double size_max_m = 2.0;
+};
 
 struct MoverSpec {
-    uint32_t source = 0;     // index into scene.sources
-    double fraction = 0.0;   // share of the source's objects that move, [0, 1]
+    uint32_t source = 0;  // index into scene.sources: whose objects, region and lanes
+    MoverSelection selection = MoverSelection::Fraction;
+    double fraction = 0.0;          // Fraction: share of the source's objects, [0, 1]
+    std::vector<uint32_t> objects;  // Objects: indices within the source
+    SpawnSpec spawn;                // Spawn
     MotionType motion = MotionType::Bounce;
     double speed_min_mps = 1.0;
     double speed_max_mps = 4.0;
-    // Bounce: the box movers stay in (default: the source's region). Orbit: radius range.
+    // Bounce and random walk: the box movers stay in (default: the source's region).
     bool has_region = false;
     Aabb region;
-    double radius_min_m = 2.0;
+    double radius_min_m = 2.0;       // orbit
     double radius_max_m = 8.0;
+    std::vector<glm::dvec3> waypoints;  // path: a closed loop; empty = the source's lanes
+    double turn_rate_deg_s = 90.0;   // random walk: largest heading change per second
+    double spin_min_deg_s = 30.0;    // spin: angular speed about the vertical axis
+    double spin_max_deg_s = 180.0;
 };
 
 struct Scenario {

@@ -162,8 +162,45 @@ TEST(ScenarioKeys, UnknownNestedKeyWithoutCloseMatchListsAllowedKeys) {
 
 TEST(ScenarioKeys, MissingRequiredKeyIsReportedAtItsPointer) {
     json scenario = minimalScenario();
+    scenario["scene"]["sources"][0].erase("type");
+    expectError(scenario, "/scene/sources/0/type", "missing required key 'type'");
+}
+
+TEST(ScenarioCamera, NeedsExactlyOneOfKeyframesOrbitOrFly) {
+    json scenario = minimalScenario();
     scenario["camera"].erase("keyframes");
-    expectError(scenario, "/camera/keyframes", "missing required key 'keyframes'");
+    expectError(scenario, "/camera", "expected exactly one of 'keyframes', 'orbit' or 'fly', got 0");
+    scenario = minimalScenario();
+    scenario["camera"]["fly"] = {{"from", {0, 0, 0}}, {"to", {0, 0, -10}}, {"duration", 2}};
+    expectError(scenario, "/camera", "got 2");
+}
+
+TEST(ScenarioCamera, OrbitHelperMakesALoopedCircleOfKeyframes) {
+    json scenario = minimalScenario();
+    scenario["camera"].erase("keyframes");
+    scenario["camera"]["orbit"] = {{"center", {0, 0, 0}}, {"radius", 10}, {"height", 5}, {"period", 8}};
+    const Scenario s = parseScenarioText(scenario.dump(), kFile);
+    EXPECT_TRUE(s.camera.loop);
+    ASSERT_GE(s.camera.keyframes.size(), 8u);
+    EXPECT_DOUBLE_EQ(s.camera.keyframes.back().time_s, 8.0);
+    for (const CameraKeyframe& k : s.camera.keyframes) {
+        EXPECT_NEAR(glm::length(glm::dvec2(k.position.x, k.position.z)), 10.0, 1e-9);
+        EXPECT_DOUBLE_EQ(k.position.y, 5.0);
+        EXPECT_EQ(k.target, glm::dvec3(0.0));
+    }
+}
+
+TEST(ScenarioCamera, FlyHelperGoesFromStartToEndLookingAhead) {
+    json scenario = minimalScenario();
+    scenario["camera"].erase("keyframes");
+    scenario["camera"]["fly"] = {{"from", {0, 2, 0}}, {"to", {0, 2, -100}}, {"duration", 10}};
+    const Scenario s = parseScenarioText(scenario.dump(), kFile);
+    ASSERT_EQ(s.camera.keyframes.size(), 2u);
+    EXPECT_EQ(s.camera.keyframes[1].position, glm::dvec3(0, 2, -100));
+    EXPECT_DOUBLE_EQ(s.camera.keyframes[1].time_s, 10.0);
+    EXPECT_LT(s.camera.keyframes[0].target.z, 0.0);
+    scenario["camera"]["fly"]["to"] = {0, 2, 0};
+    expectError(scenario, "/camera/fly/to", "must differ from 'from'");
 }
 
 TEST(ScenarioKeys, MissingRequiredKeyPointsAtALikelyMisspelling) {
@@ -315,26 +352,62 @@ TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
 
 TEST(ScenarioEnums, UnknownSourceTypeListsValidTypes) {
     json scenario = minimalScenario();
-    scenario["scene"]["sources"][0]["type"] = "gltf";
-    expectError(scenario, "/scene/sources/0/type", "expected one of \"teapots\"");
+    scenario["scene"]["sources"][0]["type"] = "terrain";
+    expectError(scenario, "/scene/sources/0/type",
+                "expected one of \"teapots\", \"gltf\", \"city\", \"library\", \"plant\"");
 }
 
 TEST(ScenarioMovers, OrbitWithRegionIsRejected) {
     json scenario = minimalScenario();
-    scenario["movers"] = {{{"motion", "orbit"},
+    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "orbit"},
                            {"region", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}}};
     expectError(scenario, "/movers/0/region", "'region' is not allowed with motion \"orbit\"");
 }
 
 TEST(ScenarioMovers, BounceWithRadiusIsRejected) {
     json scenario = minimalScenario();
-    scenario["movers"] = {{{"motion", "bounce"}, {"radius", {1, 2}}}};
+    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "bounce"}, {"radius", {1, 2}}}};
     expectError(scenario, "/movers/0/radius", "'radius' is not allowed with motion \"bounce\"");
+}
+
+TEST(ScenarioMovers, NeedExactlyOneSelection) {
+    json scenario = minimalScenario();
+    scenario["movers"] = {{{"motion", "bounce"}}};
+    expectError(scenario, "/movers/0", "expected exactly one of 'fraction', 'objects' or 'spawn'");
+    scenario["movers"] = {{{"motion", "bounce"}, {"fraction", 0.1}, {"objects", {1}}}};
+    expectError(scenario, "/movers/0", "got 2");
+}
+
+TEST(ScenarioMovers, EveryMotionTypeParsesWithItsOwnKeys) {
+    json scenario = minimalScenario();
+    scenario["movers"] = {
+        {{"spawn", {{"count", 5}, {"shape", "box"}, {"size", {1, 2}}}}, {"motion", "path"},
+         {"waypoints", {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}}}, {"speed", {3, 5}}},
+        {{"objects", {0}}, {"motion", "spin"}, {"spin", {10, 20}}},
+        {{"fraction", 0.2}, {"motion", "random_walk"}, {"turn_rate", 45}, {"speed", {1, 1}}},
+    };
+    const Scenario s = parseScenarioText(scenario.dump(), kFile);
+    ASSERT_EQ(s.movers.size(), 3u);
+    EXPECT_EQ(s.movers[0].selection, MoverSelection::Spawn);
+    EXPECT_EQ(s.movers[0].spawn.shape, SpawnShape::Box);
+    EXPECT_EQ(s.movers[0].waypoints.size(), 3u);
+    EXPECT_EQ(s.movers[1].motion, MotionType::Spin);
+    EXPECT_DOUBLE_EQ(s.movers[1].spin_max_deg_s, 20.0);
+    EXPECT_EQ(s.movers[2].motion, MotionType::RandomWalk);
+    EXPECT_DOUBLE_EQ(s.movers[2].turn_rate_deg_s, 45.0);
+}
+
+TEST(ScenarioMovers, KeysOfAnotherMotionAreRejected) {
+    json scenario = minimalScenario();
+    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "spin"}, {"speed", {1, 2}}}};
+    expectError(scenario, "/movers/0/speed", "'speed' is not allowed with motion \"spin\"");
+    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "bounce"}, {"waypoints", {{0, 0, 0}, {1, 0, 0}}}}};
+    expectError(scenario, "/movers/0/waypoints", "applies to path only");
 }
 
 TEST(ScenarioMovers, SourceIndexMustExist) {
     json scenario = minimalScenario();
-    scenario["movers"] = {{{"motion", "bounce"}, {"source", 1}}};
+    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "bounce"}, {"source", 1}}};
     expectError(scenario, "/movers/0/source", "which has 1 entry, got 1");
 }
 
@@ -370,8 +443,8 @@ TEST(ScenarioDefaults, MinimalScenarioGetsAllDocumentedDefaults) {
     EXPECT_EQ(s.camera.keyframes[0].target, glm::dvec3(0, 2, 0));
 
     ASSERT_EQ(s.sources.size(), 1u);
-    const TeapotFieldSpec& t = s.sources[0].teapots;
-    EXPECT_EQ(s.sources[0].type, "teapots");
+    const auto& t = std::get<TeapotFieldSpec>(s.sources[0].spec);
+    EXPECT_EQ(s.sources[0].type, SourceType::Teapots);
     EXPECT_EQ(t.count, 1000u);
     EXPECT_EQ(t.region.min, glm::vec3(-50, 0, -200));
     EXPECT_EQ(t.region.max, glm::vec3(50, 10, 0));
@@ -436,7 +509,7 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_EQ(s.height, 200u);
     EXPECT_DOUBLE_EQ(s.camera.fov_y_deg, 45.0);
     EXPECT_TRUE(s.camera.loop);
-    const TeapotFieldSpec& t = s.sources[0].teapots;
+    const auto& t = std::get<TeapotFieldSpec>(s.sources[0].spec);
     EXPECT_EQ(t.count, 20u);
     EXPECT_EQ(t.region.min, glm::vec3(-1, -2, -3));
     EXPECT_EQ(t.region.max, glm::vec3(1, 2, 3));
@@ -460,15 +533,24 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_EQ(s.expect, scenario["expect"]);
 }
 
-TEST(ScenarioDocs, EveryJsonExampleInTheFormatDocumentParses) {
-    const std::filesystem::path doc =
-        std::filesystem::path(OCCSIM_SOURCE_DIR) / "docs" / "scenario-format.md";
-    const std::vector<std::string> blocks = jsonBlocks(readText(doc));
-    ASSERT_GE(blocks.size(), 2u) << "expected complete ```json examples in " << doc;
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-        SCOPED_TRACE("```json block " + std::to_string(i + 1) + " of " + doc.string());
-        EXPECT_NO_THROW(parseScenarioText(blocks[i], doc));
+// Every ```json block of docs/scenario*.md is a complete scenario that parses. Paths inside the
+// examples are written as in a file in scenarios/ (e.g. "assets/FZK-Haus/AC14-FZK-Haus.glb").
+TEST(ScenarioDocs, EveryJsonExampleInTheScenarioDocumentsParses) {
+    const std::filesystem::path docs = std::filesystem::path(OCCSIM_SOURCE_DIR) / "docs";
+    const std::filesystem::path as_if =
+        std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios" / "doc-example.json";
+    std::size_t total = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(docs)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("scenario", 0) != 0 || entry.path().extension() != ".md") continue;
+        const std::vector<std::string> blocks = jsonBlocks(readText(entry.path()));
+        for (std::size_t i = 0; i < blocks.size(); ++i) {
+            SCOPED_TRACE("```json block " + std::to_string(i + 1) + " of " + name);
+            EXPECT_NO_THROW(parseScenarioText(blocks[i], as_if));
+        }
+        total += blocks.size();
     }
+    EXPECT_GE(total, 2u) << "expected complete ```json examples in " << docs;
 }
 
 // --- The reader's helpers ------------------------------------------------------------------

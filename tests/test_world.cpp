@@ -14,11 +14,11 @@ namespace {
 Scenario smallScenario(uint64_t seed = 3) {
     Scenario s;
     s.seed = seed;
-    SceneSourceSpec source;
-    source.teapots.count = 200;
-    source.teapots.region = {glm::vec3(-20, 0, -50), glm::vec3(20, 5, 0)};
-    source.teapots.tessellation = 2;
-    s.sources.push_back(source);
+    TeapotFieldSpec teapots;
+    teapots.count = 200;
+    teapots.region = {glm::vec3(-20, 0, -50), glm::vec3(20, 5, 0)};
+    teapots.tessellation = 2;
+    s.sources.push_back({SourceType::Teapots, teapots});
     MoverSpec bounce;
     bounce.fraction = 0.25;
     bounce.motion = MotionType::Bounce;
@@ -37,7 +37,7 @@ TEST(Scene, TeapotFieldIsDeterministicPerSeedAndDiffersAcrossSeeds) {
     ASSERT_EQ(a.objectCount(), 200u);
     for (uint32_t o = 0; o < a.objectCount(); ++o) {
         EXPECT_EQ(a.initial_poses[o].position, b.initial_poses[o].position);
-        EXPECT_EQ(a.initial_poses[o].scale, b.initial_poses[o].scale);
+        EXPECT_EQ(a.initial_poses[o].linear, b.initial_poses[o].linear);
     }
     EXPECT_NE(a.initial_poses[0].position, c.initial_poses[0].position);
     ASSERT_EQ(a.initial_movers.size(), b.initial_movers.size());
@@ -49,11 +49,12 @@ TEST(Scene, TeapotFieldIsDeterministicPerSeedAndDiffersAcrossSeeds) {
 TEST(Scene, PlacesTeapotsInsideTheRegionWithSizesInRange) {
     const Scenario s = smallScenario();
     const Scene scene = buildScene(s);
-    const TeapotFieldSpec& spec = s.sources[0].teapots;
+    const auto& spec = std::get<TeapotFieldSpec>(s.sources[0].spec);
     for (const ObjectPose& p : scene.initial_poses) {
         EXPECT_TRUE(contains(spec.region, glm::vec3(p.position)));
-        EXPECT_GE(p.scale, spec.size_min_m);
-        EXPECT_LE(p.scale, spec.size_max_m);
+        const float scale = glm::length(p.linear[1]);  // the y column: height scale
+        EXPECT_GE(scale, spec.size_min_m - 1e-5);
+        EXPECT_LE(scale, spec.size_max_m + 1e-5);
     }
     EXPECT_EQ(scene.triangle_count, 200u * scene.meshes[0].triangleCount());
 }

@@ -1,0 +1,12 @@
+// PLACEHOLDER while the generator is being written; replaced before the issue is resolved.
+#include "sim/generators.h"
+
+#include <stdexcept>
+
+namespace occsim {
+
+SourceOutput generateLibrary(const LibrarySpec&, uint64_t) {
+    throw std::runtime_error("the library generator is not implemented yet");
+}
+
+}  // namespace occsim

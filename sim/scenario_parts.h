@@ -1,0 +1,27 @@
+// Readers of scenario sections that live in their own files, so that each scene source and the
+// culling options can grow without touching the core parser. Each reads the keys it owns from an
+// object reader; the caller calls finish() (so unknown keys stay errors).
+#pragma once
+
+#include "sim/json_reader.h"
+#include "sim/scenario.h"
+
+#include <filesystem>
+
+namespace occsim {
+
+// sim/scenario.cpp: {"min": [x,y,z], "max": [x,y,z]}, min <= max, float-representable.
+Aabb readRegion(const JsonValueReader& value);
+
+// sim/scenario_culling.cpp: the "culling" section (algorithm and per-algorithm options).
+void readCulling(JsonObjectReader& top, Scenario& s);
+
+// sim/scenario_sources.cpp: the keys of each source type besides "type". Paths resolve against
+// the scenario file's folder.
+TeapotFieldSpec readTeapotField(JsonObjectReader& source);
+GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::path& scenario_dir);
+CitySpec readCity(JsonObjectReader& source);
+LibrarySpec readLibrary(JsonObjectReader& source);
+PlantSpec readPlant(JsonObjectReader& source);
+
+}  // namespace occsim
