@@ -18,7 +18,9 @@ Scenario smallScenario(uint64_t seed = 3) {
     teapots.count = 200;
     teapots.region = {glm::vec3(-20, 0, -50), glm::vec3(20, 5, 0)};
     teapots.tessellation = 2;
-    s.sources.push_back({SourceType::Teapots, teapots});
+    SceneSourceSpec& source = s.sources.emplace_back();
+    source.type = SourceType::Teapots;
+    source.spec.emplace<TeapotFieldSpec>(teapots);
     MoverSpec bounce;
     bounce.fraction = 0.25;
     bounce.motion = MotionType::Bounce;
@@ -99,6 +101,119 @@ TEST(Movers, OrbitersKeepTheirRadiusAndSpeedAndBoxesFollowThem) {
         EXPECT_NEAR(travelled, std::abs(orbit->angular_speed) * orbit->radius_m * 0.1, 1e-3);
         const Aabb expected = worldBox(scene.mesh_bounds[0], state.poses[m.object]);
         EXPECT_EQ(state.boxes[m.object].min, expected.min);
+    }
+}
+
+MoverSpec moverOf(MotionType motion, MoverSelection selection) {
+    MoverSpec m;
+    m.motion = motion;
+    m.selection = selection;
+    m.fraction = 0.1;
+    m.objects = {0, 5};
+    m.spawn.count = 7;
+    return m;
+}
+
+TEST(Movers, SpawnAddsObjectsWithTheirOwnMeshInsideTheRegion) {
+    Scenario s = smallScenario();
+    MoverSpec spawn = moverOf(MotionType::Bounce, MoverSelection::Spawn);
+    spawn.spawn.shape = SpawnShape::Sphere;
+    s.movers = {spawn};
+    const Scene scene = buildScene(s);
+    EXPECT_EQ(scene.objectCount(), 207u);
+    EXPECT_EQ(scene.meshes.size(), 2u);
+    EXPECT_EQ(scene.initial_movers.size(), 7u);
+    for (const Mover& m : scene.initial_movers) {
+        EXPECT_GE(m.object, 200u);
+        EXPECT_TRUE(contains(std::get<TeapotFieldSpec>(s.sources[0].spec).region,
+                             glm::vec3(scene.initial_poses[m.object].position)));
+    }
+}
+
+TEST(Movers, ListedObjectsMoveAndBadIndicesAreErrorsNamingTheMover) {
+    Scenario s = smallScenario();
+    s.file = "x.json";
+    s.movers = {moverOf(MotionType::Spin, MoverSelection::Objects)};
+    const Scene scene = buildScene(s);
+    ASSERT_EQ(scene.initial_movers.size(), 2u);
+    EXPECT_EQ(scene.initial_movers[1].object, 5u);
+    s.movers[0].objects = {3, 200};
+    try {
+        buildScene(s);
+        FAIL() << "expected an error";
+    } catch (const ScenarioError& e) {
+        EXPECT_NE(std::string(e.what()).find("x.json: /movers/0/objects/1"), std::string::npos) << e.what();
+    }
+    s.movers = {moverOf(MotionType::Spin, MoverSelection::Objects), moverOf(MotionType::Spin, MoverSelection::Objects)};
+    EXPECT_THROW(buildScene(s), ScenarioError) << "an object cannot get two motions";
+}
+
+TEST(Movers, PathMoversFollowTheirLoopAtConstantSpeedFacingForward) {
+    Scenario s = smallScenario();
+    MoverSpec path = moverOf(MotionType::Path, MoverSelection::Spawn);
+    path.waypoints = {{0, 0, 0}, {100, 0, 0}, {100, 0, -50}, {0, 0, -50}};
+    path.speed_min_mps = path.speed_max_mps = 10.0;
+    s.movers = {path};
+    const Scene scene = buildScene(s);
+    ASSERT_EQ(scene.paths.size(), 1u);
+    EXPECT_DOUBLE_EQ(scene.paths[0].total(), 300.0);
+    WorldState state = initialState(scene);
+    for (int i = 0; i < 100; ++i) {
+        const WorldState before = state;
+        stepMovers(scene, state, 0.1);
+        for (const Mover& m : state.movers) {
+            const glm::dvec3 p = state.poses[m.object].position;
+            EXPECT_NEAR(p.y, 0.0, 1e-9);
+            const bool on_loop = std::abs(p.z) < 1e-6 || std::abs(p.z + 50) < 1e-6 ||
+                                 std::abs(p.x) < 1e-6 || std::abs(p.x - 100) < 1e-6;
+            EXPECT_TRUE(on_loop) << p.x << " " << p.z;
+            // 1 m per step along the loop; across a corner the straight line is shorter.
+            const double moved = glm::length(p - before.poses[m.object].position);
+            EXPECT_LE(moved, 1.0 + 1e-6);
+            EXPECT_GE(moved, 0.7);
+        }
+    }
+}
+
+TEST(Movers, PathWithoutWaypointsOnASourceWithoutLanesIsAnError) {
+    Scenario s = smallScenario();
+    s.movers = {moverOf(MotionType::Path, MoverSelection::Fraction)};
+    EXPECT_THROW(buildScene(s), ScenarioError);
+}
+
+TEST(Movers, RandomWalkersStayInTheirRegionAndAreDeterministic) {
+    Scenario s = smallScenario();
+    MoverSpec walk = moverOf(MotionType::RandomWalk, MoverSelection::Fraction);
+    walk.fraction = 0.5;
+    walk.has_region = true;
+    walk.region = {glm::vec3(-5, 0, -5), glm::vec3(5, 5, 5)};
+    s.movers = {walk};
+    const Scene scene = buildScene(s);
+    WorldState a = initialState(scene), b = initialState(scene);
+    for (int i = 0; i < 500; ++i) {
+        stepMovers(scene, a, 0.05);
+        stepMovers(scene, b, 0.05);
+    }
+    for (const Mover& m : a.movers) {
+        const glm::dvec3 p = a.poses[m.object].position;
+        EXPECT_GE(p.x, -5.0 - 1e-9);
+        EXPECT_LE(p.x, 5.0 + 1e-9);
+        EXPECT_GE(p.z, -5.0 - 1e-9);
+        EXPECT_LE(p.z, 5.0 + 1e-9);
+        EXPECT_EQ(p, b.poses[m.object].position);
+    }
+}
+
+TEST(Movers, SpinnersTurnInPlace) {
+    Scenario s = smallScenario();
+    s.movers = {moverOf(MotionType::Spin, MoverSelection::Objects)};
+    const Scene scene = buildScene(s);
+    WorldState state = initialState(scene);
+    const WorldState before = state;
+    stepMovers(scene, state, 0.25);
+    for (const Mover& m : state.movers) {
+        EXPECT_EQ(state.poses[m.object].position, before.poses[m.object].position);
+        EXPECT_GT(std::abs(glm::dot(state.poses[m.object].rotation, before.poses[m.object].rotation) - 1.0f), 1e-4f);
     }
 }
 
