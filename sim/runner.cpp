@@ -50,9 +50,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     SimulationOptions sim_options;
     sim_options.measure_error = options.measure_error;
     sim_options.latency = options.latency;
+    sim_options.keep_worst_error_frame = options.keep_worst_error_frame && options.measure_error;
     std::vector<std::unique_ptr<Simulation>> sims;
     for (const std::string& name : options.algorithms) {
-        auto culler = makeCuller(name, scenario.culler);
+        auto culler = options.make_culler ? options.make_culler(name, scenario.culler)
+                                          : makeCuller(name, scenario.culler);
         if (!culler) throw std::invalid_argument("unknown algorithm '" + name + "'");
         sims.push_back(std::make_unique<Simulation>(scene, scenario, std::move(culler), renderer, sim_options));
     }
@@ -72,7 +74,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
     for (uint32_t f = 0; f < scenario.frames; ++f) {
         for (auto& sim : sims) sim->advance();
-        const GroundTruthFrame* truth = any_needs_truth ? &sims.front()->renderGroundTruth() : nullptr;
+        const GroundTruthFrame* truth =
+            any_needs_truth ? &sims.front()->renderGroundTruth(sim_options.keep_worst_error_frame)
+                            : nullptr;
         for (size_t a = 0; a < sims.size(); ++a) {
             frames[a].push_back(sims[a]->renderFrame(truth));
             if (std::find(options.capture_frames.begin(), options.capture_frames.end(), f) !=
@@ -96,6 +100,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                                std::move(frames[a])});
     }
     result.table = formatComparisonTable(result.runs);
+    result.width = scenario.width;
+    result.height = scenario.height;
+    if (sim_options.keep_worst_error_frame) {
+        for (const auto& sim : sims) result.worst_error_frames.push_back(sim->worstErrorFrame());
+    }
 
     nlohmann::json summary = summaryJson(result.runs);
     summary["scenario"] = {{"name", scenario.name}, {"file", scenario.file.string()},

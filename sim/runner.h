@@ -2,11 +2,15 @@
 // (interleaved frame by frame), and describe what a scenario builds without rendering.
 #pragma once
 
+#include "culling/culler_factory.h"
 #include "sim/report.h"
+#include "sim/simulation.h"
 #include "sim/scenario.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,10 +26,15 @@ struct BenchOptions {
     std::filesystem::path out_dir;        // where frames.csv, summary.json and captures go
     std::string command_line;             // recorded in summary.json
     bool progress = false;                // a progress line on stderr
+    bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
+    // Makes the culler for a name; default makeCuller(). Tests inject deliberately broken ones.
+    std::function<std::unique_ptr<Culler>(const std::string&, const CullerOptions&)> make_culler;
 };
 
 struct BenchResult {
     std::vector<RunRecord> runs;
+    std::vector<ErrorFrame> worst_error_frames;  // per run, when keep_worst_error_frame
+    uint32_t width = 0, height = 0;
     std::string renderer;
     std::string table;
 };

@@ -107,11 +107,12 @@ void Simulation::advance() {
     advanced_ = true;
 }
 
-const GroundTruthFrame& Simulation::renderGroundTruth() {
+const GroundTruthFrame& Simulation::renderGroundTruth(bool with_colour) {
     prepareView(view_);
     renderer_.beginFrame();
     ground_truth_culler_->cullAndRender(tree_, cull_frame_, ground_truth_device_);
     renderer_.readObjectIds(ground_truth_.ids);
+    if (with_colour) renderer_.readColor(ground_truth_.rgba);
     ground_truth_.visible.assign(scene_.objectCount(), 0);
     for (uint32_t id : ground_truth_.ids) {
         if (id != 0) ground_truth_.visible[id - 1] = 1;
@@ -131,7 +132,7 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     // Ground truth, outside the timing, when error is measured or the culler is the oracle.
     const GroundTruthFrame* truth = nullptr;
     if (needsGroundTruth()) {
-        truth = shared ? shared : &renderGroundTruth();
+        truth = shared ? shared : &renderGroundTruth(options_.keep_worst_error_frame);
         cull_frame_.ground_truth_visible = truth->visible;
     }
 
@@ -178,6 +179,14 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     stats.error_pixels = differing;
     stats.missed_objects = missed;
     stats.visible_objects = visible;
+    if (options_.keep_worst_error_frame && differing > worst_.error_pixels) {
+        worst_.frame = stats.frame;
+        worst_.error_pixels = differing;
+        worst_.culled_ids = culled_ids_;
+        worst_.truth_ids = truth.ids;
+        worst_.truth_rgba = truth.rgba;
+        renderer_.readColor(worst_.culled_rgba);
+    }
 }
 
 }  // namespace occsim

@@ -21,6 +21,10 @@ namespace occsim {
 struct SimulationOptions {
     bool measure_error = false;
     LatencyMode latency;
+    // Keep the frame with the most error pixels (culled colour and IDs, ground-truth colour and
+    // IDs) for a picture of what went wrong. Costs a colour read-back per frame; regression
+    // runs turn it on.
+    bool keep_worst_error_frame = false;
 };
 
 // The view of one frame: everything a culler and the renderer need from the camera.
@@ -35,6 +39,15 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
 struct GroundTruthFrame {
     std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
     std::vector<uint8_t> visible;  // per object
+    std::vector<uint8_t> rgba;     // colour, only when some simulation keeps its worst frame
+};
+
+// The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them).
+struct ErrorFrame {
+    uint32_t frame = 0;
+    int64_t error_pixels = 0;
+    std::vector<uint8_t> culled_rgba, truth_rgba;
+    std::vector<uint32_t> culled_ids, truth_ids;
 };
 
 class Simulation {
@@ -52,10 +65,14 @@ public:
     // ground truth when it needs one.
     void advance();
     bool needsGroundTruth() const;
-    const GroundTruthFrame& renderGroundTruth();  // for the current (advanced) frame
+    // For the current (advanced) frame; with_colour also reads back its colour buffer.
+    const GroundTruthFrame& renderGroundTruth(bool with_colour = false);
     FrameStats renderFrame(const GroundTruthFrame* shared);
 
     bool done() const { return frame_ >= scenario_.frames; }
+    bool keepsWorstErrorFrame() const { return options_.keep_worst_error_frame; }
+    // Empty (error_pixels 0) until a frame with error was seen.
+    const ErrorFrame& worstErrorFrame() const { return worst_; }
     uint32_t frame() const { return frame_; }
 
     const Culler& culler() const { return *culler_; }
@@ -84,6 +101,7 @@ private:
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;
     GroundTruthFrame ground_truth_;
+    ErrorFrame worst_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint8_t> culled_visible_;
 };
