@@ -1,12 +1,16 @@
 // occsim: the simulator executable. Commands: run, bench, info. Bad input (flags, scenario files)
 // ends with one line on stderr and exit code 2; runtime failures (OpenGL, output) with exit 1.
 #include "culling/culler_factory.h"
+#include "sim/regress.h"
 #include "sim/runner.h"
 #include "sim/scenario.h"
+
+#include "sim/atomic_file.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -95,6 +99,33 @@ int runCommand(const CommonFlags& flags, const std::vector<std::string>& algorit
     return 0;
 }
 
+int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
+                   const std::string& shard, const std::string& out) {
+    occsim::RegressOptions options;
+    for (const auto& input : inputs) options.inputs.emplace_back(input);
+    try {
+        options.shard = shard.empty() ? occsim::shardFromEnvironment(std::getenv) : occsim::parseShard(shard);
+    } catch (const std::invalid_argument& e) {
+        throw BadInput(std::string("--shard: ") + e.what());
+    }
+    options.update = update;
+    options.out_dir = out;
+    options.progress = ::isatty(STDERR_FILENO) != 0;
+    const occsim::RegressReport report = occsim::runRegression(options);
+    std::printf("%s", report.table().c_str());
+    size_t failed = 0, skipped = 0;
+    for (const auto& s : report.scenarios) {
+        failed += !s.passed();
+        skipped += s.skipped;
+        if (!s.note.empty() && !s.skipped) std::printf("%s\n", s.note.c_str());
+        for (const auto& capture : s.captures) std::printf("picture of the worst frame: %s\n", capture.c_str());
+    }
+    if (!junit.empty()) occsim::writeFileAtomically(junit, occsim::junitXml(report));
+    std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
+                options.shard.index, options.shard.count, failed, skipped);
+    return report.passed() ? 0 : kExitFailure;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -114,6 +145,18 @@ int main(int argc, char** argv) {
     CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
     bench->add_option("--algos", bench_algorithms, "Algorithms to compare (default: all)")->delimiter(',');
+
+    std::vector<std::string> regress_inputs;
+    bool regress_update = false;
+    std::string regress_junit, regress_shard, regress_out = "out/regress";
+    CLI::App* regress = app.add_subcommand(
+        "regress", "Run every scenario with an expect block (files or folders, recursively) and check it");
+    regress->add_option("paths", regress_inputs, "Scenario files or folders")->required();
+    regress->add_flag("--update", regress_update, "Rewrite the baselines from this run (prints what changed)");
+    regress->add_option("--junit", regress_junit, "Write JUnit XML results to this file");
+    regress->add_option("--shard", regress_shard,
+                        "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
+    regress->add_option("--out", regress_out, "Output folder for data and failure pictures");
 
     std::string info_scenario;
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
@@ -143,6 +186,8 @@ int main(int argc, char** argv) {
             for (const auto& a : bench_algorithms) checkAlgorithm("--algos", a);
             return runCommand(bench_flags, bench_algorithms, "bench", command);
         }
+        if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
+                                             regress_shard, regress_out);
         if (*info) {
             std::printf("%s", occsim::describeScenario(occsim::parseScenarioFile(info_scenario)).c_str());
             return 0;

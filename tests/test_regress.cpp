@@ -1,0 +1,300 @@
+// Regression runs catch what they exist to catch: dropped pixels, slower culling, changed
+// decisions; and they are reproducible, shardable and strict about their inputs.
+#include "culling/statistical_culler.h"
+#include "sim/regress.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+namespace occsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A copy of the small teapot scenario in a fresh folder, with a shorter run and the given expect.
+fs::path makeScenario(const std::string& name, const nlohmann::json& expect, uint32_t frames = 16) {
+    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ifstream in(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
+    nlohmann::json scenario = nlohmann::json::parse(in);
+    scenario["name"] = name;
+    scenario["frames"] = frames;
+    scenario["warmup_frames"] = 2;
+    if (expect.is_null()) {
+        scenario.erase("expect");
+    } else {
+        scenario["expect"] = expect;
+    }
+    const fs::path file = dir / (name + ".json");
+    std::ofstream(file) << scenario.dump(2);
+    return file;
+}
+
+// Forwards to another device, dropping every n-th object draw: a culler that loses visible
+// objects now and then.
+class DroppingDevice final : public RenderDevice {
+public:
+    DroppingDevice(RenderDevice& inner, uint32_t every) : inner_(inner), every_(every) {}
+    void drawObject(uint32_t object) override {
+        if (++draws_ % every_ != 0) inner_.drawObject(object);
+    }
+    using RenderDevice::issueQuery;
+    QueryId issueQuery(std::span<const Aabb> boxes) override { return inner_.issueQuery(boxes); }
+    bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
+    uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
+
+private:
+    RenderDevice& inner_;
+    uint32_t every_;
+    uint64_t draws_ = 0;
+};
+
+enum class Sabotage { DropDraws, Slow, ExtraQuery };
+
+// The statistical culler, deliberately broken in one way.
+class SabotagedCuller final : public Culler {
+public:
+    explicit SabotagedCuller(Sabotage how) : how_(how) {}
+    std::string_view name() const override { return "statistical"; }
+    void reset(const BspTree& tree) override { inner_.reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        switch (how_) {
+            case Sabotage::DropDraws: {
+                DroppingDevice dropping(device, 5);
+                inner_.cullAndRender(tree, frame, dropping);
+                return;
+            }
+            case Sabotage::Slow: {
+                const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
+                while (std::chrono::steady_clock::now() < until) {
+                }
+                break;
+            }
+            case Sabotage::ExtraQuery:
+                device.queryResult(device.issueQuery(tree.bounds(tree.root())));
+                break;
+        }
+        inner_.cullAndRender(tree, frame, device);
+    }
+
+private:
+    Sabotage how_;
+    StatisticalCuller inner_;
+};
+
+RegressOptions optionsFor(const fs::path& scenario, std::optional<Sabotage> sabotage = std::nullopt) {
+    RegressOptions o;
+    o.inputs = {scenario};
+    o.out_dir = scenario.parent_path() / "out";
+    if (sabotage) {
+        o.make_culler = [how = *sabotage](const std::string& name, const CullerOptions& options) {
+            if (name == "statistical") return std::unique_ptr<Culler>(new SabotagedCuller(how));
+            return makeCuller(name, options);
+        };
+    }
+    return o;
+}
+
+const CheckResult* findCheck(const RegressReport& report, const std::string& prefix) {
+    for (const CheckResult& c : report.scenarios.at(0).checks) {
+        if (c.check.rfind(prefix, 0) == 0) return &c;
+    }
+    return nullptr;
+}
+
+const nlohmann::json kExpect = {{"algorithms", {"vfc", "statistical"}}, {"deterministic_latency", 6}};
+
+TEST(Regress, PassesAfterUpdateAndBaselineIsRewrittenAtomically) {
+    const fs::path file = makeScenario("passes", kExpect);
+    RegressOptions o = optionsFor(file);
+    EXPECT_FALSE(runRegression(o).passed()) << "no baseline yet";
+    o.update = true;
+    const RegressReport updated = runRegression(o);
+    EXPECT_TRUE(updated.passed());
+    EXPECT_NE(updated.scenarios[0].note.find("statistical: new"), std::string::npos);
+    EXPECT_TRUE(fs::exists(file.parent_path() / "passes.baseline.json"));
+    o.update = false;
+    const RegressReport again = runRegression(o);
+    EXPECT_TRUE(again.passed()) << again.table();
+    for (const auto& entry : fs::directory_iterator(file.parent_path())) {
+        EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+    }
+}
+
+TEST(Regress, ACullerThatDropsVisibleObjectsFailsWithErrorPixelsAndAPicture) {
+    const fs::path file = makeScenario("drops", kExpect);
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::DropDraws));
+    EXPECT_FALSE(report.passed());
+    const CheckResult* zero = findCheck(report, "zero error pixels: statistical");
+    ASSERT_NE(zero, nullptr);
+    EXPECT_FALSE(zero->passed);
+    EXPECT_NE(zero->got.find("px on"), std::string::npos) << zero->got;
+    ASSERT_FALSE(report.scenarios[0].captures.empty());
+    EXPECT_TRUE(fs::exists(report.scenarios[0].captures[0]));
+    const CheckResult* vfc = findCheck(report, "zero error pixels: vfc");
+    ASSERT_NE(vfc, nullptr);
+    EXPECT_TRUE(vfc->passed);
+}
+
+TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
+    nlohmann::json expect = kExpect;
+    expect["ratios"] = {{{"algorithm", "statistical"}, {"reference", "vfc"}, {"max", 1.0}, {"tolerance", 0.5}}};
+    const fs::path file = makeScenario("slow", expect);
+    const RegressReport fair = runRegression(optionsFor(file));
+    const CheckResult* fair_ratio = findCheck(fair, "frame time statistical / vfc");
+    ASSERT_NE(fair_ratio, nullptr);
+    EXPECT_TRUE(fair_ratio->passed) << fair_ratio->got;
+    const RegressReport slow = runRegression(optionsFor(file, Sabotage::Slow));
+    const CheckResult* ratio = findCheck(slow, "frame time statistical / vfc");
+    ASSERT_NE(ratio, nullptr);
+    EXPECT_FALSE(ratio->passed) << ratio->got;
+}
+
+TEST(Regress, AChangedQueryCountFailsTheExactCheckNamingTheFrame) {
+    const fs::path file = makeScenario("queries", kExpect);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    runRegression(o);
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::ExtraQuery));
+    const CheckResult* queries = findCheck(report, "queries per frame = baseline: statistical");
+    ASSERT_NE(queries, nullptr);
+    EXPECT_FALSE(queries->passed);
+    EXPECT_NE(queries->expected.find("frame 0"), std::string::npos) << queries->expected;
+    const CheckResult* vfc = findCheck(report, "queries per frame = baseline: vfc");
+    ASSERT_NE(vfc, nullptr);
+    EXPECT_TRUE(vfc->passed);
+}
+
+TEST(Regress, DeterministicModeGivesIdenticalCountsOverThreeRuns) {
+    const fs::path file = makeScenario("determinism", kExpect);
+    std::vector<std::string> baselines;
+    for (int run = 0; run < 3; ++run) {
+        RegressOptions o = optionsFor(file);
+        o.update = true;
+        runRegression(o);
+        std::ifstream in(file.parent_path() / "determinism.baseline.json");
+        baselines.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    EXPECT_EQ(baselines[0], baselines[1]);
+    EXPECT_EQ(baselines[0], baselines[2]);
+}
+
+TEST(Regress, AScenarioWithoutExpectIsSkippedWithANote) {
+    const fs::path file = makeScenario("no-expect", nullptr);
+    const RegressReport report = runRegression(optionsFor(file));
+    ASSERT_EQ(report.scenarios.size(), 1u);
+    EXPECT_TRUE(report.scenarios[0].skipped);
+    EXPECT_EQ(report.scenarios[0].note, "no expect block");
+    EXPECT_TRUE(report.passed());
+    EXPECT_NE(junitXml(report).find("<skipped message=\"no expect block\""), std::string::npos);
+}
+
+TEST(Regress, MalformedExpectationsFailNamingFileAndKey) {
+    nlohmann::json expect = kExpect;
+    expect["zero_error"] = {"chc"};
+    const fs::path file = makeScenario("bad-expect", expect);
+    const RegressReport report = runRegression(optionsFor(file));
+    ASSERT_EQ(report.scenarios[0].checks.size(), 1u);
+    const std::string& got = report.scenarios[0].checks[0].got;
+    EXPECT_NE(got.find("bad-expect.json: /expect/zero_error/0"), std::string::npos) << got;
+    expect = kExpect;
+    expect["tolerance"] = 0.1;
+    const RegressReport unknown = runRegression(optionsFor(makeScenario("bad-expect2", expect)));
+    EXPECT_NE(unknown.scenarios[0].checks[0].got.find("/expect/tolerance"), std::string::npos)
+        << unknown.scenarios[0].checks[0].got;
+}
+
+TEST(Regress, MalformedBaselineFailsNamingFileAndKey) {
+    const fs::path file = makeScenario("bad-baseline", kExpect);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    runRegression(o);
+    const fs::path baseline = file.parent_path() / "bad-baseline.baseline.json";
+    nlohmann::json b = nlohmann::json::parse(std::ifstream(baseline));
+    b["algorithms"]["vfc"]["queries"] = {1, 2};
+    std::ofstream(baseline) << b.dump();
+    const RegressReport report = runRegression(optionsFor(file));
+    const CheckResult* check = findCheck(report, "baseline");
+    ASSERT_NE(check, nullptr);
+    EXPECT_FALSE(check->passed);
+    EXPECT_NE(check->got.find("bad-baseline.baseline.json: /algorithms/vfc/queries"), std::string::npos)
+        << check->got;
+}
+
+TEST(Regress, BaselineOfAnotherFormatVersionSaysSoInsteadOfComparing) {
+    const fs::path file = makeScenario("old-baseline", kExpect);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    runRegression(o);
+    const fs::path baseline = file.parent_path() / "old-baseline.baseline.json";
+    nlohmann::json b = nlohmann::json::parse(std::ifstream(baseline));
+    b["version"] = 2;
+    std::ofstream(baseline) << b.dump();
+    const RegressReport report = runRegression(optionsFor(file));
+    ASSERT_EQ(report.scenarios[0].checks.back().check, "baseline");
+    EXPECT_NE(report.scenarios[0].checks.back().got.find("baseline format version 2; this program reads version 1"),
+              std::string::npos);
+}
+
+TEST(Regress, JunitXmlHasOneTestcasePerCheckAndFailuresWithMessages) {
+    const fs::path file = makeScenario("junit", kExpect);
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::DropDraws));
+    const std::string xml = junitXml(report);
+    EXPECT_NE(xml.find("<testsuites name=\"occsim regress\""), std::string::npos);
+    EXPECT_NE(xml.find("<testcase classname=\"junit\" name=\"zero error pixels: statistical\"><failure"),
+              std::string::npos) << xml;
+    EXPECT_NE(xml.find("<testcase classname=\"junit\" name=\"zero error pixels: vfc\"/>"), std::string::npos);
+}
+
+TEST(Shard, ParsesIndexOverCountAndRejectsNonsense) {
+    EXPECT_EQ(parseShard("2/5").index, 2u);
+    EXPECT_EQ(parseShard("2/5").count, 5u);
+    for (const char* bad : {"5/5", "1", "a/b", "-1/3", "1/0", ""}) {
+        EXPECT_THROW(parseShard(bad), std::invalid_argument) << bad;
+    }
+}
+
+TEST(Shard, ReadsSlurmArraysAndKubernetesIndexedJobs) {
+    std::map<std::string, std::string> env;
+    auto get = [&](const char* name) -> const char* {
+        const auto it = env.find(name);
+        return it == env.end() ? nullptr : it->second.c_str();
+    };
+    EXPECT_EQ(shardFromEnvironment(get).count, 1u);
+    env = {{"SLURM_ARRAY_TASK_ID", "4"}, {"SLURM_ARRAY_TASK_COUNT", "4"}, {"SLURM_ARRAY_TASK_MIN", "1"}};
+    EXPECT_EQ(shardFromEnvironment(get).index, 3u);
+    EXPECT_EQ(shardFromEnvironment(get).count, 4u);
+    env = {{"JOB_COMPLETION_INDEX", "0"}, {"OCCSIM_SHARD_COUNT", "3"}};
+    EXPECT_EQ(shardFromEnvironment(get).index, 0u);
+    EXPECT_EQ(shardFromEnvironment(get).count, 3u);
+    env = {{"JOB_COMPLETION_INDEX", "0"}};
+    EXPECT_THROW(shardFromEnvironment(get), std::invalid_argument);
+}
+
+TEST(Shard, ShardsPartitionTheScenariosDeterministically) {
+    const fs::path dir = fs::temp_directory_path() / "occsim-regress-shards";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "nested");
+    for (int i = 0; i < 7; ++i) std::ofstream(dir / ("s" + std::to_string(i) + ".json")) << "{}";
+    std::ofstream(dir / "nested" / "t.json") << "{}";
+    std::ofstream(dir / "s0.baseline.json") << "{}";
+    std::set<fs::path> all;
+    size_t total = 0;
+    for (uint32_t i = 0; i < 3; ++i) {
+        const auto mine = collectScenarios({dir}, {i, 3});
+        EXPECT_EQ(mine, collectScenarios({dir}, {i, 3}));
+        total += mine.size();
+        all.insert(mine.begin(), mine.end());
+    }
+    EXPECT_EQ(total, 8u);
+    EXPECT_EQ(all.size(), 8u) << "every scenario in exactly one shard, baselines excluded";
+}
+
+}  // namespace
+}  // namespace occsim
