@@ -24,10 +24,9 @@
 
 #include "sim/rng.h"
 
-#include <tiny_gltf.h>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cctype>
@@ -63,12 +62,15 @@ std::vector<std::string> nonEmptyLines(const std::string& text) {
     return lines;
 }
 
-// tinygltf's messages may span several lines; a GltfError is one.
+// tinygltf's messages may span several lines and quote a whole data: URI; a GltfError is one
+// line of readable length.
 std::string oneLine(const std::string& text) {
+    constexpr size_t kMaxLength = 300;
     std::string joined;
     for (const std::string& line : nonEmptyLines(text)) {
         joined += (joined.empty() ? "" : "; ") + line;
     }
+    if (joined.size() > kMaxLength) joined = joined.substr(0, kMaxLength) + "...";
     return joined;
 }
 
@@ -102,7 +104,7 @@ tg::Model readModel(const std::filesystem::path& path, const std::string& file,
     if (!ok) fail(file, err.empty() ? "not a valid glTF file" : oneLine(err));
     // tinygltf reports what it tolerated (an image it could not find, ...) as warnings.
     for (const std::string& line : nonEmptyLines(err + "\n" + warn)) {
-        warnings.push_back(file + ": " + line);
+        warnings.push_back(file + ": " + oneLine(line));
     }
     return model;
 }
@@ -193,10 +195,10 @@ ViewOrSkip viewAccessor(const Context& c, int index, const std::string& what) {
     }
     const auto element = static_cast<size_t>(component_size * components);
     // Compared step by step so that a huge count or offset cannot overflow the arithmetic.
-    if (a.count > 0 && (a.byteOffset > bv.byteLength ||
-                        a.count - 1 > bv.byteLength / static_cast<size_t>(stride) ||
-                        a.byteOffset + (a.count - 1) * static_cast<size_t>(stride) + element >
-                            bv.byteLength)) {
+    if (a.count > 0 &&
+        (a.byteOffset > bv.byteLength ||
+         a.count - 1 > bv.byteLength / static_cast<size_t>(stride) ||
+         a.byteOffset + (a.count - 1) * static_cast<size_t>(stride) + element > bv.byteLength)) {
         fail(c.file, name + " runs past the end of bufferView " + std::to_string(a.bufferView));
     }
     AccessorView view;
@@ -217,7 +219,8 @@ glm::vec3 readVec3(const AccessorView& v, size_t i) {
 uint32_t readIndex(const AccessorView& v, size_t i) {
     const unsigned char* p = v.data + i * v.stride;
     switch (v.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return *p;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
             uint16_t value;
             std::memcpy(&value, p, sizeof value);
@@ -235,14 +238,22 @@ uint32_t readIndex(const AccessorView& v, size_t i) {
 
 std::string modeName(int mode) {
     switch (mode) {
-        case TINYGLTF_MODE_POINTS: return "POINTS";
-        case TINYGLTF_MODE_LINE: return "LINES";
-        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-        case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-        case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-        case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-        default: return std::to_string(mode);
+        case TINYGLTF_MODE_POINTS:
+            return "POINTS";
+        case TINYGLTF_MODE_LINE:
+            return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP:
+            return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP:
+            return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLES:
+            return "TRIANGLES";
+        case TINYGLTF_MODE_TRIANGLE_STRIP:
+            return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN:
+            return "TRIANGLE_FAN";
+        default:
+            return std::to_string(mode);
     }
 }
 
@@ -443,8 +454,8 @@ glm::dmat4 localMatrix(const Context& c, const tg::Node& node, size_t index) {
         if (node.translation.size() != 3) {
             fail(c.file, name + " has a translation without 3 numbers");
         }
-        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1],
-                                         node.translation[2]));
+        m = glm::translate(
+            m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
     }
     if (!node.rotation.empty()) {
         if (node.rotation.size() != 4) fail(c.file, name + " has a rotation without 4 numbers");
@@ -550,8 +561,8 @@ SceneContent flattenScene(const Context& c) {
 
 void warnAboutIgnoredParts(const Context& c, const SceneContent& content) {
     if (content.skinned > 0) {
-        c.warnings.push_back(c.file + ": ignored the skins of " +
-                             plural(content.skinned, "node") + " (meshes drawn in bind pose)");
+        c.warnings.push_back(c.file + ": ignored the skins of " + plural(content.skinned, "node") +
+                             " (meshes drawn in bind pose)");
     }
     if (content.cameras > 0) {
         c.warnings.push_back(c.file + ": ignored " + plural(content.cameras, "camera node"));
@@ -611,11 +622,13 @@ struct Copy {
 
 // Where the copies go. Grid copy (i, j) sits at (i * spacing_x, 0, j * spacing_z), so copy
 // (0, 0) is the model where the file put it.
-std::vector<Copy> copyPlacements(const GltfReplication& r, const Aabb& model_bounds,
-                                 uint64_t seed, glm::dvec2& grid_spacing) {
+std::vector<Copy> copyPlacements(const GltfReplication& r, const Aabb& model_bounds, uint64_t seed,
+                                 glm::dvec2& grid_spacing) {
     std::vector<Copy> copies;
     switch (r.mode) {
-        case GltfReplication::Mode::None: copies.push_back({}); break;
+        case GltfReplication::Mode::None:
+            copies.push_back({});
+            break;
         case GltfReplication::Mode::Grid: {
             const glm::dvec3 size(extent(model_bounds));
             grid_spacing = r.spacing_m > 0.0 ? glm::dvec2(r.spacing_m)

@@ -1,0 +1,760 @@
+// The glTF scene source (sim/gltf_source.h): the three real files in scenarios/assets load with
+// the triangle and node counts of their README, instanced meshes are converted once, transforms
+// and replication place objects where the contract says, and broken files fail with one line.
+// Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
+#include "sim/gltf_source.h"
+#include "sim/scenario.h"
+#include "sim/world.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+namespace occsim {
+namespace {
+
+using nlohmann::json;
+
+const std::filesystem::path kAssets = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/assets";
+const std::filesystem::path kTeapot = kAssets / "Teapot/teapot.gltf";
+const std::filesystem::path kSubpass = kAssets / "SubpassSceneOpaque/subpass_scene_opaque.gltf";
+const std::filesystem::path kHouse = kAssets / "FZK-Haus/AC14-FZK-Haus.glb";
+
+constexpr int kPoints = 0, kLines = 1, kTriangles = 4, kStrip = 5, kFan = 6;
+constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
+
+SourceOutput load(const std::filesystem::path& path, double scale = 1.0,
+                  glm::dvec3 offset = glm::dvec3(0.0), GltfReplication replicate = {},
+                  uint64_t seed = 1) {
+    GltfSourceSpec spec;
+    spec.path = path;
+    spec.scale = scale;
+    spec.offset = offset;
+    spec.replicate = replicate;
+    return loadGltfSource(spec, seed);
+}
+
+uint64_t drawnTriangles(const SourceOutput& out) {
+    uint64_t total = 0;
+    for (const PlacedObject& o : out.objects) total += out.meshes.at(o.mesh).triangleCount();
+    return total;
+}
+
+// What every loaded source must satisfy whatever the file: finite positions, unit finite
+// normals (one per position), whole triangles, indices in range, every mesh used.
+void expectWellFormed(const SourceOutput& out) {
+    std::vector<uint8_t> used(out.meshes.size(), 0);
+    for (const PlacedObject& o : out.objects) {
+        ASSERT_LT(o.mesh, out.meshes.size());
+        used[o.mesh] = 1;
+    }
+    for (size_t m = 0; m < out.meshes.size(); ++m) {
+        const MeshData& mesh = out.meshes[m];
+        EXPECT_TRUE(used[m]) << "mesh " << m << " is used by no object";
+        ASSERT_EQ(mesh.normals.size(), mesh.positions.size()) << "mesh " << m;
+        ASSERT_EQ(mesh.indices.size() % 3, 0u) << "mesh " << m;
+        EXPECT_GT(mesh.indices.size(), 0u) << "mesh " << m;
+        for (const glm::vec3& p : mesh.positions) {
+            ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+        }
+        for (const glm::vec3& n : mesh.normals) {
+            ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+            ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f) << "mesh " << m;
+        }
+        for (uint32_t i : mesh.indices) ASSERT_LT(i, mesh.positions.size()) << "mesh " << m;
+    }
+}
+
+void expectBoxNear(const Aabb& box, glm::vec3 min, glm::vec3 max, float tolerance) {
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_NEAR(box.min[axis], min[axis], tolerance) << "min, axis " << axis;
+        EXPECT_NEAR(box.max[axis], max[axis], tolerance) << "max, axis " << axis;
+    }
+}
+
+// The geometric normal of triangle t of an object's mesh in world space (unnormalised).
+glm::vec3 worldFaceNormal(const SourceOutput& out, const PlacedObject& o, size_t t) {
+    const MeshData& mesh = out.meshes[o.mesh];
+    const glm::vec3 a = o.linear * mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3 b = o.linear * mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3 c = o.linear * mesh.positions[mesh.indices[3 * t + 2]];
+    return glm::cross(b - a, c - a);
+}
+
+bool anyWarningContains(const SourceOutput& out, const std::string& text) {
+    return std::any_of(out.warnings.begin(), out.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+std::string allWarnings(const SourceOutput& out) {
+    std::string text;
+    for (const std::string& w : out.warnings) text += w + "\n";
+    return text;
+}
+
+// ---- Temporary files -----------------------------------------------------------------------
+
+class TempDir {
+  public:
+    TempDir() {
+        static int counter = 0;
+        path_ =
+            std::filesystem::temp_directory_path() /
+            ("occsim-test-gltf-" + std::to_string(::getpid()) + "-" + std::to_string(++counter));
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+        const std::filesystem::path file = path_ / name;
+        std::ofstream(file, std::ios::binary)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        return file;
+    }
+
+  private:
+    std::filesystem::path path_;
+};
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+    static const char kAlphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t v = static_cast<uint32_t>(bytes[i]) << 16;
+        if (i + 1 < bytes.size()) v |= static_cast<uint32_t>(bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) v |= bytes[i + 2];
+        out += kAlphabet[(v >> 18) & 63];
+        out += kAlphabet[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
+    }
+    return out;
+}
+
+// A small glTF document with one embedded buffer. Accessors are appended to the buffer, each in
+// its own bufferView; meshes, nodes and the scene are plain JSON the test fills in.
+class GltfBuilder {
+  public:
+    GltfBuilder() {
+        doc_ = {{"asset", {{"version", "2.0"}}},
+                {"accessors", json::array()},
+                {"bufferViews", json::array()},
+                {"meshes", json::array()},
+                {"nodes", json::array()},
+                {"scenes", json::array({{{"nodes", json::array()}}})},
+                {"scene", 0}};
+    }
+
+    json& doc() { return doc_; }
+    const std::vector<uint8_t>& bytes() const { return bytes_; }
+
+    // A VEC3 FLOAT accessor; `stride` > 12 interleaves each vec3 with padding bytes.
+    int vec3(const std::vector<glm::vec3>& values, size_t stride = 0) {
+        const size_t step = stride == 0 ? 12 : stride;
+        std::vector<uint8_t> bytes(values.empty() ? 0 : (values.size() - 1) * step + 12, 0xEE);
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (size_t i = 0; i < values.size(); ++i) {
+            std::memcpy(bytes.data() + i * step, &values[i], 12);
+            lo = glm::min(lo, values[i]);
+            hi = glm::max(hi, values[i]);
+        }
+        json accessor = {{"bufferView", addView(bytes, stride)},
+                         {"componentType", kFloat},
+                         {"count", values.size()},
+                         {"type", "VEC3"}};
+        if (!values.empty()) {
+            accessor["min"] = {lo.x, lo.y, lo.z};
+            accessor["max"] = {hi.x, hi.y, hi.z};
+        }
+        return addAccessor(accessor);
+    }
+
+    int indices(const std::vector<uint32_t>& values, int component_type = kUnsignedInt) {
+        const size_t size = component_type == kUnsignedByte    ? 1
+                            : component_type == kUnsignedShort ? 2
+                                                               : 4;
+        std::vector<uint8_t> bytes(values.size() * size);
+        for (size_t i = 0; i < values.size(); ++i) {
+            const uint32_t v = values[i];
+            std::memcpy(bytes.data() + i * size, &v, size);  // little-endian: the low bytes
+        }
+        return addAccessor({{"bufferView", addView(bytes, 0)},
+                            {"componentType", component_type},
+                            {"count", values.size()},
+                            {"type", "SCALAR"}});
+    }
+
+    int addAccessor(const json& accessor) {
+        doc_["accessors"].push_back(accessor);
+        return static_cast<int>(doc_["accessors"].size() - 1);
+    }
+
+    static json primitive(int positions, int index_accessor = -1, int mode = kTriangles) {
+        json p = {{"attributes", {{"POSITION", positions}}}, {"mode", mode}};
+        if (index_accessor >= 0) p["indices"] = index_accessor;
+        return p;
+    }
+
+    int mesh(const std::string& name, const json& primitives) {
+        doc_["meshes"].push_back({{"name", name}, {"primitives", primitives}});
+        return static_cast<int>(doc_["meshes"].size() - 1);
+    }
+
+    // A node; a root of scene 0 unless it is made someone's child.
+    int node(const json& node, bool root = true) {
+        doc_["nodes"].push_back(node);
+        const int index = static_cast<int>(doc_["nodes"].size() - 1);
+        if (root) doc_["scenes"][0]["nodes"].push_back(index);
+        return index;
+    }
+
+    // One counter-clockwise (seen from +z) triangle in the xy plane as an indexed mesh.
+    int triangleMesh(const std::string& name) {
+        const int p = vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+        return mesh(name, json::array({primitive(p, indices({0, 1, 2}))}));
+    }
+
+    std::string text() const {
+        json doc = doc_;
+        doc["buffers"] =
+            json::array({{{"byteLength", bytes_.size()},
+                          {"uri", "data:application/octet-stream;base64," + base64(bytes_)}}});
+        return doc.dump();
+    }
+
+  private:
+    int addView(std::vector<uint8_t> bytes, size_t stride) {
+        while (bytes_.size() % 4 != 0) bytes_.push_back(0);  // accessors must be aligned
+        json view = {{"buffer", 0}, {"byteOffset", bytes_.size()}, {"byteLength", bytes.size()}};
+        if (stride != 0) view["byteStride"] = stride;
+        bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
+        doc_["bufferViews"].push_back(view);
+        return static_cast<int>(doc_["bufferViews"].size() - 1);
+    }
+
+    json doc_;
+    std::vector<uint8_t> bytes_;
+};
+
+// Loads a synthetic document through a temporary .gltf file.
+SourceOutput loadText(const std::string& text, GltfReplication replicate = {}, uint64_t seed = 1,
+                      double scale = 1.0, glm::dvec3 offset = glm::dvec3(0.0)) {
+    TempDir dir;
+    return load(dir.write("model.gltf", text), scale, offset, replicate, seed);
+}
+
+// The GltfError message of loading `path`, or "" when it loads.
+std::string errorOf(const std::filesystem::path& path) {
+    try {
+        load(path);
+    } catch (const GltfError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string errorOfText(const std::string& text) {
+    TempDir dir;
+    return errorOf(dir.write("model.gltf", text));
+}
+
+// ---- The real files (table and boxes of /work/shared/assets/README.md) ----------------------
+
+TEST(GltfRealFiles, TeapotLoadsItsTrianglesOnOneNodeWithTheReadmeBounds) {
+    const SourceOutput out = load(kTeapot);
+    EXPECT_EQ(drawnTriangles(out), 9128u);
+    EXPECT_EQ(out.objects.size(), 1u);
+    EXPECT_EQ(out.meshes.size(), 1u);
+    expectBoxNear(out.region, {-30.4f, -17.2f, -20.0f}, {33.9f, 14.3f, 20.0f}, 0.1f);
+    EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
+    expectWellFormed(out);
+}
+
+TEST(GltfRealFiles, SubpassSceneLoadsSeventyNodesSharingTwelveMeshes) {
+    const SourceOutput out = load(kSubpass);
+    EXPECT_EQ(drawnTriangles(out), 23388u);
+    EXPECT_EQ(out.objects.size(), 70u);
+    EXPECT_EQ(out.meshes.size(), 12u);  // every node mirrors (scale -1), so one variant per mesh
+    expectBoxNear(out.region, {-11.0f, -9.7f, -11.0f}, {11.0f, 0.5f, 11.0f}, 0.1f);
+    EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
+    expectWellFormed(out);
+}
+
+TEST(GltfRealFiles, FzkHausGlbLoadsItsTrianglesOn110NodesSharing59Meshes) {
+    const SourceOutput out = load(kHouse);
+    EXPECT_EQ(drawnTriangles(out), 35906u);
+    EXPECT_EQ(out.objects.size(), 110u);
+    EXPECT_EQ(out.meshes.size(), 59u);
+    expectBoxNear(out.region, {-3.0f, -1.0f, -13.0f}, {15.0f, 6.3f, 3.0f}, 0.1f);
+    EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
+    expectWellFormed(out);
+}
+
+TEST(GltfRealFiles, MirroredNodesKeepFrontFacesCounterClockwise) {
+    // Every node of the subpass scene has a negative scale. Its floor is a box; for each face of
+    // the box, the world-space winding normal must point away from the box centre.
+    const SourceOutput out = load(kSubpass);
+    size_t checked = 0;
+    for (const PlacedObject& o : out.objects) {
+        const MeshData& mesh = out.meshes[o.mesh];
+        ASSERT_LT(glm::determinant(o.linear), 0.0f);
+        const glm::vec3 centre = o.linear * center(meshBounds(mesh));
+        if (mesh.positions.size() > 64) continue;  // boxes only: convex, so the test is exact
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const glm::vec3 a = o.linear * mesh.positions[mesh.indices[3 * t]];
+            EXPECT_GT(glm::dot(worldFaceNormal(out, o, t), a - centre), 0.0f);
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 0u);
+}
+
+// ---- Instancing, transforms, scenes --------------------------------------------------------
+
+TEST(GltfScene, AMeshUsedBySeveralNodesIsConvertedOnce) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Shared");
+    const int child = b.node({{"mesh", mesh}, {"translation", {0, 5, 0}}}, false);
+    b.node({{"mesh", mesh}, {"translation", {10, 0, 0}}, {"children", {child}}});
+    b.node({{"mesh", mesh}, {"translation", {-3, 0, 0}}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.objects.size(), 3u);
+    EXPECT_EQ(out.meshes.size(), 1u);
+    for (const PlacedObject& o : out.objects) EXPECT_EQ(o.mesh, 0u);
+    std::set<std::array<double, 3>> positions;
+    for (const PlacedObject& o : out.objects)
+        positions.insert({o.position.x, o.position.y, o.position.z});
+    const std::set<std::array<double, 3>> expected = {{10, 0, 0}, {10, 5, 0}, {-3, 0, 0}};
+    EXPECT_EQ(positions, expected);  // the child's translation is added to its parent's
+    expectWellFormed(out);
+}
+
+TEST(GltfScene, HierarchyComposesMatrixAndTrsWithScaleAndOffset) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    // Child: rotated 90 degrees about y, scaled 2, translated (1, 0, 0) in the parent's frame.
+    const double s = std::sqrt(0.5);
+    const int child = b.node({{"mesh", mesh},
+                              {"translation", {1, 0, 0}},
+                              {"rotation", {0, s, 0, s}},
+                              {"scale", {2, 2, 2}}},
+                             false);
+    // Parent: a column-major matrix translating by (0, 0, 4) and scaling by 3.
+    b.node({{"matrix", {3, 0, 0, 0, 0, 3, 0, 0, 0, 0, 3, 0, 0, 0, 4, 1}}, {"children", {child}}});
+    const SourceOutput out = loadText(b.text(), {}, 1, 0.5, {100, 0, 0});
+    ASSERT_EQ(out.objects.size(), 1u);
+    const PlacedObject& o = out.objects[0];
+    // World = parent * child: translation (3, 0, 4); then the spec: * 0.5 and + (100, 0, 0).
+    EXPECT_NEAR(o.position.x, 101.5, 1e-9);
+    EXPECT_NEAR(o.position.y, 0.0, 1e-9);
+    EXPECT_NEAR(o.position.z, 2.0, 1e-9);
+    // Linear: 3 * 2 * 0.5 = 3 times a rotation taking +x to -z.
+    const glm::vec3 x = o.linear * glm::vec3(1, 0, 0);
+    EXPECT_NEAR(x.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(x.z, -3.0f, 1e-5f);
+    EXPECT_NEAR(glm::determinant(o.linear), 27.0f, 1e-3f);
+}
+
+TEST(GltfScene, ANegativeDeterminantReversesTheWindingOfThatNodesCopy) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}});
+    b.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.objects.size(), 2u);
+    EXPECT_EQ(out.meshes.size(), 2u);  // as is, and mirrored
+    EXPECT_NE(out.objects[0].mesh, out.objects[1].mesh);
+    for (const PlacedObject& o : out.objects) {
+        EXPECT_GT(worldFaceNormal(out, o, 0).z, 0.0f) << "still counter-clockwise from +z";
+    }
+}
+
+TEST(GltfScene, UsesTheDefaultSceneElseAllRootNodes) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}, {"translation", {1, 0, 0}}});  // root of scene 0
+    const int child = b.node({{"mesh", mesh}, {"translation", {0, 1, 0}}}, false);
+    const int other =
+        b.node({{"mesh", mesh}, {"translation", {2, 0, 0}}, {"children", {child}}}, false);
+    b.doc()["scenes"].push_back({{"nodes", {other}}});
+    b.doc()["scene"] = 1;
+    SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.objects.size(), 2u);
+    EXPECT_EQ(out.objects[0].position, glm::dvec3(2, 0, 0));
+    EXPECT_EQ(out.objects[1].position, glm::dvec3(2, 1, 0));
+
+    b.doc().erase("scene");  // scene 0 then
+    EXPECT_EQ(loadText(b.text()).objects.size(), 1u);
+
+    b.doc().erase("scenes");  // no scenes: every node that is no one's child
+    EXPECT_EQ(loadText(b.text()).objects.size(), 3u);
+}
+
+// ---- Primitives ----------------------------------------------------------------------------
+
+TEST(GltfPrimitives, IndicesOfEveryWidthAndNonIndexedGiveTheSameTriangles) {
+    const std::vector<glm::vec3> quad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const std::vector<uint32_t> order = {0, 1, 2, 0, 2, 3};
+    std::vector<std::vector<glm::vec3>> results;
+    for (int type : {kUnsignedByte, kUnsignedShort, kUnsignedInt, 0}) {
+        GltfBuilder b;
+        json primitive;
+        if (type == 0) {
+            std::vector<glm::vec3> soup;
+            for (uint32_t i : order) soup.push_back(quad[i]);
+            primitive = GltfBuilder::primitive(b.vec3(soup));
+        } else {
+            primitive = GltfBuilder::primitive(b.vec3(quad), b.indices(order, type));
+        }
+        b.node({{"mesh", b.mesh("Quad", json::array({primitive}))}});
+        const SourceOutput out = loadText(b.text());
+        expectWellFormed(out);
+        std::vector<glm::vec3> corners;
+        for (uint32_t i : out.meshes.at(0).indices) corners.push_back(out.meshes[0].positions[i]);
+        results.push_back(corners);
+    }
+    for (size_t r = 1; r < results.size(); ++r)
+        EXPECT_EQ(results[r], results[0]) << "variant " << r;
+}
+
+TEST(GltfPrimitives, ReadsPositionsThroughAByteStride) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, 20);
+    b.node({{"mesh", b.mesh("Strided", json::array({GltfBuilder::primitive(p)}))}});
+    const SourceOutput out = loadText(b.text());
+    const std::vector<glm::vec3> expected = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}};
+    EXPECT_EQ(out.meshes.at(0).positions, expected);
+}
+
+TEST(GltfPrimitives, StripsAndFansBecomeCounterClockwiseTriangleLists) {
+    GltfBuilder b;
+    // Strip 0-1-2-3 over a unit square, fan around the centre of a square: all facing +z.
+    const int strip = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+    const int fan = b.vec3({{0.5f, 0.5f, 0}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    b.node({{"mesh", b.mesh("StripAndFan", json::array({GltfBuilder::primitive(strip, -1, kStrip),
+                                                        GltfBuilder::primitive(fan, -1, kFan)}))}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.meshes.size(), 1u);
+    EXPECT_EQ(out.meshes[0].triangleCount(), 2u + 3u);
+    for (size_t t = 0; t < out.meshes[0].triangleCount(); ++t) {
+        EXPECT_GT(worldFaceNormal(out, out.objects[0], t).z, 0.0f) << "triangle " << t;
+    }
+    expectWellFormed(out);
+}
+
+TEST(GltfPrimitives, ComputesNormalsWhenAbsentAndNormalisesGivenOnes) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const int n = b.vec3({{0, 0, 2}, {0, 0, 3}, {0, 4, 0}});
+    json with_normals = GltfBuilder::primitive(p);
+    with_normals["attributes"]["NORMAL"] = n;
+    b.node({{"mesh", b.mesh("Computed", json::array({GltfBuilder::primitive(p)}))}});
+    b.node({{"mesh", b.mesh("Given", json::array({with_normals}))}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.meshes.size(), 2u);
+    for (const glm::vec3& normal : out.meshes[0].normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    const std::vector<glm::vec3> given = {{0, 0, 1}, {0, 0, 1}, {0, 1, 0}};
+    EXPECT_EQ(out.meshes[1].normals, given);
+}
+
+TEST(GltfPrimitives, MergesAllTrianglePrimitivesOfAMeshIntoOneMeshData) {
+    GltfBuilder b;
+    const int first = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const int second = b.vec3({{0, 0, 5}, {1, 0, 5}, {0, 1, 5}});
+    b.node({{"mesh",
+             b.mesh("Two", json::array({GltfBuilder::primitive(first, b.indices({0, 1, 2})),
+                                        GltfBuilder::primitive(second, b.indices({0, 1, 2}))}))}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.meshes.size(), 1u);
+    EXPECT_EQ(out.meshes[0].positions.size(), 6u);
+    const std::vector<uint32_t> indices = {0, 1, 2, 3, 4, 5};
+    EXPECT_EQ(out.meshes[0].indices, indices);
+}
+
+TEST(GltfPrimitives, SkipsLinesBesideTrianglesWithAWarningNamingTheMesh) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const int lines = b.vec3({{0, 0, 0}, {1, 1, 1}});
+    b.node({{"mesh", b.mesh("Fence", json::array({GltfBuilder::primitive(p),
+                                                  GltfBuilder::primitive(lines, -1, kLines),
+                                                  GltfBuilder::primitive(lines, -1, kLines)}))}});
+    const SourceOutput out = loadText(b.text());
+    EXPECT_EQ(out.meshes.at(0).triangleCount(), 1u);
+    ASSERT_EQ(out.warnings.size(), 1u) << allWarnings(out);
+    EXPECT_NE(
+        out.warnings[0].find("model.gltf: skipped 2 primitives with mode LINES in mesh 'Fence'"),
+        std::string::npos)
+        << out.warnings[0];
+}
+
+TEST(GltfPrimitives, WarnsAboutMorphTargetsSparseAndQuantizedPositionsAndSkins) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    json morphed = GltfBuilder::primitive(p);
+    morphed["targets"] = json::array({{{"POSITION", b.vec3({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}})}}});
+    json sparse_accessor = b.doc()["accessors"][p];
+    sparse_accessor["sparse"] = {{"count", 1},
+                                 {"indices", {{"bufferView", 0}, {"componentType", kUnsignedInt}}},
+                                 {"values", {{"bufferView", 0}}}};
+    const int sparse = b.addAccessor(sparse_accessor);
+    json quantized_accessor = b.doc()["accessors"][p];
+    quantized_accessor["componentType"] = kUnsignedShort;
+    quantized_accessor["normalized"] = true;
+    const int quantized = b.addAccessor(quantized_accessor);
+    b.node({{"mesh", b.mesh("Odd", json::array({morphed, GltfBuilder::primitive(sparse),
+                                                GltfBuilder::primitive(quantized)}))}});
+    b.doc()["skins"] = json::array({{{"joints", {0}}}});
+    b.doc()["nodes"][0]["skin"] = 0;
+    const SourceOutput out = loadText(b.text());
+    EXPECT_EQ(out.meshes.at(0).triangleCount(), 1u);  // the morphed primitive's base positions
+    EXPECT_TRUE(anyWarningContains(out, "with morph targets in mesh 'Odd'")) << allWarnings(out);
+    EXPECT_TRUE(anyWarningContains(out, "1 primitive with sparse accessors")) << allWarnings(out);
+    EXPECT_TRUE(anyWarningContains(out, "1 primitive with quantized")) << allWarnings(out);
+    EXPECT_TRUE(anyWarningContains(out, "skins")) << allWarnings(out);
+}
+
+TEST(GltfPrimitives, OnlyLinesAndPointsIsAnErrorSayingNoTriangles) {
+    GltfBuilder b;
+    const int lines = b.vec3({{0, 0, 0}, {1, 1, 1}});
+    b.node({{"mesh", b.mesh("Wire", json::array({GltfBuilder::primitive(lines, -1, kLines),
+                                                 GltfBuilder::primitive(lines, -1, kPoints)}))}});
+    const std::string error = errorOfText(b.text());
+    EXPECT_NE(error.find("model.gltf: no triangles"), std::string::npos) << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}
+
+TEST(GltfPrimitives, RequiredGeometryExtensionsFailAppearanceOnesDoNot) {
+    GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    b.doc()["extensionsUsed"] = {"KHR_materials_unlit"};
+    b.doc()["extensionsRequired"] = {"KHR_materials_unlit"};
+    EXPECT_EQ(loadText(b.text()).objects.size(), 1u);
+    b.doc()["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    b.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    const std::string error = errorOfText(b.text());
+    EXPECT_NE(error.find("requires the unsupported extension 'KHR_draco_mesh_compression'"),
+              std::string::npos)
+        << error;
+}
+
+// ---- Errors: one line naming the file ------------------------------------------------------
+
+// `file` is the path, or the end of it, that the message must start with.
+void expectOneLineError(const std::string& error, const std::string& file,
+                        const std::string& part) {
+    ASSERT_FALSE(error.empty()) << "expected a GltfError";
+    const size_t at = error.find(file + ": ");
+    ASSERT_NE(at, std::string::npos) << error;
+    EXPECT_EQ(error.find(": "), at + file.size()) << "the message starts with the file: " << error;
+    EXPECT_NE(error.find(part), std::string::npos) << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}
+
+TEST(GltfErrors, MissingFile) {
+    const std::filesystem::path missing = kAssets / "no-such-model.glb";
+    expectOneLineError(errorOf(missing), missing.string(), "no such file");
+}
+
+TEST(GltfErrors, TruncatedGlb) {
+    std::ifstream in(kHouse, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 1000u);
+    TempDir dir;
+    const std::filesystem::path half = dir.write("half.glb", bytes.substr(0, bytes.size() / 2));
+    expectOneLineError(errorOf(half), half.string(), "");
+}
+
+TEST(GltfErrors, CorruptJson) {
+    TempDir dir;
+    const std::filesystem::path file =
+        dir.write("corrupt.gltf", R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [)");
+    expectOneLineError(errorOf(file), file.string(), "");
+}
+
+TEST(GltfErrors, MissingExternalBin) {
+    GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    json doc = json::parse(b.text());
+    doc["buffers"][0]["uri"] = "missing.bin";
+    TempDir dir;
+    const std::filesystem::path file = dir.write("external.gltf", doc.dump());
+    expectOneLineError(errorOf(file), file.string(), "missing.bin");
+}
+
+TEST(GltfErrors, ExternalBinLoadsWhenPresent) {
+    GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    json doc = json::parse(b.text());
+    doc["buffers"][0]["uri"] = "model.bin";
+    TempDir dir;
+    dir.write("model.bin", std::string(b.bytes().begin(), b.bytes().end()));
+    const SourceOutput out = load(dir.write("external.gltf", doc.dump()));
+    EXPECT_EQ(drawnTriangles(out), 1u);
+}
+
+TEST(GltfErrors, AccessorIndexOutOfRange) {
+    GltfBuilder b;
+    b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});  // accessor 0 exists
+    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(7)}))}});
+    expectOneLineError(errorOfText(b.text()), "model.gltf", "accessor 7");
+}
+
+TEST(GltfErrors, IndexValuePastTheVertexCount) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    b.node(
+        {{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p, b.indices({0, 1, 3}))}))}});
+    expectOneLineError(errorOfText(b.text()), "model.gltf", "index value 3");
+}
+
+TEST(GltfErrors, NonFinitePosition) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {NAN, 0, 0}, {0, 1, 0}});
+    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p)}))}});
+    // nlohmann writes NaN bounds as null; drop them (they are optional) to reach our check.
+    b.doc()["accessors"][p].erase("min");
+    b.doc()["accessors"][p].erase("max");
+    expectOneLineError(errorOfText(b.text()), "model.gltf", "not finite");
+}
+
+TEST(GltfErrors, AccessorPastTheEndOfItsBufferView) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    b.doc()["accessors"][p]["count"] = 4;
+    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p)}))}});
+    expectOneLineError(errorOfText(b.text()), "model.gltf", "runs past the end");
+}
+
+TEST(GltfErrors, NodeHierarchyCycle) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}, {"children", {1}}});
+    b.node({{"mesh", mesh}, {"children", {0}}}, false);
+    expectOneLineError(errorOfText(b.text()), "model.gltf", "cycle");
+}
+
+// ---- Replication ---------------------------------------------------------------------------
+
+GltfReplication grid(uint32_t x, uint32_t z, double spacing) {
+    GltfReplication r;
+    r.mode = GltfReplication::Mode::Grid;
+    r.count_x = x;
+    r.count_z = z;
+    r.spacing_m = spacing;
+    return r;
+}
+
+GltfReplication random(uint32_t count, bool yaw) {
+    GltfReplication r;
+    r.mode = GltfReplication::Mode::Random;
+    r.count = count;
+    r.region = {glm::vec3(-100, 0, -50), glm::vec3(100, 0, 50)};
+    r.random_yaw = yaw;
+    return r;
+}
+
+TEST(GltfReplication, GridMakesCountXTimesCountZCopiesAtTheSpacing) {
+    const SourceOutput one = load(kHouse);
+    const SourceOutput out = load(kHouse, 1.0, {5, 0, 7}, grid(3, 2, 40.0));
+    ASSERT_EQ(out.objects.size(), 6 * one.objects.size());
+    EXPECT_EQ(out.meshes.size(), one.meshes.size());  // copies share the meshes
+    const size_t n = one.objects.size();
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec3 base = one.objects[i].position + glm::dvec3(5, 0, 7);
+        EXPECT_NEAR(glm::length(out.objects[i].position - base), 0.0, 1e-9);
+        EXPECT_NEAR(glm::length(out.objects[n + i].position - (base + glm::dvec3(40, 0, 0))), 0.0,
+                    1e-9);
+        EXPECT_NEAR(glm::length(out.objects[3 * n + i].position - (base + glm::dvec3(0, 0, 40))),
+                    0.0, 1e-9);
+        EXPECT_EQ(out.objects[5 * n + i].linear, one.objects[i].linear);
+    }
+    // Streets between the copies (the house is 18 x 16 m, the spacing 40 m): one loop per copy.
+    EXPECT_EQ(out.lanes.size(), 6u);
+    const Aabb bounds = sourceBounds(out);
+    EXPECT_EQ(out.region.min, bounds.min);
+    EXPECT_EQ(out.region.max, bounds.max);
+    expectBoxNear(out.region, {2.0f, -1.0f, -6.0f}, {100.0f, 6.3f, 50.0f}, 0.1f);
+}
+
+TEST(GltfReplication, GridSpacingZeroIsTheModelSizePlusTenPercent) {
+    const SourceOutput one = load(kHouse);
+    const glm::vec3 size = extent(one.region);
+    const SourceOutput out = load(kHouse, 1.0, {}, grid(2, 2, 0.0));
+    const size_t n = one.objects.size();
+    EXPECT_NEAR(out.objects[n].position.x - out.objects[0].position.x, 1.1 * size.x, 1e-4);
+    EXPECT_NEAR(out.objects[2 * n].position.z - out.objects[0].position.z, 1.1 * size.z, 1e-4);
+}
+
+TEST(GltfReplication, RandomCopiesAreDeterministicPerSeedInsideTheRegion) {
+    const SourceOutput one = load(kTeapot);
+    const SourceOutput a = load(kTeapot, 1.0, {}, random(25, true), 7);
+    const SourceOutput b = load(kTeapot, 1.0, {}, random(25, true), 7);
+    const SourceOutput c = load(kTeapot, 1.0, {}, random(25, true), 8);
+    ASSERT_EQ(a.objects.size(), 25u);
+    EXPECT_EQ(a.meshes.size(), 1u);
+    bool yawed = false;
+    for (size_t i = 0; i < a.objects.size(); ++i) {
+        EXPECT_EQ(a.objects[i].position, b.objects[i].position);
+        EXPECT_EQ(a.objects[i].linear, b.objects[i].linear);
+        // The teapot's node sits at the origin, so each copy's origin is its object's position.
+        EXPECT_TRUE(contains(random(1, true).region, glm::vec3(a.objects[i].position)));
+        yawed = yawed || a.objects[i].linear != one.objects[0].linear;
+    }
+    EXPECT_TRUE(yawed);
+    EXPECT_NE(a.objects[0].position, c.objects[0].position);
+    const SourceOutput upright = load(kTeapot, 1.0, {}, random(5, false), 7);
+    for (const PlacedObject& o : upright.objects) EXPECT_EQ(o.linear, one.objects[0].linear);
+    EXPECT_TRUE(a.lanes.empty());
+}
+
+// ---- Through the scenario and the scene builder --------------------------------------------
+
+TEST(GltfScenario, TheGltfHouseScenarioBuildsItsGridAndMovers) {
+    const std::filesystem::path file =
+        std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/gltf-house.json";
+    const Scenario scenario = parseScenarioFile(file);
+    const Scene scene = buildScene(scenario);
+    const auto& spec = std::get<GltfSourceSpec>(scenario.sources.at(0).spec);
+    const uint32_t copies = spec.replicate.count_x * spec.replicate.count_z;
+    EXPECT_GE(copies, 4u);
+    EXPECT_GT(scene.objectCount(), copies * 110u);  // the houses, and spawned movers
+    EXPECT_FALSE(scene.initial_movers.empty());
+    EXPECT_TRUE(scene.warnings.empty());
+}
+
+TEST(GltfScenario, WarningsReachTheScene) {
+    GltfBuilder b;
+    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    b.node({{"mesh", b.mesh("Fence", json::array({GltfBuilder::primitive(p),
+                                                  GltfBuilder::primitive(p, -1, kPoints)}))}});
+    TempDir dir;
+    dir.write("model.gltf", b.text());
+    const json scenario = {
+        {"format_version", 1},
+        {"camera",
+         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
+        {"scene", {{"sources", {{{"type", "gltf"}, {"path", "model.gltf"}}}}}}};
+    const std::filesystem::path file = dir.write("scenario.json", scenario.dump());
+    const Scene scene = buildScene(parseScenarioFile(file));
+    EXPECT_EQ(scene.objectCount(), 1u);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_NE(scene.warnings[0].find("mode POINTS in mesh 'Fence'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace occsim
