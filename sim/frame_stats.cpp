@@ -50,6 +50,15 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
     }
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
+    s.frame_ms_mean_min = s.frame_ms_mean_max = s.frame_ms.mean;
+    if (s.error_measured) {
+        std::vector<double> error;
+        for (const FrameStats& f : frames) error.push_back(static_cast<double>(f.error_pixels));
+        std::sort(error.begin(), error.end());
+        s.error_pixels_mean = std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size());
+        const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(error.size())));
+        s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
+    }
     if (s.timed_frames > 0) {
         const double n = s.timed_frames;
         s.cull_cpu_ms_mean = cull / n;
@@ -60,6 +69,72 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
         s.triangles_mean = triangles / n;
     }
     return s;
+}
+
+}  // namespace occsim
+
+namespace occsim {
+
+void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs) {
+    summary.popping_events = static_cast<uint32_t>(missing_runs.size());
+    summary.popping_max_frames = 0;
+    double total = 0;
+    for (uint32_t run : missing_runs) {
+        total += run;
+        summary.popping_max_frames = std::max(summary.popping_max_frames, run);
+    }
+    summary.popping_mean_frames = missing_runs.empty() ? 0.0 : total / static_cast<double>(missing_runs.size());
+}
+
+RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
+    RunSummary out = reps.front();
+    const size_t n = reps.size();
+    out.repetitions = static_cast<uint32_t>(n);
+    if (n == 1) return out;
+    auto median = [&](auto field) {
+        std::vector<double> v;
+        for (const RunSummary& r : reps) v.push_back(static_cast<double>(field(r)));
+        return distributionOf(v).median;
+    };
+    out.frame_ms.mean = median([](const RunSummary& r) { return r.frame_ms.mean; });
+    out.frame_ms.median = median([](const RunSummary& r) { return r.frame_ms.median; });
+    out.frame_ms.p95 = median([](const RunSummary& r) { return r.frame_ms.p95; });
+    out.frame_ms.min = median([](const RunSummary& r) { return r.frame_ms.min; });
+    out.frame_ms.max = median([](const RunSummary& r) { return r.frame_ms.max; });
+    out.cull_cpu_ms_mean = median([](const RunSummary& r) { return r.cull_cpu_ms_mean; });
+    out.wait_ms_mean = median([](const RunSummary& r) { return r.wait_ms_mean; });
+    out.update_ms_mean = median([](const RunSummary& r) { return r.update_ms_mean; });
+    out.queries_mean = median([](const RunSummary& r) { return r.queries_mean; });
+    out.objects_mean = median([](const RunSummary& r) { return r.objects_mean; });
+    out.triangles_mean = median([](const RunSummary& r) { return r.triangles_mean; });
+    out.error_pixels_mean = median([](const RunSummary& r) { return r.error_pixels_mean; });
+    out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
+    out.error_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
+    out.missed_objects_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
+    out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
+    for (const RunSummary& r : reps) {
+        out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);
+        out.frame_ms_mean_max = std::max(out.frame_ms_mean_max, r.frame_ms.mean);
+        // The worst frame is the worst of any repetition.
+        if (r.error_pixels_worst > out.error_pixels_worst) {
+            out.error_pixels_worst = r.error_pixels_worst;
+            out.error_worst_frame = r.error_worst_frame;
+        }
+        out.popping_max_frames = std::max(out.popping_max_frames, r.popping_max_frames);
+    }
+    return out;
+}
+
+std::vector<bool> paretoFront(const std::vector<double>& time, const std::vector<double>& error) {
+    std::vector<bool> front(time.size(), true);
+    for (size_t i = 0; i < time.size(); ++i) {
+        for (size_t j = 0; j < time.size() && front[i]; ++j) {
+            const bool no_worse = time[j] <= time[i] && error[j] <= error[i];
+            const bool better = time[j] < time[i] || error[j] < error[i];
+            if (j != i && no_worse && better) front[i] = false;
+        }
+    }
+    return front;
 }
 
 }  // namespace occsim

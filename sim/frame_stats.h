@@ -44,9 +44,30 @@ struct RunSummary {
     uint32_t error_worst_frame = 0;
     uint32_t frames_with_error = 0;
     int64_t missed_objects_total = 0;
+    double error_pixels_mean = 0;   // per frame, over all frames
+    double error_pixels_p99 = 0;    // per frame, nearest rank
+    // Popping: runs of consecutive frames in which an object visible in ground truth was not
+    // drawn (one run per object and disappearance).
+    uint32_t popping_events = 0;
+    double popping_mean_frames = 0;
+    uint32_t popping_max_frames = 0;
+    // Over repetitions (all equal to frame_ms.mean for a single run).
+    uint32_t repetitions = 1;
+    double frame_ms_mean_min = 0, frame_ms_mean_max = 0;
 };
 
 RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
                      uint32_t warmup_frames);
+
+// Fills the popping figures from the lengths of the missing runs.
+void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs);
+
+// One summary for several repetitions of the same configuration: every figure is the median
+// over the repetitions; frame_ms_mean_min/max give the spread of the mean frame time.
+RunSummary aggregateRepetitions(const std::vector<RunSummary>& repetitions);
+
+// Indices of the points on the Pareto front of (time, error), both to be minimised: no other
+// point is at least as good in both and better in one.
+std::vector<bool> paretoFront(const std::vector<double>& time, const std::vector<double>& error);
 
 }  // namespace occsim

@@ -32,20 +32,44 @@ double ratioToIdeal(const std::vector<RunRecord>& runs, const RunSummary& s) {
 }
 
 std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
-    const std::vector<std::string> header = {"algorithm",  "mean ms",   "median ms", "p95 ms",
-                                             "queries/fr", "wait ms/fr", "tris/fr",  "objs/fr",
-                                             "err px",     "worst px",  "speedup",   "vs ideal"};
+    bool error = false, repeated = false;
+    for (const RunRecord& r : runs) {
+        error |= r.summary.error_measured;
+        repeated |= r.summary.repetitions > 1;
+    }
+    std::vector<std::string> header = {"configuration", repeated ? "mean ms [min-max]" : "mean ms",
+                                       "median ms", "p95 ms", "queries/fr", "wait ms/fr", "tris/fr",
+                                       "objs/fr"};
+    if (error) {
+        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "missed", "pop max"}) {
+            header.push_back(h);
+        }
+    }
+    for (const char* h : {"speedup", "vs ideal"}) header.push_back(h);
+    if (error) header.push_back("pareto");
+
     std::vector<std::vector<std::string>> rows;
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
         const double speedup = speedupOverVfc(runs, s), ideal = ratioToIdeal(runs, s);
-        rows.push_back({s.algorithm, fixed(s.frame_ms.mean, 2), fixed(s.frame_ms.median, 2),
-                        fixed(s.frame_ms.p95, 2), fixed(s.queries_mean, 1), fixed(s.wait_ms_mean, 3),
-                        fixed(s.triangles_mean, 0), fixed(s.objects_mean, 1),
-                        s.error_measured ? std::to_string(s.error_pixels_total) : "-",
-                        s.error_measured ? std::to_string(s.error_pixels_worst) : "-",
-                        speedup > 0 ? fixed(speedup, 2) + "x" : "-",
-                        ideal > 0 ? fixed(ideal, 2) + "x" : "-"});
+        std::string mean = fixed(s.frame_ms.mean, 2);
+        if (repeated) mean += " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+        std::vector<std::string> row = {s.algorithm, mean, fixed(s.frame_ms.median, 2),
+                                        fixed(s.frame_ms.p95, 2), fixed(s.queries_mean, 1),
+                                        fixed(s.wait_ms_mean, 3), fixed(s.triangles_mean, 0),
+                                        fixed(s.objects_mean, 1)};
+        if (error) {
+            row.push_back(fixed(s.error_pixels_mean, 1));
+            row.push_back(fixed(s.error_pixels_p99, 0));
+            row.push_back(std::to_string(s.error_pixels_worst));
+            row.push_back(std::to_string(s.error_pixels_total));
+            row.push_back(std::to_string(s.missed_objects_total));
+            row.push_back(std::to_string(s.popping_max_frames));
+        }
+        row.push_back(speedup > 0 ? fixed(speedup, 2) + "x" : "-");
+        row.push_back(ideal > 0 ? fixed(ideal, 2) + "x" : "-");
+        if (error) row.push_back(r.pareto ? "*" : "");
+        rows.push_back(row);
     }
     std::vector<size_t> width(header.size());
     for (size_t c = 0; c < header.size(); ++c) {
@@ -66,16 +90,20 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
 
 std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
-    out << "algorithm,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,objects_drawn,"
-           "triangles,moved_objects,node_changes,error_pixels,missed_objects,visible_objects\n";
+    out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
+           "objects_drawn,triangles,moved_objects,node_changes,error_pixels,missed_objects,"
+           "visible_objects\n";
     for (const RunRecord& r : runs) {
-        for (const FrameStats& f : r.frames) {
-            out << r.summary.algorithm << ',' << f.frame << ',' << fixed(f.time_s, 6) << ','
-                << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
-                << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
-                << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
-                << f.node_changes << ',' << f.error_pixels << ',' << f.missed_objects << ','
-                << f.visible_objects << '\n';
+        for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
+            const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
+            for (const FrameStats& f : frames) {
+                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ',' << fixed(f.time_s, 6)
+                    << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
+                    << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
+                    << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
+                    << f.node_changes << ',' << f.error_pixels << ',' << f.missed_objects << ','
+                    << f.visible_objects << '\n';
+            }
         }
     }
     return out.str();
@@ -86,7 +114,11 @@ nlohmann::json summaryJson(const std::vector<RunRecord>& runs) {
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
         nlohmann::json j = {
-            {"algorithm", s.algorithm},
+            {"configuration", s.algorithm},
+            {"algorithm", r.algorithm.empty() ? s.algorithm : r.algorithm},
+            {"repetitions", s.repetitions},
+            {"frame_ms_mean_over_repetitions", {{"median", s.frame_ms.mean}, {"min", s.frame_ms_mean_min},
+                                                {"max", s.frame_ms_mean_max}}},
             {"frames", s.frames},
             {"timed_frames", s.timed_frames},
             {"frame_ms", {{"mean", s.frame_ms.mean}, {"median", s.frame_ms.median},
@@ -103,7 +135,13 @@ nlohmann::json summaryJson(const std::vector<RunRecord>& runs) {
                           {"pixels_worst_frame", s.error_pixels_worst},
                           {"worst_frame", s.error_worst_frame},
                           {"frames_with_error", s.frames_with_error},
-                          {"missed_objects_total", s.missed_objects_total}};
+                          {"pixels_per_frame_mean", s.error_pixels_mean},
+                          {"pixels_per_frame_p99", s.error_pixels_p99},
+                          {"missed_objects_total", s.missed_objects_total},
+                          {"popping_events", s.popping_events},
+                          {"popping_mean_frames", s.popping_mean_frames},
+                          {"popping_max_frames", s.popping_max_frames}};
+            j["pareto"] = r.pareto;
         }
         if (const double v = speedupOverVfc(runs, s); v > 0) j["speedup_over_vfc"] = v;
         if (const double v = ratioToIdeal(runs, s); v > 0) j["ratio_to_ideal"] = v;

@@ -11,9 +11,15 @@
 
 namespace occsim {
 
+// One configuration's runs. summary.algorithm holds the configuration's label (the algorithm
+// name, or "name knob=value" in a sweep); with repetitions, summary is the median over them.
 struct RunRecord {
     RunSummary summary;
-    std::vector<FrameStats> frames;
+    std::vector<FrameStats> frames;                      // first repetition
+    std::vector<std::vector<FrameStats>> later_repetitions;
+    std::vector<RunSummary> repetitions;                 // one per repetition
+    std::string algorithm;                               // the culler
+    bool pareto = false;                                 // on the time-against-error front
 };
 
 // The benchmark table (plain text, aligned): one row per algorithm, with speedup over VFC and

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "culling/culler_factory.h"
+#include "sim/bench_config.h"
 #include "sim/report.h"
 #include "sim/simulation.h"
 #include "sim/scenario.h"
@@ -27,6 +28,8 @@ struct BenchOptions {
     std::string command_line;             // recorded in summary.json
     bool progress = false;                // a progress line on stderr
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
+    uint32_t repetitions = 1;             // each configuration runs this often; medians reported
+    std::optional<Sweep> sweep;           // one configuration per value (bench_config.h)
     // Makes the culler for a name; default makeCuller(). Tests inject deliberately broken ones.
     std::function<std::unique_ptr<Culler>(const std::string&, const CullerOptions&)> make_culler;
 };

@@ -60,6 +60,7 @@ Simulation::Simulation(const Scene& scene, const Scenario& scenario, std::unique
       options_(options),
       device_(renderer, options.latency),
       ground_truth_device_(renderer, LatencyMode{}),
+      approximate_device_(device_, options.approximation),
       state_(initialState(scene)) {
     tree_.build(state_.boxes, scenario.bsp);
     culler_->reset(tree_);
@@ -120,6 +121,14 @@ const GroundTruthFrame& Simulation::renderGroundTruth(bool with_colour) {
     return ground_truth_;
 }
 
+std::vector<uint32_t> Simulation::poppingRuns() const {
+    std::vector<uint32_t> runs = popping_runs_;
+    for (uint32_t open : missing_run_) {
+        if (open > 0) runs.push_back(open);
+    }
+    return runs;
+}
+
 FrameStats Simulation::step() {
     advance();
     return renderFrame(nullptr);
@@ -142,7 +151,9 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     const auto frame_start = Clock::now();
     renderer_.beginFrame();
     const auto cull_start = Clock::now();
-    culler_->cullAndRender(tree_, cull_frame_, device_);
+    RenderDevice& device = options_.approximation.active() ? static_cast<RenderDevice&>(approximate_device_)
+                                                           : static_cast<RenderDevice&>(device_);
+    culler_->cullAndRender(tree_, cull_frame_, device);
     const double cull_ms = msSince(cull_start);
     renderer_.finish();
     stats.frame_ms = msSince(frame_start);
@@ -172,9 +183,17 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
     }
     int64_t missed = 0, visible = 0;
+    missing_run_.resize(scene_.objectCount(), 0);
     for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
         visible += truth.visible[o];
-        missed += truth.visible[o] && !culled_visible_[o];
+        const bool missing = truth.visible[o] && !culled_visible_[o];
+        missed += missing;
+        if (missing) {
+            ++missing_run_[o];
+        } else if (missing_run_[o] > 0) {
+            popping_runs_.push_back(missing_run_[o]);
+            missing_run_[o] = 0;
+        }
     }
     stats.error_pixels = differing;
     stats.missed_objects = missed;

@@ -5,6 +5,7 @@
 // algorithms frame by frame so that machine drift hits all alike).
 #pragma once
 
+#include "culling/approximate_device.h"
 #include "culling/bsp_tree.h"
 #include "culling/culler.h"
 #include "render/gl_query_device.h"
@@ -25,6 +26,8 @@ struct SimulationOptions {
     // IDs) for a picture of what went wrong. Costs a colour read-back per frame; regression
     // runs turn it on.
     bool keep_worst_error_frame = false;
+    // Pixel threshold and stale results: approximate visibility for any culler.
+    ApproximationOptions approximation;
 };
 
 // The view of one frame: everything a culler and the renderer need from the camera.
@@ -73,6 +76,9 @@ public:
     bool keepsWorstErrorFrame() const { return options_.keep_worst_error_frame; }
     // Empty (error_pixels 0) until a frame with error was seen.
     const ErrorFrame& worstErrorFrame() const { return worst_; }
+    // Popping: for every object that was visible in ground truth but not drawn, how many
+    // consecutive frames it stayed missing (runs still open at the end are included).
+    std::vector<uint32_t> poppingRuns() const;
     uint32_t frame() const { return frame_; }
 
     const Culler& culler() const { return *culler_; }
@@ -91,6 +97,7 @@ private:
     SimulationOptions options_;
     GlQueryDevice device_;
     GlQueryDevice ground_truth_device_;
+    ApproximateDevice approximate_device_;  // wraps device_ when options_.approximation is active
     WorldState state_;
     BspTree tree_;
     uint32_t frame_ = 0;
@@ -102,6 +109,8 @@ private:
     std::vector<glm::mat4> model_view_;
     GroundTruthFrame ground_truth_;
     ErrorFrame worst_;
+    std::vector<uint32_t> missing_run_;  // per object: consecutive frames visible but not drawn
+    std::vector<uint32_t> popping_runs_; // lengths of finished missing runs, for popping stats
     std::vector<uint32_t> culled_ids_;
     std::vector<uint8_t> culled_visible_;
 };

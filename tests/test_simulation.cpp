@@ -30,8 +30,12 @@ BenchResult benchSmall(const std::string& name, bool error, LatencyMode latency,
 }
 
 TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) {
-    const BenchResult result = benchSmall("zero-error", true, LatencyMode{});
-    ASSERT_EQ(result.runs.size(), cullerNames().size());
+    std::vector<std::string> conservative;
+    for (const std::string& name : cullerNames()) {
+        if (name != "async") conservative.push_back(name);  // per-object async may miss by design
+    }
+    const BenchResult result = benchSmall("zero-error", true, LatencyMode{}, conservative);
+    ASSERT_EQ(result.runs.size(), conservative.size());
     for (const RunRecord& run : result.runs) {
         ASSERT_EQ(run.frames.size(), 40u);
         for (const FrameStats& f : run.frames) {

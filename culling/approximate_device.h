@@ -1,0 +1,60 @@
+// Two ways to trade image error for time, applied to any culler by wrapping its RenderDevice:
+//
+// - A pixel threshold (approximate visibility, as in the CHC paper): a query that passes at most
+//   `threshold_pixels` samples reports 0, so the node counts as occluded.
+// - Stale results: a result that is not ready when the culler asks for it is not waited for;
+//   the last result seen for the same boxes (normally from the previous frame) is returned
+//   instead, and the real result, once it arrives, becomes the "last result" for next time.
+//   Without a previous result for those boxes the device waits as usual.
+//
+// Both make conservative cullers approximate; the error shows in the numbers. With threshold 0
+// and stale results off this device changes nothing.
+#pragma once
+
+#include "culling/render_device.h"
+
+#include <cstdint>
+#include <deque>
+#include <unordered_map>
+#include <vector>
+
+namespace occsim {
+
+struct ApproximationOptions {
+    uint32_t threshold_pixels = 0;
+    bool stale_results = false;
+
+    bool active() const { return threshold_pixels > 0 || stale_results; }
+};
+
+class ApproximateDevice final : public RenderDevice {
+public:
+    ApproximateDevice(RenderDevice& inner, ApproximationOptions options);
+
+    // Take counters from the wrapped device (it does the real work); call at frame end.
+    const DeviceCounters& innerCounters() const { return inner_.counters(); }
+
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override;
+    QueryId issueQuery(std::span<const Aabb> boxes) override;
+    bool isQueryReady(QueryId id) override;
+    uint64_t queryResult(QueryId id) override;
+
+    // Results fetched late (after a stale answer was given) still pending in the wrapped device.
+    size_t lateResultsPending() const { return late_.size(); }
+    uint64_t staleAnswers() const { return stale_answers_; }
+
+private:
+    uint64_t keyOf(std::span<const Aabb> boxes) const;
+    void collectLateResults();
+    uint64_t apply(uint64_t samples) const;
+
+    RenderDevice& inner_;
+    ApproximationOptions options_;
+    std::vector<uint64_t> key_of_id_;                  // QueryId -> boxes key
+    std::unordered_map<uint64_t, uint64_t> last_;      // boxes key -> last real result
+    std::deque<QueryId> late_;                         // answered stale, real result pending
+    uint64_t stale_answers_ = 0;
+};
+
+}  // namespace occsim
