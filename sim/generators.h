@@ -38,6 +38,7 @@ struct PlantSpec {
     uint32_t units_z = 4;            // process units along z
     double unit_size_m = 20.0;       // footprint side of a unit
     uint32_t floors = 3;             // storeys of girders and walkways per unit
+    double floor_height_m = 6.0;     // storey height (walkway clearance is about 3.3 m of it)
     uint32_t pipes_per_unit = 24;
     uint32_t tanks_per_unit = 3;
 };

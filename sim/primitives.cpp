@@ -110,4 +110,25 @@ void appendMesh(MeshData& mesh, const MeshData& part, glm::vec3 offset) {
     for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
 }
 
+void appendBox(MeshData& mesh, glm::vec3 lo, glm::vec3 hi) {
+    appendMesh(mesh, makeBox(hi - lo), glm::vec3(0.5f * (lo.x + hi.x), lo.y, 0.5f * (lo.z + hi.z)));
+}
+
+glm::mat3 scaleMatrix(glm::vec3 scale) {
+    glm::mat3 m(0.0f);
+    m[0][0] = scale.x;
+    m[1][1] = scale.y;
+    m[2][2] = scale.z;
+    return m;
+}
+
+PlacedObject placeUnitBox(uint32_t unit_box_mesh, glm::dvec3 lo, glm::dvec3 hi) {
+    PlacedObject o;
+    o.mesh = unit_box_mesh;
+    // The unit box stands on y = 0 centred in x and z, so its anchor is the middle of the base.
+    o.position = glm::dvec3(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z));
+    o.linear = scaleMatrix(glm::vec3(hi - lo));
+    return o;
+}
+
 }  // namespace occsim

@@ -107,6 +107,8 @@ PlantSpec readPlant(JsonObjectReader& source) {
     spec.units_z = count(source, "units_z", spec.units_z, 1, 50);
     spec.unit_size_m = source.number("unit_size", spec.unit_size_m, NumberRange::closed(5, 500));
     spec.floors = count(source, "floors", spec.floors, 1, 20);
+    spec.floor_height_m =
+        source.number("floor_height", spec.floor_height_m, NumberRange::closed(2.5, 100));
     spec.pipes_per_unit = count(source, "pipes_per_unit", spec.pipes_per_unit, 0, 1000);
     spec.tanks_per_unit = count(source, "tanks_per_unit", spec.tanks_per_unit, 0, 100);
     return spec;
