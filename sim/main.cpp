@@ -1,6 +1,7 @@
 // occsim: the simulator executable. Commands: run, bench, info. Bad input (flags, scenario files)
 // ends with one line on stderr and exit code 2; runtime failures (OpenGL, output) with exit 1.
 #include "culling/culler_factory.h"
+#include "sim/bench_config.h"
 #include "sim/gltf_source.h"
 #include "sim/regress.h"
 #include "sim/runner.h"
@@ -48,6 +49,8 @@ std::string commandLine(int argc, char** argv) {
 
 struct CommonFlags {
     std::string scenario;
+    uint32_t repetitions = 1;
+    std::string sweep;
     bool error = false;
     std::string out;
     uint32_t frames = 0;
@@ -64,6 +67,9 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
         ->check(CLI::Range(1u, 10000000u));
     cmd->add_option("--capture", flags.capture, "Save these frames' colour buffers as PNG")
         ->delimiter(',');
+    cmd->add_option("--repetitions", flags.repetitions,
+                    "Run every configuration N times (interleaved); report medians and min-max")
+        ->check(CLI::Range(1u, 1000u));
     cmd->add_option("--deterministic-latency", flags.deterministic_latency,
                     "A query result counts as ready only after N later draw calls (reproducible counts)")
         ->check(CLI::Range(0, 1000000));
@@ -75,6 +81,14 @@ occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenar
     o.measure_error = flags.error;
     if (flags.frames > 0) o.frames = flags.frames;
     o.capture_frames = flags.capture;
+    o.repetitions = flags.repetitions;
+    if (!flags.sweep.empty()) {
+        try {
+            o.sweep = occsim::parseSweep(flags.sweep);
+        } catch (const std::invalid_argument& e) {
+            throw BadInput(std::string("--sweep: ") + e.what());
+        }
+    }
     if (flags.deterministic_latency >= 0) {
         o.latency.deterministic = true;
         o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
@@ -146,6 +160,9 @@ int main(int argc, char** argv) {
     CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
     bench->add_option("--algos", bench_algorithms, "Algorithms to compare (default: all)")->delimiter(',');
+    std::string sweep_help = "Sweep one knob, NAME=V1,V2,...: one configuration per value. Names:";
+    for (const auto& p : occsim::sweepParameters()) sweep_help += std::string("\n  ") + p.name + ": " + p.description;
+    bench->add_option("--sweep", bench_flags.sweep, sweep_help);
 
     std::vector<std::string> regress_inputs;
     bool regress_update = false;

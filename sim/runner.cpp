@@ -1,6 +1,7 @@
 #include "sim/runner.h"
 
 #include "culling/culler_factory.h"
+#include "sim/bench_config.h"
 #include "render/gl_context.h"
 #include "render/png_writer.h"
 #include "sim/atomic_file.h"
@@ -28,6 +29,13 @@ void printProgress(uint32_t done, uint32_t total, Clock::time_point start) {
     std::fflush(stderr);
 }
 
+std::string fileSafe(std::string s) {
+    for (char& c : s) {
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.' && c != '_') c = '_';
+    }
+    return s;
+}
+
 nlohmann::json machineJson(const std::string& renderer, const Scenario& scenario) {
     const char* lp_threads = std::getenv("LP_NUM_THREADS");
     return {{"hardware_threads", std::thread::hardware_concurrency()},
@@ -45,71 +53,110 @@ void printWarnings(const Scene& scene) {
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
+    const std::vector<RunConfig> configs = planConfigs(options.algorithms, scenario.culler, options.sweep);
+    const uint32_t repetitions = std::max(1u, options.repetitions);
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene);
     auto context = createOsMesaContext(scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height);
     uploadScene(scene, renderer);
-
-    SimulationOptions sim_options;
-    sim_options.measure_error = options.measure_error;
-    sim_options.latency = options.latency;
-    sim_options.keep_worst_error_frame = options.keep_worst_error_frame && options.measure_error;
-    std::vector<std::unique_ptr<Simulation>> sims;
-    for (const std::string& name : options.algorithms) {
-        auto culler = options.make_culler ? options.make_culler(name, scenario.culler)
-                                          : makeCuller(name, scenario.culler);
-        if (!culler) throw std::invalid_argument("unknown algorithm '" + name + "'");
-        sims.push_back(std::make_unique<Simulation>(scene, scenario, std::move(culler), renderer, sim_options));
-    }
-
     std::filesystem::create_directories(options.out_dir);
+
     BenchResult result;
     result.renderer = context->rendererName();
-    std::vector<std::vector<FrameStats>> frames(sims.size());
-    for (auto& f : frames) f.reserve(scenario.frames);
+    result.width = scenario.width;
+    result.height = scenario.height;
+    result.runs.resize(configs.size());
+    for (size_t c = 0; c < configs.size(); ++c) result.runs[c].algorithm = configs[c].algorithm;
+
     std::vector<uint8_t> rgba;
     const auto start = Clock::now();
     auto last_progress = start;
-    // Interleaved: frame f of every algorithm before frame f + 1 of any.
-    // Every simulation runs the same world in lockstep, so one ground-truth render per frame
-    // serves them all.
-    bool any_needs_truth = false;
-    for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
-    for (uint32_t f = 0; f < scenario.frames; ++f) {
-        for (auto& sim : sims) sim->advance();
-        const GroundTruthFrame* truth =
-            any_needs_truth ? &sims.front()->renderGroundTruth(sim_options.keep_worst_error_frame)
-                            : nullptr;
-        for (size_t a = 0; a < sims.size(); ++a) {
-            frames[a].push_back(sims[a]->renderFrame(truth));
-            if (std::find(options.capture_frames.begin(), options.capture_frames.end(), f) !=
-                options.capture_frames.end()) {
-                renderer.readColor(rgba);
-                char name[96];
-                std::snprintf(name, sizeof name, "frame-%05u-%s.png", f, options.algorithms[a].c_str());
-                writeFileAtomically(options.out_dir / name,
-                                    encodePngBottomUp(rgba, scenario.width, scenario.height));
+    const uint32_t total_frames = repetitions * scenario.frames;
+    for (uint32_t rep = 0; rep < repetitions; ++rep) {
+        // Fresh worlds for every repetition: each one replays the same frames.
+        std::vector<std::unique_ptr<Simulation>> sims;
+        for (const RunConfig& config : configs) {
+            SimulationOptions sim_options;
+            sim_options.measure_error = options.measure_error;
+            sim_options.latency = options.latency;
+            sim_options.keep_worst_error_frame =
+                options.keep_worst_error_frame && options.measure_error && rep == 0;
+            sim_options.approximation = config.approximation;
+            auto culler = options.make_culler ? options.make_culler(config.algorithm, config.culler)
+                                              : makeCuller(config.algorithm, config.culler);
+            if (!culler) throw std::invalid_argument("unknown algorithm '" + config.algorithm + "'");
+            sims.push_back(std::make_unique<Simulation>(scene, scenario, std::move(culler), renderer,
+                                                        sim_options));
+        }
+        std::vector<std::vector<FrameStats>> frames(sims.size());
+        for (auto& f : frames) f.reserve(scenario.frames);
+        // Interleaved: frame f of every configuration before frame f + 1 of any, so that drift
+        // on a shared machine hits all alike. Every simulation runs the same world in lockstep,
+        // so one ground-truth render per frame serves them all (outside every timing).
+        bool any_needs_truth = false;
+        for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
+        const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
+        for (uint32_t f = 0; f < scenario.frames; ++f) {
+            for (auto& sim : sims) sim->advance();
+            const GroundTruthFrame* truth =
+                any_needs_truth ? &sims.front()->renderGroundTruth(truth_colour) : nullptr;
+            for (size_t c = 0; c < sims.size(); ++c) {
+                frames[c].push_back(sims[c]->renderFrame(truth));
+                const bool capture = rep == 0 && std::find(options.capture_frames.begin(),
+                                                           options.capture_frames.end(),
+                                                           f) != options.capture_frames.end();
+                if (capture) {
+                    renderer.readColor(rgba);
+                    char name[160];
+                    std::snprintf(name, sizeof name, "frame-%05u-%s.png", f,
+                                  fileSafe(configs[c].label).c_str());
+                    writeFileAtomically(options.out_dir / name,
+                                        encodePngBottomUp(rgba, scenario.width, scenario.height));
+                }
+            }
+            const uint32_t done = rep * scenario.frames + f + 1;
+            if (options.progress && (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
+                                     done == total_frames)) {
+                printProgress(done, total_frames, start);
+                last_progress = Clock::now();
             }
         }
-        if (options.progress && (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
-                                 f + 1 == scenario.frames)) {
-            printProgress(f + 1, scenario.frames, start);
-            last_progress = Clock::now();
+        for (size_t c = 0; c < sims.size(); ++c) {
+            RunRecord& record = result.runs[c];
+            RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
+            if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());
+            record.repetitions.push_back(summary);
+            if (rep == 0) {
+                record.frames = std::move(frames[c]);
+                if (sims[c]->keepsWorstErrorFrame()) result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
+            } else {
+                record.later_repetitions.push_back(std::move(frames[c]));
+            }
         }
     }
 
-    for (size_t a = 0; a < sims.size(); ++a) {
-        result.runs.push_back({summarize(options.algorithms[a], frames[a], scenario.warmup_frames),
-                               std::move(frames[a])});
+    std::vector<double> time, error;
+    for (RunRecord& record : result.runs) {
+        record.summary = aggregateRepetitions(record.repetitions);
+        time.push_back(record.summary.frame_ms.mean);
+        error.push_back(record.summary.error_pixels_mean);
+    }
+    if (options.measure_error) {
+        // The Ideal oracle is the bound, not a candidate: the front is over real cullers.
+        std::vector<size_t> candidates;
+        std::vector<double> t, e;
+        for (size_t c = 0; c < result.runs.size(); ++c) {
+            if (result.runs[c].algorithm == "ideal") continue;
+            candidates.push_back(c);
+            t.push_back(time[c]);
+            e.push_back(error[c]);
+        }
+        const std::vector<bool> front = paretoFront(t, e);
+        for (size_t i = 0; i < candidates.size(); ++i) result.runs[candidates[i]].pareto = front[i];
     }
     result.table = formatComparisonTable(result.runs);
-    result.width = scenario.width;
-    result.height = scenario.height;
-    if (sim_options.keep_worst_error_frame) {
-        for (const auto& sim : sims) result.worst_error_frames.push_back(sim->worstErrorFrame());
-    }
 
     nlohmann::json summary = summaryJson(result.runs);
     summary["scenario"] = {{"name", scenario.name}, {"file", scenario.file.string()},
@@ -119,9 +166,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                            {"movers", scene.initial_movers.size()}};
     summary["machine"] = machineJson(result.renderer, scenario);
     summary["command"] = options.command_line;
+    summary["repetitions"] = repetitions;
     summary["error_measured"] = options.measure_error;
     summary["deterministic_latency"] =
         options.latency.deterministic ? nlohmann::json(options.latency.latency_commands) : nlohmann::json(nullptr);
+    if (options.sweep) summary["sweep"] = {{"parameter", options.sweep->parameter}, {"values", options.sweep->values}};
     writeFileAtomically(options.out_dir / "frames.csv", framesCsv(result.runs));
     writeFileAtomically(options.out_dir / "summary.json", summary.dump(2) + "\n");
     return result;
