@@ -1,6 +1,10 @@
-// Cullers by name, with their options. Names: vfc, stop-and-wait, statistical, ideal.
+// Cullers by name, with their options. Names: vfc, stop-and-wait, statistical, chc, chc++, async,
+// ideal.
 #pragma once
 
+#include "culling/async_culler.h"
+#include "culling/chc_culler.h"
+#include "culling/chcpp_culler.h"
 #include "culling/culler.h"
 #include "culling/statistical_culler.h"
 
@@ -13,6 +17,9 @@ namespace occsim {
 
 struct CullerOptions {
     StatisticalOptions statistical;
+    ChcOptions chc;
+    ChcppOptions chcpp;
+    AsyncOptions async;
 };
 
 const std::vector<std::string>& cullerNames();

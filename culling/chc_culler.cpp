@@ -1,0 +1,129 @@
+// Bittner, Wimmer, Piringer & Purgathofer, "Coherent Hierarchical Culling: Hardware Occlusion
+// Queries Made Useful", Eurographics 2004: the algorithm of Figure "Pseudo-code of coherent
+// hierarchical culling" with the optimisations of "Further Optimizations" (conservative
+// visibility testing, approximate visibility). See chc_culler.h for the rules.
+#include "culling/chc_culler.h"
+
+namespace occsim {
+
+namespace {
+// Far beyond any useful setting; keeps frame arithmetic far from overflow.
+constexpr uint32_t kMaxFramesSkip = 1000000;
+}  // namespace
+
+bool ChcOptions::isValid(std::string* error) const {
+    if (visible_frames_skip > kMaxFramesSkip) {
+        if (error) *error = "visible_frames_skip must be in [0, 1000000] (frames)";
+        return false;
+    }
+    return true;
+}
+
+ChcCuller::ChcCuller(const ChcOptions& options) : options_(options) {}
+
+void ChcCuller::reset(const BspTree& tree) {
+    state_.assign(tree.nodeCount(), NodeState{});
+    traversal_queue_.clear();
+    query_queue_.clear();
+    query_head_ = 0;
+    pass_ = 0;
+}
+
+void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
+    if (state_.size() != tree.nodeCount()) reset(tree);
+    frame_ = frame.frame_index;
+    ++pass_;
+    traversal_queue_.clear();
+    query_queue_.clear();
+    query_head_ = 0;
+    traversal_queue_.push(tree, {tree.root(), false}, frame.view.eye);
+
+    while (!traversal_queue_.empty() || query_head_ < query_queue_.size()) {
+        // PART 1: finished queries. The oldest result is waited for only when there is nothing
+        // left to traverse; results become ready in issue order, so only the oldest is checked.
+        while (query_head_ < query_queue_.size() &&
+               (traversal_queue_.empty() || device.isQueryReady(query_queue_[query_head_].id))) {
+            const PendingQuery query = query_queue_[query_head_++];
+            handleResult(tree, frame, query, device.queryResult(query.id), device);
+        }
+        // PART 2: one step of the front-to-back traversal.
+        if (!traversal_queue_.empty()) visitNode(tree, frame, traversal_queue_.pop(), device);
+    }
+}
+
+void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
+                          RenderDevice& device) {
+    bool inside = false;
+    if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) return;
+    visit.inside_frustum = inside;
+    NodeState& s = state_[visit.node];
+    const bool was_visible = s.visible && s.visited == pass_ - 1;
+    // Invisible until something found visible below pulls it up again (the paper's shortcut
+    // that spares checking every child for invisibility).
+    s.visible = false;
+    s.visited = pass_;
+
+    const Aabb& box = tree.bounds(visit.node);
+    if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
+        pullUpVisibility(tree, visit.node);
+        traverseNode(tree, frame, visit, device);
+        return;
+    }
+    if (!was_visible) {
+        issue(device, std::span<const Aabb>(&box, 1), visit, QueryKind::Invisible);
+        return;
+    }
+
+    // Previously visible: render without waiting. Its own geometry (a leaf's objects, or an
+    // inner node's straddlers) is queried for the next frame unless it is still assumed visible.
+    const bool query_due = frame_ >= s.next_query;
+    if (tree.node(visit.node).isLeaf()) {
+        if (query_due) {
+            issue(device, std::span<const Aabb>(&box, 1), visit, QueryKind::Visible);
+        } else {
+            pullUpVisibility(tree, visit.node);
+        }
+    } else {
+        boxes_.clear();
+        if (appendOwnObjectBoxes(tree, visit.node, frame.view.frustum, inside, boxes_) > 0) {
+            if (query_due) {
+                issue(device, boxes_, visit, QueryKind::Own);
+            } else {
+                pullUpVisibility(tree, visit.node);
+            }
+        }
+    }
+    traverseNode(tree, frame, visit, device);
+}
+
+void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
+                             const PendingQuery& query, uint64_t samples, RenderDevice& device) {
+    if (samples <= options_.visibility_threshold_pixels) return;  // stays invisible
+    // Found visible: assumed visible (no query on its geometry) for the next t_av frames.
+    state_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
+    pullUpVisibility(tree, query.node);
+    // Only a node that was waited for is traversed now; the others were rendered at their visit.
+    if (query.kind == QueryKind::Invisible) {
+        traverseNode(tree, frame, {query.node, query.inside_frustum}, device);
+    }
+}
+
+void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
+                             RenderDevice& device) {
+    drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+    traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
+}
+
+void ChcCuller::pullUpVisibility(const BspTree& tree, uint32_t node) {
+    while (node != BspTree::kNone && !state_[node].visible) {
+        state_[node].visible = true;
+        node = tree.node(node).parent;
+    }
+}
+
+void ChcCuller::issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
+                      QueryKind kind) {
+    query_queue_.push_back({device.issueQuery(boxes), visit.node, visit.inside_frustum, kind});
+}
+
+}  // namespace occsim

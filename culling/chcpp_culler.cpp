@@ -1,0 +1,343 @@
+// Mattausch, Bittner & Wimmer, "CHC++: Coherent Hierarchical Culling Revisited", Eurographics
+// 2008: queues for batching (i-queue, v-queue, render queue, section 4), multiqueries (5.1),
+// randomised sampling of visible nodes (5.2) and tight bounds from the hierarchy (6). See
+// chcpp_culler.h for the rules.
+#include "culling/chcpp_culler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace occsim {
+
+namespace {
+
+constexpr uint32_t kMaxFramesSkip = 1000000;
+constexpr uint32_t kMaxTightBoundsDepth = 6;  // up to 2^6 boxes (plus straddler boxes) per node
+constexpr uint32_t kMaxInvisibleFrames = 1000;  // p(i) has long converged by then
+
+// CHC++'s fit of the probability that a node invisible for i frames stays invisible.
+double keepInvisibleProbability(uint32_t invisible_frames) {
+    return 0.99 - 0.7 * std::exp(-static_cast<double>(invisible_frames));
+}
+
+// SplitMix64 finaliser: a well-mixed 64-bit hash, the same on every platform.
+uint64_t mix(uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+}  // namespace
+
+bool ChcppOptions::isValid(std::string* error) const {
+    auto fail = [error](const char* message) {
+        if (error) *error = message;
+        return false;
+    };
+    if (visible_frames_skip > kMaxFramesSkip) {
+        return fail("visible_frames_skip must be in [0, 1000000] (frames)");
+    }
+    if (batch_size < 1) return fail("batch_size must be >= 1 (nodes)");
+    if (tight_bounds_depth > kMaxTightBoundsDepth) {
+        return fail("tight_bounds_depth must be in [0, 6] (levels; 0 = the node's own box)");
+    }
+    return true;
+}
+
+ChcppCuller::ChcppCuller(const ChcppOptions& options) : options_(options) {}
+
+void ChcppCuller::reset(const BspTree& tree) {
+    state_.assign(tree.nodeCount(), NodeState{});
+    traversal_queue_.clear();
+    query_queue_.clear();
+    query_head_ = 0;
+    i_queue_.clear();
+    v_queue_.clear();
+    v_head_ = 0;
+    render_queue_.clear();
+    multi_nodes_.clear();
+    pass_ = 0;
+}
+
+void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                RenderDevice& device) {
+    if (state_.size() != tree.nodeCount()) reset(tree);
+    frame_ = frame.frame_index;
+    ++pass_;
+    stats_ = {};
+    device_state_ = DeviceState::None;
+    traversal_queue_.clear();
+    query_queue_.clear();
+    query_head_ = 0;
+    i_queue_.clear();
+    v_queue_.clear();
+    v_head_ = 0;
+    render_queue_.clear();
+    multi_nodes_.clear();
+    traversal_queue_.push(tree, {tree.root(), false}, frame.view.eye);
+
+    for (;;) {
+        // Finished queries first. When there is nothing to traverse and the oldest result is not
+        // there yet, do useful work before waiting: the pending batch, then a v-queue query,
+        // then the render queue; block only when none of them is left.
+        while (query_head_ < query_queue_.size()) {
+            const PendingQuery& front = query_queue_[query_head_];
+            if (!device.isQueryReady(front.id)) {
+                if (!traversal_queue_.empty()) break;
+                if (!i_queue_.empty()) {
+                    issueBatch(tree, frame, device);
+                    continue;
+                }
+                if (v_head_ < v_queue_.size()) {
+                    ++stats_.fill_queries;
+                    issueVisibleQuery(tree, frame, device);
+                    continue;
+                }
+                if (!render_queue_.empty()) {
+                    flushRenderQueue(tree, frame, device);
+                    continue;
+                }
+            }
+            const PendingQuery query = query_queue_[query_head_++];
+            handleResult(tree, frame, query, device.queryResult(query.id), device);
+        }
+
+        if (!traversal_queue_.empty()) {
+            visitNode(tree, frame, traversal_queue_.pop());
+            if (i_queue_.size() >= options_.batch_size) issueBatch(tree, frame, device);
+        } else if (!i_queue_.empty()) {
+            issueBatch(tree, frame, device);
+        } else if (v_head_ < v_queue_.size()) {
+            // Nothing left to find: the remaining v-queue queries, after the remaining geometry.
+            flushRenderQueue(tree, frame, device);
+            while (v_head_ < v_queue_.size()) issueVisibleQuery(tree, frame, device);
+        } else if (query_head_ == query_queue_.size()) {
+            break;
+        }
+    }
+    flushRenderQueue(tree, frame, device);
+}
+
+void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit) {
+    bool inside = false;
+    if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) return;
+    visit.inside_frustum = inside;
+    NodeState& s = state_[visit.node];
+    const bool visited_last_frame = s.visited == pass_ - 1;
+    const bool was_visible = s.visible && visited_last_frame;
+    // A node that was not a termination node last frame has no recent history to predict with.
+    if (!visited_last_frame) s.invisible_frames = 0;
+    s.visible = false;  // pulled up again by whatever is found visible below
+    s.visited = pass_;
+
+    if (nearPlaneTouchesBox(tree.bounds(visit.node), frame.view.eye, frame.view.near_radius)) {
+        pullUpVisibility(tree, visit.node);
+        traverseNode(tree, frame, visit);
+        return;
+    }
+    if (!was_visible) {
+        i_queue_.push_back({visit.node, inside, false, QueryKind::Invisible});
+        return;
+    }
+
+    s.invisible_frames = 0;
+    const bool query_due = frame_ >= s.next_query;
+    bool has_geometry = true;
+    QueryKind kind = QueryKind::Visible;
+    if (!tree.node(visit.node).isLeaf()) {
+        boxes_.clear();
+        has_geometry =
+            appendOwnObjectBoxes(tree, visit.node, frame.view.frustum, inside, boxes_) > 0;
+        kind = QueryKind::Own;
+    }
+    if (has_geometry) {
+        if (query_due) {
+            v_queue_.push_back({visit.node, inside, false, kind});
+        } else {
+            pullUpVisibility(tree, visit.node);  // still assumed visible
+        }
+    }
+    traverseNode(tree, frame, visit);
+}
+
+void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
+                               const PendingQuery& query, uint64_t samples, RenderDevice& device) {
+    const bool visible = samples > options_.visibility_threshold_pixels;
+    switch (query.kind) {
+        case QueryKind::Multi:
+            if (visible) {
+                // Coherence broke somewhere in the group: query each node on its own.
+                ++stats_.failed_multiqueries;
+                for (uint32_t i = 0; i < query.count; ++i) {
+                    QueuedNode n = multi_nodes_[query.first + i];
+                    n.single = true;
+                    i_queue_.push_back(n);
+                }
+                if (i_queue_.size() >= options_.batch_size) issueBatch(tree, frame, device);
+            } else {
+                for (uint32_t i = 0; i < query.count; ++i) {
+                    markInvisible(multi_nodes_[query.first + i].node);
+                }
+            }
+            break;
+        case QueryKind::Invisible:
+            if (visible) {
+                NodeState& s = state_[query.first];
+                s.invisible_frames = 0;
+                s.next_query = firstRetestFrame(query.first);
+                pullUpVisibility(tree, query.first);
+                traverseNode(tree, frame, {query.first, query.inside_frustum});
+            } else {
+                markInvisible(query.first);
+            }
+            break;
+        case QueryKind::Visible:
+        case QueryKind::Own:
+            if (visible) {
+                // Visible at its previous test too: the regular interval.
+                state_[query.first].next_query = frame_ + 1 + options_.visible_frames_skip;
+                pullUpVisibility(tree, query.first);
+            }
+            break;
+    }
+}
+
+void ChcppCuller::traverseNode(const BspTree& tree, const CullFrame& frame,
+                               const NodeVisit& visit) {
+    if (tree.firstObject(visit.node) != BspTree::kNone) render_queue_.push_back(visit);
+    traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
+}
+
+void ChcppCuller::pullUpVisibility(const BspTree& tree, uint32_t node) {
+    while (node != BspTree::kNone && !state_[node].visible) {
+        state_[node].visible = true;
+        node = tree.node(node).parent;
+    }
+}
+
+void ChcppCuller::markInvisible(uint32_t node) {
+    NodeState& s = state_[node];
+    s.invisible_frames = std::min(s.invisible_frames + 1, kMaxInvisibleFrames);
+}
+
+uint64_t ChcppCuller::firstRetestFrame(uint32_t node) const {
+    const uint32_t n_av = options_.visible_frames_skip;
+    if (n_av == 0) return frame_ + 1;
+    const uint64_t r = mix(options_.seed ^ mix(uint64_t{node} ^ mix(frame_))) % n_av;
+    return frame_ + 1 + r;
+}
+
+void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
+    // Render what is waiting first, so the batch tests against as much depth as possible.
+    flushRenderQueue(tree, frame, device);
+    ++stats_.query_batches;
+
+    order_.clear();
+    for (uint32_t i = 0; i < i_queue_.size(); ++i) order_.push_back(i);
+    // Nodes whose multiquery failed come first, alone; the rest by how long they have been
+    // invisible, longest first, so that groups gather nodes with similar histories.
+    std::stable_sort(order_.begin(), order_.end(), [this](uint32_t a, uint32_t b) {
+        const QueuedNode& na = i_queue_[a];
+        const QueuedNode& nb = i_queue_[b];
+        if (na.single != nb.single) return na.single;
+        return state_[na.node].invisible_frames > state_[nb.node].invisible_frames;
+    });
+
+    size_t i = 0;
+    while (i < order_.size()) {
+        const QueuedNode& first = i_queue_[order_[i]];
+        size_t end = i + 1;
+        if (options_.multiqueries && !first.single) {
+            // Grow the group while the expected number of nodes settled per query grows.
+            double keep = keepInvisibleProbability(state_[first.node].invisible_frames);
+            double best = 1.0;
+            while (end < order_.size() && !i_queue_[order_[end]].single) {
+                const uint32_t node = i_queue_[order_[end]].node;
+                const double next_keep =
+                    keep * keepInvisibleProbability(state_[node].invisible_frames);
+                const double size = static_cast<double>(end - i + 1);
+                const double value = size / (1.0 + (1.0 - next_keep) * size);
+                if (value <= best) break;
+                best = value;
+                keep = next_keep;
+                ++end;
+            }
+        }
+        if (end - i == 1) {
+            issueSingle(tree, device, first);
+        } else {
+            const auto start = static_cast<uint32_t>(multi_nodes_.size());
+            boxes_.clear();
+            for (size_t k = i; k < end; ++k) {
+                multi_nodes_.push_back(i_queue_[order_[k]]);
+                appendQueryBoxes(tree, i_queue_[order_[k]].node, options_.tight_bounds_depth);
+            }
+            enterState(DeviceState::Query);
+            query_queue_.push_back({device.issueQuery(boxes_), start,
+                                    static_cast<uint32_t>(end - i), false, QueryKind::Multi});
+            ++stats_.multiqueries;
+            stats_.multiquery_nodes += static_cast<uint32_t>(end - i);
+        }
+        i = end;
+    }
+    i_queue_.clear();
+}
+
+void ChcppCuller::issueVisibleQuery(const BspTree& tree, const CullFrame& frame,
+                                    RenderDevice& device) {
+    const QueuedNode n = v_queue_[v_head_++];
+    ++stats_.visible_queries;
+    boxes_.clear();
+    if (n.kind == QueryKind::Own) {
+        appendOwnObjectBoxes(tree, n.node, frame.view.frustum, n.inside_frustum, boxes_);
+    } else {
+        appendQueryBoxes(tree, n.node, 0);
+    }
+    enterState(DeviceState::Query);
+    query_queue_.push_back({device.issueQuery(boxes_), n.node, 1, n.inside_frustum, n.kind});
+}
+
+void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& n) {
+    boxes_.clear();
+    appendQueryBoxes(tree, n.node, options_.tight_bounds_depth);
+    enterState(DeviceState::Query);
+    query_queue_.push_back(
+        {device.issueQuery(boxes_), n.node, 1, n.inside_frustum, QueryKind::Invisible});
+}
+
+void ChcppCuller::flushRenderQueue(const BspTree& tree, const CullFrame& frame,
+                                   RenderDevice& device) {
+    if (render_queue_.empty()) return;
+    enterState(DeviceState::Render);
+    for (const NodeVisit& visit : render_queue_) {
+        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+    }
+    render_queue_.clear();
+}
+
+// The boxes a query on `node` rasterises: its own bounds, or with tight bounds the bounds of its
+// descendants `depth` levels down, plus one box around the straddlers of each inner node on the
+// way (they belong to the subtree but to none of those descendants).
+void ChcppCuller::appendQueryBoxes(const BspTree& tree, uint32_t node, uint32_t depth) {
+    const BspNode& n = tree.node(node);
+    if (isEmpty(n.bounds)) return;
+    if (depth == 0 || n.isLeaf()) {
+        boxes_.push_back(n.bounds);
+        return;
+    }
+    Aabb own;
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        extend(own, tree.objectBox(o));
+    }
+    if (!isEmpty(own)) boxes_.push_back(own);
+    appendQueryBoxes(tree, n.child[0], depth - 1);
+    appendQueryBoxes(tree, n.child[1], depth - 1);
+}
+
+void ChcppCuller::enterState(DeviceState state) {
+    if (device_state_ != DeviceState::None && device_state_ != state) ++stats_.state_changes;
+    device_state_ = state;
+}
+
+}  // namespace occsim
