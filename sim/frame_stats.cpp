@@ -75,6 +75,26 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
 
 namespace occsim {
 
+void PoppingCounter::addFrame(const std::vector<uint8_t>& missing) {
+    open_.resize(std::max(open_.size(), missing.size()), 0);
+    for (size_t o = 0; o < open_.size(); ++o) {
+        if (o < missing.size() && missing[o]) {
+            ++open_[o];
+        } else if (open_[o] > 0) {
+            finished_.push_back(open_[o]);
+            open_[o] = 0;
+        }
+    }
+}
+
+std::vector<uint32_t> PoppingCounter::runs() const {
+    std::vector<uint32_t> all = finished_;
+    for (uint32_t run : open_) {
+        if (run > 0) all.push_back(run);
+    }
+    return all;
+}
+
 void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs) {
     summary.popping_events = static_cast<uint32_t>(missing_runs.size());
     summary.popping_max_frames = 0;

@@ -59,6 +59,20 @@ struct RunSummary {
 RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
                      uint32_t warmup_frames);
 
+// Counts popping: per object, runs of consecutive frames in which it was visible in ground truth
+// but not drawn. Feed it one frame at a time.
+class PoppingCounter {
+public:
+    // missing[o] != 0 when object o was visible in ground truth and not drawn this frame.
+    void addFrame(const std::vector<uint8_t>& missing);
+    // Lengths of every run, finished or still open.
+    std::vector<uint32_t> runs() const;
+
+private:
+    std::vector<uint32_t> open_;      // per object: length of its current run
+    std::vector<uint32_t> finished_;
+};
+
 // Fills the popping figures from the lengths of the missing runs.
 void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs);
 

@@ -121,14 +121,6 @@ const GroundTruthFrame& Simulation::renderGroundTruth(bool with_colour) {
     return ground_truth_;
 }
 
-std::vector<uint32_t> Simulation::poppingRuns() const {
-    std::vector<uint32_t> runs = popping_runs_;
-    for (uint32_t open : missing_run_) {
-        if (open > 0) runs.push_back(open);
-    }
-    return runs;
-}
-
 FrameStats Simulation::step() {
     advance();
     return renderFrame(nullptr);
@@ -183,18 +175,13 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
     }
     int64_t missed = 0, visible = 0;
-    missing_run_.resize(scene_.objectCount(), 0);
+    missing_.assign(scene_.objectCount(), 0);
     for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
         visible += truth.visible[o];
-        const bool missing = truth.visible[o] && !culled_visible_[o];
-        missed += missing;
-        if (missing) {
-            ++missing_run_[o];
-        } else if (missing_run_[o] > 0) {
-            popping_runs_.push_back(missing_run_[o]);
-            missing_run_[o] = 0;
-        }
+        missing_[o] = truth.visible[o] && !culled_visible_[o];
+        missed += missing_[o];
     }
+    popping_.addFrame(missing_);
     stats.error_pixels = differing;
     stats.missed_objects = missed;
     stats.visible_objects = visible;

@@ -78,7 +78,7 @@ public:
     const ErrorFrame& worstErrorFrame() const { return worst_; }
     // Popping: for every object that was visible in ground truth but not drawn, how many
     // consecutive frames it stayed missing (runs still open at the end are included).
-    std::vector<uint32_t> poppingRuns() const;
+    std::vector<uint32_t> poppingRuns() const { return popping_.runs(); }
     uint32_t frame() const { return frame_; }
 
     const Culler& culler() const { return *culler_; }
@@ -109,8 +109,8 @@ private:
     std::vector<glm::mat4> model_view_;
     GroundTruthFrame ground_truth_;
     ErrorFrame worst_;
-    std::vector<uint32_t> missing_run_;  // per object: consecutive frames visible but not drawn
-    std::vector<uint32_t> popping_runs_; // lengths of finished missing runs, for popping stats
+    std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
+    PoppingCounter popping_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint8_t> culled_visible_;
 };

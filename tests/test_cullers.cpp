@@ -1,4 +1,5 @@
 // Culling logic on the scripted query device: no OpenGL involved.
+#include "culling/approximate_device.h"
 #include "culling/basic_cullers.h"
 #include "culling/scripted_query_device.h"
 #include "culling/statistical_culler.h"
@@ -322,6 +323,77 @@ TEST(IdealCuller, DrawsOnlyGroundTruthVisibleObjectsAndIssuesNoQueries) {
     }
     EXPECT_EQ(drawn, expected);
     EXPECT_EQ(device.counters().queries_issued, 0u);
+}
+
+}  // namespace
+}  // namespace occsim
+
+namespace occsim {
+namespace {
+
+// --- Approximate visibility for any culler ------------------------------------------------------
+
+struct TwoObjects {
+    std::vector<Aabb> boxes{{glm::vec3(0), glm::vec3(1)}, {glm::vec3(5), glm::vec3(6)}};
+    Aabb both{glm::vec3(0), glm::vec3(6)};
+};
+
+TEST(ApproximateDevice, ThresholdTurnsSmallSampleCountsIntoOccluded) {
+    TwoObjects w;
+    ScriptedQueryDevice scripted(0);
+    scripted.setVisibility({1, 1}, w.boxes);  // the scripted "samples" are visible objects hit
+    ApproximateDevice device(scripted, {2, false});
+    EXPECT_EQ(device.queryResult(device.issueQuery(w.boxes[0])), 0u) << "1 sample <= 2";
+    EXPECT_EQ(device.queryResult(device.issueQuery(w.both)), 0u) << "2 samples <= 2";
+    ApproximateDevice exact(scripted, {0, false});
+    EXPECT_EQ(exact.queryResult(exact.issueQuery(w.boxes[0])), 1u);
+}
+
+TEST(ApproximateDevice, StaleResultsAnswerAtOnceWithTheLastResultForTheSameBoxes) {
+    TwoObjects w;
+    ScriptedQueryDevice scripted(100);  // results take 100 commands
+    ApproximateDevice device(scripted, {0, true});
+    scripted.setVisibility({1, 0}, w.boxes);
+    // No previous result: it waits, like any device.
+    EXPECT_EQ(device.queryResult(device.issueQuery(w.boxes[0])), 1u);
+    EXPECT_EQ(scripted.counters().results_waited, 1u);
+    // The object disappears; the next query is not ready and gets last frame's answer at once.
+    scripted.setVisibility({0, 0}, w.boxes);
+    const QueryId q = device.issueQuery(w.boxes[0]);
+    EXPECT_TRUE(device.isQueryReady(q));
+    EXPECT_EQ(device.queryResult(q), 1u) << "stale: still visible";
+    EXPECT_EQ(device.staleAnswers(), 1u);
+    EXPECT_EQ(scripted.counters().results_waited, 1u) << "no new wait";
+    EXPECT_EQ(device.lateResultsPending(), 1u);
+    // Once the real result arrives it becomes the answer for next time.
+    for (int i = 0; i < 120; ++i) scripted.drawObject(1);
+    const QueryId again = device.issueQuery(w.boxes[0]);
+    EXPECT_EQ(device.lateResultsPending(), 0u);
+    EXPECT_EQ(device.queryResult(again), 0u) << "the late result (occluded) is now the last one";
+}
+
+TEST(ApproximateDevice, MakesTheStatisticalCullerMissObjectsOnlyWhenActive) {
+    const std::vector<Aabb> boxes = testing::randomBoxes(600, 13);
+    BspTree tree = buildTree(boxes);
+    std::vector<uint8_t> visible(boxes.size());
+    for (size_t i = 0; i < visible.size(); i += 2) visible[i] = 1;
+    const CullView view = makeView({0, 5, 0}, {0, 0, -100});
+    for (uint32_t threshold : {0u, 3u}) {
+        ScriptedQueryDevice scripted(4);
+        scripted.setVisibility(visible, boxes);
+        ApproximateDevice device(scripted, {threshold, false});
+        StatisticalCuller culler;
+        culler.reset(tree);
+        culler.cullAndRender(tree, makeFrame(view, 0, 0.0), device);
+        const std::set<uint32_t> drawn(scripted.drawnObjects().begin(), scripted.drawnObjects().end());
+        size_t missed = 0;
+        for (uint32_t o : inFrustum(boxes, view.frustum)) missed += visible[o] && !drawn.count(o);
+        if (threshold == 0) {
+            EXPECT_EQ(missed, 0u);
+        } else {
+            EXPECT_GT(missed, 0u) << "a threshold of 3 hides nodes with few visible objects";
+        }
+    }
 }
 
 }  // namespace

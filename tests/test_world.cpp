@@ -263,6 +263,57 @@ TEST(Distribution, MeanMedianAndNearestRankP95) {
     EXPECT_DOUBLE_EQ(distributionOf({3.0}).p95, 3.0);
 }
 
+TEST(Pareto, KeepsExactlyThePointsNoOtherPointBeatsInTimeAndError) {
+    // (time, error): b dominates d; c and e tie in time, e has less error; a is fastest.
+    const std::vector<double> time = {1.0, 2.0, 3.0, 2.5, 3.0, 5.0};
+    const std::vector<double> error = {9.0, 4.0, 3.0, 4.0, 1.0, 0.0};
+    const std::vector<bool> front = paretoFront(time, error);
+    EXPECT_EQ(front, (std::vector<bool>{true, true, false, false, true, true}));
+    EXPECT_EQ(paretoFront({1.0, 1.0}, {2.0, 2.0}), (std::vector<bool>{true, true}))
+        << "identical points do not dominate each other";
+}
+
+TEST(Popping, CountsConsecutiveMissingFramesPerObject) {
+    PoppingCounter counter;
+    // Object 0 misses frames 1-3, object 1 misses frame 0 and frames 2, object 2 misses 4-5 (open).
+    const std::vector<std::vector<uint8_t>> frames = {
+        {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+    for (const auto& f : frames) counter.addFrame(f);
+    std::vector<uint32_t> runs = counter.runs();
+    std::sort(runs.begin(), runs.end());
+    EXPECT_EQ(runs, (std::vector<uint32_t>{1, 1, 2, 3}));
+    RunSummary s;
+    addPopping(s, runs);
+    EXPECT_EQ(s.popping_events, 4u);
+    EXPECT_EQ(s.popping_max_frames, 3u);
+    EXPECT_DOUBLE_EQ(s.popping_mean_frames, 7.0 / 4.0);
+}
+
+TEST(Summary, ErrorPerFrameMeanAndP99) {
+    std::vector<FrameStats> frames(100);
+    for (uint32_t i = 0; i < 100; ++i) {
+        frames[i].frame = i;
+        frames[i].error_pixels = i;  // 0..99
+        frames[i].missed_objects = 0;
+    }
+    const RunSummary s = summarize("x", frames, 0);
+    EXPECT_DOUBLE_EQ(s.error_pixels_mean, 49.5);
+    EXPECT_DOUBLE_EQ(s.error_pixels_p99, 98.0);
+    EXPECT_EQ(s.error_pixels_worst, 99);
+}
+
+TEST(Summary, RepetitionsGiveMediansAndTheSpreadOfTheMean) {
+    RunSummary a, b, c;
+    a.frame_ms.mean = 10, b.frame_ms.mean = 30, c.frame_ms.mean = 12;
+    a.queries_mean = 5, b.queries_mean = 5, c.queries_mean = 8;
+    const RunSummary m = aggregateRepetitions({a, b, c});
+    EXPECT_EQ(m.repetitions, 3u);
+    EXPECT_DOUBLE_EQ(m.frame_ms.mean, 12.0);
+    EXPECT_DOUBLE_EQ(m.frame_ms_mean_min, 10.0);
+    EXPECT_DOUBLE_EQ(m.frame_ms_mean_max, 30.0);
+    EXPECT_DOUBLE_EQ(m.queries_mean, 5.0);
+}
+
 TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
     std::vector<FrameStats> frames(10);
     for (uint32_t i = 0; i < 10; ++i) {
