@@ -31,7 +31,7 @@ double ratioToIdeal(const std::vector<RunRecord>& runs, const RunSummary& s) {
     return ideal && ideal->frame_ms.mean > 0 ? s.frame_ms.mean / ideal->frame_ms.mean : 0.0;
 }
 
-std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
+ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
     bool error = false, repeated = false;
     for (const RunRecord& r : runs) {
         error |= r.summary.error_measured;
@@ -71,6 +71,13 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
         if (error) row.push_back(r.pareto ? "*" : "");
         rows.push_back(row);
     }
+    return {header, rows};
+}
+
+std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
+    const ComparisonTable table = comparisonTable(runs);
+    const auto& header = table.header;
+    const auto& rows = table.rows;
     std::vector<size_t> width(header.size());
     for (size_t c = 0; c < header.size(); ++c) {
         width[c] = header[c].size();

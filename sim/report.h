@@ -22,8 +22,16 @@ struct RunRecord {
     bool pareto = false;                                 // on the time-against-error front
 };
 
-// The benchmark table (plain text, aligned): one row per algorithm, with speedup over VFC and
-// ratio to Ideal when those algorithms are among the records.
+// The cells of the benchmark table: one row per configuration, with speedup over VFC and ratio
+// to Ideal when those algorithms are among the records. The error columns and the "pareto"
+// column ("*" on the front) appear only when error was measured.
+struct ComparisonTable {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+ComparisonTable comparisonTable(const std::vector<RunRecord>& runs);
+
+// That table as plain text, aligned.
 std::string formatComparisonTable(const std::vector<RunRecord>& runs);
 
 // CSV with a header, one row per frame per algorithm.

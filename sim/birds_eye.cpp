@@ -1,0 +1,396 @@
+#include "sim/birds_eye.h"
+
+#include "culling/frustum.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+namespace occsim {
+namespace {
+
+// ---- classification ------------------------------------------------------------------------
+
+// Exact bit pattern of a box (with -0 folded into +0, which compare equal as floats).
+struct BoxKey {
+    std::array<uint32_t, 6> bits;
+    bool operator==(const BoxKey&) const = default;
+};
+
+BoxKey keyOf(const Aabb& b) {
+    const float v[6] = {b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z};
+    BoxKey k{};
+    for (int i = 0; i < 6; ++i) {
+        const float f = v[i] == 0.0f ? 0.0f : v[i];
+        std::memcpy(&k.bits[i], &f, sizeof f);
+    }
+    return k;
+}
+
+struct BoxKeyHash {
+    size_t operator()(const BoxKey& k) const {
+        uint64_t h = 1469598103934665603ull;  // FNV-1a over the six words
+        for (uint32_t w : k.bits) h = (h ^ w) * 1099511628211ull;
+        return static_cast<size_t>(h);
+    }
+};
+
+struct QueryMarks {
+    std::vector<uint8_t> zero, visible, pending;  // per node
+};
+
+QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
+    std::unordered_map<BoxKey, std::vector<uint32_t>, BoxKeyHash> nodes_by_box;
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        if (!isEmpty(tree.bounds(n))) nodes_by_box[keyOf(tree.bounds(n))].push_back(n);
+    }
+    QueryMarks m;
+    m.zero.assign(tree.nodeCount(), 0);
+    m.visible.assign(tree.nodeCount(), 0);
+    m.pending.assign(tree.nodeCount(), 0);
+    for (const TracedQuery& q : trace.queries) {
+        for (const Aabb& box : q.boxes) {
+            const auto it = nodes_by_box.find(keyOf(box));
+            if (it == nodes_by_box.end()) continue;  // an object box (per-object queries)
+            for (uint32_t n : it->second) {
+                if (!q.fetched) m.pending[n] = 1;
+                else if (q.samples == 0) m.zero[n] = 1;
+                else m.visible[n] = 1;
+            }
+        }
+    }
+    return m;
+}
+
+}  // namespace
+
+const char* nodeClassName(NodeClass c) {
+    switch (c) {
+        case NodeClass::Empty: return "empty";
+        case NodeClass::FrustumCulled: return "frustum culled";
+        case NodeClass::OcclusionCulled: return "occlusion culled";
+        case NodeClass::DrawnAfterQuery: return "drawn after query";
+        case NodeClass::DrawnWithoutQuery: return "drawn without query";
+        case NodeClass::NotReached: return "not reached";
+        case NodeClass::Passed: return "passed through";
+    }
+    return "?";
+}
+
+Rgb nodeClassColour(NodeClass c) {
+    switch (c) {
+        case NodeClass::Empty: return {0, 0, 0};
+        case NodeClass::FrustumCulled: return {235, 64, 52};      // red, as in the CHC figure
+        case NodeClass::OcclusionCulled: return {66, 135, 255};   // blue, as in the CHC figure
+        case NodeClass::DrawnAfterQuery: return {64, 220, 110};   // green
+        case NodeClass::DrawnWithoutQuery: return {225, 95, 225}; // magenta
+        case NodeClass::NotReached: return {72, 84, 150};         // dim blue: behind a blue one
+        case NodeClass::Passed: return {70, 150, 150};            // dim teal
+    }
+    return {};
+}
+
+std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
+                                     const FrameTrace& trace) {
+    const uint32_t count = tree.nodeCount();
+    std::vector<uint8_t> own_drawn(count, 0), subtree_drawn(count, 0);
+    for (uint32_t o : trace.drawn_objects) {
+        if (o < tree.objectCount()) own_drawn[tree.nodeOf(o)] = 1;
+    }
+    subtree_drawn = own_drawn;
+    // Children come after their parents, so a reverse scan sees every child before its parent.
+    for (uint32_t n = count; n-- > 1;) subtree_drawn[tree.node(n).parent] |= subtree_drawn[n];
+    const QueryMarks q = markQueriedNodes(tree, trace);
+
+    std::vector<NodeClass> out(count, NodeClass::Empty);
+    for (uint32_t n = 0; n < count; ++n) {  // parents first: NotReached needs the parent's class
+        const Aabb& b = tree.bounds(n);
+        const uint32_t parent = tree.node(n).parent;
+        const bool below_culled =
+            parent != BspTree::kNone && (out[parent] == NodeClass::OcclusionCulled ||
+                                         out[parent] == NodeClass::NotReached);
+        if (isEmpty(b)) out[n] = NodeClass::Empty;
+        else if (classify(view.frustum, b) == FrustumTest::Outside) out[n] = NodeClass::FrustumCulled;
+        else if (q.zero[n] && !q.visible[n]) out[n] = NodeClass::OcclusionCulled;
+        else if (q.visible[n] && subtree_drawn[n]) out[n] = NodeClass::DrawnAfterQuery;
+        else if (own_drawn[n]) out[n] = NodeClass::DrawnWithoutQuery;
+        else if (below_culled) out[n] = NodeClass::NotReached;
+        else out[n] = NodeClass::Passed;
+    }
+    return out;
+}
+
+// ---- picture ------------------------------------------------------------------------------
+
+namespace {
+
+constexpr int kFontScale = 2;
+constexpr int kPad = 14;  // pixels around the fitted region
+
+// World (x, z) to pixel: uniform scale, the region's centre at the drawing area's centre.
+struct TopView {
+    double scale = 1.0;
+    double world_cx = 0.0, world_cz = 0.0;
+    double pixel_cx = 0.0, pixel_cy = 0.0;
+
+    glm::dvec2 toPixel(double x, double z) const {
+        return {pixel_cx + (x - world_cx) * scale, pixel_cy + (z - world_cz) * scale};
+    }
+    glm::dvec2 toWorld(double px, double py) const {
+        return {world_cx + (px - pixel_cx) / scale, world_cz + (py - pixel_cy) / scale};
+    }
+};
+
+// The region to show in x and z: every finite object box and the eye, plus a margin.
+void fittedRegion(const BirdsEyeInput& in, glm::dvec2& lo, glm::dvec2& hi) {
+    lo = glm::dvec2(in.view.eye.x, in.view.eye.z);
+    hi = lo;
+    for (const Aabb& b : in.object_boxes) {
+        if (!isFiniteAndOrdered(b)) continue;
+        lo = glm::min(lo, glm::dvec2(b.min.x, b.min.z));
+        hi = glm::max(hi, glm::dvec2(b.max.x, b.max.z));
+    }
+    const glm::dvec2 size = glm::max(hi - lo, glm::dvec2(1e-3));
+    const double margin = 0.04 * std::max(size.x, size.y);
+    lo -= margin;
+    hi += margin;
+}
+
+int titleBand() { return RasterCanvas::textHeight(kFontScale) + 2 * 8; }
+
+TopView fitView(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
+    glm::dvec2 lo, hi;
+    fittedRegion(in, lo, hi);
+    const double area_w = std::max(1.0, width - 2.0 * kPad);
+    const double area_h = std::max(1.0, height - 2.0 * kPad - titleBand());
+    TopView v;
+    v.scale = std::min(area_w / (hi.x - lo.x), area_h / (hi.y - lo.y));
+    v.world_cx = 0.5 * (lo.x + hi.x);
+    v.world_cz = 0.5 * (lo.y + hi.y);
+    v.pixel_cx = 0.5 * width;
+    v.pixel_cy = titleBand() + kPad + 0.5 * area_h;
+    return v;
+}
+
+struct PixelRect {
+    int x0, y0, x1, y1;
+};
+
+PixelRect rectOf(const TopView& v, const Aabb& b) {
+    const glm::dvec2 a = v.toPixel(b.min.x, b.min.z), c = v.toPixel(b.max.x, b.max.z);
+    // Clamp before converting: a huge box must not overflow int.
+    auto px = [](double p) { return static_cast<int>(std::lround(std::clamp(p, -1e6, 1e6))); };
+    return {px(a.x), px(a.y), std::max(px(a.x), px(c.x)), std::max(px(a.y), px(c.y))};
+}
+
+// The horizontal view wedge: the forward direction in the ground plane and the half angle.
+struct Wedge {
+    bool valid = false;
+    glm::dvec2 eye, dir, left, right;  // unit directions of the two edges
+    double length = 0.0;               // along an edge, to the far plane
+};
+
+Wedge viewWedge(const BirdsEyeInput& in) {
+    Wedge w;
+    const glm::dvec2 f(in.forward.x, in.forward.z);
+    const double flat = glm::length(f);
+    // Looking (almost) straight down or up: the wedge has no horizontal direction.
+    if (!(flat > 1e-3) || !(in.fov_y_rad > 0.0f)) return w;
+    const double half = std::atan(std::tan(0.5 * in.fov_y_rad) * in.aspect);
+    w.valid = true;
+    w.eye = {in.view.eye.x, in.view.eye.z};
+    w.dir = f / flat;
+    auto rotate = [](glm::dvec2 d, double a) {
+        return glm::dvec2(d.x * std::cos(a) - d.y * std::sin(a), d.x * std::sin(a) + d.y * std::cos(a));
+    };
+    w.left = rotate(w.dir, -half);
+    w.right = rotate(w.dir, half);
+    // The far plane is at far along the view direction; its horizontal reach shrinks as the
+    // camera pitches.
+    w.length = in.far_m * flat / std::cos(half);
+    return w;
+}
+
+void tintWedge(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
+    if (!w.valid) return;
+    const double reach = glm::dot(w.left * w.length, w.dir);
+    // Inward normals of the two edges.
+    const glm::dvec2 n_left(-w.left.y, w.left.x), n_right(w.right.y, -w.right.x);
+    const bool flip = glm::dot(n_left, w.dir) < 0.0;
+    for (uint32_t y = 0; y < canvas.height(); ++y) {
+        for (uint32_t x = 0; x < canvas.width(); ++x) {
+            const glm::dvec2 d = v.toWorld(x, y) - w.eye;
+            const double sl = glm::dot(d, n_left) * (flip ? -1 : 1);
+            const double sr = glm::dot(d, n_right) * (flip ? -1 : 1);
+            if (sl >= 0 && sr >= 0 && glm::dot(d, w.dir) <= reach) {
+                canvas.pixel(static_cast<int>(x), static_cast<int>(y), kWedgeColour, 0.07f);
+            }
+        }
+    }
+}
+
+void drawWedgeLines(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
+    if (!w.valid) return;
+    const glm::dvec2 e = v.toPixel(w.eye.x, w.eye.y);
+    const glm::dvec2 l = w.eye + w.left * w.length, r = w.eye + w.right * w.length;
+    const glm::dvec2 pl = v.toPixel(l.x, l.y), pr = v.toPixel(r.x, r.y);
+    canvas.line(e.x, e.y, pl.x, pl.y, kWedgeColour);
+    canvas.line(e.x, e.y, pr.x, pr.y, kWedgeColour);
+    canvas.line(pl.x, pl.y, pr.x, pr.y, kWedgeColour, 0.5f);  // the far plane
+}
+
+void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
+    std::vector<uint8_t> drawn(in.object_boxes.size(), 0);
+    for (uint32_t o : in.drawn_objects) {
+        if (o < drawn.size()) drawn[o] = 1;
+    }
+    // Hidden ones first, so a drawn object is never painted over by a hidden neighbour.
+    for (int pass = 0; pass < 2; ++pass) {
+        for (size_t o = 0; o < in.object_boxes.size(); ++o) {
+            if (drawn[o] != pass || !isFiniteAndOrdered(in.object_boxes[o])) continue;
+            const PixelRect r = rectOf(v, in.object_boxes[o]);
+            canvas.fillRect(r.x0, r.y0, r.x1, r.y1, pass ? kDrawnObjectColour : kHiddenObjectColour);
+        }
+    }
+}
+
+// Draw order: the dim classes first, the decisions a reader looks for last (on top).
+constexpr NodeClass kOutlineOrder[] = {NodeClass::Passed, NodeClass::NotReached,
+                                       NodeClass::FrustumCulled, NodeClass::DrawnWithoutQuery,
+                                       NodeClass::DrawnAfterQuery, NodeClass::OcclusionCulled};
+
+void drawNodeOutlines(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
+    const BspTree& tree = *in.tree;
+    const uint32_t count = std::min<uint32_t>(tree.nodeCount(), in.node_classes.size());
+    for (NodeClass cls : kOutlineOrder) {
+        for (uint32_t n = 0; n < count; ++n) {
+            if (in.node_classes[n] != cls) continue;
+            // Only the top of a frustum-culled subtree: that is where the traversal stopped, and
+            // its descendants would fill the outside of the wedge with red.
+            const uint32_t parent = tree.node(n).parent;
+            if (cls == NodeClass::FrustumCulled && parent != BspTree::kNone && parent < count &&
+                in.node_classes[parent] == NodeClass::FrustumCulled) {
+                continue;
+            }
+            const PixelRect r = rectOf(v, tree.bounds(n));
+            canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, nodeClassColour(cls));
+        }
+    }
+}
+
+void drawCamera(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
+    const glm::dvec2 e = v.toPixel(in.view.eye.x, in.view.eye.z);
+    const int x = static_cast<int>(std::lround(std::clamp(e.x, -1e6, 1e6)));
+    const int y = static_cast<int>(std::lround(std::clamp(e.y, -1e6, 1e6)));
+    canvas.disk(x, y, 6, kBirdsEyeBackground);
+    canvas.disk(x, y, 4, kCameraColour);
+}
+
+struct LegendLine {
+    Rgb colour;
+    bool filled;  // a filled swatch (objects, camera) or an outline (nodes)
+    std::string label;
+};
+
+std::vector<LegendLine> legendLines(const BirdsEyeInput& in) {
+    std::array<uint32_t, kNodeClassCount> counts{};
+    for (NodeClass c : in.node_classes) ++counts[static_cast<size_t>(c)];
+    const size_t drawn = in.drawn_objects.size();
+    std::vector<LegendLine> lines = {
+        {kDrawnObjectColour, true, "drawn object: " + std::to_string(drawn)},
+        {kHiddenObjectColour, true, "not drawn: " + std::to_string(in.object_boxes.size() - std::min(drawn, in.object_boxes.size()))},
+    };
+    for (NodeClass c : {NodeClass::FrustumCulled, NodeClass::OcclusionCulled,
+                        NodeClass::DrawnAfterQuery, NodeClass::DrawnWithoutQuery,
+                        NodeClass::NotReached, NodeClass::Passed}) {
+        lines.push_back({nodeClassColour(c), false,
+                         std::string(nodeClassName(c)) + ": " + std::to_string(counts[static_cast<size_t>(c)])});
+    }
+    lines.push_back({kCameraColour, true, "camera, view wedge"});
+    return lines;
+}
+
+// How much of the picture's content a rectangle would hide: object and node boxes overlapping it.
+double clutterUnder(const TopView& v, const BirdsEyeInput& in, const PixelRect& area) {
+    double covered = 0.0;
+    auto add = [&](const Aabb& b) {
+        const PixelRect r = rectOf(v, b);
+        const int w = std::min(r.x1, area.x1) - std::max(r.x0, area.x0);
+        const int h = std::min(r.y1, area.y1) - std::max(r.y0, area.y0);
+        if (w >= 0 && h >= 0) covered += (w + 1.0) * (h + 1.0);
+    };
+    for (const Aabb& b : in.object_boxes) {
+        if (isFiniteAndOrdered(b)) add(b);
+    }
+    const glm::dvec2 e = v.toPixel(in.view.eye.x, in.view.eye.z);
+    if (e.x >= area.x0 - 8 && e.x <= area.x1 + 8 && e.y >= area.y0 - 8 && e.y <= area.y1 + 8) {
+        covered += 1e9;  // never hide the camera
+    }
+    return covered;
+}
+
+void drawLegend(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
+    const std::vector<LegendLine> lines = legendLines(in);
+    const int line_h = RasterCanvas::textHeight(kFontScale) + 6;
+    const int swatch = RasterCanvas::textHeight(kFontScale);
+    int text_w = 0;
+    for (const LegendLine& l : lines) text_w = std::max(text_w, RasterCanvas::textWidth(l.label, kFontScale));
+    const int w = 8 + swatch + 8 + text_w + 8, h = 8 + static_cast<int>(lines.size()) * line_h + 2;
+    const int W = static_cast<int>(canvas.width()), H = static_cast<int>(canvas.height());
+    const int top = titleBand();
+    // The corner (below the title band) that hides the least of the scene.
+    const PixelRect corners[4] = {{4, top, 4 + w, top + h}, {W - 4 - w, top, W - 4, top + h},
+                                  {4, H - 4 - h, 4 + w, H - 4}, {W - 4 - w, H - 4 - h, W - 4, H - 4}};
+    PixelRect best = corners[0];
+    double least = clutterUnder(v, in, best);
+    for (const PixelRect& c : corners) {
+        const double clutter = clutterUnder(v, in, c);
+        if (clutter < least) {
+            least = clutter;
+            best = c;
+        }
+    }
+    canvas.fillRect(best.x0, best.y0, best.x1, best.y1, {8, 9, 12}, 0.8f);
+    canvas.outlineRect(best.x0, best.y0, best.x1, best.y1, {90, 90, 100});
+    int y = best.y0 + 8;
+    for (const LegendLine& l : lines) {
+        const int sx = best.x0 + 8;
+        if (l.filled) canvas.fillRect(sx, y, sx + swatch - 1, y + swatch - 1, l.colour);
+        else {
+            canvas.outlineRect(sx, y, sx + swatch - 1, y + swatch - 1, l.colour);
+            canvas.outlineRect(sx + 1, y + 1, sx + swatch - 2, y + swatch - 2, l.colour);
+        }
+        canvas.text(sx + swatch + 8, y, l.label, {225, 225, 225}, kFontScale);
+        y += line_h;
+    }
+}
+
+}  // namespace
+
+PictureSize birdsEyeSize(const BirdsEyeInput& input, uint32_t long_side) {
+    glm::dvec2 lo, hi;
+    fittedRegion(input, lo, hi);
+    // Not narrower than 4:5 either way, so the legend fits beside a long thin scene.
+    const double aspect = std::clamp((hi.x - lo.x) / (hi.y - lo.y), 0.8, 1.6);
+    if (aspect >= 1.0) return {long_side, std::max(1u, static_cast<uint32_t>(long_side / aspect))};
+    return {std::max(1u, static_cast<uint32_t>(long_side * aspect)), long_side};
+}
+
+std::vector<uint8_t> renderBirdsEye(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
+    RasterCanvas canvas(width, height, kBirdsEyeBackground);
+    if (width == 0 || height == 0) return canvas.rgbaBottomUp();
+    const TopView view = fitView(in, width, height);
+    const Wedge wedge = viewWedge(in);
+    tintWedge(canvas, view, wedge);
+    drawObjects(canvas, view, in);
+    if (in.tree) drawNodeOutlines(canvas, view, in);
+    drawWedgeLines(canvas, view, wedge);
+    drawCamera(canvas, view, in);
+    canvas.text(kPad, 8, in.title, {235, 235, 235}, kFontScale);
+    if (in.draw_legend) drawLegend(canvas, view, in);
+    return canvas.rgbaBottomUp();
+}
+
+}  // namespace occsim
