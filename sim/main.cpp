@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -135,7 +136,11 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
         if (!s.note.empty() && !s.skipped) std::printf("%s\n", s.note.c_str());
         for (const auto& capture : s.captures) std::printf("picture of the worst frame: %s\n", capture.c_str());
     }
-    if (!junit.empty()) occsim::writeFileAtomically(junit, occsim::junitXml(report));
+    if (!junit.empty()) {
+        const std::filesystem::path junit_path(junit);
+        if (junit_path.has_parent_path()) std::filesystem::create_directories(junit_path.parent_path());
+        occsim::writeFileAtomically(junit_path, occsim::junitXml(report));
+    }
     std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
                 options.shard.index, options.shard.count, failed, skipped);
     return report.passed() ? 0 : kExitFailure;
