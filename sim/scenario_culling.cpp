@@ -1,5 +1,6 @@
 // The "culling" section of a scenario: the algorithm and each algorithm's options. Validation
-// that the culling module owns (StatisticalOptions::isValid) is delegated to it.
+// that the culling module owns (StatisticalOptions::isValid, ChcOptions::isValid, ...) is
+// delegated to it; its message is reported at the options object's pointer.
 #include "sim/scenario_parts.h"
 
 #include <limits>
@@ -26,6 +27,48 @@ StatisticalOptions readStatistical(JsonObjectReader reader) {
     return o;
 }
 
+// Counts that the culling module keeps as uint32_t: anything larger is a type error here, and
+// the range within uint32_t is isValid()'s to judge.
+uint32_t readCount(JsonObjectReader& reader, std::string_view key, uint32_t fallback) {
+    return static_cast<uint32_t>(reader.unsignedInteger(key, fallback, 0, kMaxUint32));
+}
+
+ChcOptions readChc(JsonObjectReader reader) {
+    ChcOptions o;
+    o.visible_frames_skip = readCount(reader, "visible_frames_skip", o.visible_frames_skip);
+    o.visibility_threshold_pixels =
+        readCount(reader, "visibility_threshold_pixels", o.visibility_threshold_pixels);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+ChcppOptions readChcpp(JsonObjectReader reader) {
+    ChcppOptions o;
+    o.visible_frames_skip = readCount(reader, "visible_frames_skip", o.visible_frames_skip);
+    o.visibility_threshold_pixels =
+        readCount(reader, "visibility_threshold_pixels", o.visibility_threshold_pixels);
+    o.batch_size = readCount(reader, "batch_size", o.batch_size);
+    o.multiqueries = reader.boolean("multiqueries", o.multiqueries);
+    o.tight_bounds_depth = readCount(reader, "tight_bounds_depth", o.tight_bounds_depth);
+    o.seed = reader.unsignedInteger("seed", o.seed);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+AsyncOptions readAsync(JsonObjectReader reader) {
+    AsyncOptions o;
+    o.retest_interval_frames =
+        readCount(reader, "retest_interval_frames", o.retest_interval_frames);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
 }  // namespace
 
 void readCulling(JsonObjectReader& top, Scenario& s) {
@@ -34,6 +77,13 @@ void readCulling(JsonObjectReader& top, Scenario& s) {
     s.algorithm = culling->enumeration("algorithm", cullerNames(), s.algorithm);
     if (auto statistical = culling->optionalObject("statistical")) {
         s.culler.statistical = readStatistical(std::move(*statistical));
+    }
+    if (auto chc = culling->optionalObject("chc")) s.culler.chc = readChc(std::move(*chc));
+    if (auto chcpp = culling->optionalObject("chc++")) {
+        s.culler.chcpp = readChcpp(std::move(*chcpp));
+    }
+    if (auto async = culling->optionalObject("async")) {
+        s.culler.async = readAsync(std::move(*async));
     }
     culling->finish();
 }

@@ -334,6 +334,47 @@ TEST(ScenarioRanges, InvalidStatisticalOptionsReportIsValidMessage) {
     expectError(scenario, "/culling/statistical", "decay_b must be in [0, 1]");
 }
 
+TEST(ScenarioRanges, InvalidPeerCullerOptionsReportIsValidMessageAtTheirObject) {
+    json scenario = minimalScenario();
+    scenario["culling"] = {{"chc", {{"visible_frames_skip", 2000000}}}};
+    expectError(scenario, "/culling/chc", "visible_frames_skip must be in [0, 1000000]");
+    scenario["culling"] = {{"chc++", {{"batch_size", 0}}}};
+    expectError(scenario, "/culling/chc++", "batch_size must be >= 1");
+    scenario["culling"] = {{"chc++", {{"tight_bounds_depth", 9}}}};
+    expectError(scenario, "/culling/chc++", "tight_bounds_depth must be in [0, 6]");
+    scenario["culling"] = {{"chc++", {{"multiqueries", 1}}}};
+    expectError(scenario, "/culling/chc++/multiqueries", "expected true or false");
+    scenario["culling"] = {{"async", {{"retest_interval_frames", 0}}}};
+    expectError(scenario, "/culling/async", "retest_interval_frames must be in [1, 1000000]");
+    scenario["culling"] = {{"async", {{"retest_interval", 3}}}};
+    expectError(scenario, "/culling/async/retest_interval", "unknown key 'retest_interval'");
+}
+
+TEST(ScenarioCulling, PeerCullerOptionsAreRead) {
+    json scenario = minimalScenario();
+    scenario["culling"] = {
+        {"algorithm", "chc++"},
+        {"chc", {{"visible_frames_skip", 2}, {"visibility_threshold_pixels", 25}}},
+        {"chc++",
+         {{"visible_frames_skip", 7}, {"visibility_threshold_pixels", 3}, {"batch_size", 20},
+          {"multiqueries", false}, {"tight_bounds_depth", 2}, {"seed", 99}}},
+        {"async", {{"retest_interval_frames", 9}}}};
+    const Scenario s = parseScenarioText(scenario.dump(), kFile);
+    EXPECT_EQ(s.algorithm, "chc++");
+    EXPECT_EQ(s.culler.chc.visible_frames_skip, 2u);
+    EXPECT_EQ(s.culler.chc.visibility_threshold_pixels, 25u);
+    EXPECT_EQ(s.culler.chcpp.visible_frames_skip, 7u);
+    EXPECT_EQ(s.culler.chcpp.visibility_threshold_pixels, 3u);
+    EXPECT_EQ(s.culler.chcpp.batch_size, 20u);
+    EXPECT_FALSE(s.culler.chcpp.multiqueries);
+    EXPECT_EQ(s.culler.chcpp.tight_bounds_depth, 2u);
+    EXPECT_EQ(s.culler.chcpp.seed, 99u);
+    EXPECT_EQ(s.culler.async.retest_interval_frames, 9u);
+    const Scenario defaults = parseScenarioText(minimalScenario().dump(), kFile);
+    EXPECT_EQ(defaults.culler.chcpp.batch_size, ChcppOptions{}.batch_size);
+    EXPECT_EQ(defaults.culler.async.retest_interval_frames, AsyncOptions{}.retest_interval_frames);
+}
+
 TEST(ScenarioRanges, InvalidBspOptionsReportIsValidMessage) {
     json scenario = minimalScenario();
     scenario["bsp"] = {{"max_depth", 65}};
@@ -346,8 +387,9 @@ TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"algorithm", "statstical"}};
     expectError(scenario, "/culling/algorithm",
-                "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"ideal\" "
-                "(did you mean \"statistical\"?), got \"statstical\" (string)");
+                "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"chc\", "
+                "\"chc++\", \"async\", \"ideal\" (did you mean \"statistical\"?), got "
+                "\"statstical\" (string)");
 }
 
 TEST(ScenarioEnums, UnknownSourceTypeListsValidTypes) {
