@@ -127,7 +127,7 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
 namespace {
 
 constexpr int kFontScale = 2;
-constexpr int kPad = 14;  // pixels around the fitted region
+constexpr int kPad = 14;  // pixels around the fitted region and the legend
 
 // World (x, z) to pixel: uniform scale, the region's centre at the drawing area's centre.
 struct TopView {
@@ -141,6 +141,10 @@ struct TopView {
     glm::dvec2 toWorld(double px, double py) const {
         return {world_cx + (px - pixel_cx) / scale, world_cz + (py - pixel_cy) / scale};
     }
+};
+
+struct PixelRect {
+    int x0, y0, x1, y1;
 };
 
 // The region to show in x and z: every finite object box and the eye, plus a margin.
@@ -160,23 +164,77 @@ void fittedRegion(const BirdsEyeInput& in, glm::dvec2& lo, glm::dvec2& hi) {
 
 int titleBand() { return RasterCanvas::textHeight(kFontScale) + 2 * 8; }
 
-TopView fitView(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
-    glm::dvec2 lo, hi;
-    fittedRegion(in, lo, hi);
-    const double area_w = std::max(1.0, width - 2.0 * kPad);
-    const double area_h = std::max(1.0, height - 2.0 * kPad - titleBand());
-    TopView v;
-    v.scale = std::min(area_w / (hi.x - lo.x), area_h / (hi.y - lo.y));
-    v.world_cx = 0.5 * (lo.x + hi.x);
-    v.world_cz = 0.5 * (lo.y + hi.y);
-    v.pixel_cx = 0.5 * width;
-    v.pixel_cy = titleBand() + kPad + 0.5 * area_h;
-    return v;
+struct LegendLine {
+    Rgb colour;
+    bool filled;  // a filled swatch (objects, camera) or an outline (nodes)
+    std::string label;
+};
+
+std::vector<LegendLine> legendLines(const BirdsEyeInput& in) {
+    std::array<uint32_t, kNodeClassCount> counts{};
+    for (NodeClass c : in.node_classes) ++counts[static_cast<size_t>(c)];
+    const size_t objects = in.object_boxes.size();
+    const size_t drawn = std::min(in.drawn_objects.size(), objects);
+    std::vector<LegendLine> lines = {
+        {kDrawnObjectColour, true, "drawn object: " + std::to_string(drawn)},
+        {kHiddenObjectColour, true, "not drawn: " + std::to_string(objects - drawn)},
+    };
+    for (NodeClass c : {NodeClass::FrustumCulled, NodeClass::OcclusionCulled,
+                        NodeClass::DrawnAfterQuery, NodeClass::DrawnWithoutQuery,
+                        NodeClass::NotReached, NodeClass::Passed}) {
+        lines.push_back({nodeClassColour(c), false,
+                         std::string(nodeClassName(c)) + ": " +
+                             std::to_string(counts[static_cast<size_t>(c)])});
+    }
+    lines.push_back({kCameraColour, true, "camera, view wedge"});
+    return lines;
 }
 
-struct PixelRect {
-    int x0, y0, x1, y1;
+int legendLineHeight() { return RasterCanvas::textHeight(kFontScale) + 6; }
+
+// Width and height of the legend panel.
+glm::ivec2 legendSize(const BirdsEyeInput& in) {
+    if (!in.draw_legend) return {0, 0};
+    const std::vector<LegendLine> lines = legendLines(in);
+    int text_w = 0;
+    for (const LegendLine& l : lines) {
+        text_w = std::max(text_w, RasterCanvas::textWidth(l.label, kFontScale));
+    }
+    const int swatch = RasterCanvas::textHeight(kFontScale);
+    return {8 + swatch + 8 + text_w + 8, 8 + static_cast<int>(lines.size()) * legendLineHeight() + 2};
+}
+
+// Where the scene and the legend go: the legend in a column on the right or a band at the
+// bottom, whichever leaves the scene the larger scale, so that it never hides the scene.
+struct Layout {
+    TopView view;
+    PixelRect legend;
 };
+
+Layout layOut(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
+    glm::dvec2 lo, hi;
+    fittedRegion(in, lo, hi);
+    const glm::ivec2 legend = legendSize(in);
+    const int W = static_cast<int>(width), H = static_cast<int>(height), top = titleBand();
+    auto scaleFor = [&](double area_w, double area_h) {
+        return std::min(std::max(1.0, area_w) / (hi.x - lo.x), std::max(1.0, area_h) / (hi.y - lo.y));
+    };
+    const double full_w = W - 2.0 * kPad, full_h = H - 2.0 * kPad - top;
+    const double column_w = full_w - (legend.x ? legend.x + kPad : 0);
+    const double band_h = full_h - (legend.y ? legend.y + kPad : 0);
+    const bool column = scaleFor(column_w, full_h) >= scaleFor(full_w, band_h);
+    const double area_w = column ? column_w : full_w, area_h = column ? full_h : band_h;
+
+    Layout l;
+    l.view.scale = scaleFor(area_w, area_h);
+    l.view.world_cx = 0.5 * (lo.x + hi.x);
+    l.view.world_cz = 0.5 * (lo.y + hi.y);
+    l.view.pixel_cx = kPad + 0.5 * area_w;
+    l.view.pixel_cy = top + kPad + 0.5 * area_h;
+    l.legend = column ? PixelRect{W - kPad - legend.x, top + kPad, W - kPad, top + kPad + legend.y}
+                      : PixelRect{kPad, H - kPad - legend.y, kPad + legend.x, H - kPad};
+    return l;
+}
 
 PixelRect rectOf(const TopView& v, const Aabb& b) {
     const glm::dvec2 a = v.toPixel(b.min.x, b.min.z), c = v.toPixel(b.max.x, b.max.z);
@@ -218,14 +276,13 @@ void tintWedge(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
     const double reach = glm::dot(w.left * w.length, w.dir);
     // Inward normals of the two edges.
     const glm::dvec2 n_left(-w.left.y, w.left.x), n_right(w.right.y, -w.right.x);
-    const bool flip = glm::dot(n_left, w.dir) < 0.0;
+    const double sign = glm::dot(n_left, w.dir) < 0.0 ? -1.0 : 1.0;
     for (uint32_t y = 0; y < canvas.height(); ++y) {
         for (uint32_t x = 0; x < canvas.width(); ++x) {
             const glm::dvec2 d = v.toWorld(x, y) - w.eye;
-            const double sl = glm::dot(d, n_left) * (flip ? -1 : 1);
-            const double sr = glm::dot(d, n_right) * (flip ? -1 : 1);
-            if (sl >= 0 && sr >= 0 && glm::dot(d, w.dir) <= reach) {
-                canvas.pixel(static_cast<int>(x), static_cast<int>(y), kWedgeColour, 0.07f);
+            if (sign * glm::dot(d, n_left) >= 0 && sign * glm::dot(d, n_right) >= 0 &&
+                glm::dot(d, w.dir) <= reach) {
+                canvas.pixel(static_cast<int>(x), static_cast<int>(y), kWedgeColour, 0.10f);
             }
         }
     }
@@ -241,17 +298,22 @@ void drawWedgeLines(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
     canvas.line(pl.x, pl.y, pr.x, pr.y, kWedgeColour, 0.5f);  // the far plane
 }
 
+Rgb darker(Rgb c) { return {static_cast<uint8_t>(c.r / 2), static_cast<uint8_t>(c.g / 2), static_cast<uint8_t>(c.b / 2)}; }
+
 void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
     std::vector<uint8_t> drawn(in.object_boxes.size(), 0);
     for (uint32_t o : in.drawn_objects) {
         if (o < drawn.size()) drawn[o] = 1;
     }
-    // Hidden ones first, so a drawn object is never painted over by a hidden neighbour.
+    // Hidden ones first, so a drawn object is never painted over by a hidden neighbour. A darker
+    // border keeps overlapping objects apart.
     for (int pass = 0; pass < 2; ++pass) {
+        const Rgb fill = pass ? kDrawnObjectColour : kHiddenObjectColour;
         for (size_t o = 0; o < in.object_boxes.size(); ++o) {
             if (drawn[o] != pass || !isFiniteAndOrdered(in.object_boxes[o])) continue;
             const PixelRect r = rectOf(v, in.object_boxes[o]);
-            canvas.fillRect(r.x0, r.y0, r.x1, r.y1, pass ? kDrawnObjectColour : kHiddenObjectColour);
+            canvas.fillRect(r.x0, r.y0, r.x1, r.y1, fill);
+            if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3) canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
         }
     }
 }
@@ -284,86 +346,25 @@ void drawCamera(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in)
     const glm::dvec2 e = v.toPixel(in.view.eye.x, in.view.eye.z);
     const int x = static_cast<int>(std::lround(std::clamp(e.x, -1e6, 1e6)));
     const int y = static_cast<int>(std::lround(std::clamp(e.y, -1e6, 1e6)));
-    canvas.disk(x, y, 6, kBirdsEyeBackground);
-    canvas.disk(x, y, 4, kCameraColour);
+    canvas.disk(x, y, 7, kBirdsEyeBackground);
+    canvas.disk(x, y, 5, kCameraColour);
 }
 
-struct LegendLine {
-    Rgb colour;
-    bool filled;  // a filled swatch (objects, camera) or an outline (nodes)
-    std::string label;
-};
-
-std::vector<LegendLine> legendLines(const BirdsEyeInput& in) {
-    std::array<uint32_t, kNodeClassCount> counts{};
-    for (NodeClass c : in.node_classes) ++counts[static_cast<size_t>(c)];
-    const size_t drawn = in.drawn_objects.size();
-    std::vector<LegendLine> lines = {
-        {kDrawnObjectColour, true, "drawn object: " + std::to_string(drawn)},
-        {kHiddenObjectColour, true, "not drawn: " + std::to_string(in.object_boxes.size() - std::min(drawn, in.object_boxes.size()))},
-    };
-    for (NodeClass c : {NodeClass::FrustumCulled, NodeClass::OcclusionCulled,
-                        NodeClass::DrawnAfterQuery, NodeClass::DrawnWithoutQuery,
-                        NodeClass::NotReached, NodeClass::Passed}) {
-        lines.push_back({nodeClassColour(c), false,
-                         std::string(nodeClassName(c)) + ": " + std::to_string(counts[static_cast<size_t>(c)])});
-    }
-    lines.push_back({kCameraColour, true, "camera, view wedge"});
-    return lines;
-}
-
-// How much of the picture's content a rectangle would hide: object and node boxes overlapping it.
-double clutterUnder(const TopView& v, const BirdsEyeInput& in, const PixelRect& area) {
-    double covered = 0.0;
-    auto add = [&](const Aabb& b) {
-        const PixelRect r = rectOf(v, b);
-        const int w = std::min(r.x1, area.x1) - std::max(r.x0, area.x0);
-        const int h = std::min(r.y1, area.y1) - std::max(r.y0, area.y0);
-        if (w >= 0 && h >= 0) covered += (w + 1.0) * (h + 1.0);
-    };
-    for (const Aabb& b : in.object_boxes) {
-        if (isFiniteAndOrdered(b)) add(b);
-    }
-    const glm::dvec2 e = v.toPixel(in.view.eye.x, in.view.eye.z);
-    if (e.x >= area.x0 - 8 && e.x <= area.x1 + 8 && e.y >= area.y0 - 8 && e.y <= area.y1 + 8) {
-        covered += 1e9;  // never hide the camera
-    }
-    return covered;
-}
-
-void drawLegend(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
-    const std::vector<LegendLine> lines = legendLines(in);
-    const int line_h = RasterCanvas::textHeight(kFontScale) + 6;
+void drawLegend(RasterCanvas& canvas, const BirdsEyeInput& in, const PixelRect& at) {
+    canvas.fillRect(at.x0, at.y0, at.x1, at.y1, {8, 9, 12}, 0.85f);
+    canvas.outlineRect(at.x0, at.y0, at.x1, at.y1, {90, 90, 100});
     const int swatch = RasterCanvas::textHeight(kFontScale);
-    int text_w = 0;
-    for (const LegendLine& l : lines) text_w = std::max(text_w, RasterCanvas::textWidth(l.label, kFontScale));
-    const int w = 8 + swatch + 8 + text_w + 8, h = 8 + static_cast<int>(lines.size()) * line_h + 2;
-    const int W = static_cast<int>(canvas.width()), H = static_cast<int>(canvas.height());
-    const int top = titleBand();
-    // The corner (below the title band) that hides the least of the scene.
-    const PixelRect corners[4] = {{4, top, 4 + w, top + h}, {W - 4 - w, top, W - 4, top + h},
-                                  {4, H - 4 - h, 4 + w, H - 4}, {W - 4 - w, H - 4 - h, W - 4, H - 4}};
-    PixelRect best = corners[0];
-    double least = clutterUnder(v, in, best);
-    for (const PixelRect& c : corners) {
-        const double clutter = clutterUnder(v, in, c);
-        if (clutter < least) {
-            least = clutter;
-            best = c;
+    int y = at.y0 + 8;
+    for (const LegendLine& l : legendLines(in)) {
+        const int x = at.x0 + 8;
+        if (l.filled) {
+            canvas.fillRect(x, y, x + swatch - 1, y + swatch - 1, l.colour);
+        } else {  // node classes are outlines in the picture, so outlines here too
+            canvas.outlineRect(x, y, x + swatch - 1, y + swatch - 1, l.colour);
+            canvas.outlineRect(x + 1, y + 1, x + swatch - 2, y + swatch - 2, l.colour);
         }
-    }
-    canvas.fillRect(best.x0, best.y0, best.x1, best.y1, {8, 9, 12}, 0.8f);
-    canvas.outlineRect(best.x0, best.y0, best.x1, best.y1, {90, 90, 100});
-    int y = best.y0 + 8;
-    for (const LegendLine& l : lines) {
-        const int sx = best.x0 + 8;
-        if (l.filled) canvas.fillRect(sx, y, sx + swatch - 1, y + swatch - 1, l.colour);
-        else {
-            canvas.outlineRect(sx, y, sx + swatch - 1, y + swatch - 1, l.colour);
-            canvas.outlineRect(sx + 1, y + 1, sx + swatch - 2, y + swatch - 2, l.colour);
-        }
-        canvas.text(sx + swatch + 8, y, l.label, {225, 225, 225}, kFontScale);
-        y += line_h;
+        canvas.text(x + swatch + 8, y, l.label, {225, 225, 225}, kFontScale);
+        y += legendLineHeight();
     }
 }
 
@@ -372,24 +373,36 @@ void drawLegend(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in)
 PictureSize birdsEyeSize(const BirdsEyeInput& input, uint32_t long_side) {
     glm::dvec2 lo, hi;
     fittedRegion(input, lo, hi);
-    // Not narrower than 4:5 either way, so the legend fits beside a long thin scene.
-    const double aspect = std::clamp((hi.x - lo.x) / (hi.y - lo.y), 0.8, 1.6);
-    if (aspect >= 1.0) return {long_side, std::max(1u, static_cast<uint32_t>(long_side / aspect))};
-    return {std::max(1u, static_cast<uint32_t>(long_side * aspect)), long_side};
+    const double aspect = std::clamp((hi.x - lo.x) / (hi.y - lo.y), 0.25, 4.0);
+    const glm::ivec2 legend = legendSize(input);
+    const double top = titleBand() + 2.0 * kPad;
+    // The scene's own area, its longer side long_side minus the frame; the legend beside it.
+    double scene_w, scene_h;
+    if (aspect >= 1.0) {
+        scene_w = std::max(16.0, long_side - 2.0 * kPad);
+        scene_h = scene_w / aspect;
+    } else {
+        scene_h = std::max(16.0, long_side - top);
+        scene_w = scene_h * aspect;
+    }
+    const double legend_w = legend.x ? legend.x + kPad : 0.0;
+    const double w = 2.0 * kPad + scene_w + legend_w;
+    const double h = top + std::max(scene_h, static_cast<double>(legend.y));
+    return {static_cast<uint32_t>(std::lround(w)), static_cast<uint32_t>(std::lround(h))};
 }
 
 std::vector<uint8_t> renderBirdsEye(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
     RasterCanvas canvas(width, height, kBirdsEyeBackground);
     if (width == 0 || height == 0) return canvas.rgbaBottomUp();
-    const TopView view = fitView(in, width, height);
+    const Layout layout = layOut(in, width, height);
     const Wedge wedge = viewWedge(in);
-    tintWedge(canvas, view, wedge);
-    drawObjects(canvas, view, in);
-    if (in.tree) drawNodeOutlines(canvas, view, in);
-    drawWedgeLines(canvas, view, wedge);
-    drawCamera(canvas, view, in);
+    tintWedge(canvas, layout.view, wedge);
+    drawObjects(canvas, layout.view, in);
+    if (in.tree) drawNodeOutlines(canvas, layout.view, in);
+    drawWedgeLines(canvas, layout.view, wedge);
+    drawCamera(canvas, layout.view, in);
     canvas.text(kPad, 8, in.title, {235, 235, 235}, kFontScale);
-    if (in.draw_legend) drawLegend(canvas, view, in);
+    if (in.draw_legend) drawLegend(canvas, in, layout.legend);
     return canvas.rgbaBottomUp();
 }
 

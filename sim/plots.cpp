@@ -45,9 +45,46 @@ std::string num(double v) {
     return buf;
 }
 
-// Line style of configuration i: eight colours, then the same colours dashed.
-std::string lineStyle(size_t i) {
-    return "lt " + std::to_string(i % 8 + 1) + " dt " + std::to_string(i / 8 + 1) + " lw 1.5";
+// How configuration i looks in every chart: one colour per algorithm (VFC grey, Ideal black, so
+// the references read alike in every report), and within an algorithm's sweep one dash type and
+// point type per value, so that a family of configurations reads as one.
+struct Style {
+    std::string colour;
+    int dash = 1;
+    int point = 7;
+};
+
+std::vector<Style> stylesOf(const std::vector<RunRecord>& runs) {
+    static const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
+                                           "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+    static const int kPoints[] = {7, 5, 9, 11, 13, 15};
+    std::vector<std::string> algorithms;  // in order of first appearance
+    std::vector<int> seen;                // configurations so far per algorithm
+    std::vector<Style> styles;
+    size_t next_colour = 0;
+    std::vector<std::string> colours;
+    for (const RunRecord& r : runs) {
+        const std::string& name = r.algorithm.empty() ? r.summary.algorithm : r.algorithm;
+        auto it = std::find(algorithms.begin(), algorithms.end(), name);
+        if (it == algorithms.end()) {
+            algorithms.push_back(name);
+            seen.push_back(0);
+            colours.push_back(name == "vfc"     ? "#7f7f7f"
+                              : name == "ideal" ? "#000000"
+                                                : kPalette[next_colour++ % std::size(kPalette)]);
+            it = algorithms.end() - 1;
+        }
+        const size_t a = static_cast<size_t>(it - algorithms.begin());
+        const int k = seen[a]++;
+        styles.push_back({colours[a], k % 5 + 1, kPoints[k % std::size(kPoints)]});
+    }
+    return styles;
+}
+
+std::string lineStyle(const Style& s) {
+    // Dotted and dash-dotted lines need more weight to read as well as solid ones.
+    return "lc rgb '" + s.colour + "' dt " + std::to_string(s.dash) + " lw " +
+           (s.dash >= 3 ? "2.2" : "1.6");
 }
 
 // One block per configuration (gnuplot `index i`): frame, frame ms, queries, triangles.
@@ -94,13 +131,15 @@ std::string paretoData(const std::vector<RunRecord>& runs) {
 // Fixed margins so that the key sits outside on the right and stacked panels line up.
 const char* kMargins = "set lmargin at screen 0.08\nset rmargin at screen 0.74\n";
 
-std::string perFramePlot(const std::vector<RunRecord>& runs, int column, bool key) {
+// Every configuration's column `y` (a gnuplot `using` expression) against the frame.
+std::string perFramePlot(const std::vector<RunRecord>& runs, const std::string& y, bool key) {
+    const std::vector<Style> styles = stylesOf(runs);
     std::ostringstream out;
-    out << (key ? "set key outside right top Left reverse noautotitle\n" : "unset key\n");
+    out << (key ? "set key outside right top Left reverse samplen 3\n" : "unset key\n");
     out << "plot ";
     for (size_t i = 0; i < runs.size(); ++i) {
-        out << (i ? ", \\\n     " : "") << "'plot-frames.dat' index " << i << " using 1:" << column
-            << " with lines " << lineStyle(i) << " title " << quoted(runs[i].summary.algorithm);
+        out << (i ? ", \\\n     " : "") << "'plot-frames.dat' index " << i << " using 1:" << y
+            << " with lines " << lineStyle(styles[i]) << " title " << quoted(runs[i].summary.algorithm);
     }
     out << "\n";
     return out.str();
@@ -120,32 +159,40 @@ Chart frameTimeChart(const std::vector<RunRecord>& runs) {
     std::ostringstream b;
     b << "set title 'Frame time per frame (culled render to glFinish)'\n"
       << "set xlabel 'frame'\nset ylabel 'frame time (ms)'\nset grid\nset yrange [0:*]\n"
-      << kMargins << warmupBand(runs) << perFramePlot(runs, 2, true);
+      << kMargins << warmupBand(runs) << perFramePlot(runs, "2", true);
     return {"plot-frame-time", 1100, 600, b.str()};
 }
 
-Chart timeErrorChart() {
+// One point per configuration, numbered on the chart and named in the key (long names would
+// overlap where configurations crowd, typically at zero error); the front joins its points.
+Chart timeErrorChart(const std::vector<RunRecord>& runs) {
+    const std::vector<Style> styles = stylesOf(runs);
     std::ostringstream b;
-    b << "set title 'Time against error (one point per configuration)'\n"
+    b << "set title 'Time against error (one point per configuration; lower left is better)'\n"
       << "set xlabel 'mean frame time (ms)'\nset ylabel 'mean error pixels per frame'\n"
-      << "set grid\nset key top right box opaque\n"
-      << "set xrange [0:*]\nset yrange [0:*]\n"
-      << "set offsets graph 0, graph 0.25, graph 0.08, 0\n"
-      << "plot 'plot-pareto.dat' using 2:3 with linespoints lw 2 pt 7 ps 1.6 lc rgb '#d62728' "
-         "title 'Pareto front', \\\n"
-      << "     'plot-configs.dat' using 2:3 with points pt 7 ps 1.1 lc rgb '#1f4e99' "
-         "title 'configuration', \\\n"
-      << "     '' using 2:3:1 with labels left offset char 0.8,0.5 font ',9' notitle\n";
-    return {"plot-time-vs-error", 1000, 700, b.str()};
+      << "set grid\nset key outside right top Left reverse samplen 1 spacing 1.1\n"
+      << kMargins << "set xrange [0:*]\nset yrange [0:*]\n"
+      << "set offsets graph 0, graph 0.08, graph 0.08, graph 0.02\n"
+      << "plot 'plot-pareto.dat' using 2:3 with lines lw 2 lc rgb '#d62728' title 'Pareto front', \\\n"
+      << "     'plot-pareto.dat' using 2:3 with points pt 6 ps 2.6 lw 1.5 lc rgb '#d62728' notitle";
+    for (size_t i = 0; i < runs.size(); ++i) {
+        b << ", \\\n     'plot-configs.dat' every ::" << i << "::" << i << " using 2:3 with points pt "
+          << styles[i].point << " ps 1.4 lc rgb '" << styles[i].colour << "' title "
+          << quoted(std::to_string(i + 1) + "  " + runs[i].summary.algorithm);
+    }
+    b << ", \\\n     'plot-configs.dat' using 2:3:(sprintf('%d', $0 + 1)) with labels left "
+         "offset char 0.7,0.7 font ',10' notitle\n";
+    return {"plot-time-vs-error", 1100, 650, b.str()};
 }
 
 Chart queriesTrianglesChart(const std::vector<RunRecord>& runs) {
     std::ostringstream b;
     b << "set multiplot layout 2,1 title 'Queries and triangles per frame'\n"
       << kMargins << "set grid\nset xlabel 'frame'\n" << warmupBand(runs)
-      << "set ylabel 'occlusion queries per frame'\nset yrange [0:*]\n" << perFramePlot(runs, 3, true)
-      << "set ylabel 'triangles drawn per frame'\nset format y '%.1s%c'\n"
-      << perFramePlot(runs, 4, false) << "unset multiplot\n";
+      << "set ylabel 'occlusion queries per frame'\nset yrange [0:*]\n"
+      << perFramePlot(runs, "3", true)
+      << "set ylabel 'triangles drawn per frame (thousands)'\n"
+      << perFramePlot(runs, "($4 / 1000.0)", false) << "unset multiplot\n";
     return {"plot-queries-triangles", 1100, 850, b.str()};
 }
 
@@ -283,7 +330,7 @@ PlotResult writePlots(const std::vector<RunRecord>& runs, const fs::path& out_di
     for (const RunRecord& r : runs) error_measured |= r.summary.error_measured;
 
     std::vector<Chart> charts = {frameTimeChart(runs)};
-    if (error_measured) charts.push_back(timeErrorChart());
+    if (error_measured) charts.push_back(timeErrorChart(runs));
     charts.push_back(queriesTrianglesChart(runs));
 
     fs::create_directories(out_dir);
