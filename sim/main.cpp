@@ -57,6 +57,8 @@ struct CommonFlags {
     uint32_t frames = 0;
     std::vector<uint32_t> capture;
     int deterministic_latency = -1;
+    bool plots = false;
+    int64_t birds_eye = -1;
 };
 
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
@@ -74,6 +76,11 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--deterministic-latency", flags.deterministic_latency,
                     "A query result counts as ready only after N later draw calls (reproducible counts)")
         ->check(CLI::Range(0, 1000000));
+    cmd->add_flag("--plots", flags.plots,
+                  "Chart frame time, time against error, queries and triangles with gnuplot (PNG and SVG)");
+    cmd->add_option("--birds-eye", flags.birds_eye,
+                    "Picture this frame's culling decisions from above, per configuration (PNG)")
+        ->check(CLI::Range(int64_t{0}, int64_t{9999999}));
 }
 
 occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenario& scenario,
@@ -94,6 +101,15 @@ occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenar
         o.latency.deterministic = true;
         o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
     }
+    o.plots = flags.plots;
+    if (flags.birds_eye >= 0) {
+        const uint32_t frames = flags.frames > 0 ? flags.frames : scenario.frames;
+        if (flags.birds_eye >= frames) {
+            throw BadInput("--birds-eye: frame " + std::to_string(flags.birds_eye) +
+                           " is past the last frame (" + std::to_string(frames) + " frames, from 0)");
+        }
+        o.birds_eye_frame = static_cast<uint32_t>(flags.birds_eye);
+    }
     o.out_dir = flags.out.empty() ? std::filesystem::path("out") / scenario.name / default_subdir
                                   : std::filesystem::path(flags.out);
     o.command_line = command;
@@ -111,7 +127,15 @@ int runCommand(const CommonFlags& flags, const std::vector<std::string>& algorit
     std::printf("%s: %u frames (%u timed after %u warm-up), %s\n", scenario.name.c_str(), first.frames,
                 first.timed_frames, first.frames - first.timed_frames, result.renderer.c_str());
     std::printf("%s", result.table.c_str());
-    std::printf("written: %s/{frames.csv,summary.json}\n", options.out_dir.string().c_str());
+    std::printf("written: %s/{frames.csv,summary.json,report.md}\n", options.out_dir.string().c_str());
+    size_t pictures = 0, plots = 0;
+    for (const std::string& f : result.outputs) {
+        pictures += f.rfind("birds-eye-", 0) == 0;
+        plots += f.rfind("plot-", 0) == 0;
+    }
+    if (pictures > 0) std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n", pictures);
+    if (plots > 0) std::printf("plots: %zu files (plot-*.png, plot-*.svg)\n", plots);
+    if (!result.plots_message.empty()) std::printf("%s\n", result.plots_message.c_str());
     return 0;
 }
 

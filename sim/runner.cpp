@@ -5,6 +5,10 @@
 #include "render/gl_context.h"
 #include "render/png_writer.h"
 #include "sim/atomic_file.h"
+#include "sim/birds_eye.h"
+#include "sim/camera_path.h"
+#include "sim/markdown_report.h"
+#include "sim/plots.h"
 #include "sim/simulation.h"
 
 #include <algorithm>
@@ -48,6 +52,59 @@ void printWarnings(const Scene& scene) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 }
 
+// The bird's-eye picture of the frame `sim` just rendered with tracing on; returns its file name.
+std::string writeBirdsEye(const Simulation& sim, const Scenario& scenario, const RunConfig& config,
+                          const std::filesystem::path& dir) {
+    const FrameTrace& trace = *sim.lastTrace();
+    const std::vector<NodeClass> classes = classifyNodes(sim.tree(), sim.view().cull, trace);
+    const CameraPose pose = sampleCameraPath(scenario.camera, trace.frame * scenario.dt_s);
+    BirdsEyeInput in;
+    in.tree = &sim.tree();
+    in.object_boxes = sim.state().boxes;
+    in.drawn_objects = trace.drawn_objects;
+    in.node_classes = classes;
+    in.view = sim.view().cull;
+    in.forward = glm::vec3(glm::normalize(pose.target - pose.position));
+    in.fov_y_rad = static_cast<float>(glm::radians(scenario.camera.fov_y_deg));
+    in.aspect = static_cast<float>(scenario.width) / static_cast<float>(scenario.height);
+    in.near_m = static_cast<float>(scenario.camera.near_m);
+    in.far_m = static_cast<float>(scenario.camera.far_m);
+    in.title = "frame " + std::to_string(trace.frame) + "  " + config.label;
+    const PictureSize size = birdsEyeSize(in, 1000);
+    char name[200];
+    std::snprintf(name, sizeof name, "birds-eye-%s-frame-%05u.png", fileSafe(config.label).c_str(),
+                  static_cast<unsigned>(trace.frame));
+    writeFileAtomically(dir / name, encodePngBottomUp(renderBirdsEye(in, size.width, size.height),
+                                                      size.width, size.height));
+    return name;
+}
+
+ReportContext reportContext(const Scenario& scenario, const BenchOptions& options,
+                            const BenchResult& result, uint32_t repetitions) {
+    ReportContext c;
+    // "occsim run ..." or "occsim bench ...": the command is the word after the executable.
+    std::istringstream words(options.command_line);
+    std::string executable, command;
+    words >> executable >> command;
+    if (command == "run" || command == "bench") c.command_name = command;
+    c.scenario_name = scenario.name;
+    c.scenario_file = scenario.file.string();
+    c.frames = scenario.frames;
+    c.warmup_frames = std::min(scenario.warmup_frames, scenario.frames);
+    c.repetitions = repetitions;
+    c.error_measured = options.measure_error;
+    if (options.latency.deterministic) c.deterministic_latency = options.latency.latency_commands;
+    c.hardware_threads = std::thread::hardware_concurrency();
+    const char* lp_threads = std::getenv("LP_NUM_THREADS");
+    if (lp_threads) c.lp_num_threads = lp_threads;
+    c.renderer = result.renderer;
+    c.width = scenario.width;
+    c.height = scenario.height;
+    c.command_line = options.command_line;
+    c.sweep = options.sweep;
+    return c;
+}
+
 }  // namespace
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
@@ -84,6 +141,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             sim_options.keep_worst_error_frame =
                 options.keep_worst_error_frame && options.measure_error && rep == 0;
             sim_options.approximation = config.approximation;
+            if (rep == 0) sim_options.trace_frame = options.birds_eye_frame;
             auto culler = options.make_culler ? options.make_culler(config.algorithm, config.culler)
                                               : makeCuller(config.algorithm, config.culler);
             if (!culler) throw std::invalid_argument("unknown algorithm '" + config.algorithm + "'");
@@ -104,6 +162,10 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                 any_needs_truth ? &sims.front()->renderGroundTruth(truth_colour) : nullptr;
             for (size_t c = 0; c < sims.size(); ++c) {
                 frames[c].push_back(sims[c]->renderFrame(truth));
+                // Pictures are drawn between frames, outside every timing.
+                if (rep == 0 && options.birds_eye_frame == f) {
+                    result.outputs.push_back(writeBirdsEye(*sims[c], scenario, configs[c], options.out_dir));
+                }
                 const bool capture = rep == 0 && std::find(options.capture_frames.begin(),
                                                            options.capture_frames.end(),
                                                            f) != options.capture_frames.end();
@@ -173,6 +235,18 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     if (options.sweep) summary["sweep"] = {{"parameter", options.sweep->parameter}, {"values", options.sweep->values}};
     writeFileAtomically(options.out_dir / "frames.csv", framesCsv(result.runs));
     writeFileAtomically(options.out_dir / "summary.json", summary.dump(2) + "\n");
+
+    ReportContext report = reportContext(scenario, options, result, repetitions);
+    for (const std::string& f : result.outputs) report.birds_eye_files.push_back(f);
+    if (options.plots) {
+        const PlotResult plots = writePlots(result.runs, options.out_dir);
+        report.plot_files = plots.files;
+        report.plots_note = plots.message;
+        result.plots_message = plots.message;
+        result.outputs.insert(result.outputs.end(), plots.files.begin(), plots.files.end());
+    }
+    writeFileAtomically(options.out_dir / "report.md", markdownReport(result, report));
+    result.outputs.push_back("report.md");
     return result;
 }
 

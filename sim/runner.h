@@ -30,6 +30,10 @@ struct BenchOptions {
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
     uint32_t repetitions = 1;             // each configuration runs this often; medians reported
     std::optional<Sweep> sweep;           // one configuration per value (bench_config.h)
+    bool plots = false;                   // gnuplot charts (sim/plots.h), when gnuplot is there
+    // Render a bird's-eye picture of this frame's culling decisions for every configuration
+    // (first repetition): birds-eye-<config>-frame-NNNNN.png.
+    std::optional<uint32_t> birds_eye_frame;
     // Makes the culler for a name; default makeCuller(). Tests inject deliberately broken ones.
     std::function<std::unique_ptr<Culler>(const std::string&, const CullerOptions&)> make_culler;
 };
@@ -40,9 +44,13 @@ struct BenchResult {
     uint32_t width = 0, height = 0;
     std::string renderer;
     std::string table;
+    std::vector<std::string> outputs;  // files written besides frames.csv and summary.json
+    std::string plots_message;         // why plots were skipped or failed, or a remark
 };
 
-// Throws std::runtime_error on rendering or output failures.
+// Writes frames.csv, summary.json and report.md (sim/markdown_report.h) to options.out_dir, plus
+// the plots and bird's-eye pictures asked for. Throws std::runtime_error on rendering or output
+// failures (a failing gnuplot is reported in plots_message, not thrown).
 BenchResult runBenchmark(const Scenario& scenario, const BenchOptions& options);
 
 // What `occsim info` prints: objects, triangles, movers, BSP depth, nodes, objects per leaf,

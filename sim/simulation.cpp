@@ -61,6 +61,8 @@ Simulation::Simulation(const Scene& scene, const Scenario& scenario, std::unique
       device_(renderer, options.latency),
       ground_truth_device_(renderer, LatencyMode{}),
       approximate_device_(device_, options.approximation),
+      tracer_(options.approximation.active() ? static_cast<RenderDevice&>(approximate_device_)
+                                             : static_cast<RenderDevice&>(device_)),
       state_(initialState(scene)) {
     tree_.build(state_.boxes, scenario.bsp);
     culler_->reset(tree_);
@@ -145,7 +147,11 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     const auto cull_start = Clock::now();
     RenderDevice& device = options_.approximation.active() ? static_cast<RenderDevice&>(approximate_device_)
                                                            : static_cast<RenderDevice&>(device_);
-    culler_->cullAndRender(tree_, cull_frame_, device);
+    const bool trace = options_.trace_frame && *options_.trace_frame == frame_;
+    if (trace) tracer_.beginTrace(frame_);
+    culler_->cullAndRender(tree_, cull_frame_, trace ? tracer_ : device);
+    tracer_.endTrace();
+    traced_ |= trace;
     const double cull_ms = msSince(cull_start);
     renderer_.finish();
     stats.frame_ms = msSince(frame_start);

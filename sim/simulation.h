@@ -8,6 +8,7 @@
 #include "culling/approximate_device.h"
 #include "culling/bsp_tree.h"
 #include "culling/culler.h"
+#include "culling/tracing_device.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "sim/frame_stats.h"
@@ -15,6 +16,7 @@
 #include "sim/world.h"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace occsim {
@@ -28,6 +30,9 @@ struct SimulationOptions {
     bool keep_worst_error_frame = false;
     // Pixel threshold and stale results: approximate visibility for any culler.
     ApproximationOptions approximation;
+    // Record this frame's draws and queries (for the bird's-eye picture); see lastTrace(). The
+    // recording sits inside that frame's timing (a vector append per draw or query).
+    std::optional<uint32_t> trace_frame;
 };
 
 // The view of one frame: everything a culler and the renderer need from the camera.
@@ -80,6 +85,10 @@ public:
     // consecutive frames it stayed missing (runs still open at the end are included).
     std::vector<uint32_t> poppingRuns() const { return popping_.runs(); }
     uint32_t frame() const { return frame_; }
+    // The trace of options.trace_frame once that frame was rendered; null before. The tree, the
+    // world and view() stay as the culler saw them until the next advance().
+    const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
+    const FrameView& view() const { return view_; }
 
     const Culler& culler() const { return *culler_; }
     const BspTree& tree() const { return tree_; }
@@ -98,6 +107,8 @@ private:
     GlQueryDevice device_;
     GlQueryDevice ground_truth_device_;
     ApproximateDevice approximate_device_;  // wraps device_ when options_.approximation is active
+    TracingDevice tracer_;                  // wraps the culler's device on options_.trace_frame
+    bool traced_ = false;
     WorldState state_;
     BspTree tree_;
     uint32_t frame_ = 0;
