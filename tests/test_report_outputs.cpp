@@ -1,0 +1,452 @@
+// What a person looks at after a benchmark: the trace of one frame's culling decisions, the
+// bird's-eye picture drawn from it, report.md and the gnuplot charts. No OpenGL: the culler runs
+// on the scripted query device.
+#include "culling/basic_cullers.h"
+#include "culling/scripted_query_device.h"
+#include "culling/tracing_device.h"
+#include "culling_fixtures.h"
+#include "sim/birds_eye.h"
+#include "sim/markdown_report.h"
+#include "sim/plots.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/stat.h>
+
+namespace occsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- the scene of the classification tests -----------------------------------------------
+//
+// The eye at (0, 0.5, 0) looks down -z with a 90 degree square frustum. Object 0 touches the
+// near plane (so stop-and-wait draws it and its ancestors' objects without a query), 1 is a wall,
+// 2 and 3 hide behind it, 4 and 5 lie far to the right outside the frustum, 6 is visible beside
+// the wall. With one object per leaf and median splits the tree is (checked by the test):
+//   node 0 (root, objects 0 1)
+//     node 1 (object 6): node 3 (object 2), node 4 (empty)
+//     node 2 (object 4): node 5 (object 3), node 6 (object 5)
+const std::vector<Aabb> kBoxes = {
+    {{-0.2f, 0.3f, -0.15f}, {0.2f, 0.7f, -0.05f}},
+    {{-4, 0, -6}, {4, 1, -5}},
+    {{-1, 0, -20}, {0, 1, -19}},
+    {{0.5f, 0, -22}, {1.5f, 1, -21}},
+    {{60, 0, -10}, {61, 1, -9}},
+    {{70, 0, -10}, {71, 1, -9}},
+    {{-9, 0, -12}, {-8, 1, -11}},
+};
+const std::vector<uint8_t> kVisible = {1, 1, 0, 0, 0, 0, 1};
+
+BspTree sceneTree() {
+    BspTree tree;
+    BspBuildOptions options;
+    options.max_objects_per_leaf = 1;
+    options.split_rule = BspSplitRule::Median;
+    tree.build(kBoxes, options);
+    return tree;
+}
+
+CullView sceneView() {
+    return testing::makeView({0, 0.5f, 0}, {0, 0.5f, -1}, 90.0f, 0.1f, 100.0f, 1.0f);
+}
+
+std::vector<uint32_t> objectsOf(const BspTree& tree, uint32_t node) {
+    std::vector<uint32_t> out;
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) out.push_back(o);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Stop-and-wait on the scripted device, traced.
+FrameTrace traceStopAndWait(const BspTree& tree, const CullView& view) {
+    ScriptedQueryDevice device;
+    device.setVisibility(kVisible, kBoxes);
+    TracingDevice tracer(device);
+    StopAndWaitCuller culler;
+    culler.reset(tree);
+    tracer.beginTrace(7);
+    culler.cullAndRender(tree, testing::makeFrame(view, 7, 0.25), tracer);
+    tracer.endTrace();
+    return tracer.trace();
+}
+
+// ---- TracingDevice ------------------------------------------------------------------------
+
+TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
+    ScriptedQueryDevice inner;
+    inner.setVisibility(kVisible, kBoxes);
+    TracingDevice tracer(inner);
+
+    const QueryId before = tracer.issueQuery(kBoxes[1]);  // not traced: issued before the trace
+    tracer.drawObject(5);
+    tracer.beginTrace(3);
+    tracer.drawObject(1);
+    const Aabb pair[2] = {kBoxes[2], kBoxes[3]};
+    const QueryId hidden = tracer.issueQuery(std::span<const Aabb>(pair, 2));
+    const QueryId seen = tracer.issueQuery(kBoxes[6]);
+    const QueryId left_open = tracer.issueQuery(kBoxes[0]);
+    EXPECT_EQ(tracer.queryResult(before), 1u);  // the wall is visible
+    EXPECT_EQ(tracer.queryResult(hidden), 0u);
+    EXPECT_EQ(tracer.queryResult(seen), 1u);
+    EXPECT_TRUE(tracer.isQueryReady(left_open) || !tracer.isQueryReady(left_open));  // forwarded
+    tracer.endTrace();
+    tracer.drawObject(6);  // after the trace: not recorded
+    tracer.queryResult(left_open);
+
+    const FrameTrace& t = tracer.trace();
+    EXPECT_EQ(t.frame, 3u);
+    EXPECT_EQ(t.drawn_objects, std::vector<uint32_t>{1});
+    ASSERT_EQ(t.queries.size(), 3u);
+    EXPECT_EQ(t.queries[0].boxes.size(), 2u);
+    EXPECT_TRUE(t.queries[0].fetched);
+    EXPECT_EQ(t.queries[0].samples, 0u);
+    EXPECT_TRUE(t.queries[1].fetched);
+    EXPECT_EQ(t.queries[1].samples, 1u);
+    EXPECT_FALSE(t.queries[2].fetched);  // never fetched while tracing: pending
+    EXPECT_EQ(t.pendingQueries(), 1u);
+    EXPECT_EQ(t.earlier_results_fetched, 1u);
+
+    // Counters stay in the wrapped device; the tracer's own stay zero.
+    EXPECT_EQ(inner.counters().objects_drawn, 3u);
+    EXPECT_EQ(inner.counters().queries_issued, 4u);
+    EXPECT_EQ(tracer.counters().objects_drawn, 0u);
+    EXPECT_EQ(tracer.counters().queries_issued, 0u);
+}
+
+// ---- classifyNodes ------------------------------------------------------------------------
+
+TEST(ClassifyNodes, StopAndWaitOnAScriptedSceneGivesTheExpectedClassPerNode) {
+    const BspTree tree = sceneTree();
+    // The structure the expectations below rely on.
+    ASSERT_EQ(tree.nodeCount(), 7u);
+    EXPECT_EQ(objectsOf(tree, 0), (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(objectsOf(tree, 1), std::vector<uint32_t>{6});
+    EXPECT_EQ(objectsOf(tree, 2), std::vector<uint32_t>{4});
+    EXPECT_EQ(objectsOf(tree, 3), std::vector<uint32_t>{2});
+    EXPECT_TRUE(objectsOf(tree, 4).empty());
+    EXPECT_EQ(objectsOf(tree, 5), std::vector<uint32_t>{3});
+    EXPECT_EQ(objectsOf(tree, 6), std::vector<uint32_t>{5});
+    EXPECT_EQ(tree.node(5).parent, 2u);
+    EXPECT_EQ(tree.node(6).parent, 2u);
+
+    const CullView view = sceneView();
+    const FrameTrace trace = traceStopAndWait(tree, view);
+    const std::vector<NodeClass> got = classifyNodes(tree, view, trace);
+    const std::vector<NodeClass> want = {
+        NodeClass::DrawnWithoutQuery,  // 0: the near plane cuts its box: drawn, never queried
+        NodeClass::DrawnAfterQuery,    // 1: queried, visible, object 6 drawn
+        NodeClass::OcclusionCulled,    // 2: behind the wall (its bounds reach into the frustum)
+        NodeClass::OcclusionCulled,    // 3: object 2 behind the wall
+        NodeClass::Empty,              // 4
+        NodeClass::NotReached,         // 5: in the frustum, below the occluded node 2
+        NodeClass::FrustumCulled,      // 6: object 5, far right
+    };
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t n = 0; n < want.size(); ++n) {
+        EXPECT_EQ(got[n], want[n]) << "node " << n << ": got " << nodeClassName(got[n]) << ", want "
+                                   << nodeClassName(want[n]);
+    }
+}
+
+TEST(ClassifyNodes, MultiqueryBoxesMatchTheirNodesAndUnqueriedVisitedNodesPassThrough) {
+    const BspTree tree = sceneTree();
+    const CullView view = sceneView();
+    FrameTrace trace;
+    // One multiquery over nodes 1 and 5 that came back 0; a pending query on node 3; nothing drawn.
+    trace.queries.push_back({{tree.bounds(1), tree.bounds(5)}, true, 0});
+    trace.queries.push_back({{tree.bounds(3)}, false, 0});
+    const std::vector<NodeClass> got = classifyNodes(tree, view, trace);
+    EXPECT_EQ(got[0], NodeClass::Passed);           // visited, nothing of its own drawn
+    EXPECT_EQ(got[1], NodeClass::OcclusionCulled);  // first box of the multiquery
+    EXPECT_EQ(got[5], NodeClass::OcclusionCulled);  // second box
+    EXPECT_EQ(got[3], NodeClass::NotReached);       // below node 1; its query never answered
+    EXPECT_EQ(got[2], NodeClass::Passed);
+    EXPECT_EQ(got[6], NodeClass::FrustumCulled);
+
+    // A query box equal to no node's bounds (a per-object query) changes nothing.
+    FrameTrace other;
+    Aabb shifted = tree.bounds(1);
+    shifted.max.x += 0.001f;
+    other.queries.push_back({{shifted}, true, 0});
+    EXPECT_EQ(classifyNodes(tree, view, other)[1], NodeClass::Passed);
+}
+
+// ---- renderBirdsEye -----------------------------------------------------------------------
+
+struct Picture {
+    std::vector<uint8_t> rgba;
+    uint32_t width, height;
+
+    size_t count(Rgb c) const {
+        size_t n = 0;
+        for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+            n += rgba[i] == c.r && rgba[i + 1] == c.g && rgba[i + 2] == c.b;
+        }
+        return n;
+    }
+};
+
+Picture renderScene(bool legend, std::vector<NodeClass>* classes_out = nullptr) {
+    static const BspTree tree = sceneTree();
+    const CullView view = sceneView();
+    static FrameTrace trace;
+    trace = traceStopAndWait(tree, view);
+    static std::vector<NodeClass> classes;
+    classes = classifyNodes(tree, view, trace);
+    if (classes_out) *classes_out = classes;
+    BirdsEyeInput in;
+    in.tree = &tree;
+    in.object_boxes = kBoxes;
+    in.drawn_objects = trace.drawn_objects;
+    in.node_classes = classes;
+    in.view = view;
+    in.forward = {0, 0, -1};
+    in.fov_y_rad = glm::radians(90.0f);
+    in.aspect = 1.0f;
+    in.near_m = 0.1f;
+    in.far_m = 100.0f;
+    in.title = "frame 7 stop-and-wait";
+    in.draw_legend = legend;
+    const uint32_t w = 640, h = 400;
+    return {renderBirdsEye(in, w, h), w, h};
+}
+
+TEST(BirdsEye, ReturnsRgbaOfThePictureSizeWithTheCameraAndEveryClassPresent) {
+    std::vector<NodeClass> classes;
+    const Picture p = renderScene(false, &classes);
+    ASSERT_EQ(p.rgba.size(), size_t{p.width} * p.height * 4);
+    for (size_t i = 3; i < p.rgba.size(); i += 4) ASSERT_EQ(p.rgba[i], 255) << "opaque";
+    EXPECT_GE(p.count(kCameraColour), 20u) << "the camera dot";
+    EXPECT_GT(p.count(kDrawnObjectColour), 0u);
+    EXPECT_GT(p.count(kHiddenObjectColour), 0u);
+    // Without the legend, a class colour can only come from a node outline.
+    for (NodeClass c : classes) {
+        if (c == NodeClass::Empty) continue;
+        EXPECT_GT(p.count(nodeClassColour(c)), 0u) << nodeClassName(c);
+    }
+    EXPECT_EQ(p.count(nodeClassColour(NodeClass::Passed)), 0u) << "no node passed through";
+}
+
+TEST(BirdsEye, IsDeterministicAndTheLegendAddsItsSwatches) {
+    const Picture a = renderScene(true), b = renderScene(true);
+    EXPECT_EQ(a.rgba, b.rgba);
+    // The legend shows every class, present or not.
+    EXPECT_GT(a.count(nodeClassColour(NodeClass::Passed)), 0u);
+}
+
+TEST(BirdsEye, TheCameraDotSitsAtTheEyeInATopViewWithMinusZUp) {
+    const Picture p = renderScene(false);
+    // Find the camera dot's centre (mean of its pixels), rows counted from the top.
+    double sx = 0, sy = 0, n = 0;
+    for (uint32_t y = 0; y < p.height; ++y) {
+        for (uint32_t x = 0; x < p.width; ++x) {
+            const uint8_t* px = &p.rgba[(size_t{p.height - 1 - y} * p.width + x) * 4];
+            if (px[0] == kCameraColour.r && px[1] == kCameraColour.g && px[2] == kCameraColour.b) {
+                sx += x;
+                sy += y;
+                ++n;
+            }
+        }
+    }
+    ASSERT_GT(n, 0);
+    // The eye (z = 0) is the largest z of the scene: the bottom of the fitted region. The scene
+    // runs from x = -9 to 71, so the eye at x = 0 is in the left part.
+    EXPECT_GT(sy / n, 0.6 * p.height);
+    EXPECT_LT(sx / n, 0.4 * p.width);
+}
+
+// ---- markdownReport -----------------------------------------------------------------------
+
+RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,
+                 double error_mean, bool pareto) {
+    RunRecord r;
+    r.algorithm = algorithm;
+    r.pareto = pareto;
+    RunSummary& s = r.summary;
+    s.algorithm = label;
+    s.frames = 30;
+    s.timed_frames = 25;
+    s.frame_ms = {mean_ms, mean_ms, mean_ms * 1.2, mean_ms * 0.8, mean_ms * 1.5};
+    s.frame_ms_mean_min = s.frame_ms_mean_max = mean_ms;
+    s.queries_mean = algorithm == "vfc" || algorithm == "ideal" ? 0 : 42;
+    s.triangles_mean = 1000 * mean_ms;
+    s.objects_mean = 10 * mean_ms;
+    s.error_measured = true;
+    s.error_pixels_mean = error_mean;
+    s.error_pixels_total = static_cast<int64_t>(error_mean * 30);
+    for (uint32_t f = 0; f < 30; ++f) {
+        FrameStats fs;
+        fs.frame = f;
+        fs.frame_ms = mean_ms + (f % 5);
+        fs.queries = static_cast<uint64_t>(s.queries_mean) + f;
+        fs.triangles = static_cast<uint64_t>(s.triangles_mean) + 100 * f;
+        r.frames.push_back(fs);
+    }
+    return r;
+}
+
+std::vector<RunRecord> sampleRuns() {
+    return {record("vfc", "vfc", 20.0, 0.0, false),
+            record("statistical threshold=4", "statistical", 12.0, 3.5, true),
+            record("chc", "chc", 14.0, 0.0, true), record("ideal", "ideal", 6.0, 0.0, false)};
+}
+
+TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
+    BenchResult result;
+    result.runs = sampleRuns();
+    result.renderer = "llvmpipe (test)";
+    ReportContext c;
+    c.scenario_name = "teapots-small";
+    c.scenario_file = "scenarios/small/teapots-small.json";
+    c.frames = 30;
+    c.warmup_frames = 5;
+    c.error_measured = true;
+    c.hardware_threads = 2;
+    c.renderer = result.renderer;
+    c.width = 200;
+    c.height = 150;
+    c.command_line = "occsim bench scenarios/small/teapots-small.json --error --plots";
+    c.sweep = Sweep{"threshold", {0, 4}};
+    c.plot_files = {"plot-frame-time.png", "plot-frame-time.svg", "plot-time-vs-error.png"};
+    c.birds_eye_files = {"birds-eye-chc-frame-00020.png"};
+    const std::string md = markdownReport(result, c);
+
+    EXPECT_NE(md.find("# occsim bench: teapots-small"), std::string::npos);
+    EXPECT_NE(md.find(c.command_line), std::string::npos);
+    EXPECT_NE(md.find("2 hardware threads"), std::string::npos);
+    EXPECT_NE(md.find("llvmpipe (test)"), std::string::npos);
+    EXPECT_NE(md.find("threshold = 0, 4"), std::string::npos);
+    EXPECT_NE(md.find("first 5 frames are warm-up"), std::string::npos);
+    EXPECT_NE(md.find("Ground-truth rendering, PNG writing and statistics I/O"), std::string::npos);
+    // The table: same columns as the text table, one row per configuration, Pareto marked.
+    const ComparisonTable t = comparisonTable(result.runs);
+    std::string header = "|";
+    for (const auto& h : t.header) header += " " + h + " |";
+    EXPECT_NE(md.find(header), std::string::npos) << md;
+    EXPECT_NE(md.find("| vfc | 20.00 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| **statistical threshold=4** | 12.00 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| **chc** | 14.00 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| ideal | 6.00 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("1.67x"), std::string::npos) << "speedup of statistical over VFC";
+    // Pictures: the PNGs as images, the SVG linked; only the files named.
+    EXPECT_NE(md.find("![Frame time per frame](plot-frame-time.png)"), std::string::npos);
+    EXPECT_NE(md.find("(plot-frame-time.svg)"), std::string::npos);
+    EXPECT_NE(md.find("![Time against error](plot-time-vs-error.png)"), std::string::npos);
+    EXPECT_EQ(md.find("plot-queries-triangles"), std::string::npos);
+    EXPECT_NE(md.find("](birds-eye-chc-frame-00020.png)"), std::string::npos);
+    EXPECT_NE(md.find("## How to read this"), std::string::npos);
+    EXPECT_NE(md.find("popping"), std::string::npos);
+}
+
+// ---- writePlots ---------------------------------------------------------------------------
+
+fs::path freshDir(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("occsim-report-outputs-" + name);
+    fs::remove_all(p);
+    return p;
+}
+
+// Sets PATH for the scope of a test and puts the old value back.
+class ScopedPath {
+public:
+    explicit ScopedPath(const std::string& value) {
+        if (const char* old = std::getenv("PATH")) old_ = old;
+        ::setenv("PATH", value.c_str(), 1);
+    }
+    ~ScopedPath() {
+        if (old_) ::setenv("PATH", old_->c_str(), 1);
+        else ::unsetenv("PATH");
+    }
+    ScopedPath(const ScopedPath&) = delete;
+    ScopedPath& operator=(const ScopedPath&) = delete;
+
+private:
+    std::optional<std::string> old_;
+};
+
+void writeExecutable(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+    ::chmod(path.c_str(), 0755);
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+    std::vector<std::string> out;
+    if (!fs::exists(dir)) return out;
+    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(Plots, WithoutGnuplotOnPathSaysSoAndWritesNothing) {
+    const fs::path empty_bin = freshDir("empty-bin");
+    fs::create_directories(empty_bin);
+    const fs::path out = freshDir("no-gnuplot");
+    PlotResult r;
+    {
+        ScopedPath path(empty_bin.string());
+        r = writePlots(sampleRuns(), out);
+    }
+    EXPECT_FALSE(r.ok);
+    EXPECT_EQ(r.message, "plots skipped: gnuplot not found; install the Debian package gnuplot-nox");
+    EXPECT_TRUE(r.files.empty());
+    EXPECT_FALSE(fs::exists(out)) << "nothing written, not even the folder";
+}
+
+TEST(Plots, AFailingGnuplotLeavesNoPictureNotEvenAHalfWrittenOne) {
+    const fs::path bin = freshDir("failing-bin");
+    fs::create_directories(bin);
+    // Writes a partial file under every temporary name the script asks for, then fails.
+    writeExecutable(bin / "gnuplot",
+                    "#!/bin/sh\n"
+                    "for f in $(grep -o '\\.plot-[a-z-]*\\.[a-z]*\\.tmp-[0-9]*' \"$1\"); do\n"
+                    "  printf partial > \"$f\"\n"
+                    "done\n"
+                    "echo '\"plots.gp\" line 9: something broke' >&2\n"
+                    "exit 1\n");
+    const fs::path out = freshDir("failing");
+    PlotResult r;
+    {
+        ScopedPath path(bin.string() + ":/usr/bin:/bin");
+        r = writePlots(sampleRuns(), out);
+    }
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.message.find("plots failed"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("something broke"), std::string::npos) << r.message;
+    EXPECT_TRUE(r.files.empty());
+    for (const std::string& f : filesIn(out)) {
+        EXPECT_TRUE(f.ends_with(".dat") || f == "plots.gp") << "left behind: " << f;
+    }
+}
+
+TEST(Plots, WithGnuplotWritesNonEmptyPngAndSvgOfEveryChart) {
+    if (!findOnPath("gnuplot")) GTEST_SKIP() << "gnuplot not installed (Debian package gnuplot-nox)";
+    const fs::path out = freshDir("real");
+    const PlotResult r = writePlots(sampleRuns(), out);
+    ASSERT_TRUE(r.ok) << r.message;
+    const std::vector<std::string> want = {
+        "plot-frame-time.png",        "plot-frame-time.svg",        "plot-time-vs-error.png",
+        "plot-time-vs-error.svg",     "plot-queries-triangles.png", "plot-queries-triangles.svg"};
+    EXPECT_EQ(r.files, want);
+    for (const std::string& f : want) {
+        ASSERT_TRUE(fs::exists(out / f)) << f;
+        EXPECT_GT(fs::file_size(out / f), 1000u) << f;
+        std::ifstream in(out / f, std::ios::binary);
+        std::string head(8, '\0');
+        in.read(head.data(), 8);
+        if (f.ends_with(".png")) EXPECT_EQ(head.substr(1, 3), "PNG") << f;
+        else EXPECT_TRUE(head.starts_with("<?xml") || head.starts_with("<svg")) << f;
+    }
+    for (const std::string& f : filesIn(out)) EXPECT_EQ(f.find(".tmp-"), std::string::npos) << f;
+}
+
+}  // namespace
+}  // namespace occsim
