@@ -11,6 +11,7 @@ packages=(
   libceres-dev                                  # the tuner
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and micro-benchmarks
   xvfb xauth                                    # window test under a virtual X server
+  gnuplot-nox                                   # charts (occsim bench --plots)
 )
 
 missing=()
