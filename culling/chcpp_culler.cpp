@@ -236,12 +236,16 @@ void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, Render
     order_.clear();
     for (uint32_t i = 0; i < i_queue_.size(); ++i) order_.push_back(i);
     // Nodes whose multiquery failed come first, alone; the rest by how long they have been
-    // invisible, longest first, so that groups gather nodes with similar histories.
-    std::stable_sort(order_.begin(), order_.end(), [this](uint32_t a, uint32_t b) {
+    // invisible, longest first, so that groups gather nodes with similar histories; ties keep
+    // the traversal order (std::sort with a total order: stable_sort would allocate).
+    std::sort(order_.begin(), order_.end(), [this](uint32_t a, uint32_t b) {
         const QueuedNode& na = i_queue_[a];
         const QueuedNode& nb = i_queue_[b];
         if (na.single != nb.single) return na.single;
-        return state_[na.node].invisible_frames > state_[nb.node].invisible_frames;
+        const uint32_t ia = state_[na.node].invisible_frames;
+        const uint32_t ib = state_[nb.node].invisible_frames;
+        if (ia != ib) return ia > ib;
+        return a < b;
     });
 
     size_t i = 0;
