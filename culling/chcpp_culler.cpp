@@ -79,8 +79,9 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
 
     for (;;) {
         // Finished queries first. When there is nothing to traverse and the oldest result is not
-        // there yet, do useful work before waiting: the pending batch, then a v-queue query,
-        // then the render queue; block only when none of them is left.
+        // there yet, do useful work before waiting: the pending batch (which renders the render
+        // queue first), else the render queue, else one v-queue query; block only when none of
+        // them is left.
         while (query_head_ < query_queue_.size()) {
             const PendingQuery& front = query_queue_[query_head_];
             if (!device.isQueryReady(front.id)) {
@@ -89,13 +90,13 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                     issueBatch(tree, frame, device);
                     continue;
                 }
+                if (!render_queue_.empty()) {
+                    flushRenderQueue(tree, frame, device);
+                    continue;
+                }
                 if (v_head_ < v_queue_.size()) {
                     ++stats_.fill_queries;
                     issueVisibleQuery(tree, frame, device);
-                    continue;
-                }
-                if (!render_queue_.empty()) {
-                    flushRenderQueue(tree, frame, device);
                     continue;
                 }
             }
