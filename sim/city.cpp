@@ -8,15 +8,21 @@
 // in z). The street surface is y = 0, the city spans x in [-street_width / 2,
 // blocks_x * pitch + street_width / 2].
 //
-// Objects, in this order: one street slab per street line along x (spanning the city), one per
-// street segment along z between two crossings (5 mm lower, so that no two street slabs share a
-// coplanar edge whose pixels the draw order would decide), one raised pavement per block, and the
-// buildings of each block. Every building is its own object, so the BSP tree and the cullers can
-// cull them one by one; buildings share meshes by archetype (storeys and window columns per side),
-// stretched to their exact size through `linear`.
+// Objects, in this order: a bedrock slab under everything (what the cracks between slabs show),
+// one street slab per street line along x (spanning the city), one per street segment along z
+// between two crossings, one raised pavement per block, and the buildings of each block. Every
+// building is its own object, so the BSP tree and the cullers can cull them one by one; buildings
+// share meshes by archetype (storeys and window columns per side), stretched to their exact size
+// through `linear`.
 //
-// Lanes: ring roads for cars, on the street surface (a mover's base rests on the lane point), a
-// quarter street width from the centre line on the block's side, driven clockwise seen from above
+// No two objects touch: neighbouring slabs leave 1 cm cracks and buildings float 1 cm above their
+// pavement. Where two objects touch or cut into each other, their depths are equal along the
+// contact line, and a pixel there whose depths tie exactly shows whichever object was drawn
+// first; the cullers draw in another order than the ground truth, so such a pixel would count as
+// an error that no culling decision caused.
+//
+// Lanes: ring roads for cars, 2 cm above the street surface (a mover's base rests on the lane
+// point, and floats clear of the street for the same reason), a quarter street width from the centre line on the block's side, driven clockwise seen from above
 // (right-hand traffic keeps the block on its right). One ring runs around each row of blocks (along z = const
 // streets) and one around each column of blocks (along x = const streets); rows close their ends
 // on the outer side of the boundary streets and columns on the outer side of the boundary streets
@@ -40,8 +46,9 @@ constexpr double kStoreyM = 3.5;        // floor-to-floor height of a building
 constexpr double kBayM = 3.2;           // window spacing along a facade
 constexpr double kPavementTopM = 0.15;  // kerb height of the block pavements
 constexpr double kSlabDepthM = 0.3;     // street and pavement slabs reach down to -0.3
-constexpr double kCrossStreetDropM = 0.005;
-constexpr double kBuildingSinkM = 0.05;  // buildings reach into the pavement: no coplanar floor
+constexpr double kBedrockTopM = -0.4;
+constexpr double kCrackM = 0.01;        // between neighbouring objects, which never touch
+constexpr double kLaneHeightM = 0.02;
 constexpr double kMinBuildingSideM = 4.0;
 constexpr double kEmptyLotChance = 0.06;  // a few lots stay empty (squares, car parks)
 constexpr double kTowerChance = 0.08;
@@ -87,7 +94,7 @@ MeshData buildingMesh(const Archetype& a) {
         }
     }
     // Cornice: a slab overhanging the facades just below the roof line.
-    appendBox(m, {-w - 0.3f, h - 0.5f, -d - 0.3f}, {w + 0.3f, h - 0.1f, d + 0.3f});
+    appendBox(m, {-w - 0.2f, h - 0.5f, -d - 0.2f}, {w + 0.2f, h - 0.1f, d + 0.2f});
     // Parapet: four walls along the roof edge (their corners overlap inside the same mesh).
     const float t = 0.3f, p = 1.0f;
     appendBox(m, {-w, h, -d}, {w, h + p, -d + t});
@@ -167,6 +174,8 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
     out.meshes.push_back(makeBox(glm::vec3(1.0f)));
     const uint32_t unit_box = 0;
 
+    out.objects.push_back(placeUnitBox(unit_box, {-half, kBedrockTopM - 1.0, -half},
+                                       {width + half, kBedrockTopM, depth + half}));
     // Streets along x: full length, crossings included.
     for (uint32_t j = 0; j <= spec.blocks_z; ++j) {
         const double z = j * pitch;
@@ -177,8 +186,8 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
     for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
         const double x = i * pitch;
         for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-            out.objects.push_back(placeUnitBox(unit_box, {x - half, -kSlabDepthM, j * pitch + half},
-                                               {x + half, -kCrossStreetDropM, (j + 1) * pitch - half}));
+            out.objects.push_back(placeUnitBox(unit_box, {x - half, -kSlabDepthM, j * pitch + half + kCrackM},
+                                               {x + half, 0.0, (j + 1) * pitch - half - kCrackM}));
         }
     }
 
@@ -188,8 +197,8 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
         for (uint32_t i = 0; i < spec.blocks_x; ++i) {
             const Rect block{i * pitch + half, j * pitch + half, (i + 1) * pitch - half,
                              (j + 1) * pitch - half};
-            out.objects.push_back(placeUnitBox(unit_box, {block.x0, -kSlabDepthM, block.z0},
-                                               {block.x1, kPavementTopM, block.z1}));
+            out.objects.push_back(placeUnitBox(unit_box, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
+                                               {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
             std::vector<Rect> lots;
             splitLots(block, spec.buildings_per_block, rng, lots);
             for (const Rect& lot : lots) {
@@ -200,11 +209,13 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
                 const double setback[4] = {rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5),
                                            rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5)};
                 if (empty < kEmptyLotChance) continue;
-                // Setbacks shrink so a building keeps at least 60 % of its lot.
+                // Setbacks shrink so a building keeps about 60 % of its lot, but stay wider than
+                // the cornice and windows reach out, so that neighbours never touch.
                 const double kx = std::min(1.0, 0.4 * lot.width() / (setback[0] + setback[1]));
                 const double kz = std::min(1.0, 0.4 * lot.depth() / (setback[2] + setback[3]));
-                const Rect f{lot.x0 + kx * setback[0], lot.z0 + kz * setback[2],
-                             lot.x1 - kx * setback[1], lot.z1 - kz * setback[3]};
+                const auto back = [](double k, double b) { return std::max(0.5, k * b); };
+                const Rect f{lot.x0 + back(kx, setback[0]), lot.z0 + back(kz, setback[2]),
+                             lot.x1 - back(kx, setback[1]), lot.z1 - back(kz, setback[3])};
                 if (f.width() < kMinBuildingSideM || f.depth() < kMinBuildingSideM) {
                     ++small_lots;
                     continue;
@@ -214,7 +225,7 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
                 const bool turned = f.depth() > f.width();
                 const double along = turned ? f.depth() : f.width();
                 const double across = turned ? f.width() : f.depth();
-                const double base = kPavementTopM - kBuildingSinkM;
+                const double base = kPavementTopM + kCrackM;
                 const Archetype a{archetypeCount(height - base, kStoreyM, 2),
                                   archetypeCount(along, kBayM, 1), archetypeCount(across, kBayM, 1)};
                 auto [it, added] =
@@ -240,12 +251,12 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
     }
 
     // Ring roads, a quarter street width inside the ring's own side of each street.
-    const double lane = s / 4;
+    const double lane = s / 4, y = kLaneHeightM;
     for (uint32_t j = 0; j < spec.blocks_z; ++j) {  // around each row of blocks
-        out.lanes.push_back(ring(-lane, j * pitch + lane, width + lane, (j + 1) * pitch - lane, 0.0));
+        out.lanes.push_back(ring(-lane, j * pitch + lane, width + lane, (j + 1) * pitch - lane, y));
     }
     for (uint32_t i = 0; i < spec.blocks_x; ++i) {  // around each column of blocks
-        out.lanes.push_back(ring(i * pitch + lane, -lane, (i + 1) * pitch - lane, depth + lane, 0.0));
+        out.lanes.push_back(ring(i * pitch + lane, -lane, (i + 1) * pitch - lane, depth + lane, y));
     }
 
     out.region = sourceBounds(out);
