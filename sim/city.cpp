@@ -22,11 +22,12 @@
 // an error that no culling decision caused.
 //
 // Lanes: ring roads for cars, 2 cm above the street surface (a mover's base rests on the lane
-// point, and floats clear of the street for the same reason), a quarter street width from the centre line on the block's side, driven clockwise seen from above
-// (right-hand traffic keeps the block on its right). One ring runs around each row of blocks (along z = const
-// streets) and one around each column of blocks (along x = const streets); rows close their ends
-// on the outer side of the boundary streets and columns on the outer side of the boundary streets
-// in z, so no two rings share a stretch of lane.
+// point, and floats clear of the street for the same reason), a quarter street width from the
+// centre line on the block's side, driven clockwise seen from above (right-hand traffic keeps the
+// block on its right). One ring runs round each row of blocks (along the streets z = const) and
+// one round each column of blocks (along the streets x = const); rows close their ends on the
+// outer side of the boundary streets in x, columns on the outer side of those in z, so no two
+// rings share a stretch of lane.
 #include "sim/generators.h"
 
 #include "sim/primitives.h"
@@ -47,7 +48,7 @@ constexpr double kBayM = 3.2;           // window spacing along a facade
 constexpr double kPavementTopM = 0.15;  // kerb height of the block pavements
 constexpr double kSlabDepthM = 0.3;     // street and pavement slabs reach down to -0.3
 constexpr double kBedrockTopM = -0.4;
-constexpr double kCrackM = 0.01;        // between neighbouring objects, which never touch
+constexpr double kCrackM = 0.01;  // between neighbouring objects, which never touch
 constexpr double kLaneHeightM = 0.02;
 constexpr double kMinBuildingSideM = 4.0;
 constexpr double kEmptyLotChance = 0.06;  // a few lots stay empty (squares, car parks)
@@ -103,8 +104,10 @@ MeshData buildingMesh(const Archetype& a) {
     appendBox(m, {w - t, h, -d}, {w, h + p, d});
     // Roof housing (stairs, lift machinery), off centre so that roofs do not all look alike.
     const float side = (a.storeys + a.columns_x) % 2 == 0 ? 1.0f : -1.0f;
-    appendBox(m, {side * w * 0.1f - w * 0.3f, h, -d * 0.5f}, {side * w * 0.1f + w * 0.3f, h + 3.0f, d * 0.1f});
-    if (a.storeys >= 12) appendBox(m, {-0.2f, h, d * 0.4f - 0.2f}, {0.2f, h + 10.0f, d * 0.4f + 0.2f});
+    appendBox(m, {side * w * 0.1f - w * 0.3f, h, -d * 0.5f},
+              {side * w * 0.1f + w * 0.3f, h + 3.0f, d * 0.1f});
+    if (a.storeys >= 12)
+        appendBox(m, {-0.2f, h, d * 0.4f - 0.2f}, {0.2f, h + 10.0f, d * 0.4f + 0.2f});
     return m;
 }
 
@@ -122,7 +125,8 @@ void splitLots(const Rect& r, uint32_t n, Rng& rng, std::vector<Rect>& lots) {
         return;
     }
     const uint32_t first = n / 2;
-    const double share = std::clamp(static_cast<double>(first) / n + rng.uniform(-0.1, 0.1), 0.25, 0.75);
+    const double share =
+        std::clamp(static_cast<double>(first) / n + rng.uniform(-0.1, 0.1), 0.25, 0.75);
     if (r.width() >= r.depth()) {
         const double x = r.x0 + share * r.width();
         splitLots({r.x0, r.z0, x, r.z1}, first, rng, lots);
@@ -149,7 +153,8 @@ uint32_t archetypeCount(double length, double unit, uint32_t lo) {
     const double n = std::max(static_cast<double>(lo), length / unit);
     if (n < 6.5) return static_cast<uint32_t>(std::lround(n));
     const double step = std::log(1.2);
-    return static_cast<uint32_t>(std::lround(6.0 * std::exp(std::round(std::log(n / 6.0) / step) * step)));
+    return static_cast<uint32_t>(
+        std::lround(6.0 * std::exp(std::round(std::log(n / 6.0) / step) * step)));
 }
 
 // A closed rectangle at height y, clockwise seen from above (y up, so +z points down the page).
@@ -179,14 +184,15 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
     // Streets along x: full length, crossings included.
     for (uint32_t j = 0; j <= spec.blocks_z; ++j) {
         const double z = j * pitch;
-        out.objects.push_back(placeUnitBox(unit_box, {-half, -kSlabDepthM, z - half},
-                                           {width + half, 0.0, z + half}));
+        out.objects.push_back(
+            placeUnitBox(unit_box, {-half, -kSlabDepthM, z - half}, {width + half, 0.0, z + half}));
     }
     // Streets along z: one segment between each pair of crossings.
     for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
         const double x = i * pitch;
         for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-            out.objects.push_back(placeUnitBox(unit_box, {x - half, -kSlabDepthM, j * pitch + half + kCrackM},
+            out.objects.push_back(placeUnitBox(unit_box,
+                                               {x - half, -kSlabDepthM, j * pitch + half + kCrackM},
                                                {x + half, 0.0, (j + 1) * pitch - half - kCrackM}));
         }
     }
@@ -197,8 +203,9 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
         for (uint32_t i = 0; i < spec.blocks_x; ++i) {
             const Rect block{i * pitch + half, j * pitch + half, (i + 1) * pitch - half,
                              (j + 1) * pitch - half};
-            out.objects.push_back(placeUnitBox(unit_box, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
-                                               {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
+            out.objects.push_back(
+                placeUnitBox(unit_box, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
+                             {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
             std::vector<Rect> lots;
             splitLots(block, spec.buildings_per_block, rng, lots);
             for (const Rect& lot : lots) {
@@ -227,7 +234,8 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
                 const double across = turned ? f.width() : f.depth();
                 const double base = kPavementTopM + kCrackM;
                 const Archetype a{archetypeCount(height - base, kStoreyM, 2),
-                                  archetypeCount(along, kBayM, 1), archetypeCount(across, kBayM, 1)};
+                                  archetypeCount(along, kBayM, 1),
+                                  archetypeCount(across, kBayM, 1)};
                 auto [it, added] =
                     archetype_mesh.try_emplace(a, static_cast<uint32_t>(out.meshes.size()));
                 if (added) out.meshes.push_back(buildingMesh(a));
@@ -235,11 +243,13 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
                 PlacedObject building;
                 building.mesh = it->second;
                 building.position = {0.5 * (f.x0 + f.x1), base, 0.5 * (f.z0 + f.z1)};
-                building.linear = scaleMatrix(glm::vec3(static_cast<float>(along / nominal.x),
-                                                        static_cast<float>((height - base) / nominal.y),
-                                                        static_cast<float>(across / nominal.z)));
+                building.linear =
+                    scaleMatrix(glm::vec3(static_cast<float>(along / nominal.x),
+                                          static_cast<float>((height - base) / nominal.y),
+                                          static_cast<float>(across / nominal.z)));
                 // A quarter turn about y: x -> -z, z -> x (determinant +1, faces stay outward).
-                if (turned) building.linear = glm::mat3(0, 0, -1, 0, 1, 0, 1, 0, 0) * building.linear;
+                if (turned)
+                    building.linear = glm::mat3(0, 0, -1, 0, 1, 0, 1, 0, 0) * building.linear;
                 out.objects.push_back(building);
             }
         }

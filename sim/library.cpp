@@ -36,16 +36,16 @@
 namespace occsim {
 namespace {
 
-constexpr double kShelfDepth = 0.35;       // side panels and boards, front to back
-constexpr double kSideThickness = 0.025;   // side panels
+constexpr double kShelfDepth = 0.35;      // side panels and boards, front to back
+constexpr double kSideThickness = 0.025;  // side panels
 constexpr double kBoardThickness = 0.025;
-constexpr double kBoardInset = 0.01;       // boards stop short of the sides' front edges
-constexpr double kFirstBoardY = 0.08;      // bottom of the lowest board (a kick space below)
-constexpr double kLevelPitch = 0.40;       // board to board
-constexpr double kBookSlot = 0.036;        // shelf width per book (mean thickness plus a gap)
-constexpr double kBookLift = 0.001;        // books stand clear of the board (see above)
-constexpr double kClear = 0.001;           // boards clear of the side panels
-constexpr double kAboveFloor = 0.002;      // shelves and walls clear of the floor
+constexpr double kBoardInset = 0.01;   // boards stop short of the sides' front edges
+constexpr double kFirstBoardY = 0.08;  // bottom of the lowest board (a kick space below)
+constexpr double kLevelPitch = 0.40;   // board to board
+constexpr double kBookSlot = 0.036;    // shelf width per book (mean thickness plus a gap)
+constexpr double kBookLift = 0.001;    // books stand clear of the board (see above)
+constexpr double kClear = 0.001;       // boards clear of the side panels
+constexpr double kAboveFloor = 0.002;  // shelves and walls clear of the floor
 constexpr double kLaneHeight = 0.02;
 constexpr double kWallThickness = 0.3;
 constexpr double kWallAboveShelves = 1.2;
@@ -99,8 +99,8 @@ SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
     // Floor and walls. The walls along x run past the corners; those along z stop 1 cm short of
     // them, so the corners show no crack and no two walls touch.
     const double t = kWallThickness, f = kAboveFloor;
-    out.objects.push_back(placeUnitBox(unit_box, {room_x0 - t, -0.2, room_z0 - t},
-                                       {room_x1 + t, 0.0, room_z1 + t}));
+    out.objects.push_back(
+        placeUnitBox(unit_box, {room_x0 - t, -0.2, room_z0 - t}, {room_x1 + t, 0.0, room_z1 + t}));
     out.objects.push_back(placeUnitBox(unit_box, {room_x0 - 1.5 * t, f, room_z0 - t},
                                        {room_x1 + 1.5 * t, wall_height, room_z0}));
     out.objects.push_back(placeUnitBox(unit_box, {room_x0 - 1.5 * t, f, room_z1},
@@ -124,7 +124,8 @@ SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
             const double inner0 = x0 + kSideThickness + kClear, inner1 = x0 + unit - kClear;
             for (uint32_t level = 0; level <= spec.levels; ++level) {
                 const double board_top = kFirstBoardY + level * kLevelPitch + kBoardThickness;
-                out.objects.push_back(placeUnitBox(unit_box, {inner0, board_top - kBoardThickness, z0},
+                out.objects.push_back(placeUnitBox(unit_box,
+                                                   {inner0, board_top - kBoardThickness, z0},
                                                    {inner1, board_top, z1 - kBoardInset}));
                 if (level == spec.levels) break;  // the top board carries no books
 
@@ -138,7 +139,8 @@ SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
                 double total = 0.0;
                 for (Book& b : books) {
                     b.thick = rng.uniform(0.018, 0.048);
-                    b.height = rng.uniform() < 0.15 ? rng.uniform(0.30, 0.36) : rng.uniform(0.18, 0.29);
+                    b.height =
+                        rng.uniform() < 0.15 ? rng.uniform(0.30, 0.36) : rng.uniform(0.18, 0.29);
                     b.depth = rng.uniform(0.14, 0.30);
                     b.gap = rng.uniform(0.0015, 0.004);  // books never touch (see above)
                     b.setback = rng.uniform(kBoardInset + 0.003, kBoardInset + 0.03);
@@ -168,7 +170,8 @@ SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
     const double d = 0.375 * aisle, y = kLaneHeight;
     for (uint32_t r = 0; r < spec.rows; ++r) {
         const double z0 = r * pitch - d, z1 = r * pitch + kShelfDepth + d;
-        out.lanes.push_back({{-d, y, z0}, {row_length + d, y, z0}, {row_length + d, y, z1}, {-d, y, z1}});
+        out.lanes.push_back(
+            {{-d, y, z0}, {row_length + d, y, z0}, {row_length + d, y, z1}, {-d, y, z1}});
     }
     out.region = sourceBounds(out);
     return out;

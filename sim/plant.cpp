@@ -47,23 +47,23 @@
 namespace occsim {
 namespace {
 
-constexpr double kCrack = 0.01;             // between neighbouring objects, which never touch
+constexpr double kCrack = 0.01;  // between neighbouring objects, which never touch
 constexpr double kLaneHeight = 0.02;
 constexpr double kGroundTop = -0.25;
 constexpr double kPadDepth = 0.2;
-constexpr double kPadMargin = 1.3;          // pad beyond the frame (room for the risers)
+constexpr double kPadMargin = 1.3;  // pad beyond the frame (room for the risers)
 constexpr double kSlabThickness = 0.15;
-constexpr double kSlabGap = 0.05;           // slabs stop short of the column lines
-constexpr double kBeamDepth = 0.45;         // I-beam height under a floor
-constexpr double kBeamWidth = 0.25;         // its flange width
-constexpr double kColumnWidth = 0.4;        // ground-storey columns; 8 % thinner per storey up
+constexpr double kSlabGap = 0.05;     // slabs stop short of the column lines
+constexpr double kBeamDepth = 0.45;   // I-beam height under a floor
+constexpr double kBeamWidth = 0.25;   // its flange width
+constexpr double kColumnWidth = 0.4;  // ground-storey columns; 8 % thinner per storey up
 constexpr double kColumnTaper = 0.92;
 constexpr double kColumnClear = kColumnWidth / 2 + kCrack;  // beams and floors keep off columns
-constexpr double kSpliceAboveFloor = 1.0;   // column segments join 1 m above each floor
-constexpr double kClearOfColumn = 0.45;     // pipes and tanks keep this far from column lines
-constexpr double kCorridorHeadroom = 3.3;   // nothing crosses a corridor lower above its floor
-constexpr double kFlierHeight = 1.5;        // fliers' corridor lanes above the floor
-constexpr double kFlierHeadroom = 2.0;      // ... when this much room is left above them
+constexpr double kSpliceAboveFloor = 1.0;  // column segments join 1 m above each floor
+constexpr double kClearOfColumn = 0.45;    // pipes and tanks keep this far from column lines
+constexpr double kCorridorHeadroom = 3.3;  // nothing crosses a corridor lower above its floor
+constexpr double kFlierHeight = 1.5;       // fliers' corridor lanes above the floor
+constexpr double kFlierHeadroom = 2.0;     // ... when this much room is left above them
 constexpr uint32_t kBaysPerSide = 3;
 constexpr uint32_t kPipeSegments = 16;
 constexpr uint32_t kTankSegments = 24;
@@ -250,11 +250,12 @@ private:
             for (uint32_t b = 0; b <= kBaysPerSide; ++b) {
                 for (uint32_t k = 0; k < spec_.floors; ++k) {
                     const double y0 = k == 0 ? kCrack : level(k) + kSpliceAboveFloor + kCrack / 2;
-                    const double y1 = k + 1 == spec_.floors ? top_ + kSpliceAboveFloor
-                                                            : level(k + 1) + kSpliceAboveFloor - kCrack / 2;
+                    const double y1 = k + 1 == spec_.floors
+                                          ? top_ + kSpliceAboveFloor
+                                          : level(k + 1) + kSpliceAboveFloor - kCrack / 2;
                     const double w = kColumnWidth * std::pow(kColumnTaper, k);
-                    out_.objects.push_back(
-                        girder(meshes_.ibeam, {u.x + line(a), y0, u.z + line(b)}, 1, y1 - y0, w, w));
+                    out_.objects.push_back(girder(meshes_.ibeam, {u.x + line(a), y0, u.z + line(b)},
+                                                  1, y1 - y0, w, w));
                 }
             }
         }
@@ -267,10 +268,12 @@ private:
             for (uint32_t a = 0; a <= kBaysPerSide; ++a) {
                 for (uint32_t b = 0; b < kBaysPerSide; ++b) {
                     const double along = line(b) + kColumnClear;
-                    out_.objects.push_back(girder(meshes_.ibeam, {u.x + along, beam_y, u.z + line(a)},
-                                                  0, span, kBeamWidth, kBeamDepth));
-                    out_.objects.push_back(girder(meshes_.ibeam, {u.x + line(a), beam_y, u.z + along},
-                                                  2, span, kBeamWidth, kBeamDepth));
+                    out_.objects.push_back(girder(meshes_.ibeam,
+                                                  {u.x + along, beam_y, u.z + line(a)}, 0, span,
+                                                  kBeamWidth, kBeamDepth));
+                    out_.objects.push_back(girder(meshes_.ibeam,
+                                                  {u.x + line(a), beam_y, u.z + along}, 2, span,
+                                                  kBeamWidth, kBeamDepth));
                 }
             }
             // Floors: always in the corridor (the walkway), elsewhere at random, never through a
@@ -279,7 +282,8 @@ private:
                 for (uint32_t i = 0; i < kBaysPerSide; ++i) {
                     const double chance = rng_.uniform();
                     const bool wanted = j == 1 || chance < (k == spec_.floors ? 0.7 : 0.5);
-                    if (!wanted || tank_top[i + kBaysPerSide * j] > beamBottom(k) - kCrack) continue;
+                    if (!wanted || tank_top[i + kBaysPerSide * j] > beamBottom(k) - kCrack)
+                        continue;
                     PlacedObject slab;
                     slab.mesh = meshes_.slab;
                     slab.position = {u.x + line(i), level(k), u.z + line(j)};
@@ -294,8 +298,9 @@ private:
                     meshes_.box, {x0 + kSlabGap, level(k), u.z + line(1) + kColumnClear},
                     {x1 - kSlabGap, level(k) + kSlabThickness, u.z + line(2) - kColumnClear}));
                 for (uint32_t a : {1u, 2u}) {
-                    out_.objects.push_back(girder(meshes_.ibeam, {x0 + kColumnClear, beam_y, u.z + line(a)},
-                                                  0, gap_ - 2 * kColumnClear, kBeamWidth, kBeamDepth));
+                    out_.objects.push_back(girder(meshes_.ibeam,
+                                                  {x0 + kColumnClear, beam_y, u.z + line(a)}, 0,
+                                                  gap_ - 2 * kColumnClear, kBeamWidth, kBeamDepth));
                 }
             }
         }
@@ -315,8 +320,10 @@ private:
         if (kind < 0.5) {
             const double r = size * inner;
             const double wanted = storeys * hf_ - 1.0;  // cylinder plus dome
-            const auto ratio = static_cast<uint32_t>(std::clamp(std::lround(wanted / r - 1.0), 1L, 8L));
-            auto [it, added] = meshes_.domed.try_emplace(ratio, static_cast<uint32_t>(out_.meshes.size()));
+            const auto ratio =
+                static_cast<uint32_t>(std::clamp(std::lround(wanted / r - 1.0), 1L, 8L));
+            auto [it, added] =
+                meshes_.domed.try_emplace(ratio, static_cast<uint32_t>(out_.meshes.size()));
             if (added) out_.meshes.push_back(domedTankMesh(ratio));
             PlacedObject tank;
             tank.mesh = it->second;
@@ -346,15 +353,18 @@ private:
         } else {
             const double r = std::min(1.3, 0.28 * inner), length = inner * rng_.uniform(0.8, 1.0);
             const double axis_y = r + 0.6;
-            out_.objects.push_back(cylinder(meshes_.tank_cylinder, {cx - length / 2, axis_y, cz}, 0, length, r));
+            out_.objects.push_back(
+                cylinder(meshes_.tank_cylinder, {cx - length / 2, axis_y, cz}, 0, length, r));
             for (double dx : {-0.3 * length, 0.3 * length}) {
-                out_.objects.push_back(placeUnitBox(meshes_.box, {cx + dx - 0.15, kCrack, cz - 0.7 * r},
-                                                    {cx + dx + 0.15, axis_y - r - kCrack, cz + 0.7 * r}));
+                out_.objects.push_back(
+                    placeUnitBox(meshes_.box, {cx + dx - 0.15, kCrack, cz - 0.7 * r},
+                                 {cx + dx + 0.15, axis_y - r - kCrack, cz + 0.7 * r}));
             }
             top = axis_y + r;
         }
         Aabb box;
-        for (size_t o = first; o < out_.objects.size(); ++o) extend(box, objectBox(out_.objects[o]));
+        for (size_t o = first; o < out_.objects.size(); ++o)
+            extend(box, objectBox(out_.objects[o]));
         taken.push_back({box.min - glm::vec3(kCrack), box.max + glm::vec3(kCrack)});
         return top;
     }
@@ -363,7 +373,8 @@ private:
         glm::mat4 m(o.linear);
         m[3] = glm::vec4(0, 0, 0, 1);
         Aabb box = transformAabb(meshBounds(out_.meshes[o.mesh]), m);
-        return {glm::vec3(glm::dvec3(box.min) + o.position), glm::vec3(glm::dvec3(box.max) + o.position)};
+        return {glm::vec3(glm::dvec3(box.min) + o.position),
+                glm::vec3(glm::dvec3(box.max) + o.position)};
     }
 
     // A local coordinate from u in [0, 1) inside one of the bands between column lines, `margin`
@@ -374,7 +385,8 @@ private:
         const auto index = std::min(static_cast<uint32_t>(scaled), bands - 1);
         const uint32_t band = side_only ? index * 2 : index;
         const double t = scaled - index;
-        const double lo = line(band) + kClearOfColumn + margin, hi = line(band + 1) - kClearOfColumn - margin;
+        const double lo = line(band) + kClearOfColumn + margin,
+                     hi = line(band + 1) - kClearOfColumn - margin;
         return lo < hi ? lo + t * (hi - lo) : 0.5 * (lo + hi);
     }
 
@@ -434,7 +446,8 @@ private:
         for (uint32_t j = 0; j < spec_.units_z; ++j) {
             for (uint32_t i = 0; i < spec_.units_x; ++i) {
                 const double x = i * pitch_, z = j * pitch_;
-                out_.lanes.push_back(ring(x - ring_out, z - ring_out, x + s_ + ring_out, z + s_ + ring_out, y));
+                out_.lanes.push_back(
+                    ring(x - ring_out, z - ring_out, x + s_ + ring_out, z + s_ + ring_out, y));
             }
         }
         const double x0 = 0.6, x1 = width - 0.6;
@@ -444,13 +457,15 @@ private:
                 const double floor = floorTop(k);
                 out_.lanes.push_back(ring(x0, mid - half, x1, mid + half, floor + y));
                 if (beamBottom(k + 1) - floor >= kFlierHeight + kFlierHeadroom) {
-                    out_.lanes.push_back(ring(x0, mid - half, x1, mid + half, floor + kFlierHeight));
+                    out_.lanes.push_back(
+                        ring(x0, mid - half, x1, mid + half, floor + kFlierHeight));
                 }
                 out_.lanes.push_back(ring(-ring_out, j * pitch_ - ring_out, width + ring_out,
                                           j * pitch_ + s_ + ring_out, level(k) + 3.0));
             }
         }
-        out_.lanes.push_back(ring(-gap_ / 2, -gap_ / 2, width + gap_ / 2, depth + gap_ / 2, top_ + 8.0));
+        out_.lanes.push_back(
+            ring(-gap_ / 2, -gap_ / 2, width + gap_ / 2, depth + gap_ / 2, top_ + 8.0));
     }
 
     const PlantSpec& spec_;

@@ -121,7 +121,8 @@ void expectSameOutput(const SourceOutput& a, const SourceOutput& b) {
 bool samePlacement(const SourceOutput& a, const SourceOutput& b) {
     if (a.objects.size() != b.objects.size()) return false;
     for (size_t i = 0; i < a.objects.size(); ++i) {
-        if (a.objects[i].position != b.objects[i].position || a.objects[i].linear != b.objects[i].linear) {
+        if (a.objects[i].position != b.objects[i].position ||
+            a.objects[i].linear != b.objects[i].linear) {
             return false;
         }
     }
@@ -136,7 +137,8 @@ uint64_t triangles(const SourceOutput& s) {
 
 void expectValidSource(const SourceOutput& s) {
     ASSERT_FALSE(s.objects.empty());
-    for (size_t i = 0; i < s.meshes.size(); ++i) expectValidMesh(s.meshes[i], "mesh " + std::to_string(i));
+    for (size_t i = 0; i < s.meshes.size(); ++i)
+        expectValidMesh(s.meshes[i], "mesh " + std::to_string(i));
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const PlacedObject& o = s.objects[i];
         ASSERT_LT(o.mesh, s.meshes.size());
@@ -152,7 +154,8 @@ void expectWithinRegion(const SourceOutput& s) {
     const glm::vec3 slack(1e-3f);
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const Aabb box = objectBox(s, s.objects[i]);
-        EXPECT_TRUE(contains(Aabb{s.region.min - slack, s.region.max + slack}, box)) << "object " << i;
+        EXPECT_TRUE(contains(Aabb{s.region.min - slack, s.region.max + slack}, box))
+            << "object " << i;
     }
 }
 
@@ -197,8 +200,8 @@ void expectLanesClear(const SourceOutput& s, double clearance) {
                         const Aabb& box = boxes[o];
                         const bool inside = q.x > box.min.x && q.x < box.max.x && q.y > box.min.y &&
                                             q.y < box.max.y && q.z > box.min.z && q.z < box.max.z;
-                        ASSERT_FALSE(inside) << "lane " << l << " at (" << q.x << ", " << q.y << ", "
-                                             << q.z << ") is inside object " << o;
+                        ASSERT_FALSE(inside) << "lane " << l << " at (" << q.x << ", " << q.y
+                                             << ", " << q.z << ") is inside object " << o;
                     }
                     ++samples;
                 }
@@ -480,7 +483,9 @@ TEST(Plant, PipesBeamsAndColumnsTouchNothing) {
     const SourceOutput s = generatePlant(smallPlant(), 4);
     std::vector<Aabb> boxes;
     for (const PlacedObject& o : s.objects) boxes.push_back(objectBox(s, o));
-    const auto isPipe = [&](const PlacedObject& o) { return s.meshes[o.mesh].triangleCount() == 4 * 16; };
+    const auto isPipe = [&](const PlacedObject& o) {
+        return s.meshes[o.mesh].triangleCount() == 4 * 16;
+    };
     const auto isGirder = [&](const PlacedObject& o) { return o.mesh == s.objects[0].mesh + 1; };
     const auto isUpright = [](const PlacedObject& o) { return o.linear[1].y != 0.0f; };
     size_t pipes = 0, checked = 0;
