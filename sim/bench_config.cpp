@@ -36,6 +36,9 @@ const std::vector<Knob>& knobs() {
         {{"decay_b", "b in BASE_TIME * (a - b^occ_num), statistical culler"}, 0, 1, false,
          [](const std::string& a) { return a == "statistical"; },
          [](RunConfig& c, double v) { c.culler.statistical.decay_b = v; }},
+        {{"retest", "frames; how often the per-object async scheme re-tests a visible object"},
+         1, 1000, true, [](const std::string& a) { return a == "async"; },
+         [](RunConfig& c, double v) { c.culler.async.retest_interval_frames = static_cast<uint32_t>(v); }},
     };
     return all;
 }
@@ -115,7 +118,7 @@ std::vector<RunConfig> planConfigs(const std::vector<std::string>& algorithms,
             c.label = algorithm + " " + sweep->parameter + "=" + formatValue(v);
             knob.set(c, v);
             std::string why;
-            if (!c.culler.statistical.isValid(&why)) {
+            if (!c.culler.statistical.isValid(&why) || !c.culler.async.isValid(&why)) {
                 throw std::invalid_argument(sweep->parameter + "=" + formatValue(v) + ": " + why);
             }
             configs.push_back(c);
