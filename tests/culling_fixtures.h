@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <random>
+#include <set>
 #include <vector>
 
 namespace occsim::testing {
@@ -33,6 +34,25 @@ inline CullView makeView(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f,
     const float t = std::tan(glm::radians(fov_deg) * 0.5f);
     view.near_radius = 1.01f * near * std::sqrt(1.0f + t * t * (1.0f + aspect * aspect));
     return view;
+}
+
+inline BspTree buildTree(const std::vector<Aabb>& boxes, uint32_t leaf_size = 4,
+                         BspSplitRule rule = BspSplitRule::Median) {
+    BspTree tree;
+    BspBuildOptions options;
+    options.max_objects_per_leaf = leaf_size;
+    options.split_rule = rule;
+    tree.build(boxes, options);
+    return tree;
+}
+
+// The objects a brute-force per-object frustum test keeps.
+inline std::set<uint32_t> inFrustum(const std::vector<Aabb>& boxes, const Frustum& f) {
+    std::set<uint32_t> out;
+    for (uint32_t o = 0; o < boxes.size(); ++o) {
+        if (classify(f, boxes[o]) != FrustumTest::Outside) out.insert(o);
+    }
+    return out;
 }
 
 inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) {

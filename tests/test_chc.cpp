@@ -45,23 +45,8 @@ using testing::makeFrame;
 using testing::makeView;
 using testing::randomBoxes;
 
-BspTree buildTree(const std::vector<Aabb>& boxes, uint32_t leaf_size = 4,
-                  BspSplitRule rule = BspSplitRule::Median) {
-    BspTree tree;
-    BspBuildOptions options;
-    options.max_objects_per_leaf = leaf_size;
-    options.split_rule = rule;
-    tree.build(boxes, options);
-    return tree;
-}
-
-std::set<uint32_t> inFrustum(const std::vector<Aabb>& boxes, const Frustum& f) {
-    std::set<uint32_t> out;
-    for (uint32_t o = 0; o < boxes.size(); ++o) {
-        if (classify(f, boxes[o]) != FrustumTest::Outside) out.insert(o);
-    }
-    return out;
-}
+using testing::buildTree;
+using testing::inFrustum;
 
 // Unit cubes on an nx-by-nz grid with gaps between them: split planes fall into the gaps, so no
 // object straddles one and every node's bounds stay inside its cell.

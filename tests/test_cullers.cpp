@@ -18,21 +18,8 @@ using testing::makeFrame;
 using testing::makeView;
 using testing::randomBoxes;
 
-BspTree buildTree(const std::vector<Aabb>& boxes, uint32_t leaf_size = 4) {
-    BspTree tree;
-    BspBuildOptions options;
-    options.max_objects_per_leaf = leaf_size;
-    tree.build(boxes, options);
-    return tree;
-}
-
-std::set<uint32_t> inFrustum(const std::vector<Aabb>& boxes, const Frustum& f) {
-    std::set<uint32_t> out;
-    for (uint32_t o = 0; o < boxes.size(); ++o) {
-        if (classify(f, boxes[o]) != FrustumTest::Outside) out.insert(o);
-    }
-    return out;
-}
+using testing::buildTree;
+using testing::inFrustum;
 
 // --- CalcNodeAction, branch by branch --------------------------------------------------------
 
