@@ -47,8 +47,7 @@ bool ChcppOptions::isValid(std::string* error) const {
 
 ChcppCuller::ChcppCuller(const ChcppOptions& options) : options_(options) {}
 
-void ChcppCuller::reset(const BspTree& tree) {
-    state_.assign(tree.nodeCount(), NodeState{});
+void ChcppCuller::clearQueues() {
     traversal_queue_.clear();
     query_queue_.clear();
     query_head_ = 0;
@@ -57,6 +56,11 @@ void ChcppCuller::reset(const BspTree& tree) {
     v_head_ = 0;
     render_queue_.clear();
     multi_nodes_.clear();
+}
+
+void ChcppCuller::reset(const BspTree& tree) {
+    state_.assign(tree.nodeCount(), NodeState{});
+    clearQueues();
     pass_ = 0;
 }
 
@@ -67,14 +71,7 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     ++pass_;
     stats_ = {};
     device_state_ = DeviceState::None;
-    traversal_queue_.clear();
-    query_queue_.clear();
-    query_head_ = 0;
-    i_queue_.clear();
-    v_queue_.clear();
-    v_head_ = 0;
-    render_queue_.clear();
-    multi_nodes_.clear();
+    clearQueues();
     traversal_queue_.push(tree, {tree.root(), false}, frame.view.eye);
 
     for (;;) {

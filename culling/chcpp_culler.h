@@ -82,6 +82,7 @@ public:
     uint64_t nextQueryFrame(uint32_t node) const { return state_[node].next_query; }
 
 private:
+    void clearQueues();  // empties every per-frame queue (they keep their capacity)
     enum class QueryKind : uint8_t {
         Invisible,  // one previously invisible node: waited for
         Multi,      // several previously invisible nodes (multi_nodes_[first, first + count))
