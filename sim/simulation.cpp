@@ -70,14 +70,14 @@ Simulation::Simulation(const Scene& scene, const Scenario& scenario, std::unique
     model_view_.resize(scene.objectCount());
 }
 
-void Simulation::prepareView(const FrameView& view) {
+void Simulation::computeModelViews() {
     // Camera-relative model-view matrices, composed in double: precise far from the origin.
-    const glm::dmat4 rotation(view.render.view_rotation);
-    const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -view.render.eye);
+    // Once per frame: ground truth and the culled render of this frame both use them.
+    const glm::dmat4 rotation(view_.render.view_rotation);
+    const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -view_.render.eye);
     for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
         model_view_[o] = glm::mat4(rotation * to_eye * modelMatrix(state_.poses[o]));
     }
-    renderer_.setView(view.render, model_view_);
 }
 
 bool Simulation::needsGroundTruth() const {
@@ -103,6 +103,7 @@ void Simulation::advance() {
     stats.update_ms = msSince(update_start);
 
     view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height);
+    computeModelViews();
     cull_frame_ = CullFrame{};
     cull_frame_.frame_index = frame_;
     cull_frame_.time_s = stats.time_s;
@@ -111,7 +112,7 @@ void Simulation::advance() {
 }
 
 const GroundTruthFrame& Simulation::renderGroundTruth(bool with_colour) {
-    prepareView(view_);
+    renderer_.setView(view_.render, model_view_);
     renderer_.beginFrame();
     ground_truth_culler_->cullAndRender(tree_, cull_frame_, ground_truth_device_);
     renderer_.readObjectIds(ground_truth_.ids);
@@ -140,7 +141,7 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     }
 
     // The measured frame: culled render to glFinish.
-    prepareView(view_);
+    renderer_.setView(view_.render, model_view_);
     device_.resetCounters();
     const auto frame_start = Clock::now();
     renderer_.beginFrame();

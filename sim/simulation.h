@@ -95,7 +95,7 @@ public:
     const WorldState& state() const { return state_; }
 
 private:
-    void prepareView(const FrameView& view);
+    void computeModelViews();  // for view_ and the current poses
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
 
     const Scene& scene_;
