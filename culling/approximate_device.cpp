@@ -34,9 +34,10 @@ void ApproximateDevice::collectLateResults() {
 
 void ApproximateDevice::drawObject(uint32_t object) { inner_.drawObject(object); }
 
-QueryId ApproximateDevice::issueQuery(std::span<const Aabb> boxes) {
+QueryId ApproximateDevice::issueQuery(std::span<const Aabb> boxes,
+                                      std::span<const QueryTag> subjects) {
     if (options_.stale_results) collectLateResults();
-    const QueryId id = inner_.issueQuery(boxes);
+    const QueryId id = inner_.issueQuery(boxes, subjects);
     if (id >= key_of_id_.size()) key_of_id_.resize(id + 1);
     key_of_id_[id] = keyOf(boxes);
     return id;

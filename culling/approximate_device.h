@@ -1,4 +1,5 @@
-// Two ways to trade image error for time, applied to any culler by wrapping its RenderDevice:
+// Two ways to trade image error for time (ApproximationOptions, culling/culler_options.h),
+// applied to any culler by wrapping its RenderDevice:
 //
 // - A pixel threshold (approximate visibility, as in the CHC paper): a query that passes at most
 //   `threshold_pixels` samples reports 0, so the node counts as occluded.
@@ -11,6 +12,7 @@
 // and stale results off this device changes nothing.
 #pragma once
 
+#include "culling/culler_options.h"
 #include "culling/render_device.h"
 
 #include <cstdint>
@@ -20,29 +22,23 @@
 
 namespace occsim {
 
-struct ApproximationOptions {
-    uint32_t threshold_pixels = 0;
-    bool stale_results = false;
-
-    bool active() const { return threshold_pixels > 0 || stale_results; }
-};
-
 class ApproximateDevice final : public RenderDevice {
 public:
     ApproximateDevice(RenderDevice& inner, ApproximationOptions options);
 
-    // Take counters from the wrapped device (it does the real work); call at frame end.
-    const DeviceCounters& innerCounters() const { return inner_.counters(); }
-
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
-    QueryId issueQuery(std::span<const Aabb> boxes) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     uint64_t queryResult(QueryId id) override;
 
     // Results fetched late (after a stale answer was given) still pending in the wrapped device.
     size_t lateResultsPending() const { return late_.size(); }
     uint64_t staleAnswers() const { return stale_answers_; }
+
+    // The wrapped device does the work, so its counters are the true ones.
+    const DeviceCounters& counters() const override { return inner_.counters(); }
+    void resetCounters() override { inner_.resetCounters(); }
 
 private:
     uint64_t keyOf(std::span<const Aabb> boxes) const;

@@ -1,21 +1,9 @@
-// The per-object asynchronous scheme of the PURE engine notes ("Simple Pseudo-code",
-// /work/shared/papers/pure-engine-occlusion-culling-notes.txt), with the re-test rule of the
-// ARB_occlusion_query specification. See async_culler.h for the rules.
+// The per-object asynchronous scheme of the PURE engine's occlusion-culling notes ("Simple
+// Pseudo-code"), with the re-test rule of the ARB_occlusion_query specification. See
+// async_culler.h for the rules.
 #include "culling/async_culler.h"
 
 namespace occsim {
-
-namespace {
-constexpr uint32_t kMaxRetestInterval = 1000000;
-}  // namespace
-
-bool AsyncOptions::isValid(std::string* error) const {
-    if (retest_interval_frames < 1 || retest_interval_frames > kMaxRetestInterval) {
-        if (error) *error = "retest_interval_frames must be in [1, 1000000] (frames)";
-        return false;
-    }
-    return true;
-}
 
 AsyncCuller::AsyncCuller(const AsyncOptions& options) : options_(options) {}
 
@@ -35,13 +23,8 @@ void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     // Whatever arrived since the last frame decides this frame.
     collectReadyResults(device);
     traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
-        for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone;
-             o = tree.nextObject(o)) {
-            if (visit.inside_frustum ||
-                classify(frame.view.frustum, tree.objectBox(o)) != FrustumTest::Outside) {
-                decide(o, tree, frame, device);
-            }
-        }
+        forEachObjectInFrustum(tree, visit.node, frame.view.frustum, visit.inside_frustum,
+                               [&](uint32_t o) { decide(o, tree, frame, device); });
         collectReadyResults(device);
         return true;
     });
@@ -65,7 +48,7 @@ void AsyncCuller::decide(uint32_t object, const BspTree& tree, const CullFrame& 
         return;
     }
     if (!s.pending && frame_ >= s.next_query) {
-        s.query = device.issueQuery(box);
+        s.query = device.issueQuery(box, QueryTag::object(object));
         s.pending = true;
         s.query_frame = frame_;
         pending_[(pending_head_ + pending_count_) % pending_.size()] = object;

@@ -1,5 +1,5 @@
-// Per-object asynchronous occlusion queries: the "Simple Pseudo-code" of the PURE engine notes
-// (/work/shared/papers/pure-engine-occlusion-culling-notes.txt), after the ARB_occlusion_query
+// Per-object asynchronous occlusion queries: the "Simple Pseudo-code" of the PURE engine's
+// occlusion-culling notes, after the ARB_occlusion_query
 // specification's advice: "visible objects should be checked every N frames (where, say, N=5)
 // to see if they have become occluded, while objects that were occluded last frame must be
 // rechecked again in the current frame".
@@ -28,6 +28,7 @@
 #pragma once
 
 #include "culling/culler.h"
+#include "culling/culler_options.h"
 #include "culling/traversal.h"
 
 #include <cstdint>
@@ -35,13 +36,6 @@
 #include <vector>
 
 namespace occsim {
-
-struct AsyncOptions {
-    // N: a visible object is queried again this many frames after its last query. 1 = every frame.
-    uint32_t retest_interval_frames = 5;
-
-    bool isValid(std::string* error) const;
-};
 
 class AsyncCuller final : public Culler {
 public:

@@ -14,7 +14,7 @@ void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
         const Aabb& box = tree.bounds(visit.node);
         if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius) &&
-            device.queryResult(device.issueQuery(box)) == 0) {
+            device.queryResult(device.issueQuery(box, QueryTag::node(visit.node))) == 0) {
             return false;  // occluded: skip the subtree
         }
         drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);

@@ -38,7 +38,6 @@ private:
 class IdealCuller final : public Culler {
 public:
     std::string_view name() const override { return "ideal"; }
-    bool needsGroundTruth() const override { return true; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

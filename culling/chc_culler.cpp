@@ -6,33 +6,19 @@
 
 namespace occsim {
 
-namespace {
-// Far beyond any useful setting; keeps frame arithmetic far from overflow.
-constexpr uint32_t kMaxFramesSkip = 1000000;
-}  // namespace
-
-bool ChcOptions::isValid(std::string* error) const {
-    if (visible_frames_skip > kMaxFramesSkip) {
-        if (error) *error = "visible_frames_skip must be in [0, 1000000] (frames)";
-        return false;
-    }
-    return true;
-}
-
 ChcCuller::ChcCuller(const ChcOptions& options) : options_(options) {}
 
 void ChcCuller::reset(const BspTree& tree) {
-    state_.assign(tree.nodeCount(), NodeState{});
+    nodes_.reset(tree.nodeCount());
     traversal_queue_.clear();
     query_queue_.clear();
     query_head_ = 0;
-    pass_ = 0;
 }
 
 void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    if (state_.size() != tree.nodeCount()) reset(tree);
+    if (!nodes_.sizedFor(tree)) reset(tree);
     frame_ = frame.frame_index;
-    ++pass_;
+    nodes_.beginFrame();
     traversal_queue_.clear();
     query_queue_.clear();
     query_head_ = 0;
@@ -53,35 +39,28 @@ void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
 
 void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                           RenderDevice& device) {
-    bool inside = false;
-    if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) return;
-    visit.inside_frustum = inside;
-    NodeState& s = state_[visit.node];
-    const bool was_visible = s.visible && s.visited == pass_ - 1;
-    // Invisible until something found visible below pulls it up again (the paper's shortcut
-    // that spares checking every child for invisibility).
-    s.visible = false;
-    s.visited = pass_;
-
+    switch (nodes_.visit(tree, frame.view, visit)) {
+        case CoherentClassification::Visit::Culled: return;
+        case CoherentClassification::Visit::NearPlane:
+            traverseNode(tree, frame, visit, device);
+            return;
+        case CoherentClassification::Visit::PreviouslyInvisible:
+            issue(device, std::span<const Aabb>(&tree.bounds(visit.node), 1), visit,
+                  QueryKind::Invisible);
+            return;
+        case CoherentClassification::Visit::PreviouslyVisible: break;
+    }
+    const bool inside = visit.inside_frustum;
     const Aabb& box = tree.bounds(visit.node);
-    if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
-        pullUpVisibility(tree, visit.node);
-        traverseNode(tree, frame, visit, device);
-        return;
-    }
-    if (!was_visible) {
-        issue(device, std::span<const Aabb>(&box, 1), visit, QueryKind::Invisible);
-        return;
-    }
 
     // Previously visible: render without waiting. Its own geometry (a leaf's objects, or an
     // inner node's straddlers) is queried for the next frame unless it is still assumed visible.
-    const bool query_due = frame_ >= s.next_query;
+    const bool query_due = frame_ >= nodes_[visit.node].next_query;
     if (tree.node(visit.node).isLeaf()) {
         if (query_due) {
             issue(device, std::span<const Aabb>(&box, 1), visit, QueryKind::Visible);
         } else {
-            pullUpVisibility(tree, visit.node);
+            nodes_.pullUp(tree, visit.node);
         }
     } else {
         boxes_.clear();
@@ -89,7 +68,7 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
             if (query_due) {
                 issue(device, boxes_, visit, QueryKind::Own);
             } else {
-                pullUpVisibility(tree, visit.node);
+                nodes_.pullUp(tree, visit.node);
             }
         }
     }
@@ -98,10 +77,10 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
 
 void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                              const PendingQuery& query, uint64_t samples, RenderDevice& device) {
-    if (samples <= options_.visibility_threshold_pixels) return;  // stays invisible
+    if (samples == 0) return;  // stays invisible
     // Found visible: assumed visible (no query on its geometry) for the next t_av frames.
-    state_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
-    pullUpVisibility(tree, query.node);
+    nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
+    nodes_.pullUp(tree, query.node);
     // Only a node that was waited for is traversed now; the others were rendered at their visit.
     if (query.kind == QueryKind::Invisible) {
         traverseNode(tree, frame, {query.node, query.inside_frustum}, device);
@@ -114,16 +93,12 @@ void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const 
     traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
 }
 
-void ChcCuller::pullUpVisibility(const BspTree& tree, uint32_t node) {
-    while (node != BspTree::kNone && !state_[node].visible) {
-        state_[node].visible = true;
-        node = tree.node(node).parent;
-    }
-}
-
 void ChcCuller::issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
                       QueryKind kind) {
-    query_queue_.push_back({device.issueQuery(boxes), visit.node, visit.inside_frustum, kind});
+    const QueryTag subject = kind == QueryKind::Own ? QueryTag::nodeObjects(visit.node)
+                                                    : QueryTag::node(visit.node);
+    const QueryId id = device.issueQuery(boxes, std::span<const QueryTag>(&subject, 1));
+    query_queue_.push_back({id, visit.node, visit.inside_frustum, kind});
 }
 
 }  // namespace occsim

@@ -1,7 +1,6 @@
 // Coherent Hierarchical Culling (Bittner, Wimmer, Piringer & Purgathofer, "Coherent Hierarchical
-// Culling: Hardware Occlusion Queries Made Useful", Eurographics 2004), as written up in the
-// chapter "Online Culling Tool"
-// (/work/shared/papers/bittner-wimmer-chc-online-culling-chapter.tex).
+// Culling: Hardware Occlusion Queries Made Useful", Eurographics 2004), as written up by Bittner
+// & Wimmer in their book chapter on online occlusion culling.
 //
 // The traversal of the previous frame ended at termination nodes: leaves found visible, and the
 // largest nodes found invisible (each with a visible parent). This frame, front to back:
@@ -16,11 +15,12 @@
 // visible exactly when something below it was. The query queue is checked before every node
 // taken from the traversal queue, and waited on only when there is nothing left to traverse.
 //
-// The two optional optimisations of "Further Optimizations" are parameters:
+// The two optional optimisations of "Further Optimizations":
 //   - conservative visibility testing: a leaf found visible is assumed visible, without a query,
 //     for `visible_frames_skip` frames (t_av);
-//   - approximate visibility: a query passing at most `visibility_threshold_pixels` samples counts
-//     as occluded (n_vp). With n_vp > 0 the result is no longer conservative.
+//   - approximate visibility (n_vp): the pixel threshold every query-based culler shares
+//     (ApproximationOptions, applied by ApproximateDevice). With n_vp > 0 the result is no
+//     longer conservative.
 //
 // Beyond the paper (which keeps geometry in leaves only):
 //   - Objects in inner nodes (straddlers) are drawn whenever their node is traversed. A visible
@@ -35,22 +35,13 @@
 
 #include "culling/coherent_traversal.h"
 #include "culling/culler.h"
+#include "culling/culler_options.h"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace occsim {
-
-struct ChcOptions {
-    // t_av: frames a leaf found visible is assumed visible without a query. 0 = every previously
-    // visible leaf is queried every frame (the basic algorithm).
-    uint32_t visible_frames_skip = 0;
-    // n_vp: a query passing at most this many samples (pixels) counts as occluded. 0 = exact.
-    uint32_t visibility_threshold_pixels = 0;
-
-    bool isValid(std::string* error) const;
-};
 
 class ChcCuller final : public Culler {
 public:
@@ -62,9 +53,9 @@ public:
     const ChcOptions& options() const { return options_; }
     // The classification the last frame left behind: the next frame's opened nodes are the
     // visited inner nodes that are visible, its termination nodes the other visited nodes.
-    bool classifiedVisible(uint32_t node) const { return state_[node].visible; }
+    bool classifiedVisible(uint32_t node) const { return nodes_[node].visible; }
     // Whether the last frame's traversal reached the node (it passed the frustum test).
-    bool visitedLastFrame(uint32_t node) const { return state_[node].visited == pass_; }
+    bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
 
 private:
     enum class QueryKind : uint8_t {
@@ -78,32 +69,22 @@ private:
         bool inside_frustum;
         QueryKind kind;
     };
-    struct NodeState {
-        // Stamps count calls of cullAndRender (0 = never), so "the previous frame" is the
-        // previous call even if a caller repeats a frame index; query scheduling uses the index.
-        uint64_t visited = 0;     // stamp of the last frame that visited the node
-        uint64_t next_query = 0;  // first frame its geometry (leaf or own objects) is queried
-        bool visible = false;
-    };
-
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                    RenderDevice& device);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
                       uint64_t samples, RenderDevice& device);
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
                       RenderDevice& device);
-    void pullUpVisibility(const BspTree& tree, uint32_t node);
     void issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
                QueryKind kind);
 
     ChcOptions options_;
-    std::vector<NodeState> state_;
+    CoherentClassification nodes_;
     DistanceQueue traversal_queue_;
     std::vector<PendingQuery> query_queue_;  // FIFO: [query_head_, size) are in flight
     size_t query_head_ = 0;
     std::vector<Aabb> boxes_;  // scratch for own-object queries
     uint64_t frame_ = 0;       // the frame index being rendered
-    uint64_t pass_ = 0;        // the stamp of the frame being rendered
 };
 
 }  // namespace occsim

@@ -4,6 +4,8 @@
 // chcpp_culler.h for the rules.
 #include "culling/chcpp_culler.h"
 
+#include "culling/random.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,8 +13,6 @@ namespace occsim {
 
 namespace {
 
-constexpr uint32_t kMaxFramesSkip = 1000000;
-constexpr uint32_t kMaxTightBoundsDepth = 6;  // up to 2^6 boxes (plus straddler boxes) per node
 constexpr uint32_t kMaxInvisibleFrames = 1000;  // p(i) has long converged by then
 
 // CHC++'s fit of the probability that a node invisible for i frames stays invisible.
@@ -20,30 +20,7 @@ double keepInvisibleProbability(uint32_t invisible_frames) {
     return 0.99 - 0.7 * std::exp(-static_cast<double>(invisible_frames));
 }
 
-// SplitMix64 finaliser: a well-mixed 64-bit hash, the same on every platform.
-uint64_t mix(uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
 }  // namespace
-
-bool ChcppOptions::isValid(std::string* error) const {
-    auto fail = [error](const char* message) {
-        if (error) *error = message;
-        return false;
-    };
-    if (visible_frames_skip > kMaxFramesSkip) {
-        return fail("visible_frames_skip must be in [0, 1000000] (frames)");
-    }
-    if (batch_size < 1) return fail("batch_size must be >= 1 (nodes)");
-    if (tight_bounds_depth > kMaxTightBoundsDepth) {
-        return fail("tight_bounds_depth must be in [0, 6] (levels; 0 = the node's own box)");
-    }
-    return true;
-}
 
 ChcppCuller::ChcppCuller(const ChcppOptions& options) : options_(options) {}
 
@@ -59,16 +36,15 @@ void ChcppCuller::clearQueues() {
 }
 
 void ChcppCuller::reset(const BspTree& tree) {
-    state_.assign(tree.nodeCount(), NodeState{});
+    nodes_.reset(tree.nodeCount());
     clearQueues();
-    pass_ = 0;
 }
 
 void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                 RenderDevice& device) {
-    if (state_.size() != tree.nodeCount()) reset(tree);
+    if (!nodes_.sizedFor(tree)) reset(tree);
     frame_ = frame.frame_index;
-    ++pass_;
+    nodes_.beginFrame();
     stats_ = {};
     device_state_ = DeviceState::None;
     clearQueues();
@@ -118,27 +94,18 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
 }
 
 void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit) {
-    bool inside = false;
-    if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) return;
-    visit.inside_frustum = inside;
-    NodeState& s = state_[visit.node];
-    const bool visited_last_frame = s.visited == pass_ - 1;
-    const bool was_visible = s.visible && visited_last_frame;
-    // A node that was not a termination node last frame has no recent history to predict with.
-    if (!visited_last_frame) s.invisible_frames = 0;
-    s.visible = false;  // pulled up again by whatever is found visible below
-    s.visited = pass_;
-
-    if (nearPlaneTouchesBox(tree.bounds(visit.node), frame.view.eye, frame.view.near_radius)) {
-        pullUpVisibility(tree, visit.node);
-        traverseNode(tree, frame, visit);
-        return;
+    switch (nodes_.visit(tree, frame.view, visit)) {
+        case CoherentClassification::Visit::Culled: return;
+        case CoherentClassification::Visit::NearPlane:
+            traverseNode(tree, frame, visit);
+            return;
+        case CoherentClassification::Visit::PreviouslyInvisible:
+            i_queue_.push_back({visit.node, visit.inside_frustum, false, QueryKind::Invisible});
+            return;
+        case CoherentClassification::Visit::PreviouslyVisible: break;
     }
-    if (!was_visible) {
-        i_queue_.push_back({visit.node, inside, false, QueryKind::Invisible});
-        return;
-    }
-
+    const bool inside = visit.inside_frustum;
+    CoherentClassification::NodeState& s = nodes_[visit.node];
     s.invisible_frames = 0;
     const bool query_due = frame_ >= s.next_query;
     bool has_geometry = true;
@@ -153,7 +120,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
         if (query_due) {
             v_queue_.push_back({visit.node, inside, false, kind});
         } else {
-            pullUpVisibility(tree, visit.node);  // still assumed visible
+            nodes_.pullUp(tree, visit.node);  // still assumed visible
         }
     }
     traverseNode(tree, frame, visit);
@@ -161,7 +128,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
 
 void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                                const PendingQuery& query, uint64_t samples, RenderDevice& device) {
-    const bool visible = samples > options_.visibility_threshold_pixels;
+    const bool visible = samples > 0;
     switch (query.kind) {
         case QueryKind::Multi:
             if (visible) {
@@ -175,27 +142,27 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                 if (i_queue_.size() >= options_.batch_size) issueBatch(tree, frame, device);
             } else {
                 for (uint32_t i = 0; i < query.count; ++i) {
-                    markInvisible(multi_nodes_[query.first + i].node);
+                    nodes_.markInvisible(multi_nodes_[query.first + i].node, kMaxInvisibleFrames);
                 }
             }
             break;
         case QueryKind::Invisible:
             if (visible) {
-                NodeState& s = state_[query.first];
+                CoherentClassification::NodeState& s = nodes_[query.first];
                 s.invisible_frames = 0;
                 s.next_query = firstRetestFrame(query.first);
-                pullUpVisibility(tree, query.first);
+                nodes_.pullUp(tree, query.first);
                 traverseNode(tree, frame, {query.first, query.inside_frustum});
             } else {
-                markInvisible(query.first);
+                nodes_.markInvisible(query.first, kMaxInvisibleFrames);
             }
             break;
         case QueryKind::Visible:
         case QueryKind::Own:
             if (visible) {
                 // Visible at its previous test too: the regular interval.
-                state_[query.first].next_query = frame_ + 1 + options_.visible_frames_skip;
-                pullUpVisibility(tree, query.first);
+                nodes_[query.first].next_query = frame_ + 1 + options_.visible_frames_skip;
+                nodes_.pullUp(tree, query.first);
             }
             break;
     }
@@ -207,22 +174,10 @@ void ChcppCuller::traverseNode(const BspTree& tree, const CullFrame& frame,
     traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
 }
 
-void ChcppCuller::pullUpVisibility(const BspTree& tree, uint32_t node) {
-    while (node != BspTree::kNone && !state_[node].visible) {
-        state_[node].visible = true;
-        node = tree.node(node).parent;
-    }
-}
-
-void ChcppCuller::markInvisible(uint32_t node) {
-    NodeState& s = state_[node];
-    s.invisible_frames = std::min(s.invisible_frames + 1, kMaxInvisibleFrames);
-}
-
 uint64_t ChcppCuller::firstRetestFrame(uint32_t node) const {
     const uint32_t n_av = options_.visible_frames_skip;
     if (n_av == 0) return frame_ + 1;
-    const uint64_t r = mix(options_.seed ^ mix(uint64_t{node} ^ mix(frame_))) % n_av;
+    const uint64_t r = splitMix64(options_.seed ^ splitMix64(uint64_t{node} ^ splitMix64(frame_))) % n_av;
     return frame_ + 1 + r;
 }
 
@@ -240,8 +195,8 @@ void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, Render
         const QueuedNode& na = i_queue_[a];
         const QueuedNode& nb = i_queue_[b];
         if (na.single != nb.single) return na.single;
-        const uint32_t ia = state_[na.node].invisible_frames;
-        const uint32_t ib = state_[nb.node].invisible_frames;
+        const uint32_t ia = nodes_[na.node].invisible_frames;
+        const uint32_t ib = nodes_[nb.node].invisible_frames;
         if (ia != ib) return ia > ib;
         return a < b;
     });
@@ -252,12 +207,12 @@ void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, Render
         size_t end = i + 1;
         if (options_.multiqueries && !first.single) {
             // Grow the group while the expected number of nodes settled per query grows.
-            double keep = keepInvisibleProbability(state_[first.node].invisible_frames);
+            double keep = keepInvisibleProbability(nodes_[first.node].invisible_frames);
             double best = 1.0;
             while (end < order_.size() && !i_queue_[order_[end]].single) {
                 const uint32_t node = i_queue_[order_[end]].node;
                 const double next_keep =
-                    keep * keepInvisibleProbability(state_[node].invisible_frames);
+                    keep * keepInvisibleProbability(nodes_[node].invisible_frames);
                 const double size = static_cast<double>(end - i + 1);
                 const double value = size / (1.0 + (1.0 - next_keep) * size);
                 if (value <= best) break;
@@ -271,12 +226,14 @@ void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, Render
         } else {
             const auto start = static_cast<uint32_t>(multi_nodes_.size());
             boxes_.clear();
+            tags_.clear();
             for (size_t k = i; k < end; ++k) {
                 multi_nodes_.push_back(i_queue_[order_[k]]);
                 appendQueryBoxes(tree, i_queue_[order_[k]].node, options_.tight_bounds_depth);
+                tags_.push_back(QueryTag::node(i_queue_[order_[k]].node));
             }
             enterState(DeviceState::Query);
-            query_queue_.push_back({device.issueQuery(boxes_), start,
+            query_queue_.push_back({device.issueQuery(boxes_, tags_), start,
                                     static_cast<uint32_t>(end - i), false, QueryKind::Multi});
             ++stats_.multiqueries;
             stats_.multiquery_nodes += static_cast<uint32_t>(end - i);
@@ -297,15 +254,19 @@ void ChcppCuller::issueVisibleQuery(const BspTree& tree, const CullFrame& frame,
         appendQueryBoxes(tree, n.node, 0);
     }
     enterState(DeviceState::Query);
-    query_queue_.push_back({device.issueQuery(boxes_), n.node, 1, n.inside_frustum, n.kind});
+    const QueryTag subject =
+        n.kind == QueryKind::Own ? QueryTag::nodeObjects(n.node) : QueryTag::node(n.node);
+    const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
+    query_queue_.push_back({id, n.node, 1, n.inside_frustum, n.kind});
 }
 
 void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& n) {
     boxes_.clear();
     appendQueryBoxes(tree, n.node, options_.tight_bounds_depth);
     enterState(DeviceState::Query);
-    query_queue_.push_back(
-        {device.issueQuery(boxes_), n.node, 1, n.inside_frustum, QueryKind::Invisible});
+    const QueryTag subject = QueryTag::node(n.node);
+    const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
+    query_queue_.push_back({id, n.node, 1, n.inside_frustum, QueryKind::Invisible});
 }
 
 void ChcppCuller::flushRenderQueue(const BspTree& tree, const CullFrame& frame,

@@ -1,5 +1,5 @@
 // CHC++ (Mattausch, Bittner & Wimmer, "CHC++: Coherent Hierarchical Culling Revisited",
-// Eurographics 2008), as summarised in /work/shared/papers/pure-engine-occlusion-culling-notes.txt.
+// Eurographics 2008), as summarised in the PURE engine's occlusion-culling notes.
 // It keeps CHC's classification (chc_culler.h: termination nodes, pull-up, pull-down) and changes
 // how queries are scheduled:
 //   - i-queue: previously invisible nodes are not queried at once but collected; when
@@ -28,32 +28,13 @@
 
 #include "culling/coherent_traversal.h"
 #include "culling/culler.h"
+#include "culling/culler_options.h"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace occsim {
-
-struct ChcppOptions {
-    // n_av: frames a node found visible is assumed visible (no query) before the next test.
-    // On the default teapot scenario (llvmpipe), n_av = 0 / 2 / 5 / 10 gives 280 / 176 / 146 /
-    // 125 queries and 1004 / 1044 / 1126 / 1197 drawn objects per frame: 2 trades about even.
-    uint32_t visible_frames_skip = 2;
-    // A query passing at most this many samples (pixels) counts as occluded. 0 = exact.
-    uint32_t visibility_threshold_pixels = 0;
-    // Previously invisible nodes collected before a batch of queries is issued.
-    uint32_t batch_size = 50;
-    // Group previously invisible nodes into multiqueries (false: one query per node).
-    bool multiqueries = true;
-    // Query a node with its descendants' boxes this many levels down; 0 = its own box. On the
-    // default teapot scenario 2 saves a few queries and drawn objects at every n_av.
-    uint32_t tight_bounds_depth = 2;
-    // Seeds the randomised first re-test of nodes that turned visible.
-    uint64_t seed = 1;
-
-    bool isValid(std::string* error) const;
-};
 
 // What the last frame did, beyond the device's counters.
 struct ChcppFrameStats {
@@ -75,11 +56,11 @@ public:
 
     const ChcppOptions& options() const { return options_; }
     const ChcppFrameStats& frameStats() const { return stats_; }
-    bool classifiedVisible(uint32_t node) const { return state_[node].visible; }
+    bool classifiedVisible(uint32_t node) const { return nodes_[node].visible; }
     // Whether the last frame's traversal reached the node (it passed the frustum test).
-    bool visitedLastFrame(uint32_t node) const { return state_[node].visited == pass_; }
+    bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
     // The first frame in which the geometry of a visible node is queried again.
-    uint64_t nextQueryFrame(uint32_t node) const { return state_[node].next_query; }
+    uint64_t nextQueryFrame(uint32_t node) const { return nodes_[node].next_query; }
 
 private:
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
@@ -102,22 +83,12 @@ private:
         bool single;     // i-queue: its multiquery failed, query it alone
         QueryKind kind;  // v-queue: Visible or Own
     };
-    struct NodeState {
-        // Stamps count calls of cullAndRender (0 = never), so "the previous frame" is the
-        // previous call even if a caller repeats a frame index; query scheduling uses the index.
-        uint64_t visited = 0;     // stamp of the last frame that visited the node
-        uint64_t next_query = 0;  // first frame its geometry (leaf or own objects) is queried
-        uint32_t invisible_frames = 0;  // consecutive frames its queries found it invisible
-        bool visible = false;
-    };
     enum class DeviceState : uint8_t { None, Render, Query };
 
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
                       uint64_t samples, RenderDevice& device);
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit);
-    void pullUpVisibility(const BspTree& tree, uint32_t node);
-    void markInvisible(uint32_t node);
     uint64_t firstRetestFrame(uint32_t node) const;
 
     void issueBatch(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
@@ -129,7 +100,7 @@ private:
 
     ChcppOptions options_;
     ChcppFrameStats stats_;
-    std::vector<NodeState> state_;
+    CoherentClassification nodes_;
     DistanceQueue traversal_queue_;
     std::vector<PendingQuery> query_queue_;  // FIFO: [query_head_, size) are in flight
     size_t query_head_ = 0;
@@ -140,9 +111,9 @@ private:
     std::vector<QueuedNode> multi_nodes_;    // the nodes of this frame's multiqueries
     std::vector<uint32_t> order_;            // scratch: i-queue entries in grouping order
     std::vector<Aabb> boxes_;                // scratch: the boxes of the query being issued
+    std::vector<QueryTag> tags_;             // scratch: the nodes a multiquery decides
     DeviceState device_state_ = DeviceState::None;
     uint64_t frame_ = 0;  // the frame index being rendered
-    uint64_t pass_ = 0;   // the stamp of the frame being rendered
 };
 
 }  // namespace occsim

@@ -1,5 +1,6 @@
 // Pieces the coherent hierarchical cullers (CHC and CHC++) share: the front-to-back traversal
-// queue ordered by distance, and the boxes a query on a node's own objects covers.
+// queue ordered by distance, the boxes a query on a node's own objects covers, and the
+// classification of nodes into opened and termination nodes with its pull-up.
 //
 // Both papers allow a depth-first stack for kD-trees, but recommend the distance-ordered
 // (breadth-first) priority queue: it processes the scene in depth layers, so nodes whose queries
@@ -8,6 +9,7 @@
 #pragma once
 
 #include "culling/bsp_tree.h"
+#include "culling/culler.h"
 #include "culling/frustum.h"
 #include "culling/traversal.h"
 
@@ -68,14 +70,85 @@ private:
 inline uint32_t appendOwnObjectBoxes(const BspTree& tree, uint32_t node, const Frustum& frustum,
                                      bool inside_frustum, std::vector<Aabb>& out) {
     uint32_t count = 0;
-    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
-        const Aabb& box = tree.objectBox(o);
-        if (inside_frustum || classify(frustum, box) != FrustumTest::Outside) {
-            out.push_back(box);
-            ++count;
-        }
-    }
+    forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
+        out.push_back(tree.objectBox(o));
+        ++count;
+    });
     return count;
 }
+
+// The classification CHC and CHC++ share (Bittner et al. 2004, "Coherent Hierarchical Culling",
+// section 3; Mattausch et al. 2008 keep it): the previous frame's traversal ended at termination
+// nodes, and each node visited this frame is reset to invisible until something found visible
+// below it pulls it up again (the paper's shortcut that spares checking every child).
+//
+// Frames are stamped by calls to beginFrame() (0 = never visited), so "the previous frame" is
+// the previous call even if a caller repeats a frame index; query scheduling uses the index.
+class CoherentClassification {
+public:
+    struct NodeState {
+        uint64_t visited = 0;           // stamp of the last frame that visited the node
+        uint64_t next_query = 0;        // first frame index its geometry is queried again
+        uint32_t invisible_frames = 0;  // consecutive frames its queries found it invisible
+        bool visible = false;
+    };
+
+    // What a visit found, for the culler to act on.
+    enum class Visit : uint8_t {
+        Culled,               // outside the frustum (or empty): skip the subtree
+        NearPlane,            // the near plane may cut its box: never queried, traverse it
+        PreviouslyInvisible,  // a termination node found invisible (or not reached) last frame
+        PreviouslyVisible,    // opened last frame (or a visible leaf): traverse without waiting
+    };
+
+    void reset(uint32_t node_count) {
+        state_.assign(node_count, NodeState{});
+        stamp_ = 0;
+    }
+    bool sizedFor(const BspTree& tree) const { return state_.size() == tree.nodeCount(); }
+    void beginFrame() { ++stamp_; }
+
+    // The common start of a node's visit: the frustum test (setting visit.inside_frustum), the
+    // reset to invisible, and the near-plane rule (such a node is pulled up at once).
+    Visit visit(const BspTree& tree, const CullView& view, NodeVisit& visit) {
+        bool inside = false;
+        if (!nodeInFrustum(tree, visit, view.frustum, &inside)) return Visit::Culled;
+        visit.inside_frustum = inside;
+        NodeState& s = state_[visit.node];
+        const bool visited_last_frame = s.visited == stamp_ - 1;
+        const bool was_visible = s.visible && visited_last_frame;
+        // A node that was not a termination node last frame has no recent history to go on.
+        if (!visited_last_frame) s.invisible_frames = 0;
+        s.visible = false;
+        s.visited = stamp_;
+        if (nearPlaneTouchesBox(tree.bounds(visit.node), view.eye, view.near_radius)) {
+            pullUp(tree, visit.node);
+            return Visit::NearPlane;
+        }
+        return was_visible ? Visit::PreviouslyVisible : Visit::PreviouslyInvisible;
+    }
+
+    // Marks the node and its ancestors visible (pull-up).
+    void pullUp(const BspTree& tree, uint32_t node) {
+        while (node != BspTree::kNone && !state_[node].visible) {
+            state_[node].visible = true;
+            node = tree.node(node).parent;
+        }
+    }
+
+    // A query found the node invisible once more (CHC++'s multiquery grouping uses the count).
+    void markInvisible(uint32_t node, uint32_t cap) {
+        NodeState& s = state_[node];
+        s.invisible_frames = std::min(s.invisible_frames + 1, cap);
+    }
+
+    NodeState& operator[](uint32_t node) { return state_[node]; }
+    const NodeState& operator[](uint32_t node) const { return state_[node]; }
+    bool visitedThisFrame(uint32_t node) const { return state_[node].visited == stamp_; }
+
+private:
+    std::vector<NodeState> state_;
+    uint64_t stamp_ = 0;
+};
 
 }  // namespace occsim

@@ -1,5 +1,6 @@
 // The culler interface: one frame's visibility decisions over a BspTree, carried out through a
-// RenderDevice. Implementations keep their own per-node state (sized by reset()), use simulation
+// RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
+// registration in culling/algorithms.h. Implementations keep their own per-node state (sized by reset()), use simulation
 // time (never wall-clock time) for every decision, and are deterministic given the device's
 // answers.
 #pragma once
@@ -28,7 +29,7 @@ struct CullFrame {
     double time_s = 0.0;  // simulation time: frame_index * dt
     CullView view;
     // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
-    // cullers whose needsGroundTruth() is true (the Ideal oracle); empty otherwise.
+    // oracles (AlgorithmTraits::oracle, culling/algorithms.h); empty otherwise.
     std::span<const uint8_t> ground_truth_visible;
 };
 
@@ -36,7 +37,6 @@ class Culler {
 public:
     virtual ~Culler() = default;
     virtual std::string_view name() const = 0;
-    virtual bool needsGroundTruth() const { return false; }
     // Called once the tree is built, before the first frame; clears all per-node state.
     virtual void reset(const BspTree& tree) = 0;
     virtual void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) = 0;

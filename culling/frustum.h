@@ -6,6 +6,7 @@
 
 #include "culling/aabb.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -34,6 +35,14 @@ void classifyBatch(const Frustum& f, const float* min_x, const float* min_y, con
 // occlusion query on such a box would be clipped and could report zero samples while the box is
 // visible, so callers must render instead of querying. near_radius is the distance from the eye to
 // a corner of the near-plane rectangle.
+// The distance from the eye to a corner of the near-plane rectangle of a symmetric perspective
+// projection (vertical field of view fov_y, width / height = aspect), with 1% to spare: the
+// near_radius of nearPlaneTouchesBox().
+inline double nearPlaneCornerDistance(double near_plane, double fov_y_radians, double aspect) {
+    const double tan_half = std::tan(0.5 * fov_y_radians);
+    return 1.01 * near_plane * std::sqrt(1.0 + tan_half * tan_half * (1.0 + aspect * aspect));
+}
+
 inline bool nearPlaneTouchesBox(const Aabb& box, glm::vec3 eye, float near_radius) {
     return distanceSquared(box, eye) <= near_radius * near_radius;
 }

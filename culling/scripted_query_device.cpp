@@ -18,7 +18,8 @@ void ScriptedQueryDevice::drawObject(uint32_t object) {
     ++counters_.objects_drawn;
 }
 
-QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes) {
+QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
+                                        std::span<const QueryTag> /*subjects*/) {
     uint64_t samples = 0;
     for (size_t o = 0; o < boxes_.size(); ++o) {
         if (!visible_[o]) continue;

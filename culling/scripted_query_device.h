@@ -22,7 +22,7 @@ public:
 
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
-    QueryId issueQuery(std::span<const Aabb> boxes) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     uint64_t queryResult(QueryId id) override;
 

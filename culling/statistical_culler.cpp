@@ -7,24 +7,6 @@
 
 namespace occsim {
 
-bool StatisticalOptions::isValid(std::string* error) const {
-    auto fail = [error](const char* message) {
-        if (error) *error = message;
-        return false;
-    };
-    if (!(std::isfinite(base_time_s) && base_time_s >= 0.0))
-        return fail("base_time_s must be a finite number >= 0 (seconds)");
-    if (!(std::isfinite(decay_a) && std::isfinite(decay_b)))
-        return fail("decay_a and decay_b must be finite numbers");
-    if (!(decay_b >= 0.0 && decay_b <= 1.0)) return fail("decay_b must be in [0, 1]");
-    if (!(decay_a >= 1.0)) return fail("decay_a must be >= 1 so that the re-query interval is never negative");
-    if (history_length < 1 || history_length > 32) return fail("history_length must be in [1, 32]");
-    if (!(std::isfinite(max_statistics_age_s) && max_statistics_age_s > 0.0))
-        return fail("max_statistics_age_s must be a finite number > 0 (seconds)");
-    if (queries_before_restart < 1) return fail("queries_before_restart must be >= 1");
-    return true;
-}
-
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
                             bool near_plane_touches_box, double now_s) {
     if (near_plane_touches_box) return NodeAction::Render;
@@ -80,13 +62,12 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
                                                   frame.view.near_radius);
             switch (decideNodeAction(options_, stats_[visit.node], near, now)) {
                 case NodeAction::Query:
-                    query_queue_.push_back({visit, device.issueQuery(tree.bounds(visit.node))});
+                    query_queue_.push_back(
+                        {visit, device.issueQuery(tree.bounds(visit.node), QueryTag::node(visit.node))});
                     ++queries_this_pass;
                     break;
                 case NodeAction::Render:
                     renderVisibleNode(tree, frame, visit, device);
-                    break;
-                case NodeAction::Skip:
                     break;
             }
         }

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "culling/culler.h"
+#include "culling/culler_options.h"
 #include "culling/traversal.h"
 
 #include <deque>
@@ -26,18 +27,9 @@
 
 namespace occsim {
 
-struct StatisticalOptions {
-    double base_time_s = 2.0 / 3.0;      // BASE_TIME
-    double decay_a = 2.0;                // a in BASE_TIME * (a - b^occ_num)
-    double decay_b = 0.5;                // b in BASE_TIME * (a - b^occ_num)
-    uint32_t history_length = 8;         // query results remembered per node (1..32)
-    double max_statistics_age_s = 2.0;   // older statistics are ignored: query again
-    uint32_t queries_before_restart = 20;  // return to the queue start after this many queries
-
-    bool isValid(std::string* error) const;
-};
-
-enum class NodeAction : uint8_t { Skip, Render, Query };
+// What CalcNodeAction decides for a node that passed the frustum test (the paper's SKIP is the
+// frustum test itself, made by the traversal before it asks).
+enum class NodeAction : uint8_t { Render, Query };
 
 struct NodeStatistics {
     double last_query_time_s = 0.0;

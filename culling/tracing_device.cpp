@@ -20,13 +20,16 @@ void TracingDevice::drawObject(uint32_t object) {
     inner_.drawObject(object);
 }
 
-QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes) {
-    const QueryId id = inner_.issueQuery(boxes);
+QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes,
+                                  std::span<const QueryTag> subjects) {
+    const QueryId id = inner_.issueQuery(boxes, subjects);
     if (tracing_) {
         // The inner device may reuse an id once its result was fetched, so the map holds only
         // ids whose results are still open.
         open_[id] = trace_.queries.size();
-        trace_.queries.push_back({std::vector<Aabb>(boxes.begin(), boxes.end()), false, 0});
+        trace_.queries.push_back({std::vector<Aabb>(boxes.begin(), boxes.end()),
+                                  std::vector<QueryTag>(subjects.begin(), subjects.end()), false,
+                                  0});
     }
     return id;
 }

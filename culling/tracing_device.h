@@ -9,8 +9,7 @@
 // - Results fetched during the trace for queries issued before it (ids living across frames) are
 //   only counted: their boxes are unknown to this device.
 // - When not tracing, calls are forwarded and nothing is recorded.
-// - Counters (draws, queries, wait time) stay in the wrapped device; this device's own counters
-//   are never touched, so callers keep reading the inner device's.
+// - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
 #pragma once
 
 #include "culling/render_device.h"
@@ -22,7 +21,8 @@
 namespace occsim {
 
 struct TracedQuery {
-    std::vector<Aabb> boxes;  // one for a plain query, several for a multiquery
+    std::vector<Aabb> boxes;         // one for a plain query, several for a multiquery
+    std::vector<QueryTag> subjects;  // what the query decides, as the culler tagged it
     bool fetched = false;     // false: pending at the end of the trace
     uint64_t samples = 0;     // the result, when fetched
 };
@@ -48,9 +48,12 @@ public:
 
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
-    QueryId issueQuery(std::span<const Aabb> boxes) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     uint64_t queryResult(QueryId id) override;
+
+    const DeviceCounters& counters() const override { return inner_.counters(); }
+    void resetCounters() override { inner_.resetCounters(); }
 
 private:
     RenderDevice& inner_;

@@ -61,14 +61,22 @@ void traverseFrontToBack(const BspTree& tree, const CullView& view, std::vector<
     }
 }
 
+// Calls fn(object) for each object stored in `node` itself (not its children) whose box passes
+// the frustum (every one when the node is fully inside). The one loop behind drawing a node's
+// objects, querying them as a virtual leaf, and deciding them one by one.
+template <class Fn>
+void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const Frustum& frustum,
+                            bool inside_frustum, Fn&& fn) {
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        if (inside_frustum || classify(frustum, tree.objectBox(o)) != FrustumTest::Outside) fn(o);
+    }
+}
+
 // Draws the objects stored in `node` itself (not its children) that pass the frustum.
 inline void drawNodeObjects(const BspTree& tree, uint32_t node, const Frustum& frustum,
                             bool inside_frustum, RenderDevice& device) {
-    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
-        if (inside_frustum || classify(frustum, tree.objectBox(o)) != FrustumTest::Outside) {
-            device.drawObject(o);
-        }
-    }
+    forEachObjectInFrustum(tree, node, frustum, inside_frustum,
+                           [&device](uint32_t o) { device.drawObject(o); });
 }
 
 }  // namespace occsim

@@ -13,8 +13,6 @@ class GlContext {
 public:
     virtual ~GlContext() = default;
     virtual std::string rendererName() const = 0;
-    // Shows the given framebuffer's colour attachment where applicable (a window); no-op headless.
-    virtual void present(uint32_t framebuffer, uint32_t width, uint32_t height) = 0;
 };
 
 // Creates a headless OSMesa core-profile context of at least GL 4.5 and makes it current.

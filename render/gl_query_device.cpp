@@ -37,7 +37,8 @@ void GlQueryDevice::drawObject(uint32_t object) {
     counters_.submit_seconds += secondsSince(start);
 }
 
-QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes) {
+QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
+                                  std::span<const QueryTag> /*subjects*/) {
     const auto start = Clock::now();
     QueryId id;
     if (!free_ids_.empty()) {

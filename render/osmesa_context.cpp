@@ -51,7 +51,6 @@ public:
     std::string rendererName() const override {
         return glRendererDescription();
     }
-    void present(uint32_t, uint32_t, uint32_t) override {}
 
 private:
     std::vector<unsigned char> buffer_;

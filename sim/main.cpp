@@ -1,13 +1,17 @@
-// occsim: the simulator executable. Commands: run, bench, info. Bad input (flags, scenario files)
-// ends with one line on stderr and exit code 2; runtime failures (OpenGL, output) with exit 1.
-#include "culling/culler_factory.h"
-#include "sim/bench_config.h"
-#include "sim/gltf_source.h"
-#include "sim/regress.h"
-#include "sim/runner.h"
-#include "sim/scenario.h"
-
-#include "sim/atomic_file.h"
+// occsim: the simulator executable. Commands: run, bench, regress, info. Bad input (flags,
+// scenario files) ends with one line on stderr and exit code 2; runtime failures (OpenGL, output)
+// with exit 1.
+#include "culling/algorithms.h"
+#include "sim/output/atomic_file.h"
+#include "sim/output/pictures.h"
+#include "sim/output/report.h"
+#include "sim/output/run_outputs.h"
+#include "sim/regress/regress.h"
+#include "sim/run/run_config.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/errors.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/scene_info.h"
 
 #include <CLI/CLI.hpp>
 
@@ -28,18 +32,11 @@ struct BadInput : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-std::string joinNames(const std::vector<std::string>& names) {
-    std::string out;
-    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-    return out;
-}
-
-void checkAlgorithm(const std::string& flag, const std::string& name) {
-    for (const auto& known : occsim::cullerNames()) {
-        if (known == name) return;
-    }
+// The one place a command-line algorithm name is checked.
+const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name) {
+    if (const occsim::AlgorithmTraits* a = occsim::findAlgorithm(name)) return *a;
     throw BadInput(flag + ": unknown algorithm '" + name + "'; expected one of: " +
-                   joinNames(occsim::cullerNames()));
+                   occsim::algorithmNameList());
 }
 
 std::string commandLine(int argc, char** argv) {
@@ -83,12 +80,25 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
         ->check(CLI::Range(int64_t{0}, int64_t{9999999}));
 }
 
-occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenario& scenario,
-                                  const std::string& default_subdir, const std::string& command) {
+// What `run` and `bench` share once their flags are read: the scenario (parsed once), the
+// algorithms (checked once) and which command this is.
+struct RunRequest {
+    std::string command;  // "run" or "bench"
+    std::string command_line;
+    const CommonFlags& flags;
+    occsim::Scenario scenario;
+    std::vector<const occsim::AlgorithmTraits*> algorithms;
+    std::string default_subdir;
+};
+
+occsim::BenchOptions benchOptions(const RunRequest& request) {
+    const CommonFlags& flags = request.flags;
     occsim::BenchOptions o;
+    o.algorithms = request.algorithms;
+    o.command = request.command;
+    o.command_line = request.command_line;
     o.measure_error = flags.error;
     if (flags.frames > 0) o.frames = flags.frames;
-    o.capture_frames = flags.capture;
     o.repetitions = flags.repetitions;
     if (!flags.sweep.empty()) {
         try {
@@ -101,41 +111,41 @@ occsim::BenchOptions benchOptions(const CommonFlags& flags, const occsim::Scenar
         o.latency.deterministic = true;
         o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
     }
-    o.plots = flags.plots;
     if (flags.birds_eye >= 0) {
-        const uint32_t frames = flags.frames > 0 ? flags.frames : scenario.frames;
+        const uint32_t frames = flags.frames > 0 ? flags.frames : request.scenario.frames;
         if (flags.birds_eye >= frames) {
             throw BadInput("--birds-eye: frame " + std::to_string(flags.birds_eye) +
                            " is past the last frame (" + std::to_string(frames) + " frames, from 0)");
         }
-        o.birds_eye_frame = static_cast<uint32_t>(flags.birds_eye);
+        o.trace_frame = static_cast<uint32_t>(flags.birds_eye);
     }
-    o.out_dir = flags.out.empty() ? std::filesystem::path("out") / scenario.name / default_subdir
-                                  : std::filesystem::path(flags.out);
-    o.command_line = command;
     o.progress = ::isatty(STDERR_FILENO) != 0;
     return o;
 }
 
-int runCommand(const CommonFlags& flags, const std::vector<std::string>& algorithms,
-               const std::string& subdir, const std::string& command) {
-    const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
-    occsim::BenchOptions options = benchOptions(flags, scenario, subdir, command);
-    options.algorithms = algorithms;
-    const occsim::BenchResult result = occsim::runBenchmark(scenario, options);
-    const auto& first = result.runs.front().summary;
-    std::printf("%s: %u frames (%u timed after %u warm-up), %s\n", scenario.name.c_str(), first.frames,
-                first.timed_frames, first.frames - first.timed_frames, result.renderer.c_str());
-    std::printf("%s", result.table.c_str());
-    std::printf("written: %s/{frames.csv,summary.json,report.md}\n", options.out_dir.string().c_str());
-    size_t pictures = 0, plots = 0;
-    for (const std::string& f : result.outputs) {
-        pictures += f.rfind("birds-eye-", 0) == 0;
-        plots += f.rfind("plot-", 0) == 0;
+int runCommand(const RunRequest& request) {
+    const CommonFlags& flags = request.flags;
+    occsim::BenchOptions options = benchOptions(request);
+    const std::filesystem::path out_dir =
+        flags.out.empty() ? std::filesystem::path("out") / request.scenario.name / request.default_subdir
+                          : std::filesystem::path(flags.out);
+    occsim::PictureRecorder pictures(out_dir, flags.capture, options.trace_frame);
+    options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
+
+    const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
+    const occsim::OutputFiles files =
+        occsim::writeRunOutputs(result, {out_dir, flags.plots, pictures.birdsEyeFiles()});
+
+    std::printf("%s\n", occsim::runHeadline(result).c_str());
+    std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
+    if (!pictures.birdsEyeFiles().empty()) {
+        std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n", pictures.birdsEyeFiles().size());
     }
-    if (pictures > 0) std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n", pictures);
+    size_t plots = 0;
+    for (const std::string& f : files.files) plots += f.rfind("plot-", 0) == 0;
     if (plots > 0) std::printf("plots: %zu files (plot-*.png, plot-*.svg)\n", plots);
-    if (!result.plots_message.empty()) std::printf("%s\n", result.plots_message.c_str());
+    if (!files.plots_message.empty()) std::printf("%s\n", files.plots_message.c_str());
     return 0;
 }
 
@@ -182,7 +192,7 @@ int main(int argc, char** argv) {
     CLI::App* run = app.add_subcommand("run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
     addCommonFlags(run, run_flags);
     run->add_option("--algo", run_algorithm,
-                    "Culling algorithm (default: the scenario's): " + joinNames(occsim::cullerNames()));
+                    "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
 
     CommonFlags bench_flags;
     std::vector<std::string> bench_algorithms;
@@ -223,20 +233,32 @@ int main(int argc, char** argv) {
     const std::string command = commandLine(argc, argv);
     try {
         if (*run) {
-            const occsim::Scenario probe = occsim::parseScenarioFile(run_flags.scenario);
-            const std::string algorithm = run_algorithm.empty() ? probe.algorithm : run_algorithm;
-            checkAlgorithm("--algo", algorithm);
-            return runCommand(run_flags, {algorithm}, "run-" + algorithm, command);
+            RunRequest request{"run", command, run_flags, occsim::parseScenarioFile(run_flags.scenario),
+                               {}, ""};
+            const occsim::AlgorithmTraits& algorithm =
+                run_algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
+                                      : algorithmNamed("--algo", run_algorithm);
+            request.algorithms = {&algorithm};
+            request.default_subdir = "run-" + std::string(algorithm.name);
+            return runCommand(request);
         }
         if (*bench) {
-            if (bench_algorithms.empty()) bench_algorithms = occsim::cullerNames();
-            for (const auto& a : bench_algorithms) checkAlgorithm("--algos", a);
-            return runCommand(bench_flags, bench_algorithms, "bench", command);
+            RunRequest request{"bench", command, bench_flags,
+                               occsim::parseScenarioFile(bench_flags.scenario), {}, "bench"};
+            if (bench_algorithms.empty()) bench_algorithms = occsim::algorithmNames();
+            for (const auto& a : bench_algorithms) {
+                request.algorithms.push_back(&algorithmNamed("--algos", a));
+            }
+            return runCommand(request);
         }
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
                                              regress_shard, regress_out);
         if (*info) {
-            std::printf("%s", occsim::describeScenario(occsim::parseScenarioFile(info_scenario)).c_str());
+            std::vector<std::string> warnings;
+            const std::string text =
+                occsim::describeScenario(occsim::parseScenarioFile(info_scenario), warnings);
+            for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+            std::printf("%s", text.c_str());
             return 0;
         }
     } catch (const occsim::ScenarioError& e) {

@@ -1,13 +1,17 @@
 // Shared set-up for culler tests: random object boxes, a tree over them, and cameras.
 #pragma once
 
+#include "culling/algorithms.h"
 #include "culling/bsp_tree.h"
 #include "culling/culler.h"
 #include "culling/frustum.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <memory>
 #include <random>
+#include <stdexcept>
+#include <string_view>
 #include <set>
 #include <vector>
 
@@ -31,8 +35,8 @@ inline CullView makeView(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f,
     const glm::mat4 vp = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
                          glm::lookAt(eye, target, glm::vec3(0, 1, 0));
     view.frustum = frustumFromViewProjection(vp);
-    const float t = std::tan(glm::radians(fov_deg) * 0.5f);
-    view.near_radius = 1.01f * near * std::sqrt(1.0f + t * t * (1.0f + aspect * aspect));
+    view.near_radius =
+        static_cast<float>(nearPlaneCornerDistance(near, glm::radians(fov_deg), aspect));
     return view;
 }
 
@@ -53,6 +57,13 @@ inline std::set<uint32_t> inFrustum(const std::vector<Aabb>& boxes, const Frustu
         if (classify(f, boxes[o]) != FrustumTest::Outside) out.insert(o);
     }
     return out;
+}
+
+// The registered algorithm of that name (the test fails loudly on a typo).
+inline std::unique_ptr<Culler> cullerNamed(std::string_view name, const CullerOptions& options) {
+    const AlgorithmTraits* algorithm = findAlgorithm(name);
+    if (algorithm == nullptr) throw std::invalid_argument("no algorithm " + std::string(name));
+    return makeCuller(*algorithm, options);
 }
 
 inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) {

@@ -1,8 +1,9 @@
 // CHC, CHC++ and the per-object asynchronous culler on the scripted query device: no OpenGL.
+#include "culling/algorithms.h"
+#include "culling/approximate_device.h"
 #include "culling/async_culler.h"
 #include "culling/chc_culler.h"
 #include "culling/chcpp_culler.h"
-#include "culling/culler_factory.h"
 #include "culling/scripted_query_device.h"
 #include "culling_fixtures.h"
 
@@ -200,12 +201,31 @@ TEST(PeerCullerOptions, DefaultsAreValidAndOutOfRangeValuesAreRejectedWithAMessa
 }
 
 TEST(PeerCullerOptions, TheFactoryKnowsTheThreeByName) {
-    const std::vector<std::string>& names = cullerNames();
+    const std::vector<std::string>& names = algorithmNames();
     for (const char* name : {"chc", "chc++", "async"}) {
         EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
-        const std::unique_ptr<Culler> culler = makeCuller(name, CullerOptions{});
+        const std::unique_ptr<Culler> culler = testing::cullerNamed(name, CullerOptions{});
         ASSERT_NE(culler, nullptr) << name;
         EXPECT_EQ(culler->name(), name);
+    }
+}
+
+// What each algorithm is comes from its registration, and every registered culler reports the
+// name it was registered under.
+TEST(AlgorithmRegistry, StatesWhatEachAlgorithmIs) {
+    for (const AlgorithmTraits& a : algorithms()) {
+        EXPECT_EQ(makeCuller(a, CullerOptions{})->name(), a.name);
+        EXPECT_EQ(findAlgorithm(a.name), &a);
+        EXPECT_FALSE(a.oracle && a.issues_queries) << a.name;
+    }
+    EXPECT_EQ(findAlgorithm("nope"), nullptr);
+    EXPECT_TRUE(findAlgorithm("vfc")->speedup_reference);
+    EXPECT_EQ(speedupReference().name, "vfc");
+    EXPECT_TRUE(findAlgorithm("ideal")->oracle);
+    EXPECT_FALSE(findAlgorithm("async")->conservative);
+    for (const char* name : {"stop-and-wait", "statistical", "chc", "chc++"}) {
+        EXPECT_TRUE(findAlgorithm(name)->conservative) << name;
+        EXPECT_TRUE(findAlgorithm(name)->issues_queries) << name;
     }
 }
 
@@ -219,7 +239,7 @@ TEST_P(SteadyState, AFrameAllocatesNothing) {
     std::mt19937 rng(3);
     const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.2, rng);
     const CullView view = makeView({0, 5, 0}, {30, 0, -100});
-    const std::unique_ptr<Culler> culler = makeCuller(GetParam(), CullerOptions{});
+    const std::unique_ptr<Culler> culler = testing::cullerNamed(GetParam(), CullerOptions{});
     culler->reset(tree);
     ScriptedQueryDevice device(3);
     device.setVisibility(visible, boxes);
@@ -312,7 +332,7 @@ TEST_P(ConservativeTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible
     if (algorithm == "chc++ single") options.chcpp.multiqueries = false;
     if (algorithm == "chc skip") options.chc.visible_frames_skip = 3;
     const std::string name = algorithm.substr(0, algorithm.find(' '));
-    const std::unique_ptr<Culler> culler = makeCuller(name, options);
+    const std::unique_ptr<Culler> culler = testing::cullerNamed(name, options);
     culler->reset(tree);
     ScriptedQueryDevice device(latency);
     std::mt19937 rng(11);
@@ -413,16 +433,18 @@ TEST(ChcCuller, AThresholdAboveZeroCullsNodesWithFewVisibleSamples) {
     const CullView view = overview(boxes);
     std::vector<uint8_t> visible(boxes.size(), 0);
     visible[5] = 1;  // one object: every query on it passes one "sample"
-    ChcOptions exact, approximate;
-    approximate.visibility_threshold_pixels = 1;
-    ChcCuller chc_exact(exact), chc_approx(approximate);
+    ChcCuller chc_exact, chc_approx;
     chc_exact.reset(tree);
     chc_approx.reset(tree);
-    ScriptedQueryDevice device(0);
+    ScriptedQueryDevice device(0), approximated(0);
+    ApproximateDevice threshold(approximated, ApproximationOptions{1, false});
     for (uint64_t f = 0; f < 3; ++f) {
         EXPECT_EQ(runFrame(chc_exact, tree, device, boxes, visible, view, f).drawn,
                   std::vector<uint32_t>{5});
-        EXPECT_TRUE(runFrame(chc_approx, tree, device, boxes, visible, view, f).drawn.empty());
+        approximated.setVisibility(visible, boxes);
+        chc_approx.cullAndRender(tree, makeFrame(view, f, f / 30.0), threshold);
+        EXPECT_TRUE(approximated.drawnObjects().empty());
+        approximated.clearLog();
     }
 }
 
@@ -441,7 +463,7 @@ TEST_P(InnerNodeObjects, AreDrawnWheneverTheyAreVisible) {
     }
     ASSERT_GE(in_inner_nodes, 6u) << "the bars must straddle split planes";
 
-    const std::unique_ptr<Culler> culler = makeCuller(name, CullerOptions{});
+    const std::unique_ptr<Culler> culler = testing::cullerNamed(name, CullerOptions{});
     culler->reset(tree);
     ScriptedQueryDevice device(latency);
     std::mt19937 rng(23);
@@ -511,9 +533,9 @@ public:
     explicit QueryLoggingDevice(ScriptedQueryDevice& inner) : inner_(inner) {}
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override { inner_.drawObject(object); }
-    QueryId issueQuery(std::span<const Aabb> boxes) override {
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> tags) override {
         queries.emplace_back(boxes.begin(), boxes.end());
-        return inner_.issueQuery(boxes);
+        return inner_.issueQuery(boxes, tags);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
@@ -692,13 +714,13 @@ public:
         log.push_back({frame, false, object});
         inner_.drawObject(object);
     }
-    QueryId issueQuery(std::span<const Aabb> boxes) override {
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> tags) override {
         uint32_t object = UINT32_MAX;
         for (uint32_t o = 0; o < boxes_.size(); ++o) {
             if (boxes.size() == 1 && sameBox(boxes[0], boxes_[o])) object = o;
         }
         log.push_back({frame, true, object});
-        return inner_.issueQuery(boxes);
+        return inner_.issueQuery(boxes, tags);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     uint64_t queryResult(QueryId id) override {

@@ -2,9 +2,9 @@
 // the triangle and node counts of their README, instanced meshes are converted once, transforms
 // and replication place objects where the contract says, and broken files fail with one line.
 // Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
-#include "sim/gltf_source.h"
-#include "sim/scenario.h"
-#include "sim/world.h"
+#include "sim/scene/gltf_source.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,9 +1,10 @@
 // Regression runs catch what they exist to catch: dropped pixels, slower culling, changed
 // decisions; and they are reproducible, shardable and strict about their inputs.
 #include "culling/statistical_culler.h"
-#include "sim/regress.h"
+#include "sim/regress/regress.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -45,7 +46,9 @@ public:
         if (++draws_ % every_ != 0) inner_.drawObject(object);
     }
     using RenderDevice::issueQuery;
-    QueryId issueQuery(std::span<const Aabb> boxes) override { return inner_.issueQuery(boxes); }
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> tags) override {
+        return inner_.issueQuery(boxes, tags);
+    }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
 
@@ -93,9 +96,10 @@ RegressOptions optionsFor(const fs::path& scenario, std::optional<Sabotage> sabo
     o.inputs = {scenario};
     o.out_dir = scenario.parent_path() / "out";
     if (sabotage) {
-        o.make_culler = [how = *sabotage](const std::string& name, const CullerOptions& options) {
-            if (name == "statistical") return std::unique_ptr<Culler>(new SabotagedCuller(how));
-            return makeCuller(name, options);
+        o.make_culler = [how = *sabotage](const AlgorithmTraits& algorithm,
+                                          const CullerOptions& options) {
+            if (algorithm.name == "statistical") return std::unique_ptr<Culler>(new SabotagedCuller(how));
+            return makeCuller(algorithm, options);
         };
     }
     return o;

@@ -5,9 +5,9 @@
 #include "culling/scripted_query_device.h"
 #include "culling/tracing_device.h"
 #include "culling_fixtures.h"
-#include "sim/birds_eye.h"
-#include "sim/markdown_report.h"
-#include "sim/plots.h"
+#include "sim/output/birds_eye.h"
+#include "sim/output/markdown_report.h"
+#include "sim/output/plots.h"
 
 #include <gtest/gtest.h>
 
@@ -91,7 +91,8 @@ TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
     tracer.beginTrace(3);
     tracer.drawObject(1);
     const Aabb pair[2] = {kBoxes[2], kBoxes[3]};
-    const QueryId hidden = tracer.issueQuery(std::span<const Aabb>(pair, 2));
+    const QueryTag pair_tags[2] = {QueryTag::node(3), QueryTag::node(4)};
+    const QueryId hidden = tracer.issueQuery(std::span<const Aabb>(pair, 2), pair_tags);
     const QueryId seen = tracer.issueQuery(kBoxes[6]);
     const QueryId left_open = tracer.issueQuery(kBoxes[0]);
     EXPECT_EQ(tracer.queryResult(before), 1u);  // the wall is visible
@@ -107,6 +108,7 @@ TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
     EXPECT_EQ(t.drawn_objects, std::vector<uint32_t>{1});
     ASSERT_EQ(t.queries.size(), 3u);
     EXPECT_EQ(t.queries[0].boxes.size(), 2u);
+    EXPECT_EQ(t.queries[0].subjects, (std::vector<QueryTag>{QueryTag::node(3), QueryTag::node(4)}));
     EXPECT_TRUE(t.queries[0].fetched);
     EXPECT_EQ(t.queries[0].samples, 0u);
     EXPECT_TRUE(t.queries[1].fetched);
@@ -115,11 +117,13 @@ TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
     EXPECT_EQ(t.pendingQueries(), 1u);
     EXPECT_EQ(t.earlier_results_fetched, 1u);
 
-    // Counters stay in the wrapped device; the tracer's own stay zero.
+    // The wrapped device does the work; the tracer reports its counters, so they are true.
     EXPECT_EQ(inner.counters().objects_drawn, 3u);
     EXPECT_EQ(inner.counters().queries_issued, 4u);
-    EXPECT_EQ(tracer.counters().objects_drawn, 0u);
-    EXPECT_EQ(tracer.counters().queries_issued, 0u);
+    EXPECT_EQ(tracer.counters().objects_drawn, 3u);
+    EXPECT_EQ(tracer.counters().queries_issued, 4u);
+    tracer.resetCounters();
+    EXPECT_EQ(inner.counters().objects_drawn, 0u);
 }
 
 // ---- classifyNodes ------------------------------------------------------------------------
@@ -157,13 +161,14 @@ TEST(ClassifyNodes, StopAndWaitOnAScriptedSceneGivesTheExpectedClassPerNode) {
     }
 }
 
-TEST(ClassifyNodes, MultiqueryBoxesMatchTheirNodesAndUnqueriedVisitedNodesPassThrough) {
+TEST(ClassifyNodes, MultiqueriesCountForEveryNodeTheyWereTaggedWith) {
     const BspTree tree = sceneTree();
     const CullView view = sceneView();
     FrameTrace trace;
     // One multiquery over nodes 1 and 5 that came back 0; a pending query on node 3; nothing drawn.
-    trace.queries.push_back({{tree.bounds(1), tree.bounds(5)}, true, 0});
-    trace.queries.push_back({{tree.bounds(3)}, false, 0});
+    trace.queries.push_back(
+        {{tree.bounds(1), tree.bounds(5)}, {QueryTag::node(1), QueryTag::node(5)}, true, 0});
+    trace.queries.push_back({{tree.bounds(3)}, {QueryTag::node(3)}, false, 0});
     const std::vector<NodeClass> got = classifyNodes(tree, view, trace);
     EXPECT_EQ(got[0], NodeClass::Passed);           // visited, nothing of its own drawn
     EXPECT_EQ(got[1], NodeClass::OcclusionCulled);  // first box of the multiquery
@@ -172,12 +177,13 @@ TEST(ClassifyNodes, MultiqueryBoxesMatchTheirNodesAndUnqueriedVisitedNodesPassTh
     EXPECT_EQ(got[2], NodeClass::Passed);
     EXPECT_EQ(got[6], NodeClass::FrustumCulled);
 
-    // A query box equal to no node's bounds (a per-object query) changes nothing.
+    // The tag decides, not the box: a per-object query with a node's very bounds changes
+    // nothing, and an occluded query on a node's own objects culls nothing (they were drawn).
     FrameTrace other;
-    Aabb shifted = tree.bounds(1);
-    shifted.max.x += 0.001f;
-    other.queries.push_back({{shifted}, true, 0});
+    other.queries.push_back({{tree.bounds(1)}, {QueryTag::object(6)}, true, 0});
+    other.queries.push_back({{tree.bounds(2)}, {QueryTag::nodeObjects(2)}, true, 0});
     EXPECT_EQ(classifyNodes(tree, view, other)[1], NodeClass::Passed);
+    EXPECT_EQ(classifyNodes(tree, view, other)[2], NodeClass::Passed);
 }
 
 // ---- renderBirdsEye -----------------------------------------------------------------------
@@ -269,7 +275,7 @@ TEST(BirdsEye, TheCameraDotSitsAtTheEyeInATopViewWithMinusZUp) {
 RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,
                  double error_mean, bool pareto) {
     RunRecord r;
-    r.algorithm = algorithm;
+    r.algorithm = findAlgorithm(algorithm);
     r.pareto = pareto;
     RunSummary& s = r.summary;
     s.algorithm = label;
@@ -303,22 +309,22 @@ std::vector<RunRecord> sampleRuns() {
 TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
     BenchResult result;
     result.runs = sampleRuns();
-    result.renderer = "llvmpipe (test)";
-    ReportContext c;
+    RunMetadata& c = result.metadata;
     c.scenario_name = "teapots-small";
     c.scenario_file = "scenarios/small/teapots-small.json";
     c.frames = 30;
     c.warmup_frames = 5;
     c.error_measured = true;
     c.hardware_threads = 2;
-    c.renderer = result.renderer;
+    c.renderer = "llvmpipe (test)";
     c.width = 200;
     c.height = 150;
     c.command_line = "occsim bench scenarios/small/teapots-small.json --error --plots";
     c.sweep = Sweep{"threshold", {0, 4}};
-    c.plot_files = {"plot-frame-time.png", "plot-frame-time.svg", "plot-time-vs-error.png"};
-    c.birds_eye_files = {"birds-eye-chc-frame-00020.png"};
-    const std::string md = markdownReport(result, c);
+    ReportFiles files;
+    files.plot_files = {"plot-frame-time.png", "plot-frame-time.svg", "plot-time-vs-error.png"};
+    files.birds_eye_files = {"birds-eye-chc-frame-00020.png"};
+    const std::string md = markdownReport(result, files);
 
     EXPECT_NE(md.find("# occsim bench: teapots-small"), std::string::npos);
     EXPECT_NE(md.find(c.command_line), std::string::npos);

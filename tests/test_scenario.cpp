@@ -1,8 +1,8 @@
 // The strict scenario parser: every class of bad input fails with the file name and the exact JSON
 // pointer of the offending value; a minimal file gets the documented defaults; the examples in
 // docs/scenario-format.md parse.
-#include "sim/json_reader.h"
-#include "sim/scenario.h"
+#include "sim/scenario/json_reader.h"
+#include "sim/scenario/scenario.h"
 
 #include <gtest/gtest.h>
 
@@ -354,17 +354,19 @@ TEST(ScenarioCulling, PeerCullerOptionsAreRead) {
     json scenario = minimalScenario();
     scenario["culling"] = {
         {"algorithm", "chc++"},
-        {"chc", {{"visible_frames_skip", 2}, {"visibility_threshold_pixels", 25}}},
+        {"threshold_pixels", 25},
+        {"stale_results", true},
+        {"chc", {{"visible_frames_skip", 2}}},
         {"chc++",
-         {{"visible_frames_skip", 7}, {"visibility_threshold_pixels", 3}, {"batch_size", 20},
+         {{"visible_frames_skip", 7}, {"batch_size", 20},
           {"multiqueries", false}, {"tight_bounds_depth", 2}, {"seed", 99}}},
         {"async", {{"retest_interval_frames", 9}}}};
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_EQ(s.algorithm, "chc++");
     EXPECT_EQ(s.culler.chc.visible_frames_skip, 2u);
-    EXPECT_EQ(s.culler.chc.visibility_threshold_pixels, 25u);
+    EXPECT_EQ(s.culler.approximation.threshold_pixels, 25u);
+    EXPECT_TRUE(s.culler.approximation.stale_results);
     EXPECT_EQ(s.culler.chcpp.visible_frames_skip, 7u);
-    EXPECT_EQ(s.culler.chcpp.visibility_threshold_pixels, 3u);
     EXPECT_EQ(s.culler.chcpp.batch_size, 20u);
     EXPECT_FALSE(s.culler.chcpp.multiqueries);
     EXPECT_EQ(s.culler.chcpp.tight_bounds_depth, 2u);
@@ -507,7 +509,7 @@ TEST(ScenarioDefaults, MinimalScenarioGetsAllDocumentedDefaults) {
     EXPECT_EQ(s.bsp.max_objects_per_leaf, 4u);
     EXPECT_EQ(s.bsp.split_rule, BspSplitRule::Median);
     EXPECT_FLOAT_EQ(s.bsp.root_margin, 0.05f);
-    EXPECT_TRUE(s.expect.is_null());
+    EXPECT_FALSE(s.expect.has_value());
     EXPECT_EQ(s.seed, defaults.seed);
 }
 
@@ -539,7 +541,8 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     scenario["culling"] = {{"algorithm", "vfc"},
                            {"statistical", {{"base_time", 1}, {"history_length", 4}}}};
     scenario["bsp"] = {{"split", "sah"}, {"max_depth", 12}, {"root_margin", 0}};
-    scenario["expect"] = {{"anything", {1, 2, 3}}};
+    scenario["expect"] = {{"algorithms", {"vfc", "async"}}, {"frames", 20},
+                          {"max_error_pixels", {{"async", 50}}}};
 
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_EQ(s.name, "everything");
@@ -572,7 +575,28 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_EQ(s.bsp.split_rule, BspSplitRule::Sah);
     EXPECT_EQ(s.bsp.max_depth, 12u);
     EXPECT_FLOAT_EQ(s.bsp.root_margin, 0.0f);
-    EXPECT_EQ(s.expect, scenario["expect"]);
+    ASSERT_TRUE(s.expect.has_value());
+    EXPECT_EQ(s.expect->algorithms, (std::vector<std::string>{"vfc", "async"}));
+    EXPECT_EQ(s.expect->frames, 20u);
+    EXPECT_EQ(s.expect->zero_error, std::vector<std::string>{"vfc"}) << "the conservative ones";
+    EXPECT_EQ(s.expect->max_error_pixels.at("async"), 50);
+}
+
+// The expect block is read with the rest of the scenario: a mistake in it is a parse error.
+TEST(ScenarioExpect, IsParsedWithTheScenario) {
+    json scenario = minimalScenario();
+    scenario["expect"] = {{"anything", {1, 2, 3}}};
+    expectError(scenario, "/expect/anything", "unknown key 'anything'");
+    scenario["expect"] = {{"algorithms", {"vfc", "nope"}}};
+    expectError(scenario, "/expect/algorithms/1", "expected one of");
+}
+
+// Mover object indices are checked by the parser where the source's spec tells its object count.
+TEST(ScenarioMovers, ObjectIndicesPastATeapotFieldAreRejectedByTheParser) {
+    json scenario = minimalScenario();
+    scenario["scene"]["sources"][0] = {{"type", "teapots"}, {"count", 5}};
+    scenario["movers"] = {{{"motion", "spin"}, {"objects", {0, 4, 5}}}};
+    expectError(scenario, "/movers/0/objects/2", "expected an object index < 5");
 }
 
 // Every ```json block of docs/scenario*.md is a complete scenario that parses. Paths inside the

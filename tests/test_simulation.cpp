@@ -1,12 +1,17 @@
 // End to end through OSMesa: the small teapot scenario, every algorithm, ground truth and error.
-#include "culling/culler_factory.h"
-#include "sim/runner.h"
-#include "sim/scenario.h"
+#include "culling/algorithms.h"
+#include "sim/output/pictures.h"
+#include "sim/output/run_outputs.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/scene_info.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 namespace occsim {
 namespace {
@@ -19,22 +24,27 @@ std::filesystem::path freshDir(const std::string& name) {
     return dir;
 }
 
-BenchResult benchSmall(const std::string& name, bool error, LatencyMode latency,
-                       std::vector<std::string> algorithms = cullerNames()) {
+std::vector<const AlgorithmTraits*> traitsOf(const std::vector<std::string>& names) {
+    std::vector<const AlgorithmTraits*> out;
+    for (const std::string& n : names) out.push_back(findAlgorithm(n));
+    return out;
+}
+
+BenchResult benchSmall(bool error, LatencyMode latency,
+                       const std::vector<std::string>& algorithms = algorithmNames()) {
     BenchOptions options;
-    options.algorithms = std::move(algorithms);
+    options.algorithms = traitsOf(algorithms);
     options.measure_error = error;
     options.latency = latency;
-    options.out_dir = freshDir(name);
     return runBenchmark(parseScenarioFile(kSmall), options);
 }
 
 TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) {
     std::vector<std::string> conservative;
-    for (const std::string& name : cullerNames()) {
+    for (const std::string& name : algorithmNames()) {
         if (name != "async") conservative.push_back(name);  // per-object async may miss by design
     }
-    const BenchResult result = benchSmall("zero-error", true, LatencyMode{}, conservative);
+    const BenchResult result = benchSmall(true, LatencyMode{}, conservative);
     ASSERT_EQ(result.runs.size(), conservative.size());
     for (const RunRecord& run : result.runs) {
         ASSERT_EQ(run.frames.size(), 40u);
@@ -47,7 +57,7 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
 }
 
 TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries) {
-    const BenchResult result = benchSmall("fewer", true, LatencyMode{true, 8});
+    const BenchResult result = benchSmall(true, LatencyMode{true, 8});
     const auto& runs = result.runs;
     auto by = [&](const std::string& name) -> const RunSummary& {
         for (const RunRecord& r : runs) {
@@ -64,7 +74,7 @@ TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries)
 }
 
 TEST(Simulation, MovingObjectsAreReinsertedIntoOtherNodes) {
-    const BenchResult result = benchSmall("movers", false, LatencyMode{}, {"vfc"});
+    const BenchResult result = benchSmall(false, LatencyMode{}, {"vfc"});
     uint64_t changes = 0;
     for (const FrameStats& f : result.runs[0].frames) {
         EXPECT_EQ(f.moved_objects, f.frame == 0 ? 0u : 90u);  // 20% + 10% of 300
@@ -76,7 +86,7 @@ TEST(Simulation, MovingObjectsAreReinsertedIntoOtherNodes) {
 TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     std::vector<std::vector<std::pair<uint64_t, uint64_t>>> counts;
     for (int run = 0; run < 3; ++run) {
-        const BenchResult r = benchSmall("determinism", false, LatencyMode{true, 6}, {"statistical"});
+        const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"statistical"});
         counts.emplace_back();
         for (const FrameStats& f : r.runs[0].frames) counts.back().push_back({f.queries, f.objects_drawn});
     }
@@ -84,35 +94,64 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     EXPECT_EQ(counts[0], counts[2]);
 }
 
+// runBenchmark() measures and returns; the files are written by the output layer afterwards
+// (and the pictures by its frame hook), so a tool that only wants figures writes nothing.
+TEST(Simulation, RunBenchmarkWritesNoFile) {
+    auto entries = [] {
+        std::set<std::filesystem::path> out;
+        for (const auto& e : std::filesystem::directory_iterator(std::filesystem::current_path())) {
+            out.insert(e.path());
+        }
+        return out;
+    };
+    const auto before = entries();
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc", "chc"});
+    options.measure_error = true;
+    options.frames = 3;
+    const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
+    EXPECT_EQ(entries(), before);
+    EXPECT_EQ(result.metadata.command, "bench");
+    EXPECT_EQ(result.metadata.frames, 3u);
+    EXPECT_EQ(result.metadata.objects, 300u);
+    EXPECT_FALSE(result.metadata.renderer.empty());
+}
+
 TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     BenchOptions options;
-    options.algorithms = {"statistical", "vfc"};
+    options.algorithms = traitsOf({"statistical", "vfc"});
     options.measure_error = true;
-    options.out_dir = freshDir("outputs");
-    options.capture_frames = {3};
     options.frames = 6;
-    runBenchmark(parseScenarioFile(kSmall), options);
-    std::ifstream csv(options.out_dir / "frames.csv");
+    const std::filesystem::path out_dir = freshDir("outputs");
+    PictureRecorder pictures(out_dir, {3}, std::nullopt);
+    options.on_frame = [&pictures](const FrameEvent& e) { pictures.onFrame(e); };
+    const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
+    writeRunOutputs(result, {out_dir, false, {}});
+    std::ifstream csv(out_dir / "frames.csv");
     std::string line;
     int lines = 0;
     while (std::getline(csv, line)) ++lines;
     EXPECT_EQ(lines, 1 + 2 * 6);
-    const auto summary = nlohmann::json::parse(std::ifstream(options.out_dir / "summary.json"));
+    const auto summary = nlohmann::json::parse(std::ifstream(out_dir / "summary.json"));
     EXPECT_EQ(summary["algorithms"].size(), 2u);
     EXPECT_EQ(summary["algorithms"][0]["error"]["pixels_total"], 0);
     EXPECT_TRUE(summary["algorithms"][0].contains("speedup_over_vfc"));
-    EXPECT_TRUE(std::filesystem::exists(options.out_dir / "frame-00003-statistical.png"));
-    EXPECT_TRUE(std::filesystem::exists(options.out_dir / "frame-00003-vfc.png"));
-    for (const auto& entry : std::filesystem::directory_iterator(options.out_dir)) {
+    EXPECT_EQ(summary["scenario"]["objects"], 300);
+    EXPECT_TRUE(std::filesystem::exists(out_dir / "frame-00003-statistical.png"));
+    EXPECT_TRUE(std::filesystem::exists(out_dir / "frame-00003-vfc.png"));
+    EXPECT_EQ(pictures.captureFiles().size(), 2u);
+    for (const auto& entry : std::filesystem::directory_iterator(out_dir)) {
         EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
     }
 }
 
 TEST(Simulation, DescribeReportsObjectsTrianglesMoversAndTree) {
-    const std::string text = describeScenario(parseScenarioFile(kSmall));
+    std::vector<std::string> warnings;
+    const std::string text = describeScenario(parseScenarioFile(kSmall), warnings);
     EXPECT_NE(text.find("objects       300"), std::string::npos) << text;
     EXPECT_NE(text.find("movers        90"), std::string::npos) << text;
     EXPECT_NE(text.find("bsp "), std::string::npos) << text;
+    EXPECT_TRUE(warnings.empty());
 }
 
 }  // namespace

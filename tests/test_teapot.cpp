@@ -1,4 +1,4 @@
-#include "sim/teapot.h"
+#include "sim/scene/teapot.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Scene building, movers and the camera path: deterministic, bounded, smooth.
-#include "sim/camera_path.h"
-#include "sim/frame_stats.h"
-#include "sim/scenario.h"
-#include "sim/world.h"
+#include "sim/world/camera_path.h"
+#include "sim/run/frame_stats.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,21 @@
+// Output files appear whole or not at all: written to a temporary file beside the target, then
+// renamed over it (rename is atomic within a file system).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace occsim {
+
+// Throws std::runtime_error naming the file on any failure; never leaves a partial target.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view contents);
+void writeFileAtomically(const std::filesystem::path& path, const std::vector<uint8_t>& contents);
+
+// A label made safe as one file-name component: letters, digits, '-', '_' and '.' are kept,
+// anything else becomes '_', and a leading '.' too (no hidden files, no "..").
+std::string safeFileName(std::string_view label);
+
+}  // namespace occsim

@@ -1,0 +1,149 @@
+#include "sim/output/markdown_report.h"
+
+#include "sim/output/report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace occsim {
+namespace {
+
+// Table cells must not contain a bare '|' (it would end the cell).
+std::string cell(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '|') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// A caption for a plot file from its stem (plots.h names them).
+std::string plotCaption(const std::string& file) {
+    if (file.find("frame-time") != std::string::npos) return "Frame time per frame";
+    if (file.find("time-vs-error") != std::string::npos) return "Time against error";
+    if (file.find("queries-triangles") != std::string::npos) return "Queries and triangles per frame";
+    return file;
+}
+
+void header(std::ostringstream& out, const BenchResult& result) {
+    const RunMetadata& c = result.metadata;
+    out << "# occsim " << c.command << ": " << c.scenario_name << "\n\n";
+    out << "| | |\n|---|---|\n";
+    out << "| scenario | " << cell(c.scenario_name) << " (`" << cell(c.scenario_file) << "`), "
+        << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";
+    out << "| machine | " << c.hardware_threads << " hardware threads, LP_NUM_THREADS="
+        << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << " |\n";
+    out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
+        << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
+    if (c.sweep) {
+        out << "| sweep | " << cell(c.sweep->parameter) << " =";
+        for (size_t i = 0; i < c.sweep->values.size(); ++i) {
+            char v[32];
+            std::snprintf(v, sizeof v, "%g", c.sweep->values[i]);
+            out << (i ? ", " : " ") << v;
+        }
+        out << " |\n";
+    }
+    out << "| query latency | "
+        << (c.deterministic_latency
+                ? "deterministic: a result is ready after " + std::to_string(*c.deterministic_latency) +
+                      " later draw calls"
+                : std::string("as the hardware reports it"))
+        << " |\n";
+    out << "| image error | " << (c.error_measured ? "measured against a ground-truth render of every frame"
+                                                   : "not measured (run with `--error`)")
+        << " |\n\n";
+    out << "Command:\n\n```sh\n" << c.command_line << "\n```\n\n";
+    const uint32_t timed = c.frames > c.warmup_frames ? c.frames - c.warmup_frames : 0;
+    out << "The first " << c.warmup_frames << " frames are warm-up and are excluded from every "
+        << "timing figure (" << timed << " frames timed); error and popping count all frames. "
+        << "Ground-truth rendering, PNG writing and statistics I/O (CSV, JSON, this report, the "
+        << "plots and the bird's-eye pictures) happen outside all timing.\n\n";
+}
+
+void table(std::ostringstream& out, const BenchResult& result) {
+    const ComparisonTable t = comparisonTable(result.runs);
+    const bool has_pareto = !t.header.empty() && t.header.back() == "pareto";
+    out << "## Comparison\n\n|";
+    for (const std::string& h : t.header) out << ' ' << cell(h) << " |";
+    out << "\n|";
+    for (size_t i = 0; i < t.header.size(); ++i) out << (i == 0 ? "---|" : "---:|");
+    out << "\n";
+    for (const auto& row : t.rows) {
+        const bool pareto = has_pareto && row.back() == "*";
+        out << "|";
+        for (size_t i = 0; i < row.size(); ++i) {
+            std::string v = cell(row[i]);
+            if (i == 0 && pareto) v = "**" + v + "**";
+            if (has_pareto && i + 1 == row.size()) v = pareto ? "yes" : "";
+            out << ' ' << v << " |";
+        }
+        out << "\n";
+    }
+    out << "\n";
+    if (has_pareto) {
+        out << "Configurations marked **yes** under `pareto` (and in bold) are on the "
+            << "time-against-error Pareto front: no other configuration is both faster and at "
+            << "most as wrong. The Ideal oracle is the bound, not a candidate.\n\n";
+    }
+}
+
+void pictures(std::ostringstream& out, const ReportFiles& c) {
+    std::vector<std::string> pngs;
+    for (const std::string& f : c.plot_files) {
+        if (endsWith(f, ".png")) pngs.push_back(f);
+    }
+    if (!pngs.empty() || !c.plots_note.empty()) out << "## Plots\n\n";
+    for (const std::string& f : pngs) {
+        std::string svg = f.substr(0, f.size() - 4) + ".svg";
+        const bool has_svg = std::find(c.plot_files.begin(), c.plot_files.end(), svg) != c.plot_files.end();
+        out << "![" << plotCaption(f) << "](" << f << ")\n";
+        if (has_svg) out << "\n(" << "[SVG](" << svg << "))\n";
+        out << "\n";
+    }
+    if (!c.plots_note.empty()) out << c.plots_note << "\n\n";
+    if (c.birds_eye_files.empty()) return;
+    out << "## Bird's-eye view\n\n"
+        << "The scene from above: objects drawn this frame in yellow, the others grey; BSP node "
+        << "bounds outlined red where the view frustum culled them, blue where an occlusion query "
+        << "culled them, green where they were drawn after a visible query, magenta where their "
+        << "objects were drawn without a query, dim blue below an occluded node (never reached), "
+        << "dim teal where the traversal passed through; the camera as a white dot with its view "
+        << "wedge.\n\n";
+    for (const std::string& f : c.birds_eye_files) out << "![" << f << "](" << f << ")\n\n";
+}
+
+void howToRead(std::ostringstream& out) {
+    out << "## How to read this\n\n"
+        << "Frame times are wall clock from frame start to `glFinish`, culled render only. "
+        << "**speedup** is VFC's mean frame time over the configuration's (above 1x: faster than "
+        << "frustum culling alone); **vs ideal** is the configuration's mean frame time over the "
+        << "Ideal oracle's, which draws exactly the objects ground truth sees with no queries "
+        << "(1x is the bound; the nearer, the better). **err px/fr** is the mean number of pixels "
+        << "per frame whose object differs from ground truth (0 for conservative culling), "
+        << "**p99 px** and **worst px** its tail, **missed** the objects ground truth saw that the "
+        << "frame showed nowhere. **pop max** is the longest run of consecutive frames one visible "
+        << "object stayed missing: short runs flicker (popping), long ones are holes. In the "
+        << "time-against-error plot, down and to the left is better: a configuration that buys "
+        << "time with error sits left of and above the conservative ones, and the Pareto line "
+        << "joins those that no other configuration beats in both.\n";
+}
+
+}  // namespace
+
+std::string markdownReport(const BenchResult& result, const ReportFiles& files) {
+    std::ostringstream out;
+    header(out, result);
+    table(out, result);
+    pictures(out, files);
+    howToRead(out);
+    return out.str();
+}
+
+}  // namespace occsim

@@ -1,0 +1,32 @@
+// report.md: one page a person can read after `occsim bench` or `occsim run`, with the
+// comparison table, the plots and the bird's-eye pictures.
+//
+// Contract
+// - markdownReport() is pure formatting: it measures nothing and touches no file. The table has
+//   exactly the columns of formatComparisonTable() (comparisonTable() gives both), with the
+//   Pareto configurations marked. Only the pictures named in ReportFiles are linked (by file
+//   name, relative to report.md, which lives in the same folder).
+// - The header states, from the run's metadata, the scenario, the exact command, the machine,
+//   the warm-up frames excluded from timing, and that ground-truth rendering, PNG writing and
+//   statistics I/O are outside all timing.
+#pragma once
+
+#include "sim/run/results.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// Pictures that exist in the report's folder (file names).
+struct ReportFiles {
+    std::vector<std::string> plot_files;       // PNG and SVG; the PNGs are shown
+    std::vector<std::string> birds_eye_files;
+    std::string plots_note;                    // why plots are missing or incomplete, if so
+};
+
+std::string markdownReport(const BenchResult& result, const ReportFiles& files);
+
+}  // namespace occsim

@@ -1,0 +1,37 @@
+// Pictures taken while a benchmark runs, between frames and outside every timing: PNG captures of
+// chosen frames' colour buffers and bird's-eye pictures of one frame's culling decisions. Plug
+// onFrame() into BenchOptions::on_frame; every file is written atomically.
+#pragma once
+
+#include "sim/run/runner.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+class PictureRecorder {
+public:
+    // capture_frames: frames whose culled colour buffer is saved (frame-NNNNN-<config>.png);
+    // birds_eye_frame: the frame pictured from above (birds-eye-<config>-frame-NNNNN.png), which
+    // must also be BenchOptions::trace_frame. First repetition only.
+    PictureRecorder(std::filesystem::path out_dir, std::vector<uint32_t> capture_frames,
+                    std::optional<uint32_t> birds_eye_frame);
+
+    void onFrame(const FrameEvent& event);
+
+    const std::vector<std::string>& captureFiles() const { return captures_; }
+    const std::vector<std::string>& birdsEyeFiles() const { return birds_eye_; }
+
+private:
+    std::filesystem::path out_dir_;
+    std::vector<uint32_t> capture_frames_;
+    std::optional<uint32_t> birds_eye_frame_;
+    std::vector<std::string> captures_, birds_eye_;
+    std::vector<uint8_t> rgba_;  // read-back scratch
+};
+
+}  // namespace occsim

@@ -1,0 +1,171 @@
+#include "sim/output/report.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace occsim {
+namespace {
+
+std::string fixed(double v, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+}  // namespace
+
+ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
+    bool error = false, repeated = false;
+    for (const RunRecord& r : runs) {
+        error |= r.summary.error_measured;
+        repeated |= r.summary.repetitions > 1;
+    }
+    std::vector<std::string> header = {"configuration", repeated ? "mean ms [min-max]" : "mean ms",
+                                       "median ms", "p95 ms", "queries/fr", "wait ms/fr", "tris/fr",
+                                       "objs/fr"};
+    if (error) {
+        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "missed", "pop max"}) {
+            header.push_back(h);
+        }
+    }
+    for (const char* h : {"speedup", "vs ideal"}) header.push_back(h);
+    if (error) header.push_back("pareto");
+
+    std::vector<std::vector<std::string>> rows;
+    for (const RunRecord& r : runs) {
+        const RunSummary& s = r.summary;
+        const double speedup = speedupOverReference(runs, s), ideal = ratioToOracle(runs, s);
+        std::string mean = fixed(s.frame_ms.mean, 2);
+        if (repeated) mean += " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+        std::vector<std::string> row = {s.algorithm, mean, fixed(s.frame_ms.median, 2),
+                                        fixed(s.frame_ms.p95, 2), fixed(s.queries_mean, 1),
+                                        fixed(s.wait_ms_mean, 3), fixed(s.triangles_mean, 0),
+                                        fixed(s.objects_mean, 1)};
+        if (error) {
+            row.push_back(fixed(s.error_pixels_mean, 1));
+            row.push_back(fixed(s.error_pixels_p99, 0));
+            row.push_back(std::to_string(s.error_pixels_worst));
+            row.push_back(std::to_string(s.error_pixels_total));
+            row.push_back(std::to_string(s.missed_objects_total));
+            row.push_back(std::to_string(s.popping_max_frames));
+        }
+        row.push_back(speedup > 0 ? fixed(speedup, 2) + "x" : "-");
+        row.push_back(ideal > 0 ? fixed(ideal, 2) + "x" : "-");
+        if (error) row.push_back(r.pareto ? "*" : "");
+        rows.push_back(row);
+    }
+    return {header, rows};
+}
+
+std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
+    const ComparisonTable table = comparisonTable(runs);
+    const auto& header = table.header;
+    const auto& rows = table.rows;
+    std::vector<size_t> width(header.size());
+    for (size_t c = 0; c < header.size(); ++c) {
+        width[c] = header[c].size();
+        for (const auto& row : rows) width[c] = std::max(width[c], row[c].size());
+    }
+    std::ostringstream out;
+    auto line = [&](const std::vector<std::string>& cells) {
+        for (size_t c = 0; c < cells.size(); ++c) {
+            const std::string pad(width[c] - cells[c].size(), ' ');
+            out << (c == 0 ? cells[c] + pad : pad + cells[c]) << (c + 1 < cells.size() ? "  " : "\n");
+        }
+    };
+    line(header);
+    for (const auto& row : rows) line(row);
+    return out.str();
+}
+
+std::string framesCsv(const std::vector<RunRecord>& runs) {
+    std::ostringstream out;
+    out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
+           "objects_drawn,triangles,moved_objects,node_changes,error_pixels,missed_objects,"
+           "visible_objects\n";
+    for (const RunRecord& r : runs) {
+        for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
+            const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
+            for (const FrameStats& f : frames) {
+                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ',' << fixed(f.time_s, 6)
+                    << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
+                    << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
+                    << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
+                    << f.node_changes << ',' << f.error_pixels << ',' << f.missed_objects << ','
+                    << f.visible_objects << '\n';
+            }
+        }
+    }
+    return out.str();
+}
+
+nlohmann::json summaryJson(const BenchResult& result) {
+    const std::vector<RunRecord>& runs = result.runs;
+    nlohmann::json algorithms = nlohmann::json::array();
+    for (const RunRecord& r : runs) {
+        const RunSummary& s = r.summary;
+        nlohmann::json j = {
+            {"configuration", s.algorithm},
+            {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.algorithm},
+            {"repetitions", s.repetitions},
+            {"frame_ms_mean_over_repetitions", {{"median", s.frame_ms.mean}, {"min", s.frame_ms_mean_min},
+                                                {"max", s.frame_ms_mean_max}}},
+            {"frames", s.frames},
+            {"timed_frames", s.timed_frames},
+            {"frame_ms", {{"mean", s.frame_ms.mean}, {"median", s.frame_ms.median},
+                          {"p95", s.frame_ms.p95}, {"min", s.frame_ms.min}, {"max", s.frame_ms.max}}},
+            {"cull_cpu_ms_mean", s.cull_cpu_ms_mean},
+            {"wait_ms_mean", s.wait_ms_mean},
+            {"update_ms_mean", s.update_ms_mean},
+            {"queries_per_frame", s.queries_mean},
+            {"objects_per_frame", s.objects_mean},
+            {"triangles_per_frame", s.triangles_mean},
+        };
+        if (s.error_measured) {
+            j["error"] = {{"pixels_total", s.error_pixels_total},
+                          {"pixels_worst_frame", s.error_pixels_worst},
+                          {"worst_frame", s.error_worst_frame},
+                          {"frames_with_error", s.frames_with_error},
+                          {"pixels_per_frame_mean", s.error_pixels_mean},
+                          {"pixels_per_frame_p99", s.error_pixels_p99},
+                          {"missed_objects_total", s.missed_objects_total},
+                          {"popping_events", s.popping_events},
+                          {"popping_mean_frames", s.popping_mean_frames},
+                          {"popping_max_frames", s.popping_max_frames}};
+            j["pareto"] = r.pareto;
+        }
+        if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
+        if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
+        algorithms.push_back(j);
+    }
+    const RunMetadata& m = result.metadata;
+    nlohmann::json summary = {{"algorithms", algorithms}};
+    summary["scenario"] = {{"name", m.scenario_name}, {"file", m.scenario_file},
+                           {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
+                           {"dt_s", m.dt_s},          {"seed", m.seed},
+                           {"objects", m.objects},    {"triangles", m.triangles},
+                           {"movers", m.movers}};
+    summary["machine"] = {{"hardware_threads", m.hardware_threads},
+                          {"llvmpipe_threads", m.lp_num_threads},
+                          {"renderer", m.renderer},
+                          {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
+    summary["command"] = m.command_line;
+    summary["repetitions"] = m.repetitions;
+    summary["error_measured"] = m.error_measured;
+    summary["deterministic_latency"] = m.deterministic_latency
+                                           ? nlohmann::json(*m.deterministic_latency)
+                                           : nlohmann::json(nullptr);
+    if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
+    return summary;
+}
+
+std::string runHeadline(const BenchResult& result) {
+    const RunMetadata& m = result.metadata;
+    const uint32_t timed = result.runs.empty() ? 0 : result.runs.front().summary.timed_frames;
+    char line[512];
+    std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
+                  m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
+    return line;
+}
+
+}  // namespace occsim

@@ -1,0 +1,35 @@
+// Turning per-frame figures into what a person reads: the comparison table, frames.csv and
+// summary.json. Formatting only; nothing here measures anything or touches a file.
+#pragma once
+
+#include "sim/run/results.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// The cells of the benchmark table: one row per configuration, with speedup over VFC and ratio
+// to Ideal when those algorithms are among the records. The error columns and the "pareto"
+// column ("*" on the front) appear only when error was measured.
+struct ComparisonTable {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+ComparisonTable comparisonTable(const std::vector<RunRecord>& runs);
+
+// That table as plain text, aligned.
+std::string formatComparisonTable(const std::vector<RunRecord>& runs);
+
+// CSV with a header, one row per frame per algorithm.
+std::string framesCsv(const std::vector<RunRecord>& runs);
+
+// summary.json: the metadata (scenario, machine, command) and every configuration's figures.
+nlohmann::json summaryJson(const BenchResult& result);
+
+// The console's first line: "<scenario>: N frames (M timed after W warm-up), <renderer>".
+std::string runHeadline(const BenchResult& result);
+
+}  // namespace occsim

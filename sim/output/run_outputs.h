@@ -1,0 +1,28 @@
+// The files a `run` or `bench` leaves behind, written from its result after it finished:
+// frames.csv, summary.json, report.md and, when asked, the gnuplot charts. Each file is written
+// atomically (whole or absent).
+#pragma once
+
+#include "sim/run/results.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+struct OutputRequest {
+    std::filesystem::path out_dir;
+    bool plots = false;                         // gnuplot charts (plots.h), when gnuplot is there
+    std::vector<std::string> birds_eye_files;   // pictures already in out_dir, linked from report.md
+};
+
+struct OutputFiles {
+    std::vector<std::string> files;  // names in out_dir, in the order written
+    std::string plots_message;       // why plots were skipped or failed, or a remark
+};
+
+// Throws std::runtime_error naming the file when one cannot be written.
+OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& request);
+
+}  // namespace occsim

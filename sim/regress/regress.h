@@ -1,0 +1,107 @@
+// Scenario-driven regression runs (docs/regression.md). Every scenario with an `expect` block is
+// run headless in deterministic-latency mode with the algorithms it names, and checked against:
+// - its expectations: zero error pixels on every frame for the algorithms that must be
+//   conservative, per-frame error bounds for approximate ones, and frame-time ratios between
+//   algorithms measured in the same run (never absolute milliseconds), each with a tolerance;
+// - its baseline file: per algorithm and frame, the exact query count, objects drawn and error
+//   pixels of the last accepted run. `--update` rewrites it (atomically) and says what changed.
+#pragma once
+
+#include "culling/algorithms.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// What one run produced per algorithm and frame: the exact counts a baseline pins down.
+struct AlgorithmTrace {
+    std::vector<uint64_t> queries;
+    std::vector<uint64_t> objects;
+    std::vector<int64_t> error_pixels;
+};
+
+struct Baseline {
+    static constexpr int kFormatVersion = 1;
+    std::string scenario;
+    uint32_t deterministic_latency = 0;
+    uint32_t frames = 0;
+    std::map<std::string, AlgorithmTrace> algorithms;
+};
+
+// A baseline file that cannot be used. Its message names the file and the key.
+class BaselineError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+Baseline readBaseline(const std::filesystem::path& file);
+std::string baselineJson(const Baseline& baseline);
+
+struct CheckResult {
+    std::string check;     // what was checked, e.g. "zero error pixels: statistical"
+    std::string expected;
+    std::string got;
+    bool passed = false;
+};
+
+struct ScenarioOutcome {
+    std::string scenario;         // path as given/found
+    std::string name;
+    bool skipped = false;
+    std::string note;             // why skipped, or what an update changed
+    std::vector<CheckResult> checks;
+    std::vector<std::string> captures;  // pictures written for failures
+    double seconds = 0.0;
+
+    bool passed() const;
+};
+
+struct Shard {
+    uint32_t index = 0;
+    uint32_t count = 1;
+};
+
+// "i/n" with 0 <= i < n. Throws std::invalid_argument with a one-line reason.
+Shard parseShard(const std::string& text);
+// Slurm job arrays (SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT, SLURM_ARRAY_TASK_MIN) or
+// Kubernetes indexed jobs (JOB_COMPLETION_INDEX with OCCSIM_SHARD_COUNT); 0/1 when neither is
+// set. `get` reads a variable (std::getenv in production). Throws std::invalid_argument.
+Shard shardFromEnvironment(const std::function<const char*(const char*)>& get);
+
+// The scenario files under the inputs (files as given; folders searched recursively for *.json,
+// skipping *.baseline.json), sorted, then this shard's share: every count-th from index.
+std::vector<std::filesystem::path> collectScenarios(const std::vector<std::filesystem::path>& inputs,
+                                                    const Shard& shard);
+
+struct RegressOptions {
+    std::vector<std::filesystem::path> inputs;
+    Shard shard;
+    bool update = false;
+    std::filesystem::path out_dir = "out/regress";
+    bool progress = false;
+    // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
+    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
+};
+
+struct RegressReport {
+    std::vector<ScenarioOutcome> scenarios;
+    bool passed() const;
+    std::string table() const;  // scenario, check, expected, got, pass/fail
+};
+
+RegressReport runRegression(const RegressOptions& options);
+
+// JUnit XML: one testsuite per scenario, one testcase per check.
+std::string junitXml(const RegressReport& report);
+
+}  // namespace occsim

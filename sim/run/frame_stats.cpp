@@ -1,0 +1,160 @@
+#include "sim/run/frame_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace occsim {
+
+Distribution distributionOf(std::vector<double> values) {
+    Distribution d;
+    if (values.empty()) return d;
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(n);
+    d.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+    // Nearest-rank percentile: the smallest value with at least 95% of the values at or below it.
+    const size_t rank = static_cast<size_t>(std::ceil(0.95 * static_cast<double>(n)));
+    d.p95 = values[std::clamp<size_t>(rank, 1, n) - 1];
+    d.min = values.front();
+    d.max = values.back();
+    return d;
+}
+
+RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
+                     uint32_t warmup_frames) {
+    RunSummary s;
+    s.algorithm = algorithm;
+    s.frames = static_cast<uint32_t>(frames.size());
+    std::vector<double> frame_ms;
+    double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
+    for (const FrameStats& f : frames) {
+        if (f.error_pixels >= 0) {
+            s.error_measured = true;
+            s.error_pixels_total += f.error_pixels;
+            s.missed_objects_total += f.missed_objects;
+            if (f.error_pixels > 0) ++s.frames_with_error;
+            if (f.error_pixels > s.error_pixels_worst) {
+                s.error_pixels_worst = f.error_pixels;
+                s.error_worst_frame = f.frame;
+            }
+        }
+        if (f.frame < warmup_frames) continue;
+        frame_ms.push_back(f.frame_ms);
+        cull += f.cull_cpu_ms;
+        wait += f.wait_ms;
+        update += f.update_ms;
+        queries += static_cast<double>(f.queries);
+        objects += static_cast<double>(f.objects_drawn);
+        triangles += static_cast<double>(f.triangles);
+    }
+    s.timed_frames = static_cast<uint32_t>(frame_ms.size());
+    s.frame_ms = distributionOf(frame_ms);
+    s.frame_ms_mean_min = s.frame_ms_mean_max = s.frame_ms.mean;
+    if (s.error_measured) {
+        std::vector<double> error;
+        for (const FrameStats& f : frames) error.push_back(static_cast<double>(f.error_pixels));
+        std::sort(error.begin(), error.end());
+        s.error_pixels_mean = std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size());
+        const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(error.size())));
+        s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
+    }
+    if (s.timed_frames > 0) {
+        const double n = s.timed_frames;
+        s.cull_cpu_ms_mean = cull / n;
+        s.wait_ms_mean = wait / n;
+        s.update_ms_mean = update / n;
+        s.queries_mean = queries / n;
+        s.objects_mean = objects / n;
+        s.triangles_mean = triangles / n;
+    }
+    return s;
+}
+
+}  // namespace occsim
+
+namespace occsim {
+
+void PoppingCounter::addFrame(const std::vector<uint8_t>& missing) {
+    open_.resize(std::max(open_.size(), missing.size()), 0);
+    for (size_t o = 0; o < open_.size(); ++o) {
+        if (o < missing.size() && missing[o]) {
+            ++open_[o];
+        } else if (open_[o] > 0) {
+            finished_.push_back(open_[o]);
+            open_[o] = 0;
+        }
+    }
+}
+
+std::vector<uint32_t> PoppingCounter::runs() const {
+    std::vector<uint32_t> all = finished_;
+    for (uint32_t run : open_) {
+        if (run > 0) all.push_back(run);
+    }
+    return all;
+}
+
+void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs) {
+    summary.popping_events = static_cast<uint32_t>(missing_runs.size());
+    summary.popping_max_frames = 0;
+    double total = 0;
+    for (uint32_t run : missing_runs) {
+        total += run;
+        summary.popping_max_frames = std::max(summary.popping_max_frames, run);
+    }
+    summary.popping_mean_frames = missing_runs.empty() ? 0.0 : total / static_cast<double>(missing_runs.size());
+}
+
+RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
+    RunSummary out = reps.front();
+    const size_t n = reps.size();
+    out.repetitions = static_cast<uint32_t>(n);
+    if (n == 1) return out;
+    auto median = [&](auto field) {
+        std::vector<double> v;
+        for (const RunSummary& r : reps) v.push_back(static_cast<double>(field(r)));
+        return distributionOf(v).median;
+    };
+    out.frame_ms.mean = median([](const RunSummary& r) { return r.frame_ms.mean; });
+    out.frame_ms.median = median([](const RunSummary& r) { return r.frame_ms.median; });
+    out.frame_ms.p95 = median([](const RunSummary& r) { return r.frame_ms.p95; });
+    out.frame_ms.min = median([](const RunSummary& r) { return r.frame_ms.min; });
+    out.frame_ms.max = median([](const RunSummary& r) { return r.frame_ms.max; });
+    out.cull_cpu_ms_mean = median([](const RunSummary& r) { return r.cull_cpu_ms_mean; });
+    out.wait_ms_mean = median([](const RunSummary& r) { return r.wait_ms_mean; });
+    out.update_ms_mean = median([](const RunSummary& r) { return r.update_ms_mean; });
+    out.queries_mean = median([](const RunSummary& r) { return r.queries_mean; });
+    out.objects_mean = median([](const RunSummary& r) { return r.objects_mean; });
+    out.triangles_mean = median([](const RunSummary& r) { return r.triangles_mean; });
+    out.error_pixels_mean = median([](const RunSummary& r) { return r.error_pixels_mean; });
+    out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
+    out.error_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
+    out.missed_objects_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
+    out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
+    for (const RunSummary& r : reps) {
+        out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);
+        out.frame_ms_mean_max = std::max(out.frame_ms_mean_max, r.frame_ms.mean);
+        // The worst frame is the worst of any repetition.
+        if (r.error_pixels_worst > out.error_pixels_worst) {
+            out.error_pixels_worst = r.error_pixels_worst;
+            out.error_worst_frame = r.error_worst_frame;
+        }
+        out.popping_max_frames = std::max(out.popping_max_frames, r.popping_max_frames);
+    }
+    return out;
+}
+
+std::vector<bool> paretoFront(const std::vector<double>& time, const std::vector<double>& error) {
+    std::vector<bool> front(time.size(), true);
+    for (size_t i = 0; i < time.size(); ++i) {
+        for (size_t j = 0; j < time.size() && front[i]; ++j) {
+            const bool no_worse = time[j] <= time[i] && error[j] <= error[i];
+            const bool better = time[j] < time[i] || error[j] < error[i];
+            if (j != i && no_worse && better) front[i] = false;
+        }
+    }
+    return front;
+}
+
+}  // namespace occsim

@@ -1,0 +1,45 @@
+#include "sim/run/results.h"
+
+namespace occsim {
+namespace {
+
+// The first run of an algorithm with the given trait, unswept runs first (a sweep over a knob
+// that applies to the reference would otherwise make one of its values the reference).
+template <class Pred>
+const RunSummary* findRun(const std::vector<RunRecord>& runs, Pred&& is) {
+    const RunSummary* swept = nullptr;
+    for (const RunRecord& r : runs) {
+        if (!r.algorithm || !is(*r.algorithm)) continue;
+        if (r.summary.algorithm == r.algorithm->name) return &r.summary;
+        if (!swept) swept = &r.summary;
+    }
+    return swept;
+}
+
+}  // namespace
+
+double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s) {
+    const RunSummary* ref = findRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
+    return ref && s.frame_ms.mean > 0 ? ref->frame_ms.mean / s.frame_ms.mean : 0.0;
+}
+
+double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s) {
+    const RunSummary* oracle = findRun(runs, [](const AlgorithmTraits& a) { return a.oracle; });
+    return oracle && oracle->frame_ms.mean > 0 ? s.frame_ms.mean / oracle->frame_ms.mean : 0.0;
+}
+
+void markParetoFront(std::vector<RunRecord>& runs) {
+    std::vector<size_t> candidates;
+    std::vector<double> time, error;
+    for (size_t c = 0; c < runs.size(); ++c) {
+        runs[c].pareto = false;
+        if (runs[c].algorithm && runs[c].algorithm->oracle) continue;
+        candidates.push_back(c);
+        time.push_back(runs[c].summary.frame_ms.mean);
+        error.push_back(runs[c].summary.error_pixels_mean);
+    }
+    const std::vector<bool> front = paretoFront(time, error);
+    for (size_t i = 0; i < candidates.size(); ++i) runs[candidates[i]].pareto = front[i];
+}
+
+}  // namespace occsim

@@ -1,0 +1,138 @@
+#include "sim/run/runner.h"
+
+#include "render/gl_context.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <thread>
+
+namespace occsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void printProgress(uint32_t done, uint32_t total, Clock::time_point start) {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double left = done > 0 ? elapsed / done * (total - done) : 0.0;
+    std::fprintf(stderr, "\rframe %u/%u  %.0f s elapsed, about %.0f s left   ", done, total, elapsed,
+                 left);
+    if (done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+}
+
+void printWarnings(const Scene& scene) {
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
+RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
+                       uint32_t repetitions, const std::string& renderer) {
+    RunMetadata m;
+    m.command = options.command;
+    m.command_line = options.command_line;
+    m.scenario_name = scenario.name;
+    m.scenario_file = scenario.file.string();
+    m.frames = scenario.frames;
+    m.warmup_frames = std::min(scenario.warmup_frames, scenario.frames);
+    m.dt_s = scenario.dt_s;
+    m.seed = scenario.seed;
+    m.objects = scene.objectCount();
+    m.triangles = scene.triangle_count;
+    m.movers = static_cast<uint32_t>(scene.initial_movers.size());
+    m.repetitions = repetitions;
+    m.error_measured = options.measure_error;
+    if (options.latency.deterministic) m.deterministic_latency = options.latency.latency_commands;
+    m.sweep = options.sweep;
+    m.hardware_threads = std::thread::hardware_concurrency();
+    if (const char* lp_threads = std::getenv("LP_NUM_THREADS")) m.lp_num_threads = lp_threads;
+    m.renderer = renderer;
+    m.width = scenario.width;
+    m.height = scenario.height;
+    return m;
+}
+
+}  // namespace
+
+BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
+    Scenario scenario = input;
+    if (options.frames) scenario.frames = *options.frames;
+    const std::vector<RunConfig> configs = planConfigs(options.algorithms, scenario.culler, options.sweep);
+    const uint32_t repetitions = std::max(1u, options.repetitions);
+
+    const Scene scene = buildScene(scenario);
+    printWarnings(scene);
+    auto context = createOsMesaContext(scenario.width, scenario.height);
+    GlRenderer renderer(scenario.width, scenario.height);
+    uploadScene(scene, renderer);
+
+    BenchResult result;
+    result.metadata = metadataOf(scenario, scene, options, repetitions, context->rendererName());
+    result.runs.resize(configs.size());
+    for (size_t c = 0; c < configs.size(); ++c) result.runs[c].algorithm = configs[c].algorithm;
+
+    const auto start = Clock::now();
+    auto last_progress = start;
+    const uint32_t total_frames = repetitions * scenario.frames;
+    for (uint32_t rep = 0; rep < repetitions; ++rep) {
+        // Fresh worlds for every repetition: each one replays the same frames.
+        std::vector<std::unique_ptr<Simulation>> sims;
+        for (const RunConfig& config : configs) {
+            SimulationOptions sim_options;
+            sim_options.measure_error = options.measure_error;
+            sim_options.latency = options.latency;
+            sim_options.keep_worst_error_frame =
+                options.keep_worst_error_frame && options.measure_error && rep == 0;
+            if (rep == 0) sim_options.trace_frame = options.trace_frame;
+            auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
+                                              : makeCuller(*config.algorithm, config.culler);
+            sims.push_back(std::make_unique<Simulation>(scene, scenario, *config.algorithm,
+                                                        std::move(culler), config.culler, renderer,
+                                                        sim_options));
+        }
+        std::vector<std::vector<FrameStats>> frames(sims.size());
+        for (auto& f : frames) f.reserve(scenario.frames);
+        // Interleaved: frame f of every configuration before frame f + 1 of any, so that drift
+        // on a shared machine hits all alike. Every simulation runs the same world in lockstep,
+        // so one ground-truth render per frame serves them all (outside every timing).
+        bool any_needs_truth = false;
+        for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
+        const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
+        for (uint32_t f = 0; f < scenario.frames; ++f) {
+            for (auto& sim : sims) sim->advance();
+            const GroundTruthFrame* truth =
+                any_needs_truth ? &sims.front()->renderGroundTruth(truth_colour) : nullptr;
+            for (size_t c = 0; c < sims.size(); ++c) {
+                frames[c].push_back(sims[c]->renderFrame(truth));
+                if (options.on_frame) {
+                    options.on_frame(FrameEvent{rep, f, configs[c], *sims[c], scenario, renderer});
+                }
+            }
+            const uint32_t done = rep * scenario.frames + f + 1;
+            if (options.progress && (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
+                                     done == total_frames)) {
+                printProgress(done, total_frames, start);
+                last_progress = Clock::now();
+            }
+        }
+        for (size_t c = 0; c < sims.size(); ++c) {
+            RunRecord& record = result.runs[c];
+            RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
+            if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());
+            record.repetitions.push_back(summary);
+            if (rep == 0) {
+                record.frames = std::move(frames[c]);
+                if (sims[c]->keepsWorstErrorFrame()) result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
+            } else {
+                record.later_repetitions.push_back(std::move(frames[c]));
+            }
+        }
+    }
+
+    for (RunRecord& record : result.runs) record.summary = aggregateRepetitions(record.repetitions);
+    if (options.measure_error) markParetoFront(result.runs);
+    return result;
+}
+
+}  // namespace occsim

@@ -1,0 +1,56 @@
+// Running a scenario with one or more configurations, interleaved frame by frame, and returning
+// what was measured. Nothing here writes a file: pictures are taken by the caller's on_frame hook
+// (sim/output/pictures.h) and the tables and reports are written from the result afterwards
+// (sim/output/run_outputs.h).
+#pragma once
+
+#include "culling/algorithms.h"
+#include "sim/run/results.h"
+#include "sim/run/run_config.h"
+#include "sim/run/simulation.h"
+#include "sim/scenario/scenario.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// A configuration's frame has just been rendered (outside every timing): the hook may read the
+// simulation and the renderer's buffers, e.g. to save a picture of it.
+struct FrameEvent {
+    uint32_t repetition = 0;
+    uint32_t frame = 0;
+    const RunConfig& config;
+    const Simulation& simulation;
+    const Scenario& scenario;
+    GlRenderer& renderer;
+};
+
+struct BenchOptions {
+    std::vector<const AlgorithmTraits*> algorithms;  // from algorithms(); at least one
+    bool measure_error = false;
+    LatencyMode latency;
+    std::optional<uint32_t> frames;       // overrides the scenario's frame count
+    std::string command = "bench";        // recorded in the metadata
+    std::string command_line;             // recorded in the metadata
+    bool progress = false;                // a progress line on stderr
+    bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
+    uint32_t repetitions = 1;             // each configuration runs this often; medians reported
+    std::optional<Sweep> sweep;           // one configuration per value (run_config.h)
+    // Record this frame's draws and queries for every configuration (first repetition), so that
+    // on_frame can picture its culling decisions (Simulation::lastTrace()).
+    std::optional<uint32_t> trace_frame;
+    std::function<void(const FrameEvent&)> on_frame;
+    // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
+    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
+};
+
+// Throws std::runtime_error on rendering failures, std::invalid_argument for a sweep value that
+// makes an algorithm's options invalid, and the scene builder's errors (ScenarioError, GltfError).
+BenchResult runBenchmark(const Scenario& scenario, const BenchOptions& options);
+
+}  // namespace occsim

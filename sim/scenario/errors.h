@@ -1,0 +1,24 @@
+// The errors that mean "bad input": each carries one line naming the file (and, for scenario
+// files, the JSON pointer) and what was expected. Commands turn them into exit code 2.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace occsim {
+
+// One line: "<file>: <json pointer>: <what was expected>", or "<file>: <what went wrong>" for
+// errors about the file as a whole (cannot open it, not JSON), which have no pointer.
+class ScenarioError : public std::runtime_error {
+public:
+    ScenarioError(const std::string& file, const std::string& pointer, const std::string& message)
+        : std::runtime_error(file + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
+};
+
+// A glTF file that cannot be used: one line naming the file and tinygltf's (or our) reason.
+class GltfError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+}  // namespace occsim

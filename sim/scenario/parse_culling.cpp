@@ -1,0 +1,94 @@
+// The "culling" section of a scenario: the algorithm and each algorithm's options. Validation
+// that the culling module owns (StatisticalOptions::isValid, ChcOptions::isValid, ...) is
+// delegated to it; its message is reported at the options object's pointer.
+#include "sim/scenario/parser_parts.h"
+
+#include "culling/algorithms.h"
+
+#include <limits>
+
+namespace occsim {
+namespace {
+
+constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
+
+StatisticalOptions readStatistical(JsonObjectReader reader) {
+    StatisticalOptions o;
+    o.base_time_s = reader.number("base_time", o.base_time_s);
+    o.decay_a = reader.number("decay_a", o.decay_a);
+    o.decay_b = reader.number("decay_b", o.decay_b);
+    o.history_length =
+        static_cast<uint32_t>(reader.unsignedInteger("history_length", o.history_length, 0,
+                                                     kMaxUint32));
+    o.max_statistics_age_s = reader.number("max_statistics_age", o.max_statistics_age_s);
+    o.queries_before_restart = static_cast<uint32_t>(
+        reader.unsignedInteger("queries_before_restart", o.queries_before_restart, 0, kMaxUint32));
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+// Counts that the culling module keeps as uint32_t: anything larger is a type error here, and
+// the range within uint32_t is isValid()'s to judge.
+uint32_t readCount(JsonObjectReader& reader, std::string_view key, uint32_t fallback) {
+    return static_cast<uint32_t>(reader.unsignedInteger(key, fallback, 0, kMaxUint32));
+}
+
+ChcOptions readChc(JsonObjectReader reader) {
+    ChcOptions o;
+    o.visible_frames_skip = readCount(reader, "visible_frames_skip", o.visible_frames_skip);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+ChcppOptions readChcpp(JsonObjectReader reader) {
+    ChcppOptions o;
+    o.visible_frames_skip = readCount(reader, "visible_frames_skip", o.visible_frames_skip);
+    o.batch_size = readCount(reader, "batch_size", o.batch_size);
+    o.multiqueries = reader.boolean("multiqueries", o.multiqueries);
+    o.tight_bounds_depth = readCount(reader, "tight_bounds_depth", o.tight_bounds_depth);
+    o.seed = reader.unsignedInteger("seed", o.seed);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+AsyncOptions readAsync(JsonObjectReader reader) {
+    AsyncOptions o;
+    o.retest_interval_frames =
+        readCount(reader, "retest_interval_frames", o.retest_interval_frames);
+    reader.finish();
+    std::string why;
+    if (!o.isValid(&why)) reader.failHere(why);
+    return o;
+}
+
+}  // namespace
+
+void readCulling(JsonObjectReader& top, Scenario& s) {
+    auto culling = top.optionalObject("culling");
+    if (!culling) return;
+    s.algorithm = culling->enumeration("algorithm", algorithmNames(), s.algorithm);
+    // The approximation knobs, shared by every query-based algorithm (culler_options.h).
+    s.culler.approximation.threshold_pixels =
+        readCount(*culling, "threshold_pixels", s.culler.approximation.threshold_pixels);
+    s.culler.approximation.stale_results =
+        culling->boolean("stale_results", s.culler.approximation.stale_results);
+    if (auto statistical = culling->optionalObject("statistical")) {
+        s.culler.statistical = readStatistical(std::move(*statistical));
+    }
+    if (auto chc = culling->optionalObject("chc")) s.culler.chc = readChc(std::move(*chc));
+    if (auto chcpp = culling->optionalObject("chc++")) {
+        s.culler.chcpp = readChcpp(std::move(*chcpp));
+    }
+    if (auto async = culling->optionalObject("async")) {
+        s.culler.async = readAsync(std::move(*async));
+    }
+    culling->finish();
+}
+
+}  // namespace occsim

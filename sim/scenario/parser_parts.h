@@ -1,0 +1,31 @@
+// Readers of scenario sections that live in their own files, so that each scene source and the
+// culling options can grow without touching the core parser. Each reads the keys it owns from an
+// object reader; the caller calls finish() (so unknown keys stay errors).
+#pragma once
+
+#include "sim/scenario/json_reader.h"
+#include "sim/scenario/scenario.h"
+
+#include <filesystem>
+
+namespace occsim {
+
+// scenario_parser.cpp: {"min": [x,y,z], "max": [x,y,z]}, min <= max, float-representable.
+Aabb readRegion(const JsonValueReader& value);
+
+// parse_culling.cpp: the "culling" section (algorithm and per-algorithm options).
+void readCulling(JsonObjectReader& top, Scenario& s);
+
+// parse_sources.cpp: the keys of each source type besides "type". Paths resolve against
+// the scenario file's folder.
+TeapotFieldSpec readTeapotField(JsonObjectReader& source);
+GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::path& scenario_dir);
+CitySpec readCity(JsonObjectReader& source);
+LibrarySpec readLibrary(JsonObjectReader& source);
+PlantSpec readPlant(JsonObjectReader& source);
+
+// parse_expectations.cpp: the "expect" block; reads the run settings and the culling section of
+// `scenario`, so it is called after them.
+Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario);
+
+}  // namespace occsim

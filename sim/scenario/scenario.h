@@ -1,0 +1,126 @@
+// A scenario: everything one headless run needs, parsed strictly from a JSON file (see
+// docs/scenario-format.md). Units: seconds, metres, degrees, pixels. Every field has the default
+// documented there; parseScenario() rejects unknown keys, wrong types, out-of-range values,
+// NaN/infinite numbers and missing files with a ScenarioError naming the file and JSON pointer.
+#pragma once
+
+#include "culling/aabb.h"
+#include "culling/bsp_tree.h"
+#include "culling/culler_options.h"
+#include "sim/scenario/errors.h"
+#include "sim/scenario/scene_specs.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace occsim {
+
+struct CameraKeyframe {
+    double time_s = 0.0;
+    glm::dvec3 position{0.0};
+    glm::dvec3 target{0.0, 0.0, -1.0};
+};
+
+struct CameraSpec {
+    double fov_y_deg = 60.0;  // vertical field of view, (0, 180)
+    double near_m = 0.1;
+    double far_m = 1000.0;
+    // At least one, times strictly increasing. Given directly, or made by the parser from the
+    // "orbit" and "fly" helpers (docs/scenario-format.md).
+    std::vector<CameraKeyframe> keyframes;
+    bool loop = false;  // wrap around after the last keyframe (whose pose should equal the first)
+};
+
+enum class MotionType : uint8_t { Bounce, Orbit, Path, RandomWalk, Spin };
+
+// Which objects a mover spec moves: a share of a source's objects, listed objects of a source, or
+// new objects it spawns.
+enum class MoverSelection : uint8_t { Fraction, Objects, Spawn };
+
+enum class SpawnShape : uint8_t { Teapot, Box, Sphere };
+
+struct SpawnSpec {
+    uint32_t count = 0;
+    SpawnShape shape = SpawnShape::Teapot;
+    double size_min_m = 1.0;  // height of each spawned object
+    double size_max_m = 2.0;
+};
+
+struct MoverSpec {
+    uint32_t source = 0;  // index into scene.sources: whose objects, region and lanes
+    MoverSelection selection = MoverSelection::Fraction;
+    double fraction = 0.0;          // Fraction: share of the source's objects, [0, 1]
+    std::vector<uint32_t> objects;  // Objects: indices within the source
+    SpawnSpec spawn;                // Spawn
+    MotionType motion = MotionType::Bounce;
+    double speed_min_mps = 1.0;
+    double speed_max_mps = 4.0;
+    // Bounce and random walk: the box movers stay in (default: the source's region).
+    bool has_region = false;
+    Aabb region;
+    double radius_min_m = 2.0;       // orbit
+    double radius_max_m = 8.0;
+    std::vector<glm::dvec3> waypoints;  // path: a closed loop; empty = the source's lanes
+    double turn_rate_deg_s = 90.0;   // random walk: largest heading change per second
+    double spin_min_deg_s = 30.0;    // spin: angular speed about the vertical axis
+    double spin_max_deg_s = 180.0;
+};
+
+// What a regression run checks (docs/regression.md): the scenario's "expect" block.
+struct RatioExpectation {
+    std::string algorithm;   // numerator: its mean frame time
+    std::string reference;   // denominator
+    double max = 1.0;        // the ratio must be <= max * (1 + tolerance)
+    double tolerance = 0.0;
+};
+
+struct Expectations {
+    std::vector<std::string> algorithms;   // run these (default: vfc and the scenario's algorithm)
+    uint32_t deterministic_latency = 8;    // draw calls before a query result counts as ready
+    std::optional<uint32_t> frames;        // default: the scenario's
+    std::vector<std::string> zero_error;   // must show 0 error pixels on every frame
+    std::map<std::string, int64_t> max_error_pixels;  // per-frame bound for approximate ones
+    std::vector<RatioExpectation> ratios;
+    std::filesystem::path baseline;        // default: <scenario stem>.baseline.json beside it
+};
+
+struct Scenario {
+    std::filesystem::path file;      // where it was read from (paths inside resolve against it)
+    std::string name;                // default: the file name without extension
+    uint64_t seed = 1;
+    uint32_t frames = 300;
+    double dt_s = 1.0 / 30.0;        // simulation time step
+    uint32_t warmup_frames = 10;     // excluded from timing summaries (not from error counts)
+    uint32_t width = 640;
+    uint32_t height = 480;
+    CameraSpec camera;
+    std::vector<SceneSourceSpec> sources;
+    std::vector<MoverSpec> movers;
+    std::string algorithm = "statistical";  // a name from algorithms() (culling/algorithms.h)
+    CullerOptions culler;
+    BspBuildOptions bsp;
+    std::optional<Expectations> expect;  // present when the file has an "expect" block
+};
+
+// The number of objects a source builds when its spec alone tells (a teapot field); nullopt when
+// only building it tells (generators, glTF files).
+std::optional<uint32_t> knownObjectCount(const SceneSourceSpec& source);
+
+// Mover object indices are checked where the source's object count is known: by the parser for
+// sources whose spec tells it, by the scene builder for the others, both through this one check.
+// Throws ScenarioError at /movers/<mover>/objects/<item>.
+void checkMoverObjectIndex(const Scenario& scenario, size_t mover, size_t item,
+                           uint32_t source_object_count);
+
+// Throws ScenarioError.
+Scenario parseScenarioFile(const std::filesystem::path& file);
+Scenario parseScenarioText(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace occsim

@@ -1,0 +1,84 @@
+// What each scene source is asked to build, as plain data: the scenario parser fills these and
+// the scene layer (sim/scene/) builds from them. Units: metres, degrees.
+#pragma once
+
+#include "culling/aabb.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <variant>
+
+namespace occsim {
+
+// The teapot field of both papers: `count` teapots of random size and orientation placed
+// uniformly (seeded) in a box.
+struct TeapotFieldSpec {
+    uint32_t count = 1000;
+    Aabb region{glm::vec3(-50, 0, -200), glm::vec3(50, 10, 0)};
+    double size_min_m = 1.0;  // teapot height
+    double size_max_m = 3.0;
+    uint32_t tessellation = 6;  // segments per Bézier patch side
+};
+
+// A street grid of buildings of varied footprint and height: streets give long views, buildings
+// hide most of the city. Lanes: one closed loop per street ring for cars.
+struct CitySpec {
+    uint32_t blocks_x = 8;           // city blocks along x
+    uint32_t blocks_z = 8;           // city blocks along z
+    double block_size_m = 40.0;      // side of a block (buildings inside, streets around)
+    double street_width_m = 12.0;
+    double height_min_m = 8.0;       // building heights
+    double height_max_m = 60.0;
+    uint32_t buildings_per_block = 4;  // per block, at most; footprints vary
+};
+
+// Rows of shelves without back panels, filled with many small books: the books are the
+// occluders (the library of Kovalčík & Sochor). Lanes: the aisles between rows, for people.
+struct LibrarySpec {
+    uint32_t rows = 8;               // rows of shelves
+    uint32_t shelves_per_row = 6;    // shelf units along a row
+    uint32_t levels = 5;             // boards per shelf unit
+    uint32_t books_per_level = 30;   // books standing on one board
+    double aisle_width_m = 2.0;
+};
+
+// A dense industrial structure (pipes, tanks, walkways, girders) with high depth complexity, an
+// analogue of the power-plant model. Lanes: walkways, and loops through the structure for fliers.
+struct PlantSpec {
+    uint32_t units_x = 4;            // process units along x
+    uint32_t units_z = 4;            // process units along z
+    double unit_size_m = 20.0;       // footprint side of a unit
+    uint32_t floors = 3;             // storeys of girders and walkways per unit
+    double floor_height_m = 6.0;     // storey height (walkway clearance is about 3.3 m of it)
+    uint32_t pipes_per_unit = 24;
+    uint32_t tanks_per_unit = 3;
+};
+
+// Optional replication so that a small model can make a large scene.
+struct GltfReplication {
+    enum class Mode : uint8_t { None, Grid, Random };
+    Mode mode = Mode::None;
+    uint32_t count_x = 1, count_z = 1;  // grid: copies along x and z
+    double spacing_m = 0.0;             // grid: distance between copies (0 = model size + 10%)
+    uint32_t count = 1;                 // random: number of copies
+    Aabb region;                        // random: where copies are placed (their origins)
+    bool random_yaw = true;             // random: rotate each copy about y
+};
+
+struct GltfSourceSpec {
+    std::filesystem::path path;       // resolved against the scenario file's folder
+    double scale = 1.0;               // uniform scale applied to the whole model
+    glm::dvec3 offset{0.0};           // translation applied after scaling (metres)
+    GltfReplication replicate;
+};
+
+enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };
+
+struct SceneSourceSpec {
+    SourceType type = SourceType::Teapots;
+    std::variant<TeapotFieldSpec, GltfSourceSpec, CitySpec, LibrarySpec, PlantSpec> spec;
+};
+
+}  // namespace occsim

@@ -1,0 +1,44 @@
+// What one scene source (a generator or a glTF file) produces: its meshes, the objects placed
+// with them, lanes that movers may follow, and the region its content occupies. The scene builder
+// (sim/world/world.cpp) concatenates sources into one Scene.
+#pragma once
+
+#include "culling/aabb.h"
+#include "sim/scenario/scene_specs.h"
+#include "render/mesh_data.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+// An object of a source: mesh index into SourceOutput::meshes, its position (metres, world) and
+// its linear part (rotation, scale, shear) applied in model space first.
+struct PlacedObject {
+    uint32_t mesh = 0;
+    glm::dvec3 position{0.0};
+    glm::mat3 linear{1.0f};
+};
+
+struct SourceOutput {
+    std::vector<MeshData> meshes;
+    std::vector<PlacedObject> objects;
+    // Closed loops of points (world, metres) along which things naturally move: streets for
+    // cars, aisles for people, walkways for the plant. Movers with motion "path" and no
+    // waypoints of their own follow these.
+    std::vector<std::vector<glm::dvec3>> lanes;
+    Aabb region;                        // bounds of the content; the default region for movers
+    std::vector<std::string> warnings;  // things skipped or approximated, shown to the user
+};
+
+// Bounds of every object's mesh bounds under its placement.
+Aabb sourceBounds(const SourceOutput& source);
+
+// Builds the source a scenario describes; deterministic for a given spec and seed. Throws
+// GltfError for unusable glTF files.
+SourceOutput generateSource(const SceneSourceSpec& source, uint64_t seed);
+
+}  // namespace occsim

@@ -1,0 +1,120 @@
+// The simulated world: immutable scene content (meshes, which mesh each object draws, the initial
+// poses, the movers' starting state, the paths movers follow) built once from a scenario, and the
+// per-run mutable state (poses, world boxes, movers) that each simulation owns a copy of, so that
+// several algorithms can run the same frames side by side.
+#pragma once
+
+#include "culling/aabb.h"
+#include "culling/random.h"
+#include "render/mesh_data.h"
+#include "sim/scenario/scenario.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace occsim {
+
+// model = translate(position) * rotate(rotation) * linear. Position in double: scenes may sit far
+// from the origin, and rendering is camera-relative. `linear` holds the model's own scale and
+// orientation (a teapot's size, a glTF node's matrix); movers change position and rotation.
+struct ObjectPose {
+    glm::dvec3 position{0.0};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::mat3 linear{1.0f};
+};
+
+// Straight line at constant velocity, reflected at the region's faces (object position).
+struct BounceMotion {
+    glm::dvec3 velocity{0.0};
+    Aabb region;
+};
+
+// Circle around a vertical axis through `center`, at constant speed.
+struct OrbitMotion {
+    glm::dvec3 center{0.0};
+    double radius_m = 1.0;
+    double angular_speed = 0.0;  // radians per second (signed)
+    double angle = 0.0;
+};
+
+// Along a closed path (Scene::paths) at constant speed, facing the direction of travel.
+struct PathMotion {
+    uint32_t path = 0;
+    double distance_m = 0.0;  // along the path from its first point
+    double speed_mps = 0.0;
+};
+
+// Horizontal wandering: constant speed, heading changing by a random amount each step, reflected
+// at the region's faces. Seeded per mover, so it is deterministic for a given dt.
+struct RandomWalkMotion {
+    double speed_mps = 0.0;
+    double heading = 0.0;          // radians about y; 0 = +x
+    double turn_rate = 0.0;        // radians per second, largest change
+    Aabb region;
+    Rng rng{0};
+};
+
+// Turning in place about the vertical axis.
+struct SpinMotion {
+    double angular_speed = 0.0;  // radians per second
+    double angle = 0.0;
+    glm::quat base{1.0f, 0.0f, 0.0f, 0.0f};
+};
+
+using Motion = std::variant<BounceMotion, OrbitMotion, PathMotion, RandomWalkMotion, SpinMotion>;
+
+struct Mover {
+    uint32_t object = 0;
+    Motion motion;
+};
+
+// A closed polyline with its cumulative arc lengths (lengths[i] = distance from point 0 to i;
+// the last entry closes the loop back to point 0).
+struct MotionPath {
+    std::vector<glm::dvec3> points;
+    std::vector<double> lengths;  // points.size() + 1 entries
+    double total() const { return lengths.back(); }
+};
+
+struct Scene {
+    std::vector<MeshData> meshes;
+    std::vector<Aabb> mesh_bounds;      // model space, per mesh
+    std::vector<uint32_t> object_mesh;  // per object
+    std::vector<ObjectPose> initial_poses;
+    std::vector<Mover> initial_movers;
+    std::vector<MotionPath> paths;
+    std::vector<std::string> warnings;  // from sources (e.g. glTF parts skipped)
+    uint64_t triangle_count = 0;        // over all objects
+
+    uint32_t objectCount() const { return static_cast<uint32_t>(object_mesh.size()); }
+};
+
+struct WorldState {
+    std::vector<ObjectPose> poses;
+    std::vector<Aabb> boxes;  // world space, float
+    std::vector<Mover> movers;
+};
+
+// Builds the scene a scenario describes; deterministic for a given scenario (and its seed).
+// Throws ScenarioError for movers that do not fit their source (an object index past its end, a
+// path motion on a source without lanes) and GltfError for unusable glTF files.
+Scene buildScene(const Scenario& scenario);
+
+WorldState initialState(const Scene& scene);
+
+glm::dmat4 modelMatrix(const ObjectPose& pose);
+Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose);
+
+// Advances every mover by dt seconds and refreshes the world boxes of the objects it moved.
+void stepMovers(const Scene& scene, WorldState& state, double dt_s);
+
+// The point at `distance` along a closed path, and the unit direction of travel there.
+glm::dvec3 pointOnPath(const MotionPath& path, double distance, glm::dvec3* direction);
+MotionPath makePath(std::vector<glm::dvec3> points);
+
+}  // namespace occsim
