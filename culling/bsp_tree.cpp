@@ -318,6 +318,10 @@ void BspTree::build(std::span<const Aabb> object_boxes, const BspBuildOptions& o
     const uint64_t refit_before = stats_.nodes_refit;
     refitDirtyBounds();
     stats_.nodes_refit = refit_before;  // the initial fit is part of build, not a refit
+
+    // A new structure: every slot holds a new node.
+    for (BspNode& node : nodes_) node.generation = next_generation_++;
+    ++structure_version_;
 }
 
 void BspTree::reinsert(uint32_t object, const Aabb& new_box) {

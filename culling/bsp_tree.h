@@ -15,6 +15,10 @@
 //   skips it on false evidence).
 // - reinsert() walks up from the object's node only until a cell contains the new box, then down,
 //   and marks the path's bounds dirty; refitDirtyBounds() recomputes only dirty nodes.
+// - Node indices are stable while a node exists. nodeCount() is the number of slots; when the
+//   structure changes, structureVersion() increases and every slot holding a new node gets a new
+//   BspNode::generation, so per-node state kept elsewhere can be kept for unchanged nodes and
+//   reset for new ones (culling/node_state.h).
 // - Objects of a node form a doubly linked list threaded through per-object arrays (O(1) move);
 //   iterate with firstObject(node) / nextObject(object) until kNone.
 #pragma once
@@ -56,6 +60,10 @@ struct BspNode {
     float split = 0.0f;  // split position along axis (inner nodes)
     uint8_t axis = 0;    // 0 = x, 1 = y, 2 = z (inner nodes)
     bool bounds_dirty = false;
+    // Changes whenever this slot starts holding a new node (a build, or a local split reusing a
+    // freed slot): per-node state that others keep (a culler's statistics) is stale when the
+    // generation it was recorded for differs. See NodeStateArray (culling/node_state.h).
+    uint32_t generation = 0;
 
     bool isLeaf() const { return child[0] == UINT32_MAX; }
 };
@@ -91,6 +99,9 @@ public:
     uint32_t nodeOf(uint32_t object) const { return object_node_[object]; }
     const Aabb& objectBox(uint32_t object) const { return object_box_[object]; }
     uint32_t maxDepth() const;
+    // Increases with every change of the node structure (build, local split or merge), so that a
+    // holder of per-node state knows when to look for nodes whose generation changed.
+    uint64_t structureVersion() const { return structure_version_; }
 
     const BspStats& stats() const { return stats_; }
     void resetStats() { stats_ = {}; }
@@ -108,6 +119,8 @@ private:
     std::vector<uint32_t> object_prev_;
     std::vector<uint32_t> dirty_nodes_;  // each listed once (bounds_dirty guards duplicates)
     BspStats stats_;
+    uint64_t structure_version_ = 0;
+    uint32_t next_generation_ = 1;
 };
 
 }  // namespace occsim

@@ -9,16 +9,15 @@ namespace occsim {
 ChcCuller::ChcCuller(const ChcOptions& options) : options_(options) {}
 
 void ChcCuller::reset(const BspTree& tree) {
-    nodes_.reset(tree.nodeCount());
+    nodes_.reset(tree);
     traversal_queue_.clear();
     query_queue_.clear();
     query_head_ = 0;
 }
 
 void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    if (!nodes_.sizedFor(tree)) reset(tree);
     frame_ = frame.frame_index;
-    nodes_.beginFrame();
+    nodes_.beginFrame(tree);
     traversal_queue_.clear();
     query_queue_.clear();
     query_head_ = 0;

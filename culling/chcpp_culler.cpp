@@ -36,15 +36,14 @@ void ChcppCuller::clearQueues() {
 }
 
 void ChcppCuller::reset(const BspTree& tree) {
-    nodes_.reset(tree.nodeCount());
+    nodes_.reset(tree);
     clearQueues();
 }
 
 void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                 RenderDevice& device) {
-    if (!nodes_.sizedFor(tree)) reset(tree);
     frame_ = frame.frame_index;
-    nodes_.beginFrame();
+    nodes_.beginFrame(tree);
     stats_ = {};
     device_state_ = DeviceState::None;
     clearQueues();

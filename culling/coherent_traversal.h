@@ -11,6 +11,7 @@
 #include "culling/bsp_tree.h"
 #include "culling/culler.h"
 #include "culling/frustum.h"
+#include "culling/node_state.h"
 #include "culling/traversal.h"
 
 #include <algorithm>
@@ -101,12 +102,15 @@ public:
         PreviouslyVisible,    // opened last frame (or a visible leaf): traverse without waiting
     };
 
-    void reset(uint32_t node_count) {
-        state_.assign(node_count, NodeState{});
+    void reset(const BspTree& tree) {
+        state_.reset(tree);
         stamp_ = 0;
     }
-    bool sizedFor(const BspTree& tree) const { return state_.size() == tree.nodeCount(); }
-    void beginFrame() { ++stamp_; }
+    // Starts a frame on the tree as it is now (nodes new since the last frame start unclassified).
+    void beginFrame(const BspTree& tree) {
+        state_.sync(tree);
+        ++stamp_;
+    }
 
     // The common start of a node's visit: the frustum test (setting visit.inside_frustum), the
     // reset to invisible, and the near-plane rule (such a node is pulled up at once).
@@ -147,7 +151,7 @@ public:
     bool visitedThisFrame(uint32_t node) const { return state_[node].visited == stamp_; }
 
 private:
-    std::vector<NodeState> state_;
+    NodeStateArray<NodeState> state_;
     uint64_t stamp_ = 0;
 };
 

@@ -31,7 +31,7 @@ void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats,
 StatisticalCuller::StatisticalCuller(const StatisticalOptions& options) : options_(options) {}
 
 void StatisticalCuller::reset(const BspTree& tree) {
-    stats_.assign(tree.nodeCount(), NodeStatistics{});
+    stats_.reset(tree);
     queue_.clear();
     query_queue_.clear();
 }
@@ -44,7 +44,7 @@ void StatisticalCuller::renderVisibleNode(const BspTree& tree, const CullFrame& 
 
 void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
-    if (stats_.size() != tree.nodeCount()) reset(tree);
+    stats_.sync(tree);
     queue_.clear();
     queue_.push_back({tree.root(), false});
     const double now = frame.time_s;

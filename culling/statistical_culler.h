@@ -19,6 +19,7 @@
 
 #include "culling/culler.h"
 #include "culling/culler_options.h"
+#include "culling/node_state.h"
 #include "culling/traversal.h"
 
 #include <deque>
@@ -64,7 +65,7 @@ private:
                            RenderDevice& device);
 
     StatisticalOptions options_;
-    std::vector<NodeStatistics> stats_;
+    NodeStateArray<NodeStatistics> stats_;
     std::vector<NodeVisit> queue_;  // the main queue; its start is the back of this stack
     std::deque<PendingQuery> query_queue_;
 };

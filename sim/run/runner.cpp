@@ -58,7 +58,9 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
-    const std::vector<RunConfig> configs = planConfigs(options.algorithms, scenario.culler, options.sweep);
+    const std::vector<RunConfig> configs =
+        options.configs.empty() ? planConfigs(options.algorithms, scenario.culler, options.sweep)
+                                : options.configs;
     const uint32_t repetitions = std::max(1u, options.repetitions);
 
     const Scene scene = buildScene(scenario);

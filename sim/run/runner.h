@@ -32,6 +32,9 @@ struct FrameEvent {
 
 struct BenchOptions {
     std::vector<const AlgorithmTraits*> algorithms;  // from algorithms(); at least one
+    // Explicit configurations (label, algorithm, options), e.g. a tuner's samples beside its
+    // reference; when given, `algorithms` and `sweep` are not used. Labels must differ.
+    std::vector<RunConfig> configs;
     bool measure_error = false;
     LatencyMode latency;
     std::optional<uint32_t> frames;       // overrides the scenario's frame count
