@@ -39,6 +39,28 @@ const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std
                    occsim::algorithmNameList());
 }
 
+// A whole number in [lo, hi], checked on the text before CLI11 converts it, so a bad value gets
+// the same one-line message as a bad scenario value: what was expected, and what was given.
+CLI::Validator integerIn(long long lo, long long hi) {
+    const std::string expected =
+        "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    return CLI::Validator(
+        [lo, hi, expected](std::string& text) -> std::string {
+            size_t used = 0;
+            long long value = 0;
+            try {
+                value = std::stoll(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (text.empty() || used != text.size() || value < lo || value > hi) {
+                return expected + ", got '" + text + "'";
+            }
+            return {};
+        },
+        "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
 std::string commandLine(int argc, char** argv) {
     std::ostringstream out;
     for (int i = 0; i < argc; ++i) out << (i ? " " : "") << argv[i];
@@ -64,20 +86,21 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                   "Measure image error against a ground-truth render of every frame (outside the timing)");
     cmd->add_option("--out", flags.out, "Output folder (default: out/<scenario>/<command>)");
     cmd->add_option("--frames", flags.frames, "Run this many frames instead of the scenario's")
-        ->check(CLI::Range(1u, 10000000u));
+        ->check(integerIn(1, 10000000));
     cmd->add_option("--capture", flags.capture, "Save these frames' colour buffers as PNG")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->check(integerIn(0, 9999999));
     cmd->add_option("--repetitions", flags.repetitions,
                     "Run every configuration N times (interleaved); report medians and min-max")
-        ->check(CLI::Range(1u, 1000u));
+        ->check(integerIn(1, 1000));
     cmd->add_option("--deterministic-latency", flags.deterministic_latency,
                     "A query result counts as ready only after N later draw calls (reproducible counts)")
-        ->check(CLI::Range(0, 1000000));
+        ->check(integerIn(0, 1000000));
     cmd->add_flag("--plots", flags.plots,
                   "Chart frame time, time against error, queries and triangles with gnuplot (PNG and SVG)");
     cmd->add_option("--birds-eye", flags.birds_eye,
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
-        ->check(CLI::Range(int64_t{0}, int64_t{9999999}));
+        ->check(integerIn(0, 9999999));
 }
 
 // What `run` and `bench` share once their flags are read: the scenario (parsed once), the
@@ -111,14 +134,18 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         o.latency.deterministic = true;
         o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
     }
-    if (flags.birds_eye >= 0) {
-        const uint32_t frames = flags.frames > 0 ? flags.frames : request.scenario.frames;
-        if (flags.birds_eye >= frames) {
-            throw BadInput("--birds-eye: frame " + std::to_string(flags.birds_eye) +
+    const uint32_t frames = flags.frames > 0 ? flags.frames : request.scenario.frames;
+    auto checkFrame = [frames](const char* flag, int64_t frame) {
+        if (frame >= frames) {
+            throw BadInput(std::string(flag) + ": frame " + std::to_string(frame) +
                            " is past the last frame (" + std::to_string(frames) + " frames, from 0)");
         }
+    };
+    if (flags.birds_eye >= 0) {
+        checkFrame("--birds-eye", flags.birds_eye);
         o.trace_frame = static_cast<uint32_t>(flags.birds_eye);
     }
+    for (uint32_t frame : flags.capture) checkFrame("--capture", frame);
     o.progress = ::isatty(STDERR_FILENO) != 0;
     return o;
 }
@@ -219,6 +246,20 @@ int main(int argc, char** argv) {
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
     info->add_option("scenario", info_scenario, "Scenario file (JSON)")->required();
 
+    // CLI11 would answer an unknown command with "A subcommand is required".
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string commands;
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            commands += (commands.empty() ? "" : ", ") + sub->get_name();
+            known |= sub->get_name() == argv[1];
+        }
+        if (!known) {
+            std::fprintf(stderr, "occsim: unknown command '%s'; expected one of: %s (see occsim --help)\n",
+                         argv[1], commands.c_str());
+            return kExitBadInput;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

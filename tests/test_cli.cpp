@@ -84,6 +84,36 @@ TEST(Cli, BadFlagsAreOneLineWithExitCode2) {
     }
 }
 
+// What a new user tried: each answer names the flag or command and what was expected.
+TEST(Cli, BadValuesSayWhatWasExpectedAndWhatWasGiven) {
+    const struct {
+        std::string args, must_contain;
+    } cases[] = {
+        {"frobnicate " + kSmall, "unknown command 'frobnicate'; expected one of: run, bench"},
+        {"run " + kSmall + " --frames abc", "--frames: expected an integer in [1, 10000000], got 'abc'"},
+        {"run " + kSmall + " --capture 1,x", "--capture: expected an integer in [0, 9999999], got 'x'"},
+        {"run " + kSmall + " --capture 40", "--capture: frame 40 is past the last frame (40 frames"},
+        {"run " + kSmall + " --birds-eye 40", "--birds-eye: frame 40 is past the last frame"},
+        {"bench " + kSmall + " --repetitions 0", "--repetitions: expected an integer in [1, 1000]"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = runOccsim(c.args);
+        EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << c.args << ": " << o.output;
+        EXPECT_NE(o.output.find(c.must_contain), std::string::npos) << c.args << ": " << o.output;
+    }
+}
+
+// A run whose every frame is warm-up has no timing to report: it says so instead of 0.00 ms.
+TEST(Cli, ARunWithOnlyWarmupFramesSaysNothingWasTimed) {
+    const Outcome o = runOccsim("bench " + kSmall + " --algos vfc --frames 3 --out " +
+                                tempPath("warmup").string());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("nothing was timed"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("not timed"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("0.00"), std::string::npos) << o.output;
+}
+
 TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
     const auto out = tempPath("ok");
     const Outcome o = runOccsim("run " + kSmall + " --algo statistical --frames 5 --error --out " + out.string());

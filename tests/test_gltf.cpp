@@ -119,6 +119,7 @@ class TempDir {
     TempDir(const TempDir&) = delete;
     TempDir& operator=(const TempDir&) = delete;
 
+    const std::filesystem::path& path() const { return path_; }
     std::filesystem::path write(const std::string& name, const std::string& bytes) const {
         const std::filesystem::path file = path_ / name;
         std::ofstream(file, std::ios::binary)
@@ -273,7 +274,7 @@ std::string errorOfText(const std::string& text) {
     return errorOf(dir.write("model.gltf", text));
 }
 
-// ---- The real files (table and boxes of /work/shared/assets/README.md) ----------------------
+// ---- The real files (their table and boxes, as the assets' SOURCE notes give them) ---------
 
 TEST(GltfRealFiles, TeapotLoadsItsTrianglesOnOneNodeWithTheReadmeBounds) {
     const SourceOutput out = load(kTeapot);
@@ -754,6 +755,27 @@ TEST(GltfScenario, WarningsReachTheScene) {
     EXPECT_EQ(scene.objectCount(), 1u);
     ASSERT_EQ(scene.warnings.size(), 1u);
     EXPECT_NE(scene.warnings[0].find("mode POINTS in mesh 'Fence'"), std::string::npos);
+}
+
+// A path that names a folder is not "no such file": the message says what it found.
+TEST(GltfScenario, APathThatIsAFolderSaysSo) {
+    TempDir dir;
+    std::filesystem::create_directories(dir.path() / "models.gltf");
+    const json scenario = {
+        {"format_version", 1},
+        {"camera",
+         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
+        {"scene", {{"sources", {{{"type", "gltf"}, {"path", "models.gltf"}}}}}}};
+    const std::filesystem::path file = dir.write("scenario.json", scenario.dump());
+    try {
+        parseScenarioFile(file);
+        ADD_FAILURE() << "expected a ScenarioError";
+    } catch (const ScenarioError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("/scene/sources/0/path: expected a .gltf or .glb file, got a directory"),
+                  std::string::npos)
+            << message;
+    }
 }
 
 }  // namespace

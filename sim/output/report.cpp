@@ -1,5 +1,6 @@
 #include "sim/output/report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -41,6 +42,8 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                         fixed(s.frame_ms.p95, 2), fixed(s.queries_mean, 1),
                                         fixed(s.wait_ms_mean, 3), fixed(s.triangles_mean, 0),
                                         fixed(s.objects_mean, 1)};
+        // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
+        if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
         if (error) {
             row.push_back(fixed(s.error_pixels_mean, 1));
             row.push_back(fixed(s.error_pixels_p99, 0));
@@ -165,7 +168,13 @@ std::string runHeadline(const BenchResult& result) {
     char line[512];
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
                   m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
-    return line;
+    std::string headline = line;
+    if (timed == 0) {
+        headline += "\nnothing was timed: all " + std::to_string(m.frames) +
+                    " frames are warm-up (the scenario's warmup_frames); run more frames than that "
+                    "to measure time";
+    }
+    return headline;
 }
 
 }  // namespace occsim

@@ -64,7 +64,11 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
     if (text.empty()) path.failExpected("a path to a .gltf or .glb file");
     spec.path = scenario_dir / text;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(spec.path, ec)) {
+    const std::filesystem::file_status status = std::filesystem::status(spec.path, ec);
+    if (std::filesystem::is_directory(status)) {
+        path.fail("expected a .gltf or .glb file, got a directory: " + spec.path.string());
+    }
+    if (!std::filesystem::is_regular_file(status)) {
         path.fail("no such file: " + spec.path.string());
     }
     spec.scale = source.number("scale", spec.scale, NumberRange::greaterThan(0.0));
