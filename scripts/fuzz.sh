@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Fuzzes the scenario parser and the glTF loading path with libFuzzer (clang, ASan + UBSan).
+# Usage: scripts/fuzz.sh [seconds per target, default 60] [target...]   (targets: scenario gltf)
+# Seeds: every scenario under scenarios/ and the bundled glTF models, plus the regression inputs
+# in tests/fuzz/regressions/<target>/. Findings land in out/fuzz/<target>/ as crash-*, leak-*,
+# timeout-* files: fix the bug, then copy the file into tests/fuzz/regressions/<target>/ so the
+# normal suite replays it (test_fuzz_regressions).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(scenario gltf)
+
+bash scripts/setup.sh
+# clang and its libFuzzer runtime are needed here only.
+need=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$' || need+=("$p")
+done
+if [ ${#need[@]} -gt 0 ]; then
+  sudo_cmd=(); [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  echo "fuzz: installing ${need[*]}"
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz -j "$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")
+
+status=0
+for target in "${targets[@]}"; do
+  work="out/fuzz/$target"
+  mkdir -p "$work/corpus"
+  case "$target" in
+    scenario) find scenarios -name '*.json' -exec cp {} "$work/corpus/" \; ;;
+    gltf) find scenarios/assets \( -name '*.gltf' -o -name '*.glb' \) -exec cp {} "$work/corpus/" \; ;;
+    *) echo "fuzz: unknown target '$target'; expected scenario or gltf" >&2; exit 2 ;;
+  esac
+  cp tests/fuzz/regressions/"$target"/* "$work/corpus/" 2>/dev/null || true
+  echo "== fuzz_$target for $seconds s (corpus: $work/corpus, findings: $work/)"
+  if ! ASAN_OPTIONS=detect_leaks=1 "./build/fuzz/tests/fuzz/fuzz_$target" "$work/corpus" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=262144 \
+      -artifact_prefix="$work/" -print_final_stats=1 2>"$work/log.txt"; then
+    status=1
+    echo "fuzz_$target: FINDING, see $work/log.txt and the crash-/leak-/timeout- file in $work/"
+  fi
+  grep -E "^(#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb)" "$work/log.txt" || tail -3 "$work/log.txt"
+done
+exit $status
