@@ -43,8 +43,10 @@ inline double nearPlaneCornerDistance(double near_plane, double fov_y_radians, d
     return 1.01 * near_plane * std::sqrt(1.0 + tan_half * tan_half * (1.0 + aspect * aspect));
 }
 
+// A box whose distance is not a number (a NaN coordinate) counts as touching: nothing is known
+// about where it is, so it must be drawn, never queried.
 inline bool nearPlaneTouchesBox(const Aabb& box, glm::vec3 eye, float near_radius) {
-    return distanceSquared(box, eye) <= near_radius * near_radius;
+    return !(distanceSquared(box, eye) > near_radius * near_radius);
 }
 
 }  // namespace occsim

@@ -56,6 +56,36 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
     }
 }
 
+// Frustum culling whose planes sit a little inside the true frustum: it drops objects at the
+// edges of the view. Ground truth draws every object and lets the GPU clip, so it shares nothing
+// with this mistake, and the error shows.
+class ShrunkenFrustumCuller final : public Culler {
+public:
+    std::string_view name() const override { return "vfc"; }
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        CullFrame shrunk = frame;
+        for (glm::vec4& plane : shrunk.view.frustum.planes) plane.w -= 1.5f;  // 1.5 m inward
+        inner_->cullAndRender(tree, shrunk, device);
+    }
+
+private:
+    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
+};
+
+TEST(Simulation, GroundTruthIsIndependentOfTheCullersFrustumTest) {
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc"});
+    options.measure_error = true;
+    options.frames = 12;
+    options.make_culler = [](const AlgorithmTraits&, const CullerOptions&) {
+        return std::unique_ptr<Culler>(new ShrunkenFrustumCuller);
+    };
+    const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
+    EXPECT_GT(result.runs[0].summary.error_pixels_total, 0) << "the dropped edge objects show";
+    EXPECT_GT(result.runs[0].summary.missed_objects_total, 0);
+}
+
 TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries) {
     const BenchResult result = benchSmall(true, LatencyMode{true, 8});
     const auto& runs = result.runs;

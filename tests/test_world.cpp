@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 namespace occsim {
@@ -328,6 +330,55 @@ TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
     EXPECT_EQ(s.error_pixels_total, 7);
     EXPECT_EQ(s.error_worst_frame, 1u);
     EXPECT_EQ(s.frames_with_error, 1u);
+}
+
+}  // namespace
+}  // namespace occsim
+
+namespace occsim {
+namespace {
+
+// A motion that leaves finite float coordinates (here an orbit far larger than a float can hold)
+// stops the run with an error naming the object and the frame, instead of letting an infinite
+// box into the tree.
+TEST(Movers, AMotionThatLeavesFiniteCoordinatesStopsTheRunNamingObjectAndFrame) {
+    Scenario s = smallScenario();
+    s.movers.resize(1);
+    s.movers[0].motion = MotionType::Orbit;
+    s.movers[0].fraction = 0.05;
+    s.movers[0].radius_min_m = s.movers[0].radius_max_m = 1e39;
+    s.movers[0].speed_min_mps = s.movers[0].speed_max_mps = 1e300;
+    const Scene scene = buildScene(s);
+    WorldState state = initialState(scene);
+    EXPECT_NO_THROW(requireFiniteBoxes(state, 0));
+    const uint32_t first_mover_object = state.movers.front().object;
+    try {
+        for (uint32_t frame = 1; frame < 100; ++frame) {
+            stepMovers(scene, state, 1.0 / 30.0);
+            requireFiniteBoxes(state, frame);
+        }
+        ADD_FAILURE() << "expected a MotionError";
+    } catch (const MotionError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind("frame 1: object ", 0), 0u) << message;
+        EXPECT_NE(message.find("object " + std::to_string(first_mover_object)), std::string::npos)
+            << message;
+        EXPECT_NE(message.find("left finite float coordinates"), std::string::npos) << message;
+    }
+}
+
+TEST(Movers, PlacementsOutsideFiniteCoordinatesAreNamedToo) {
+    WorldState state;
+    state.poses.resize(3);
+    state.boxes = {Aabb{{0, 0, 0}, {1, 1, 1}}, Aabb{{0, 0, 0}, {1, 1, 1}},
+                   Aabb{{0, 0, 0}, {std::numeric_limits<float>::infinity(), 1, 1}}};
+    try {
+        requireFiniteBoxes(state, 0);
+        ADD_FAILURE() << "expected a MotionError";
+    } catch (const MotionError& e) {
+        EXPECT_NE(std::string(e.what()).find("frame 0: object 2 as placed"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

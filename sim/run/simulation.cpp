@@ -66,6 +66,7 @@ Simulation::Simulation(const Scene& scene, const Scenario& scenario,
                                   : &gl_device_),
       tracer_(*device_),
       state_(initialState(scene)) {
+    requireFiniteBoxes(state_, 0);
     tree_.build(state_.boxes, scenario.bsp);
     culler_->reset(tree_);
     model_view_.resize(scene.objectCount());
@@ -96,6 +97,7 @@ void Simulation::advance() {
     if (frame_ > 0 && !state_.movers.empty()) {
         const uint64_t moved_before = tree_.stats().reinserts_moved;
         stepMovers(scene_, state_, scenario_.dt_s);
+        requireFiniteBoxes(state_, frame_);
         for (const Mover& mover : state_.movers) tree_.reinsert(mover.object, state_.boxes[mover.object]);
         tree_.refitDirtyBounds();
         stats.moved_objects = state_.movers.size();

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <numeric>
 
@@ -346,6 +347,35 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             pose.rotation = glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
         }
         state.boxes[mover.object] = worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]], pose);
+    }
+}
+
+namespace {
+
+[[noreturn]] void throwNotFinite(const WorldState& state, uint32_t object, uint32_t frame,
+                                 const std::string& how) {
+    const glm::dvec3& p = state.poses[object].position;
+    char position[160];
+    std::snprintf(position, sizeof position, "(%g, %g, %g)", p.x, p.y, p.z);
+    throw MotionError("frame " + std::to_string(frame) + ": object " + std::to_string(object) +
+                      " " + how + " left finite float coordinates (its position is " + position +
+                      "); the run stops here");
+}
+
+}  // namespace
+
+void requireFiniteBoxes(const WorldState& state, uint32_t frame) {
+    if (frame == 0) {
+        for (uint32_t o = 0; o < state.boxes.size(); ++o) {
+            if (!isFiniteAndOrdered(state.boxes[o])) throwNotFinite(state, o, frame, "as placed");
+        }
+        return;
+    }
+    for (size_t m = 0; m < state.movers.size(); ++m) {
+        const uint32_t o = state.movers[m].object;
+        if (!isFiniteAndOrdered(state.boxes[o])) {
+            throwNotFinite(state, o, frame, "moved by mover " + std::to_string(m));
+        }
     }
 }
 

@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -112,6 +113,18 @@ Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose);
 
 // Advances every mover by dt seconds and refreshes the world boxes of the objects it moved.
 void stepMovers(const Scene& scene, WorldState& state, double dt_s);
+
+// A motion (or a placement) that took an object out of finite float coordinates: the run cannot
+// go on, since no culling decision about such an object means anything. The message names the
+// object and the frame.
+class MotionError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Throws MotionError for the first object whose world box is not finite: every object on frame
+// 0 (placements), the movers' objects after a step (`frame` > 0).
+void requireFiniteBoxes(const WorldState& state, uint32_t frame);
 
 // The point at `distance` along a closed path, and the unit direction of travel there.
 glm::dvec3 pointOnPath(const MotionPath& path, double distance, glm::dvec3* direction);
