@@ -276,7 +276,10 @@ void GlRenderer::drawQueryBox(const Aabb& box) {
     useState(State::Query);
     // Dilate a little so that zero-extent boxes still rasterise and edges shared with occluders
     // count as visible; a larger box only makes the query more conservative.
-    const glm::dvec3 lo(box.min), hi(box.max);
+    // The box arrives in the culling frame; relative to the eye it is small again, so the float
+    // model-view matrix keeps its precision far from the world origin.
+    const glm::dvec3 lo = glm::dvec3(box.min) + view_.box_origin;
+    const glm::dvec3 hi = glm::dvec3(box.max) + view_.box_origin;
     const double pad = 1e-4 * glm::max(1.0, glm::length(hi - lo)) +
                        1e-6 * glm::length(0.5 * (lo + hi) - view_.eye);
     const glm::vec3 offset(lo - pad - view_.eye);

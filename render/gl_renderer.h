@@ -21,7 +21,8 @@
 namespace occsim {
 
 struct ViewSetup {
-    glm::dvec3 eye{0.0};
+    glm::dvec3 eye{0.0};         // world coordinates
+    glm::dvec3 box_origin{0.0};  // query boxes are given relative to this point (the culling frame)
     glm::mat4 view_rotation{1.0f};  // world to view without translation
     glm::mat4 projection{1.0f};     // reverse-Z, see reverseZPerspective()
 };

@@ -101,7 +101,7 @@ TEST(Movers, OrbitersKeepTheirRadiusAndSpeedAndBoxesFollowThem) {
         EXPECT_NEAR(glm::length(glm::dvec2(p.x - orbit->center.x, p.z - orbit->center.z)), orbit->radius_m, 1e-9);
         const double travelled = glm::length(p - before.poses[m.object].position);
         EXPECT_NEAR(travelled, std::abs(orbit->angular_speed) * orbit->radius_m * 0.1, 1e-3);
-        const Aabb expected = worldBox(scene.mesh_bounds[0], state.poses[m.object]);
+        const Aabb expected = worldBox(scene.mesh_bounds[0], state.poses[m.object], scene.culling_origin);
         EXPECT_EQ(state.boxes[m.object].min, expected.min);
     }
 }
@@ -379,6 +379,35 @@ TEST(Movers, PlacementsOutsideFiniteCoordinatesAreNamedToo) {
         EXPECT_NE(std::string(e.what()).find("frame 0: object 2 as placed"), std::string::npos)
             << e.what();
     }
+}
+
+}  // namespace
+}  // namespace occsim
+
+namespace occsim {
+namespace {
+
+// Boxes are relative to the scene's culling origin and rounded outward: far from the world origin
+// they still contain the object (a float box rounded to nearest could cut a few centimetres off).
+TEST(WorldBoxes, AreRelativeToTheCullingOriginAndRoundedOutward) {
+    const Aabb unit{{-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}};
+    ObjectPose pose;
+    pose.position = {1e6 + 0.01, 3.3, -2e6 - 0.07};
+    const glm::dvec3 origin(1e6, 0, -2e6);
+    const Aabb near = worldBox(unit, pose, origin);
+    EXPECT_NEAR(near.min.x, 0.01 - 0.5, 1e-6);
+    EXPECT_NEAR(near.max.z, -0.07 + 0.5, 1e-6);
+    const Aabb far = worldBox(unit, pose);  // relative to the world origin: 6 cm float steps
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(static_cast<double>(far.min[axis]), pose.position[axis] - 0.5) << axis;
+        EXPECT_GE(static_cast<double>(far.max[axis]), pose.position[axis] + 0.5) << axis;
+    }
+    Scenario s = smallScenario();
+    auto& teapots = std::get<TeapotFieldSpec>(s.sources[0].spec);
+    teapots.region = {glm::vec3(999980, 0, 4950), glm::vec3(1000020, 5, 5000)};
+    const Scene scene = buildScene(s);
+    EXPECT_EQ(scene.culling_origin.x, 1000000.0);
+    EXPECT_EQ(scene.culling_origin.z, 4975.0);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ double msSince(Clock::time_point start) {
 
 }  // namespace
 
-FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height) {
+FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
+                        const glm::dvec3& culling_origin) {
     const CameraPose pose = sampleCameraPath(camera, time_s);
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
     // Looking straight up or down: y cannot be the up vector, take z.
@@ -29,14 +30,17 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
 
     FrameView view;
     view.render.eye = pose.position;
+    view.render.box_origin = culling_origin;
     view.render.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), forward, up));
     view.render.projection = reverseZPerspective(static_cast<float>(fov), static_cast<float>(aspect),
                                                  static_cast<float>(camera.near_m),
                                                  static_cast<float>(camera.far_m));
-    // Culling uses the conventional OpenGL projection; frustum planes live in world space.
+    // Culling uses the conventional OpenGL projection, in the culling frame: the eye relative to
+    // the culling origin is computed in double, so the planes are as precise as the boxes.
+    const glm::dvec3 eye = pose.position - culling_origin;
     const glm::dmat4 view_projection = glm::perspective(fov, aspect, camera.near_m, camera.far_m) *
-                                       glm::lookAt(pose.position, pose.position + forward, up);
-    view.cull.eye = glm::vec3(pose.position);
+                                       glm::lookAt(eye, eye + forward, up);
+    view.cull.eye = glm::vec3(eye);
     view.cull.frustum = frustumFromViewProjection(glm::mat4(view_projection));
     view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
     return view;
@@ -105,7 +109,8 @@ void Simulation::advance() {
     }
     stats.update_ms = msSince(update_start);
 
-    view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height);
+    view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height,
+                          scene_.culling_origin);
     computeModelViews();
     cull_frame_ = CullFrame{};
     cull_frame_.frame_index = frame_;

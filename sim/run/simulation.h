@@ -40,7 +40,11 @@ struct FrameView {
     ViewSetup render;
 };
 
-FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height);
+// The camera of one frame. The culling view (eye, frustum) is relative to `culling_origin`
+// (Scene::culling_origin), like the object boxes and the tree; the render view is in world
+// coordinates.
+FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
+                        const glm::dvec3& culling_origin);
 
 // Ground truth of one frame: every object drawn (the GPU clips, no culling code involved) into
 // the object-ID buffer, read back, and which objects it saw.

@@ -45,8 +45,11 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     out << "objects/depth";
     for (size_t d = 0; d < by_depth.size(); ++d) out << ' ' << d << ':' << by_depth[d];
     out << "\n";
-    std::snprintf(line, sizeof line, "bounds        (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)\n", b.min.x,
-                  b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
+    // The tree lives in the culling frame; the bounds are printed in world coordinates.
+    const glm::dvec3 lo = glm::dvec3(b.min) + scene.culling_origin;
+    const glm::dvec3 hi = glm::dvec3(b.max) + scene.culling_origin;
+    std::snprintf(line, sizeof line, "bounds        (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)\n", lo.x,
+                  lo.y, lo.z, hi.x, hi.y, hi.z);
     out << line;
     out << "algorithm     " << scenario.algorithm << "\n";
     return out.str();

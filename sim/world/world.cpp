@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <numbers>
 #include <numeric>
@@ -123,6 +124,21 @@ glm::quat yawTowards(const glm::dvec3& direction) {
 
 [[noreturn]] void moverError(const Scenario& s, size_t m, const std::string& key, const std::string& message) {
     throw ScenarioError(s.file.string(), "/movers/" + std::to_string(m) + (key.empty() ? "" : "/" + key), message);
+}
+
+// The centre of the initial scene's bounds, rounded to whole metres (so that a scene moved by
+// whole metres gets an origin moved by exactly as much). Non-finite placements are left out;
+// they are reported when the run starts.
+glm::dvec3 cullingOriginOf(const Scene& scene) {
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
+        const glm::dvec3& p = scene.initial_poses[o].position;
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) continue;
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    if (!(lo.x <= hi.x)) return glm::dvec3(0.0);
+    return glm::round(0.5 * lo + 0.5 * hi);
 }
 
 }  // namespace
@@ -261,6 +277,7 @@ Scene buildScene(const Scenario& scenario) {
             scene.initial_movers.push_back(mover);
         }
     }
+    scene.culling_origin = cullingOriginOf(scene);
     return scene;
 }
 
@@ -270,7 +287,8 @@ WorldState initialState(const Scene& scene) {
     state.movers = scene.initial_movers;
     state.boxes.resize(scene.objectCount());
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        state.boxes[o] = worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o]);
+        state.boxes[o] = worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o],
+                                  scene.culling_origin);
     }
     return state;
 }
@@ -280,14 +298,43 @@ glm::dmat4 modelMatrix(const ObjectPose& pose) {
            glm::dmat4(glm::mat4(pose.linear));
 }
 
-Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose) {
-    // Transform in object-relative coordinates, then add the double position: the box stays
-    // accurate to float precision of its own size, not of its distance from the origin.
+namespace {
+
+// Float conversions that never move a bound inward.
+float floatAtMost(double v) {
+    float f = static_cast<float>(v);
+    if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
+float floatAtLeast(double v) {
+    float f = static_cast<float>(v);
+    if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+
+}  // namespace
+
+Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose, const glm::dvec3& origin) {
+    // Arvo's transform of the local box by the linear part, in double, then the position relative
+    // to the origin: exact to double precision, and only then rounded (outward) to float.
     ObjectPose at_origin = pose;
     at_origin.position = glm::dvec3(0.0);
-    Aabb box = transformAabb(mesh_bounds, glm::mat4(modelMatrix(at_origin)));
-    box.min = glm::vec3(glm::dvec3(box.min) + pose.position);
-    box.max = glm::vec3(glm::dvec3(box.max) + pose.position);
+    const glm::dmat4 m = modelMatrix(at_origin);
+    glm::dvec3 lo = pose.position - origin, hi = lo;
+    for (int col = 0; col < 3; ++col) {
+        for (int row = 0; row < 3; ++row) {
+            const double a = m[col][row] * mesh_bounds.min[col];
+            const double b = m[col][row] * mesh_bounds.max[col];
+            lo[row] += std::min(a, b);
+            hi[row] += std::max(a, b);
+        }
+    }
+    Aabb box;
+    for (int axis = 0; axis < 3; ++axis) {
+        box.min[axis] = floatAtMost(lo[axis]);
+        box.max[axis] = floatAtLeast(hi[axis]);
+    }
     return box;
 }
 
@@ -346,7 +393,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             spin->angle = std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * kPi);
             pose.rotation = glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
         }
-        state.boxes[mover.object] = worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]], pose);
+        state.boxes[mover.object] =
+            worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]], pose, scene.culling_origin);
     }
 }
 

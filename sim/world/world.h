@@ -91,13 +91,18 @@ struct Scene {
     std::vector<MotionPath> paths;
     std::vector<std::string> warnings;  // from sources (e.g. glTF parts skipped)
     uint64_t triangle_count = 0;        // over all objects
+    // The origin of the culling frame, in world coordinates (metres, double): the centre of the
+    // initial scene, rounded to whole metres. Object boxes, the BSP tree, the frustum and the eye
+    // given to cullers are all relative to it, so float keeps its precision however far from the
+    // world origin a scene lies, and a scene moved by whole metres culls exactly alike.
+    glm::dvec3 culling_origin{0.0};
 
     uint32_t objectCount() const { return static_cast<uint32_t>(object_mesh.size()); }
 };
 
 struct WorldState {
     std::vector<ObjectPose> poses;
-    std::vector<Aabb> boxes;  // world space, float
+    std::vector<Aabb> boxes;  // per object, relative to Scene::culling_origin (float, rounded out)
     std::vector<Mover> movers;
 };
 
@@ -109,7 +114,9 @@ Scene buildScene(const Scenario& scenario);
 WorldState initialState(const Scene& scene);
 
 glm::dmat4 modelMatrix(const ObjectPose& pose);
-Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose);
+// The box of a mesh under a pose, relative to `origin`: computed in double, then rounded outward
+// to float, so that it always contains the object however far from the origin it is.
+Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose, const glm::dvec3& origin = {});
 
 // Advances every mover by dt seconds and refreshes the world boxes of the objects it moved.
 void stepMovers(const Scene& scene, WorldState& state, double dt_s);
