@@ -113,19 +113,28 @@ glm::mat4 reverseZPerspective(float fov_y_radians, float aspect, float near_plan
     return p;
 }
 
-GlRenderer::GlRenderer(uint32_t width, uint32_t height) : width_(width), height_(height) {
+glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspect, float near_plane,
+                         float far_plane) {
+    return depth == DepthConvention::ReverseFloat
+               ? reverseZPerspective(fov_y_radians, aspect, near_plane, far_plane)
+               : glm::perspective(fov_y_radians, aspect, near_plane, far_plane);
+}
+
+GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
+    : width_(width), height_(height), depth_(depth) {
+    const bool reverse = depth_ == DepthConvention::ReverseFloat;
     glGenFramebuffers(1, &fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     color_rb_ = makeRenderbuffer(GL_RGBA8, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb_);
     id_rb_ = makeRenderbuffer(GL_R32UI, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, id_rb_);
-    depth_rb_ = makeRenderbuffer(GL_DEPTH_COMPONENT32F, width, height);
+    depth_rb_ = makeRenderbuffer(reverse ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw std::runtime_error("OpenGL: the colour + object-ID + float-depth framebuffer is incomplete");
+        throw std::runtime_error("OpenGL: the colour + object-ID + depth framebuffer is incomplete");
     }
     checkGl("framebuffer set-up");
 
@@ -154,7 +163,7 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height) : width_(width), height_
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
     glBindVertexArray(0);
 
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glClipControl(GL_LOWER_LEFT, reverse ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height));
@@ -240,7 +249,7 @@ void GlRenderer::beginFrame() {
     glDepthMask(GL_TRUE);
     const float background[4] = {0.12f, 0.13f, 0.16f, 1.0f};
     const GLuint no_object[4] = {0, 0, 0, 0};
-    const float far_depth = 0.0f;  // reverse-Z
+    const float far_depth = depth_ == DepthConvention::ReverseFloat ? 0.0f : 1.0f;
     glClearBufferfv(GL_COLOR, 0, background);
     glClearBufferuiv(GL_COLOR, 1, no_object);
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
@@ -258,7 +267,11 @@ void GlRenderer::useState(State wanted) {
     const GLboolean write = draw ? GL_TRUE : GL_FALSE;
     glColorMask(write, write, write, write);
     glDepthMask(write);
-    glDepthFunc(draw ? GL_GREATER : GL_GEQUAL);
+    if (depth_ == DepthConvention::ReverseFloat) {
+        glDepthFunc(draw ? GL_GREATER : GL_GEQUAL);
+    } else {
+        glDepthFunc(draw ? GL_LESS : GL_LEQUAL);
+    }
     state_ = wanted;
 }
 

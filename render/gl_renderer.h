@@ -31,9 +31,22 @@ struct ViewSetup {
 // far to depth 0.
 glm::mat4 reverseZPerspective(float fov_y_radians, float aspect, float near_plane, float far_plane);
 
+// How depth is stored. Reverse-Z into a float buffer (the default) keeps nearly uniform relative
+// precision from the near plane to the far one; the conventional mapping (near to -1, far to 1,
+// clip control GL_NEGATIVE_ONE_TO_ONE) into a 24-bit fixed-point buffer is what many engines
+// still do, and is kept to show the depth-precision trap: with a near/far ratio of 10^6, nearby
+// surfaces tie in depth and whichever is drawn first wins, so two renders of the same frame in
+// different orders disagree.
+enum class DepthConvention : uint8_t { ReverseFloat, Conventional24 };
+
+// The projection matching a convention (reverseZPerspective or glm::perspective).
+glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspect, float near_plane,
+                         float far_plane);
+
 class GlRenderer {
 public:
-    GlRenderer(uint32_t width, uint32_t height);
+    GlRenderer(uint32_t width, uint32_t height,
+               DepthConvention depth = DepthConvention::ReverseFloat);
     ~GlRenderer();
     GlRenderer(const GlRenderer&) = delete;
     GlRenderer& operator=(const GlRenderer&) = delete;
@@ -66,6 +79,7 @@ private:
     void useState(State wanted);
 
     uint32_t width_ = 0, height_ = 0;
+    DepthConvention depth_ = DepthConvention::ReverseFloat;
     uint32_t fbo_ = 0, color_rb_ = 0, id_rb_ = 0, depth_rb_ = 0;
     uint32_t draw_program_ = 0, query_program_ = 0;
     int draw_model_view_loc_ = -1, draw_projection_loc_ = -1, draw_object_id_loc_ = -1;

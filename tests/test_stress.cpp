@@ -73,5 +73,47 @@ TEST(FarFromTheOrigin, AScenarioMovedByAMillionMetresMakesTheSameDecisionsWithZe
     }
 }
 
+Scenario withCamera(const fs::path& file, double near_m, double far_m, bool conventional_depth,
+                    double eye_height = -1.0) {
+    json s = readJson(file);
+    s.erase("expect");
+    s["camera"]["near"] = near_m;
+    s["camera"]["far"] = far_m;
+    if (eye_height >= 0) {
+        for (json& key : s["camera"]["keyframes"]) key["position"][1] = eye_height;
+    }
+    if (conventional_depth) s["viewport"]["depth"] = "conventional_24";
+    return parseScenarioText(s.dump(), file);
+}
+
+int64_t errorPixelsOfConservative(const BenchResult& result) {
+    int64_t total = 0;
+    for (const RunRecord& r : result.runs) {
+        if (r.algorithm->conservative) total += r.summary.error_pixels_total;
+    }
+    return total;
+}
+
+// Near 1 mm, far 1000 km. With reverse-Z into a float depth buffer every conservative algorithm
+// still draws exactly what ground truth shows. With the conventional mapping into 24-bit depth
+// (the trap) neighbouring surfaces tie in depth, the draw order decides, and ground truth (every
+// object in index order) and the culled frames (front to back) disagree.
+TEST(DepthPrecision, ANearFarRatioOf10To9KeepsZeroErrorOnlyWithReverseZInFloat) {
+    const fs::path teapots = kSmall;
+    const BenchResult reverse = benchAll(withCamera(teapots, 1e-3, 1e6, false));
+    EXPECT_EQ(errorPixelsOfConservative(reverse), 0);
+    const BenchResult conventional = benchAll(withCamera(teapots, 1e-3, 1e6, true));
+    EXPECT_GT(errorPixelsOfConservative(conventional), 0) << "the trap must show without the fix";
+}
+
+// The eye 3 mm above the library floor, near plane at 1 mm: the floor is a sliver in depth
+// almost along the line of sight, and the near plane cuts the boxes of everything around the eye.
+TEST(DepthPrecision, TheEyeMillimetresAboveASurfaceKeepsZeroError) {
+    const fs::path library = fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/library-small.json";
+    const BenchResult result = benchAll(withCamera(library, 1e-3, 100, false, 0.005));
+    EXPECT_EQ(errorPixelsOfConservative(result), 0);
+    for (const RunRecord& r : result.runs) EXPECT_GT(r.summary.objects_mean, 0.0);
+}
+
 }  // namespace
 }  // namespace occsim

@@ -66,7 +66,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const Scene scene = buildScene(scenario);
     printWarnings(scene);
     auto context = createOsMesaContext(scenario.width, scenario.height);
-    GlRenderer renderer(scenario.width, scenario.height);
+    GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
     BenchResult result;

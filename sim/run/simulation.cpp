@@ -19,8 +19,13 @@ double msSince(Clock::time_point start) {
 
 }  // namespace
 
+DepthConvention depthConventionOf(const Scenario& scenario) {
+    return scenario.conventional_depth ? DepthConvention::Conventional24
+                                       : DepthConvention::ReverseFloat;
+}
+
 FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
-                        const glm::dvec3& culling_origin) {
+                        const glm::dvec3& culling_origin, DepthConvention depth) {
     const CameraPose pose = sampleCameraPath(camera, time_s);
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
     // Looking straight up or down: y cannot be the up vector, take z.
@@ -32,9 +37,10 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
     view.render.eye = pose.position;
     view.render.box_origin = culling_origin;
     view.render.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), forward, up));
-    view.render.projection = reverseZPerspective(static_cast<float>(fov), static_cast<float>(aspect),
-                                                 static_cast<float>(camera.near_m),
-                                                 static_cast<float>(camera.far_m));
+    view.render.projection = perspectiveFor(depth, static_cast<float>(fov),
+                                            static_cast<float>(aspect),
+                                            static_cast<float>(camera.near_m),
+                                            static_cast<float>(camera.far_m));
     // Culling uses the conventional OpenGL projection, in the culling frame: the eye relative to
     // the culling origin is computed in double, so the planes are as precise as the boxes.
     const glm::dvec3 eye = pose.position - culling_origin;
@@ -110,7 +116,7 @@ void Simulation::advance() {
     stats.update_ms = msSince(update_start);
 
     view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height,
-                          scene_.culling_origin);
+                          scene_.culling_origin, depthConventionOf(scenario_));
     computeModelViews();
     cull_frame_ = CullFrame{};
     cull_frame_.frame_index = frame_;

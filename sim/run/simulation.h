@@ -44,7 +44,11 @@ struct FrameView {
 // (Scene::culling_origin), like the object boxes and the tree; the render view is in world
 // coordinates.
 FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
-                        const glm::dvec3& culling_origin);
+                        const glm::dvec3& culling_origin,
+                        DepthConvention depth = DepthConvention::ReverseFloat);
+
+// The renderer's depth convention a scenario asks for.
+DepthConvention depthConventionOf(const Scenario& scenario);
 
 // Ground truth of one frame: every object drawn (the GPU clips, no culling code involved) into
 // the object-ID buffer, read back, and which objects it saw.

@@ -100,6 +100,9 @@ struct Scenario {
     uint32_t warmup_frames = 10;     // excluded from timing summaries (not from error counts)
     uint32_t width = 640;
     uint32_t height = 480;
+    // Depth as most engines once stored it (near to -1, 24-bit fixed point) instead of reverse-Z
+    // in float: only to show the depth-precision trap (docs/stability.md).
+    bool conventional_depth = false;
     CameraSpec camera;
     std::vector<SceneSourceSpec> sources;
     std::vector<MoverSpec> movers;

@@ -37,6 +37,7 @@ const std::vector<std::string> kSpawnShapes = {"teapot", "box", "sphere"};
 constexpr uint64_t kMaxSpawn = 1'000'000;
 constexpr uint32_t kOrbitKeyframesPerTurn = 16;
 const std::vector<std::string> kSplitRules = {"median", "sah"};
+const std::vector<std::string> kDepthModes = {"reverse_float", "conventional_24"};
 
 // Read first, before any other key, so that a file written for a newer format fails with
 // "wrong version" rather than with a confusing complaint about keys this version lacks.
@@ -78,6 +79,8 @@ void readViewport(JsonObjectReader& top, Scenario& s) {
         viewport->unsignedInteger("width", s.width, kMinViewport, kMaxViewport));
     s.height = static_cast<uint32_t>(
         viewport->unsignedInteger("height", s.height, kMinViewport, kMaxViewport));
+    s.conventional_depth =
+        viewport->enumeration("depth", kDepthModes, "reverse_float") == "conventional_24";
     viewport->finish();
 }
 
