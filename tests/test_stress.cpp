@@ -73,6 +73,26 @@ TEST(FarFromTheOrigin, AScenarioMovedByAMillionMetresMakesTheSameDecisionsWithZe
     }
 }
 
+// A billion seconds (32 years) into a simulation, a double still resolves 0.1 microseconds; every
+// decision that uses time must come out as it does from 0.
+TEST(LongTime, AScenarioStartedAtABillionSecondsMakesTheSameDecisionsAsFromZero) {
+    json s = readJson(kSmall);
+    s.erase("expect");
+    const BenchResult from_zero = benchAll(parseScenarioText(s.dump(), kSmall));
+    s["start_time"] = 1e9;
+    const BenchResult late = benchAll(parseScenarioText(s.dump(), kSmall));
+    for (size_t c = 0; c < from_zero.runs.size(); ++c) {
+        const RunRecord& a = from_zero.runs[c];
+        const RunRecord& b = late.runs[c];
+        const std::string name(a.algorithm->name);
+        for (size_t f = 0; f < a.frames.size(); ++f) {
+            EXPECT_EQ(a.frames[f].queries, b.frames[f].queries) << name << " frame " << f;
+            EXPECT_EQ(a.frames[f].objects_drawn, b.frames[f].objects_drawn) << name << " frame " << f;
+        }
+        EXPECT_DOUBLE_EQ(b.frames.back().time_s, 1e9 + a.frames.back().time_s);
+    }
+}
+
 Scenario withCamera(const fs::path& file, double near_m, double far_m, bool conventional_depth,
                     double eye_height = -1.0) {
     json s = readJson(file);

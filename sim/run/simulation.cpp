@@ -100,7 +100,8 @@ void Simulation::advance() {
     FrameStats& stats = pending_;
     stats = FrameStats{};
     stats.frame = frame_;
-    stats.time_s = frame_ * scenario_.dt_s;
+    const double since_start_s = frame_ * scenario_.dt_s;
+    stats.time_s = scenario_.start_time_s + since_start_s;
 
     // The world moves (not on frame 0: it shows the initial state). Skipped without movers.
     const auto update_start = Clock::now();
@@ -115,7 +116,7 @@ void Simulation::advance() {
     }
     stats.update_ms = msSince(update_start);
 
-    view_ = makeFrameView(scenario_.camera, stats.time_s, scenario_.width, scenario_.height,
+    view_ = makeFrameView(scenario_.camera, since_start_s, scenario_.width, scenario_.height,
                           scene_.culling_origin, depthConventionOf(scenario_));
     computeModelViews();
     cull_frame_ = CullFrame{};

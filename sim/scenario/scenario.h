@@ -97,6 +97,9 @@ struct Scenario {
     uint64_t seed = 1;
     uint32_t frames = 300;
     double dt_s = 1.0 / 30.0;        // simulation time step
+    // The simulation clock at frame 0. Camera keyframes and movers count from the start of the
+    // run; only the clock that culling decisions see is offset (a long-running simulation).
+    double start_time_s = 0.0;
     uint32_t warmup_frames = 10;     // excluded from timing summaries (not from error counts)
     uint32_t width = 640;
     uint32_t height = 480;

@@ -26,6 +26,8 @@ namespace {
 constexpr uint64_t kFormatVersion = 1;
 constexpr uint64_t kMaxFrames = 10'000'000;
 constexpr double kMaxDt = 10.0;
+// About 3,000 years: a double still resolves well under a microsecond there.
+constexpr double kMaxStartTime = 1e11;
 constexpr uint64_t kMinViewport = 16;
 constexpr uint64_t kMaxViewport = 8192;
 constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
@@ -62,6 +64,7 @@ void readRunSettings(JsonObjectReader& top, Scenario& s) {
     s.seed = top.unsignedInteger("seed", s.seed);
     s.frames = static_cast<uint32_t>(top.unsignedInteger("frames", s.frames, 1, kMaxFrames));
     s.dt_s = top.number("dt", s.dt_s, NumberRange::openClosed(0.0, kMaxDt));
+    s.start_time_s = top.number("start_time", s.start_time_s, NumberRange::closed(0.0, kMaxStartTime));
     // The default warm-up shrinks for very short runs so that `frames` alone is always valid.
     const uint32_t default_warmup = std::min(kDefaultWarmupFrames, s.frames - 1);
     s.warmup_frames =
