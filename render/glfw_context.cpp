@@ -123,7 +123,13 @@ GlfwWindow::GlfwWindow(uint32_t width, uint32_t height, const std::string& title
     glfw.glfwSetWindowCloseCallback(window_, [](GLFWwindow* win) {
         of(win).push({WindowEvent::Type::Close, {}, 0, 0.0, 0.0});
     });
-    presenter_ = std::make_unique<GlImagePresenter>();
+    try {
+        presenter_ = std::make_unique<GlImagePresenter>();
+    } catch (...) {
+        glfw.glfwDestroyWindow(window_);  // no destructor runs for a half-made window
+        glfw.glfwTerminate();
+        throw;
+    }
 }
 
 GlfwWindow::~GlfwWindow() {
