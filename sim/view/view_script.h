@@ -9,7 +9,7 @@
 //   hold KEY N                down, N frames, up
 //   drag DX DY                a mouse drag by DX, DY pixels (looks around)
 //   wheel N                   N wheel notches (negative: slower)
-//   resize W H                ask for a W x H window
+//   resize W H                ask for a W x H window (the viewer waits for it, 5 s at most)
 //   quit                      close the window (also implied after the last line)
 //
 // Everything but wait and hold applies before the next frame. Parsing is strict: a mistake is one

@@ -182,7 +182,18 @@ void Viewer::run() {
         if (script_) {
             ScriptPlayer::FrameInput in = script_->next();
             events.insert(events.end(), in.events.begin(), in.events.end());
-            if (in.resize) window_.setSize(in.resize->first, in.resize->second);
+            if (in.resize) {
+                window_.setSize(in.resize->first, in.resize->second);
+                // A script's next frames assume the new size: wait for the window system to
+                // apply it (a window manager may refuse; then go on after a while).
+                const auto give_up = Clock::now() + std::chrono::seconds(5);
+                while ((window_.framebufferWidth() != in.resize->first ||
+                        window_.framebufferHeight() != in.resize->second) &&
+                       Clock::now() < give_up) {
+                    const std::vector<WindowEvent> more = window_.takeEvents(0.05);
+                    events.insert(events.end(), more.begin(), more.end());
+                }
+            }
             script_done = in.quit;
         }
         for (const WindowEvent& e : events) handle(e);
