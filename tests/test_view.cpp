@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace occsim {
 namespace {
 
@@ -27,7 +29,9 @@ std::string readText(const std::filesystem::path& file) {
 }
 
 std::filesystem::path freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("occsim-view-" + name);
+    // Per process: test suites of other checkouts may run at the same time on the same machine.
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("occsim-view-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     return dir;
 }
@@ -251,6 +255,7 @@ TEST(RecordedScenario, IsTheLoadedScenarioWithTheFlownPathKeyedAtEveryFrame) {
     EXPECT_LT(written.find("\"format_version\""), written.find("\"name\""));
     EXPECT_LT(written.find("\"viewport\""), written.find("\"camera\""));
     EXPECT_LT(written.find("\"camera\""), written.find("\"scene\""));
+    if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
 TEST(RecordedScenario, GltfPathsStillFindTheirModelsFromTheNewFolder) {
@@ -267,6 +272,7 @@ TEST(RecordedScenario, GltfPathsStillFindTheirModelsFromTheNewFolder) {
     EXPECT_EQ(recorded.name, "house-flight");
     EXPECT_EQ(recorded.frames, 2u);
     EXPECT_EQ(recorded.warmup_frames, 1u);
+    if (!HasFailure()) std::filesystem::remove_all(dir.parent_path());
 }
 
 TEST(RecordedScenario, ExpectedFramesAreClampedToTheFlight) {

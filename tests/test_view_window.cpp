@@ -18,6 +18,7 @@
 #include <set>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace occsim {
 namespace {
@@ -42,7 +43,9 @@ const std::string kOccsim = OCCSIM_EXE;
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
 
 std::filesystem::path freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("occsim-view-window-" + name);
+    // Per process: test suites of other checkouts may run at the same time on the same machine.
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("occsim-view-window-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
@@ -108,6 +111,7 @@ TEST(ViewWindow, BadScriptsAndSizesAreOneLineWithExitCode2BeforeAnyWindow) {
     o = shell(kOccsim + " view " + kSmall + " --algo fastest");
     EXPECT_EQ(o.exit_code, 2) << o.output;
     EXPECT_TRUE(contains(o.output, "--algo: unknown algorithm 'fastest'")) << o.output;
+    std::filesystem::remove_all(dir);
 }
 
 // The session: watch CHC with boxes, the bird's-eye view and ground truth in a 640 x 480 window;
@@ -203,6 +207,7 @@ TEST(ViewWindow, AScriptedSessionUnderXvfbSavesScreenshotsAndAFlightThatReplaysH
     const Image resized = readPng(out / "screenshot-003.png");
     EXPECT_EQ(resized.width, 320);
     EXPECT_EQ(resized.height, 240);
+    if (!HasFailure()) std::filesystem::remove_all(dir);  // kept for a look when something failed
 }
 
 }  // namespace
