@@ -7,7 +7,7 @@ find_package(CLI11 CONFIG REQUIRED)               # libcli11-dev
 find_package(TinyGLTF CONFIG REQUIRED)            # libtinygltf-dev
 find_package(Threads REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)   # libosmesa6-dev
-pkg_check_modules(GLFW3 REQUIRED IMPORTED_TARGET glfw3)     # libglfw3-dev (window only)
+pkg_check_modules(GLFW3 REQUIRED IMPORTED_TARGET glfw3)     # libglfw3-dev: the header only (render/)
 
 # stb (libstb-dev) ships headers and a shared library; we only use stb_image_write's header.
 find_path(STB_INCLUDE_DIR stb/stb_image_write.h REQUIRED)

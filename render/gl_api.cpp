@@ -11,7 +11,7 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DEFINE)
 
 namespace occsim {
 
-bool loadGlFunctions(GlProcLoader loader, std::string* error) {
+bool loadGlFunctions(const GlProcLoader& loader, std::string* error) {
 #define OCCSIM_GL_LOAD(type, name)                                         \
     occsim_##name = reinterpret_cast<type>(loader(#name));                 \
     if (occsim_##name == nullptr) {                                        \

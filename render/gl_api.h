@@ -37,6 +37,11 @@
     X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)      \
     X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)        \
     X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                      \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)            \
+    X(PFNGLGENTEXTURESPROC, glGenTextures)                              \
+    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                        \
+    X(PFNGLBINDTEXTUREPROC, glBindTexture)                              \
+    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                \
     X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                    \
     X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)              \
     X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                    \
@@ -108,6 +113,11 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #define glFramebufferRenderbuffer occsim_glFramebufferRenderbuffer
 #define glCheckFramebufferStatus occsim_glCheckFramebufferStatus
 #define glBlitFramebuffer occsim_glBlitFramebuffer
+#define glFramebufferTexture2D occsim_glFramebufferTexture2D
+#define glGenTextures occsim_glGenTextures
+#define glDeleteTextures occsim_glDeleteTextures
+#define glBindTexture occsim_glBindTexture
+#define glTexImage2D occsim_glTexImage2D
 #define glGenRenderbuffers occsim_glGenRenderbuffers
 #define glDeleteRenderbuffers occsim_glDeleteRenderbuffers
 #define glBindRenderbuffer occsim_glBindRenderbuffer

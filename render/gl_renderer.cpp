@@ -90,13 +90,24 @@ GLuint linkProgram(const char* vertex_source, const char* fragment_source) {
     return program;
 }
 
-GLuint makeRenderbuffer(GLenum format, uint32_t width, uint32_t height) {
-    GLuint rb = 0;
-    glGenRenderbuffers(1, &rb);
+void allocateRenderbuffer(GLuint rb, GLenum format, uint32_t width, uint32_t height) {
     glBindRenderbuffer(GL_RENDERBUFFER, rb);
     glRenderbufferStorage(GL_RENDERBUFFER, format, static_cast<GLsizei>(width),
                           static_cast<GLsizei>(height));
+}
+
+GLuint makeRenderbuffer(GLenum format, uint32_t width, uint32_t height) {
+    GLuint rb = 0;
+    glGenRenderbuffers(1, &rb);
+    allocateRenderbuffer(rb, format, width, height);
     return rb;
+}
+
+// The formats of the three attachments, in one place for creation and resizing.
+constexpr GLenum kColorFormat = GL_RGBA8;
+constexpr GLenum kIdFormat = GL_R32UI;
+GLenum depthFormatOf(DepthConvention depth) {
+    return depth == DepthConvention::ReverseFloat ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24;
 }
 
 }  // namespace
@@ -125,11 +136,11 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     const bool reverse = depth_ == DepthConvention::ReverseFloat;
     glGenFramebuffers(1, &fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    color_rb_ = makeRenderbuffer(GL_RGBA8, width, height);
+    color_rb_ = makeRenderbuffer(kColorFormat, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb_);
-    id_rb_ = makeRenderbuffer(GL_R32UI, width, height);
+    id_rb_ = makeRenderbuffer(kIdFormat, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, id_rb_);
-    depth_rb_ = makeRenderbuffer(reverse ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24, width, height);
+    depth_rb_ = makeRenderbuffer(depthFormatOf(depth_), width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
@@ -180,6 +191,23 @@ GlRenderer::~GlRenderer() {
     const GLuint rbs[] = {color_rb_, id_rb_, depth_rb_};
     glDeleteRenderbuffers(3, rbs);
     glDeleteFramebuffers(1, &fbo_);
+}
+
+void GlRenderer::resize(uint32_t width, uint32_t height) {
+    if (width == width_ && height == height_) return;
+    // Re-specifying the storage of attached renderbuffers keeps the framebuffer object and its
+    // attachments; beginFrame() sets the viewport from the new size.
+    allocateRenderbuffer(color_rb_, kColorFormat, width, height);
+    allocateRenderbuffer(id_rb_, kIdFormat, width, height);
+    allocateRenderbuffer(depth_rb_, depthFormatOf(depth_), width, height);
+    width_ = width;
+    height_ = height;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw std::runtime_error("OpenGL: the framebuffer is incomplete after resizing to " +
+                                 std::to_string(width) + "x" + std::to_string(height));
+    }
+    checkGl("framebuffer resize");
 }
 
 void GlRenderer::uploadMeshes(std::span<const MeshData> meshes) {

@@ -54,6 +54,9 @@ public:
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     uint32_t framebuffer() const { return fbo_; }
+    // A new size for the framebuffer (a resized window). The meshes stay; what the buffers hold is
+    // undefined until the next beginFrame().
+    void resize(uint32_t width, uint32_t height);
 
     // Uploads the meshes once (replacing earlier ones); object i draws mesh mesh_of_object[i].
     void uploadMeshes(std::span<const MeshData> meshes);

@@ -1,7 +1,8 @@
-// occsim: the simulator executable. Commands: run, bench, regress, info. Bad input (flags,
-// scenario files) ends with one line on stderr and exit code 2; runtime failures (OpenGL, output)
-// with exit 1.
+// occsim: the simulator executable. Commands: run, bench, regress, info, view. Bad input (flags,
+// scenario and script files) ends with one line on stderr and exit code 2, and so does `view`
+// where no window can be opened; runtime failures (OpenGL, output) with exit 1.
 #include "culling/algorithms.h"
+#include "render/glfw_context.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
@@ -11,6 +12,7 @@
 #include "sim/run/runner.h"
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scenario.h"
+#include "sim/view/viewer.h"
 #include "sim/world/scene_info.h"
 
 #include <CLI/CLI.hpp>
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -207,6 +210,35 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     return report.passed() ? 0 : kExitFailure;
 }
 
+struct ViewFlags {
+    std::string scenario, algorithm, size, script, out;
+    bool error = false;
+};
+
+int viewCommand(const ViewFlags& flags) {
+    occsim::ViewOptions options;
+    const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
+    if (!flags.algorithm.empty()) options.algorithm = algorithmNamed("--algo", flags.algorithm).name;
+    options.error = flags.error;
+    if (!flags.size.empty()) {
+        unsigned w = 0, h = 0;
+        char extra = 0;
+        if (std::sscanf(flags.size.c_str(), "%ux%u%c", &w, &h, &extra) != 2 || w < 16 || h < 16 ||
+            w > 8192 || h > 8192) {
+            throw BadInput("--size: expected WIDTHxHEIGHT, each in [16, 8192], got '" + flags.size + "'");
+        }
+        options.width = w;
+        options.height = h;
+    }
+    if (!flags.script.empty()) options.script = occsim::readViewScript(flags.script);
+    options.out_dir = flags.out.empty() ? std::filesystem::path("out") / scenario.name / "view"
+                                        : std::filesystem::path(flags.out);
+    // Recorded flights are the loaded scenario with a new camera path: keep its text.
+    std::ifstream in(flags.scenario, std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return occsim::runViewer(scenario, text, options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -245,6 +277,19 @@ int main(int argc, char** argv) {
     std::string info_scenario;
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
     info->add_option("scenario", info_scenario, "Scenario file (JSON)")->required();
+
+    ViewFlags view_flags;
+    CLI::App* view = app.add_subcommand(
+        "view", "Watch a scenario in a window: fly, switch algorithms live, record a camera path (docs/viewer.md)");
+    view->add_option("scenario", view_flags.scenario, "Scenario file (JSON)")->required();
+    view->add_option("--algo", view_flags.algorithm,
+                     "Culling algorithm to start with (default: the scenario's): " + occsim::algorithmNameList());
+    view->add_flag("--error", view_flags.error, "Render ground truth every frame and show error pixels (key g)");
+    view->add_option("--size", view_flags.size,
+                     "Window size WIDTHxHEIGHT (default: the scenario's viewport, enlarged when small)");
+    view->add_option("--script", view_flags.script, "Drive the window from a script file, then close it");
+    view->add_option("--out", view_flags.out,
+                     "Folder for screenshots and recorded scenarios (default: out/<scenario>/view)");
 
     // CLI11 would answer an unknown command with "A subcommand is required".
     if (argc > 1 && argv[1][0] != '-') {
@@ -302,6 +347,16 @@ int main(int argc, char** argv) {
             std::printf("%s", text.c_str());
             return 0;
         }
+        if (*view) return viewCommand(view_flags);
+    } catch (const occsim::WindowUnavailable& e) {
+        std::fprintf(stderr,
+                     "occsim view: cannot open a window: %s; the headless commands need no display "
+                     "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
+                     e.what());
+        return kExitBadInput;
+    } catch (const occsim::ScriptError& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitBadInput;
     } catch (const occsim::ScenarioError& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;

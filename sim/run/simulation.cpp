@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace occsim {
 namespace {
@@ -26,7 +27,12 @@ DepthConvention depthConventionOf(const Scenario& scenario) {
 
 FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
                         const glm::dvec3& culling_origin, DepthConvention depth) {
-    const CameraPose pose = sampleCameraPath(camera, time_s);
+    return makeFrameView(camera, sampleCameraPath(camera, time_s), width, height, culling_origin,
+                         depth);
+}
+
+FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
+                        uint32_t height, const glm::dvec3& culling_origin, DepthConvention depth) {
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
     // Looking straight up or down: y cannot be the up vector, take z.
     const glm::dvec3 up = std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
@@ -105,7 +111,7 @@ void Simulation::advance() {
 
     // The world moves (not on frame 0: it shows the initial state). Skipped without movers.
     const auto update_start = Clock::now();
-    if (frame_ > 0 && !state_.movers.empty()) {
+    if (frame_ > 0 && !state_.movers.empty() && !live_.hold_world) {
         const uint64_t moved_before = tree_.stats().reinserts_moved;
         stepMovers(scene_, state_, scenario_.dt_s);
         requireFiniteBoxes(state_, frame_);
@@ -116,8 +122,13 @@ void Simulation::advance() {
     }
     stats.update_ms = msSince(update_start);
 
-    view_ = makeFrameView(scenario_.camera, since_start_s, scenario_.width, scenario_.height,
-                          scene_.culling_origin, depthConventionOf(scenario_));
+    const uint32_t width = live_.width > 0 ? live_.width : scenario_.width;
+    const uint32_t height = live_.height > 0 ? live_.height : scenario_.height;
+    const DepthConvention depth = depthConventionOf(scenario_);
+    view_ = live_.camera ? makeFrameView(scenario_.camera, *live_.camera, width, height,
+                                         scene_.culling_origin, depth)
+                         : makeFrameView(scenario_.camera, since_start_s, width, height,
+                                         scene_.culling_origin, depth);
     computeModelViews();
     cull_frame_ = CullFrame{};
     cull_frame_.frame_index = frame_;
@@ -158,7 +169,8 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     const auto frame_start = Clock::now();
     renderer_.beginFrame();
     const auto cull_start = Clock::now();
-    const bool trace = options_.trace_frame && *options_.trace_frame == frame_;
+    const bool trace =
+        live_.trace_every_frame || (options_.trace_frame && *options_.trace_frame == frame_);
     if (trace) tracer_.beginTrace(frame_);
     culler_->cullAndRender(tree_, cull_frame_, trace ? tracer_ : *device_);
     tracer_.endTrace();
@@ -178,6 +190,17 @@ FrameStats Simulation::renderFrame(const GroundTruthFrame* shared) {
     ++frame_;
     advanced_ = false;
     return stats;
+}
+
+void Simulation::continueFrom(const Simulation& other) {
+    // Between frames only: a half-done frame (advanced, not rendered) would be lost.
+    if (other.advanced_ || advanced_) {
+        throw std::logic_error("Simulation::continueFrom between advance() and renderFrame()");
+    }
+    state_ = other.state_;
+    tree_ = other.tree_;
+    frame_ = other.frame_;
+    culler_->reset(tree_);
 }
 
 // Object-ID buffers compared pixel by pixel; an object counts as missed when ground truth saw it

@@ -14,6 +14,7 @@
 #include "render/gl_renderer.h"
 #include "sim/run/frame_stats.h"
 #include "sim/scenario/scenario.h"
+#include "sim/world/camera_path.h"
 #include "sim/world/world.h"
 
 #include <memory>
@@ -46,9 +47,28 @@ struct FrameView {
 FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
                         const glm::dvec3& culling_origin,
                         DepthConvention depth = DepthConvention::ReverseFloat);
+// The same for a given pose; `camera` supplies the lens (field of view, near and far planes).
+FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
+                        uint32_t height, const glm::dvec3& culling_origin,
+                        DepthConvention depth = DepthConvention::ReverseFloat);
 
 // The renderer's depth convention a scenario asks for.
 DepthConvention depthConventionOf(const Scenario& scenario);
+
+// What an interactive viewer (sim/view/) changes between frames; run, bench and regress never
+// set these, and the defaults change nothing.
+struct LiveControls {
+    // The camera of the coming frames, instead of the scenario's path at frame * dt.
+    std::optional<CameraPose> camera;
+    // The viewport the view is set up for, when the renderer was resized to it (0: the
+    // scenario's).
+    uint32_t width = 0, height = 0;
+    // The movers hold still (a paused viewer still renders frames as the camera moves). The
+    // frame count and the culler's time go on: cullers expect a new frame index every frame.
+    bool hold_world = false;
+    // Trace every frame for lastTrace(), not only SimulationOptions::trace_frame.
+    bool trace_every_frame = false;
+};
 
 // Ground truth of one frame: every object drawn (the GPU clips, no culling code involved) into
 // the object-ID buffer, read back, and which objects it saw.
@@ -97,6 +117,13 @@ public:
     const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
     const FrameView& view() const { return view_; }
 
+    // Applies from the next advance() on.
+    void setLiveControls(const LiveControls& controls) { live_ = controls; }
+    // Takes over the world of `other` (poses, movers, tree and frame count) between two of its
+    // frames, so that a viewer can switch the algorithm, or turn error measurement on, without
+    // restarting the world. This simulation's culler starts with fresh per-node state.
+    void continueFrom(const Simulation& other);
+
     const AlgorithmTraits& algorithm() const { return algorithm_; }
     const Culler& culler() const { return *culler_; }
     const BspTree& tree() const { return tree_; }
@@ -135,6 +162,7 @@ private:
     PoppingCounter popping_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint8_t> culled_visible_;
+    LiveControls live_;
 };
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).

@@ -1,0 +1,40 @@
+// The text panel over the viewer's picture: the algorithm, the frame and its figures (frame time,
+// queries, triangles, error pixels when ground truth is on), the camera and recording state, the
+// box legend, the last message and the keys. Redrawn every frame from a plain description.
+#pragma once
+
+#include "sim/output/raster_canvas.h"
+#include "sim/run/frame_stats.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace occsim {
+
+struct HudState {
+    std::string scenario;
+    std::string algorithm;
+    uint32_t algorithm_place = 1, algorithm_count = 1;  // 1-based, for "3/7"
+    uint32_t frame = 0;   // played frames since the (re)start
+    double time_s = 0.0;  // simulation time of the frame shown
+    bool paused = false;
+    bool flying = false;
+    double fly_speed_mps = 0.0;
+    bool recording = false;
+    uint32_t recorded_frames = 0;
+    bool error_on = false;
+    bool has_stats = false;  // false before the first frame
+    FrameStats stats;
+    bool legend = false;     // node boxes are on: explain their colours
+    bool help = false;
+    std::string message;     // e.g. the file a screenshot went to; empty: none
+};
+
+// The lines of the panel, as printed (tests read them).
+std::vector<std::string> hudLines(const HudState& state);
+
+// Draws the panel at the top left; font scale 2 on wide pictures, 1 otherwise.
+void drawHud(RasterCanvas& canvas, const HudState& state);
+
+}  // namespace occsim

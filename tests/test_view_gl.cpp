@@ -1,0 +1,177 @@
+// What the viewer asks of the renderer and the simulation, through OSMesa (no window): the live
+// camera, held worlds and algorithm switches of Simulation, a resizable framebuffer, CPU images
+// shown in a default framebuffer, and the composed picture with the node boxes.
+#include "culling/algorithms.h"
+#include "render/gl_api.h"
+#include "render/gl_context.h"
+#include "render/gl_image_presenter.h"
+#include "render/gl_renderer.h"
+#include "sim/run/simulation.h"
+#include "sim/scenario/scenario.h"
+#include "sim/view/node_boxes.h"
+#include "sim/view/view_picture.h"
+#include "sim/world/camera_path.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+
+namespace occsim {
+namespace {
+
+const std::filesystem::path kSmall = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
+
+class ViewGl : public ::testing::Test {
+protected:
+    void SetUp() override {
+        scenario_ = parseScenarioFile(kSmall);
+        context_ = createOsMesaContext(scenario_.width, scenario_.height);
+        scene_ = std::make_unique<Scene>(buildScene(scenario_));
+        renderer_ = std::make_unique<GlRenderer>(scenario_.width, scenario_.height);
+        uploadScene(*scene_, *renderer_);
+    }
+    std::unique_ptr<Simulation> simulation(const std::string& algorithm, bool error = false) {
+        const AlgorithmTraits& a = *findAlgorithm(algorithm);
+        SimulationOptions options;
+        options.measure_error = error;
+        return std::make_unique<Simulation>(*scene_, scenario_, a, makeCuller(a, scenario_.culler),
+                                            scenario_.culler, *renderer_, options);
+    }
+    std::vector<uint32_t> ids() {
+        std::vector<uint32_t> out;
+        renderer_->readObjectIds(out);
+        return out;
+    }
+
+    Scenario scenario_;
+    std::unique_ptr<GlContext> context_;
+    std::unique_ptr<Scene> scene_;
+    std::unique_ptr<GlRenderer> renderer_;
+};
+
+TEST_F(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
+    auto on_path = simulation("vfc");
+    auto live = simulation("vfc");
+    for (uint32_t f = 0; f < 6; ++f) {
+        on_path->renderFrame(nullptr);
+        const std::vector<uint32_t> expected = ids();
+        LiveControls controls;
+        controls.camera = sampleCameraPath(scenario_.camera, f * scenario_.dt_s);
+        live->setLiveControls(controls);
+        live->renderFrame(nullptr);
+        EXPECT_EQ(ids(), expected) << "frame " << f;
+    }
+}
+
+TEST_F(ViewGl, AHeldWorldKeepsItsPosesWhileFramesGoOn) {
+    auto sim = simulation("statistical");
+    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);
+    const std::vector<Aabb> boxes = sim->state().boxes;
+    LiveControls controls;
+    controls.hold_world = true;
+    sim->setLiveControls(controls);
+    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);
+    EXPECT_EQ(sim->frame(), 6u);
+    for (size_t o = 0; o < boxes.size(); ++o) {
+        ASSERT_EQ(sim->state().boxes[o].min, boxes[o].min) << o;
+        ASSERT_EQ(sim->state().boxes[o].max, boxes[o].max) << o;
+    }
+    sim->setLiveControls({});
+    sim->renderFrame(nullptr);
+    size_t moved = 0;
+    for (size_t o = 0; o < boxes.size(); ++o) moved += sim->state().boxes[o].min != boxes[o].min;
+    EXPECT_GT(moved, 0u);
+}
+
+TEST_F(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
+    auto first = simulation("chc");
+    auto reference = simulation("vfc");
+    for (int f = 0; f < 5; ++f) {
+        first->renderFrame(nullptr);
+        reference->renderFrame(nullptr);
+    }
+    auto second = simulation("statistical", true);
+    second->continueFrom(*first);
+    EXPECT_EQ(second->frame(), 5u);
+    for (int f = 0; f < 3; ++f) {
+        reference->renderFrame(nullptr);
+        const FrameStats stats = second->renderFrame(nullptr);
+        EXPECT_EQ(stats.frame, reference->frame() - 1);
+        EXPECT_EQ(stats.error_pixels, 0);  // a conservative culler on the same world
+        for (uint32_t o = 0; o < scene_->objectCount(); ++o) {
+            ASSERT_EQ(second->state().boxes[o].min, reference->state().boxes[o].min) << o;
+        }
+    }
+}
+
+TEST_F(ViewGl, TheFramebufferFollowsANewSize) {
+    renderer_->resize(96, 64);
+    auto sim = simulation("vfc");
+    LiveControls controls;
+    controls.width = 96;
+    controls.height = 64;
+    sim->setLiveControls(controls);
+    sim->renderFrame(nullptr);
+    const std::vector<uint32_t> small = ids();
+    ASSERT_EQ(small.size(), 96u * 64u);
+    EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }), 96 * 64 / 4);
+}
+
+TEST_F(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
+    // Four quadrants of different colours, rows bottom-up.
+    const uint32_t w = scenario_.width, h = scenario_.height;
+    std::vector<uint8_t> image(size_t{w} * h * 4);
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            uint8_t* p = &image[(size_t{y} * w + x) * 4];
+            p[0] = x < w / 2 ? 200 : 10;
+            p[1] = y < h / 2 ? 180 : 20;
+            p[2] = 77;
+            p[3] = 255;
+        }
+    }
+    GlImagePresenter presenter;
+    presenter.draw(image, w, h, w, h);
+    glFinish();
+    std::vector<uint8_t> shown(image.size());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadPixels(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), GL_RGBA, GL_UNSIGNED_BYTE, shown.data());
+    EXPECT_EQ(shown, image);
+}
+
+size_t countColour(const RasterCanvas& canvas, Rgb colour) {
+    size_t n = 0;
+    for (uint32_t y = 0; y < canvas.height(); ++y) {
+        for (uint32_t x = 0; x < canvas.width(); ++x) n += canvas.at(int(x), int(y)) == colour;
+    }
+    return n;
+}
+
+TEST_F(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
+    auto sim = simulation("chc");
+    ViewLayers layers;
+    layers.boxes = true;
+    layers.hud = false;
+    std::vector<uint8_t> rgba;
+    const Rgb visible = nodeClassColour(NodeClass::DrawnAfterQuery);
+
+    sim->renderFrame(nullptr);  // not traced: nothing to draw boxes from
+    renderer_->readColor(rgba);
+    const RasterCanvas plain =
+        composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});
+    EXPECT_EQ(countColour(plain, visible), countColour(canvasFromBottomUp(rgba, renderer_->width(), renderer_->height()), visible));
+
+    LiveControls controls;
+    controls.trace_every_frame = true;
+    sim->setLiveControls(controls);
+    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);  // CHC settles into querying
+    renderer_->readColor(rgba);
+    const RasterCanvas boxed =
+        composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});
+    EXPECT_GT(countColour(boxed, visible), 100u);
+    EXPECT_GT(countColour(boxed, nodeClassColour(NodeClass::OcclusionCulled)), 20u);
+}
+
+}  // namespace
+}  // namespace occsim
