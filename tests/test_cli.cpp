@@ -1,6 +1,7 @@
 // The occsim executable as a user meets it: bad input ends with one line and exit code 2, good
 // input writes whole files.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -32,7 +33,7 @@ Outcome runOccsim(const std::string& args) {
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
 
 std::filesystem::path tempPath(const std::string& name) {
-    const auto p = std::filesystem::temp_directory_path() / ("occsim-cli-" + name);
+    const auto p = std::filesystem::temp_directory_path() / ("occsim-cli-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(p);
     return p;
 }

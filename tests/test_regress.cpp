@@ -4,6 +4,7 @@
 #include "sim/regress/regress.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 
 // A copy of the small teapot scenario in a fresh folder, with a shorter run and the given expect.
 fs::path makeScenario(const std::string& name, const nlohmann::json& expect, uint32_t frames = 16) {
-    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-" + name);
+    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::ifstream in(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
@@ -282,7 +283,7 @@ TEST(Shard, ReadsSlurmArraysAndKubernetesIndexedJobs) {
 }
 
 TEST(Shard, ShardsPartitionTheScenariosDeterministically) {
-    const fs::path dir = fs::temp_directory_path() / "occsim-regress-shards";
+    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-shards-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir / "nested");
     for (int i = 0; i < 7; ++i) std::ofstream(dir / ("s" + std::to_string(i) + ".json")) << "{}";

@@ -10,6 +10,7 @@
 #include "sim/output/plots.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -356,7 +357,7 @@ TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
 // ---- writePlots ---------------------------------------------------------------------------
 
 fs::path freshDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("occsim-report-outputs-" + name);
+    const fs::path p = fs::temp_directory_path() / ("occsim-report-outputs-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(p);
     return p;
 }

@@ -5,6 +5,7 @@
 #include "sim/scenario/scenario.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -99,7 +100,10 @@ TEST(ScenarioFile, MissingFileSaysItCannotBeOpened) {
 }
 
 TEST(ScenarioFile, ReadsAFileFromDiskAndNamesItAfterTheStem) {
-    const auto path = std::filesystem::temp_directory_path() / "occsim-test-scenario-stem.json";
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("occsim-test-scenario-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto path = dir / "occsim-test-scenario-stem.json";
     std::ofstream(path) << minimalScenario().dump();
     const Scenario s = parseScenarioFile(path);
     std::filesystem::remove(path);

@@ -7,6 +7,7 @@
 #include "sim/world/scene_info.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -19,7 +20,7 @@ namespace {
 const std::filesystem::path kSmall = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
 
 std::filesystem::path freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("occsim-test-" + name);
+    const auto dir = std::filesystem::temp_directory_path() / ("occsim-test-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     return dir;
 }
