@@ -176,18 +176,11 @@ public:
             return;
         }
 
-        Aabb below_cell = nodes_[node].cell;
-        Aabb above_cell = nodes_[node].cell;
-        below_cell.max[plane.axis] = plane.position;
-        above_cell.min[plane.axis] = plane.position;
-        const float margin =
-            childMargin(nodes_[node], plane.axis, plane.position, options_.looseness);
-        const Aabb below_loose = childLooseCell(nodes_[node], below_cell, plane.axis, margin);
-        const Aabb above_loose = childLooseCell(nodes_[node], above_cell, plane.axis, margin);
+        const ChildCells children_cells = childCells(node, plane);
         // Partition by the placement rule itself: exactly what reinsert() does later.
         auto side = [&](uint32_t object) {
-            return takingSide(below_loose, above_loose, plane.axis, plane.position,
-                              boxes_[object]);
+            return takingSide(children_cells.loose[0], children_cells.loose[1], plane.axis,
+                              plane.position, boxes_[object]);
         };
         auto below_end = std::partition(objects.begin(), objects.end(),
                                         [&](uint32_t object) { return side(object) == 0; });
@@ -206,12 +199,10 @@ public:
         const uint32_t above_child = allocate_(node);
         const uint32_t child_depth = nodes_[node].depth + 1;
         const uint32_t children[2] = {below_child, above_child};
-        const Aabb* cells[2] = {&below_cell, &above_cell};
-        const Aabb* loose[2] = {&below_loose, &above_loose};
         for (int c = 0; c < 2; ++c) {
             BspNode& child = nodes_[children[c]];  // taken after allocation, which may reallocate
-            child.cell = *cells[c];
-            child.loose_cell = *loose[c];
+            child.cell = children_cells.cell[c];
+            child.loose_cell = children_cells.loose[c];
             child.parent = node;
             child.depth = child_depth;
         }
@@ -230,18 +221,11 @@ public:
     bool wouldSplit(uint32_t node, std::span<uint32_t> objects) {
         const SplitPlane plane = chooseSplit(node, objects);
         if (!plane.valid) return false;
-        Aabb below_cell = nodes_[node].cell;
-        Aabb above_cell = nodes_[node].cell;
-        below_cell.max[plane.axis] = plane.position;
-        above_cell.min[plane.axis] = plane.position;
-        const float margin =
-            childMargin(nodes_[node], plane.axis, plane.position, options_.looseness);
-        const Aabb below_loose = childLooseCell(nodes_[node], below_cell, plane.axis, margin);
-        const Aabb above_loose = childLooseCell(nodes_[node], above_cell, plane.axis, margin);
+        const ChildCells children_cells = childCells(node, plane);
         SideCounts counts;
         for (uint32_t object : objects) {
-            const int side =
-                takingSide(below_loose, above_loose, plane.axis, plane.position, boxes_[object]);
+            const int side = takingSide(children_cells.loose[0], children_cells.loose[1],
+                                        plane.axis, plane.position, boxes_[object]);
             if (side == 0) ++counts.below;
             else if (side == 1) ++counts.above;
             else ++counts.straddling;
@@ -250,6 +234,26 @@ public:
     }
 
 private:
+    struct ChildCells {
+        Aabb cell[2];   // below, above the plane
+        Aabb loose[2];
+    };
+
+    // The cells and loose cells the children of `node` get when it is split at `plane`.
+    ChildCells childCells(uint32_t node, const SplitPlane& plane) const {
+        const BspNode& parent = nodes_[node];
+        ChildCells out;
+        out.cell[0] = parent.cell;
+        out.cell[1] = parent.cell;
+        out.cell[0].max[plane.axis] = plane.position;
+        out.cell[1].min[plane.axis] = plane.position;
+        const float margin = childMargin(parent, plane.axis, plane.position, options_.looseness);
+        for (int c = 0; c < 2; ++c) {
+            out.loose[c] = childLooseCell(parent, out.cell[c], plane.axis, margin);
+        }
+        return out;
+    }
+
     SplitPlane chooseSplit(uint32_t node, std::span<const uint32_t> objects) {
         if (nodes_[node].depth >= options_.max_depth) return {};
         if (objects.size() <= options_.max_objects_per_leaf) return {};
