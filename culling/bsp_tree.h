@@ -16,7 +16,8 @@
 // - Each object lives in exactly one node: following its box centre down from the root (a centre
 //   on a split plane goes below), the deepest node whose loose cell contains the box. So its
 //   node's cell contains its centre and its loose cell its box, and no child's loose cell contains
-//   the box (the other child's cannot when the centre's child's does not: same margin). A box
+//   the box (the other child's cannot when the centre's child's does not: same margin, up to the
+//   rounding of split +- margin). A box
 //   straddling a split plane still reaches the child of its centre, so objects reach nodes of
 //   about their own size. A box that is not finite, or that the root's loose cell does not
 //   contain, lives in the root; a centre outside the root cell follows its nearest point in it.
@@ -67,16 +68,17 @@ struct BspBuildOptions {
     // Extra margin around the scene's bounds for the root cell, as a fraction of its extent, so
     // movers that stray a little still find a cell below the root.
     float root_margin = 0.05f;
-    // Each side of a node's loose cell lies this fraction of the cell's extent (per axis) outside
-    // the cell. 0 gives the classic tree (straddlers stay in inner nodes); 0.5 is the loose
-    // octree's loose cell of twice the cell's size, where any object no larger than a cell whose
-    // centre it contains fits that cell.
+    // How far loose cells reach past their cells: the root's by this fraction of its extent on
+    // each side (per axis), a child's by this fraction of the larger sibling's extent along its
+    // parent's split axis (see the contract above). 0 gives the classic tree (straddlers stay in
+    // inner nodes); 0.5 is the loose octree's loose cell of twice the cell's size, which holds
+    // any object no larger than the cell that its centre lies in.
     float looseness = 0.5f;
     // Local adaptation to movers (root growth, leaf splits, merges). Off: the cells built once
     // never change, as in Kovalčík & Sochor.
     bool adapt = true;
-    // The root cell grows to take movers that leave it, up to this many times its built extent on
-    // each axis; a box beyond that lives in the root.
+    // The root cell grows to take movers that leave it, to at most this many times the built root
+    // cell's largest extent on any axis; a box beyond that lives in the root.
     float max_root_growth = 16.0f;
 
     // Returns false and says why when an option is out of range.
@@ -97,8 +99,8 @@ struct BspNode {
     uint8_t axis = 0;    // 0 = x, 1 = y, 2 = z (inner nodes)
     bool bounds_dirty = false;
     bool live = true;    // false: a slot freed by a merge, holding no node until reused
-    // Changes whenever this slot starts holding a new node (a build, or a local split reusing a
-    // freed slot): per-node state that others keep (a culler's statistics) is stale when the
+    // Changes whenever this slot starts holding a new node (a build, or a node a local split
+    // creates, in a new or a freed slot): per-node state that others keep (a culler's statistics) is stale when the
     // generation it was recorded for differs. See NodeStateArray (culling/node_state.h).
     uint32_t generation = 0;
 
