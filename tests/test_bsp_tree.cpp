@@ -1,7 +1,10 @@
-// BspTree: the structural contract in bsp_tree.h, checked from scratch after a build and after
-// thousands of random moves, plus the split rules, reinsert walks, dirty marking, statistics and
-// option validation.
+// BspTree: the structural contract in bsp_tree.h checked from scratch (bsp_tree_checks.h) after a
+// build and after thousands of random moves; placement (loose cells, the centre's path, split
+// planes, straddlers), the split rules, reinsert walks and their counters, dirty marking,
+// degenerate input and option validation. Local adaptation is in test_bsp_adaptation.cpp.
 #include "culling/bsp_tree.h"
+
+#include "bsp_tree_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -16,180 +19,25 @@
 namespace occsim {
 namespace {
 
-constexpr uint32_t kNone = BspTree::kNone;
-constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-
-bool sameBox(const Aabb& a, const Aabb& b) {
-    return a.min.x == b.min.x && a.min.y == b.min.y && a.min.z == b.min.z && a.max.x == b.max.x &&
-           a.max.y == b.max.y && a.max.z == b.max.z;
-}
-
-bool isInfiniteBox(const Aabb& b) {
-    return sameBox(b, makeAabb(glm::vec3(-kInf), glm::vec3(kInf)));
-}
-
-::testing::Message describe(const Aabb& b) {
-    return ::testing::Message() << "[(" << b.min.x << ", " << b.min.y << ", " << b.min.z
-                                << ") .. (" << b.max.x << ", " << b.max.y << ", " << b.max.z
-                                << ")]";
-}
-
-std::vector<uint32_t> ancestorsAndSelf(const BspTree& tree, uint32_t node) {
-    std::vector<uint32_t> path;
-    for (uint32_t n = node; n != kNone; n = tree.node(n).parent) path.push_back(n);
-    return path;
-}
-
-// Checks every documented invariant of a tree whose bounds have been refitted, recomputing
-// everything from the object boxes. Uses ASSERT-style early exits via the return value so a
-// broken tree produces one readable failure instead of thousands.
-void expectTreeInvariants(const BspTree& tree) {
-    const uint32_t node_count = tree.nodeCount();
-    const uint32_t object_count = tree.objectCount();
-    ASSERT_GE(node_count, 1u);
-
-    // Structure: parents, children, depths, cells.
-    const BspNode& root = tree.node(tree.root());
-    EXPECT_EQ(root.parent, kNone);
-    EXPECT_EQ(root.depth, 0u);
-    uint32_t deepest = 0;
-    for (uint32_t n = 0; n < node_count; ++n) {
-        const BspNode& node = tree.node(n);
-        deepest = std::max(deepest, node.depth);
-        ASSERT_FALSE(node.bounds_dirty) << "node " << n << " still dirty after refit";
-        ASSERT_EQ(node.child[0] == kNone, node.child[1] == kNone) << "node " << n;
-        if (n != tree.root()) {
-            ASSERT_LT(node.parent, n) << "parent index must be smaller than the child's";
-            const BspNode& parent = tree.node(node.parent);
-            ASSERT_TRUE(parent.child[0] == n || parent.child[1] == n)
-                << "node " << n << " is not a child of its parent " << node.parent;
-            ASSERT_EQ(node.depth, parent.depth + 1) << "node " << n;
-        }
-        if (node.isLeaf()) continue;
-        for (int side = 0; side < 2; ++side) {
-            const uint32_t c = node.child[side];
-            ASSERT_GT(c, n) << "child index must be larger than the parent's";
-            ASSERT_LT(c, node_count);
-            ASSERT_EQ(tree.node(c).parent, n) << "child " << c << " of node " << n;
-        }
-        // Children split the cell at `split` along `axis`, strictly inside it.
-        const Aabb& cell = node.cell;
-        const int axis = node.axis;
-        ASSERT_LT(axis, 3);
-        ASSERT_GT(node.split, cell.min[axis]) << "node " << n;
-        ASSERT_LT(node.split, cell.max[axis]) << "node " << n;
-        Aabb below = cell;
-        Aabb above = cell;
-        below.max[axis] = node.split;
-        above.min[axis] = node.split;
-        EXPECT_TRUE(sameBox(tree.node(node.child[0]).cell, below)) << "node " << n;
-        EXPECT_TRUE(sameBox(tree.node(node.child[1]).cell, above)) << "node " << n;
-    }
-    EXPECT_EQ(tree.maxDepth(), deepest);
-
-    // Lists: every object in exactly one list, nodeOf() and object_count agree.
-    std::vector<int> times_listed(object_count, 0);
-    for (uint32_t n = 0; n < node_count; ++n) {
-        uint32_t listed = 0;
-        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
-            ASSERT_LT(o, object_count) << "node " << n << " lists a bad object index";
-            ASSERT_LE(++listed, object_count) << "node " << n << "'s list has a cycle";
-            ++times_listed[o];
-            ASSERT_EQ(tree.nodeOf(o), n) << "object " << o << " is listed in node " << n;
-        }
-        ASSERT_EQ(listed, tree.node(n).object_count) << "node " << n;
-    }
-    for (uint32_t o = 0; o < object_count; ++o) {
-        ASSERT_EQ(times_listed[o], 1) << "object " << o << " listed " << times_listed[o] << " times";
-    }
-
-    // Placement: the deepest node whose cell contains the box; the root for boxes it cannot place.
-    const Aabb& root_cell = root.cell;
-    for (uint32_t o = 0; o < object_count; ++o) {
-        const Aabb& box = tree.objectBox(o);
-        const uint32_t n = tree.nodeOf(o);
-        const BspNode& node = tree.node(n);
-        if (!isFiniteAndOrdered(box) || !contains(root_cell, box)) {
-            ASSERT_EQ(n, tree.root()) << "object " << o << " " << describe(box);
-            continue;
-        }
-        ASSERT_TRUE(contains(node.cell, box))
-            << "object " << o << " " << describe(box) << " is in node " << n
-            << " whose cell does not contain it";
-        if (!node.isLeaf()) {
-            for (uint32_t c : node.child) {
-                ASSERT_FALSE(contains(tree.node(c).cell, box))
-                    << "object " << o << " " << describe(box) << " sits in node " << n
-                    << " but child " << c << " contains it";
-            }
-        }
-    }
-
-    // Bounds: tight union of own boxes and children's bounds, infinite over non-finite boxes.
-    std::vector<Aabb> expected(node_count);
-    for (uint32_t n = node_count; n-- > 0;) {
-        Aabb b;
-        bool infinite = false;
-        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
-            const Aabb& box = tree.objectBox(o);
-            if (isFiniteAndOrdered(box)) {
-                extend(b, box);
-            } else {
-                infinite = true;
-            }
-        }
-        const BspNode& node = tree.node(n);
-        if (!node.isLeaf()) {
-            for (uint32_t c : node.child) {
-                extend(b, expected[c]);
-                infinite |= isInfiniteBox(expected[c]);
-            }
-        }
-        expected[n] = infinite ? makeAabb(glm::vec3(-kInf), glm::vec3(kInf)) : b;
-    }
-    for (uint32_t n = 0; n < node_count; ++n) {
-        const Aabb& bounds = tree.bounds(n);
-        ASSERT_TRUE(sameBox(bounds, expected[n]))
-            << "node " << n << " bounds " << describe(bounds) << ", recomputed "
-            << describe(expected[n]);
-        for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
-            if (isFiniteAndOrdered(tree.objectBox(o))) {
-                ASSERT_TRUE(contains(bounds, tree.objectBox(o))) << "node " << n << " object " << o;
-            }
-        }
-        if (!tree.node(n).isLeaf()) {
-            for (uint32_t c : tree.node(n).child) {
-                ASSERT_TRUE(contains(bounds, tree.bounds(c))) << "node " << n << " child " << c;
-            }
-        }
-    }
-}
-
-// A random scene: boxes of widely varying size, some with zero extent on every axis (points) and
-// some flat on one axis.
-std::vector<Aabb> randomScene(std::mt19937& rng, size_t count, glm::vec3 world_half_size) {
-    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    std::uniform_real_distribution<float> log_size(std::log(0.05f), std::log(20.0f));
-    std::vector<Aabb> boxes;
-    boxes.reserve(count);
-    for (size_t i = 0; i < count; ++i) {
-        const glm::vec3 centre = world_half_size * glm::vec3(unit(rng), unit(rng), unit(rng));
-        glm::vec3 size(std::exp(log_size(rng)), std::exp(log_size(rng)), std::exp(log_size(rng)));
-        if (i % 10 == 0) size = glm::vec3(0.0f);           // a point
-        if (i % 10 == 1) size[static_cast<int>(i % 3)] = 0.0f;  // flat
-        boxes.push_back(makeAabb(centre - 0.5f * size, centre + 0.5f * size));
-    }
-    return boxes;
-}
-
-Aabb translated(const Aabb& b, glm::vec3 by) { return makeAabb(b.min + by, b.max + by); }
+using testing::ancestorsAndSelf;
+using testing::describe;
+using testing::expectTreeInvariants;
+using testing::isInfiniteBox;
+using testing::kInf;
+using testing::kNan;
+using testing::kNone;
+using testing::objectsInInnerNodes;
+using testing::placementByRule;
+using testing::randomScene;
+using testing::sameBox;
+using testing::teapotField;
+using testing::translated;
 
 // A box touching (or, with zero thickness, lying on) the split plane of a random inner node.
 Aabb onRandomSplitPlane(const BspTree& tree, std::mt19937& rng, const Aabb& box) {
     std::vector<uint32_t> inner;
     for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
-        if (!tree.node(n).isLeaf()) inner.push_back(n);
+        if (tree.isLive(n) && !tree.node(n).isLeaf()) inner.push_back(n);
     }
     const BspNode& node = tree.node(inner[rng() % inner.size()]);
     const int axis = node.axis;
@@ -218,7 +66,7 @@ const char* ruleName(BspSplitRule rule) { return rule == BspSplitRule::Sah ? "Sa
 
 class BspTreeRandomMoves : public ::testing::TestWithParam<BspSplitRule> {};
 
-TEST_P(BspTreeRandomMoves, EveryObjectLivesInDeepestContainingNodeAfter10000RandomMoves) {
+TEST_P(BspTreeRandomMoves, EveryObjectSitsWhereThePlacementRulePutsItAfter10000RandomMoves) {
     std::mt19937 rng(GetParam() == BspSplitRule::Sah ? 4242u : 1717u);
     const glm::vec3 world_half_size(100.0f, 40.0f, 70.0f);
     std::vector<Aabb> boxes = randomScene(rng, 2000, world_half_size);
@@ -246,6 +94,7 @@ TEST_P(BspTreeRandomMoves, EveryObjectLivesInDeepestContainingNodeAfter10000Rand
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     std::vector<uint32_t> non_finite;  // objects currently holding a non-finite box
     int moved_out_of_root = 0;
+    int moved_far_away = 0;
     int made_non_finite = 0;
     int made_finite_again = 0;
     for (int move = 1; move <= 10000; ++move) {
@@ -271,10 +120,14 @@ TEST_P(BspTreeRandomMoves, EveryObjectLivesInDeepestContainingNodeAfter10000Rand
             }
             non_finite.push_back(object);
             ++made_non_finite;
-        } else if (roll < 10) {
-            // Far outside the root cell.
+        } else if (roll < 9) {
+            // Outside the root cell (which grows to take it).
             box = translated(box, glm::vec3(0.0f, 5.0f * world_half_size.y, 0.0f));
             ++moved_out_of_root;
+        } else if (roll < 10) {
+            // Far beyond any growth: lives in the root.
+            box = translated(box, glm::vec3(1e7f, 0.0f, 0.0f));
+            ++moved_far_away;
         } else if (roll < 18) {
             // A big jump to anywhere in the world.
             const glm::vec3 centre = world_half_size * glm::vec3(unit(rng), unit(rng), unit(rng));
@@ -301,8 +154,12 @@ TEST_P(BspTreeRandomMoves, EveryObjectLivesInDeepestContainingNodeAfter10000Rand
 
     // The run must have exercised the interesting cases.
     EXPECT_GT(moved_out_of_root, 100);
+    EXPECT_GT(moved_far_away, 20);
     EXPECT_GT(made_non_finite, 50);
     EXPECT_GT(made_finite_again, 20);
+    EXPECT_GT(tree.stats().root_growths, 0u);
+    EXPECT_GT(tree.stats().splits, 0u);
+    EXPECT_GT(tree.stats().merges, 0u);
     for (uint32_t o = 0; o < tree.objectCount(); ++o) {
         EXPECT_TRUE(sameBox(tree.objectBox(o), boxes[o]) || !isFiniteAndOrdered(boxes[o]))
             << "object " << o << " box not stored";
@@ -430,6 +287,15 @@ TEST(BspTree, RootCellIsTheSceneBoundsEnlargedByTheMarginOnEachSide) {
     EXPECT_FLOAT_EQ(cell.max.y, 6.0f + 1.5f);
     EXPECT_FLOAT_EQ(cell.min.z, -5.0f - 2.75f);
     EXPECT_FLOAT_EQ(cell.max.z, 6.0f + 2.75f);
+    // The loose cell: the cell grown by the looseness times its extent on each side.
+    const Aabb& loose = tree.node(0).loose_cell;
+    const glm::vec3 size = extent(cell);
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_FLOAT_EQ(loose.min[axis], cell.min[axis] - options.looseness * size[axis]);
+        EXPECT_FLOAT_EQ(loose.max[axis], cell.max[axis] + options.looseness * size[axis]);
+    }
+    EXPECT_EQ(tree.builtRootCell().min, cell.min);
+    EXPECT_EQ(tree.builtRootCell().max, cell.max);
     EXPECT_EQ(tree.nodeOf(2), tree.root());
     EXPECT_EQ(tree.nodeOf(3), tree.root());
     EXPECT_TRUE(isInfiniteBox(tree.bounds(0)));
@@ -535,15 +401,207 @@ TEST(BspTree, IdenticalObjectsDoNotCauseUselessSplits) {
     }
 }
 
+
+TEST(BspTree, StraddlersOfSplitPlanesReachLeavesWithLooseCellsAndStayInInnerNodesWithout) {
+    // The default scenario's field: with plain cells (looseness 0) a large share of the objects
+    // straddle some split and stay in inner nodes; with loose cells they reach leaves.
+    const std::vector<Aabb> boxes = teapotField(3000, 1);
+    for (BspSplitRule rule : {BspSplitRule::Median, BspSplitRule::Sah}) {
+        BspBuildOptions options;
+        options.split_rule = rule;
+        options.looseness = 0.0f;
+        BspTree plain;
+        plain.build(boxes, options);
+        EXPECT_GT(objectsInInnerNodes(plain), 900u) << ruleName(rule);
+        expectTreeInvariants(plain);
+
+        options.looseness = 0.5f;
+        BspTree loose;
+        loose.build(boxes, options);
+        EXPECT_LT(objectsInInnerNodes(loose), 30u) << ruleName(rule);  // under 1%
+        EXPECT_EQ(loose.node(loose.root()).object_count, 0u) << ruleName(rule);
+        expectTreeInvariants(loose);
+    }
+}
+
+TEST(BspTree, LooseCellsNestAndSiblingsShareTheirMarginAtThePlane) {
+    std::mt19937 rng(8);
+    const std::vector<Aabb> boxes = randomScene(rng, 1500, glm::vec3(60.0f, 20.0f, 40.0f));
+    for (float looseness : {0.0f, 0.25f, 0.5f, 1.0f, 4.0f}) {
+        BspBuildOptions options;
+        options.split_rule = BspSplitRule::Sah;
+        options.looseness = looseness;
+        BspTree tree;
+        tree.build(boxes, options);
+        expectTreeInvariants(tree);  // nesting and the shared margin are part of the contract
+        for (uint32_t n = 1; n < tree.nodeCount(); ++n) {
+            const BspNode& node = tree.node(n);
+            const BspNode& parent = tree.node(node.parent);
+            const int axis = parent.axis;
+            // Along the split axis: the looseness times the larger sibling's extent, at most the
+            // parent's margin (and clamped into the parent's loose cell).
+            const float larger = std::max(parent.split - parent.cell.min[axis],
+                                          parent.cell.max[axis] - parent.split);
+            const float margin = node.loose_cell.max[axis] - node.cell.max[axis];
+            if (node.loose_cell.max[axis] < parent.loose_cell.max[axis]) {
+                EXPECT_LE(margin, looseness * larger * 1.0001f + 1e-6f) << "node " << n;
+            }
+            if (looseness == 0.0f) {
+                EXPECT_TRUE(sameBox(node.loose_cell, node.cell)) << "node " << n;
+            }
+        }
+    }
+}
+
+TEST(BspTree, ObjectsOnSplitPlanesFollowTheirCentre) {
+    // Four point-sized clusters around a median plane at x = 0; boxes on the plane itself, or
+    // touching it from either side, go where their centre says.
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 40; ++i) {
+        const float x = (i % 2 == 0 ? -10.0f : 10.0f) + 0.01f * static_cast<float>(i);
+        const float z = static_cast<float>(i % 5);
+        boxes.push_back(makeAabb({x, 0.0f, z}, {x + 0.5f, 0.5f, z + 0.5f}));
+    }
+    BspBuildOptions options;
+    options.max_objects_per_leaf = 8;
+    BspTree tree;
+    tree.build(boxes, options);
+    const BspNode& root = tree.node(tree.root());
+    ASSERT_FALSE(root.isLeaf());
+    ASSERT_EQ(root.axis, 0);
+    const float s = root.split;
+    const auto under = [&](uint32_t object, uint32_t child) {
+        const std::vector<uint32_t> path = ancestorsAndSelf(tree, tree.nodeOf(object));
+        return std::find(path.begin(), path.end(), child) != path.end();
+    };
+    const uint32_t o = 0;
+    // Zero thickness on the plane: the centre is on the plane, which counts as below.
+    tree.reinsert(o, makeAabb({s, 0.0f, 0.0f}, {s, 0.5f, 0.5f}));
+    EXPECT_TRUE(under(o, root.child[0]));
+    // Touching from above: the centre is above.
+    tree.reinsert(o, makeAabb({s, 0.0f, 0.0f}, {s + 0.5f, 0.5f, 0.5f}));
+    EXPECT_TRUE(under(o, root.child[1]));
+    // Touching from below.
+    tree.reinsert(o, makeAabb({s - 0.5f, 0.0f, 0.0f}, {s, 0.5f, 0.5f}));
+    EXPECT_TRUE(under(o, root.child[0]));
+    // Straddling, centre a little above: still reaches the child above (loose cells).
+    tree.reinsert(o, makeAabb({s - 0.2f, 0.0f, 0.0f}, {s + 0.3f, 0.5f, 0.5f}));
+    EXPECT_TRUE(under(o, root.child[1]));
+    tree.refitDirtyBounds();
+    expectTreeInvariants(tree);  // every object where placementByRule() puts it
+}
+
+TEST(BspTree, DegenerateInputBuildsAndReinsertsKeepingEveryInvariant) {
+    BspBuildOptions options;
+    options.max_objects_per_leaf = 2;
+
+    // No objects: one empty leaf; a refit does nothing.
+    BspTree none;
+    none.build({}, options);
+    EXPECT_EQ(none.nodeCount(), 1u);
+    EXPECT_TRUE(isEmpty(none.bounds(0)));
+    none.refitDirtyBounds();
+    expectTreeInvariants(none);
+
+    // One object: a single leaf holding it, which it keeps through moves.
+    const std::vector<Aabb> one = {makeAabb({1, 2, 3}, {2, 3, 4})};
+    BspTree single;
+    single.build(one, options);
+    EXPECT_EQ(single.nodeCount(), 1u);
+    EXPECT_EQ(single.nodeOf(0), 0u);
+    single.reinsert(0, makeAabb({1.5f, 2, 3}, {2.5f, 3, 4}));
+    single.refitDirtyBounds();
+    expectTreeInvariants(single);
+
+    // Zero-extent boxes (points), many of them on the same coordinates along some axes.
+    std::vector<Aabb> points;
+    for (int i = 0; i < 300; ++i) {
+        const glm::vec3 p(static_cast<float>(i % 10), static_cast<float>(i % 3), static_cast<float>(i / 10));
+        points.push_back(makeAabb(p, p));
+    }
+    BspTree point_tree;
+    point_tree.build(points, options);
+    EXPECT_GT(point_tree.nodeCount(), 50u);
+    EXPECT_EQ(objectsInInnerNodes(point_tree), 0u) << "a point fits every cell containing it";
+    for (uint32_t o = 0; o < 300; o += 7) {
+        const glm::vec3 p = points[(o * 31) % 300].min;
+        point_tree.reinsert(o, makeAabb(p, p));
+    }
+    point_tree.refitDirtyBounds();
+    expectTreeInvariants(point_tree);
+
+    // All objects at one point: nothing separates them, so one leaf, at any leaf size; moves
+    // and a refit change nothing structural.
+    const std::vector<Aabb> pile(50, makeAabb(glm::vec3(5.0f), glm::vec3(5.0f)));
+    BspTree pile_tree;
+    pile_tree.build(pile, options);
+    EXPECT_EQ(pile_tree.nodeCount(), 1u);
+    const uint64_t version = pile_tree.structureVersion();
+    for (uint32_t o = 0; o < 50; ++o) pile_tree.reinsert(o, pile[o]);
+    pile_tree.refitDirtyBounds();
+    EXPECT_EQ(pile_tree.structureVersion(), version);
+    expectTreeInvariants(pile_tree);
+
+    // A NaN box lives in the root with infinite bounds, so no culler skips it; the nodes not above
+    // it keep finite bounds.
+    std::mt19937 rng(9);
+    std::vector<Aabb> boxes = randomScene(rng, 200, glm::vec3(20.0f));
+    boxes[17] = makeAabb(glm::vec3(kNan), glm::vec3(kNan));
+    BspTree with_nan;
+    with_nan.build(boxes, options);
+    EXPECT_EQ(with_nan.nodeOf(17), with_nan.root());
+    EXPECT_TRUE(isInfiniteBox(with_nan.bounds(with_nan.root())));
+    for (uint32_t n = 1; n < with_nan.nodeCount(); ++n) {
+        EXPECT_FALSE(isInfiniteBox(with_nan.bounds(n))) << "node " << n;
+    }
+    expectTreeInvariants(with_nan);
+}
+
+TEST(BspTree, SameInputGivesTheSameTreeAndTheSameDecisions) {
+    std::mt19937 rng(31);
+    std::vector<Aabb> boxes = randomScene(rng, 1500, glm::vec3(50.0f));
+    BspBuildOptions options;
+    options.split_rule = BspSplitRule::Sah;
+    BspTree a, b;
+    a.build(boxes, options);
+    b.build(boxes, options);
+    std::normal_distribution<float> step(0.0f, 3.0f);
+    for (int frame = 0; frame < 50; ++frame) {
+        for (uint32_t o = 0; o < 300; ++o) {
+            boxes[o] = translated(boxes[o], glm::vec3(step(rng), step(rng), step(rng)));
+            a.reinsert(o, boxes[o]);
+            b.reinsert(o, boxes[o]);
+        }
+        a.refitDirtyBounds();
+        b.refitDirtyBounds();
+    }
+    ASSERT_EQ(a.nodeCount(), b.nodeCount());
+    EXPECT_EQ(a.structureVersion(), b.structureVersion());
+    for (uint32_t n = 0; n < a.nodeCount(); ++n) {
+        const BspNode& x = a.node(n);
+        const BspNode& y = b.node(n);
+        EXPECT_TRUE(sameBox(x.cell, y.cell) && sameBox(x.bounds, y.bounds) &&
+                    x.child[0] == y.child[0] && x.child[1] == y.child[1] &&
+                    x.first_object == y.first_object && x.live == y.live)
+            << "node " << n;
+    }
+    for (uint32_t o = 0; o < a.objectCount(); ++o) {
+        EXPECT_EQ(a.nodeOf(o), b.nodeOf(o));
+        EXPECT_EQ(a.nextObject(o), b.nextObject(o));
+    }
+}
+
 // A tree over a random scene for the reinsert tests.
 struct SmallWorld {
     std::vector<Aabb> boxes;
     BspTree tree;
 
-    explicit SmallWorld(uint32_t seed) {
+    explicit SmallWorld(uint32_t seed, bool adapt = true) {
         std::mt19937 rng(seed);
         boxes = randomScene(rng, 1000, glm::vec3(50.0f));
-        tree.build(boxes, BspBuildOptions{});
+        BspBuildOptions options;
+        options.adapt = adapt;
+        tree.build(boxes, options);
     }
 
     // An object stored in a leaf at depth >= 3 with a box of non-zero size.
@@ -559,14 +617,14 @@ struct SmallWorld {
     }
 };
 
-TEST(BspTree, ReinsertWithinTheSameCellKeepsTheNodeAndWalksOneNode) {
+TEST(BspTree, ReinsertThatStillFitsItsNodeNeedsNoWalk) {
     SmallWorld world(21);
     BspTree& tree = world.tree;
     const uint32_t object = world.deepLeafObject();
     ASSERT_NE(object, kNone);
     const uint32_t node = tree.nodeOf(object);
 
-    // Shrinking the box towards its centre keeps it inside the same cell.
+    // Shrinking the box towards its centre keeps it inside the same loose cell.
     const Aabb& old_box = world.boxes[object];
     const glm::vec3 c = center(old_box);
     const Aabb smaller = makeAabb(glm::mix(old_box.min, c, 0.5f), glm::mix(old_box.max, c, 0.5f));
@@ -574,11 +632,70 @@ TEST(BspTree, ReinsertWithinTheSameCellKeepsTheNodeAndWalksOneNode) {
     tree.reinsert(object, smaller);
     EXPECT_EQ(tree.nodeOf(object), node);
     EXPECT_EQ(tree.stats().reinserts, before.reinserts + 1);
+    EXPECT_EQ(tree.stats().reinserts_in_place, before.reinserts_in_place + 1);
     EXPECT_EQ(tree.stats().reinserts_moved, before.reinserts_moved);
-    EXPECT_LE(tree.stats().nodes_walked - before.nodes_walked, 2u);
+    EXPECT_EQ(tree.stats().nodes_walked - before.nodes_walked, 1u) << "only its own node";
     EXPECT_TRUE(sameBox(tree.objectBox(object), smaller));
 
-    // The bounds shrink on refit.
+    // A small move that stays inside the node's loose cell (with the centre in its cell): the
+    // same, although the box now pokes out of the cell.
+    const BspNode& leaf = tree.node(node);
+    const glm::vec3 room = 0.25f * (leaf.loose_cell.max - leaf.cell.max);
+    const Aabb nudged = translated(smaller, glm::min(room, leaf.cell.max - center(smaller)));
+    ASSERT_EQ(placementByRule(tree, nudged), node);
+    tree.reinsert(object, nudged);
+    EXPECT_EQ(tree.nodeOf(object), node);
+    EXPECT_EQ(tree.stats().reinserts_in_place, before.reinserts_in_place + 2);
+    EXPECT_EQ(tree.stats().nodes_walked - before.nodes_walked, 2u);
+
+    tree.refitDirtyBounds();
+    expectTreeInvariants(tree);
+}
+
+TEST(BspTree, ReinsertWalksUpToTheCommonAncestorAndDownAndCountsEveryNode) {
+    // Without adaptation, so that no growth adds walks. Every reinsert walks its start node,
+    // then up to the lowest common ancestor of its old and new node, then down.
+    SmallWorld world(25, /*adapt=*/false);
+    BspTree& tree = world.tree;
+    std::mt19937 rng(26);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::normal_distribution<float> step(0.0f, 2.0f);
+    uint64_t in_place = 0, moved = 0;
+    for (int move = 0; move < 3000; ++move) {
+        const uint32_t object = rng() % tree.objectCount();
+        const Aabb box = rng() % 4 == 0
+                             ? translated(world.boxes[object],
+                                          50.0f * glm::vec3(unit(rng), unit(rng), unit(rng)) -
+                                              center(world.boxes[object]))
+                             : translated(world.boxes[object],
+                                          glm::vec3(step(rng), step(rng), step(rng)));
+        const uint32_t start = tree.nodeOf(object);
+        const uint32_t target = placementByRule(tree, box);
+        const std::vector<uint32_t> up = ancestorsAndSelf(tree, start);
+        const std::vector<uint32_t> down = ancestorsAndSelf(tree, target);
+        uint32_t common = kNone;
+        for (uint32_t n : up) {
+            if (std::find(down.begin(), down.end(), n) != down.end()) {
+                common = n;
+                break;
+            }
+        }
+        ASSERT_NE(common, kNone);
+        const uint64_t expected_walk = 1 + (tree.node(start).depth - tree.node(common).depth) +
+                                       (tree.node(target).depth - tree.node(common).depth);
+        const BspStats before = tree.stats();
+        tree.reinsert(object, box);
+        world.boxes[object] = box;
+        ASSERT_EQ(tree.nodeOf(object), target);
+        ASSERT_EQ(tree.stats().nodes_walked - before.nodes_walked, expected_walk)
+            << "move " << move << " from node " << start << " to " << target;
+        in_place += tree.stats().reinserts_in_place - before.reinserts_in_place;
+        moved += tree.stats().reinserts_moved - before.reinserts_moved;
+        ASSERT_EQ(tree.stats().reinserts_moved - before.reinserts_moved, start != target ? 1u : 0u);
+        if (move % 50 == 0) tree.refitDirtyBounds();
+    }
+    EXPECT_GT(in_place, 300u);
+    EXPECT_GT(moved, 300u);
     tree.refitDirtyBounds();
     expectTreeInvariants(tree);
 }
@@ -632,13 +749,15 @@ TEST(BspTree, StatsCountReinsertsMovesWalkedNodesAndRefits) {
     // Same box: counted, not moved, one node walked.
     tree.reinsert(object, world.boxes[object]);
     EXPECT_EQ(tree.stats().reinserts, 1u);
+    EXPECT_EQ(tree.stats().reinserts_in_place, 1u);
     EXPECT_EQ(tree.stats().reinserts_moved, 0u);
     EXPECT_EQ(tree.stats().nodes_walked, 1u);
 
-    // Out of the root cell: walks up to the root (depth + 1 nodes) and moves.
-    tree.reinsert(object, translated(world.boxes[object], glm::vec3(1000.0f, 0.0f, 0.0f)));
+    // Far beyond any root growth: walks up to the root (depth + 1 nodes) and moves there.
+    tree.reinsert(object, translated(world.boxes[object], glm::vec3(1e7f, 0.0f, 0.0f)));
     EXPECT_EQ(tree.stats().reinserts, 2u);
     EXPECT_EQ(tree.stats().reinserts_moved, 1u);
+    EXPECT_EQ(tree.stats().root_growths, 0u);
     EXPECT_EQ(tree.nodeOf(object), tree.root());
     EXPECT_EQ(tree.stats().nodes_walked, 1u + depth + 1u);
 
@@ -658,6 +777,7 @@ TEST(BspTree, StatsCountReinsertsMovesWalkedNodesAndRefits) {
 
     tree.resetStats();
     EXPECT_EQ(tree.stats().reinserts, 0u);
+    EXPECT_EQ(tree.stats().reinserts_in_place, 0u);
     EXPECT_EQ(tree.stats().reinserts_moved, 0u);
     EXPECT_EQ(tree.stats().nodes_walked, 0u);
     EXPECT_EQ(tree.stats().nodes_refit, 0u);
@@ -708,6 +828,11 @@ TEST(BspTree, OptionValidationRejectsOutOfRangeValuesAndNamesTheOption) {
     add("root_margin", [](BspBuildOptions& o) { o.root_margin = 10.5f; });
     add("root_margin", [](BspBuildOptions& o) { o.root_margin = kNan; });
     add("root_margin", [](BspBuildOptions& o) { o.root_margin = kInf; });
+    add("looseness", [](BspBuildOptions& o) { o.looseness = -0.1f; });
+    add("looseness", [](BspBuildOptions& o) { o.looseness = 4.5f; });
+    add("looseness", [](BspBuildOptions& o) { o.looseness = kNan; });
+    add("max_root_growth", [](BspBuildOptions& o) { o.max_root_growth = 0.5f; });
+    add("max_root_growth", [](BspBuildOptions& o) { o.max_root_growth = kInf; });
     for (const Case& c : cases) {
         error.clear();
         EXPECT_FALSE(c.options.isValid(&error)) << c.option_name;
@@ -719,9 +844,13 @@ TEST(BspTree, OptionValidationRejectsOutOfRangeValuesAndNamesTheOption) {
     edges.max_depth = 64;
     edges.max_objects_per_leaf = 1;
     edges.root_margin = 10.0f;
+    edges.looseness = 4.0f;
+    edges.max_root_growth = 1e6f;
     EXPECT_TRUE(edges.isValid(nullptr));
     edges.max_depth = 0;
     edges.root_margin = 0.0f;
+    edges.looseness = 0.0f;
+    edges.max_root_growth = 1.0f;
     EXPECT_TRUE(edges.isValid(nullptr));
 }
 

@@ -52,6 +52,7 @@ BspTree sceneTree() {
     BspBuildOptions options;
     options.max_objects_per_leaf = 1;
     options.split_rule = BspSplitRule::Median;
+    options.looseness = 0.0f;  // plain cells: the straddlers stay in inner nodes, as below
     tree.build(kBoxes, options);
     return tree;
 }

@@ -72,7 +72,10 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
     }
     subtree_drawn = own_drawn;
     // Children come after their parents, so a reverse scan sees every child before its parent.
-    for (uint32_t n = count; n-- > 1;) subtree_drawn[tree.node(n).parent] |= subtree_drawn[n];
+    // Slots a merge freed (no parent) hold no node.
+    for (uint32_t n = count; n-- > 1;) {
+        if (tree.isLive(n)) subtree_drawn[tree.node(n).parent] |= subtree_drawn[n];
+    }
     const QueryMarks q = markQueriedNodes(tree, trace);
 
     std::vector<NodeClass> out(count, NodeClass::Empty);

@@ -8,26 +8,55 @@
 #include <sstream>
 
 namespace occsim {
+namespace {
 
-std::string describeScenario(const Scenario& scenario, std::vector<std::string>& warnings) {
-    const Scene scene = buildScene(scenario);
-    warnings.insert(warnings.end(), scene.warnings.begin(), scene.warnings.end());
-    const WorldState state = initialState(scene);
-    BspTree tree;
-    tree.build(state.boxes, scenario.bsp);
+// The tree's shape and where its objects live, in the lines `occsim info` prints under a heading.
+// Objects high in the tree are what hierarchical culling pays for: an object in an inner node is
+// drawn whenever its (large) node is visible.
+void describeTree(const BspTree& tree, const glm::dvec3& culling_origin, std::ostringstream& out) {
     uint32_t leaves = 0, objects_in_leaves = 0, max_in_leaf = 0;
     for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
         const BspNode& node = tree.node(n);
-        if (!node.isLeaf()) continue;
+        if (!tree.isLive(n) || !node.isLeaf()) continue;
         ++leaves;
         objects_in_leaves += node.object_count;
         max_in_leaf = std::max(max_in_leaf, node.object_count);
     }
-    // Where objects live by node depth: straddlers of a split stay in inner nodes, and an object
-    // high in the tree is drawn whenever its (large) node is visible.
     std::vector<uint32_t> by_depth(tree.maxDepth() + 1, 0);
     for (uint32_t o = 0; o < tree.objectCount(); ++o) ++by_depth[tree.node(tree.nodeOf(o)).depth];
+    const uint32_t objects = tree.objectCount();
+    const uint32_t in_inner = objects - objects_in_leaves;
+    char line[256];
+    std::snprintf(line, sizeof line, "  nodes       %u (%u leaves), depth %u\n",
+                  tree.liveNodeCount(), leaves, tree.maxDepth());
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "  objects     %.2f per leaf (max %u); %u in inner nodes (%.1f%%), %u in the root\n",
+                  leaves ? static_cast<double>(objects_in_leaves) / leaves : 0.0, max_in_leaf,
+                  in_inner, objects ? 100.0 * in_inner / objects : 0.0,
+                  tree.node(tree.root()).object_count);
+    out << line;
+    out << "  by depth   ";
+    for (size_t d = 0; d < by_depth.size(); ++d) out << ' ' << d << ':' << by_depth[d];
+    out << "\n";
+    // The tree lives in the culling frame; the bounds are printed in world coordinates.
     const Aabb& b = tree.bounds(tree.root());
+    const glm::dvec3 lo = glm::dvec3(b.min) + culling_origin;
+    const glm::dvec3 hi = glm::dvec3(b.max) + culling_origin;
+    std::snprintf(line, sizeof line, "  bounds      (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)\n",
+                  lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    out << line;
+}
+
+}  // namespace
+
+std::string describeScenario(const Scenario& scenario, std::vector<std::string>& warnings) {
+    const Scene scene = buildScene(scenario);
+    warnings.insert(warnings.end(), scene.warnings.begin(), scene.warnings.end());
+    WorldState state = initialState(scene);
+    BspTree tree;
+    tree.build(state.boxes, scenario.bsp);
+
     std::ostringstream out;
     char line[256];
     out << "scenario      " << scenario.name << " (" << scenario.file.string() << ")\n";
@@ -36,21 +65,48 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     out << "movers        " << scene.initial_movers.size() << "\n";
     out << "frames        " << scenario.frames << " x " << scenario.dt_s << " s, "
         << scenario.width << "x" << scenario.height << " pixels\n";
-    out << "bsp           " << tree.nodeCount() << " nodes, " << leaves << " leaves, depth "
-        << tree.maxDepth() << "\n";
-    std::snprintf(line, sizeof line, "objects/leaf  %.2f mean, %u max; %u objects in inner nodes\n",
-                  leaves ? static_cast<double>(objects_in_leaves) / leaves : 0.0, max_in_leaf,
-                  scene.objectCount() - objects_in_leaves);
+    std::snprintf(line, sizeof line, "bsp           %s split, looseness %.2f, %s\n",
+                  scenario.bsp.split_rule == BspSplitRule::Sah ? "sah" : "median",
+                  static_cast<double>(scenario.bsp.looseness),
+                  scenario.bsp.adapt ? "adapting to movers" : "static cells");
     out << line;
-    out << "objects/depth";
-    for (size_t d = 0; d < by_depth.size(); ++d) out << ' ' << d << ':' << by_depth[d];
-    out << "\n";
-    // The tree lives in the culling frame; the bounds are printed in world coordinates.
-    const glm::dvec3 lo = glm::dvec3(b.min) + scene.culling_origin;
-    const glm::dvec3 hi = glm::dvec3(b.max) + scene.culling_origin;
-    std::snprintf(line, sizeof line, "bounds        (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)\n", lo.x,
-                  lo.y, lo.z, hi.x, hi.y, hi.z);
-    out << line;
+    out << "after build\n";
+    describeTree(tree, scene.culling_origin, out);
+
+    // The world layer alone: the movers stepped through every frame of the scenario exactly as a
+    // run does (frame 0 shows the initial state), each moved object reinserted and the tree
+    // adapted once per frame; nothing is rendered.
+    if (!state.movers.empty() && scenario.frames > 1) {
+        tree.resetStats();
+        const uint64_t version_before = tree.structureVersion();
+        for (uint32_t frame = 1; frame < scenario.frames; ++frame) {
+            stepMovers(scene, state, scenario.dt_s);
+            requireFiniteBoxes(state, frame);
+            for (const Mover& mover : state.movers) tree.reinsert(mover.object, state.boxes[mover.object]);
+            tree.refitDirtyBounds();
+        }
+        const BspStats& s = tree.stats();
+        out << "after " << scenario.frames - 1 << " steps of the movers\n";
+        describeTree(tree, scene.culling_origin, out);
+        const double reinserts = s.reinserts ? static_cast<double>(s.reinserts) : 1.0;
+        std::snprintf(line, sizeof line,
+                      "  reinserts   %llu: %.1f%% kept their node without a walk, %.1f%% moved; "
+                      "%.2f nodes walked each\n",
+                      static_cast<unsigned long long>(s.reinserts),
+                      100.0 * static_cast<double>(s.reinserts_in_place) / reinserts,
+                      100.0 * static_cast<double>(s.reinserts_moved) / reinserts,
+                      static_cast<double>(s.nodes_walked) / reinserts);
+        out << line;
+        std::snprintf(line, sizeof line,
+                      "  adaptation  %llu splits (%llu nodes), %llu merges, %llu root growths; "
+                      "structure version +%llu\n",
+                      static_cast<unsigned long long>(s.splits),
+                      static_cast<unsigned long long>(s.nodes_created),
+                      static_cast<unsigned long long>(s.merges),
+                      static_cast<unsigned long long>(s.root_growths),
+                      static_cast<unsigned long long>(tree.structureVersion() - version_before));
+        out << line;
+    }
     out << "algorithm     " << scenario.algorithm << "\n";
     return out.str();
 }
