@@ -544,7 +544,8 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
         {{"source", 0}, {"motion", "orbit"}, {"fraction", 1}, {"radius", {1, 1}}}};
     scenario["culling"] = {{"algorithm", "vfc"},
                            {"statistical", {{"base_time", 1}, {"history_length", 4}}}};
-    scenario["bsp"] = {{"split", "sah"}, {"max_depth", 12}, {"root_margin", 0}};
+    scenario["bsp"] = {{"split", "sah"},     {"max_depth", 12}, {"root_margin", 0},
+                       {"looseness", 0.25},  {"adapt", false},  {"max_root_growth", 4}};
     scenario["expect"] = {{"algorithms", {"vfc", "async"}}, {"frames", 20},
                           {"max_error_pixels", {{"async", 50}}}};
 
@@ -579,6 +580,9 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_EQ(s.bsp.split_rule, BspSplitRule::Sah);
     EXPECT_EQ(s.bsp.max_depth, 12u);
     EXPECT_FLOAT_EQ(s.bsp.root_margin, 0.0f);
+    EXPECT_FLOAT_EQ(s.bsp.looseness, 0.25f);
+    EXPECT_FALSE(s.bsp.adapt);
+    EXPECT_FLOAT_EQ(s.bsp.max_root_growth, 4.0f);
     ASSERT_TRUE(s.expect.has_value());
     EXPECT_EQ(s.expect->algorithms, (std::vector<std::string>{"vfc", "async"}));
     EXPECT_EQ(s.expect->frames, 20u);

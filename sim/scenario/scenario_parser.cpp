@@ -336,6 +336,9 @@ BspBuildOptions readBsp(JsonObjectReader& top) {
     o.max_objects_per_leaf = static_cast<uint32_t>(
         bsp->unsignedInteger("max_objects_per_leaf", o.max_objects_per_leaf, 0, kMaxUint32));
     o.root_margin = static_cast<float>(bsp->number("root_margin", o.root_margin));
+    o.looseness = static_cast<float>(bsp->number("looseness", o.looseness));
+    o.adapt = bsp->boolean("adapt", o.adapt);
+    o.max_root_growth = static_cast<float>(bsp->number("max_root_growth", o.max_root_growth));
     bsp->finish();
     std::string why;
     if (!o.isValid(&why)) bsp->failHere(why);
