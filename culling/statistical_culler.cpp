@@ -1,85 +1,406 @@
 // Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries",
-// WSCG 2005 short papers, section 3 (the two-queue traversal and the optimised CalcNodeAction).
+// WSCG 2005 short papers, section 3 (the two-queue traversal and the optimised CalcNodeAction),
+// with the improvements of StatisticalOptions (docs/statistical.md), each off by default.
 #include "culling/statistical_culler.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace occsim {
+namespace {
+
+// Parallax re-query (requery_parallax): a node closer than this counts as this far, so a node
+// at the eye does not divide by zero.
+constexpr double kMinParallaxDistanceM = 1e-3;
+// Weight of one answer in a QueryKind's running occlusion rate (an exponential moving average
+// over answers: about the last 16 answers of that kind count).
+constexpr double kRateWeight = 1.0 / 16.0;
+// The fallback looks at the share of visible answers only once the window holds at least this
+// many answers per frame on average, so that a handful of answers decides nothing.
+constexpr uint32_t kFallbackMinAnswersPerFrame = 2;
+
+// Orders the main queue's heap so that the lowest rank comes out first.
+struct LaterRank {
+    template <class E>
+    bool operator()(const E& a, const E& b) const {
+        return a.rank > b.rank;
+    }
+};
+
+}  // namespace
 
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
-                            bool near_plane_touches_box, double now_s) {
+                            bool near_plane_touches_box, double now_s, NodeMotion motion) {
     if (near_plane_touches_box) return NodeAction::Render;
     if (stats.results == 0) return NodeAction::Query;
     if (now_s - stats.last_query_time_s > options.max_statistics_age_s) return NodeAction::Query;
     if ((stats.history & 1u) == 0) return NodeAction::Query;  // last result: occluded
     const uint32_t mask = options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
     const int occ_num = std::popcount(stats.history & mask);
-    const double not_query_time =
-        stats.last_query_time_s +
-        options.base_time_s * (options.decay_a - std::pow(options.decay_b, occ_num));
+    const double decay = options.decay_a - std::pow(options.decay_b, occ_num);
+    if (options.requery_distance_m > 0.0) {
+        const double travelled = motion.travel_m - stats.travel_at_query_m;
+        return travelled > options.requery_distance_m * decay ? NodeAction::Query
+                                                              : NodeAction::Render;
+    }
+    if (options.requery_parallax > 0.0) {
+        const double travelled = motion.travel_m - stats.travel_at_query_m;
+        const double distance = std::max(motion.distance_m, kMinParallaxDistanceM);
+        return travelled > options.requery_parallax * decay * distance ? NodeAction::Query
+                                                                       : NodeAction::Render;
+    }
+    const double not_query_time = stats.last_query_time_s + options.base_time_s * decay;
     return now_s > not_query_time ? NodeAction::Query : NodeAction::Render;
 }
 
 void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats, bool visible,
-                       double now_s) {
+                       double now_s, double travel_m) {
     stats.history = (stats.history << 1) | (visible ? 1u : 0u);
     if (stats.results < options.history_length) ++stats.results;
     stats.last_query_time_s = now_s;
+    stats.travel_at_query_m = travel_m;
 }
 
-StatisticalCuller::StatisticalCuller(const StatisticalOptions& options) : options_(options) {}
+QueryKind queryKindOf(const StatisticalOptions& options, const NodeStatistics& stats, double now_s) {
+    if (stats.results == 0 || now_s - stats.last_query_time_s > options.max_statistics_age_s) {
+        return QueryKind::Fresh;
+    }
+    return (stats.history & 1u) ? QueryKind::LastVisible : QueryKind::LastOccluded;
+}
+
+bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate) {
+    return occlusion_rate * draw_ms > static_cast<double>(query_boxes) * costs.query_box_ms;
+}
+
+StatisticalCuller::StatisticalCuller(const StatisticalOptions& options, const CostModel& costs,
+                                     std::string_view name)
+    : options_(options), costs_(costs), name_(name) {}
 
 void StatisticalCuller::reset(const BspTree& tree) {
     stats_.reset(tree);
-    queue_.clear();
-    query_queue_.clear();
+    own_stats_.reset(tree);
+    motion_.reset(tree);
+    structure_known_ = false;
+    heap_.clear();
+    pending_.clear();
+    pending_head_ = 0;
+    last_center_.clear();
+    have_last_frame_ = false;
+    camera_path_m_ = 0.0;
+    occlusion_rate_ = {0.5, 0.5, 0.5};
+    window_answers_.assign(options_.fallback_window_frames, 0);
+    window_visible_.assign(options_.fallback_window_frames, 0);
+    window_next_ = 0;
+    window_frames_ = 0;
+    frustum_only_ = false;
+    frustum_only_until_s_ = 0.0;
+    counters_ = {};
 }
 
-void StatisticalCuller::renderVisibleNode(const BspTree& tree, const CullFrame& frame,
-                                          const NodeVisit& visit, RenderDevice& device) {
-    drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
-    pushChildrenFrontToBack(tree, visit.node, frame.view.eye, visit.inside_frustum, queue_);
+// Depth-first order of the nodes, and how many ranks each subtree spans: the node, the virtual
+// leaf of its own objects (inner nodes), and both children's subtrees. Only the structure
+// matters, so this runs again only when the tree's structure changed. It walks the tree rather
+// than scanning indices, so it assumes nothing about how a changing tree numbers its nodes.
+void StatisticalCuller::syncStructure(const BspTree& tree) {
+    if (structure_known_ && structure_version_ == tree.structureVersion() &&
+        subtree_ranks_.size() == tree.nodeCount()) {
+        return;
+    }
+    order_.clear();
+    scratch_stack_.clear();
+    scratch_stack_.push_back(tree.root());
+    while (!scratch_stack_.empty()) {
+        const uint32_t n = scratch_stack_.back();
+        scratch_stack_.pop_back();
+        order_.push_back(n);
+        const BspNode& node = tree.node(n);
+        if (!node.isLeaf()) {
+            scratch_stack_.push_back(node.child[1]);
+            scratch_stack_.push_back(node.child[0]);
+        }
+    }
+    subtree_ranks_.assign(tree.nodeCount(), 0);
+    for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+        const BspNode& node = tree.node(*it);
+        subtree_ranks_[*it] =
+            node.isLeaf() ? 1 : 2 + subtree_ranks_[node.child[0]] + subtree_ranks_[node.child[1]];
+    }
+    structure_version_ = tree.structureVersion();
+    structure_known_ = true;
+}
+
+void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame) {
+    stats_.sync(tree);
+    own_stats_.sync(tree);
+    motion_.sync(tree);
+    syncStructure(tree);
+
+    // Cost model: what drawing each subtree would cost, bottom-up over the tree as it is now.
+    costs_active_ = options_.cost_model && costs_.known() &&
+                    frame.object_triangles.size() == tree.objectCount();
+    if (costs_active_) {
+        subtree_draw_ms_.resize(tree.nodeCount());
+        for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+            const uint32_t n = *it;
+            double ms = 0.0;
+            for (uint32_t o = tree.firstObject(n); o != BspTree::kNone; o = tree.nextObject(o)) {
+                ms += costs_.drawMs(frame.object_triangles[o]);
+            }
+            const BspNode& node = tree.node(n);
+            if (!node.isLeaf()) ms += subtree_draw_ms_[node.child[0]] + subtree_draw_ms_[node.child[1]];
+            subtree_draw_ms_[n] = ms;
+        }
+    }
+
+    // Distance rules: the camera's path, and per node the largest step any object below it took
+    // this frame, summed over frames. Object centres stand for the movers (the culling layer
+    // knows boxes, not movers); a static object's step is 0.
+    if (options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0) {
+        const bool first = !have_last_frame_ || last_center_.size() != tree.objectCount();
+        if (first) {
+            last_center_.resize(tree.objectCount());
+            for (uint32_t o = 0; o < tree.objectCount(); ++o) last_center_[o] = center(tree.objectBox(o));
+        } else {
+            camera_path_m_ += glm::length(frame.view.eye - last_eye_);
+        }
+        last_eye_ = frame.view.eye;
+        have_last_frame_ = true;
+        step_m_.resize(tree.nodeCount());
+        for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+            const uint32_t n = *it;
+            float own = 0.0f;
+            for (uint32_t o = tree.firstObject(n); o != BspTree::kNone; o = tree.nextObject(o)) {
+                const glm::vec3 c = center(tree.objectBox(o));
+                const float step = glm::length(c - last_center_[o]);
+                last_center_[o] = c;
+                if (step <= 1e30f) own = std::max(own, step);  // a non-finite box adds nothing
+            }
+            float subtree = own;
+            const BspNode& node = tree.node(n);
+            if (!node.isLeaf()) subtree = std::max({subtree, step_m_[node.child[0]], step_m_[node.child[1]]});
+            step_m_[n] = subtree;
+            motion_[n].own_m += own;
+            motion_[n].subtree_m += subtree;
+        }
+    }
+}
+
+double StatisticalCuller::travelOf(const Entry& e) const {
+    const Motion& m = motion_[e.node];
+    return camera_path_m_ + (e.own_objects ? m.own_m : m.subtree_m);
+}
+
+void StatisticalCuller::push(const Entry& entry) {
+    heap_.push_back(entry);
+    std::push_heap(heap_.begin(), heap_.end(), LaterRank{});
+}
+
+StatisticalCuller::Entry StatisticalCuller::pop() {
+    std::pop_heap(heap_.begin(), heap_.end(), LaterRank{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
+    return e;
+}
+
+// A rendered node: its own objects are drawn (or, with virtual leaves, queued to be decided on
+// their own statistics, between the nearer and the farther child), and its children take its
+// place in the queue, nearer child first. Empty children are left out (the paper's SKIP).
+void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
+                                   RenderDevice& device) {
+    const BspNode& n = tree.node(entry.node);
+    if (n.isLeaf()) {
+        drawNodeObjects(tree, entry.node, frame.view.frustum, entry.inside_frustum, device);
+        return;
+    }
+    const bool eye_below = frame.view.eye[n.axis] < n.split;
+    const uint32_t near_child = n.child[eye_below ? 0 : 1];
+    const uint32_t far_child = n.child[eye_below ? 1 : 0];
+    const uint32_t own_rank = entry.rank + 1 + subtree_ranks_[near_child];
+    if (options_.virtual_leaves) {
+        if (n.object_count > 0) push({own_rank, entry.node, true, entry.inside_frustum});
+    } else {
+        drawNodeObjects(tree, entry.node, frame.view.frustum, entry.inside_frustum, device);
+    }
+    if (!isEmpty(tree.bounds(near_child))) {
+        push({entry.rank + 1, near_child, false, entry.inside_frustum});
+    }
+    if (!isEmpty(tree.bounds(far_child))) {
+        push({own_rank + 1, far_child, false, entry.inside_frustum});
+    }
+}
+
+bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Entry entry,
+                                RenderDevice& device) {
+    const CullView& view = frame.view;
+    const double now = frame.time_s;
+    Aabb box;
+    uint32_t query_boxes = 1;
+    double draw_ms = 0.0;
+    if (!entry.own_objects) {
+        NodeVisit visit{entry.node, entry.inside_frustum};
+        bool inside = false;
+        if (!nodeInFrustum(tree, visit, view.frustum, &inside)) return false;  // SKIP
+        entry.inside_frustum = inside;
+        box = tree.bounds(entry.node);
+        if (costs_active_) draw_ms = subtree_draw_ms_[entry.node];
+    } else {
+        // A virtual leaf: the objects stored in the node itself that pass the frustum.
+        boxes_.clear();
+        forEachObjectInFrustum(tree, entry.node, view.frustum, entry.inside_frustum,
+                               [&](uint32_t o) {
+                                   boxes_.push_back(tree.objectBox(o));
+                                   extend(box, tree.objectBox(o));
+                                   if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
+                               });
+        if (boxes_.empty()) return false;
+        query_boxes = static_cast<uint32_t>(boxes_.size());
+    }
+    const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
+    const NodeStatistics& stats = statsOf(entry);
+    const NodeMotion motion{travelOf(entry), glm::length(center(box) - view.eye)};
+    NodeAction action = decideNodeAction(options_, stats, near, now, motion);
+    const QueryKind kind = queryKindOf(options_, stats, now);
+    if (action == NodeAction::Render) {
+        ++counters_.renders_without_query;
+    } else if (costs_active_ &&
+               !queryPays(costs_, draw_ms, query_boxes, occlusion_rate_[static_cast<size_t>(kind)])) {
+        action = NodeAction::Render;
+        ++counters_.cost_model_renders;
+    }
+
+    if (action == NodeAction::Render) {
+        if (entry.own_objects) {
+            drawNodeObjects(tree, entry.node, view.frustum, entry.inside_frustum, device);
+        } else {
+            renderNode(tree, frame, entry, device);
+        }
+        return false;
+    }
+    const QueryTag tag =
+        entry.own_objects ? QueryTag::nodeObjects(entry.node) : QueryTag::node(entry.node);
+    const QueryId id =
+        entry.own_objects
+            ? device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1))
+            : device.issueQuery(box, tag);
+    pending_.push_back({id, entry, kind});
+    ++counters_.queries;
+    return true;
+}
+
+void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
+                               RenderDevice& device) {
+    const bool visible = device.queryResult(pending.id) > 0;
+    recordQueryResult(options_, statsOf(pending.entry), visible, frame.time_s,
+                      travelOf(pending.entry));
+    double& rate = occlusion_rate_[static_cast<size_t>(pending.kind)];
+    rate += kRateWeight * ((visible ? 0.0 : 1.0) - rate);
+    ++counters_.answers;
+    counters_.visible_answers += visible ? 1 : 0;
+    if (!visible) return;
+    if (pending.entry.own_objects) {
+        drawNodeObjects(tree, pending.entry.node, frame.view.frustum, pending.entry.inside_frustum,
+                        device);
+    } else {
+        renderNode(tree, frame, pending.entry, device);
+    }
+}
+
+void StatisticalCuller::frustumOnlyFrame(const BspTree& tree, const CullFrame& frame,
+                                         RenderDevice& device) {
+    counters_.frustum_only = true;
+    traverseFrontToBack(tree, frame.view, vfc_stack_, [&](const NodeVisit& visit) {
+        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+        return true;
+    });
+}
+
+// Fallback (improvement 5): after a frame that ran the algorithm, look at the share of visible
+// answers over the window; when it is high enough, cull by the frustum only for a while.
+void StatisticalCuller::endFrame(double now_s) {
+    if (!options_.fallback) return;
+    const uint32_t w = static_cast<uint32_t>(window_answers_.size());
+    window_answers_[window_next_] = counters_.answers;
+    window_visible_[window_next_] = counters_.visible_answers;
+    window_next_ = (window_next_ + 1) % w;
+    window_frames_ = std::min(window_frames_ + 1, w);
+    if (window_frames_ < w) return;
+    uint64_t answers = 0, visible = 0;
+    for (uint32_t i = 0; i < w; ++i) {
+        answers += window_answers_[i];
+        visible += window_visible_[i];
+    }
+    if (answers >= uint64_t{kFallbackMinAnswersPerFrame} * w &&
+        static_cast<double>(visible) >= options_.fallback_visible_share * static_cast<double>(answers)) {
+        frustum_only_ = true;
+        frustum_only_until_s_ = now_s + options_.fallback_recheck_s;
+        window_frames_ = 0;  // the next look starts from a fresh window
+    }
 }
 
 void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
-    stats_.sync(tree);
-    queue_.clear();
-    queue_.push_back({tree.root(), false});
-    const double now = frame.time_s;
+    counters_ = {};
+    prepareFrame(tree, frame);
+    if (frustum_only_) {
+        if (frame.time_s < frustum_only_until_s_) {
+            frustumOnlyFrame(tree, frame, device);
+            return;
+        }
+        frustum_only_ = false;  // re-check: run the algorithm again
+    }
 
-    while (!queue_.empty() || !query_queue_.empty()) {
-        uint32_t queries_this_pass = 0;
-        while (!queue_.empty() && queries_this_pass < options_.queries_before_restart &&
-               !(!query_queue_.empty() && device.isQueryReady(query_queue_.front().id))) {
-            NodeVisit visit = queue_.back();
-            queue_.pop_back();
-            bool inside = false;
-            if (!nodeInFrustum(tree, visit, frame.view.frustum, &inside)) continue;  // SKIP
-            visit.inside_frustum = inside;
-            const bool near = nearPlaneTouchesBox(tree.bounds(visit.node), frame.view.eye,
-                                                  frame.view.near_radius);
-            switch (decideNodeAction(options_, stats_[visit.node], near, now)) {
-                case NodeAction::Query:
-                    query_queue_.push_back(
-                        {visit, device.issueQuery(tree.bounds(visit.node), QueryTag::node(visit.node))});
-                    ++queries_this_pass;
-                    break;
-                case NodeAction::Render:
-                    renderVisibleNode(tree, frame, visit, device);
-                    break;
+    heap_.clear();
+    pending_.clear();
+    pending_head_ = 0;
+    if (!isEmpty(tree.bounds(tree.root()))) push({0, tree.root(), false, false});
+
+    // Takes the oldest pending answer; `work_left` says whether the main queue held anything.
+    auto take_oldest = [&](bool work_left) {
+        const uint64_t waited_before = device.counters().results_waited;
+        const Pending p = pending_[pending_head_++];
+        answer(tree, frame, p, device);
+        if (device.counters().results_waited != waited_before) {
+            ++counters_.blocked_answers;
+            counters_.blocked_with_work_left += work_left ? 1 : 0;
+        }
+        if (pending_head_ == pending_.size()) {
+            pending_.clear();
+            pending_head_ = 0;
+        }
+    };
+
+    if (!options_.ready_answers) {
+        // The paper's loop: issue until the oldest answer is ready (or enough queries were
+        // issued in this pass), then go back to the queue start and take every answer.
+        while (!heap_.empty() || pending_head_ < pending_.size()) {
+            uint32_t queries_this_pass = 0;
+            while (!heap_.empty() && queries_this_pass < options_.queries_before_restart &&
+                   !(pending_head_ < pending_.size() &&
+                     device.isQueryReady(pending_[pending_head_].id))) {
+                if (process(tree, frame, pop(), device)) ++queries_this_pass;
+            }
+            while (pending_head_ < pending_.size()) take_oldest(!heap_.empty());
+        }
+    } else {
+        // Improvement 1: every answer is taken as soon as it is ready (answers become ready in
+        // issue order, so only the oldest is polled), and the traversal goes on; the oldest
+        // answer is waited for only when the main queue is empty.
+        while (true) {
+            while (pending_head_ < pending_.size() && device.isQueryReady(pending_[pending_head_].id)) {
+                take_oldest(!heap_.empty());
+            }
+            if (!heap_.empty()) {
+                process(tree, frame, pop(), device);
+            } else if (pending_head_ < pending_.size()) {
+                take_oldest(false);
+            } else {
+                break;
             }
         }
-        // Back to the queue start: take every pending answer, in issue order.
-        while (!query_queue_.empty()) {
-            const PendingQuery pending = query_queue_.front();
-            query_queue_.pop_front();
-            const bool visible = device.queryResult(pending.id) > 0;
-            recordQueryResult(options_, stats_[pending.visit.node], visible, now);
-            if (visible) renderVisibleNode(tree, frame, pending.visit, device);
-        }
     }
+    endFrame(frame.time_s);
 }
 
 }  // namespace occsim
