@@ -1,0 +1,35 @@
+// The cost model of the statistical+ culler (CostModel, culling/culler_options.h), measured on the
+// renderer at hand before the first frame: a few timed draws and queries from the scenario's
+// first view, in the spirit of the start-up measurements of Guthe, Balazs & Klein, "Near Optimal
+// Hierarchical Culling" (EGSR 2006), section 4.
+#pragma once
+
+#include "culling/culler_options.h"
+#include "render/gl_renderer.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
+
+#include <string>
+
+namespace occsim {
+
+// Where a run's cost model came from.
+struct CostModelChoice {
+    CostModel costs;
+    std::string source;  // "scenario", "calibrated" or "reference"
+};
+
+// Figures measured by calibrateCostModel() on the project's development machine (llvmpipe on 2
+// cores, scenarios/teapots.json). Used instead of a measurement when decisions must not depend on
+// the machine (deterministic latency) and the scenario gives no cost model.
+CostModel referenceCostModel();
+
+// Times drawing a sample of the objects in the scenario's first view and querying the boxes of
+// the BSP tree's nodes in that view, each measured a few times after a run that is thrown away,
+// median kept. Needs the scene's meshes uploaded to the renderer. Drawing is split into a
+// per-call and a per-triangle part by timing the meshes with fewer and more triangles
+// separately; a scene whose meshes all have one triangle count charges everything to triangles.
+// Costs some 100 ms of rendering, outside every timing. Leaves the renderer's framebuffer dirty.
+CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRenderer& renderer);
+
+}  // namespace occsim
