@@ -50,6 +50,7 @@ StatisticalOptions StatisticalOptions::plus() {
     StatisticalOptions o;
     o.ready_answers = true;
     o.virtual_leaves = true;
+    o.object_queries = true;
     o.cost_model = true;
     o.requery_parallax = 0.1;
     o.fallback = true;

@@ -50,6 +50,10 @@ struct StatisticalOptions {
     // (a "virtual leaf": a query on the boxes of those objects). Off: they are drawn whenever
     // their node is rendered, as the paper does (it keeps geometry in leaves).
     bool virtual_leaves = false;
+    // (2b) The objects of a rendered node (a leaf's, or a virtual leaf's) are decided one by one,
+    // each with statistics and queries of its own, instead of drawn (or queried) together. A
+    // leaf holding a single object needs no more than its own query.
+    bool object_queries = false;
     // (3) Use CullerOptions::cost_model: a node cheaper to draw than to query is drawn without
     // one, and a query is issued only when its expected saving (the recent occlusion rate of
     // such queries times the node's draw cost) exceeds its cost.

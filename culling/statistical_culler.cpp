@@ -14,7 +14,7 @@ namespace {
 // Parallax re-query (requery_parallax): a node closer than this counts as this far, so a node
 // at the eye does not divide by zero.
 constexpr double kMinParallaxDistanceM = 1e-3;
-// Weight of one answer in a QueryKind's running occlusion rate (an exponential moving average
+// Weight of one answer in a QueryKind's running occlusion estimate (exponential moving averages
 // over answers: about the last 16 answers of that kind count).
 constexpr double kRateWeight = 1.0 / 16.0;
 // The fallback looks at the share of visible answers only once the window holds at least this
@@ -63,11 +63,18 @@ void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats,
     stats.travel_at_query_m = travel_m;
 }
 
-QueryKind queryKindOf(const StatisticalOptions& options, const NodeStatistics& stats, double now_s) {
-    if (stats.results == 0 || now_s - stats.last_query_time_s > options.max_statistics_age_s) {
-        return QueryKind::Fresh;
-    }
+QueryKind queryKindOf(const NodeStatistics& stats) {
+    if (stats.results == 0) return QueryKind::Fresh;
     return (stats.history & 1u) ? QueryKind::LastVisible : QueryKind::LastOccluded;
+}
+
+bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& stats,
+                      double now_s) {
+    return stats.results > 0 && now_s - stats.last_query_time_s <= options.max_statistics_age_s;
+}
+
+void OcclusionEstimate::add(bool was_occluded) {
+    occluded += kRateWeight * ((was_occluded ? 1.0 : 0.0) - occluded);
 }
 
 bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate) {
@@ -89,7 +96,9 @@ void StatisticalCuller::reset(const BspTree& tree) {
     last_center_.clear();
     have_last_frame_ = false;
     camera_path_m_ = 0.0;
-    occlusion_rate_ = {0.5, 0.5, 0.5};
+    estimates_.fill(OcclusionEstimate{});
+    object_stats_.assign(tree.objectCount(), NodeStatistics{});
+    object_motion_m_.assign(tree.objectCount(), 0.0);
     window_answers_.assign(options_.fallback_window_frames, 0);
     window_visible_.assign(options_.fallback_window_frames, 0);
     window_next_ = 0;
@@ -175,7 +184,9 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
                 const glm::vec3 c = center(tree.objectBox(o));
                 const float step = glm::length(c - last_center_[o]);
                 last_center_[o] = c;
-                if (step <= 1e30f) own = std::max(own, step);  // a non-finite box adds nothing
+                if (!(step <= 1e30f)) continue;  // a non-finite box adds nothing
+                own = std::max(own, step);
+                object_motion_m_[o] += step;
             }
             float subtree = own;
             const BspNode& node = tree.node(n);
@@ -188,8 +199,21 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
 }
 
 double StatisticalCuller::travelOf(const Entry& e) const {
-    const Motion& m = motion_[e.node];
-    return camera_path_m_ + (e.own_objects ? m.own_m : m.subtree_m);
+    switch (e.subject) {
+        case Subject::Node: return camera_path_m_ + motion_[e.index].subtree_m;
+        case Subject::OwnObjects: return camera_path_m_ + motion_[e.index].own_m;
+        case Subject::Object: return camera_path_m_ + object_motion_m_[e.index];
+    }
+    return camera_path_m_;
+}
+
+NodeStatistics& StatisticalCuller::statsOf(const Entry& e) {
+    switch (e.subject) {
+        case Subject::Node: return stats_[e.index];
+        case Subject::OwnObjects: return own_stats_[e.index];
+        case Subject::Object: return object_stats_[e.index];
+    }
+    return stats_[e.index];
 }
 
 void StatisticalCuller::push(const Entry& entry) {
@@ -209,9 +233,9 @@ StatisticalCuller::Entry StatisticalCuller::pop() {
 // place in the queue, nearer child first. Empty children are left out (the paper's SKIP).
 void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                                    RenderDevice& device) {
-    const BspNode& n = tree.node(entry.node);
+    const BspNode& n = tree.node(entry.index);
     if (n.isLeaf()) {
-        drawNodeObjects(tree, entry.node, frame.view.frustum, entry.inside_frustum, device);
+        renderObjects(tree, frame, entry.index, entry.inside_frustum, device);
         return;
     }
     const bool eye_below = frame.view.eye[n.axis] < n.split;
@@ -219,91 +243,149 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
     const uint32_t far_child = n.child[eye_below ? 1 : 0];
     const uint32_t own_rank = entry.rank + 1 + subtree_ranks_[near_child];
     if (options_.virtual_leaves) {
-        if (n.object_count > 0) push({own_rank, entry.node, true, entry.inside_frustum});
+        if (n.object_count > 0) {
+            push({own_rank, entry.index, Subject::OwnObjects, entry.inside_frustum});
+        }
     } else {
-        drawNodeObjects(tree, entry.node, frame.view.frustum, entry.inside_frustum, device);
+        // Without virtual leaves, objects in inner nodes have no decisions of their own.
+        drawNodeObjects(tree, entry.index, frame.view.frustum, entry.inside_frustum, device);
     }
     if (!isEmpty(tree.bounds(near_child))) {
-        push({entry.rank + 1, near_child, false, entry.inside_frustum});
+        push({entry.rank + 1, near_child, Subject::Node, entry.inside_frustum});
     }
     if (!isEmpty(tree.bounds(far_child))) {
-        push({own_rank + 1, far_child, false, entry.inside_frustum});
+        push({own_rank + 1, far_child, Subject::Node, entry.inside_frustum});
     }
+}
+
+NodeAction StatisticalCuller::decide(const CullFrame& frame, const NodeStatistics& stats,
+                                     const Aabb& box, double travel_m, double draw_ms,
+                                     uint32_t query_boxes, bool object_query, Decision* decision) {
+    const CullView& view = frame.view;
+    const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
+    const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
+    const NodeAction action = decideNodeAction(options_, stats, near, frame.time_s, motion);
+    decision->kind = queryKindOf(stats);
+    if (action == NodeAction::Render) {
+        ++counters_.renders_without_query;
+        return action;
+    }
+    if (costs_active_) {
+        // Without usable statistics the answer is worth more than this frame's saving (it is
+        // what later decisions go on), so only a subject cheaper to draw than to query is drawn
+        // without one. With statistics, the occlusion estimate of this kind of query says what
+        // the query is expected to save.
+        const bool usable = statisticsUsable(options_, stats, frame.time_s);
+        OcclusionEstimate& estimate = estimates_[estimateIndex(decision->kind, object_query)];
+        if (!queryPays(costs_, draw_ms, query_boxes, usable ? estimate.occluded : 1.0)) {
+            if (!usable || ++estimate.vetoes < OcclusionEstimate::kExploreEvery) {
+                ++counters_.cost_model_renders;
+                return NodeAction::Render;
+            }
+            estimate.vetoes = 0;  // issued anyway, to keep the estimate measured
+        }
+    }
+    return NodeAction::Query;
+}
+
+uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,
+                                          uint32_t node, bool inside_frustum, RenderDevice& device) {
+    const Frustum& frustum = frame.view.frustum;
+    if (!options_.object_queries) {
+        drawNodeObjects(tree, node, frustum, inside_frustum, device);
+        return 0;
+    }
+    // A leaf with one object in view: its node's query was the object's query.
+    if (tree.node(node).isLeaf()) {
+        uint32_t in_view = 0;
+        forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t) { ++in_view; });
+        if (in_view <= 1) {
+            drawNodeObjects(tree, node, frustum, inside_frustum, device);
+            return 0;
+        }
+    }
+    uint32_t queries = 0;
+    forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
+        const Entry entry{0, o, Subject::Object, inside_frustum};
+        const Aabb& box = tree.objectBox(o);
+        const double draw_ms = costs_active_ ? costs_.drawMs(frame.object_triangles[o]) : 0.0;
+        Decision decision;
+        if (decide(frame, object_stats_[o], box, travelOf(entry), draw_ms, 1, true, &decision) ==
+            NodeAction::Render) {
+            device.drawObject(o);
+            return;
+        }
+        const QueryTag tag = QueryTag::object(o);
+        pending_.push_back({device.issueQuery(box, tag), entry, decision});
+        ++counters_.queries;
+        ++queries;
+    });
+    return queries;
 }
 
 bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Entry entry,
                                 RenderDevice& device) {
     const CullView& view = frame.view;
-    const double now = frame.time_s;
-    Aabb box;
-    uint32_t query_boxes = 1;
-    double draw_ms = 0.0;
-    if (!entry.own_objects) {
-        NodeVisit visit{entry.node, entry.inside_frustum};
+    if (entry.subject == Subject::Node) {
+        NodeVisit visit{entry.index, entry.inside_frustum};
         bool inside = false;
         if (!nodeInFrustum(tree, visit, view.frustum, &inside)) return false;  // SKIP
         entry.inside_frustum = inside;
-        box = tree.bounds(entry.node);
-        if (costs_active_) draw_ms = subtree_draw_ms_[entry.node];
-    } else {
-        // A virtual leaf: the objects stored in the node itself that pass the frustum.
-        boxes_.clear();
-        forEachObjectInFrustum(tree, entry.node, view.frustum, entry.inside_frustum,
-                               [&](uint32_t o) {
-                                   boxes_.push_back(tree.objectBox(o));
-                                   extend(box, tree.objectBox(o));
-                                   if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
-                               });
-        if (boxes_.empty()) return false;
-        query_boxes = static_cast<uint32_t>(boxes_.size());
-    }
-    const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
-    const NodeStatistics& stats = statsOf(entry);
-    const NodeMotion motion{travelOf(entry), glm::length(center(box) - view.eye)};
-    NodeAction action = decideNodeAction(options_, stats, near, now, motion);
-    const QueryKind kind = queryKindOf(options_, stats, now);
-    if (action == NodeAction::Render) {
-        ++counters_.renders_without_query;
-    } else if (costs_active_ &&
-               !queryPays(costs_, draw_ms, query_boxes, occlusion_rate_[static_cast<size_t>(kind)])) {
-        action = NodeAction::Render;
-        ++counters_.cost_model_renders;
-    }
-
-    if (action == NodeAction::Render) {
-        if (entry.own_objects) {
-            drawNodeObjects(tree, entry.node, view.frustum, entry.inside_frustum, device);
-        } else {
+        const Aabb& box = tree.bounds(entry.index);
+        const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
+        Decision decision;
+        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &decision) ==
+            NodeAction::Render) {
             renderNode(tree, frame, entry, device);
+            return false;
         }
+        pending_.push_back({device.issueQuery(box, QueryTag::node(entry.index)), entry, decision});
+        ++counters_.queries;
+        return true;
+    }
+    // A virtual leaf: the objects stored in the node itself that pass the frustum.
+    if (options_.object_queries) {
+        return renderObjects(tree, frame, entry.index, entry.inside_frustum, device) > 0;
+    }
+    boxes_.clear();
+    Aabb box;
+    double draw_ms = 0.0;
+    forEachObjectInFrustum(tree, entry.index, view.frustum, entry.inside_frustum, [&](uint32_t o) {
+        boxes_.push_back(tree.objectBox(o));
+        extend(box, tree.objectBox(o));
+        if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
+    });
+    if (boxes_.empty()) return false;
+    const uint32_t query_boxes = static_cast<uint32_t>(boxes_.size());
+    Decision decision;
+    if (decide(frame, own_stats_[entry.index], box, travelOf(entry), draw_ms, query_boxes, false,
+               &decision) == NodeAction::Render) {
+        drawNodeObjects(tree, entry.index, view.frustum, entry.inside_frustum, device);
         return false;
     }
-    const QueryTag tag =
-        entry.own_objects ? QueryTag::nodeObjects(entry.node) : QueryTag::node(entry.node);
-    const QueryId id =
-        entry.own_objects
-            ? device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1))
-            : device.issueQuery(box, tag);
-    pending_.push_back({id, entry, kind});
+    const QueryTag tag = QueryTag::nodeObjects(entry.index);
+    pending_.push_back(
+        {device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
+         entry, decision});
     ++counters_.queries;
     return true;
 }
 
 void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                                RenderDevice& device) {
+    const Entry& e = pending.entry;
     const bool visible = device.queryResult(pending.id) > 0;
-    recordQueryResult(options_, statsOf(pending.entry), visible, frame.time_s,
-                      travelOf(pending.entry));
-    double& rate = occlusion_rate_[static_cast<size_t>(pending.kind)];
-    rate += kRateWeight * ((visible ? 0.0 : 1.0) - rate);
+    recordQueryResult(options_, statsOf(e), visible, frame.time_s, travelOf(e));
+    estimates_[estimateIndex(pending.decision.kind, e.subject == Subject::Object)].add(!visible);
     ++counters_.answers;
     counters_.visible_answers += visible ? 1 : 0;
     if (!visible) return;
-    if (pending.entry.own_objects) {
-        drawNodeObjects(tree, pending.entry.node, frame.view.frustum, pending.entry.inside_frustum,
-                        device);
-    } else {
-        renderNode(tree, frame, pending.entry, device);
+    switch (e.subject) {
+        case Subject::Node: renderNode(tree, frame, e, device); break;
+        case Subject::OwnObjects:
+            drawNodeObjects(tree, e.index, frame.view.frustum, e.inside_frustum, device);
+            break;
+        case Subject::Object: device.drawObject(e.index); break;
     }
 }
 
@@ -354,7 +436,7 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     heap_.clear();
     pending_.clear();
     pending_head_ = 0;
-    if (!isEmpty(tree.bounds(tree.root()))) push({0, tree.root(), false, false});
+    if (!isEmpty(tree.bounds(tree.root()))) push({0, tree.root(), Subject::Node, false});
 
     // Takes the oldest pending answer; `work_left` says whether the main queue held anything.
     auto take_oldest = [&](bool work_left) {

@@ -67,19 +67,28 @@ NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatist
 void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats, bool visible,
                        double now_s, double travel_m = 0.0);
 
-// What a node's statistics say about the query CalcNodeAction asks for; each kind has its own
-// recent occlusion rate in the cost model (improvement 3).
+// What a node's statistics say about the query CalcNodeAction asks for: its last result, or none.
+// Each kind has its own recent occlusion rate in the cost model (improvement 3), kept over the
+// answers to queries of that kind.
 enum class QueryKind : uint8_t {
-    Fresh,         // no statistics, or too old to count
-    LastVisible,   // the last result was visible (the re-query interval ran out)
+    Fresh,         // no statistics yet
+    LastVisible,   // the last result was visible (the re-query interval ran out, or too old)
     LastOccluded,  // the last result was occluded
 };
-QueryKind queryKindOf(const StatisticalOptions& options, const NodeStatistics& stats, double now_s);
+QueryKind queryKindOf(const NodeStatistics& stats);
+// Statistics exist and are not older than max_statistics_age_s.
+bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& stats, double now_s);
 
-// The cost model's rule (improvement 3): a query pays when its expected saving, the chance it
-// finds the node occluded times the node's draw cost, exceeds the query's own cost. A node
-// cheaper to draw than to query never pays (the chance is at most 1).
-bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate);
+// The cost model's estimate of how likely a query of one kind finds its subject occluded: the
+// running mean of the answers to such queries (1 = occluded). A kind whose queries the cost
+// model keeps vetoing would never be measured again, so every kExploreEvery-th veto is issued
+// anyway (a fixed count, so decisions stay deterministic) and keeps the estimate current.
+struct OcclusionEstimate {
+    static constexpr uint32_t kExploreEvery = 8;
+    double occluded = 0.5;
+    uint32_t vetoes = 0;  // vetoes since the last one that was issued anyway
+    void add(bool was_occluded);
+};
 
 // What the last frame did, for tests and reports.
 struct StatisticalFrameCounters {
@@ -106,24 +115,38 @@ public:
     const NodeStatistics& statistics(uint32_t node) const { return stats_[node]; }
     // The statistics of the objects stored in an inner node itself (its virtual leaf).
     const NodeStatistics& ownObjectStatistics(uint32_t node) const { return own_stats_[node]; }
+    // The statistics of one object (object_queries).
+    const NodeStatistics& objectStatistics(uint32_t object) const { return object_stats_[object]; }
     const StatisticalFrameCounters& lastFrame() const { return counters_; }
-    // The recent occlusion rate of each QueryKind (the cost model's estimates).
-    double occlusionRate(QueryKind kind) const { return occlusion_rate_[static_cast<size_t>(kind)]; }
+    // The cost model's occlusion estimate of each QueryKind, for queries on nodes (and virtual
+    // leaves) and on single objects.
+    const OcclusionEstimate& occlusionEstimate(QueryKind kind, bool object_query = false) const {
+        return estimates_[estimateIndex(kind, object_query)];
+    }
 
 private:
-    // An entry of the main queue: a node (its whole subtree) or, with virtual leaves, the objects
-    // stored in an inner node itself. `rank` is the entry's place in the front-to-back
-    // depth-first order of the tree for this frame's eye.
+    enum class Subject : uint8_t {
+        Node,        // a node's whole subtree (its bounds)
+        OwnObjects,  // the objects stored in an inner node itself (virtual leaf)
+        Object,      // one object (object_queries); only ever a pending query, never queued
+    };
+    // An entry of the main queue, or what a pending query is about. `index` is a node, or an
+    // object for Subject::Object. `rank` is the entry's place in the front-to-back depth-first
+    // order of the tree for this frame's eye.
     struct Entry {
         uint32_t rank;
-        uint32_t node;
-        bool own_objects;
+        uint32_t index;
+        Subject subject;
         bool inside_frustum;
+    };
+    // What decide() found besides the action, kept with a query until its answer.
+    struct Decision {
+        QueryKind kind = QueryKind::Fresh;
     };
     struct Pending {
         QueryId id;
         Entry entry;
-        QueryKind kind;
+        Decision decision;
     };
     struct Motion {  // cumulative motion of a node's movers (metres), for the distance rules
         double subtree_m = 0.0;
@@ -141,12 +164,23 @@ private:
                       bool inside_frustum);
     // Returns true when it issued a query.
     bool process(const BspTree& tree, const CullFrame& frame, Entry entry, RenderDevice& device);
+    // Draws the objects stored in `node` itself that pass the frustum, or, with object_queries,
+    // decides each on its own statistics. Returns the number of queries issued.
+    uint32_t renderObjects(const BspTree& tree, const CullFrame& frame, uint32_t node,
+                           bool inside_frustum, RenderDevice& device);
+    // CalcNodeAction and the cost model for one subject; counts the decision.
+    NodeAction decide(const CullFrame& frame, const NodeStatistics& stats, const Aabb& box,
+                      double travel_m, double draw_ms, uint32_t query_boxes, bool object_query,
+                      Decision* decision);
     void answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
     void renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                     RenderDevice& device);
-    NodeStatistics& statsOf(const Entry& e) { return e.own_objects ? own_stats_[e.node] : stats_[e.node]; }
+    NodeStatistics& statsOf(const Entry& e);
     double travelOf(const Entry& e) const;
+    static size_t estimateIndex(QueryKind kind, bool object_query) {
+        return static_cast<size_t>(kind) + (object_query ? 3 : 0);
+    }
 
     StatisticalOptions options_;
     CostModel costs_;
@@ -155,6 +189,8 @@ private:
     NodeStateArray<NodeStatistics> stats_;
     NodeStateArray<NodeStatistics> own_stats_;
     NodeStateArray<Motion> motion_;
+    std::vector<NodeStatistics> object_stats_;  // per object (object_queries)
+    std::vector<double> object_motion_m_;       // per object, cumulative (distance rules)
 
     // The tree's structure as last seen: nodes in depth-first order and the number of ranks each
     // subtree spans (a node, its virtual leaf if inner, and its children's subtrees).
@@ -179,7 +215,7 @@ private:
     std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;
 
-    std::array<double, 3> occlusion_rate_{0.5, 0.5, 0.5};  // per QueryKind
+    std::array<OcclusionEstimate, 6> estimates_{};  // per QueryKind, node then object queries
 
     // Fallback (improvement 5): answers and visible answers of the last frames, in a ring.
     std::vector<uint32_t> window_answers_;

@@ -52,8 +52,8 @@ std::vector<T> evenSample(const std::vector<T>& items, size_t count) {
 
 CostModel referenceCostModel() {
     CostModel c;
-    c.query_box_ms = 0.02;
-    c.triangle_ms = 6e-5;
+    c.query_box_ms = 0.008;
+    c.triangle_ms = 6.4e-5;
     c.draw_call_ms = 0.0;
     return c;
 }

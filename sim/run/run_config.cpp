@@ -56,8 +56,8 @@ const std::vector<Knob>& knobs() {
              c.statistical_plus.requery_distance_m = v;
              if (v > 0.0) c.statistical_plus.requery_parallax = 0.0;
          }},
-        {{"without", "statistical+ with one improvement off: 0 none, 1 ready answers, 2 virtual leaves, 3 cost model, 4 re-query by distance, 5 fallback (the ablation)"},
-         0, 5, true, isStatisticalPlus, [](CullerOptions& c, double v) {
+        {{"without", "statistical+ with one improvement off: 0 none, 1 ready answers, 2 virtual leaves, 3 cost model, 4 re-query by distance, 5 fallback, 6 object queries (the ablation)"},
+         0, 6, true, isStatisticalPlus, [](CullerOptions& c, double v) {
              StatisticalOptions& o = c.statistical_plus;
              switch (static_cast<int>(v)) {
                  case 1: o.ready_answers = false; break;
@@ -65,6 +65,7 @@ const std::vector<Knob>& knobs() {
                  case 3: o.cost_model = false; break;
                  case 4: o.requery_distance_m = o.requery_parallax = 0.0; break;
                  case 5: o.fallback = false; break;
+                 case 6: o.object_queries = false; break;
                  default: break;
              }
          }},
