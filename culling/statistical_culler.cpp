@@ -40,18 +40,22 @@ NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatist
     const uint32_t mask = options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
     const int occ_num = std::popcount(stats.history & mask);
     const double decay = options.decay_a - std::pow(options.decay_b, occ_num);
+    // The interval runs from the last query, or from the last time the cost model put the query
+    // off (improvement 3), whichever is later.
+    const double since_travel_m = std::max(stats.travel_at_query_m, stats.deferred_travel_m);
+    const double since_s = std::max(stats.last_query_time_s, stats.deferred_time_s);
     if (options.requery_distance_m > 0.0) {
-        const double travelled = motion.travel_m - stats.travel_at_query_m;
+        const double travelled = motion.travel_m - since_travel_m;
         return travelled > options.requery_distance_m * decay ? NodeAction::Query
                                                               : NodeAction::Render;
     }
     if (options.requery_parallax > 0.0) {
-        const double travelled = motion.travel_m - stats.travel_at_query_m;
+        const double travelled = motion.travel_m - since_travel_m;
         const double distance = std::max(motion.distance_m, kMinParallaxDistanceM);
         return travelled > options.requery_parallax * decay * distance ? NodeAction::Query
                                                                        : NodeAction::Render;
     }
-    const double not_query_time = stats.last_query_time_s + options.base_time_s * decay;
+    const double not_query_time = since_s + options.base_time_s * decay;
     return now_s > not_query_time ? NodeAction::Query : NodeAction::Render;
 }
 
@@ -258,7 +262,7 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
     }
 }
 
-NodeAction StatisticalCuller::decide(const CullFrame& frame, const NodeStatistics& stats,
+NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats,
                                      const Aabb& box, double travel_m, double draw_ms,
                                      uint32_t query_boxes, bool object_query, Decision* decision) {
     const CullView& view = frame.view;
@@ -270,22 +274,29 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, const NodeStatistic
         ++counters_.renders_without_query;
         return action;
     }
-    if (costs_active_) {
-        // Without usable statistics the answer is worth more than this frame's saving (it is
-        // what later decisions go on), so only a subject cheaper to draw than to query is drawn
-        // without one. With statistics, the occlusion estimate of this kind of query says what
-        // the query is expected to save.
-        const bool usable = statisticsUsable(options_, stats, frame.time_s);
-        OcclusionEstimate& estimate = estimates_[estimateIndex(decision->kind, object_query)];
-        if (!queryPays(costs_, draw_ms, query_boxes, usable ? estimate.occluded : 1.0)) {
-            if (!usable || ++estimate.vetoes < OcclusionEstimate::kExploreEvery) {
-                ++counters_.cost_model_renders;
-                return NodeAction::Render;
-            }
-            estimate.vetoes = 0;  // issued anyway, to keep the estimate measured
-        }
+    if (!costs_active_) return NodeAction::Query;
+    // Rule 1 (Guthe et al.): a subject cheaper to draw than to query is drawn without one,
+    // statistics or not.
+    if (!queryPays(costs_, draw_ms, query_boxes, 1.0)) {
+        ++counters_.cost_model_renders;
+        return NodeAction::Render;
     }
-    return NodeAction::Query;
+    // Rule 2: with usable statistics, the occlusion estimate of this kind of query must make it
+    // pay. Without them the answer is worth more than one frame's saving (later decisions go on
+    // it), so the query is issued.
+    if (!statisticsUsable(options_, stats, frame.time_s)) return NodeAction::Query;
+    OcclusionEstimate& estimate = estimates_[estimateIndex(decision->kind, object_query)];
+    if (queryPays(costs_, draw_ms, query_boxes, estimate.occluded)) return NodeAction::Query;
+    if (++estimate.vetoes >= OcclusionEstimate::kExploreEvery) {
+        estimate.vetoes = 0;  // asked anyway, so that the estimate stays measured
+        return NodeAction::Query;
+    }
+    // Put off: CalcNodeAction's interval starts again from now, as if the node had just been
+    // found visible, but the history and the age of the statistics stay what they were.
+    stats.deferred_time_s = frame.time_s;
+    stats.deferred_travel_m = travel_m;
+    ++counters_.cost_model_renders;
+    return NodeAction::Render;
 }
 
 uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,

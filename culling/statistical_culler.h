@@ -48,6 +48,10 @@ struct NodeStatistics {
     // The node's travel counter (camera path plus its movers' motion, metres) at its last query;
     // only the distance rules (requery_distance_m, requery_parallax) read it.
     double travel_at_query_m = 0.0;
+    // When (and at which travel counter) the cost model last put off a query the interval asked
+    // for: the interval runs again from there. 0 = never (both clocks start at 0).
+    double deferred_time_s = 0.0;
+    double deferred_travel_m = 0.0;
     uint32_t history = 0;  // bit i = result of the i-th most recent query (1 = visible)
     uint8_t results = 0;   // how many results the history holds (<= history_length)
 };
@@ -81,14 +85,21 @@ bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& s
 
 // The cost model's estimate of how likely a query of one kind finds its subject occluded: the
 // running mean of the answers to such queries (1 = occluded). A kind whose queries the cost
-// model keeps vetoing would never be measured again, so every kExploreEvery-th veto is issued
-// anyway (a fixed count, so decisions stay deterministic) and keeps the estimate current.
+// model keeps putting off would never be measured again, so every kExploreEvery-th query it
+// would put off on the estimate's word is issued anyway (a fixed count, so decisions stay
+// deterministic), which keeps the estimate current.
 struct OcclusionEstimate {
     static constexpr uint32_t kExploreEvery = 8;
     double occluded = 0.5;
     uint32_t vetoes = 0;  // vetoes since the last one that was issued anyway
     void add(bool was_occluded);
 };
+
+// The cost model's rule (improvement 3): a query pays when its expected saving, the chance it
+// finds the node occluded times the node's draw cost, exceeds the query's own cost. A node
+// cheaper to draw than to query never pays (the chance is at most 1, which is what the culler
+// assumes for a node without usable statistics).
+bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate);
 
 // What the last frame did, for tests and reports.
 struct StatisticalFrameCounters {
@@ -169,7 +180,7 @@ private:
     uint32_t renderObjects(const BspTree& tree, const CullFrame& frame, uint32_t node,
                            bool inside_frustum, RenderDevice& device);
     // CalcNodeAction and the cost model for one subject; counts the decision.
-    NodeAction decide(const CullFrame& frame, const NodeStatistics& stats, const Aabb& box,
+    NodeAction decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
                       double travel_m, double draw_ms, uint32_t query_boxes, bool object_query,
                       Decision* decision);
     void answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
