@@ -52,7 +52,7 @@ StatisticalOptions StatisticalOptions::plus() {
     o.virtual_leaves = true;
     o.object_queries = true;
     o.cost_model = true;
-    o.requery_parallax = 0.1;
+    o.requery_parallax = 0.025;
     o.fallback = true;
     return o;
 }

@@ -42,9 +42,11 @@ struct StatisticalOptions {
     double max_statistics_age_s = 2.0;   // older statistics are ignored: query again
     uint32_t queries_before_restart = 20;  // return to the queue start after this many queries
 
-    // (1) Take each answer as soon as it is ready and keep traversing; block on the oldest answer
-    // only when the queue holds nothing else to do. Off: the paper's passes (issue until the
-    // oldest answer is ready or queries_before_restart were issued, then take every answer).
+    // (1) Take each answer as soon as it is ready and keep traversing; block on the oldest
+    // answer only when nothing else can be done: the queue is empty, or queries_before_restart
+    // queries are in flight (the paper's bound on how far the traversal runs ahead of its
+    // answers). Off: the paper's passes (issue until the oldest answer is ready or
+    // queries_before_restart were issued, then take every pending answer, ready or not).
     bool ready_answers = false;
     // (2) The objects stored in an inner node itself get statistics and queries of their own
     // (a "virtual leaf": a query on the boxes of those objects). Off: they are drawn whenever

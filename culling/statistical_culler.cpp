@@ -478,15 +478,19 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
         }
     } else {
         // Improvement 1: every answer is taken as soon as it is ready (answers become ready in
-        // issue order, so only the oldest is polled), and the traversal goes on; the oldest
-        // answer is waited for only when the main queue is empty.
+        // issue order, so only the oldest is polled), and the traversal goes on. The oldest
+        // answer is waited for only when the main queue is empty, or when as many queries as
+        // the paper lets one pass issue (queries_before_restart) are in flight: the paper's own
+        // bound on how far the traversal may run ahead of its answers (farther nodes queried
+        // before nearer ones are drawn come back visible more often).
         while (true) {
             while (pending_head_ < pending_.size() && device.isQueryReady(pending_[pending_head_].id)) {
                 take_oldest(!heap_.empty());
             }
-            if (!heap_.empty()) {
+            const size_t in_flight = pending_.size() - pending_head_;
+            if (!heap_.empty() && in_flight < options_.queries_before_restart) {
                 process(tree, frame, pop(), device);
-            } else if (pending_head_ < pending_.size()) {
+            } else if (in_flight > 0) {
                 take_oldest(false);
             } else {
                 break;

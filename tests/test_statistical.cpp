@@ -240,9 +240,9 @@ void expectConservative(const ScriptedFrame& f, const std::vector<Aabb>& boxes,
     }
 }
 
-// (1) Ready answers: the culler blocks on an answer only when its queue holds nothing else. The
-// paper's loop blocks at the end of every pass on answers that are not ready yet, with nodes
-// still waiting in the queue.
+// (1) Ready answers: the culler blocks on an answer only when nothing else can be done (its
+// queue is empty, or queries_before_restart queries are in flight). The paper's loop blocks at
+// the end of every pass on all answers, ready or not, with nodes still waiting in the queue.
 TEST(StatisticalReadyAnswers, BlocksOnlyWhenTheQueueHoldsNothingElse) {
     const std::vector<Aabb> boxes = randomBoxes(1500, 7);
     const BspTree tree = buildTree(boxes);
