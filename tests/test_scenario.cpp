@@ -341,6 +341,7 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
     EXPECT_FALSE(plain.culler.statistical.cost_model);
     EXPECT_TRUE(plain.culler.statistical_plus.ready_answers);
     EXPECT_TRUE(plain.culler.statistical_plus.virtual_leaves);
+    EXPECT_TRUE(plain.culler.statistical_plus.object_queries);
     EXPECT_TRUE(plain.culler.statistical_plus.cost_model);
     EXPECT_TRUE(plain.culler.statistical_plus.fallback);
     EXPECT_GT(plain.culler.statistical_plus.requery_parallax, 0.0);
@@ -350,7 +351,7 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
         {"algorithm", "statistical+"},
         {"statistical+", {{"fallback", false}, {"requery_distance", 4.0}, {"requery_parallax", 0},
                           {"base_time", 0.5}}},
-        {"statistical", {{"virtual_leaves", true}}},
+        {"statistical", {{"virtual_leaves", true}, {"object_queries", true}}},
         {"cost_model", {{"query_box_ms", 0.02}, {"triangle_ms", 6e-5}, {"draw_call_ms", 0.001}}}};
     const Scenario s = parseScenarioText(scenario.dump(), "x.json");
     EXPECT_EQ(s.algorithm, "statistical+");
@@ -359,6 +360,7 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
     EXPECT_DOUBLE_EQ(s.culler.statistical_plus.requery_distance_m, 4.0);
     EXPECT_DOUBLE_EQ(s.culler.statistical_plus.base_time_s, 0.5);
     EXPECT_TRUE(s.culler.statistical.virtual_leaves);
+    EXPECT_TRUE(s.culler.statistical.object_queries);
     EXPECT_FALSE(s.culler.statistical.ready_answers);
     EXPECT_EQ(s.culler.cost_model, (CostModel{0.02, 6e-5, 0.001}));
 }

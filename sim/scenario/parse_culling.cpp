@@ -27,6 +27,7 @@ StatisticalOptions readStatistical(JsonObjectReader reader, const StatisticalOpt
         reader.unsignedInteger("queries_before_restart", o.queries_before_restart, 0, kMaxUint32));
     o.ready_answers = reader.boolean("ready_answers", o.ready_answers);
     o.virtual_leaves = reader.boolean("virtual_leaves", o.virtual_leaves);
+    o.object_queries = reader.boolean("object_queries", o.object_queries);
     o.cost_model = reader.boolean("cost_model", o.cost_model);
     o.requery_distance_m = reader.number("requery_distance", o.requery_distance_m);
     o.requery_parallax = reader.number("requery_parallax", o.requery_parallax);
