@@ -49,6 +49,10 @@ bool StatisticalOptions::isValid(std::string* error) const {
 StatisticalOptions StatisticalOptions::plus() {
     StatisticalOptions o;
     o.ready_answers = true;
+    // With ready answers this is the most queries in flight. On llvmpipe an answer arrives only
+    // once everything before it is rasterised, so the fewer queries run ahead of their answers
+    // the more depth each one sees (docs/statistical.md has the sweep).
+    o.queries_before_restart = 4;
     o.virtual_leaves = true;
     o.object_queries = true;
     o.cost_model = true;

@@ -46,6 +46,11 @@ const std::vector<Knob>& knobs() {
              c.statistical.decay_b = v;
              c.statistical_plus.decay_b = v;
          }},
+        {{"restart", "queries; queries_before_restart of the statistical cullers (statistical+: the most queries in flight)"},
+         1, 1e6, true, isStatistical, [](CullerOptions& c, double v) {
+             c.statistical.queries_before_restart = static_cast<uint32_t>(v);
+             c.statistical_plus.queries_before_restart = static_cast<uint32_t>(v);
+         }},
         {{"requery_parallax", "statistical+: re-query after travel / distance exceeds this times (a - b^occ_num); 0 = BASE_TIME seconds"},
          0, 1e6, false, isStatisticalPlus, [](CullerOptions& c, double v) {
              c.statistical_plus.requery_parallax = v;
