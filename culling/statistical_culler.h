@@ -21,9 +21,10 @@
 // entry's rank in that order: nodes are taken nearest first, however answers arrive.
 //
 // StatisticalOptions holds improvements beyond the paper, each off by default (the paper as
-// published) and all on in "statistical+": answers taken as they become ready, virtual leaves for
-// the objects stored in inner nodes, a cost model, re-query after a distance travelled, and a
-// fallback to frustum culling when little is occluded. docs/statistical.md describes them.
+// published) and all on in "statistical+": answers taken as they become ready (with a bound on
+// the queries in flight), virtual leaves for the objects stored in inner nodes, decisions per
+// object, a cost model, re-query after a distance travelled, and a fallback to frustum culling
+// when little is occluded. docs/statistical.md describes them and why.
 #pragma once
 
 #include "culling/culler.h"
@@ -109,7 +110,9 @@ struct StatisticalFrameCounters {
     uint32_t renders_without_query = 0;  // CalcNodeAction said RENDER (near plane included)
     uint32_t cost_model_renders = 0;     // CalcNodeAction said QUERY, the cost model RENDER
     uint32_t blocked_answers = 0;        // answers taken before they were ready
-    uint32_t blocked_with_work_left = 0; // ... while the main queue still held nodes
+    // ... while the culler could have gone on instead: the main queue held entries and (with
+    // ready_answers) fewer than queries_before_restart queries were in flight.
+    uint32_t blocked_with_work_left = 0;
     bool frustum_only = false;           // a fallback frame (improvement 5)
 };
 
