@@ -306,7 +306,8 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
         drawNodeObjects(tree, node, frustum, inside_frustum, device);
         return 0;
     }
-    // A leaf with one object in view: its node's query was the object's query.
+    // A leaf with one object in view: the leaf's own decision (its statistics, its query on
+    // bounds that are that object's box, or close to it) already was the object's.
     if (tree.node(node).isLeaf()) {
         uint32_t in_view = 0;
         forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t) { ++in_view; });
