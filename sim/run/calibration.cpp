@@ -58,7 +58,8 @@ CostModel referenceCostModel() {
     return c;
 }
 
-CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRenderer& renderer) {
+CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRenderer& renderer,
+                             uint32_t queries_in_flight) {
     const WorldState state = initialState(scene);
     const FrameView view = makeFrameView(scenario.camera, 0.0, scenario.width, scenario.height);
     // Camera-relative model-view matrices, as the simulation composes them.
@@ -127,7 +128,7 @@ CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRen
     }
 
     // Queries: the boxes of the tree's nodes in view, each its own query, all answered (the wait
-    // for the answers is part of their cost).
+    // for the answers is part of their cost), with as many in flight as the culler keeps.
     BspTree tree;
     tree.build(state.boxes, scenario.bsp);
     std::vector<Aabb> node_boxes;
@@ -141,9 +142,16 @@ CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRen
     node_boxes = evenSample(node_boxes, kMaxQueryBoxes);
     if (!node_boxes.empty()) {
         std::vector<QueryId> ids(node_boxes.size());
+        const size_t lag = queries_in_flight > 0 ? queries_in_flight : node_boxes.size();
         const double ms = medianMs(renderer, [&] {
-            for (size_t i = 0; i < node_boxes.size(); ++i) ids[i] = device.issueQuery(node_boxes[i]);
-            for (QueryId id : ids) device.queryResult(id);
+            for (size_t i = 0; i < node_boxes.size(); ++i) {
+                if (i >= lag) device.queryResult(ids[i - lag]);
+                ids[i] = device.issueQuery(node_boxes[i]);
+            }
+            for (size_t i = node_boxes.size() > lag ? node_boxes.size() - lag : 0;
+                 i < node_boxes.size(); ++i) {
+                device.queryResult(ids[i]);
+            }
         });
         costs.query_box_ms = ms / static_cast<double>(node_boxes.size());
     } else {

@@ -76,9 +76,13 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
             continue;
         }
         if (!choice || choice->source == "scenario") {
+            // Queries are timed with as many in flight as this culler keeps.
+            const uint32_t in_flight = o->ready_answers ? o->queries_before_restart : 0;
             choice = latency.deterministic
                          ? CostModelChoice{referenceCostModel(), "reference"}
-                         : CostModelChoice{calibrateCostModel(scene, scenario, renderer), "calibrated"};
+                         : CostModelChoice{
+                               calibrateCostModel(scene, scenario, renderer, in_flight),
+                               "calibrated"};
         }
         config.culler.cost_model = choice->costs;
     }
