@@ -21,6 +21,10 @@ constexpr std::array kAlgorithms = {
                     F::StopAndWait, true, true, false, false},
     AlgorithmTraits{"statistical", "Kovalcik & Sochor 2005, as published", F::Statistical, true,
                     true, false, false},
+    AlgorithmTraits{"statistical+",
+                    "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
+                    "re-query by distance and a frustum fallback",
+                    F::Statistical, true, true, false, false},
     AlgorithmTraits{"chc", "coherent hierarchical culling (Bittner et al. 2004)", F::Chc, true,
                     true, false, false},
     AlgorithmTraits{"chc++", "CHC++ (Mattausch et al. 2008)", F::Chcpp, true, true, false, false},
@@ -67,7 +71,15 @@ std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const Culle
     switch (algorithm.family) {
         case F::Vfc: return std::make_unique<VfcCuller>();
         case F::StopAndWait: return std::make_unique<StopAndWaitCuller>();
-        case F::Statistical: return std::make_unique<StatisticalCuller>(options.statistical);
+        case F::Statistical:
+            // Two algorithms share the family: the paper as published and statistical+, each
+            // with its own options.
+            if (algorithm.name == "statistical+") {
+                return std::make_unique<StatisticalCuller>(options.statistical_plus,
+                                                           options.cost_model, algorithm.name);
+            }
+            return std::make_unique<StatisticalCuller>(options.statistical, options.cost_model,
+                                                       algorithm.name);
         case F::Chc: return std::make_unique<ChcCuller>(options.chc);
         case F::Chcpp: return std::make_unique<ChcppCuller>(options.chcpp);
         case F::Async: return std::make_unique<AsyncCuller>(options.async);

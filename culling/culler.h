@@ -31,6 +31,11 @@ struct CullFrame {
     // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
     // oracles (AlgorithmTraits::oracle, culling/algorithms.h); empty otherwise.
     std::span<const uint8_t> ground_truth_visible;
+    // Per object, its triangle count. The culling layer knows no meshes, so the simulation passes
+    // a view of a table it builds once (per frame, beside the view, rather than through reset():
+    // no culler that ignores it has to change). Empty when unknown; a culler weighing draw costs
+    // (StatisticalOptions::cost_model) then leaves its cost model off.
+    std::span<const uint32_t> object_triangles;
 };
 
 class Culler {

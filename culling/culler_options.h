@@ -8,8 +8,32 @@
 
 namespace occsim {
 
+// What drawing and querying cost on the renderer at hand, in milliseconds: the per-frame cost
+// model of the brief's "Cost model" section, in the spirit of the start-up measurements of Guthe,
+// Balazs & Klein, "Near Optimal Hierarchical Culling" (EGSR 2006), section 4. Drawing an object
+// costs draw_call_ms + triangles * triangle_ms; a query costs query_box_ms per box it rasterises.
+// Plain data: measured at start-up by the run layer (sim/run/calibration.h), or given in a
+// scenario as culling.cost_model {"query_box_ms", "triangle_ms", "draw_call_ms"}, e.g. by the
+// tuner. All zero means "not known": cullers then ignore it.
+struct CostModel {
+    double query_box_ms = 0.0;
+    double triangle_ms = 0.0;
+    double draw_call_ms = 0.0;
+
+    bool known() const { return query_box_ms > 0.0 || triangle_ms > 0.0 || draw_call_ms > 0.0; }
+    double drawMs(uint64_t triangles) const {
+        return draw_call_ms + static_cast<double>(triangles) * triangle_ms;
+    }
+    // Every figure finite and >= 0.
+    bool isValid(std::string* error) const;
+    bool operator==(const CostModel&) const = default;
+};
+
 // Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries", WSCG
 // 2005, section 3: BASE_TIME and the decay curve of CalcNodeAction, and the two-queue traversal.
+// The first block is the paper; the second holds improvements beyond it, each off by default (so
+// that StatisticalOptions{} is the paper as published) and all on in plus() (the "statistical+"
+// algorithm). docs/statistical.md says what each does and why.
 struct StatisticalOptions {
     double base_time_s = 2.0 / 3.0;      // BASE_TIME
     double decay_a = 2.0;                // a in BASE_TIME * (a - b^occ_num)
@@ -17,6 +41,46 @@ struct StatisticalOptions {
     uint32_t history_length = 8;         // query results remembered per node (1..32)
     double max_statistics_age_s = 2.0;   // older statistics are ignored: query again
     uint32_t queries_before_restart = 20;  // return to the queue start after this many queries
+
+    // (1) Take each answer as soon as it is ready and keep traversing; block on the oldest
+    // answer only when nothing else can be done: the queue is empty, or queries_before_restart
+    // queries are in flight (the paper's bound on how far the traversal runs ahead of its
+    // answers). Off: the paper's passes (issue until the oldest answer is ready or
+    // queries_before_restart were issued, then take every pending answer, ready or not).
+    bool ready_answers = false;
+    // (2) The objects stored in an inner node itself get statistics and queries of their own
+    // (a "virtual leaf": a query on the boxes of those objects). Off: they are drawn whenever
+    // their node is rendered, as the paper does (it keeps geometry in leaves).
+    bool virtual_leaves = false;
+    // (2b) The objects of a rendered node (a leaf's, or a virtual leaf's) are decided one by one,
+    // each with statistics and queries of its own, instead of drawn (or queried) together. A
+    // leaf holding a single object needs no more than its own query.
+    bool object_queries = false;
+    // (3) Use CullerOptions::cost_model: a node cheaper to draw than to query is drawn without
+    // one, and a query is issued only when its expected saving (the recent occlusion rate of
+    // such queries times the node's draw cost) exceeds its cost.
+    bool cost_model = false;
+    // (4) Re-query after a distance travelled instead of BASE_TIME seconds. The travel of a
+    // node since its last query is the camera's path plus, for a node holding movers, the
+    // farthest any of them moved. requery_distance_m > 0: re-query once the travel exceeds
+    // requery_distance_m * (a - b^occ_num) metres. requery_parallax > 0: once the travel divided
+    // by the node's distance from the eye (roughly the angle its view turned through) exceeds
+    // requery_parallax * (a - b^occ_num), which needs no scene scale. At most one is > 0;
+    // both 0 = the paper's seconds.
+    double requery_distance_m = 0.0;
+    double requery_parallax = 0.0;
+    // (5) When the recent answers show little occlusion (at least fallback_visible_share of the
+    // answers of the last fallback_window_frames frames came back visible), stop querying and
+    // cull by the frustum only for fallback_recheck_s seconds (simulation time), then look again.
+    bool fallback = false;
+    double fallback_visible_share = 0.9;
+    uint32_t fallback_window_frames = 8;
+    double fallback_recheck_s = 1.0;
+
+    // The paper as published (the default).
+    static StatisticalOptions paper() { return {}; }
+    // Every improvement on: the "statistical+" algorithm's defaults.
+    static StatisticalOptions plus();
 
     bool isValid(std::string* error) const;
 };
@@ -76,7 +140,9 @@ struct ApproximationOptions {
 };
 
 struct CullerOptions {
-    StatisticalOptions statistical;
+    StatisticalOptions statistical;                                   // "statistical"
+    StatisticalOptions statistical_plus = StatisticalOptions::plus();  // "statistical+"
+    CostModel cost_model;  // unknown (all zero) unless given or measured at start-up
     ChcOptions chc;
     ChcppOptions chcpp;
     AsyncOptions async;

@@ -19,7 +19,7 @@ void ScriptedQueryDevice::drawObject(uint32_t object) {
 }
 
 QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
-                                        std::span<const QueryTag> /*subjects*/) {
+                                        std::span<const QueryTag> subjects) {
     uint64_t samples = 0;
     for (size_t o = 0; o < boxes_.size(); ++o) {
         if (!visible_[o]) continue;
@@ -31,6 +31,7 @@ QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
         }
     }
     queried_.insert(queried_.end(), boxes.begin(), boxes.end());
+    tags_.push_back(subjects.empty() ? QueryTag{} : subjects.front());
     QueryId id = 0;
     while (id < queries_.size() && queries_[id].in_use) ++id;
     if (id == queries_.size()) queries_.push_back({});
@@ -56,6 +57,7 @@ uint64_t ScriptedQueryDevice::queryResult(QueryId id) {
 void ScriptedQueryDevice::clearLog() {
     drawn_.clear();
     queried_.clear();
+    tags_.clear();
 }
 
 uint32_t ScriptedQueryDevice::pendingQueries() const {

@@ -29,6 +29,8 @@ public:
     // What the culler did since the last clearLog().
     const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
     const std::vector<Aabb>& queriedBoxes() const { return queried_; }
+    // What each query since the last clearLog() was for (its first subject), in issue order.
+    const std::vector<QueryTag>& queryTags() const { return tags_; }
     void clearLog();
     uint32_t pendingQueries() const;
     // The most queries that were ever in flight at once (issued, result not yet fetched).
@@ -48,6 +50,7 @@ private:
     std::vector<Pending> queries_;
     std::vector<uint32_t> drawn_;
     std::vector<Aabb> queried_;
+    std::vector<QueryTag> tags_;
 };
 
 }  // namespace occsim

@@ -223,7 +223,7 @@ TEST(AlgorithmRegistry, StatesWhatEachAlgorithmIs) {
     EXPECT_EQ(speedupReference().name, "vfc");
     EXPECT_TRUE(findAlgorithm("ideal")->oracle);
     EXPECT_FALSE(findAlgorithm("async")->conservative);
-    for (const char* name : {"stop-and-wait", "statistical", "chc", "chc++"}) {
+    for (const char* name : {"stop-and-wait", "statistical", "statistical+", "chc", "chc++"}) {
         EXPECT_TRUE(findAlgorithm(name)->conservative) << name;
         EXPECT_TRUE(findAlgorithm(name)->issues_queries) << name;
     }
@@ -239,14 +239,19 @@ TEST_P(SteadyState, AFrameAllocatesNothing) {
     std::mt19937 rng(3);
     const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.2, rng);
     const CullView view = makeView({0, 5, 0}, {30, 0, -100});
-    const std::unique_ptr<Culler> culler = testing::cullerNamed(GetParam(), CullerOptions{});
+    // A cost model and triangle counts, so that statistical+ runs every one of its parts.
+    CullerOptions options;
+    options.cost_model = {0.01, 5e-5, 0.005};
+    const std::vector<uint32_t> triangles(boxes.size(), 1000);
+    const std::unique_ptr<Culler> culler = testing::cullerNamed(GetParam(), options);
     culler->reset(tree);
     ScriptedQueryDevice device(3);
     device.setVisibility(visible, boxes);
     uint64_t allocations = 0, first_frame = 0;
     for (uint64_t f = 0; f < 40; ++f) {
         device.clearLog();
-        const CullFrame frame = makeFrame(view, f, static_cast<double>(f) / 30.0);
+        CullFrame frame = makeFrame(view, f, static_cast<double>(f) / 30.0);
+        frame.object_triangles = triangles;
         g_allocations = 0;
         g_count_allocations = true;
         culler->cullAndRender(tree, frame, device);
@@ -259,7 +264,8 @@ TEST_P(SteadyState, AFrameAllocatesNothing) {
     EXPECT_EQ(allocations, 0u) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Cullers, SteadyState, ::testing::Values("chc", "chc++", "async"),
+INSTANTIATE_TEST_SUITE_P(Cullers, SteadyState,
+                         ::testing::Values("statistical", "statistical+", "chc", "chc++", "async"),
                          [](const ::testing::TestParamInfo<const char*>& param_info) {
                              std::string name = param_info.param;
                              for (char& c : name) c = c == '+' ? 'p' : c;
@@ -319,9 +325,9 @@ INSTANTIATE_TEST_SUITE_P(Latencies, ChcSettling, ::testing::Values(0u, 3u, 1000u
 class ConservativeTraversal
     : public ::testing::TestWithParam<std::tuple<std::string, uint32_t>> {};
 
-// Over frames with visibility changing at random, a turning camera and any query latency, CHC and
-// CHC++ (threshold 0) draw every visible object in the frustum, nothing outside it, nothing
-// twice, and answer every query within its frame.
+// Over frames with visibility changing at random, a turning camera and any query latency, the
+// statistical cullers, CHC and CHC++ (threshold 0) draw every visible object in the frustum,
+// nothing outside it, nothing twice, and answer every query within its frame.
 TEST_P(ConservativeTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible) {
     const auto& [algorithm, latency] = GetParam();
     const std::vector<Aabb> boxes = randomBoxes(1500, 7);
@@ -353,8 +359,8 @@ TEST_P(ConservativeTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible
 
 INSTANTIATE_TEST_SUITE_P(
     CullersAndLatencies, ConservativeTraversal,
-    ::testing::Combine(::testing::Values("chc", "chc skip", "chc++", "chc++ box", "chc++ skip",
-                                         "chc++ single"),
+    ::testing::Combine(::testing::Values("statistical", "statistical+", "chc", "chc skip", "chc++",
+                                         "chc++ box", "chc++ skip", "chc++ single"),
                        ::testing::Values(0u, 3u, 1000u)),
     [](const ::testing::TestParamInfo<ConservativeTraversal::ParamType>& param_info) {
         std::string name = std::get<0>(param_info.param) + "_latency" +

@@ -338,6 +338,51 @@ TEST(ScenarioRanges, InvalidStatisticalOptionsReportIsValidMessage) {
     expectError(scenario, "/culling/statistical", "decay_b must be in [0, 1]");
 }
 
+TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
+    json scenario = minimalScenario();
+    const Scenario plain = parseScenarioText(scenario.dump(), "x.json");
+    EXPECT_FALSE(plain.culler.statistical.ready_answers) << "the paper by default";
+    EXPECT_FALSE(plain.culler.statistical.cost_model);
+    EXPECT_TRUE(plain.culler.statistical_plus.ready_answers);
+    EXPECT_TRUE(plain.culler.statistical_plus.virtual_leaves);
+    EXPECT_TRUE(plain.culler.statistical_plus.object_queries);
+    EXPECT_TRUE(plain.culler.statistical_plus.cost_model);
+    EXPECT_TRUE(plain.culler.statistical_plus.fallback);
+    EXPECT_GT(plain.culler.statistical_plus.requery_parallax, 0.0);
+    EXPECT_FALSE(plain.culler.cost_model.known()) << "measured at start-up unless given";
+
+    scenario["culling"] = {
+        {"algorithm", "statistical+"},
+        {"statistical+", {{"fallback", false}, {"requery_distance", 4.0}, {"requery_parallax", 0},
+                          {"base_time", 0.5}}},
+        {"statistical", {{"virtual_leaves", true}, {"object_queries", true}}},
+        {"cost_model", {{"query_box_ms", 0.02}, {"triangle_ms", 6e-5}, {"draw_call_ms", 0.001}}}};
+    const Scenario s = parseScenarioText(scenario.dump(), "x.json");
+    EXPECT_EQ(s.algorithm, "statistical+");
+    EXPECT_FALSE(s.culler.statistical_plus.fallback);
+    EXPECT_TRUE(s.culler.statistical_plus.ready_answers) << "keys not given keep the plus defaults";
+    EXPECT_DOUBLE_EQ(s.culler.statistical_plus.requery_distance_m, 4.0);
+    EXPECT_DOUBLE_EQ(s.culler.statistical_plus.base_time_s, 0.5);
+    EXPECT_TRUE(s.culler.statistical.virtual_leaves);
+    EXPECT_TRUE(s.culler.statistical.object_queries);
+    EXPECT_FALSE(s.culler.statistical.ready_answers);
+    EXPECT_EQ(s.culler.cost_model, (CostModel{0.02, 6e-5, 0.001}));
+}
+
+TEST(ScenarioRanges, InvalidStatisticalPlusAndCostModelReportTheirObjects) {
+    json scenario = minimalScenario();
+    scenario["culling"] = {{"statistical+", {{"requery_distance", 3.0}}}};
+    expectError(scenario, "/culling/statistical+", "requery_distance and requery_parallax are alternatives");
+    scenario["culling"] = {{"statistical+", {{"fallback_visible_share", 1.5}}}};
+    expectError(scenario, "/culling/statistical+", "fallback_visible_share must be in [0, 1]");
+    scenario["culling"] = {{"cost_model", {{"query_box_ms", -1.0}}}};
+    expectError(scenario, "/culling/cost_model", "finite numbers >= 0");
+    scenario["culling"] = {{"cost_model", {{"query_box_ms", 0.0}}}};
+    expectError(scenario, "/culling/cost_model", "at least one figure > 0");
+    scenario["culling"] = {{"cost_model", {{"query_ms", 0.1}}}};
+    expectError(scenario, "/culling/cost_model/query_ms", "unknown key");
+}
+
 TEST(ScenarioRanges, InvalidPeerCullerOptionsReportIsValidMessageAtTheirObject) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"chc", {{"visible_frames_skip", 2000000}}}};
@@ -393,8 +438,8 @@ TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"algorithm", "statstical"}};
     expectError(scenario, "/culling/algorithm",
-                "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"chc\", "
-                "\"chc++\", \"async\", \"ideal\" (did you mean \"statistical\"?), got "
+                "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"statistical+\", "
+                "\"chc\", \"chc++\", \"async\", \"ideal\" (did you mean \"statistical\"?), got "
                 "\"statstical\" (string)");
 }
 

@@ -159,6 +159,12 @@ nlohmann::json summaryJson(const BenchResult& result) {
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);
     if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
+    if (m.cost_model) {
+        summary["cost_model"] = {{"source", m.cost_model_source},
+                                 {"query_box_ms", m.cost_model->query_box_ms},
+                                 {"triangle_ms", m.cost_model->triangle_ms},
+                                 {"draw_call_ms", m.cost_model->draw_call_ms}};
+    }
     return summary;
 }
 

@@ -44,6 +44,10 @@ struct RunMetadata {
     bool error_measured = false;
     std::optional<uint32_t> deterministic_latency;  // commands, when the mode was on
     std::optional<Sweep> sweep;
+    // The cost model the cullers that weigh costs were given (statistical+), and where it came
+    // from: "scenario", "calibrated" (measured before the first frame) or "reference".
+    std::optional<CostModel> cost_model;
+    std::string cost_model_source;
     // The machine.
     uint32_t hardware_threads = 0;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"

@@ -11,6 +11,7 @@ namespace {
 // Algorithms whose decisions come from occlusion queries: the approximation knobs apply to them.
 bool issuesQueries(const AlgorithmTraits& a) { return a.issues_queries; }
 bool isStatistical(const AlgorithmTraits& a) { return a.family == AlgorithmFamily::Statistical; }
+bool isStatisticalPlus(const AlgorithmTraits& a) { return a.name == "statistical+"; }
 bool isAsync(const AlgorithmTraits& a) { return a.family == AlgorithmFamily::Async; }
 
 struct Knob {
@@ -29,12 +30,50 @@ const std::vector<Knob>& knobs() {
         {{"stale", "0 or 1; 1 = results not ready when needed are taken from the previous frame instead of waited for (all query-based algorithms)"},
          0, 1, true, issuesQueries,
          [](CullerOptions& c, double v) { c.approximation.stale_results = v != 0.0; }},
-        {{"base_time", "seconds; BASE_TIME of the statistical culler"}, 0, 1e6, false,
-         isStatistical, [](CullerOptions& c, double v) { c.statistical.base_time_s = v; }},
-        {{"decay_a", "a in BASE_TIME * (a - b^occ_num), statistical culler"}, 1, 1e6, false,
-         isStatistical, [](CullerOptions& c, double v) { c.statistical.decay_a = v; }},
-        {{"decay_b", "b in BASE_TIME * (a - b^occ_num), statistical culler"}, 0, 1, false,
-         isStatistical, [](CullerOptions& c, double v) { c.statistical.decay_b = v; }},
+        // The paper's knobs apply to both statistical cullers (each configuration runs one).
+        {{"base_time", "seconds; BASE_TIME of the statistical cullers"}, 0, 1e6, false,
+         isStatistical, [](CullerOptions& c, double v) {
+             c.statistical.base_time_s = v;
+             c.statistical_plus.base_time_s = v;
+         }},
+        {{"decay_a", "a in BASE_TIME * (a - b^occ_num), statistical cullers"}, 1, 1e6, false,
+         isStatistical, [](CullerOptions& c, double v) {
+             c.statistical.decay_a = v;
+             c.statistical_plus.decay_a = v;
+         }},
+        {{"decay_b", "b in BASE_TIME * (a - b^occ_num), statistical cullers"}, 0, 1, false,
+         isStatistical, [](CullerOptions& c, double v) {
+             c.statistical.decay_b = v;
+             c.statistical_plus.decay_b = v;
+         }},
+        {{"restart", "queries; queries_before_restart of the statistical cullers (statistical+: the most queries in flight)"},
+         1, 1e6, true, isStatistical, [](CullerOptions& c, double v) {
+             c.statistical.queries_before_restart = static_cast<uint32_t>(v);
+             c.statistical_plus.queries_before_restart = static_cast<uint32_t>(v);
+         }},
+        {{"requery_parallax", "statistical+: re-query after travel / distance exceeds this times (a - b^occ_num); 0 = BASE_TIME seconds"},
+         0, 1e6, false, isStatisticalPlus, [](CullerOptions& c, double v) {
+             c.statistical_plus.requery_parallax = v;
+             if (v > 0.0) c.statistical_plus.requery_distance_m = 0.0;
+         }},
+        {{"requery_distance", "metres; statistical+: re-query after this distance travelled times (a - b^occ_num); 0 = BASE_TIME seconds"},
+         0, 1e6, false, isStatisticalPlus, [](CullerOptions& c, double v) {
+             c.statistical_plus.requery_distance_m = v;
+             if (v > 0.0) c.statistical_plus.requery_parallax = 0.0;
+         }},
+        {{"without", "statistical+ with one improvement off: 0 none, 1 ready answers, 2 virtual leaves, 3 cost model, 4 re-query by distance, 5 fallback, 6 object queries (the ablation)"},
+         0, 6, true, isStatisticalPlus, [](CullerOptions& c, double v) {
+             StatisticalOptions& o = c.statistical_plus;
+             switch (static_cast<int>(v)) {
+                 case 1: o.ready_answers = false; break;
+                 case 2: o.virtual_leaves = false; break;
+                 case 3: o.cost_model = false; break;
+                 case 4: o.requery_distance_m = o.requery_parallax = 0.0; break;
+                 case 5: o.fallback = false; break;
+                 case 6: o.object_queries = false; break;
+                 default: break;
+             }
+         }},
         {{"retest", "frames; how often the per-object async scheme re-tests a visible object"},
          1, 1000, true, isAsync,
          [](CullerOptions& c, double v) { c.async.retest_interval_frames = static_cast<uint32_t>(v); }},

@@ -1,6 +1,7 @@
 #include "sim/run/runner.h"
 
 #include "render/gl_context.h"
+#include "sim/run/calibration.h"
 
 #include <algorithm>
 #include <chrono>
@@ -53,12 +54,47 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     return m;
 }
 
+// The statistical options a configuration's culler reads, when it is a statistical culler.
+const StatisticalOptions* statisticalOptionsOf(const RunConfig& config) {
+    if (config.algorithm->family != AlgorithmFamily::Statistical) return nullptr;
+    return config.algorithm->name == "statistical+" ? &config.culler.statistical_plus
+                                                    : &config.culler.statistical;
+}
+
+// Gives every configuration whose culler weighs costs and has no cost model one: measured on this
+// renderer before the first frame, or, when decisions must be reproducible (deterministic
+// latency), the reference figures. A cost model given by the scenario is kept as it is.
+std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, const Scene& scene,
+                                               const Scenario& scenario, GlRenderer& renderer,
+                                               const LatencyMode& latency) {
+    std::optional<CostModelChoice> choice;
+    for (RunConfig& config : configs) {
+        const StatisticalOptions* o = statisticalOptionsOf(config);
+        if (!o || !o->cost_model) continue;
+        if (config.culler.cost_model.known()) {
+            if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};
+            continue;
+        }
+        if (!choice || choice->source == "scenario") {
+            // Queries are timed with as many in flight as this culler keeps.
+            const uint32_t in_flight = o->ready_answers ? o->queries_before_restart : 0;
+            choice = latency.deterministic
+                         ? CostModelChoice{referenceCostModel(), "reference"}
+                         : CostModelChoice{
+                               calibrateCostModel(scene, scenario, renderer, in_flight),
+                               "calibrated"};
+        }
+        config.culler.cost_model = choice->costs;
+    }
+    return choice;
+}
+
 }  // namespace
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
-    const std::vector<RunConfig> configs =
+    std::vector<RunConfig> configs =
         options.configs.empty() ? planConfigs(options.algorithms, scenario.culler, options.sweep)
                                 : options.configs;
     const uint32_t repetitions = std::max(1u, options.repetitions);
@@ -69,8 +105,19 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
+    const std::optional<CostModelChoice> costs =
+        chooseCostModel(configs, scene, scenario, renderer, options.latency);
+    if (costs && costs->source == "calibrated") {
+        std::fprintf(stderr, "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f ms per draw call\n",
+                     costs->costs.query_box_ms, costs->costs.triangle_ms, costs->costs.draw_call_ms);
+    }
+
     BenchResult result;
     result.metadata = metadataOf(scenario, scene, options, repetitions, context->rendererName());
+    if (costs) {
+        result.metadata.cost_model = costs->costs;
+        result.metadata.cost_model_source = costs->source;
+    }
     result.runs.resize(configs.size());
     for (size_t c = 0; c < configs.size(); ++c) result.runs[c].algorithm = configs[c].algorithm;
 

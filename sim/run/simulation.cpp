@@ -86,6 +86,10 @@ Simulation::Simulation(const Scene& scene, const Scenario& scenario,
     tree_.build(state_.boxes, scenario.bsp);
     culler_->reset(tree_);
     model_view_.resize(scene.objectCount());
+    object_triangles_.resize(scene.objectCount());
+    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
+        object_triangles_[o] = scene.meshes[scene.object_mesh[o]].triangleCount();
+    }
 }
 
 void Simulation::computeModelViews() {
@@ -134,6 +138,7 @@ void Simulation::advance() {
     cull_frame_.frame_index = frame_;
     cull_frame_.time_s = stats.time_s;
     cull_frame_.view = view_.cull;
+    cull_frame_.object_triangles = object_triangles_;
     advanced_ = true;
 }
 

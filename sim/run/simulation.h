@@ -156,6 +156,7 @@ private:
     FrameView view_;
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;
+    std::vector<uint32_t> object_triangles_;  // per object, for cullers that weigh draw costs
     GroundTruthFrame ground_truth_;
     ErrorFrame worst_;
     std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn

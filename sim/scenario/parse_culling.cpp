@@ -12,8 +12,10 @@ namespace {
 
 constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 
-StatisticalOptions readStatistical(JsonObjectReader reader) {
-    StatisticalOptions o;
+// The same keys for "statistical" and "statistical+"; only the defaults differ (the paper's, or
+// every improvement on).
+StatisticalOptions readStatistical(JsonObjectReader reader, const StatisticalOptions& defaults) {
+    StatisticalOptions o = defaults;
     o.base_time_s = reader.number("base_time", o.base_time_s);
     o.decay_a = reader.number("decay_a", o.decay_a);
     o.decay_b = reader.number("decay_b", o.decay_b);
@@ -23,10 +25,34 @@ StatisticalOptions readStatistical(JsonObjectReader reader) {
     o.max_statistics_age_s = reader.number("max_statistics_age", o.max_statistics_age_s);
     o.queries_before_restart = static_cast<uint32_t>(
         reader.unsignedInteger("queries_before_restart", o.queries_before_restart, 0, kMaxUint32));
+    o.ready_answers = reader.boolean("ready_answers", o.ready_answers);
+    o.virtual_leaves = reader.boolean("virtual_leaves", o.virtual_leaves);
+    o.object_queries = reader.boolean("object_queries", o.object_queries);
+    o.cost_model = reader.boolean("cost_model", o.cost_model);
+    o.requery_distance_m = reader.number("requery_distance", o.requery_distance_m);
+    o.requery_parallax = reader.number("requery_parallax", o.requery_parallax);
+    o.fallback = reader.boolean("fallback", o.fallback);
+    o.fallback_visible_share = reader.number("fallback_visible_share", o.fallback_visible_share);
+    o.fallback_window_frames = static_cast<uint32_t>(
+        reader.unsignedInteger("fallback_window_frames", o.fallback_window_frames, 0, kMaxUint32));
+    o.fallback_recheck_s = reader.number("fallback_recheck", o.fallback_recheck_s);
     reader.finish();
     std::string why;
     if (!o.isValid(&why)) reader.failHere(why);
     return o;
+}
+
+// What drawing and querying cost (milliseconds); the tuner writes it, or calibration measures it.
+CostModel readCostModel(JsonObjectReader reader) {
+    CostModel c;
+    c.query_box_ms = reader.number("query_box_ms", c.query_box_ms);
+    c.triangle_ms = reader.number("triangle_ms", c.triangle_ms);
+    c.draw_call_ms = reader.number("draw_call_ms", c.draw_call_ms);
+    reader.finish();
+    std::string why;
+    if (!c.isValid(&why)) reader.failHere(why);
+    if (!c.known()) reader.failHere("a cost model needs at least one figure > 0 (milliseconds)");
+    return c;
 }
 
 // Counts that the culling module keeps as uint32_t: anything larger is a type error here, and
@@ -79,7 +105,13 @@ void readCulling(JsonObjectReader& top, Scenario& s) {
     s.culler.approximation.stale_results =
         culling->boolean("stale_results", s.culler.approximation.stale_results);
     if (auto statistical = culling->optionalObject("statistical")) {
-        s.culler.statistical = readStatistical(std::move(*statistical));
+        s.culler.statistical = readStatistical(std::move(*statistical), StatisticalOptions::paper());
+    }
+    if (auto plus = culling->optionalObject("statistical+")) {
+        s.culler.statistical_plus = readStatistical(std::move(*plus), StatisticalOptions::plus());
+    }
+    if (auto costs = culling->optionalObject("cost_model")) {
+        s.culler.cost_model = readCostModel(std::move(*costs));
     }
     if (auto chc = culling->optionalObject("chc")) s.culler.chc = readChc(std::move(*chc));
     if (auto chcpp = culling->optionalObject("chc++")) {

@@ -1,0 +1,656 @@
+// The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
+// drawn before them (culling/depth_raster_device.h): no OpenGL.
+#include "culling/depth_raster_device.h"
+#include "culling/scripted_query_device.h"
+#include "culling/statistical_culler.h"
+#include "culling_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace occsim {
+namespace {
+
+using testing::buildTree;
+using testing::inFrustum;
+using testing::makeFrame;
+using testing::makeView;
+using testing::randomBoxes;
+
+struct Camera {
+    CullView view;
+    glm::mat4 view_projection;
+};
+
+Camera makeCamera(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f, float near = 0.1f,
+                  float far = 1000.0f, float aspect = 4.0f / 3.0f) {
+    Camera c;
+    c.view = testing::makeView(eye, target, fov_deg, near, far, aspect);
+    c.view_projection = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
+                        glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    return c;
+}
+
+// A wall of boxes across the view near the camera, and a field of small boxes behind it that the
+// wall hides completely.
+struct WallAndField {
+    std::vector<Aabb> boxes;
+    uint32_t wall_count = 0;
+    WallAndField() {
+        for (int i = 0; i < 16; ++i) {
+            const float x = -24.0f + 3.0f * static_cast<float>(i);
+            boxes.push_back({glm::vec3(x, 0, -1), glm::vec3(x + 2.9f, 12, 0)});
+        }
+        wall_count = static_cast<uint32_t>(boxes.size());
+        for (int z = 0; z < 24; ++z) {
+            for (int x = 0; x < 16; ++x) {
+                const glm::vec3 lo(-24.0f + 3.0f * static_cast<float>(x), 0.0f,
+                                   -8.0f - 4.0f * static_cast<float>(z));
+                boxes.push_back({lo, lo + glm::vec3(1.0f, 1.5f, 1.0f)});
+            }
+        }
+    }
+};
+
+TEST(DepthRasterDevice, ANearerDrawnBoxHidesAFartherOne) {
+    const Camera cam = makeCamera({0, 1, 10}, {0, 1, 0});
+    DepthRasterDevice device(32, 24);
+    const std::vector<Aabb> boxes = {{glm::vec3(-5, -5, -1), glm::vec3(5, 5, 0)},
+                                     {glm::vec3(-1, 0, -20), glm::vec3(1, 2, -18)}};
+    device.beginFrame(cam.view_projection, cam.view.eye, boxes);
+    EXPECT_GT(device.queryResult(device.issueQuery(boxes[1])), 0u) << "nothing drawn yet";
+    device.drawObject(0);
+    EXPECT_EQ(device.queryResult(device.issueQuery(boxes[1])), 0u) << "behind the drawn wall";
+    EXPECT_GT(device.queryResult(device.issueQuery(boxes[0])), 0u) << "ties pass";
+    // A box containing a hidden object and part of the wall passes; ground truth sees the wall.
+    Aabb both = boxes[0];
+    extend(both, boxes[1]);
+    EXPECT_GT(device.queryResult(device.issueQuery(both)), 0u);
+    EXPECT_EQ(device.groundTruth(), (std::vector<uint8_t>{1, 0}));
+}
+
+// What a culler did over one frame on the depth raster: objects drawn that ground truth does not
+// see, and objects ground truth sees that were not drawn.
+struct DepthFrame {
+    uint64_t hidden_drawn = 0;
+    uint64_t hidden_in_frustum = 0;  // what frustum culling alone would draw in vain
+    uint64_t missed = 0;
+};
+
+DepthFrame runDepthFrame(Culler& culler, const BspTree& tree, DepthRasterDevice& device,
+                         const std::vector<Aabb>& boxes, const Camera& cam, uint64_t frame) {
+    device.beginFrame(cam.view_projection, cam.view.eye, boxes);
+    culler.cullAndRender(tree, makeFrame(cam.view, frame, static_cast<double>(frame) / 30.0), device);
+    const std::vector<uint8_t> truth = device.groundTruth();
+    DepthFrame out;
+    std::vector<uint8_t> drawn(boxes.size(), 0);
+    for (uint32_t o : device.drawnObjects()) {
+        drawn[o] = 1;
+        out.hidden_drawn += !truth[o];
+    }
+    for (uint32_t o = 0; o < boxes.size(); ++o) {
+        out.missed += truth[o] && !drawn[o];
+        out.hidden_in_frustum +=
+            !truth[o] && classify(cam.view.frustum, boxes[o]) != FrustumTest::Outside;
+    }
+    return out;
+}
+
+// The paper's queue is processed front to back: the children of the nodes whose answers come back
+// in one pass go back to the queue start in the order of their parents, nearest first (Kovalcik
+// & Sochor 2005, section 3, "queue.AddChildrenBeforePointer"). Then the wall in front is drawn
+// before the field behind it is queried, and the field is culled. Taken in the reverse order,
+// the farthest subtree is traversed first and most of the field is drawn before the wall.
+TEST(StatisticalPaperOrder, AWallDrawnFirstHidesTheFieldBehindIt) {
+    const WallAndField scene;
+    const BspTree tree = buildTree(scene.boxes, 4, BspSplitRule::Sah);
+    StatisticalCuller culler;  // the paper's options
+    culler.reset(tree);
+    DepthRasterDevice device(64, 48, 8);
+    DepthFrame total;
+    for (uint64_t f = 0; f < 60; ++f) {
+        const Camera cam =
+            makeCamera({0.2f * static_cast<float>(f) - 6.0f, 3, 12}, {0, 2, -40});
+        const DepthFrame d = runDepthFrame(culler, tree, device, scene.boxes, cam, f);
+        EXPECT_EQ(d.missed, 0u) << "frame " << f;
+        ASSERT_GT(d.hidden_in_frustum, 100u) << "the field behind the wall is in view";
+        if (f == 0) {
+            EXPECT_LT(d.hidden_drawn, d.hidden_in_frustum / 10) << "first frame";
+        }
+        total.hidden_drawn += d.hidden_drawn;
+        total.hidden_in_frustum += d.hidden_in_frustum;
+    }
+    EXPECT_LT(total.hidden_drawn, total.hidden_in_frustum / 10);
+}
+
+// The same order, read from the queries themselves: with every answer visible and late, each
+// pass queries one level of the tree, and each level in front-to-back order of the tree (the
+// nearer child's subtree before the farther one's).
+TEST(StatisticalPaperOrder, EachPassQueriesTheNextLevelFrontToBack) {
+    const std::vector<Aabb> boxes = testing::randomBoxes(300, 9);
+    const BspTree tree = buildTree(boxes, 2);
+    Aabb all;
+    for (const Aabb& b : boxes) extend(all, b);
+    const CullView view = testing::makeView(center(all) + glm::vec3(30, 250, 220), center(all));
+    ASSERT_EQ(testing::inFrustum(boxes, view.frustum).size(), boxes.size());
+
+    // Front-to-back depth-first order of the non-empty nodes, then stably by depth.
+    std::vector<uint32_t> expected;
+    std::vector<uint32_t> stack = {tree.root()};
+    while (!stack.empty()) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        if (isEmpty(tree.bounds(n))) continue;
+        expected.push_back(n);
+        const BspNode& node = tree.node(n);
+        if (node.isLeaf()) continue;
+        const bool eye_below = view.eye[node.axis] < node.split;
+        stack.push_back(node.child[eye_below ? 1 : 0]);
+        stack.push_back(node.child[eye_below ? 0 : 1]);
+    }
+    std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) {
+        return tree.node(a).depth < tree.node(b).depth;
+    });
+
+    StatisticalOptions o;
+    o.queries_before_restart = 100000;  // one pass per level
+    StatisticalCuller culler(o);
+    culler.reset(tree);
+    ScriptedQueryDevice device(1000000);  // no answer is ready before the pass ends
+    device.setVisibility(std::vector<uint8_t>(boxes.size(), 1), boxes);
+    culler.cullAndRender(tree, makeFrame(view, 0, 0.0), device);
+    std::vector<uint32_t> queried;
+    for (const QueryTag& t : device.queryTags()) queried.push_back(t.index);
+    EXPECT_EQ(queried, expected);
+}
+
+
+// --- The improvements of statistical+, one at a time ------------------------------------------
+
+// The paper's options with one improvement switched on.
+StatisticalOptions paperWith(void (*on)(StatisticalOptions&)) {
+    StatisticalOptions o;
+    on(o);
+    return o;
+}
+
+std::vector<uint8_t> randomVisibility(size_t count, double p, std::mt19937& rng) {
+    std::bernoulli_distribution draw(p);
+    std::vector<uint8_t> visible(count);
+    for (auto& v : visible) v = draw(rng);
+    return visible;
+}
+
+// Unit cubes on an nx-by-nz grid at height y, with gaps between them (so that with SAH splits no
+// cube straddles a split plane and no query box overlaps a neighbour).
+std::vector<Aabb> gridBoxes(uint32_t nx, uint32_t nz, float y = 0.0f, float spacing = 3.0f) {
+    std::vector<Aabb> boxes;
+    for (uint32_t z = 0; z < nz; ++z) {
+        for (uint32_t x = 0; x < nx; ++x) {
+            const glm::vec3 lo(spacing * static_cast<float>(x), y, -spacing * static_cast<float>(z));
+            boxes.push_back({lo, lo + glm::vec3(1.0f)});
+        }
+    }
+    return boxes;
+}
+
+CullView overview(const std::vector<Aabb>& boxes) {
+    Aabb all;
+    for (const Aabb& b : boxes) extend(all, b);
+    const glm::vec3 c = center(all);
+    const float size = glm::length(extent(all));
+    return makeView(c + glm::vec3(0.0f, size, size), c);
+}
+
+struct ScriptedFrame {
+    std::vector<uint32_t> drawn;
+    std::vector<QueryTag> queries;
+    uint64_t waited = 0;
+};
+
+ScriptedFrame runScripted(Culler& culler, const BspTree& tree, ScriptedQueryDevice& device,
+                          const std::vector<Aabb>& boxes, const std::vector<uint8_t>& visible,
+                          const CullFrame& frame) {
+    device.setVisibility(visible, boxes);
+    device.clearLog();
+    device.resetCounters();
+    culler.cullAndRender(tree, frame, device);
+    return {device.drawnObjects(), device.queryTags(), device.counters().results_waited};
+}
+
+// Every object in the frustum that the script says is visible is drawn, nothing twice.
+void expectConservative(const ScriptedFrame& f, const std::vector<Aabb>& boxes,
+                        const std::vector<uint8_t>& visible, const CullView& view,
+                        const std::string& what) {
+    std::set<uint32_t> drawn;
+    for (uint32_t o : f.drawn) EXPECT_TRUE(drawn.insert(o).second) << what << ": " << o << " twice";
+    for (uint32_t o : inFrustum(boxes, view.frustum)) {
+        if (visible[o]) {
+            EXPECT_TRUE(drawn.count(o)) << what << ": visible object " << o << " missed";
+        }
+    }
+}
+
+// (1) Ready answers: the culler blocks on an answer only when nothing else can be done (its
+// queue is empty, or queries_before_restart queries are in flight). The paper's loop blocks at
+// the end of every pass on all answers, ready or not, with nodes still waiting in the queue.
+TEST(StatisticalReadyAnswers, BlocksOnlyWhenTheQueueHoldsNothingElse) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
+    const BspTree tree = buildTree(boxes);
+    std::mt19937 rng(11);
+    std::vector<uint8_t> visible;
+    StatisticalCuller paper;
+    StatisticalCuller ready(paperWith([](StatisticalOptions& o) { o.ready_answers = true; }));
+    paper.reset(tree);
+    ready.reset(tree);
+    ScriptedQueryDevice paper_device(12), ready_device(12);
+    uint64_t paper_blocked_with_work = 0, ready_blocked = 0, ready_waited = 0, paper_waited = 0;
+    for (uint32_t f = 0; f < 40; ++f) {
+        const float a = 0.05f * static_cast<float>(f);
+        const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
+        if (f % 4 == 0) visible = randomVisibility(boxes.size(), 0.15, rng);
+        const CullFrame frame = makeFrame(view, f, f / 30.0);
+        const ScriptedFrame p = runScripted(paper, tree, paper_device, boxes, visible, frame);
+        const ScriptedFrame r = runScripted(ready, tree, ready_device, boxes, visible, frame);
+        expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+        EXPECT_EQ(ready.lastFrame().blocked_with_work_left, 0u) << "frame " << f;
+        EXPECT_EQ(ready.lastFrame().blocked_answers, r.waited) << "the device saw every wait";
+        EXPECT_EQ(ready_device.pendingQueries(), 0u) << "every answer taken within its frame";
+        paper_blocked_with_work += paper.lastFrame().blocked_with_work_left;
+        ready_blocked += ready.lastFrame().blocked_answers;
+        ready_waited += r.waited;
+        paper_waited += p.waited;
+    }
+    EXPECT_GT(paper_blocked_with_work, 0u) << "the paper's passes do block with work left";
+    EXPECT_GT(ready_blocked, 0u) << "the test does make the culler wait";
+    EXPECT_LT(ready_waited, paper_waited / 2);
+}
+
+// Bars lying across the whole field straddle the split planes and stay in inner nodes; small
+// cubes above them fill the leaves.
+struct BarsUnderCubes {
+    std::vector<Aabb> boxes = gridBoxes(10, 10, 4.0f);
+    uint32_t first_bar = 0;
+    BarsUnderCubes() {
+        first_bar = static_cast<uint32_t>(boxes.size());
+        for (int i = 0; i < 6; ++i) {
+            const float z = -2.0f - 5.0f * static_cast<float>(i);
+            boxes.push_back({glm::vec3(-1, 0, z), glm::vec3(29, 1, z + 0.5f)});
+        }
+    }
+};
+
+// (2) Virtual leaves: objects stored in an inner node get a query of their own, on their boxes,
+// and statistics of their own. Hidden bars stay undrawn, though every node above them is visible
+// (a visible cube lies in each); the paper draws them with their node.
+TEST(StatisticalVirtualLeaves, HiddenObjectsOfAVisibleInnerNodeAreQueriedNotDrawn) {
+    const BarsUnderCubes scene;
+    const BspTree tree = buildTree(scene.boxes, 4, BspSplitRule::Sah);
+    std::vector<uint8_t> visible(scene.boxes.size(), 1);
+    std::set<uint32_t> bar_nodes;
+    for (uint32_t b = scene.first_bar; b < scene.boxes.size(); ++b) {
+        visible[b] = 0;
+        ASSERT_FALSE(tree.node(tree.nodeOf(b)).isLeaf()) << "bar " << b << " straddles a split";
+        bar_nodes.insert(tree.nodeOf(b));
+    }
+    const CullView view = overview(scene.boxes);
+    StatisticalCuller paper;
+    StatisticalCuller leaves(paperWith([](StatisticalOptions& o) { o.virtual_leaves = true; }));
+    paper.reset(tree);
+    leaves.reset(tree);
+    ScriptedQueryDevice device(3);
+    for (uint64_t f = 0; f < 6; ++f) {
+        const CullFrame frame = makeFrame(view, f, f / 30.0);
+        const ScriptedFrame p = runScripted(paper, tree, device, scene.boxes, visible, frame);
+        const ScriptedFrame v = runScripted(leaves, tree, device, scene.boxes, visible, frame);
+        expectConservative(v, scene.boxes, visible, view, "frame " + std::to_string(f));
+        uint32_t bars_paper = 0, bars_leaves = 0, own_queries = 0;
+        for (uint32_t o : p.drawn) bars_paper += o >= scene.first_bar;
+        for (uint32_t o : v.drawn) bars_leaves += o >= scene.first_bar;
+        for (const QueryTag& t : v.queries) own_queries += t.subject == QueryTag::Subject::NodeObjects;
+        EXPECT_EQ(bars_paper, 6u) << "frame " << f;
+        EXPECT_EQ(bars_leaves, 0u) << "frame " << f;
+        if (f == 0) {
+            EXPECT_EQ(own_queries, bar_nodes.size());
+        }
+    }
+    for (uint32_t n : bar_nodes) {
+        const NodeStatistics& s = leaves.ownObjectStatistics(n);
+        EXPECT_GT(s.results, 0u);
+        EXPECT_EQ(s.history & 1u, 0u) << "last result: occluded";
+        EXPECT_EQ(leaves.statistics(n).history & 1u, 1u) << "the node itself is visible";
+    }
+}
+
+// (2b) Object queries: in a visible leaf, each object is decided on its own statistics, so once
+// they have settled only the visible objects are drawn; the paper draws the whole leaf.
+TEST(StatisticalObjectQueries, OnlyTheVisibleObjectsOfAVisibleLeafAreDrawn) {
+    const std::vector<Aabb> boxes = gridBoxes(12, 12);
+    const BspTree tree = buildTree(boxes, 4, BspSplitRule::Sah);
+    std::mt19937 rng(5);
+    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.25, rng);
+    const CullView view = overview(boxes);
+    StatisticalCuller paper;
+    StatisticalCuller objects(paperWith([](StatisticalOptions& o) { o.object_queries = true; }));
+    paper.reset(tree);
+    objects.reset(tree);
+    ScriptedQueryDevice device(3);
+    std::set<uint32_t> visible_set;
+    for (uint32_t o = 0; o < boxes.size(); ++o) {
+        if (visible[o]) visible_set.insert(o);
+    }
+    for (uint64_t f = 0; f < 8; ++f) {
+        const CullFrame frame = makeFrame(view, f, f / 30.0);
+        const ScriptedFrame p = runScripted(paper, tree, device, boxes, visible, frame);
+        const ScriptedFrame q = runScripted(objects, tree, device, boxes, visible, frame);
+        expectConservative(q, boxes, visible, view, "frame " + std::to_string(f));
+        uint32_t object_queries = 0;
+        for (const QueryTag& t : q.queries) object_queries += t.subject == QueryTag::Subject::Object;
+        EXPECT_GT(object_queries, 0u);
+        if (f >= 2) {
+            EXPECT_EQ(std::set<uint32_t>(q.drawn.begin(), q.drawn.end()), visible_set) << f;
+            EXPECT_GT(p.drawn.size(), visible_set.size() + 20) << f;
+        }
+    }
+}
+
+uint64_t subtreeObjects(const BspTree& tree, uint32_t node) {
+    uint64_t n = tree.node(node).object_count;
+    if (!tree.node(node).isLeaf()) {
+        n += subtreeObjects(tree, tree.node(node).child[0]) +
+             subtreeObjects(tree, tree.node(node).child[1]);
+    }
+    return n;
+}
+
+// (3) Cost model, first rule: a node whose drawing costs less than one query box is drawn without
+// a query, statistics or not; the nodes that are queried all cost more to draw.
+TEST(StatisticalCostModel, ANodeCheaperToDrawThanToQueryIsDrawnWithoutOne) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 3);
+    const BspTree tree = buildTree(boxes);
+    const std::vector<uint32_t> triangles(boxes.size(), 100);
+    const CostModel costs{0.05, 1e-4, 0.0};  // one object: 0.01 ms; a query: 0.05 ms
+    StatisticalCuller culler(paperWith([](StatisticalOptions& o) { o.cost_model = true; }), costs);
+    culler.reset(tree);
+    std::vector<uint8_t> visible(boxes.size(), 0);
+    for (size_t i = 0; i < visible.size(); i += 3) visible[i] = 1;
+    ScriptedQueryDevice device(4);
+    const CullView view = makeView({0, 5, 0}, {0, 0, -100});
+    for (uint64_t f = 0; f < 10; ++f) {
+        CullFrame frame = makeFrame(view, f, f / 30.0);
+        frame.object_triangles = triangles;
+        const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
+        expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+        if (f == 0) {
+            EXPECT_GT(r.queries.size(), 0u) << "the nodes that pay are queried";
+        }
+        for (const QueryTag& t : r.queries) {
+            ASSERT_EQ(t.subject, QueryTag::Subject::Node);
+            EXPECT_GT(static_cast<double>(subtreeObjects(tree, t.index)) * 0.01, 0.05)
+                << "node " << t.index << " is cheaper to draw than to query";
+        }
+    }
+    // A query dearer than drawing the whole scene: no query at all, frustum culling.
+    StatisticalCuller dear(paperWith([](StatisticalOptions& o) { o.cost_model = true; }),
+                           CostModel{1e6, 1e-4, 0.0});
+    dear.reset(tree);
+    CullFrame frame = makeFrame(view, 0, 0.0);
+    frame.object_triangles = triangles;
+    const ScriptedFrame r = runScripted(dear, tree, device, boxes, visible, frame);
+    EXPECT_TRUE(r.queries.empty());
+    EXPECT_EQ(r.drawn.size(), inFrustum(boxes, view.frustum).size());
+}
+
+TEST(StatisticalCostModel, AQueryPaysWhenTheOcclusionRateTimesTheDrawCostExceedsItsCost) {
+    const CostModel costs{0.02, 1e-4, 0.01};
+    EXPECT_DOUBLE_EQ(costs.drawMs(1000), 0.11);
+    EXPECT_TRUE(queryPays(costs, 0.11, 1, 0.5));    // saves 0.055 ms for 0.02 ms
+    EXPECT_FALSE(queryPays(costs, 0.11, 1, 0.1));   // saves 0.011 ms for 0.02 ms
+    EXPECT_FALSE(queryPays(costs, 0.11, 6, 1.0));   // six boxes cost 0.12 ms
+    EXPECT_FALSE(queryPays(costs, 0.015, 1, 1.0));  // cheaper to draw than to query
+}
+
+// (3) Cost model, second rule: in a scene where nothing is ever occluded, the re-queries of
+// visible nodes save nothing; the rate of such queries coming back occluded falls, and the
+// culler stops paying for most of them (every 8th is still asked, to keep the rate measured).
+// Where everything is hidden the queries pay, and none is dropped.
+TEST(StatisticalCostModel, QueriesThatDoNotPayAreDroppedAndThoseThatPayAreKept) {
+    const std::vector<Aabb> boxes = gridBoxes(16, 16);
+    const BspTree tree = buildTree(boxes, 4, BspSplitRule::Sah);
+    const std::vector<uint32_t> triangles(boxes.size(), 1000);
+    const CostModel costs{0.05, 1e-4, 0.0};  // an object: 0.1 ms; a query: 0.05 ms
+    const CullView view = overview(boxes);
+    for (const bool occluded : {false, true}) {
+        const std::vector<uint8_t> visible(boxes.size(), occluded ? 0 : 1);
+        StatisticalOptions plain;
+        plain.base_time_s = 0.1;  // re-query often, so that there is something to drop
+        StatisticalOptions weighed = plain;
+        weighed.cost_model = true;
+        StatisticalCuller a(plain, costs), b(weighed, costs);
+        a.reset(tree);
+        b.reset(tree);
+        ScriptedQueryDevice device(4);
+        uint64_t queries_plain = 0, queries_weighed = 0;
+        for (uint64_t f = 0; f < 120; ++f) {
+            CullFrame frame = makeFrame(view, f, f / 30.0);
+            frame.object_triangles = triangles;
+            const ScriptedFrame ra = runScripted(a, tree, device, boxes, visible, frame);
+            const ScriptedFrame rb = runScripted(b, tree, device, boxes, visible, frame);
+            expectConservative(rb, boxes, visible, view, "frame " + std::to_string(f));
+            if (f >= 60) {
+                queries_plain += ra.queries.size();
+                queries_weighed += rb.queries.size();
+            }
+        }
+        if (occluded) {
+            EXPECT_EQ(queries_weighed, queries_plain) << "hidden: every query pays";
+        } else {
+            EXPECT_LT(queries_weighed, queries_plain / 3) << "visible: re-queries do not pay";
+            EXPECT_GT(queries_weighed, 0u) << "some are still asked";
+            EXPECT_LT(b.occlusionEstimate(QueryKind::LastVisible).occluded, 0.05);
+        }
+    }
+}
+
+// (4) Re-query by distance: CalcNodeAction's interval counted in metres travelled (the camera's
+// and the node's movers'), or in travel relative to the node's distance (parallax).
+TEST(CalcNodeAction, RequeryDistanceReplacesBaseTime) {
+    StatisticalOptions o;
+    o.requery_distance_m = 2.0;
+    NodeStatistics s;
+    recordQueryResult(o, s, true, 0.0, 10.0);  // travel counter 10 m at the query
+    // One visible result: 2 m * 1.5 = 3 m of travel; time no longer counts (up to the age limit).
+    EXPECT_EQ(decideNodeAction(o, s, false, 1.9, {12.9, 50.0}), NodeAction::Render);
+    EXPECT_EQ(decideNodeAction(o, s, false, 0.1, {13.1, 50.0}), NodeAction::Query);
+    EXPECT_EQ(decideNodeAction(o, s, false, 2.1, {10.0, 50.0}), NodeAction::Query) << "too old";
+    o.requery_distance_m = 0.0;
+    o.requery_parallax = 0.1;
+    // 0.1 * 1.5 = 0.15 of the distance: 1.5 m at 10 m, 15 m at 100 m.
+    EXPECT_EQ(decideNodeAction(o, s, false, 0.5, {11.6, 10.0}), NodeAction::Query);
+    EXPECT_EQ(decideNodeAction(o, s, false, 0.5, {11.6, 100.0}), NodeAction::Render);
+    EXPECT_EQ(decideNodeAction(o, s, false, 0.5, {25.1, 100.0}), NodeAction::Query);
+}
+
+// (4) A visible node is not re-queried while neither the camera nor anything in it moves, however
+// long that lasts (within the age limit); it is re-queried once the camera has travelled the
+// re-query distance, or once a mover inside it has.
+TEST(StatisticalMotion, ReQueriesAfterTheCameraOrAMoverTravelledNotAfterSeconds) {
+    const Aabb start{glm::vec3(-1, -1, -11), glm::vec3(1, 1, -9)};
+    StatisticalOptions o;
+    o.requery_distance_m = 1.0;    // 1.5 m after one visible result
+    o.max_statistics_age_s = 100;  // out of the way
+    StatisticalOptions seconds = o;
+    seconds.requery_distance_m = 0.0;
+    for (const bool by_distance : {true, false}) {
+        std::vector<Aabb> boxes{start};
+        BspTree tree = buildTree(boxes, 1);
+        StatisticalCuller culler(by_distance ? o : seconds);
+        culler.reset(tree);
+        ScriptedQueryDevice device(0);
+        const std::vector<uint8_t> visible{1};
+        auto frame = [&](uint64_t f, glm::vec3 eye) {
+            return runScripted(culler, tree, device, boxes, visible,
+                               makeFrame(makeView(eye, eye + glm::vec3(0, 0, -10)), f, f / 30.0));
+        };
+        const glm::vec3 eye(0, 0, 0);
+        EXPECT_EQ(frame(0, eye).queries.size(), 1u);
+        uint64_t queries = 0;
+        for (uint64_t f = 1; f < 150; ++f) queries += frame(f, eye).queries.size();  // 5 s, still
+        if (!by_distance) {
+            EXPECT_GT(queries, 0u) << "BASE_TIME re-queries a still scene";
+            continue;
+        }
+        EXPECT_EQ(queries, 0u) << "nothing moved";
+        EXPECT_EQ(frame(150, eye + glm::vec3(1.4f, 0, 0)).queries.size(), 0u);
+        EXPECT_EQ(frame(151, eye + glm::vec3(1.6f, 0, 0)).queries.size(), 1u) << "camera moved";
+        EXPECT_EQ(frame(152, eye + glm::vec3(1.6f, 0, 0)).queries.size(), 0u);
+        // A mover: two visible results now, so 1 m * 1.75; the object travels 2 m in four steps
+        // while the camera stands still.
+        for (int step = 1; step <= 4; ++step) {
+            boxes[0].min.x -= 0.5f;
+            boxes[0].max.x -= 0.5f;
+            tree.reinsert(0, boxes[0]);
+            tree.refitDirtyBounds();
+            const size_t q = frame(152 + step, eye + glm::vec3(1.6f, 0, 0)).queries.size();
+            EXPECT_EQ(q, step == 4 ? 1u : 0u) << "mover step " << step;
+        }
+    }
+}
+
+// (5) Fallback: where nothing is occluded the culler stops querying and culls by the frustum
+// only, looking again every fallback_recheck_s; where much is occluded it never falls back.
+TEST(StatisticalFallback, NoOcclusionMeansFrustumCullingWithPeriodicRechecks) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 3);
+    const BspTree tree = buildTree(boxes);
+    StatisticalOptions o;
+    o.fallback = true;
+    o.fallback_window_frames = 4;
+    o.fallback_recheck_s = 0.5;
+    o.base_time_s = 0.1;  // re-queries every few frames: answers to judge by
+    const CullView view = makeView({0, 5, 0}, {0, 0, -100});
+    const size_t in_frustum = inFrustum(boxes, view.frustum).size();
+    for (const bool open : {true, false}) {
+        std::vector<uint8_t> visible(boxes.size(), 1);
+        if (!open) {
+            for (size_t i = 0; i < visible.size(); i += 2) visible[i] = 0;
+        }
+        StatisticalCuller culler(o);
+        culler.reset(tree);
+        ScriptedQueryDevice device(4);
+        std::vector<uint64_t> checking_frames;  // frames that ran the algorithm
+        for (uint64_t f = 0; f < 90; ++f) {
+            const ScriptedFrame r =
+                runScripted(culler, tree, device, boxes, visible, makeFrame(view, f, f / 30.0));
+            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            if (culler.lastFrame().frustum_only) {
+                EXPECT_TRUE(r.queries.empty());
+                EXPECT_EQ(r.drawn.size(), in_frustum) << "frustum culling";
+            } else {
+                checking_frames.push_back(f);
+            }
+        }
+        if (!open) {
+            EXPECT_EQ(checking_frames.size(), 90u) << "occlusion: never falls back";
+            continue;
+        }
+        // Falls back after its window, then looks again every 0.5 s (15 frames) for a window.
+        ASSERT_GE(checking_frames.size(), 8u);
+        EXPECT_LT(checking_frames.size(), 45u);
+        uint32_t rechecks = 0;
+        for (size_t i = 1; i < checking_frames.size(); ++i) {
+            if (checking_frames[i] != checking_frames[i - 1] + 1) {
+                ++rechecks;
+                EXPECT_GE(checking_frames[i] - checking_frames[i - 1], 15u);
+            }
+        }
+        EXPECT_GE(rechecks, 3u);
+    }
+}
+
+// --- Every configuration stays conservative, and deterministic --------------------------------
+
+class StatisticalConservative : public ::testing::TestWithParam<std::string> {};
+
+StatisticalOptions optionsNamed(const std::string& name) {
+    StatisticalOptions o;
+    if (name == "paper") return o;
+    if (name == "plus") return StatisticalOptions::plus();
+    if (name == "ready") o.ready_answers = true;
+    if (name == "leaves") o.virtual_leaves = true;
+    if (name == "objects") o.object_queries = true;
+    if (name == "costs") o.cost_model = true;
+    if (name == "distance") o.requery_distance_m = 2.0;
+    if (name == "parallax") o.requery_parallax = 0.1;
+    if (name == "fallback") o.fallback = true;
+    return o;
+}
+
+// On the depth raster (nearer drawn boxes hide farther ones), with a moving camera, movers and
+// straddlers, every object ground truth sees is drawn in every frame, whatever the options;
+// and the same run twice makes the same decisions.
+TEST_P(StatisticalConservative, DrawsEverythingGroundTruthSeesAndDecidesTheSameTwice) {
+    WallAndField scene;
+    // Bars across the field (straddlers) and a few movers among the field's boxes.
+    for (int i = 0; i < 4; ++i) {
+        const float z = -20.0f - 18.0f * static_cast<float>(i);
+        scene.boxes.push_back({glm::vec3(-24, 0, z), glm::vec3(24, 0.8f, z + 0.6f)});
+    }
+    const std::vector<uint32_t> triangles(scene.boxes.size(), 500);
+    std::vector<std::vector<uint32_t>> first_run;
+    for (int run = 0; run < 2; ++run) {
+        std::vector<Aabb> boxes = scene.boxes;
+        BspTree tree = buildTree(boxes, 4, BspSplitRule::Sah);
+        StatisticalCuller culler(optionsNamed(GetParam()), CostModel{0.01, 1e-4, 0.002});
+        culler.reset(tree);
+        DepthRasterDevice device(64, 48, 6);
+        for (uint64_t f = 0; f < 90; ++f) {
+            for (uint32_t m = scene.wall_count; m < scene.wall_count + 40; m += 4) {
+                const float dx = 0.15f * std::sin(0.2f * static_cast<float>(f + m));
+                boxes[m].min.x += dx;
+                boxes[m].max.x += dx;
+                tree.reinsert(m, boxes[m]);
+            }
+            tree.refitDirtyBounds();
+            const float t = static_cast<float>(f);
+            // Walks towards the wall, then rises over it and looks down on the field.
+            const glm::vec3 eye = f < 45 ? glm::vec3(0.3f * t - 6.0f, 3, 20 - 0.2f * t)
+                                         : glm::vec3(7.0f, 3.0f + 0.5f * (t - 45), 11);
+            const Camera cam = makeCamera(eye, {0, 0, -50});
+            device.beginFrame(cam.view_projection, cam.view.eye, boxes);
+            CullFrame frame = makeFrame(cam.view, f, f / 30.0);
+            frame.object_triangles = triangles;
+            culler.cullAndRender(tree, frame, device);
+            const std::vector<uint8_t> truth = device.groundTruth();
+            std::vector<uint8_t> drawn(boxes.size(), 0);
+            for (uint32_t o : device.drawnObjects()) {
+                EXPECT_FALSE(drawn[o]) << "object " << o << " drawn twice, frame " << f;
+                drawn[o] = 1;
+            }
+            for (uint32_t o = 0; o < boxes.size(); ++o) {
+                EXPECT_FALSE(truth[o] && !drawn[o]) << "object " << o << " missed, frame " << f;
+            }
+            EXPECT_EQ(device.pendingQueries(), 0u);
+            if (run == 0) {
+                first_run.push_back(device.drawnObjects());
+            } else {
+                EXPECT_EQ(device.drawnObjects(), first_run[f]) << "frame " << f;
+            }
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Options, StatisticalConservative,
+                         ::testing::Values("paper", "ready", "leaves", "objects", "costs",
+                                           "distance", "parallax", "fallback", "plus"));
+
+}  // namespace
+}  // namespace occsim
