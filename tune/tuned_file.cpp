@@ -1,0 +1,45 @@
+#include "tune/tuned_file.h"
+
+#include "culling/algorithms.h"
+#include "sim/scenario/culling_file.h"
+
+#include <stdexcept>
+
+namespace occsim::tune {
+
+bool addCostOption(nlohmann::json& culling, const CostModel& model) {
+    if (findAlgorithm("statistical+") == nullptr) return false;
+    culling["statistical+"]["cost"] = {
+        {"query_ms", model.query_ms}, {"triangle_ms", model.triangleMs()}, {"draw_ms", model.draw_ms}};
+    return true;
+}
+
+TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost) {
+    nlohmann::json culling = {{"algorithm", "statistical"},
+                              {"statistical",
+                               {{"base_time", tuned.base_time_s},
+                                {"decay_a", tuned.decay_a},
+                                {"decay_b", tuned.decay_b},
+                                {"history_length", tuned.history_length},
+                                {"max_statistics_age", tuned.max_statistics_age_s},
+                                {"queries_before_restart", tuned.queries_before_restart}}}};
+    TunedFile file;
+    file.has_cost_option = addCostOption(culling, cost);
+    const nlohmann::json top = {{"format_version", 1}, {"culling", culling}};
+    file.text = top.dump(2) + "\n";
+
+    // Read back as `occsim --culling` will: a file this build refuses is never written.
+    Scenario probe;
+    try {
+        applyCullingFile(CullingFile{"tuned.json", top}, probe);
+    } catch (const ScenarioError& e) {
+        throw std::runtime_error(std::string("tuned.json would be refused by occsim --culling: ") + e.what());
+    }
+    if (probe.culler.statistical.base_time_s != tuned.base_time_s || probe.culler.statistical.decay_a != tuned.decay_a ||
+        probe.culler.statistical.decay_b != tuned.decay_b) {
+        throw std::runtime_error("tuned.json does not read back as the tuned values");
+    }
+    return file;
+}
+
+}  // namespace occsim::tune
