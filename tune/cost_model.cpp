@@ -9,8 +9,9 @@ namespace occsim::tune {
 namespace {
 
 constexpr size_t kFolds = 5;
-// Residuals beyond a tenth of the typical frame count linearly: a frame slowed by another
-// process is an outlier, not a cost.
+// Huber stage: residuals beyond a tenth of the typical frame count linearly; the Cauchy stage
+// then discounts frames far beyond the noise (robust_fit.h). A frame slowed by another process
+// is an outlier, not a cost.
 constexpr double kHuberShareOfMedianFrame = 0.1;
 
 Eigen::RowVectorXd termsOf(const FrameCounts& f) {
@@ -44,6 +45,7 @@ Data dataOf(const std::vector<std::vector<FrameCounts>>& groups, size_t skip_fol
 RobustFit fit(const Data& d, double delta, int max_iterations) {
     RobustFitOptions o;
     o.huber_delta = delta;
+    o.cauchy_min_scale = 0.1 * delta;
     o.lower.assign(CostModel::kTerms, 0.0);
     o.max_iterations = max_iterations;
     return fitRobustLinear(d.X, d.y, o);

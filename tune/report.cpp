@@ -104,9 +104,9 @@ std::string reportMarkdown(const TuneResult& r) {
     if (!r.dropped.empty()) {
         out << "\nParameters this scene does not exercise: ";
         for (size_t k = 0; k < r.dropped.size(); ++k) out << (k ? ", " : "") << r.space.parameters[r.dropped[k]]->name;
-        out << ". Dropping their terms did not raise the leave-one-out prediction error (" << fixed(r.full_model_loo_rms, 4)
-            << " with every parameter, " << fixed(r.response.loo_rms, 4)
-            << " without them), so the measurements show no effect of them beyond noise; they stay at the paper's "
+        out << ". Without their terms the leave-one-out prediction error stays within one standard error of the "
+               "lowest seen (" << fixed(r.full_model_loo_rms, 4) << " with every parameter, " << fixed(r.response.loo_rms, 4)
+            << " without them): the samples show no effect of them beyond their noise, so they stay at the paper's "
                "values.\n";
     }
 
@@ -128,7 +128,7 @@ std::string reportMarkdown(const TuneResult& r) {
     const CostModel& m = r.cost.model;
     out << "\n## Fit quality\n\n### Cost model (per frame)\n\n"
         << "frame_ms = constant + query_ms * queries + kilotriangle_ms * triangles/1000 + draw_ms * objects drawn + "
-           "wait_factor * wait_ms, fitted with Ceres (Huber loss, every coefficient >= 0) over "
+           "wait_factor * wait_ms, fitted with Ceres (every coefficient >= 0; loss: " << r.cost.fit.loss << ") over "
         << r.cost.frames << " timed frames of " << r.cost.groups << " runs.\n\n"
         << "| term | coefficient | approx. standard error |\n|---|---|---|\n"
         << "| constant (ms) | " << general(m.constant_ms) << " | " << general(r.cost.standard_error[0]) << " |\n"
@@ -150,7 +150,7 @@ std::string reportMarkdown(const TuneResult& r) {
                for (size_t j : r.response.model.active) s += (s.empty() ? "" : ", ") + std::string(r.space.parameters[j]->name);
                return s;
            }())
-        << "), fitted with Ceres (Huber loss, scale " << kResponseHuberDelta << ") over " << r.response.samples
+        << "), fitted with Ceres (" << r.response.fit.loss << ") over " << r.response.samples
         << " samples.\n\n"
         << "- Residual RMS: " << fixed(r.response.residual_rms, 4) << "\n"
         << "- Leave-one-out prediction error (each sample predicted by a fit without it): " << fixed(r.response.loo_rms, 4)

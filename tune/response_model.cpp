@@ -17,6 +17,7 @@ constexpr double kCoefficientBound = 50.0;
 RobustFit fitTerms(const Eigen::MatrixXd& T, const Eigen::VectorXd& y, int max_iterations) {
     RobustFitOptions o;
     o.huber_delta = kResponseHuberDelta;
+    o.cauchy_min_scale = kResponseMinCauchyScale;
     o.lower.assign(static_cast<size_t>(T.cols()), -kCoefficientBound);
     o.upper.assign(static_cast<size_t>(T.cols()), kCoefficientBound);
     o.max_iterations = max_iterations;
@@ -29,10 +30,16 @@ Eigen::MatrixXd termMatrix(const ResponseModel& m, const std::vector<Point>& xs)
     return T;
 }
 
-double looRms(const ResponseModel& shape, const std::vector<Point>& xs, const std::vector<double>& ys, int max_iterations) {
+struct LeaveOneOut {
+    double rms = 0.0;
+    double mse_se = 0.0;
+};
+
+LeaveOneOut leaveOneOut(const ResponseModel& shape, const std::vector<Point>& xs, const std::vector<double>& ys,
+                        int max_iterations) {
     const Eigen::MatrixXd T = termMatrix(shape, xs);
     const Eigen::Index n = T.rows();
-    double squared = 0.0;
+    std::vector<double> squared_errors;
     for (Eigen::Index out = 0; out < n; ++out) {
         Eigen::MatrixXd Ti(n - 1, T.cols());
         Eigen::VectorXd yi(n - 1);
@@ -43,9 +50,15 @@ double looRms(const ResponseModel& shape, const std::vector<Point>& xs, const st
         }
         const RobustFit f = fitTerms(Ti, yi, max_iterations);
         const double e = T.row(out).dot(f.coefficients) - ys[static_cast<size_t>(out)];
-        squared += e * e;
+        squared_errors.push_back(e * e);
     }
-    return std::sqrt(squared / static_cast<double>(n));
+    double mean = 0.0;
+    for (double e2 : squared_errors) mean += e2;
+    mean /= static_cast<double>(n);
+    double variance = 0.0;
+    for (double e2 : squared_errors) variance += (e2 - mean) * (e2 - mean);
+    variance /= std::max<double>(1.0, static_cast<double>(n - 1));
+    return {std::sqrt(mean), std::sqrt(variance / static_cast<double>(n))};
 }
 
 // The quadratic in z over the active parameters: f(z) = c + g.z + z^T H z / 2.
@@ -131,7 +144,9 @@ ResponseFit fitResponse(const std::vector<Point>& xs, const std::vector<double>&
     const double n = static_cast<double>(xs.size());
     r.sigma = r.residual_rms * std::sqrt(n / (n - static_cast<double>(terms)));
     r.inverse_normal = (T.transpose() * T).completeOrthogonalDecomposition().pseudoInverse();
-    r.loo_rms = looRms(r.model, xs, ys, max_iterations);
+    const LeaveOneOut loo = leaveOneOut(r.model, xs, ys, max_iterations);
+    r.loo_rms = loo.rms;
+    r.loo_mse_se = loo.mse_se;
     return r;
 }
 
@@ -139,25 +154,32 @@ ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<
                                 int max_iterations, std::vector<size_t>* dropped) {
     std::vector<size_t> active(dims);
     for (size_t j = 0; j < dims; ++j) active[j] = j;
-    ResponseFit best = fitResponse(xs, ys, dims, active, max_iterations);
-    while (!best.model.active.empty()) {
-        std::optional<ResponseFit> better;
+    ResponseFit current = fitResponse(xs, ys, dims, active, max_iterations);
+    // The lowest leave-one-out mean squared error seen on the path, and its standard error.
+    double best_mse = current.loo_rms * current.loo_rms;
+    double best_se = current.loo_mse_se;
+    while (!current.model.active.empty()) {
+        std::optional<ResponseFit> simplest;
         size_t removed = 0;
-        for (size_t i = 0; i < best.model.active.size(); ++i) {
-            std::vector<size_t> fewer = best.model.active;
+        for (size_t i = 0; i < current.model.active.size(); ++i) {
+            std::vector<size_t> fewer = current.model.active;
             fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(i));
             ResponseFit candidate = fitResponse(xs, ys, dims, fewer, max_iterations);
-            const double bar = better ? better->loo_rms : best.loo_rms;
-            if (candidate.loo_rms <= bar) {
-                removed = best.model.active[i];
-                better = std::move(candidate);
+            if (!simplest || candidate.loo_rms < simplest->loo_rms) {
+                removed = current.model.active[i];
+                simplest = std::move(candidate);
             }
         }
-        if (!better) break;
+        const double mse = simplest->loo_rms * simplest->loo_rms;
+        if (mse > best_mse + best_se) break;
+        if (mse < best_mse) {
+            best_mse = mse;
+            best_se = simplest->loo_mse_se;
+        }
         if (dropped) dropped->push_back(removed);
-        best = std::move(*better);
+        current = std::move(*simplest);
     }
-    return best;
+    return current;
 }
 
 Point minimiseOverBox(const ResponseModel& model, const Point& inactive_at) {

@@ -35,6 +35,7 @@ struct ResponseFit final : Surrogate {
     size_t samples = 0;
     double residual_rms = 0.0;  // over the samples fitted
     double loo_rms = 0.0;       // leave-one-out prediction error (each sample predicted without it)
+    double loo_mse_se = 0.0;    // standard error of the leave-one-out mean squared error
     double sigma = 0.0;         // residual standard deviation, corrected for the terms fitted
     Eigen::MatrixXd inverse_normal;  // (T^T T)^-1 over the sampled terms, for the prediction's spread
 
@@ -42,16 +43,20 @@ struct ResponseFit final : Surrogate {
     void assumeSampled(const Point& x) override;
 };
 
-// Huber scale of the response fit: 2 % of the reference's frame time.
+// Huber scale of the response fit: 2 % of the reference's frame time; the Cauchy stage's scale
+// is set from the residuals, at least 0.5 %.
 inline constexpr double kResponseHuberDelta = 0.02;
+inline constexpr double kResponseMinCauchyScale = 0.005;
 
 // Needs more samples than terms. Throws std::invalid_argument otherwise.
 ResponseFit fitResponse(const std::vector<Point>& xs, const std::vector<double>& ys, size_t dims,
                         const std::vector<size_t>& active, int max_iterations = 200);
 
-// Backward elimination on the leave-one-out error: starting from every parameter, drop the one
-// whose removal lowers (or keeps) the error most, while one does. `dropped` lists the parameters
-// removed, in order.
+// Backward elimination on the leave-one-out error with the one-standard-error rule (Hastie,
+// Tibshirani & Friedman, "The Elements of Statistical Learning", 2nd ed., section 7.10): starting
+// from every parameter, drop the parameter whose removal gives the lowest error, as long as that
+// error stays within one standard error of the lowest seen so far. A parameter survives only when
+// the samples show its effect beyond their noise. `dropped` lists the parameters removed, in order.
 ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<double>& ys, size_t dims,
                                 int max_iterations, std::vector<size_t>* dropped);
 
