@@ -15,7 +15,8 @@ bool addCostOption(nlohmann::json& culling, const CostModel& model) {
 }
 
 TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost) {
-    nlohmann::json culling = {{"algorithm", "statistical"},
+    // Ordered, so that the file reads in the order a scenario's culling section does.
+    nlohmann::ordered_json culling = {{"algorithm", "statistical"},
                               {"statistical",
                                {{"base_time", tuned.base_time_s},
                                 {"decay_a", tuned.decay_a},
@@ -24,14 +25,17 @@ TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost) {
                                 {"max_statistics_age", tuned.max_statistics_age_s},
                                 {"queries_before_restart", tuned.queries_before_restart}}}};
     TunedFile file;
-    file.has_cost_option = addCostOption(culling, cost);
-    const nlohmann::json top = {{"format_version", 1}, {"culling", culling}};
+    nlohmann::json cost_option = nlohmann::json::object();
+    file.has_cost_option = addCostOption(cost_option, cost);
+    for (const auto& [key, value] : cost_option.items()) culling[key] = value;
+    const nlohmann::ordered_json top = {{"format_version", 1}, {"culling", culling}};
     file.text = top.dump(2) + "\n";
 
-    // Read back as `occsim --culling` will: a file this build refuses is never written.
+    // Read back from the text as `occsim --culling` will: a file this build refuses is never
+    // written.
     Scenario probe;
     try {
-        applyCullingFile(CullingFile{"tuned.json", top}, probe);
+        applyCullingFile(CullingFile{"tuned.json", parseStrictJson(file.text, "tuned.json")}, probe);
     } catch (const ScenarioError& e) {
         throw std::runtime_error(std::string("tuned.json would be refused by occsim --culling: ") + e.what());
     }
