@@ -99,8 +99,9 @@ std::string reportMarkdown(const TuneResult& r) {
             << " | " << general(r.space.bounds[j].lo) << " to " << general(r.space.bounds[j].hi) << " | "
             << (r.kept_at_paper[j] ? "no effect beyond noise: left at the paper's value" : "tuned") << " |\n";
     }
-    out << "\nPredicted " << objective << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3)
-        << " at the tuned values (the model gives " << fixed(r.predicted_paper, 3) << " at the paper's own).\n";
+    out << "\nPredicted " << objective << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3) << " +/- "
+        << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives " << fixed(r.predicted_paper, 3)
+        << " at the paper's own).\n";
     if (!r.dropped.empty()) {
         out << "\nParameters this scene does not exercise: ";
         for (size_t k = 0; k < r.dropped.size(); ++k) out << (k ? ", " : "") << r.space.parameters[r.dropped[k]]->name;

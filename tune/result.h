@@ -40,6 +40,7 @@ struct TuneResult {
     std::vector<double> tuned_values;
     std::vector<bool> kept_at_paper;     // per parameter
     double predicted_tuned = 0.0, predicted_paper = 0.0;
+    double predicted_tuned_sd = 0.0;  // standard deviation of that prediction
 
     std::vector<ConfirmationRow> confirmation;  // fitted, then held out
     std::vector<std::string> files;             // written, in out_dir

@@ -293,6 +293,7 @@ int runTuner(const TuneOptions& o) {
         if (r.kept_at_paper[j]) r.tuned_values[j] = c.space.parameters[j]->paper_value;
     }
     r.predicted_tuned = r.response.model.predict(r.tuned_unit);
+    r.predicted_tuned_sd = r.response.predict(r.tuned_unit).stddev;
     r.predicted_paper = r.response.model.predict(paper_unit);
 
     // The confirmation: on the fitted frames, and on a variant the fit never saw (another seed).
@@ -343,8 +344,8 @@ int runTuner(const TuneOptions& o) {
     std::printf("cost model: %.4g ms/query, %.4g ms/1000 triangles, %.4g ms/draw, %.4g ms constant (residual RMS %.2f ms)\n",
                 r.cost.model.query_ms, r.cost.model.kilotriangle_ms, r.cost.model.draw_ms, r.cost.model.constant_ms,
                 r.cost.residual_rms_ms);
-    std::printf("response model: predicted ratio %.3f at the tuned values; leave-one-out error %.4f\n", r.predicted_tuned,
-                r.response.loo_rms);
+    std::printf("response model: predicted ratio %.3f +/- %.3f at the tuned values; leave-one-out error %.4f\n",
+                r.predicted_tuned, r.predicted_tuned_sd, r.response.loo_rms);
     std::printf("%s", confirmationTable(r).c_str());
     if (!tuned_file.has_cost_option) {
         std::printf("this build has no culler that reads a cost model: the cost model is in cost_model.json only\n");
