@@ -1,17 +1,15 @@
 #include "tune/tuner.h"
 
-#include "culling/random.h"
 #include "sim/output/atomic_file.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/world.h"
 #include "tune/charts.h"
-#include "tune/design.h"
+#include "tune/confirm.h"
 #include "tune/errors.h"
+#include "tune/input.h"
 #include "tune/interrupt.h"
-#include "tune/measure.h"
 #include "tune/progress.h"
 #include "tune/report.h"
 #include "tune/result.h"
+#include "tune/sampling.h"
 #include "tune/tuned_file.h"
 
 #include <nlohmann/json.hpp>
@@ -19,179 +17,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 namespace occsim::tune {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The space-filling start: 60 % of the budget, never fewer samples than the model needs.
-uint32_t initialSamples(uint32_t budget, size_t dims) {
-    const auto share = static_cast<uint32_t>(std::lround(0.6 * budget));
-    return std::min(budget, std::max(static_cast<uint32_t>(minimumSamples(dims)), share));
-}
-
-std::string fileText(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Everything about the input that can be wrong, checked before any run.
-struct Checked {
-    ParameterSpace space;
-    Scenario scenario;
-    LogSettings settings;
-    fs::path out_dir;
-    fs::path log_file;
-    uint32_t objects = 0;
-    uint64_t triangles = 0;
-};
-
-Checked checkInput(const TuneOptions& o) {
-    Checked c;
-    c.space = parseParameterSpace(o.params, o.bounds);
-    const size_t needed = minimumSamples(c.space.size());
-    if (o.budget < needed) {
-        throw TuneInputError("--budget " + std::to_string(o.budget) + ": too small for the model: a quadratic in " +
-                             std::to_string(c.space.size()) + " parameters has " +
-                             std::to_string(ResponseModel::termCount(c.space.size())) + " terms and needs at least " +
-                             std::to_string(needed) + " samples (or tune fewer --params)");
-    }
-    if (o.batch < 1) throw TuneInputError("--batch: expected at least 1 sample per run");
-    if (o.repetitions < 1) throw TuneInputError("--repetitions: expected at least 1");
-    c.scenario = parseScenarioFile(o.scenario);
-    if (o.frames) c.scenario.frames = *o.frames;
-    if (c.scenario.frames <= c.scenario.warmup_frames) {
-        throw TuneInputError("--frames " + std::to_string(c.scenario.frames) + ": the scenario has " +
-                             std::to_string(c.scenario.warmup_frames) + " warm-up frames; expected more frames than that");
-    }
-    // Builds the scene once so that a scene that cannot be built (a glTF file, a mover's object)
-    // fails here, before any run, rather than in the first batch.
-    const Scene scene = buildScene(c.scenario);
-    c.objects = scene.objectCount();
-    c.triangles = scene.triangle_count;
-
-    c.out_dir = o.out.empty() ? fs::path("out") / safeFileName(c.scenario.name) / "tune" : o.out;
-    c.log_file = c.out_dir / "samples.jsonl";
-    LogSettings& s = c.settings;
-    s.scenario_file = o.scenario.string();
-    s.scenario_name = c.scenario.name;
-    s.scenario_hash = textHash(fileText(o.scenario));
-    for (size_t j = 0; j < c.space.size(); ++j) {
-        s.parameters.push_back(c.space.parameters[j]->name);
-        s.bounds.push_back(c.space.bounds[j]);
-    }
-    s.frames = c.scenario.frames;
-    s.warmup_frames = c.scenario.warmup_frames;
-    s.seed = o.seed;
-    s.initial_samples = initialSamples(o.budget, c.space.size());
-    return c;
-}
-
-SampleLog openLog(const TuneOptions& o, const Checked& c) {
-    std::error_code ec;
-    const bool exists = fs::exists(c.log_file, ec);
-    if (!o.resume) {
-        if (exists) {
-            throw TuneInputError(c.log_file.string() +
-                                 " exists: continue that session with --resume, or choose another --out");
-        }
-        return SampleLog(c.log_file, c.settings);
-    }
-    if (!exists) throw TuneInputError("--resume: no sample log at " + c.log_file.string());
-    SampleLog log = SampleLog::read(c.log_file);
-    if (const std::string why = log.mismatch(c.settings); !why.empty()) throw TuneInputError("--resume: " + why);
-    return log;
-}
-
-double objectiveOf(const Sample& s, Objective o) { return o == Objective::Mean ? s.ratio_mean : s.ratio_p95; }
-
-struct Observations {
-    std::vector<Point> xs;
-    std::vector<double> ys;
-};
-
-Observations observationsOf(const SampleLog& log, const ParameterSpace& space, Objective objective) {
-    Observations obs;
-    for (const Sample& s : log.samples()) {
-        obs.xs.push_back(space.unitPoint(s.run->values));
-        obs.ys.push_back(objectiveOf(s, objective));
-    }
-    return obs;
-}
-
-// The next batch: the rest of the space-filling design first, then adaptive points.
-std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, const TuneOptions& o) {
-    const LogSettings& s = log.settings();
-    const Observations obs = observationsOf(log, space, o.objective);
-    const size_t done = obs.xs.size();
-    const size_t k = std::min<size_t>(o.batch, o.budget - done);
-    if (done < s.initial_samples) {
-        const std::vector<Point> design = latinHypercube(s.initial_samples, space.size(), s.seed);
-        const size_t end = std::min<size_t>(s.initial_samples, done + k);
-        return {design.begin() + static_cast<std::ptrdiff_t>(done), design.begin() + static_cast<std::ptrdiff_t>(end)};
-    }
-    std::vector<size_t> all(space.size());
-    for (size_t j = 0; j < all.size(); ++j) all[j] = j;
-    ResponseFit fit = fitResponse(obs.xs, obs.ys, space.size(), all, o.max_fit_iterations);
-    const Point optimum = minimiseOverBox(fit.model, space.paperUnitPoint());
-    return nextBatch(fit, obs.xs, optimum, k, deriveSeed(s.seed, log.batches(), 0x5A3D));
-}
-
-std::string bestSoFar(const SampleLog& log, const ParameterSpace& space, Objective objective) {
-    const std::vector<Sample> samples = log.samples();
-    const Sample* best = nullptr;
-    for (const Sample& s : samples) {
-        if (!best || objectiveOf(s, objective) < objectiveOf(*best, objective)) best = &s;
-    }
-    if (!best) return "";
-    char ratio[32];
-    std::snprintf(ratio, sizeof ratio, "%.3f", objectiveOf(*best, objective));
-    return std::string(ratio) + " (" + space.describe(best->run->values) + ")";
-}
-
-uint64_t workLeft(size_t samples_left, const TuneOptions& o, uint32_t frames) {
-    const uint64_t batches = (samples_left + o.batch - 1) / o.batch;
-    return (samples_left + batches) * frames + 2ull * 2ull * o.repetitions * frames;
-}
-
-void sample(SampleLog& log, const Checked& c, const TuneOptions& o, Progress& progress) {
-    const ParameterSpace& space = c.space;
-    const StatisticalOptions paper = space.paper(c.scenario.culler.statistical);
-    while (log.samples().size() < o.budget) {
-        const std::vector<Point> points = planBatch(log, space, o);
-        if (points.empty()) throw std::runtime_error("no new sample point could be found in the bounds");
-        const uint32_t batch = log.batches();
-        std::vector<Setting> settings = {{"paper", paper}};
-        for (size_t i = 0; i < points.size(); ++i) {
-            settings.push_back({"sample " + std::to_string(log.samples().size() + i) + ": " +
-                                    space.describe(space.values(points[i])),
-                                space.apply(c.scenario.culler.statistical, space.values(points[i]))});
-        }
-        const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" + std::to_string(o.budget) +
-                                  ", running " + std::to_string(points.size()) + " more";
-        const BenchResult result = runInterleaved(c.scenario, settings, 1, [&](const FrameEvent& e) {
-            progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" + std::to_string(c.scenario.frames) + ")");
-            progress.frameDone();
-            throwIfInterrupted();
-        });
-        std::vector<LoggedRun> runs;
-        for (size_t i = 0; i < result.runs.size(); ++i) {
-            LoggedRun r = loggedRunOf(result.runs[i], c.scenario.warmup_frames);
-            r.batch = batch;
-            r.reference = i == 0;
-            r.values = i == 0 ? space.values(space.paperUnitPoint()) : space.values(points[i - 1]);
-            runs.push_back(std::move(r));
-        }
-        log.appendBatch(runs);
-        progress.setBest(bestSoFar(log, space, o.objective));
-    }
-}
 
 std::vector<std::vector<FrameCounts>> frameGroups(const SampleLog& log) {
     std::vector<std::vector<FrameCounts>> groups;
@@ -229,7 +60,7 @@ void printInterrupted(const SampleLog& log, const TuneOptions& o, bool confirmin
 }  // namespace
 
 int runTuner(const TuneOptions& o) {
-    const Checked c = checkInput(o);
+    const CheckedInput c = checkInput(o);
     SampleLog log = openLog(o, c);
     fs::create_directories(c.out_dir);
     // tuned.json in the folder always belongs to the last finished session.

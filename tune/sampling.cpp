@@ -1,0 +1,96 @@
+#include "tune/sampling.h"
+
+#include "culling/random.h"
+#include "tune/interrupt.h"
+#include "tune/measure.h"
+#include "tune/response_model.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+namespace occsim::tune {
+namespace {
+
+// The next batch: the rest of the space-filling design first, then adaptive points.
+std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, const TuneOptions& o) {
+    const LogSettings& s = log.settings();
+    const Observations obs = observationsOf(log, space, o.objective);
+    const size_t done = obs.xs.size();
+    const size_t k = std::min<size_t>(o.batch, o.budget - done);
+    if (done < s.initial_samples) {
+        const std::vector<Point> design = latinHypercube(s.initial_samples, space.size(), s.seed);
+        const size_t end = std::min<size_t>(s.initial_samples, done + k);
+        return {design.begin() + static_cast<std::ptrdiff_t>(done), design.begin() + static_cast<std::ptrdiff_t>(end)};
+    }
+    std::vector<size_t> all(space.size());
+    for (size_t j = 0; j < all.size(); ++j) all[j] = j;
+    ResponseFit fit = fitResponse(obs.xs, obs.ys, space.size(), all, o.max_fit_iterations);
+    const Point optimum = minimiseOverBox(fit.model, space.paperUnitPoint());
+    return nextBatch(fit, obs.xs, optimum, k, deriveSeed(s.seed, log.batches(), 0x5A3D));
+}
+
+}  // namespace
+
+double objectiveOf(const Sample& s, Objective o) { return o == Objective::Mean ? s.ratio_mean : s.ratio_p95; }
+
+Observations observationsOf(const SampleLog& log, const ParameterSpace& space, Objective objective) {
+    Observations obs;
+    for (const Sample& s : log.samples()) {
+        obs.xs.push_back(space.unitPoint(s.run->values));
+        obs.ys.push_back(objectiveOf(s, objective));
+    }
+    return obs;
+}
+
+std::string bestSoFar(const SampleLog& log, const ParameterSpace& space, Objective objective) {
+    const std::vector<Sample> samples = log.samples();
+    const Sample* best = nullptr;
+    for (const Sample& s : samples) {
+        if (!best || objectiveOf(s, objective) < objectiveOf(*best, objective)) best = &s;
+    }
+    if (!best) return "";
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3f", objectiveOf(*best, objective));
+    return std::string(ratio) + " (" + space.describe(best->run->values) + ")";
+}
+
+uint64_t workLeft(size_t samples_left, const TuneOptions& o, uint32_t frames) {
+    const uint64_t batches = (samples_left + o.batch - 1) / o.batch;
+    return (samples_left + batches) * frames + 2ull * 2ull * o.repetitions * frames;
+}
+
+void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progress& progress) {
+    const ParameterSpace& space = c.space;
+    const StatisticalOptions paper = space.paper(c.scenario.culler.statistical);
+    while (log.samples().size() < o.budget) {
+        const std::vector<Point> points = planBatch(log, space, o);
+        if (points.empty()) throw std::runtime_error("no new sample point could be found in the bounds");
+        const uint32_t batch = log.batches();
+        std::vector<Setting> settings = {{"paper", paper}};
+        for (size_t i = 0; i < points.size(); ++i) {
+            settings.push_back({"sample " + std::to_string(log.samples().size() + i) + ": " +
+                                    space.describe(space.values(points[i])),
+                                space.apply(c.scenario.culler.statistical, space.values(points[i]))});
+        }
+        const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" + std::to_string(o.budget) +
+                                  ", running " + std::to_string(points.size()) + " more";
+        const BenchResult result = runInterleaved(c.scenario, settings, 1, [&](const FrameEvent& e) {
+            progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" + std::to_string(c.scenario.frames) + ")");
+            progress.frameDone();
+            throwIfInterrupted();
+        });
+        std::vector<LoggedRun> runs;
+        for (size_t i = 0; i < result.runs.size(); ++i) {
+            LoggedRun r = loggedRunOf(result.runs[i], c.scenario.warmup_frames);
+            r.batch = batch;
+            r.reference = i == 0;
+            r.values = i == 0 ? space.values(space.paperUnitPoint()) : space.values(points[i - 1]);
+            runs.push_back(std::move(r));
+        }
+        log.appendBatch(runs);
+        progress.setBest(bestSoFar(log, space, o.objective));
+    }
+}
+
+}  // namespace occsim::tune
