@@ -97,9 +97,9 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     EXPECT_LE(base_time, 2.0);
     EXPECT_EQ(tuned["culling"]["statistical"]["decay_a"].get<double>(), 2.0);  // not tuned: the paper's
 
-    // The sample log: settings, then two batches (a reference and 3, then 2 samples).
+    // The sample log: settings, then two batches (two references and 3, then 2 samples).
     const std::vector<std::string> log = lines(dir / "samples.jsonl");
-    ASSERT_EQ(log.size(), 1u + 4u + 3u);
+    ASSERT_EQ(log.size(), 1u + 5u + 4u);
     size_t samples = 0, references = 0;
     for (size_t i = 1; i < log.size(); ++i) {
         const nlohmann::json line = nlohmann::json::parse(log[i]);
@@ -108,7 +108,7 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
         EXPECT_EQ(line["frames"].size(), 7u);
     }
     EXPECT_EQ(samples, 5u);
-    EXPECT_EQ(references, 2u);
+    EXPECT_EQ(references, 4u);
 
     const nlohmann::json cost = nlohmann::json::parse(text(dir / "cost_model.json"));
     for (const char* key : {"query_ms", "triangle_ms", "draw_ms", "constant_ms", "residual_rms_ms"}) {
@@ -117,7 +117,7 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     }
 
     const std::string report = text(dir / "report.md");
-    for (const char* part : {"## Choice", "## Confirmation", "fitted (seed 7)", "held out (seed 8)", "Residual RMS",
+    for (const char* part : {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)", "held out (seed 8)", "Residual RMS",
                              "Leave-one-out prediction error", "Prediction error on runs left out", "Ceres Solver Report",
                              "| 0 / 0 |"}) {
         EXPECT_NE(report.find(part), std::string::npos) << part;

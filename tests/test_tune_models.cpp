@@ -310,9 +310,11 @@ TEST(SampleLog, BatchesAreWrittenWholeAndReadBackAsRatios) {
         LoggedRun ref{0, true, {2.0 / 3.0}, 20.0, 40.0, 0, {{20.0, 1, 2, 3, 4}}};
         LoggedRun a{0, false, {0.5}, 18.0, 44.0, 0, {{18.0, 1, 2, 3, 4}}};
         log.appendBatch({ref, a});
-        LoggedRun ref2{1, true, {2.0 / 3.0}, 30.0, 60.0, 0, {}};
+        // Two references: the samples are ratios to their mean.
+        LoggedRun ref2{1, true, {2.0 / 3.0}, 25.0, 50.0, 0, {}};
+        LoggedRun ref3{1, true, {2.0 / 3.0}, 35.0, 70.0, 0, {}};
         LoggedRun b{1, false, {1.5}, 33.0, 54.0, 0, {}};
-        log.appendBatch({ref2, b});
+        log.appendBatch({ref2, ref3, b});
     }
     const SampleLog log = SampleLog::read(file);
     EXPECT_EQ(log.batches(), 2u);
@@ -322,6 +324,9 @@ TEST(SampleLog, BatchesAreWrittenWholeAndReadBackAsRatios) {
     EXPECT_DOUBLE_EQ(samples[0].ratio_p95, 1.1);
     EXPECT_DOUBLE_EQ(samples[1].ratio_mean, 1.1);
     EXPECT_DOUBLE_EQ(samples[1].run->values[0], 1.5);
+    EXPECT_DOUBLE_EQ(samples[1].ratio_p95, 0.9);
+    // One batch with two references, 25 and 35 ms: log(35 / 25) / sqrt(2).
+    EXPECT_NEAR(log.referenceNoise(), std::log(35.0 / 25.0) / std::sqrt(2.0), 1e-12);
     EXPECT_DOUBLE_EQ(log.runs()[0].values[0], 2.0 / 3.0);  // doubles survive the text exactly
     EXPECT_EQ(log.mismatch(settings()), "");
     LogSettings other = settings();

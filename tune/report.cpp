@@ -87,7 +87,10 @@ std::string reportMarkdown(const TuneResult& r) {
         << " frame time of the paper's values, both from the same run (interleaved frame by frame)\n"
         << "- Samples: " << r.samples.size() << " (" << r.initial_samples << " from a seeded Latin hypercube, seed "
         << o.seed << "; the rest where the fitted response was uncertain or promising), in " << r.log->batches()
-        << " runs, each beside its own reference run of the paper's values\n"
+        << " runs, each beside two reference runs of the paper's values\n"
+        << "- Measurement noise: one run's mean frame time varies by " << fixed(100.0 * r.reference_noise, 1)
+        << " % (standard deviation, from the two reference runs of every batch, which differ in nothing but "
+           "noise); a sample's ratio carries that noise and a share of its batch's references'\n"
         << "- Error pixels over every frame of every sample and reference: " << r.sample_error_pixels
         << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)" : " (**zero expected**)")
         << "\n\n";

@@ -30,6 +30,7 @@ struct TuneResult {
     std::vector<double> objective;  // per sample: the fitted ratio
     uint32_t initial_samples = 0;
     int64_t sample_error_pixels = 0;     // over every frame of every sample and reference
+    double reference_noise = 0.0;        // SampleLog::referenceNoise()
 
     CostModelFit cost;
     ResponseFit response;

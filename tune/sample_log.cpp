@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -120,13 +121,13 @@ SampleLog SampleLog::read(const std::filesystem::path& file) {
                              ": not an occtune sample log line (" + e.what() + ")");
     }
     if (number == 0) throw TuneInputError("--resume: " + file.string() + " is empty");
-    // Every batch needs its reference: the samples are ratios to it.
+    // Every batch needs a reference: the samples are ratios to it.
     std::map<uint32_t, int> references;
     for (const LoggedRun& r : log.runs_) references[r.batch] += r.reference;
     for (const auto& [batch, count] : references) {
-        if (count != 1) {
+        if (count < 1) {
             throw TuneInputError("--resume: " + file.string() + ": batch " + std::to_string(batch) +
-                                 " has " + std::to_string(count) + " references (expected 1)");
+                                 " has no reference run");
         }
     }
     return log;
@@ -138,18 +139,51 @@ uint32_t SampleLog::batches() const {
     return n;
 }
 
-std::vector<Sample> SampleLog::samples() const {
-    std::map<uint32_t, const LoggedRun*> reference;
-    for (const LoggedRun& r : runs_) {
-        if (r.reference) reference[r.batch] = &r;
+namespace {
+
+struct ReferenceFigures {
+    double mean_ms = 0.0, p95_ms = 0.0;
+    std::vector<const LoggedRun*> runs;
+};
+
+std::map<uint32_t, ReferenceFigures> referencesOf(const std::vector<LoggedRun>& runs) {
+    std::map<uint32_t, ReferenceFigures> references;
+    for (const LoggedRun& r : runs) {
+        if (r.reference) references[r.batch].runs.push_back(&r);
     }
+    for (auto& [batch, ref] : references) {
+        for (const LoggedRun* r : ref.runs) {
+            ref.mean_ms += r->mean_ms / static_cast<double>(ref.runs.size());
+            ref.p95_ms += r->p95_ms / static_cast<double>(ref.runs.size());
+        }
+    }
+    return references;
+}
+
+}  // namespace
+
+std::vector<Sample> SampleLog::samples() const {
+    const std::map<uint32_t, ReferenceFigures> references = referencesOf(runs_);
     std::vector<Sample> out;
     for (const LoggedRun& r : runs_) {
         if (r.reference) continue;
-        const LoggedRun& ref = *reference.at(r.batch);
+        const ReferenceFigures& ref = references.at(r.batch);
         out.push_back({&r, r.mean_ms / ref.mean_ms, r.p95_ms / ref.p95_ms});
     }
     return out;
+}
+
+double SampleLog::referenceNoise() const {
+    double squared = 0.0;
+    size_t pairs = 0;
+    for (const auto& [batch, ref] : referencesOf(runs_)) {
+        if (ref.runs.size() < 2) continue;
+        const double l = std::log(ref.runs[1]->mean_ms / ref.runs[0]->mean_ms);
+        squared += l * l;
+        ++pairs;
+    }
+    // log(B / A) of two runs with independent noise s has spread s * sqrt(2).
+    return pairs > 0 ? std::sqrt(squared / static_cast<double>(pairs) / 2.0) : 0.0;
 }
 
 void SampleLog::appendBatch(const std::vector<LoggedRun>& batch) {

@@ -4,9 +4,9 @@
 //
 // Line 1 holds the settings the samples were measured under; --resume refuses a log whose
 // settings differ from the command's (other parameters, bounds, frames, design seed, or a changed
-// scenario file). Each further line is one run of one batch: the batch's reference (the paper's
-// values) or a sample, with its timing figures and the figures of every timed frame (for the cost
-// model).
+// scenario file). Each further line is one run of one batch: one of the batch's references (the
+// paper's values, run twice per batch) or a sample, with its timing figures and the figures of
+// every timed frame (for the cost model).
 #pragma once
 
 #include "tune/cost_model.h"
@@ -41,7 +41,7 @@ struct LoggedRun {
     std::vector<FrameCounts> frames;  // the timed frames
 };
 
-// A sample with its ratios to the reference of its batch.
+// A sample with its ratios to the references of its batch (their mean figure).
 struct Sample {
     const LoggedRun* run = nullptr;
     double ratio_mean = 0.0;
@@ -62,7 +62,11 @@ public:
     // The samples (not the references) in the order measured.
     std::vector<Sample> samples() const;
 
-    // Appends a batch (its reference and samples) and rewrites the file atomically.
+    // The spread of one run's figure when nothing differs: per batch with two references, the
+    // ratio of the second to the first; 0 when no batch has two.
+    double referenceNoise() const;
+
+    // Appends a batch (its references and samples) and rewrites the file atomically.
     void appendBatch(const std::vector<LoggedRun>& batch);
 
     // An empty string when `other` may continue this log, else what differs (one line).

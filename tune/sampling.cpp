@@ -12,6 +12,8 @@
 namespace occsim::tune {
 namespace {
 
+constexpr size_t kReferences = 2;  // runs of the paper's values per batch
+
 // The next batch: the rest of the space-filling design first, then adaptive points.
 std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, const TuneOptions& o) {
     const LogSettings& s = log.settings();
@@ -23,9 +25,9 @@ std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, 
         const size_t end = std::min<size_t>(s.initial_samples, done + k);
         return {design.begin() + static_cast<std::ptrdiff_t>(done), design.begin() + static_cast<std::ptrdiff_t>(end)};
     }
-    std::vector<size_t> all(space.size());
-    for (size_t j = 0; j < all.size(); ++j) all[j] = j;
-    ResponseFit fit = fitResponse(obs.xs, obs.ys, space.size(), all, o.max_fit_iterations);
+    // The model the session will choose with (parameters without an effect dropped): a full
+    // quadratic fitted to barely more samples than it has terms runs off at the corners.
+    ResponseFit fit = selectResponseModel(obs.xs, obs.ys, space.size(), o.max_fit_iterations, nullptr);
     const Point optimum = minimiseOverBox(fit.model, space.paperUnitPoint());
     return nextBatch(fit, obs.xs, optimum, k, deriveSeed(s.seed, log.batches(), 0x5A3D));
 }
@@ -57,7 +59,7 @@ std::string bestSoFar(const SampleLog& log, const ParameterSpace& space, Objecti
 
 uint64_t workLeft(size_t samples_left, const TuneOptions& o, uint32_t frames) {
     const uint64_t batches = (samples_left + o.batch - 1) / o.batch;
-    return (samples_left + batches) * frames + 2ull * 2ull * o.repetitions * frames;
+    return (samples_left + kReferences * batches) * frames + 2ull * 2ull * o.repetitions * frames;
 }
 
 void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progress& progress) {
@@ -67,7 +69,9 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
         const std::vector<Point> points = planBatch(log, space, o);
         if (points.empty()) throw std::runtime_error("no new sample point could be found in the bounds");
         const uint32_t batch = log.batches();
-        std::vector<Setting> settings = {{"paper", paper}};
+        // The paper's values twice: the ratio of every sample shares the reference's noise, which
+        // two runs halve (in variance), and their difference measures that noise.
+        std::vector<Setting> settings = {{"paper", paper}, {"paper (second run)", paper}};
         for (size_t i = 0; i < points.size(); ++i) {
             settings.push_back({"sample " + std::to_string(log.samples().size() + i) + ": " +
                                     space.describe(space.values(points[i])),
@@ -84,8 +88,8 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
         for (size_t i = 0; i < result.runs.size(); ++i) {
             LoggedRun r = loggedRunOf(result.runs[i], c.scenario.warmup_frames);
             r.batch = batch;
-            r.reference = i == 0;
-            r.values = i == 0 ? space.values(space.paperUnitPoint()) : space.values(points[i - 1]);
+            r.reference = i < kReferences;
+            r.values = r.reference ? space.values(space.paperUnitPoint()) : space.values(points[i - kReferences]);
             runs.push_back(std::move(r));
         }
         log.appendBatch(runs);

@@ -95,6 +95,7 @@ int runTuner(const TuneOptions& o) {
     r.initial_samples = log.settings().initial_samples;
     for (const Sample& s : r.samples) r.objective.push_back(objectiveOf(s, o.objective));
     for (const LoggedRun& run : log.runs()) r.sample_error_pixels += run.error_pixels;
+    r.reference_noise = log.referenceNoise();
 
     // The models.
     r.cost = fitCostModel(frameGroups(log), o.max_fit_iterations);
