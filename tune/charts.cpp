@@ -20,15 +20,15 @@ std::string axisLabel(const TunableParameter& p) {
     return std::string(p.name) + (p.unit[0] ? std::string(" (") + p.unit + ")" : std::string());
 }
 
-std::string samplesData(const ChartInput& in) {
+std::string runsData(const ChartInput& in, const std::vector<Sample>& runs, const std::vector<double>& objective) {
     std::ostringstream out;
-    out << "# sample";
+    out << "# run";
     for (const TunableParameter* p : in.space.parameters) out << ' ' << p->name;
     out << " objective_ratio\n";
-    for (size_t i = 0; i < in.samples.size(); ++i) {
+    for (size_t i = 0; i < runs.size(); ++i) {
         out << i;
-        for (double v : in.samples[i].run->values) out << ' ' << num(v);
-        out << ' ' << num(in.objective[i]) << '\n';
+        for (double v : runs[i].run->values) out << ' ' << num(v);
+        out << ' ' << num(objective[i]) << '\n';
     }
     return out.str();
 }
@@ -78,6 +78,8 @@ GnuplotChart parameterChart(const ChartInput& in, size_t j) {
       << "     '" << data << "' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'fitted response', \\\n"
       << "     'tune-samples.dat' using " << (j + 2) << ":" << (in.space.size() + 2)
       << " with points pt 7 ps 1.2 lc rgb '#ff7f0e' title 'samples', \\\n"
+      << "     'tune-references.dat' using " << (j + 2) << ":" << (in.space.size() + 2)
+      << " with points pt 6 ps 1.2 lc rgb '#555555' title 'reference runs', \\\n"
       << "     1 with lines dt 3 lc rgb '#000000' title 'paper values (= 1)', \\\n"
       << "     NaN with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'paper: " << num(paper) << "', \\\n"
       << "     NaN with lines lw 2 lc rgb '#d62728' title 'tuned: " << num(tuned) << "'\n";
@@ -98,7 +100,8 @@ GnuplotChart costChart() {
 
 PlotResult writeTuneCharts(const ChartInput& in, const std::filesystem::path& out_dir) {
     std::filesystem::create_directories(out_dir);
-    writeFileAtomically(out_dir / "tune-samples.dat", samplesData(in));
+    writeFileAtomically(out_dir / "tune-samples.dat", runsData(in, in.samples, in.objective));
+    writeFileAtomically(out_dir / "tune-references.dat", runsData(in, in.references, in.reference_objective));
     writeFileAtomically(out_dir / "tune-cost-model.dat", costData(in));
     std::vector<GnuplotChart> charts;
     for (size_t j = 0; j < in.space.size(); ++j) {

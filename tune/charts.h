@@ -20,6 +20,8 @@ struct ChartInput {
     const ParameterSpace& space;
     const std::vector<Sample>& samples;
     const std::vector<double>& objective;  // per sample: the ratio that was fitted
+    const std::vector<Sample>& references;             // reference runs (the paper's values)
+    const std::vector<double>& reference_objective;    // per reference run
     const char* objective_name;            // "mean" or "p95"
     const ResponseFit& response;
     const Point& tuned;                    // in the unit cube

@@ -155,7 +155,8 @@ std::string reportMarkdown(const TuneResult& r) {
                return s;
            }())
         << "), fitted with Ceres (" << r.response.fit.loss << ") over " << r.response.samples
-        << " samples.\n\n"
+        << " runs: the samples, and the reference runs at the paper's values (each as a ratio to its batch's "
+           "references), which anchor the model there.\n\n"
         << "- Residual RMS: " << fixed(r.response.residual_rms, 4) << "\n"
         << "- Leave-one-out prediction error (each sample predicted by a fit without it): " << fixed(r.response.loo_rms, 4)
         << "\n- Coefficients:";

@@ -28,6 +28,8 @@ struct TuneResult {
     const SampleLog* log = nullptr;
     std::vector<Sample> samples;
     std::vector<double> objective;  // per sample: the fitted ratio
+    std::vector<Sample> references;            // the reference runs, as ratios to their batch's
+    std::vector<double> reference_objective;
     uint32_t initial_samples = 0;
     int64_t sample_error_pixels = 0;     // over every frame of every sample and reference
     double reference_noise = 0.0;        // SampleLog::referenceNoise()

@@ -173,6 +173,17 @@ std::vector<Sample> SampleLog::samples() const {
     return out;
 }
 
+std::vector<Sample> SampleLog::referenceSamples() const {
+    const std::map<uint32_t, ReferenceFigures> references = referencesOf(runs_);
+    std::vector<Sample> out;
+    for (const LoggedRun& r : runs_) {
+        if (!r.reference) continue;
+        const ReferenceFigures& ref = references.at(r.batch);
+        out.push_back({&r, r.mean_ms / ref.mean_ms, r.p95_ms / ref.p95_ms});
+    }
+    return out;
+}
+
 double SampleLog::referenceNoise() const {
     double squared = 0.0;
     size_t pairs = 0;

@@ -61,6 +61,9 @@ public:
     uint32_t batches() const;
     // The samples (not the references) in the order measured.
     std::vector<Sample> samples() const;
+    // The reference runs, each as a ratio to its batch's references: observations at the paper's
+    // values, about 1, that anchor the response model there.
+    std::vector<Sample> referenceSamples() const;
 
     // The spread of one run's figure when nothing differs: per batch with two references, the
     // ratio of the second to the first; 0 when no batch has two.

@@ -18,7 +18,7 @@ constexpr size_t kReferences = 2;  // runs of the paper's values per batch
 std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, const TuneOptions& o) {
     const LogSettings& s = log.settings();
     const Observations obs = observationsOf(log, space, o.objective);
-    const size_t done = obs.xs.size();
+    const size_t done = log.samples().size();
     const size_t k = std::min<size_t>(o.batch, o.budget - done);
     if (done < s.initial_samples) {
         const std::vector<Point> design = latinHypercube(s.initial_samples, space.size(), s.seed);
@@ -38,7 +38,10 @@ double objectiveOf(const Sample& s, Objective o) { return o == Objective::Mean ?
 
 Observations observationsOf(const SampleLog& log, const ParameterSpace& space, Objective objective) {
     Observations obs;
-    for (const Sample& s : log.samples()) {
+    std::vector<Sample> all = log.samples();
+    const std::vector<Sample> references = log.referenceSamples();
+    all.insert(all.end(), references.begin(), references.end());
+    for (const Sample& s : all) {
         obs.xs.push_back(space.unitPoint(s.run->values));
         obs.ys.push_back(objectiveOf(s, objective));
     }

@@ -16,7 +16,8 @@ namespace occsim::tune {
 
 double objectiveOf(const Sample& sample, Objective objective);
 
-// The samples' points (in the unit cube) and objective values.
+// What the response model is fitted to: every sample, and every reference run at the paper's
+// values (their points in the unit cube, and objective values).
 struct Observations {
     std::vector<Point> xs;
     std::vector<double> ys;

@@ -94,6 +94,8 @@ int runTuner(const TuneOptions& o) {
     r.samples = log.samples();
     r.initial_samples = log.settings().initial_samples;
     for (const Sample& s : r.samples) r.objective.push_back(objectiveOf(s, o.objective));
+    r.references = log.referenceSamples();
+    for (const Sample& s : r.references) r.reference_objective.push_back(objectiveOf(s, o.objective));
     for (const LoggedRun& run : log.runs()) r.sample_error_pixels += run.error_pixels;
     r.reference_noise = log.referenceNoise();
 
@@ -158,8 +160,8 @@ int runTuner(const TuneOptions& o) {
     writeFileAtomically(c.out_dir / "cost_model.json", costModelJson(r.cost));
     r.files.push_back("cost_model.json");
     const PlotResult charts = writeTuneCharts(
-        {c.space, r.samples, r.objective, objectiveName(o.objective), r.response, r.tuned_unit, r.kept_at_paper,
-         r.cost.model, log.runs()},
+        {c.space, r.samples, r.objective, r.references, r.reference_objective, objectiveName(o.objective), r.response,
+         r.tuned_unit, r.kept_at_paper, r.cost.model, log.runs()},
         c.out_dir);
     r.charts_message = charts.message;
     r.files.insert(r.files.end(), charts.files.begin(), charts.files.end());
