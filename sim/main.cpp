@@ -10,6 +10,7 @@
 #include "sim/regress/regress.h"
 #include "sim/run/run_config.h"
 #include "sim/run/runner.h"
+#include "sim/scenario/culling_file.h"
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scenario.h"
 #include "sim/view/viewer.h"
@@ -81,6 +82,7 @@ struct CommonFlags {
     int deterministic_latency = -1;
     bool plots = false;
     int64_t birds_eye = -1;
+    std::string culling;
 };
 
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
@@ -104,6 +106,16 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--birds-eye", flags.birds_eye,
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
+    cmd->add_option("--culling", flags.culling,
+                    "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, e.g. occtune's "
+                    "tuned.json), overriding the scenario's");
+}
+
+// The scenario with the --culling file, when given, applied over its own culling options.
+occsim::Scenario scenarioWithCulling(const std::string& scenario_file, const std::string& culling_file) {
+    occsim::Scenario scenario = occsim::parseScenarioFile(scenario_file);
+    if (!culling_file.empty()) occsim::applyCullingFile(occsim::readCullingFile(culling_file), scenario);
+    return scenario;
 }
 
 // What `run` and `bench` share once their flags are read: the scenario (parsed once), the
@@ -180,8 +192,13 @@ int runCommand(const RunRequest& request) {
 }
 
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
-                   const std::string& shard, const std::string& out) {
+                   const std::string& shard, const std::string& out, const std::string& culling_file) {
     occsim::RegressOptions options;
+    if (!culling_file.empty()) {
+        options.adjust_scenario = [culling = occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
+            occsim::applyCullingFile(culling, s);
+        };
+    }
     for (const auto& input : inputs) options.inputs.emplace_back(input);
     try {
         options.shard = shard.empty() ? occsim::shardFromEnvironment(std::getenv) : occsim::parseShard(shard);
@@ -264,7 +281,7 @@ int main(int argc, char** argv) {
 
     std::vector<std::string> regress_inputs;
     bool regress_update = false;
-    std::string regress_junit, regress_shard, regress_out = "out/regress";
+    std::string regress_junit, regress_shard, regress_out = "out/regress", regress_culling;
     CLI::App* regress = app.add_subcommand(
         "regress", "Run every scenario with an expect block (files or folders, recursively) and check it");
     regress->add_option("paths", regress_inputs, "Scenario files or folders")->required();
@@ -273,6 +290,8 @@ int main(int argc, char** argv) {
     regress->add_option("--shard", regress_shard,
                         "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
     regress->add_option("--out", regress_out, "Output folder for data and failure pictures");
+    regress->add_option("--culling", regress_culling,
+                        "Culling options from this file, overriding every scenario's (see run --help)");
 
     std::string info_scenario;
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
@@ -319,8 +338,8 @@ int main(int argc, char** argv) {
     const std::string command = commandLine(argc, argv);
     try {
         if (*run) {
-            RunRequest request{"run", command, run_flags, occsim::parseScenarioFile(run_flags.scenario),
-                               {}, ""};
+            RunRequest request{"run", command, run_flags,
+                               scenarioWithCulling(run_flags.scenario, run_flags.culling), {}, ""};
             const occsim::AlgorithmTraits& algorithm =
                 run_algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
                                       : algorithmNamed("--algo", run_algorithm);
@@ -330,7 +349,7 @@ int main(int argc, char** argv) {
         }
         if (*bench) {
             RunRequest request{"bench", command, bench_flags,
-                               occsim::parseScenarioFile(bench_flags.scenario), {}, "bench"};
+                               scenarioWithCulling(bench_flags.scenario, bench_flags.culling), {}, "bench"};
             if (bench_algorithms.empty()) bench_algorithms = occsim::algorithmNames();
             for (const auto& a : bench_algorithms) {
                 request.algorithms.push_back(&algorithmNamed("--algos", a));
@@ -338,7 +357,7 @@ int main(int argc, char** argv) {
             return runCommand(request);
         }
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
-                                             regress_shard, regress_out);
+                                             regress_shard, regress_out, regress_culling);
         if (*info) {
             std::vector<std::string> warnings;
             const std::string text =

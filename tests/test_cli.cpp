@@ -130,4 +130,48 @@ TEST(Cli, InfoPrintsTheSceneWithoutRendering) {
     EXPECT_NE(o.output.find("triangles"), std::string::npos) << o.output;
 }
 
+// --culling FILE: a scenario's culling section on its own (what occtune writes as tuned.json),
+// read with the scenario parser's strict readers and applied over the scenario's.
+TEST(Cli, CullingFileOverridesTheScenariosCullingOptions) {
+    const auto dir = tempPath("culling");
+    std::filesystem::create_directories(dir);
+    const auto file = dir / "culling.json";
+    std::ofstream(file) << R"({"format_version": 1, "culling": {"algorithm": "vfc", "statistical": {"base_time": 0.3}}})";
+    // The scenario's algorithm is statistical; the file's wins.
+    const Outcome o = runOccsim("run " + kSmall + " --frames 3 --culling " + file.string() + " --out " +
+                                (dir / "run").string());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("\nvfc "), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("statistical"), std::string::npos) << o.output;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, BadCullingFileIsOneLineNamingTheFileAndPointerWithExitCode2) {
+    const auto dir = tempPath("bad-culling");
+    std::filesystem::create_directories(dir);
+    const struct {
+        std::string contents, must_contain;
+    } cases[] = {
+        {R"({"format_version": 1, "culling": {"statistical": {"base_tme": 0.3}}})",
+         "/culling/statistical/base_tme: unknown key 'base_tme'; did you mean 'base_time'?"},
+        {R"({"format_version": 1, "culling": {"statistical": {"decay_b": 2}}})", "/culling/statistical: decay_b must be in [0, 1]"},
+        {R"({"format_version": 1})", "missing required key 'culling'"},
+        {R"({"format_version": 1, "culling": {}, "camera": {}})", "unknown key 'camera'"},
+        {R"({"culling": {}})", "format_version"},
+    };
+    for (const auto& c : cases) {
+        const auto file = dir / "culling.json";
+        std::ofstream(file) << c.contents;
+        for (const std::string& command : {"run " + kSmall, "bench " + kSmall, "regress " + kSmall}) {
+            const Outcome o = runOccsim(command + " --culling " + file.string() + " --out " + (dir / "out").string());
+            EXPECT_EQ(o.exit_code, 2) << command << " " << c.contents << ": " << o.output;
+            EXPECT_EQ(lineCount(o.output), 1u) << command << ": " << o.output;
+            EXPECT_NE(o.output.find(file.string()), std::string::npos) << o.output;
+            EXPECT_NE(o.output.find(c.must_contain), std::string::npos) << o.output;
+            EXPECT_FALSE(std::filesystem::exists(dir / "out")) << command;
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace

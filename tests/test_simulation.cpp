@@ -125,6 +125,33 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     EXPECT_EQ(counts[0], counts[2]);
 }
 
+// rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its
+// own figures, the same as without rotation (decisions made reproducible).
+TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures) {
+    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>> counts;  // [rotated][config][frame]
+    for (bool rotate : {false, true}) {
+        BenchOptions options;
+        options.algorithms = traitsOf({"vfc", "statistical", "chc"});
+        options.latency = LatencyMode{true, 6};
+        options.frames = 6;
+        options.rotate_order = rotate;
+        std::vector<std::string> order;
+        options.on_frame = [&order](const FrameEvent& e) { order.push_back(e.config.label); };
+        const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+        if (rotate) {
+            const std::vector<std::string> expected = {"vfc", "statistical", "chc", "statistical", "chc", "vfc",
+                                                       "chc", "vfc", "statistical", "vfc", "statistical", "chc"};
+            EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 12), expected);
+        }
+        counts.emplace_back();
+        for (const RunRecord& run : r.runs) {
+            counts.back().emplace_back();
+            for (const FrameStats& f : run.frames) counts.back().back().push_back({f.queries, f.objects_drawn});
+        }
+    }
+    EXPECT_EQ(counts[0], counts[1]);
+}
+
 // runBenchmark() measures and returns; the files are written by the output layer afterwards
 // (and the pictures by its frame hook), so a tool that only wants figures writes nothing.
 TEST(Simulation, RunBenchmarkWritesNoFile) {

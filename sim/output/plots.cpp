@@ -23,11 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Chart {
-    std::string name;  // file stem
-    int width, height;
-    std::string body;  // gnuplot commands after the terminal and output are set
-};
+using Chart = GnuplotChart;
 
 // A gnuplot double-quoted string.
 std::string quoted(const std::string& s) {
@@ -203,9 +199,9 @@ std::string tempName(const std::string& file) {
 }
 
 // Each chart twice: PNG (pngcairo where gnuplot has it) and SVG, to temporary names.
-std::string script(const std::vector<Chart>& charts) {
+std::string script(const std::vector<Chart>& charts, const std::string& name) {
     std::ostringstream out;
-    out << "# Written by occsim (sim/plots.cpp); run with: gnuplot plots.gp\n"
+    out << "# Written by occsim (sim/output/plots.cpp); run with: gnuplot " << name << "\n"
         << "# Outputs go to temporary names that occsim renames once gnuplot succeeded.\n"
         << "set encoding utf8\n"
         << "has_cairo = strstrt(GPVAL_TERMINALS, 'pngcairo') > 0\n";
@@ -243,8 +239,8 @@ std::string readFile(const fs::path& p) {
     return s.str();
 }
 
-// Runs `gnuplot plots.gp` in dir with stderr captured; returns "" on success, else why not.
-std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir) {
+// Runs `gnuplot <script>` in dir with stderr captured; returns "" on success, else why not.
+std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir, const std::string& script_name) {
     const std::string err_name = tempName("gnuplot-stderr.txt");
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -253,7 +249,7 @@ std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir) {
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_name.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::string program = gnuplot.string(), arg = "plots.gp";
+    std::string program = gnuplot.string(), arg = script_name;
     char* argv[] = {program.data(), arg.data(), nullptr};
     pid_t pid = 0;
     const int spawn_error = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv, environ);
@@ -339,18 +335,32 @@ PlotResult writePlots(const std::vector<RunRecord>& runs, const fs::path& out_di
     writeFileAtomically(out_dir / "plot-frames.dat", framesData(runs));
     writeFileAtomically(out_dir / "plot-configs.dat", configsData(runs));
     writeFileAtomically(out_dir / "plot-pareto.dat", paretoData(runs));
-    writeFileAtomically(out_dir / "plots.gp", script(charts));
 
-    const std::string run_error = runGnuplot(*gnuplot, out_dir);
+    result = renderCharts(charts, out_dir, "plots.gp");
+    if (result.ok && !error_measured) result.message = "no time-against-error plot: run with --error";
+    return result;
+}
+
+PlotResult renderCharts(const std::vector<GnuplotChart>& charts, const fs::path& out_dir,
+                        const std::string& script_name) {
+    PlotResult result;
+    const std::optional<fs::path> gnuplot = findOnPath("gnuplot");
+    if (!gnuplot) {
+        result.message = "plots skipped: gnuplot not found; install the Debian package gnuplot-nox";
+        return result;
+    }
+    fs::create_directories(out_dir);
+    writeFileAtomically(out_dir / script_name, script(charts, script_name));
+
+    const std::string run_error = runGnuplot(*gnuplot, out_dir, script_name);
     const std::string publish_error = publish(charts, out_dir, run_error.empty(), result.files);
     if (!run_error.empty() || !publish_error.empty()) {
         result.files.clear();
         result.message = "plots failed: " + (run_error.empty() ? publish_error : run_error) +
-                         " (script: " + (out_dir / "plots.gp").string() + ")";
+                         " (script: " + (out_dir / script_name).string() + ")";
         return result;
     }
     result.ok = true;
-    if (!error_measured) result.message = "no time-against-error plot: run with --error";
     return result;
 }
 

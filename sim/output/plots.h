@@ -35,6 +35,19 @@ struct PlotResult {
 
 PlotResult writePlots(const std::vector<RunRecord>& runs, const std::filesystem::path& out_dir);
 
+// One picture for renderCharts(): gnuplot commands after the terminal and output are set.
+struct GnuplotChart {
+    std::string name;  // file stem
+    int width = 1100, height = 600;
+    std::string body;
+};
+
+// The machinery behind writePlots(), for other charts (the tuner's): writes `script_name` into
+// out_dir, runs gnuplot there (found on PATH) and publishes every chart as PNG and SVG, each whole
+// or absent, as above. The data files the charts read must be in out_dir already.
+PlotResult renderCharts(const std::vector<GnuplotChart>& charts, const std::filesystem::path& out_dir,
+                        const std::string& script_name);
+
 // The first executable file named `program` in the directories of $PATH.
 std::optional<std::filesystem::path> findOnPath(const std::string& program);
 

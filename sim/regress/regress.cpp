@@ -104,6 +104,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     Scenario scenario;
     try {
         scenario = parseScenarioFile(file);
+        if (options.adjust_scenario) options.adjust_scenario(scenario);
         outcome.name = scenario.name;
         if (!scenario.expect) {
             outcome.skipped = true;

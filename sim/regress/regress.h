@@ -91,6 +91,8 @@ struct RegressOptions {
     bool progress = false;
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
+    // Applied to each scenario after it is parsed (occsim regress --culling FILE).
+    std::function<void(Scenario&)> adjust_scenario;
 };
 
 struct RegressReport {

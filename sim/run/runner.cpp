@@ -152,7 +152,8 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             for (auto& sim : sims) sim->advance();
             const GroundTruthFrame* truth =
                 any_needs_truth ? &sims.front()->renderGroundTruth(truth_colour) : nullptr;
-            for (size_t c = 0; c < sims.size(); ++c) {
+            for (size_t k = 0; k < sims.size(); ++k) {
+                const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
                 frames[c].push_back(sims[c]->renderFrame(truth));
                 if (options.on_frame) {
                     options.on_frame(FrameEvent{rep, f, configs[c], *sims[c], scenario, renderer});

@@ -43,6 +43,11 @@ struct BenchOptions {
     bool progress = false;                // a progress line on stderr
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
     uint32_t repetitions = 1;             // each configuration runs this often; medians reported
+    // Frame f renders configuration (f + k) mod n as its k-th, so that every configuration takes
+    // every place within a frame equally often. A place has its own cost (the first
+    // configuration's world was advanced longest before it renders, and it renders right after
+    // ground truth): without rotation that cost lands on the same configuration every frame.
+    bool rotate_order = false;
     std::optional<Sweep> sweep;           // one configuration per value (run_config.h)
     // Record this frame's draws and queries for every configuration (first repetition), so that
     // on_frame can picture its culling decisions (Simulation::lastTrace()).

@@ -7,8 +7,12 @@
 #include "sim/scenario/scenario.h"
 
 #include <filesystem>
+#include <string>
 
 namespace occsim {
+
+// scenario_parser.cpp: a file's text; a ScenarioError says why it cannot be read.
+std::string readScenarioFileText(const std::filesystem::path& file);
 
 // scenario_parser.cpp: {"min": [x,y,z], "max": [x,y,z]}, min <= max, float-representable.
 Aabb readRegion(const JsonValueReader& value);

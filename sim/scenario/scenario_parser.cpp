@@ -447,6 +447,8 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     return s;
 }
 
+std::string readScenarioFileText(const std::filesystem::path& file) { return readFile(file); }
+
 Scenario parseScenarioFile(const std::filesystem::path& file) {
     return parseScenarioText(readFile(file), file);
 }

@@ -1,0 +1,285 @@
+// occtune as a user meets it: a whole session on a small scenario (real headless runs, a few
+// seconds), its files, and what `occsim --culling` makes of its tuned.json; bad input ends with
+// one line and exit code 2 before any run; a fit that does not converge writes no tuned.json;
+// Ctrl-C leaves the sample log whole and --resume finishes the session.
+#include "sim/output/plots.h"
+#include "tune/sample_log.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace occsim::tune {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+
+struct Outcome {
+    int exit_code = -1;
+    std::string output;  // stdout and stderr together
+};
+
+Outcome run(const std::string& exe, const std::string& args) {
+    const std::string command = exe + " " + args + " 2>&1";
+    Outcome out;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return out;
+    std::array<char, 4096> buffer{};
+    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
+    const int status = pclose(pipe);
+    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return out;
+}
+
+Outcome occtune(const std::string& args) { return run(OCCTUNE_EXE, args); }
+
+// Per process: other checkouts run the same suites on this machine.
+fs::path tempDir(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("occtune-test-" + std::to_string(::getpid()) + "-" + name);
+    fs::remove_all(p);
+    return p;
+}
+
+size_t lineCount(const std::string& s) {
+    size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+std::vector<std::string> lines(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+std::string text(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// One parameter keeps the smallest budget small (a quadratic in one parameter: 3 terms, 5
+// samples); 12 frames (7 timed after the scenario's 5 warm-up) keep every run short.
+const std::string kQuick = " --params base_time --budget 5 --batch 3 --frames 12 --repetitions 1";
+
+TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValues) {
+    const fs::path dir = tempDir("session");
+    const Outcome o = occtune(kSmall + kQuick + " --out " + dir.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+
+    // tuned.json: the scenario's culling form, the tuned value within its bounds.
+    const nlohmann::json tuned = nlohmann::json::parse(text(dir / "tuned.json"));
+    EXPECT_EQ(tuned["format_version"], 1);
+    EXPECT_EQ(tuned["culling"]["algorithm"], "statistical");
+    const double base_time = tuned["culling"]["statistical"]["base_time"].get<double>();
+    EXPECT_GE(base_time, 0.05);
+    EXPECT_LE(base_time, 2.0);
+    EXPECT_EQ(tuned["culling"]["statistical"]["decay_a"].get<double>(), 2.0);  // not tuned: the paper's
+
+    // The sample log: settings, then two batches (two references and 3, then 2 samples).
+    const std::vector<std::string> log = lines(dir / "samples.jsonl");
+    ASSERT_EQ(log.size(), 1u + 5u + 4u);
+    size_t samples = 0, references = 0;
+    for (size_t i = 1; i < log.size(); ++i) {
+        const nlohmann::json line = nlohmann::json::parse(log[i]);
+        (line["kind"] == "reference" ? references : samples) += 1;
+        EXPECT_EQ(line["error_pixels"], 0) << "the statistical culler is conservative";
+        EXPECT_EQ(line["frames"].size(), 7u);
+    }
+    EXPECT_EQ(samples, 5u);
+    EXPECT_EQ(references, 4u);
+
+    const nlohmann::json cost = nlohmann::json::parse(text(dir / "cost_model.json"));
+    for (const char* key : {"query_ms", "triangle_ms", "draw_ms", "constant_ms", "residual_rms_ms"}) {
+        EXPECT_TRUE(cost[key].is_number()) << key;
+        EXPECT_GE(cost[key].get<double>(), 0.0) << key;
+    }
+
+    const std::string report = text(dir / "report.md");
+    for (const char* part : {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)", "held out (seed 8)", "Residual RMS",
+                             "Leave-one-out prediction error", "Prediction error on runs left out", "Ceres Solver Report",
+                             "| 0 / 0 |"}) {
+        EXPECT_NE(report.find(part), std::string::npos) << part;
+    }
+    if (findOnPath("gnuplot")) {
+        EXPECT_TRUE(fs::is_regular_file(dir / "tune-base_time.png"));
+        EXPECT_TRUE(fs::is_regular_file(dir / "tune-cost-model.svg"));
+    }
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    }
+
+    // occsim runs the scenario with the tuned values.
+    const Outcome r = run(OCCSIM_EXE, "run " + kSmall + " --frames 6 --culling " + (dir / "tuned.json").string() +
+                                          " --out " + (dir / "run").string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("statistical"), std::string::npos) << r.output;
+
+    // A second session in the same folder would mix two logs: refused.
+    const Outcome again = occtune(kSmall + kQuick + " --out " + dir.string());
+    EXPECT_EQ(again.exit_code, 2);
+    EXPECT_EQ(lineCount(again.output), 1u) << again.output;
+    EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
+    fs::remove_all(dir);
+}
+
+TEST(Occtune, BadInputIsOneLineWithExitCode2BeforeAnyRun) {
+    const fs::path dir = tempDir("bad");
+    fs::create_directories(dir);
+    const fs::path malformed = dir / "bad.json";
+    std::ofstream(malformed) << "{\"format_version\": 1, \"frames\": 0}\n";
+    const fs::path out = dir / "out";
+    struct Case {
+        std::string args, expected;
+    };
+    const std::vector<Case> cases = {
+        {kSmall + " --bounds base_time=1:1", "empty range"},
+        {kSmall + " --bounds base_time=2:0.5", "inverted range"},
+        {kSmall + " --bounds decay_b=0:2", "decay_b must be in [0, 1]"},
+        {kSmall + " --params speed", "unknown parameter 'speed'"},
+        {kSmall + " --params base_time --bounds decay_a=1:3", "not tuned"},
+        {kSmall + " --budget 11", "--budget 11: too small for the model"},
+        {kSmall + " --params base_time --budget 4", "needs at least 5 samples"},
+        {kSmall + " --frames 5", "warm-up frames"},
+        {kSmall + " --objective median", "--objective"},
+        {kSmall + " --resume", "no sample log"},
+        {"/no/such/scenario.json", "/no/such/scenario.json"},
+        {malformed.string(), "/frames"},
+        {kSmall + " --frmaes 3", "--frmaes"},
+    };
+    for (const Case& c : cases) {
+        const Outcome o = occtune(c.args + " --out " + out.string());
+        EXPECT_EQ(o.exit_code, 2) << c.args << "\n" << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << c.args << "\n" << o.output;
+        EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.args << "\n" << o.output;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+    fs::remove_all(dir);
+}
+
+// A complete log made here, so that --resume goes straight to the fits.
+void writeSyntheticLog(const fs::path& dir) {
+    LogSettings s;
+    s.scenario_file = kSmall;
+    s.scenario_name = "teapots-small";
+    s.scenario_hash = textHash(text(kSmall));
+    s.parameters = {"base_time"};
+    s.bounds = {{0.05, 2.0}};
+    s.frames = 12;
+    s.warmup_frames = 5;
+    s.seed = 1;
+    s.initial_samples = 5;
+    fs::create_directories(dir);
+    SampleLog log(dir / "samples.jsonl", s);
+    std::vector<LoggedRun> batch = {{0, true, {2.0 / 3.0}, 30.0, 40.0, 0, {}}};
+    for (int i = 0; i < 5; ++i) {
+        LoggedRun r{0, false, {0.1 + 0.4 * i}, 30.0 + i, 40.0 + i, 0, {}};
+        for (int f = 0; f < 7; ++f) r.frames.push_back({20.0 + f + i, 10.0 * f, 1e5 + 1e4 * i, 100.0 + f, 1.0 * i});
+        batch.push_back(r);
+    }
+    batch[0].frames = batch[1].frames;
+    log.appendBatch(batch);
+}
+
+TEST(Occtune, AFitThatDoesNotConvergeIsReportedWithCeresSummaryAndWritesNoTunedJson) {
+    const fs::path dir = tempDir("noconv");
+    writeSyntheticLog(dir);
+    const Outcome o = occtune(kSmall + kQuick + " --resume --max-fit-iterations 1 --out " + dir.string());
+    EXPECT_EQ(o.exit_code, 1) << o.output;
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("did not converge"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("Ceres Solver Report"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("NO_CONVERGENCE"), std::string::npos) << o.output;
+    EXPECT_FALSE(fs::exists(dir / "tuned.json"));
+    fs::remove_all(dir);
+}
+
+TEST(Occtune, ResumeRefusesALogWrittenForOtherSettings) {
+    const fs::path dir = tempDir("mismatch");
+    writeSyntheticLog(dir);
+    const Outcome o = occtune(kSmall + " --params base_time --budget 5 --frames 12 --bounds base_time=0.1:1 --resume --out " +
+                              dir.string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("--bounds base_time=0.05:2"), std::string::npos) << o.output;
+    fs::remove_all(dir);
+}
+
+// Starts occtune with its output going to `output`; returns its pid.
+pid_t spawnOcctune(const std::vector<std::string>& args, const fs::path& output) {
+    std::vector<std::string> argv_text = {OCCTUNE_EXE};
+    argv_text.insert(argv_text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argv_text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid = -1;
+    posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    return pid;
+}
+
+TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
+    const fs::path dir = tempDir("interrupt");
+    fs::create_directories(dir);
+    // 40 frames per run, so that a batch lasts long enough (seconds) for the signal to land in one.
+    const std::vector<std::string> args = {kSmall, "--params", "base_time", "--budget", "6", "--batch", "2", "--frames",
+                                           "40", "--repetitions", "1", "--out", (dir / "out").string()};
+    const pid_t pid = spawnOcctune(args, dir / "output.txt");
+    ASSERT_GT(pid, 0);
+    // Wait (no wall-clock assertion: only a generous limit against a hang) for the first batch
+    // in the log, then interrupt the second.
+    const fs::path log_file = dir / "out" / "samples.jsonl";
+    for (int i = 0; i < 6000 && lines(log_file).size() < 4; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_GE(lines(log_file).size(), 4u) << text(dir / "output.txt");
+    ::kill(pid, SIGINT);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    const std::string said = text(dir / "output.txt");
+    EXPECT_EQ(lineCount(said), 1u) << said;
+    EXPECT_NE(said.find("interrupted"), std::string::npos) << said;
+    EXPECT_NE(said.find("--resume"), std::string::npos) << said;
+    EXPECT_FALSE(fs::exists(dir / "out" / "tuned.json"));
+    // Whole: every line is JSON, and it reads as a sample log.
+    for (const std::string& line : lines(log_file)) EXPECT_TRUE(nlohmann::json::accept(line)) << line;
+    const size_t logged = SampleLog::read(log_file).samples().size();
+    EXPECT_GE(logged, 2u);
+    EXPECT_LT(logged, 6u);
+
+    std::string command;
+    for (const std::string& a : args) command += " " + a;
+    const Outcome o = occtune(command + " --resume");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(SampleLog::read(log_file).samples().size(), 6u);
+    EXPECT_TRUE(fs::exists(dir / "out" / "tuned.json"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace occsim::tune

@@ -1,0 +1,378 @@
+// The tuner's numerics without rendering: the cost and response models fitted to data generated
+// from known parameters plus noise (and a few outliers) must give those parameters back within
+// the stated tolerances; the choice, the design, the parameter flags, the sample log and
+// tuned.json each do what their headers say.
+#include "culling/algorithms.h"
+#include "culling/random.h"
+#include "sim/scenario/culling_file.h"
+#include "tune/cost_model.h"
+#include "tune/design.h"
+#include "tune/errors.h"
+#include "tune/parameters.h"
+#include "tune/response_model.h"
+#include "tune/sample_log.h"
+#include "tune/tuned_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace occsim::tune {
+namespace {
+
+// A standard normal variate (Box-Muller) from the project's seeded generator.
+double gaussian(Rng& rng) {
+    const double u = std::max(rng.uniform(), 1e-12);
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * 3.14159265358979323846 * rng.uniform());
+}
+
+// ---- cost model ----------------------------------------------------------------------------
+
+const CostModel kTrueCost{6.0, 0.03, 0.09, 0.012, 1.0};
+
+std::vector<std::vector<FrameCounts>> syntheticFrames(const CostModel& truth, double noise_ms, double outlier_share,
+                                                      uint64_t seed) {
+    Rng rng(seed);
+    std::vector<std::vector<FrameCounts>> runs(16);
+    for (auto& run : runs) {
+        for (int i = 0; i < 60; ++i) {
+            FrameCounts f;
+            f.queries = rng.uniform(0, 400);
+            f.triangles = rng.uniform(1e5, 2e6);
+            f.objects_drawn = rng.uniform(100, 3000);
+            f.wait_ms = rng.uniform(0, 40);
+            f.frame_ms = truth.predict(f) + noise_ms * gaussian(rng);
+            // Another process took the machine for this frame.
+            if (rng.uniform() < outlier_share) f.frame_ms += rng.uniform(50, 150);
+            run.push_back(f);
+        }
+    }
+    return runs;
+}
+
+TEST(CostModel, FitRecoversKnownCostsFromNoisyFramesWithOutliers) {
+    // 960 frames, 2 ms of noise, 3 % of frames slowed by 50-150 ms. Tolerance: 10 % of each
+    // coefficient (5 % would still pass on this seed; the outliers bias a plain least-squares
+    // fit by far more, see the next test).
+    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 2.0, 0.03, 11));
+    ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
+    EXPECT_NEAR(fit.model.constant_ms, kTrueCost.constant_ms, 0.10 * kTrueCost.constant_ms);
+    EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.10 * kTrueCost.query_ms);
+    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms, 0.10 * kTrueCost.kilotriangle_ms);
+    EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.10 * kTrueCost.draw_ms);
+    EXPECT_NEAR(fit.model.wait_factor, kTrueCost.wait_factor, 0.10 * kTrueCost.wait_factor);
+    EXPECT_EQ(fit.frames, 960u);
+    EXPECT_EQ(fit.groups, 16u);
+    EXPECT_NEAR(fit.model.triangleMs(), kTrueCost.kilotriangle_ms / 1000.0, 0.10 * kTrueCost.kilotriangle_ms / 1000.0);
+    // The held-out error is the noise plus the outliers' share, far below the frames' spread.
+    EXPECT_TRUE(std::isfinite(fit.heldout_rms_ms));
+    EXPECT_LT(fit.heldout_rms_ms, 25.0);
+}
+
+TEST(CostModel, WithoutOutliersTheFitIsTight) {
+    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 12));
+    ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
+    EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.03 * kTrueCost.query_ms);
+    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms, 0.03 * kTrueCost.kilotriangle_ms);
+    EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.03 * kTrueCost.draw_ms);
+    // Residual and held-out error are the noise (1 ms) within 20 %.
+    EXPECT_NEAR(fit.residual_rms_ms, 1.0, 0.2);
+    EXPECT_NEAR(fit.heldout_rms_ms, 1.0, 0.2);
+    // The stated uncertainty covers the truth.
+    EXPECT_LT(std::abs(fit.model.query_ms - kTrueCost.query_ms), 4 * fit.standard_error[1]);
+}
+
+TEST(CostModel, CoefficientsStayNonNegative) {
+    // Frames whose time falls as queries rise: the bound keeps the query cost at 0.
+    std::vector<std::vector<FrameCounts>> runs(2);
+    Rng rng(3);
+    for (auto& run : runs) {
+        for (int i = 0; i < 50; ++i) {
+            FrameCounts f;
+            f.queries = rng.uniform(0, 100);
+            f.triangles = rng.uniform(1e5, 2e5);
+            f.objects_drawn = rng.uniform(10, 20);
+            f.frame_ms = 50.0 - 0.1 * f.queries;
+            run.push_back(f);
+        }
+    }
+    const CostModelFit fit = fitCostModel(runs);
+    EXPECT_GE(fit.model.query_ms, 0.0);
+    EXPECT_GE(fit.model.wait_factor, 0.0);
+}
+
+TEST(CostModel, AnIterationLimitTooSmallIsReportedAsNotConverged) {
+    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 13), 1);
+    EXPECT_FALSE(fit.fit.converged);
+    EXPECT_NE(fit.fit.ceres_summary.find("Ceres Solver Report"), std::string::npos) << fit.fit.ceres_summary;
+    EXPECT_NE(fit.fit.ceres_summary.find("NO_CONVERGENCE"), std::string::npos) << fit.fit.ceres_summary;
+}
+
+// ---- response model ------------------------------------------------------------------------
+
+// A bowl with its minimum inside the cube at (0.3, 0.7, 0.5) and a cross term.
+double trueResponse(const Point& x) {
+    const double a = x[0] - 0.3, b = x[1] - 0.7, c = x[2] - 0.5;
+    return 0.9 + 0.4 * a * a + 0.3 * b * b + 0.2 * c * c + 0.1 * a * b;
+}
+
+struct Data {
+    std::vector<Point> xs;
+    std::vector<double> ys;
+};
+
+Data responseData(size_t n, double noise, uint64_t seed, double (*f)(const Point&)) {
+    Data d;
+    d.xs = latinHypercube(n, 3, seed);
+    Rng rng(seed + 100);
+    for (const Point& x : d.xs) d.ys.push_back(f(x) + noise * gaussian(rng));
+    return d;
+}
+
+TEST(ResponseModel, FitRecoversAKnownQuadraticAndItsMinimum) {
+    // 30 samples with 0.5 % noise and one sample slowed by 30 %. Tolerances: predictions within
+    // 0.015 of the truth anywhere in the cube (three standard deviations of a prediction at its
+    // corners, where 30 samples constrain a 10-term quadratic least), the minimum within 0.1 of
+    // the true one in every coordinate (normalised), its value within 0.005.
+    Data d = responseData(30, 0.005, 21, trueResponse);
+    d.ys[7] += 0.3;
+    const ResponseFit fit = fitResponse(d.xs, d.ys, 3, {0, 1, 2});
+    ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
+    Rng rng(5);
+    for (int i = 0; i < 200; ++i) {
+        const Point x = {rng.uniform(), rng.uniform(), rng.uniform()};
+        EXPECT_NEAR(fit.model.predict(x), trueResponse(x), 0.015);
+    }
+    const Point best = minimiseOverBox(fit.model, {0.5, 0.5, 0.5});
+    EXPECT_NEAR(best[0], 0.3, 0.1);
+    EXPECT_NEAR(best[1], 0.7, 0.1);
+    EXPECT_NEAR(best[2], 0.5, 0.1);
+    EXPECT_NEAR(fit.model.predict(best), 0.9, 0.005);
+    // The leave-one-out error reflects the noise (and the outlier's own error, 0.3 / sqrt(30)).
+    EXPECT_LT(fit.loo_rms, 0.1);
+}
+
+double dependsOnFirstTwo(const Point& x) { return 1.0 + 0.3 * (x[0] - 0.6) * (x[0] - 0.6) - 0.08 * x[1]; }
+
+TEST(ResponseModel, AParameterWithNoEffectIsDropped) {
+    const Data d = responseData(24, 0.004, 31, dependsOnFirstTwo);
+    std::vector<size_t> dropped;
+    const ResponseFit fit = selectResponseModel(d.xs, d.ys, 3, 200, &dropped);
+    EXPECT_EQ(dropped, std::vector<size_t>{2});
+    EXPECT_EQ(fit.model.active, (std::vector<size_t>{0, 1}));
+    const Point best = minimiseOverBox(fit.model, {0.5, 0.5, 0.25});
+    EXPECT_NEAR(best[0], 0.6, 0.1);
+    EXPECT_NEAR(best[1], 1.0, 1e-9);   // on the face: the response falls along x1
+    EXPECT_EQ(best[2], 0.25);          // not active: where it was asked to stay
+}
+
+TEST(ResponseModel, PureNoiseKeepsNoParameter) {
+    Rng rng(8);
+    std::vector<Point> xs = latinHypercube(20, 2, 41);
+    std::vector<double> ys;
+    for (size_t i = 0; i < xs.size(); ++i) ys.push_back(1.0 + 0.02 * gaussian(rng));
+    std::vector<size_t> dropped;
+    const ResponseFit fit = selectResponseModel(xs, ys, 2, 200, &dropped);
+    EXPECT_TRUE(fit.model.active.empty());
+    EXPECT_EQ(dropped.size(), 2u);
+}
+
+TEST(ResponseModel, TooFewSamplesForTheTermsIsAnError) {
+    const Data d = responseData(10, 0.0, 1, trueResponse);
+    EXPECT_THROW(fitResponse(d.xs, d.ys, 3, {0, 1, 2}), std::invalid_argument);
+    EXPECT_EQ(minimumSamples(3), 12u);
+    EXPECT_EQ(minimumSamples(1), 5u);
+}
+
+TEST(ResponseModel, MinimumOverTheBoxIsExactOnFacesAndCorners) {
+    ResponseModel m;
+    m.dims = 2;
+    m.active = {0, 1};
+    // In z = 2x - 1: f = z0^2 + z1^2 - 3 z0 (unconstrained minimum at z0 = 1.5: outside).
+    m.coefficients.resize(6);
+    m.coefficients << 0.0, -3.0, 0.0, 1.0, 0.0, 1.0;
+    Point best = minimiseOverBox(m, {0.5, 0.5});
+    EXPECT_NEAR(best[0], 1.0, 1e-12);
+    EXPECT_NEAR(best[1], 0.5, 1e-12);
+    // A saddle f = z0^2 - z1^2: the minimum is on the edges z1 = +-1, at z0 = 0.
+    m.coefficients << 0.0, 0.0, 0.0, 1.0, 0.0, -1.0;
+    best = minimiseOverBox(m, {0.5, 0.5});
+    EXPECT_NEAR(best[0], 0.5, 1e-12);
+    EXPECT_TRUE(std::abs(best[1]) < 1e-12 || std::abs(best[1] - 1.0) < 1e-12);
+}
+
+TEST(ResponseModel, UncertaintyShrinksWhereAPointIsAssumedSampled) {
+    const Data d = responseData(15, 0.01, 51, trueResponse);
+    ResponseFit fit = fitResponse(d.xs, d.ys, 3, {0, 1, 2});
+    const Point corner = {1.0, 1.0, 0.0};
+    const double before = fit.predict(corner).stddev;
+    fit.assumeSampled(corner);
+    EXPECT_LT(fit.predict(corner).stddev, before);
+}
+
+// ---- design --------------------------------------------------------------------------------
+
+TEST(Design, LatinHypercubeHasOnePointPerStratumAndIsReproducible) {
+    const auto a = latinHypercube(9, 3, 77);
+    ASSERT_EQ(a.size(), 9u);
+    for (size_t j = 0; j < 3; ++j) {
+        std::set<int> strata;
+        for (const Point& p : a) {
+            ASSERT_GE(p[j], 0.0);
+            ASSERT_LT(p[j], 1.0);
+            strata.insert(static_cast<int>(p[j] * 9));
+        }
+        EXPECT_EQ(strata.size(), 9u) << "axis " << j;
+    }
+    EXPECT_EQ(a, latinHypercube(9, 3, 77));
+    EXPECT_NE(a, latinHypercube(9, 3, 78));
+}
+
+TEST(Design, NextBatchStartsAtTheOptimumAndKeepsItsDistance) {
+    const Data d = responseData(14, 0.01, 61, trueResponse);
+    ResponseFit fit = fitResponse(d.xs, d.ys, 3, {0, 1, 2});
+    const Point optimum = minimiseOverBox(fit.model, {0.5, 0.5, 0.5});
+    const std::vector<Point> batch = nextBatch(fit, d.xs, optimum, 4, 9, 2.0, 0.05);
+    ASSERT_EQ(batch.size(), 4u);
+    EXPECT_EQ(batch[0], optimum);
+    for (size_t i = 0; i < batch.size(); ++i) {
+        for (const Point& p : d.xs) EXPECT_GE(distance(batch[i], p), 0.05);
+        for (size_t k = 0; k < i; ++k) EXPECT_GE(distance(batch[i], batch[k]), 0.05);
+    }
+}
+
+// ---- parameters ----------------------------------------------------------------------------
+
+std::string inputError(const std::string& params, const std::vector<std::string>& bounds) {
+    try {
+        parseParameterSpace(params, bounds);
+    } catch (const TuneInputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
+    EXPECT_NE(inputError("speed", {}).find("unknown parameter 'speed'; expected one of: base_time, decay_a, decay_b"),
+              std::string::npos);
+    EXPECT_NE(inputError("base_time,base_time", {}).find("twice"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=1:1"}).find("empty range"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=2:1"}).find("inverted range"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"decay_a=1:2"}).find("not tuned"), std::string::npos);
+    EXPECT_NE(inputError("decay_b", {"decay_b=0:2"}).find("decay_b must be in [0, 1]"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=0.1"}).find("expected name=lo:hi"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=a:1"}).find("two finite numbers"), std::string::npos);
+    EXPECT_NE(inputError("", {}).find("no parameter"), std::string::npos);
+    for (const std::string& e : {inputError("speed", {}), inputError("base_time", {"base_time=2:1"})}) {
+        EXPECT_EQ(e.find('\n'), std::string::npos);
+    }
+
+    const ParameterSpace s = parseParameterSpace("decay_a,base_time", {"base_time=0.2:1.2"});
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_STREQ(s.parameters[0]->name, "decay_a");
+    EXPECT_EQ(s.bounds[1].lo, 0.2);
+    EXPECT_EQ(s.bounds[1].hi, 1.2);
+    EXPECT_NEAR(s.value(1, 0.5), 0.7, 1e-12);
+    const StatisticalOptions o = s.apply({}, {3.0, 0.9});
+    EXPECT_EQ(o.decay_a, 3.0);
+    EXPECT_EQ(o.base_time_s, 0.9);
+    EXPECT_EQ(o.decay_b, StatisticalOptions{}.decay_b);
+    const StatisticalOptions paper = s.paper(o);
+    EXPECT_EQ(paper.base_time_s, 2.0 / 3.0);
+    EXPECT_EQ(paper.decay_a, 2.0);
+}
+
+// ---- sample log ----------------------------------------------------------------------------
+
+LogSettings settings() {
+    LogSettings s;
+    s.scenario_file = "a.json";
+    s.scenario_name = "a";
+    s.scenario_hash = textHash("{}");
+    s.parameters = {"base_time"};
+    s.bounds = {{0.1, 2.0}};
+    s.frames = 20;
+    s.warmup_frames = 5;
+    s.seed = 3;
+    s.initial_samples = 5;
+    return s;
+}
+
+TEST(SampleLog, BatchesAreWrittenWholeAndReadBackAsRatios) {
+    const auto file = std::filesystem::temp_directory_path() / ("occtune-log-" + std::to_string(::getpid()) + ".jsonl");
+    {
+        SampleLog log(file, settings());
+        LoggedRun ref{0, true, {2.0 / 3.0}, 20.0, 40.0, 0, {{20.0, 1, 2, 3, 4}}};
+        LoggedRun a{0, false, {0.5}, 18.0, 44.0, 0, {{18.0, 1, 2, 3, 4}}};
+        log.appendBatch({ref, a});
+        // Two references: the samples are ratios to their mean.
+        LoggedRun ref2{1, true, {2.0 / 3.0}, 25.0, 50.0, 0, {}};
+        LoggedRun ref3{1, true, {2.0 / 3.0}, 35.0, 70.0, 0, {}};
+        LoggedRun b{1, false, {1.5}, 33.0, 54.0, 0, {}};
+        log.appendBatch({ref2, ref3, b});
+    }
+    const SampleLog log = SampleLog::read(file);
+    EXPECT_EQ(log.batches(), 2u);
+    const std::vector<Sample> samples = log.samples();
+    ASSERT_EQ(samples.size(), 2u);
+    EXPECT_DOUBLE_EQ(samples[0].ratio_mean, 0.9);
+    EXPECT_DOUBLE_EQ(samples[0].ratio_p95, 1.1);
+    EXPECT_DOUBLE_EQ(samples[1].ratio_mean, 1.1);
+    EXPECT_DOUBLE_EQ(samples[1].run->values[0], 1.5);
+    EXPECT_DOUBLE_EQ(samples[1].ratio_p95, 0.9);
+    // One batch with two references, 25 and 35 ms: log(35 / 25) / sqrt(2).
+    EXPECT_NEAR(log.referenceNoise(), std::log(35.0 / 25.0) / std::sqrt(2.0), 1e-12);
+    EXPECT_DOUBLE_EQ(log.runs()[0].values[0], 2.0 / 3.0);  // doubles survive the text exactly
+    EXPECT_EQ(log.mismatch(settings()), "");
+    LogSettings other = settings();
+    other.bounds = {{0.1, 1.0}};
+    EXPECT_NE(log.mismatch(other).find("--bounds base_time=0.1:2"), std::string::npos);
+    other = settings();
+    other.scenario_hash = textHash("{ }");
+    EXPECT_NE(log.mismatch(other).find("another scenario"), std::string::npos);
+    std::filesystem::remove(file);
+}
+
+TEST(SampleLog, ALogThatIsNotOneIsBadInputNamingTheLine) {
+    const auto file = std::filesystem::temp_directory_path() / ("occtune-bad-" + std::to_string(::getpid()) + ".jsonl");
+    std::ofstream(file) << "{\"occtune_sample_log\": 1}\n";
+    try {
+        SampleLog::read(file);
+        FAIL() << "accepted";
+    } catch (const TuneInputError& e) {
+        EXPECT_NE(std::string(e.what()).find(":1: not an occtune sample log line"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(file);
+}
+
+// ---- tuned.json ----------------------------------------------------------------------------
+
+TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
+    StatisticalOptions tuned;
+    tuned.base_time_s = 0.123456789012345;
+    tuned.decay_a = 2.75;
+    const TunedFile file = tunedFile(tuned, CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    const nlohmann::json json = nlohmann::json::parse(file.text);
+    Scenario s;
+    s.algorithm = "vfc";
+    applyCullingFile(CullingFile{"tuned.json", json}, s);
+    EXPECT_EQ(s.algorithm, "statistical");
+    EXPECT_EQ(s.culler.statistical.base_time_s, tuned.base_time_s);
+    EXPECT_EQ(s.culler.statistical.decay_a, 2.75);
+    // The fitted cost model is the culler's cost option, read back as such.
+    EXPECT_TRUE(file.has_cost_option);
+    EXPECT_DOUBLE_EQ(s.culler.cost_model.query_box_ms, 0.02);
+    EXPECT_DOUBLE_EQ(s.culler.cost_model.triangle_ms, 0.1 / 1000.0);
+    EXPECT_DOUBLE_EQ(s.culler.cost_model.draw_call_ms, 0.01);
+    nlohmann::json culling = nlohmann::json::object();
+    EXPECT_FALSE(addCostOption(culling, CostModel{1.0, 0.0, 0.0, 0.0, 1.0}));
+    EXPECT_TRUE(culling.empty());
+}
+
+}  // namespace
+}  // namespace occsim::tune

@@ -1,0 +1,50 @@
+#include "tune/confirm.h"
+
+#include "tune/measure.h"
+
+#include <algorithm>
+
+namespace occsim::tune {
+
+Spread spreadOf(std::vector<double> v) {
+    if (v.empty()) return {};
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return {median, v.front(), v.back()};
+}
+
+ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, const StatisticalOptions& tuned,
+                        const StatisticalOptions& paper, uint32_t repetitions,
+                        const std::function<void(const FrameEvent&)>& on_frame) {
+    // The paper's values first: the same order as every sampling batch.
+    const BenchResult result =
+        runInterleaved(scenario, {{"paper", paper}, {"tuned", tuned}}, repetitions, on_frame);
+    const occsim::RunRecord& p = result.runs[0];
+    const occsim::RunRecord& t = result.runs[1];
+
+    ConfirmationRow row;
+    row.variant = variant;
+    row.seed = scenario.seed;
+    row.frames = result.metadata.frames;
+    row.renderer = result.metadata.renderer;
+    row.repetitions = static_cast<uint32_t>(t.repetitions.size());
+    std::vector<double> mean_ratios, p95_ratios;
+    for (size_t r = 0; r < t.repetitions.size(); ++r) {
+        mean_ratios.push_back(t.repetitions[r].frame_ms.mean / p.repetitions[r].frame_ms.mean);
+        p95_ratios.push_back(t.repetitions[r].frame_ms.p95 / p.repetitions[r].frame_ms.p95);
+        row.tuned_error_pixels += t.repetitions[r].error_pixels_total;
+        row.paper_error_pixels += p.repetitions[r].error_pixels_total;
+    }
+    row.mean_ratio = spreadOf(mean_ratios);
+    row.p95_ratio = spreadOf(p95_ratios);
+    row.tuned_mean_ms = t.summary.frame_ms.mean;
+    row.paper_mean_ms = p.summary.frame_ms.mean;
+    row.tuned_queries = t.summary.queries_mean;
+    row.paper_queries = p.summary.queries_mean;
+    row.tuned_objects = t.summary.objects_mean;
+    row.paper_objects = p.summary.objects_mean;
+    return row;
+}
+
+}  // namespace occsim::tune

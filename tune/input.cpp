@@ -1,0 +1,90 @@
+#include "tune/input.h"
+
+#include "sim/output/atomic_file.h"
+#include "sim/world/world.h"
+#include "tune/errors.h"
+#include "tune/response_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace occsim::tune {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The space-filling start: 60 % of the budget, never fewer samples than the model needs.
+uint32_t initialSamples(uint32_t budget, size_t dims) {
+    const auto share = static_cast<uint32_t>(std::lround(0.6 * budget));
+    return std::min(budget, std::max(static_cast<uint32_t>(minimumSamples(dims)), share));
+}
+
+std::string fileText(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+CheckedInput checkInput(const TuneOptions& o) {
+    CheckedInput c;
+    c.space = parseParameterSpace(o.params, o.bounds);
+    const size_t needed = minimumSamples(c.space.size());
+    if (o.budget < needed) {
+        throw TuneInputError("--budget " + std::to_string(o.budget) + ": too small for the model: a quadratic in " +
+                             std::to_string(c.space.size()) + " parameters has " +
+                             std::to_string(ResponseModel::termCount(c.space.size())) + " terms and needs at least " +
+                             std::to_string(needed) + " samples (or tune fewer --params)");
+    }
+    if (o.batch < 1) throw TuneInputError("--batch: expected at least 1 sample per run");
+    if (o.repetitions < 1) throw TuneInputError("--repetitions: expected at least 1");
+    c.scenario = parseScenarioFile(o.scenario);
+    if (o.frames) c.scenario.frames = *o.frames;
+    if (c.scenario.frames <= c.scenario.warmup_frames) {
+        throw TuneInputError("--frames " + std::to_string(c.scenario.frames) + ": the scenario has " +
+                             std::to_string(c.scenario.warmup_frames) + " warm-up frames; expected more frames than that");
+    }
+    // Builds the scene once so that a scene that cannot be built (a glTF file, a mover's object)
+    // fails here, before any run, rather than in the first batch.
+    const Scene scene = buildScene(c.scenario);
+    c.objects = scene.objectCount();
+    c.triangles = scene.triangle_count;
+
+    c.out_dir = o.out.empty() ? fs::path("out") / safeFileName(c.scenario.name) / "tune" : o.out;
+    c.log_file = c.out_dir / "samples.jsonl";
+    LogSettings& s = c.settings;
+    s.scenario_file = o.scenario.string();
+    s.scenario_name = c.scenario.name;
+    s.scenario_hash = textHash(fileText(o.scenario));
+    for (size_t j = 0; j < c.space.size(); ++j) {
+        s.parameters.push_back(c.space.parameters[j]->name);
+        s.bounds.push_back(c.space.bounds[j]);
+    }
+    s.frames = c.scenario.frames;
+    s.warmup_frames = c.scenario.warmup_frames;
+    s.seed = o.seed;
+    s.initial_samples = initialSamples(o.budget, c.space.size());
+    return c;
+}
+
+SampleLog openLog(const TuneOptions& o, const CheckedInput& c) {
+    std::error_code ec;
+    const bool exists = fs::exists(c.log_file, ec);
+    if (!o.resume) {
+        if (exists) {
+            throw TuneInputError(c.log_file.string() +
+                                 " exists: continue that session with --resume, or choose another --out");
+        }
+        return SampleLog(c.log_file, c.settings);
+    }
+    if (!exists) throw TuneInputError("--resume: no sample log at " + c.log_file.string());
+    SampleLog log = SampleLog::read(c.log_file);
+    if (const std::string why = log.mismatch(c.settings); !why.empty()) throw TuneInputError("--resume: " + why);
+    return log;
+}
+
+}  // namespace occsim::tune

@@ -1,0 +1,58 @@
+#include "tune/measure.h"
+
+#include "culling/algorithms.h"
+
+#include <stdexcept>
+
+namespace occsim::tune {
+namespace {
+
+// The culler the tuner tunes: Kovalčík & Sochor's, reading CullerOptions::statistical.
+const AlgorithmTraits& tunedAlgorithm() {
+    const AlgorithmTraits* a = findAlgorithm("statistical");
+    if (!a) throw std::logic_error("the algorithm registry has no 'statistical' culler");
+    return *a;
+}
+
+}  // namespace
+
+RunConfig statisticalConfig(const Scenario& scenario, const Setting& setting) {
+    RunConfig config;
+    config.label = setting.label;
+    config.algorithm = &tunedAlgorithm();
+    config.culler = scenario.culler;
+    config.culler.statistical = setting.statistical;
+    return config;
+}
+
+BenchResult runInterleaved(const Scenario& scenario, const std::vector<Setting>& settings, uint32_t repetitions,
+                           const std::function<void(const FrameEvent&)>& on_frame) {
+    BenchOptions options;
+    for (const Setting& s : settings) options.configs.push_back(statisticalConfig(scenario, s));
+    options.algorithms = {options.configs.front().algorithm};
+    options.measure_error = true;  // zero expected of a conservative culler: measured, not assumed
+    options.repetitions = repetitions;
+    // Every setting takes every place within a frame equally often: measured on library (docs/
+    // tuning.md), the first place is a few per cent slower, which would otherwise flatter every
+    // sample against the reference.
+    options.rotate_order = true;
+    options.command = "tune";
+    options.on_frame = on_frame;
+    return runBenchmark(scenario, options);
+}
+
+LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {
+    LoggedRun r;
+    const RunSummary& s = run.repetitions.empty() ? run.summary : run.repetitions.front();
+    r.mean_ms = s.frame_ms.mean;
+    r.p95_ms = s.frame_ms.p95;
+    r.error_pixels = s.error_pixels_total;
+    for (const FrameStats& f : run.frames) {
+        if (f.frame < warmup_frames) continue;
+        r.frames.push_back({f.frame_ms, static_cast<double>(f.queries), static_cast<double>(f.triangles),
+                            static_cast<double>(f.objects_drawn), f.wait_ms});
+    }
+    return r;
+}
+
+}  // namespace occsim::tune

@@ -1,0 +1,35 @@
+// Real runs of the statistical culler: several settings interleaved frame by frame in one
+// runBenchmark() call (BenchOptions::configs), headless through OSMesa, in measured mode (query
+// results ready when the GPU says so), with error measured against ground truth. The first
+// setting is the reference the others are divided by, so that a machine slowed by other work
+// slows both alike and the ratio stays.
+#pragma once
+
+#include "culling/culler_options.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
+#include "tune/sample_log.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace occsim::tune {
+
+struct Setting {
+    std::string label;
+    StatisticalOptions statistical;
+};
+
+// The scenario's own culling options with `statistical` swapped in, for the statistical culler.
+RunConfig statisticalConfig(const Scenario& scenario, const Setting& setting);
+
+// Runs every setting interleaved (`repetitions` times) with error measured. `on_frame` is called
+// after every configuration's frame, outside the timing (progress, interruption).
+BenchResult runInterleaved(const Scenario& scenario, const std::vector<Setting>& settings, uint32_t repetitions,
+                           const std::function<void(const FrameEvent&)>& on_frame);
+
+// One configuration's first repetition as a log line's figures (timed frames only).
+LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames);
+
+}  // namespace occsim::tune

@@ -1,0 +1,19 @@
+// report.md of a tuning session: the choice, the confirmation table, the fit quality of both
+// models, every sample, and the charts. Formatting only.
+#pragma once
+
+#include "tune/result.h"
+
+#include <string>
+
+namespace occsim::tune {
+
+std::string reportMarkdown(const TuneResult& result);
+
+// The confirmation as a plain-text table for the console.
+std::string confirmationTable(const TuneResult& result);
+
+// "1.03 [0.98-1.07]"
+std::string formatSpread(const Spread& s);
+
+}  // namespace occsim::tune

@@ -1,0 +1,55 @@
+// What a tuning session found, for the report (report.h) and the console.
+#pragma once
+
+#include "tune/confirm.h"
+#include "tune/cost_model.h"
+#include "tune/parameters.h"
+#include "tune/response_model.h"
+#include "tune/sample_log.h"
+#include "tune/tuner.h"
+
+#include <string>
+#include <vector>
+
+namespace occsim::tune {
+
+struct TuneResult {
+    const TuneOptions* options = nullptr;
+    ParameterSpace space;
+    std::string scenario_name;
+    std::string scenario_file;
+    uint64_t scenario_seed = 0;
+    uint32_t frames = 0, warmup_frames = 0;
+    uint32_t objects = 0;
+    uint64_t triangles = 0;
+    std::string renderer;
+    uint32_t hardware_threads = 0;
+
+    const SampleLog* log = nullptr;
+    std::vector<Sample> samples;
+    std::vector<double> objective;  // per sample: the fitted ratio
+    std::vector<Sample> references;            // the reference runs, as ratios to their batch's
+    std::vector<double> reference_objective;
+    uint32_t initial_samples = 0;
+    int64_t sample_error_pixels = 0;     // over every frame of every sample and reference
+    double reference_noise = 0.0;        // SampleLog::referenceNoise()
+
+    CostModelFit cost;
+    ResponseFit response;
+    std::vector<size_t> dropped;         // parameters the fit found no effect of, in order dropped
+    double full_model_loo_rms = 0.0;     // before any was dropped
+
+    Point tuned_unit;
+    std::vector<double> tuned_values;
+    std::vector<bool> kept_at_paper;     // per parameter
+    double predicted_tuned = 0.0, predicted_paper = 0.0;
+    double predicted_tuned_sd = 0.0;  // standard deviation of that prediction
+
+    std::vector<ConfirmationRow> confirmation;  // fitted, then held out
+    std::vector<std::string> files;             // written, in out_dir
+    std::string charts_message;
+};
+
+const char* objectiveName(Objective objective);
+
+}  // namespace occsim::tune

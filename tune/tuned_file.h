@@ -1,0 +1,32 @@
+// tuned.json: the tuned values (and the fitted cost model) in the form of a scenario's "culling"
+// section, which `occsim run|bench|regress --culling tuned.json` reads with the scenario parser's
+// own strict readers (sim/scenario/culling_file.h).
+#pragma once
+
+#include "culling/culler_options.h"
+#include "tune/cost_model.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace occsim::tune {
+
+// The ONE place where the fitted cost model meets the culler option that reads it
+// (`culling.cost_model` of the statistical cullers, docs/scenario-culling.md): {"query_box_ms",
+// "triangle_ms", "draw_call_ms"}, milliseconds per query (the fit's per-query cost: one box for
+// most queries), per drawn triangle and per draw call. Adds nothing, and returns false, when all
+// three are 0 (the culler would refuse it).
+bool addCostOption(nlohmann::json& culling, const CostModel& model);
+
+struct TunedFile {
+    std::string text;            // the file's contents
+    bool has_cost_option = false;
+};
+
+// Every StatisticalOptions key is written, so that the file says the whole setting it was tuned
+// and confirmed with. Checked by reading it back through the scenario layer (as --culling does);
+// throws std::runtime_error with that reader's one line when it would be refused.
+TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost);
+
+}  // namespace occsim::tune

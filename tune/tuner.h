@@ -1,0 +1,45 @@
+// occtune's whole session: check the input (before any run), sample (a space-filling design,
+// then where the fitted response is uncertain or promising; every batch interleaved with the
+// paper's values in one run), fit the cost and response models (Ceres), choose, confirm on the
+// fitted frames and on a variant the fit never saw, and write tuned.json, the report and charts.
+// docs/tuning.md explains the method.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace occsim::tune {
+
+enum class Objective { Mean, P95 };
+
+struct TuneOptions {
+    std::filesystem::path scenario;
+    uint32_t budget = 20;                         // samples, besides the references
+    std::string params = "base_time,decay_a,decay_b";
+    std::vector<std::string> bounds;              // "name=lo:hi"
+    Objective objective = Objective::Mean;
+    uint32_t repetitions = 3;                     // of the confirmation
+    std::filesystem::path out;                    // default out/<scenario name>/tune
+    bool resume = false;
+    std::optional<uint32_t> frames;               // instead of the scenario's
+    uint64_t seed = 1;                            // of the sampling design
+    uint32_t batch = 4;                           // samples per interleaved run
+    std::optional<uint64_t> holdout_seed;         // default: the scenario's seed + 1
+    int max_fit_iterations = 200;
+    bool progress = false;                        // the progress line (stderr)
+    std::string command_line;
+};
+
+inline constexpr int kExitDone = 0;
+inline constexpr int kExitFitFailed = 1;
+inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+
+// Returns kExitDone, kExitFitFailed (a fit did not converge: no tuned.json) or kExitInterrupted
+// (the sample log is whole; no tuned.json). Throws TuneInputError, ScenarioError or GltfError for
+// bad input, before any run; std::runtime_error for failures while running.
+int runTuner(const TuneOptions& options);
+
+}  // namespace occsim::tune
