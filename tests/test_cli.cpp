@@ -124,6 +124,19 @@ TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
     EXPECT_TRUE(std::filesystem::exists(out / "summary.json"));
 }
 
+// The console says what the run cost beside its frames: without --error that no ground truth
+// was rendered, with it how many renders and what they took.
+TEST(Cli, RunStatesItsWallClockAgainstFrameTimeAndWhatGroundTruthCost) {
+    const Outcome plain = runOccsim("run " + kSmall + " --algo chc --frames 5 --out " + tempPath("plain").string());
+    EXPECT_EQ(plain.exit_code, 0) << plain.output;
+    EXPECT_NE(plain.output.find("ms wall clock after set-up for"), std::string::npos) << plain.output;
+    EXPECT_NE(plain.output.find("no ground truth rendered"), std::string::npos) << plain.output;
+    const Outcome measured = runOccsim("run " + kSmall + " --algo chc --frames 5 --error --out " +
+                                       tempPath("measured").string());
+    EXPECT_EQ(measured.exit_code, 0) << measured.output;
+    EXPECT_NE(measured.output.find("ground truth 5 renders"), std::string::npos) << measured.output;
+}
+
 TEST(Cli, InfoPrintsTheSceneWithoutRendering) {
     const Outcome o = runOccsim("info " + kSmall);
     EXPECT_EQ(o.exit_code, 0) << o.output;

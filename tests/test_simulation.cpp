@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <tuple>
 
 namespace occsim {
 namespace {
@@ -152,6 +153,77 @@ TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures)
     EXPECT_EQ(counts[0], counts[1]);
 }
 
+// The world is shared by every configuration of a run: advanced (movers stepped, tree refit)
+// once per frame, whatever the number of configurations, and once more per repetition.
+TEST(Simulation, ConfigurationsOfOneBenchShareOneWorldSteppedOncePerFrame) {
+    for (const std::vector<std::string>& algorithms :
+         {std::vector<std::string>{"vfc"}, std::vector<std::string>{"vfc", "statistical", "chc", "chc++", "async"}}) {
+        BenchOptions options;
+        options.algorithms = traitsOf(algorithms);
+        options.frames = 7;
+        options.repetitions = 2;
+        const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+        EXPECT_EQ(r.costs.world_advances, 14u) << algorithms.size() << " configurations";
+        EXPECT_EQ(r.costs.world_steps, 12u) << "frame 0 of each repetition shows the initial state";
+        EXPECT_GE(r.costs.world_update_ms_total, 0.0);
+        // Every configuration saw the same world: the same movers and node changes each frame.
+        for (const RunRecord& run : r.runs) {
+            for (size_t f = 0; f < run.frames.size(); ++f) {
+                EXPECT_EQ(run.frames[f].moved_objects, r.runs[0].frames[f].moved_objects);
+                EXPECT_EQ(run.frames[f].node_changes, r.runs[0].frames[f].node_changes);
+            }
+        }
+    }
+}
+
+// Sharing the world changes no decision: in deterministic-latency mode each configuration of a
+// bench draws and queries exactly what it does when it runs alone.
+TEST(Simulation, EveryConfigurationDecidesAsItDoesAlone) {
+    const std::vector<std::string> names = {"stop-and-wait", "statistical", "statistical+", "chc",
+                                            "chc++", "async", "ideal"};
+    using Counts = std::vector<std::tuple<uint64_t, uint64_t, uint64_t>>;
+    auto countsOf = [](const RunRecord& run) {
+        Counts out;
+        for (const FrameStats& f : run.frames) out.emplace_back(f.queries, f.objects_drawn, f.triangles);
+        return out;
+    };
+    BenchOptions options;
+    options.algorithms = traitsOf(names);
+    options.latency = LatencyMode{true, 6};
+    options.frames = 12;
+    const BenchResult together = runBenchmark(parseScenarioFile(kSmall), options);
+    ASSERT_EQ(together.runs.size(), names.size());
+    for (size_t c = 0; c < names.size(); ++c) {
+        options.algorithms = traitsOf({names[c]});
+        const BenchResult alone = runBenchmark(parseScenarioFile(kSmall), options);
+        EXPECT_EQ(countsOf(together.runs[c]), countsOf(alone.runs[0])) << names[c];
+    }
+}
+
+// Without --error and without an oracle no ground truth is rendered and no object-ID buffer is
+// read back; with --error one render per frame serves every configuration.
+TEST(Simulation, GroundTruthIsRenderedOnlyWhenSomethingNeedsIt) {
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc", "chc", "statistical"});
+    options.frames = 5;
+    const BenchResult plain = runBenchmark(parseScenarioFile(kSmall), options);
+    EXPECT_EQ(plain.costs.ground_truth_renders, 0u);
+    EXPECT_EQ(plain.costs.ground_truth_ms_total, 0.0);
+    EXPECT_EQ(plain.costs.error_read_backs, 0u);
+    EXPECT_EQ(plain.runs[0].frames[0].error_pixels, -1);
+
+    options.measure_error = true;
+    const BenchResult measured = runBenchmark(parseScenarioFile(kSmall), options);
+    EXPECT_EQ(measured.costs.ground_truth_renders, 5u);
+    EXPECT_EQ(measured.costs.error_read_backs, 15u);
+
+    options.measure_error = false;
+    options.algorithms = traitsOf({"vfc", "ideal"});  // the oracle needs ground truth, not error
+    const BenchResult oracle = runBenchmark(parseScenarioFile(kSmall), options);
+    EXPECT_EQ(oracle.costs.ground_truth_renders, 5u);
+    EXPECT_EQ(oracle.costs.error_read_backs, 0u);
+}
+
 // runBenchmark() measures and returns; the files are written by the output layer afterwards
 // (and the pictures by its frame hook), so a tool that only wants figures writes nothing.
 TEST(Simulation, RunBenchmarkWritesNoFile) {
@@ -195,6 +267,14 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     EXPECT_EQ(summary["algorithms"][0]["error"]["pixels_total"], 0);
     EXPECT_TRUE(summary["algorithms"][0].contains("speedup_over_vfc"));
     EXPECT_EQ(summary["scenario"]["objects"], 300);
+    // The run's own work: one world advance and one ground-truth render per frame for both.
+    const auto& costs = summary["simulator_costs"];
+    EXPECT_EQ(costs["world_advances"], 6);
+    EXPECT_EQ(costs["ground_truth_renders"], 6);
+    EXPECT_EQ(costs["error_read_backs"], 12);
+    for (const char* key : {"wall_ms_after_setup", "frame_ms_total", "world_update_ms_total", "ground_truth_ms_total"}) {
+        EXPECT_TRUE(costs[key].is_number()) << key;
+    }
     EXPECT_TRUE(std::filesystem::exists(out_dir / "frame-00003-statistical.png"));
     EXPECT_TRUE(std::filesystem::exists(out_dir / "frame-00003-vfc.png"));
     EXPECT_EQ(pictures.captureFiles().size(), 2u);

@@ -1,5 +1,5 @@
 // What the viewer asks of the renderer and the simulation, through OSMesa (no window): the live
-// camera, held worlds and algorithm switches of Simulation, a resizable framebuffer, CPU images
+// camera, held worlds and algorithm switches on a SharedWorld, a resizable framebuffer, CPU images
 // shown in a default framebuffer, and the composed picture with the node boxes.
 #include "culling/algorithms.h"
 #include "render/gl_api.h"
@@ -16,6 +16,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 namespace occsim {
 namespace {
@@ -54,55 +55,70 @@ TEST_F(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
     auto on_path = simulation("vfc");
     auto live = simulation("vfc");
     for (uint32_t f = 0; f < 6; ++f) {
-        on_path->renderFrame(nullptr);
+        on_path->renderFrame();
         const std::vector<uint32_t> expected = ids();
         LiveControls controls;
         controls.camera = sampleCameraPath(scenario_.camera, f * scenario_.dt_s);
-        live->setLiveControls(controls);
-        live->renderFrame(nullptr);
+        live->world().setLiveControls(controls);
+        live->renderFrame();
         EXPECT_EQ(ids(), expected) << "frame " << f;
     }
 }
 
 TEST_F(ViewGl, AHeldWorldKeepsItsPosesWhileFramesGoOn) {
     auto sim = simulation("statistical");
-    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);
+    for (int f = 0; f < 3; ++f) sim->renderFrame();
     const std::vector<Aabb> boxes = sim->state().boxes;
     LiveControls controls;
     controls.hold_world = true;
-    sim->setLiveControls(controls);
-    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);
-    EXPECT_EQ(sim->frame(), 6u);
+    sim->world().setLiveControls(controls);
+    for (int f = 0; f < 3; ++f) sim->renderFrame();
+    EXPECT_EQ(sim->world().nextFrame(), 6u);
     for (size_t o = 0; o < boxes.size(); ++o) {
         ASSERT_EQ(sim->state().boxes[o].min, boxes[o].min) << o;
         ASSERT_EQ(sim->state().boxes[o].max, boxes[o].max) << o;
     }
-    sim->setLiveControls({});
-    sim->renderFrame(nullptr);
+    sim->world().setLiveControls({});
+    sim->renderFrame();
     size_t moved = 0;
     for (size_t o = 0; o < boxes.size(); ++o) moved += sim->state().boxes[o].min != boxes[o].min;
     EXPECT_GT(moved, 0u);
 }
 
+// The viewer keeps its world and puts a new configuration on it.
 TEST_F(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
-    auto first = simulation("chc");
-    auto reference = simulation("vfc");
+    SharedWorld world(*scene_, scenario_);
+    GroundTruth truth(*renderer_);
+    auto onWorld = [&](const std::string& algorithm, bool error) {
+        const AlgorithmTraits& a = *findAlgorithm(algorithm);
+        SimulationOptions options;
+        options.measure_error = error;
+        return std::make_unique<Simulation>(world, truth, a, makeCuller(a, scenario_.culler),
+                                            scenario_.culler, *renderer_, options);
+    };
+    auto first = onWorld("chc", false);
+    auto reference = simulation("vfc");  // a world of its own
     for (int f = 0; f < 5; ++f) {
-        first->renderFrame(nullptr);
-        reference->renderFrame(nullptr);
+        world.advance();
+        first->renderFrame();
+        reference->renderFrame();
     }
-    auto second = simulation("statistical", true);
-    second->continueFrom(*first);
-    EXPECT_EQ(second->frame(), 5u);
+    first.reset();
+    auto second = onWorld("statistical", true);
+    EXPECT_EQ(world.nextFrame(), 5u);
     for (int f = 0; f < 3; ++f) {
-        reference->renderFrame(nullptr);
-        const FrameStats stats = second->renderFrame(nullptr);
-        EXPECT_EQ(stats.frame, reference->frame() - 1);
+        world.advance();
+        reference->renderFrame();
+        const FrameStats stats = second->renderFrame();
+        EXPECT_EQ(stats.frame, reference->world().frame());
         EXPECT_EQ(stats.error_pixels, 0);  // a conservative culler on the same world
         for (uint32_t o = 0; o < scene_->objectCount(); ++o) {
             ASSERT_EQ(second->state().boxes[o].min, reference->state().boxes[o].min) << o;
         }
     }
+    // A shared world's frame is rendered once per configuration: a second render of it is a
+    // caller's mistake, not a new frame.
+    EXPECT_THROW(second->renderFrame(), std::logic_error);
 }
 
 TEST_F(ViewGl, TheFramebufferFollowsANewSize) {
@@ -111,8 +127,8 @@ TEST_F(ViewGl, TheFramebufferFollowsANewSize) {
     LiveControls controls;
     controls.width = 96;
     controls.height = 64;
-    sim->setLiveControls(controls);
-    sim->renderFrame(nullptr);
+    sim->world().setLiveControls(controls);
+    sim->renderFrame();
     const std::vector<uint32_t> small = ids();
     ASSERT_EQ(small.size(), 96u * 64u);
     EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }), 96 * 64 / 4);
@@ -156,7 +172,7 @@ TEST_F(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
     std::vector<uint8_t> rgba;
     const Rgb visible = nodeClassColour(NodeClass::DrawnAfterQuery);
 
-    sim->renderFrame(nullptr);  // not traced: nothing to draw boxes from
+    sim->renderFrame();  // not traced: nothing to draw boxes from
     renderer_->readColor(rgba);
     const RasterCanvas plain =
         composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});
@@ -164,8 +180,8 @@ TEST_F(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
 
     LiveControls controls;
     controls.trace_every_frame = true;
-    sim->setLiveControls(controls);
-    for (int f = 0; f < 3; ++f) sim->renderFrame(nullptr);  // CHC settles into querying
+    sim->world().setLiveControls(controls);
+    for (int f = 0; f < 3; ++f) sim->renderFrame();  // CHC settles into querying
     renderer_->readColor(rgba);
     const RasterCanvas boxed =
         composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});

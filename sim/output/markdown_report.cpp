@@ -65,6 +65,7 @@ void header(std::ostringstream& out, const BenchResult& result) {
         << "timing figure (" << timed << " frames timed); error and popping count all frames. "
         << "Ground-truth rendering, PNG writing and statistics I/O (CSV, JSON, this report, the "
         << "plots and the bird's-eye pictures) happen outside all timing.\n\n";
+    out << costsLine(result) << ".\n\n";
 }
 
 void table(std::ostringstream& out, const BenchResult& result) {

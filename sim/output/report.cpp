@@ -159,6 +159,17 @@ nlohmann::json summaryJson(const BenchResult& result) {
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);
     if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
+    const RunCosts& c = result.costs;
+    summary["simulator_costs"] = {
+        {"wall_ms_after_setup", c.wall_ms},
+        {"frame_ms_total", c.frame_ms_total},
+        {"wall_over_frame_time", c.frame_ms_total > 0 ? c.wall_ms / c.frame_ms_total : 0.0},
+        {"world_advances", c.world_advances},
+        {"world_steps", c.world_steps},
+        {"world_update_ms_total", c.world_update_ms_total},
+        {"ground_truth_renders", c.ground_truth_renders},
+        {"ground_truth_ms_total", c.ground_truth_ms_total},
+        {"error_read_backs", c.error_read_backs}};
     if (m.cost_model) {
         summary["cost_model"] = {{"source", m.cost_model_source},
                                  {"query_box_ms", m.cost_model->query_box_ms},
@@ -166,6 +177,24 @@ nlohmann::json summaryJson(const BenchResult& result) {
                                  {"draw_call_ms", m.cost_model->draw_call_ms}};
     }
     return summary;
+}
+
+std::string costsLine(const BenchResult& result) {
+    const RunCosts& c = result.costs;
+    std::string line = "simulator: " + fixed(c.wall_ms, 1) + " ms wall clock after set-up for " +
+                       fixed(c.frame_ms_total, 1) + " ms of frame time";
+    if (c.frame_ms_total > 0) line += " (" + fixed(c.wall_ms / c.frame_ms_total, 2) + "x)";
+    line += "; world update " + fixed(c.world_update_ms_total, 1) + " ms over " +
+            std::to_string(c.world_advances) + " frames, once per frame for " +
+            std::to_string(result.runs.size()) +
+            (result.runs.size() == 1 ? " configuration" : " configurations");
+    if (c.ground_truth_renders == 0) {
+        line += "; no ground truth rendered";
+    } else {
+        line += "; ground truth " + std::to_string(c.ground_truth_renders) + " renders, " +
+                fixed(c.ground_truth_ms_total, 1) + " ms (render and read-back, outside the frame timing)";
+    }
+    return line;
 }
 
 std::string runHeadline(const BenchResult& result) {

@@ -29,6 +29,11 @@ std::string framesCsv(const std::vector<RunRecord>& runs);
 // summary.json: the metadata (scenario, machine, command) and every configuration's figures.
 nlohmann::json summaryJson(const BenchResult& result);
 
+// What the run cost beside its frames, in one line for the console and report.md: the wall clock
+// of the frame loops against the sum of the frame times, the shared world's update, and ground
+// truth (renders and their time, or that none was rendered).
+std::string costsLine(const BenchResult& result);
+
 // The console's first line: "<scenario>: N frames (M timed after W warm-up), <renderer>".
 std::string runHeadline(const BenchResult& result);
 

@@ -2,7 +2,7 @@
 
 #include "culling/bsp_tree.h"
 #include "render/gl_query_device.h"
-#include "sim/run/simulation.h"
+#include "sim/run/frame_view.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

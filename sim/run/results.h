@@ -55,8 +55,28 @@ struct RunMetadata {
     uint32_t width = 0, height = 0;
 };
 
+// The run's own work beside the frames it measured, over every repetition: what a reader needs to
+// see that no work hides outside the frame times.
+struct RunCosts {
+    // The frame loops, from the first frame's advance() to the last frame's end: set-up (scene,
+    // context, uploads, calibration, building each repetition's world) excluded; the world's
+    // update, ground truth, error counting and the on_frame hook (pictures) included.
+    double wall_ms = 0.0;
+    double frame_ms_total = 0.0;  // every configuration's frames, warm-up included
+    // The shared world: advanced once per frame whatever the number of configurations.
+    uint32_t world_advances = 0;
+    uint32_t world_steps = 0;            // advances that stepped the movers
+    double world_update_ms_total = 0.0;  // movers, reinsertion and refit
+    // Ground truth: rendered at most once per frame, and only when error is measured or an
+    // oracle runs; render and read-back time, outside every frame timing.
+    uint32_t ground_truth_renders = 0;
+    double ground_truth_ms_total = 0.0;
+    uint64_t error_read_backs = 0;  // culled object-ID buffers read to count error
+};
+
 struct BenchResult {
     RunMetadata metadata;
+    RunCosts costs;
     std::vector<RunRecord> runs;
     std::vector<ErrorFrame> worst_error_frames;  // per run, when keep_worst_error_frame
 };

@@ -2,6 +2,8 @@
 
 #include "render/gl_context.h"
 #include "sim/run/calibration.h"
+#include "sim/run/ground_truth.h"
+#include "sim/run/shared_world.h"
 
 #include <algorithm>
 #include <chrono>
@@ -124,8 +126,13 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const auto start = Clock::now();
     auto last_progress = start;
     const uint32_t total_frames = repetitions * scenario.frames;
+    RunCosts& spent = result.costs;
     for (uint32_t rep = 0; rep < repetitions; ++rep) {
-        // Fresh worlds for every repetition: each one replays the same frames.
+        // A fresh world for every repetition: each one replays the same frames. One world for
+        // all configurations: the movers step and the tree is refit once per frame, and each
+        // culler keeps its own per-node state beside the shared tree.
+        SharedWorld world(scene, scenario);
+        GroundTruth truth(renderer);
         std::vector<std::unique_ptr<Simulation>> sims;
         for (const RunConfig& config : configs) {
             SimulationOptions sim_options;
@@ -136,25 +143,27 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             if (rep == 0) sim_options.trace_frame = options.trace_frame;
             auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                               : makeCuller(*config.algorithm, config.culler);
-            sims.push_back(std::make_unique<Simulation>(scene, scenario, *config.algorithm,
+            sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
                                                         std::move(culler), config.culler, renderer,
                                                         sim_options));
         }
         std::vector<std::vector<FrameStats>> frames(sims.size());
         for (auto& f : frames) f.reserve(scenario.frames);
         // Interleaved: frame f of every configuration before frame f + 1 of any, so that drift
-        // on a shared machine hits all alike. Every simulation runs the same world in lockstep,
-        // so one ground-truth render per frame serves them all (outside every timing).
+        // on a shared machine hits all alike. Ground truth, when some configuration needs it, is
+        // rendered once per frame before the first configuration renders (outside every timing);
+        // a run in which none needs it renders none.
         bool any_needs_truth = false;
         for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
         const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
+        const auto loop_start = Clock::now();
         for (uint32_t f = 0; f < scenario.frames; ++f) {
-            for (auto& sim : sims) sim->advance();
-            const GroundTruthFrame* truth =
-                any_needs_truth ? &sims.front()->renderGroundTruth(truth_colour) : nullptr;
+            world.advance();
+            if (any_needs_truth) truth.of(world, truth_colour);
             for (size_t k = 0; k < sims.size(); ++k) {
                 const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
-                frames[c].push_back(sims[c]->renderFrame(truth));
+                frames[c].push_back(sims[c]->renderFrame());
+                spent.frame_ms_total += frames[c].back().frame_ms;
                 if (options.on_frame) {
                     options.on_frame(FrameEvent{rep, f, configs[c], *sims[c], scenario, renderer});
                 }
@@ -166,7 +175,14 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                 last_progress = Clock::now();
             }
         }
+        spent.wall_ms += std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
+        spent.world_advances += world.advances();
+        spent.world_steps += world.steps();
+        spent.world_update_ms_total += world.updateMsTotal();
+        spent.ground_truth_renders += truth.renders();
+        spent.ground_truth_ms_total += truth.msTotal();
         for (size_t c = 0; c < sims.size(); ++c) {
+            spent.error_read_backs += sims[c]->errorReadBacks();
             RunRecord& record = result.runs[c];
             RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
             if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());

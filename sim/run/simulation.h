@@ -1,8 +1,10 @@
-// One algorithm's run over a scenario's frames: step the movers (simulation time), reinsert the
-// moved objects into the BSP tree, render the frame through the culler and measure it, and, when
-// asked, render ground truth outside the timing to count error.
-// Several Simulations can share one GlRenderer and step in lockstep (the benchmark interleaves
-// algorithms frame by frame so that machine drift hits all alike).
+// One configuration (an algorithm and its options) rendering a world's frames: the culler with
+// its own per-node state, its devices, the measured frame, and, when asked, error against ground
+// truth (popping, the worst frame) and the trace of a frame. The world itself (poses, movers, the
+// BSP tree, the view) is a SharedWorld that every configuration of a run renders in lockstep, and
+// ground truth of its frame is rendered once per frame by a GroundTruth they share (the
+// benchmark interleaves configurations frame by frame so that machine drift hits all alike).
+// A Simulation built from a scene alone owns a world and ground truth of its own.
 #pragma once
 
 #include "culling/algorithms.h"
@@ -13,8 +15,10 @@
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "sim/run/frame_stats.h"
+#include "sim/run/frame_view.h"
+#include "sim/run/ground_truth.h"
+#include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
-#include "sim/world/camera_path.h"
 #include "sim/world/world.h"
 
 #include <memory>
@@ -35,49 +39,6 @@ struct SimulationOptions {
     std::optional<uint32_t> trace_frame;
 };
 
-// The view of one frame: everything a culler and the renderer need from the camera.
-struct FrameView {
-    CullView cull;
-    ViewSetup render;
-};
-
-// The camera of one frame. The culling view (eye, frustum) is relative to `culling_origin`
-// (Scene::culling_origin), like the object boxes and the tree; the render view is in world
-// coordinates.
-FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
-                        const glm::dvec3& culling_origin,
-                        DepthConvention depth = DepthConvention::ReverseFloat);
-// The same for a given pose; `camera` supplies the lens (field of view, near and far planes).
-FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
-                        uint32_t height, const glm::dvec3& culling_origin,
-                        DepthConvention depth = DepthConvention::ReverseFloat);
-
-// The renderer's depth convention a scenario asks for.
-DepthConvention depthConventionOf(const Scenario& scenario);
-
-// What an interactive viewer (sim/view/) changes between frames; run, bench and regress never
-// set these, and the defaults change nothing.
-struct LiveControls {
-    // The camera of the coming frames, instead of the scenario's path at frame * dt.
-    std::optional<CameraPose> camera;
-    // The viewport the view is set up for, when the renderer was resized to it (0: the
-    // scenario's).
-    uint32_t width = 0, height = 0;
-    // The movers hold still (a paused viewer still renders frames as the camera moves). The
-    // frame count and the culler's time go on: cullers expect a new frame index every frame.
-    bool hold_world = false;
-    // Trace every frame for lastTrace(), not only SimulationOptions::trace_frame.
-    bool trace_every_frame = false;
-};
-
-// Ground truth of one frame: every object drawn (the GPU clips, no culling code involved) into
-// the object-ID buffer, read back, and which objects it saw.
-struct GroundTruthFrame {
-    std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
-    std::vector<uint8_t> visible;  // per object
-    std::vector<uint8_t> rgba;     // colour, only when some simulation keeps its worst frame
-};
-
 // The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them).
 struct ErrorFrame {
     uint32_t frame = 0;
@@ -88,53 +49,59 @@ struct ErrorFrame {
 
 class Simulation {
 public:
-    // The renderer must have the scene's meshes uploaded (uploadScene()). `options` are the
-    // culler's (its approximation knobs apply when the algorithm issues queries).
+    // A configuration on a world it shares with others: the caller advances the world once per
+    // frame and has every configuration render that frame. The world and ground truth must
+    // outlive the simulation. The renderer must have the scene's meshes uploaded (uploadScene()).
+    // `options` are the culler's (its approximation knobs apply when the algorithm issues
+    // queries). The culler starts with fresh per-node state on the world as it is now, so a
+    // configuration can join a world in the middle of its frames (the viewer switching algorithm).
+    Simulation(SharedWorld& world, GroundTruth& truth, const AlgorithmTraits& algorithm,
+               std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
+               const SimulationOptions& sim_options);
+    // A configuration alone, on a world and ground truth of its own that renderFrame() advances.
     Simulation(const Scene& scene, const Scenario& scenario, const AlgorithmTraits& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
 
-    // A frame in two halves, so that simulations running in lockstep over the same world can
-    // share one ground-truth render per frame: advance() moves the world and sets up the view;
-    // renderFrame() renders (and measures) it. With `shared` null the simulation renders its own
-    // ground truth when it needs one.
-    void advance();
     bool needsGroundTruth() const;
-    // For the current (advanced) frame; with_colour also reads back its colour buffer.
-    const GroundTruthFrame& renderGroundTruth(bool with_colour = false);
-    FrameStats renderFrame(const GroundTruthFrame* shared);
+    // Renders the world's current frame through the culler and measures it (ground truth, when
+    // needed, comes from the shared GroundTruth, outside the timing). On a shared world, once
+    // per advance(): a second call for the same frame throws std::logic_error. A simulation
+    // that owns its world advances it first.
+    FrameStats renderFrame();
 
-    bool done() const { return frame_ >= scenario_.frames; }
     bool keepsWorstErrorFrame() const { return options_.keep_worst_error_frame; }
     // Empty (error_pixels 0) until a frame with error was seen.
     const ErrorFrame& worstErrorFrame() const { return worst_; }
     // Popping: for every object that was visible in ground truth but not drawn, how many
     // consecutive frames it stayed missing (runs still open at the end are included).
     std::vector<uint32_t> poppingRuns() const { return popping_.runs(); }
-    uint32_t frame() const { return frame_; }
-    // The trace of options.trace_frame once that frame was rendered; null before. The tree, the
-    // world and view() stay as the culler saw them until the next advance().
+    // Culled object-ID buffers read back to count error (none unless error is measured).
+    uint64_t errorReadBacks() const { return error_read_backs_; }
+    // The trace of options.trace_frame (or of every frame, LiveControls::trace_every_frame) once
+    // that frame was rendered; null before. The tree, the world and view() stay as the culler
+    // saw them until the world's next advance().
     const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
-    const FrameView& view() const { return view_; }
 
-    // Applies from the next advance() on.
-    void setLiveControls(const LiveControls& controls) { live_ = controls; }
-    // Takes over the world of `other` (poses, movers, tree and frame count) between two of its
-    // frames, so that a viewer can switch the algorithm, or turn error measurement on, without
-    // restarting the world. This simulation's culler starts with fresh per-node state.
-    void continueFrom(const Simulation& other);
-
+    SharedWorld& world() { return *world_; }
+    const SharedWorld& world() const { return *world_; }
+    const FrameView& view() const { return world_->view(); }
+    const BspTree& tree() const { return world_->tree(); }
+    const WorldState& state() const { return world_->state(); }
     const AlgorithmTraits& algorithm() const { return algorithm_; }
     const Culler& culler() const { return *culler_; }
-    const BspTree& tree() const { return tree_; }
-    const WorldState& state() const { return state_; }
 
 private:
-    void computeModelViews();  // for view_ and the current poses
+    Simulation(std::unique_ptr<SharedWorld> own_world, std::unique_ptr<GroundTruth> own_truth,
+               SharedWorld* world, GroundTruth* truth, const AlgorithmTraits& algorithm,
+               std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
+               const SimulationOptions& sim_options);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
 
-    const Scene& scene_;
-    const Scenario& scenario_;
+    std::unique_ptr<SharedWorld> own_world_;  // only for a simulation alone
+    std::unique_ptr<GroundTruth> own_truth_;
+    SharedWorld* world_;
+    GroundTruth* truth_;
     const AlgorithmTraits& algorithm_;
     std::unique_ptr<Culler> culler_;
     GlRenderer& renderer_;
@@ -142,28 +109,18 @@ private:
     // The culler's device: the GL device, wrapped by the approximation when it is active, and
     // by the tracer on the traced frame. device_ is the outermost of the first two.
     GlQueryDevice gl_device_;
-    GlQueryDevice ground_truth_device_;
     std::unique_ptr<ApproximateDevice> approximate_device_;
     RenderDevice* device_;
     TracingDevice tracer_;
     bool traced_ = false;
-    WorldState state_;
-    BspTree tree_;
-    uint32_t frame_ = 0;
-    bool advanced_ = false;     // advance() ran for frame_, renderFrame() not yet
-    FrameStats pending_;        // the figures advance() gathered for frame_
-    CullFrame cull_frame_;
-    FrameView view_;
+    uint64_t rendered_serial_ = 0;  // the world's frameSerial() last rendered; 0: none
+    uint64_t error_read_backs_ = 0;
     // Per-frame scratch, reused so the steady state allocates nothing.
-    std::vector<glm::mat4> model_view_;
-    std::vector<uint32_t> object_triangles_;  // per object, for cullers that weigh draw costs
-    GroundTruthFrame ground_truth_;
     ErrorFrame worst_;
     std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
     PoppingCounter popping_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint8_t> culled_visible_;
-    LiveControls live_;
 };
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).

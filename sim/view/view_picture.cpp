@@ -70,7 +70,7 @@ RasterCanvas composeViewPicture(std::span<const uint8_t> rgba, uint32_t width, u
     RasterCanvas canvas = canvasFromBottomUp(rgba, width, height);
     // Only a trace of the frame just rendered describes this picture.
     const FrameTrace* trace = sim.lastTrace();
-    if (trace && trace->frame + 1 == sim.frame() && (layers.boxes || layers.birds_eye)) {
+    if (trace && trace->frame == sim.world().frame() && (layers.boxes || layers.birds_eye)) {
         const std::vector<NodeClass> classes = classifyNodes(sim.tree(), sim.view().cull, *trace);
         if (layers.boxes) drawNodeBoxes(canvas, sim.tree(), classes, sim.view().render, camera.near_m);
         if (layers.birds_eye) drawBirdsEyeInset(canvas, sim, *trace, classes, camera);

@@ -79,8 +79,9 @@ public:
           error_(options.error) {
         for (const std::string& w : scene_.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         uploadScene(scene_, renderer_);
-        sim_ = makeSimulation();
-        fly_ = FlyCamera(initialFlySpeed(sim_->state()));
+        world_ = std::make_unique<SharedWorld>(scene_, scenario_);
+        sim_ = makeSimulation(*world_);
+        fly_ = FlyCamera(initialFlySpeed(world_->state()));
         if (options.script) script_.emplace(*options.script);
         updateTitle();
         std::printf("occsim view: %s, %u objects, %s; press h for the keys\n", scenario.name.c_str(),
@@ -92,7 +93,7 @@ public:
 
 private:
     const AlgorithmTraits& algorithm() const { return algorithms()[algorithm_]; }
-    std::unique_ptr<Simulation> makeSimulation();
+    std::unique_ptr<Simulation> makeSimulation(SharedWorld& world);
     void replaceSimulation(bool keep_world);
     void restart();
 
@@ -118,6 +119,10 @@ private:
     GlfwWindow window_;
     const Scene scene_;
     GlRenderer renderer_;
+    // The world goes on while the algorithm or the error setting changes: only the
+    // configuration on it (sim_) is replaced; a restart replaces the world.
+    std::unique_ptr<SharedWorld> world_;
+    GroundTruth truth_{renderer_};
     std::unique_ptr<Simulation> sim_;
     std::optional<ScriptPlayer> script_;
 
@@ -149,19 +154,25 @@ private:
     uint32_t picture_width_ = 0, picture_height_ = 0;
 };
 
-std::unique_ptr<Simulation> Viewer::makeSimulation() {
+std::unique_ptr<Simulation> Viewer::makeSimulation(SharedWorld& world) {
     SimulationOptions options;
     options.measure_error = error_;
-    return std::make_unique<Simulation>(scene_, scenario_, algorithm(),
+    return std::make_unique<Simulation>(world, truth_, algorithm(),
                                         makeCuller(algorithm(), scenario_.culler), scenario_.culler,
                                         renderer_, options);
 }
 
-// A new simulation for a new algorithm or error setting; the world goes on where it was.
+// A new configuration for a new algorithm or error setting, with fresh culler state; kept, the
+// world goes on where it was, otherwise it starts again from frame 0.
 void Viewer::replaceSimulation(bool keep_world) {
-    std::unique_ptr<Simulation> next = makeSimulation();
-    if (keep_world) next->continueFrom(*sim_);
-    sim_ = std::move(next);
+    if (keep_world) {
+        sim_ = makeSimulation(*world_);
+    } else {
+        auto world = std::make_unique<SharedWorld>(scene_, scenario_);
+        world->setLiveControls(world_->liveControls());
+        sim_ = makeSimulation(*world);  // the old configuration goes before the world it used
+        world_ = std::move(world);
+    }
     dirty_ = true;
 }
 
@@ -348,9 +359,9 @@ void Viewer::renderFrame(bool play) {
     // Played frame 0 shows the initial world, as frame 0 of a run does; paused frames hold it.
     live.hold_world = !play || next_played_ == 0;
     live.trace_every_frame = boxes_ || birds_eye_;
-    sim_->setLiveControls(live);
-    sim_->advance();
-    stats_ = sim_->renderFrame(nullptr);
+    world_->setLiveControls(live);
+    world_->advance();
+    stats_ = sim_->renderFrame();
     has_stats_ = true;
     if (play) {
         shown_time_ = next_played_ * scenario_.dt_s;

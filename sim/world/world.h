@@ -1,7 +1,7 @@
 // The simulated world: immutable scene content (meshes, which mesh each object draws, the initial
 // poses, the movers' starting state, the paths movers follow) built once from a scenario, and the
-// per-run mutable state (poses, world boxes, movers) that each simulation owns a copy of, so that
-// several algorithms can run the same frames side by side.
+// per-run mutable state (poses, world boxes, movers), which a run keeps once and every
+// configuration renders (sim/run/shared_world.h).
 #pragma once
 
 #include "culling/aabb.h"

@@ -1,15 +1,20 @@
 // Micro-benchmarks of the simulator's own work beside the rendering it measures
 // (docs/performance.md): reinserting N movers against rebuilding the tree from scratch, the
-// traversal's CPU per node for every culler, and the mover update per object.
+// traversal's CPU per node for every culler, the mover update per object, and advancing one shared
+// world per frame against one world per configuration.
 // Run: ./build/release/tests/benchmarks/bench_simulation
 #include "culling/algorithms.h"
 #include "culling/bsp_tree.h"
+#include "sim/run/shared_world.h"
+#include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -183,6 +188,38 @@ void BM_MoverUpdate(benchmark::State& state) {
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(world.movers.size()));
 }
 BENCHMARK(BM_MoverUpdate)->Unit(benchmark::kMicrosecond);
+
+// The default teapots scenario's frames with its movers, advanced the way a bench of N
+// configurations did before the world was shared (N worlds, each stepped every frame: Arg(7))
+// and the way it does now (one world: Arg(1)). One iteration is every frame of the scenario;
+// the worlds are built outside the timing. Counters: advance time per frame, and the update part
+// of it (movers, reinsertion, refit: what FrameStats::update_ms measures) per frame.
+void BM_WorldAdvance(benchmark::State& state) {
+    const auto worlds = static_cast<size_t>(state.range(0));
+    const Scenario scenario =
+        parseScenarioFile(std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/teapots.json");
+    const Scene scene = buildScene(scenario);
+    double update_ms = 0.0;
+    uint64_t frames = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        std::vector<std::unique_ptr<SharedWorld>> all;
+        for (size_t w = 0; w < worlds; ++w) all.push_back(std::make_unique<SharedWorld>(scene, scenario));
+        state.ResumeTiming();
+        for (uint32_t f = 0; f < scenario.frames; ++f) {
+            for (auto& world : all) world->advance();
+        }
+        state.PauseTiming();
+        for (const auto& world : all) update_ms += world->updateMsTotal();
+        frames += scenario.frames;
+        all.clear();
+        state.ResumeTiming();
+    }
+    state.counters["frames"] = static_cast<double>(scenario.frames);
+    state.counters["movers"] = static_cast<double>(scene.initial_movers.size());
+    state.counters["update_ms_per_frame"] = update_ms / static_cast<double>(std::max<uint64_t>(1, frames));
+}
+BENCHMARK(BM_WorldAdvance)->ArgName("worlds")->Arg(1)->Arg(7)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace occsim

@@ -1,0 +1,47 @@
+#include "sim/run/frame_view.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace occsim {
+
+DepthConvention depthConventionOf(const Scenario& scenario) {
+    return scenario.conventional_depth ? DepthConvention::Conventional24
+                                       : DepthConvention::ReverseFloat;
+}
+
+FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
+                        const glm::dvec3& culling_origin, DepthConvention depth) {
+    return makeFrameView(camera, sampleCameraPath(camera, time_s), width, height, culling_origin,
+                         depth);
+}
+
+FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
+                        uint32_t height, const glm::dvec3& culling_origin, DepthConvention depth) {
+    const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
+    // Looking straight up or down: y cannot be the up vector, take z.
+    const glm::dvec3 up = std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    const double aspect = static_cast<double>(width) / height;
+    const double fov = glm::radians(camera.fov_y_deg);
+
+    FrameView view;
+    view.render.eye = pose.position;
+    view.render.box_origin = culling_origin;
+    view.render.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), forward, up));
+    view.render.projection = perspectiveFor(depth, static_cast<float>(fov),
+                                            static_cast<float>(aspect),
+                                            static_cast<float>(camera.near_m),
+                                            static_cast<float>(camera.far_m));
+    // Culling uses the conventional OpenGL projection, in the culling frame: the eye relative to
+    // the culling origin is computed in double, so the planes are as precise as the boxes.
+    const glm::dvec3 eye = pose.position - culling_origin;
+    const glm::dmat4 view_projection = glm::perspective(fov, aspect, camera.near_m, camera.far_m) *
+                                       glm::lookAt(eye, eye + forward, up);
+    view.cull.eye = glm::vec3(eye);
+    view.cull.frustum = frustumFromViewProjection(glm::mat4(view_projection));
+    view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
+    return view;
+}
+
+}  // namespace occsim

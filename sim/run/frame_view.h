@@ -1,0 +1,36 @@
+// The camera of one frame, as the culler (culling frame, conventional projection) and the
+// renderer (world coordinates, the scenario's depth convention) each need it.
+#pragma once
+
+#include "culling/culler.h"
+#include "render/gl_renderer.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/camera_path.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace occsim {
+
+// The view of one frame: everything a culler and the renderer need from the camera.
+struct FrameView {
+    CullView cull;
+    ViewSetup render;
+};
+
+// The camera of one frame. The culling view (eye, frustum) is relative to `culling_origin`
+// (Scene::culling_origin), like the object boxes and the tree; the render view is in world
+// coordinates.
+FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width, uint32_t height,
+                        const glm::dvec3& culling_origin,
+                        DepthConvention depth = DepthConvention::ReverseFloat);
+// The same for a given pose; `camera` supplies the lens (field of view, near and far planes).
+FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
+                        uint32_t height, const glm::dvec3& culling_origin,
+                        DepthConvention depth = DepthConvention::ReverseFloat);
+
+// The renderer's depth convention a scenario asks for.
+DepthConvention depthConventionOf(const Scenario& scenario);
+
+}  // namespace occsim

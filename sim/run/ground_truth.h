@@ -1,0 +1,44 @@
+// Ground truth of a shared world's frame: every object drawn into the object-ID buffer (no
+// culling code on the way: the GPU clips) and read back, at most once per frame however many
+// configurations ask, outside every frame timing, with a count and the time it cost, so a run can
+// show that it rendered none when no error was asked for.
+#pragma once
+
+#include "render/gl_query_device.h"
+#include "render/gl_renderer.h"
+#include "sim/run/shared_world.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace occsim {
+
+struct GroundTruthFrame {
+    std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
+    std::vector<uint8_t> visible;  // per object
+    std::vector<uint8_t> rgba;     // colour, only when asked for
+};
+
+class GroundTruth {
+public:
+    explicit GroundTruth(GlRenderer& renderer);
+
+    // The current frame of `world`, rendered on the first call for that frame and kept for the
+    // others. with_colour also reads the colour buffer; when an earlier call for the frame did
+    // not, the frame is rendered again (the framebuffer has been drawn over since).
+    const GroundTruthFrame& of(const SharedWorld& world, bool with_colour = false);
+
+    uint32_t renders() const { return renders_; }
+    double msTotal() const { return ms_total_; }  // render and read-back, wall clock
+
+private:
+    GlRenderer& renderer_;
+    GlQueryDevice device_;
+    GroundTruthFrame frame_;
+    uint64_t serial_ = 0;  // SharedWorld::frameSerial() of frame_; 0: none yet
+    bool has_colour_ = false;
+    uint32_t renders_ = 0;
+    double ms_total_ = 0.0;
+};
+
+}  // namespace occsim

@@ -1,0 +1,83 @@
+#include "sim/run/shared_world.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <atomic>
+#include <chrono>
+
+namespace occsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Frame serials are handed out process-wide (see SharedWorld::frameSerial()); atomic because
+// tests may run worlds on several threads.
+std::atomic<uint64_t> g_next_serial{1};
+
+}  // namespace
+
+SharedWorld::SharedWorld(const Scene& scene, const Scenario& scenario)
+    : scene_(scene), scenario_(scenario), state_(initialState(scene)) {
+    requireFiniteBoxes(state_, 0);
+    tree_.build(state_.boxes, scenario.bsp);
+    model_view_.resize(scene.objectCount());
+    object_triangles_.resize(scene.objectCount());
+    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
+        object_triangles_[o] = scene.meshes[scene.object_mesh[o]].triangleCount();
+    }
+}
+
+void SharedWorld::computeModelViews() {
+    // Camera-relative model-view matrices, composed in double: precise far from the origin.
+    // Once per frame: ground truth and every configuration's culled render use them.
+    const glm::dmat4 rotation(view_.render.view_rotation);
+    const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -view_.render.eye);
+    for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+        model_view_[o] = glm::mat4(rotation * to_eye * modelMatrix(state_.poses[o]));
+    }
+}
+
+void SharedWorld::advance() {
+    frame_ = advances_++;
+    serial_ = g_next_serial.fetch_add(1, std::memory_order_relaxed);
+    FrameStats& stats = stats_;
+    stats = FrameStats{};
+    stats.frame = frame_;
+    const double since_start_s = frame_ * scenario_.dt_s;
+    stats.time_s = scenario_.start_time_s + since_start_s;
+
+    // The world moves (not on frame 0: it shows the initial state). Skipped without movers.
+    const auto update_start = Clock::now();
+    if (frame_ > 0 && !state_.movers.empty() && !live_.hold_world) {
+        const uint64_t moved_before = tree_.stats().reinserts_moved;
+        stepMovers(scene_, state_, scenario_.dt_s);
+        requireFiniteBoxes(state_, frame_);
+        for (const Mover& mover : state_.movers) tree_.reinsert(mover.object, state_.boxes[mover.object]);
+        tree_.refitDirtyBounds();
+        stats.moved_objects = state_.movers.size();
+        stats.node_changes = tree_.stats().reinserts_moved - moved_before;
+        ++steps_;
+    }
+    stats.update_ms = msSince(update_start);
+    update_ms_total_ += stats.update_ms;
+
+    const uint32_t width = live_.width > 0 ? live_.width : scenario_.width;
+    const uint32_t height = live_.height > 0 ? live_.height : scenario_.height;
+    const DepthConvention depth = depthConventionOf(scenario_);
+    view_ = live_.camera ? makeFrameView(scenario_.camera, *live_.camera, width, height,
+                                         scene_.culling_origin, depth)
+                         : makeFrameView(scenario_.camera, since_start_s, width, height,
+                                         scene_.culling_origin, depth);
+    computeModelViews();
+    cull_frame_ = CullFrame{};
+    cull_frame_.frame_index = frame_;
+    cull_frame_.time_s = stats.time_s;
+    cull_frame_.view = view_.cull;
+    cull_frame_.object_triangles = object_triangles_;
+}
+
+}  // namespace occsim
