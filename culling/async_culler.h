@@ -48,6 +48,7 @@ public:
     uint32_t pendingQueries() const { return pending_count_; }
 
 private:
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class Status : uint8_t { Untested, Visible, Occluded };
     // Stamps count calls of cullAndRender (0 = never), so "the previous frame" is the previous
     // call even if a caller repeats a frame index; query scheduling uses the frame index.

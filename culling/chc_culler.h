@@ -58,6 +58,7 @@ public:
     bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
 
 private:
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class QueryKind : uint8_t {
         Invisible,  // a previously invisible node: the traversal waits for this result
         Visible,    // a previously visible leaf, already rendered: the result is for next frame

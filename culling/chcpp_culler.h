@@ -63,6 +63,7 @@ public:
     uint64_t nextQueryFrame(uint32_t node) const { return nodes_[node].next_query; }
 
 private:
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
     enum class QueryKind : uint8_t {
         Invisible,  // one previously invisible node: waited for
@@ -91,9 +92,9 @@ private:
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit);
     uint64_t firstRetestFrame(uint32_t node) const;
 
-    void issueBatch(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
-    void issueVisibleQuery(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
-    void flushRenderQueue(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
+    void issueBatch(const BspTree& tree, RenderDevice& device);
+    void issueVisibleQuery(const BspTree& tree, RenderDevice& device);
+    void flushRenderQueue(const BspTree& tree, RenderDevice& device);
     void appendQueryBoxes(const BspTree& tree, uint32_t node, uint32_t depth);
     void issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& node);
     void enterState(DeviceState state);

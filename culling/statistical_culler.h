@@ -139,6 +139,7 @@ public:
     }
 
 private:
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class Subject : uint8_t {
         Node,        // a node's whole subtree (its bounds)
         OwnObjects,  // the objects stored in an inner node itself (virtual leaf)
@@ -169,7 +170,7 @@ private:
 
     void syncStructure(const BspTree& tree);
     void prepareFrame(const BspTree& tree, const CullFrame& frame);
-    void frustumOnlyFrame(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
+    void frustumOnlyFrame(const BspTree& tree, RenderDevice& device);
     void endFrame(double now_s);
 
     void push(const Entry& entry);
