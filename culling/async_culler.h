@@ -48,7 +48,6 @@ public:
     uint32_t pendingQueries() const { return pending_count_; }
 
 private:
-    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class Status : uint8_t { Untested, Visible, Occluded };
     // Stamps count calls of cullAndRender (0 = never), so "the previous frame" is the previous
     // call even if a caller repeats a frame index; query scheduling uses the frame index.
@@ -68,6 +67,7 @@ private:
     void draw(uint32_t object, RenderDevice& device);
 
     AsyncOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     std::vector<ObjectState> state_;
     // Objects with a query in flight, in issue order: a ring of capacity objectCount (one query
     // per object at most), so it never allocates after reset().

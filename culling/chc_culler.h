@@ -58,7 +58,6 @@ public:
     bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
 
 private:
-    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class QueryKind : uint8_t {
         Invisible,  // a previously invisible node: the traversal waits for this result
         Visible,    // a previously visible leaf, already rendered: the result is for next frame
@@ -80,6 +79,7 @@ private:
                QueryKind kind);
 
     ChcOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     CoherentClassification nodes_;
     DistanceQueue traversal_queue_;
     std::vector<PendingQuery> query_queue_;  // FIFO: [query_head_, size) are in flight

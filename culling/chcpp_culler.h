@@ -63,7 +63,6 @@ public:
     uint64_t nextQueryFrame(uint32_t node) const { return nodes_[node].next_query; }
 
 private:
-    PreparedView view_;  // this frame's view with its plane table (prepareView)
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
     enum class QueryKind : uint8_t {
         Invisible,  // one previously invisible node: waited for
@@ -100,6 +99,7 @@ private:
     void enterState(DeviceState state);
 
     ChcppOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     ChcppFrameStats stats_;
     CoherentClassification nodes_;
     DistanceQueue traversal_queue_;

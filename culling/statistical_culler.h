@@ -139,7 +139,6 @@ public:
     }
 
 private:
-    PreparedView view_;  // this frame's view with its plane table (prepareView)
     enum class Subject : uint8_t {
         Node,        // a node's whole subtree (its bounds)
         OwnObjects,  // the objects stored in an inner node itself (virtual leaf)
@@ -198,6 +197,7 @@ private:
     }
 
     StatisticalOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     CostModel costs_;
     std::string name_;
 
