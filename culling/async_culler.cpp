@@ -19,11 +19,12 @@ void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                 RenderDevice& device) {
     if (state_.size() != tree.objectCount()) reset(tree);
     frame_ = frame.frame_index;
+    view_ = prepareView(frame.view);
     ++pass_;
     // Whatever arrived since the last frame decides this frame.
     collectReadyResults(device);
-    traverseFrontToBack(tree, frame.view, stack_, [&](const NodeVisit& visit) {
-        forEachObjectInFrustum(tree, visit.node, frame.view.frustum, visit.inside_frustum,
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
                                [&](uint32_t o) { decide(o, tree, frame, device); });
         collectReadyResults(device);
         return true;

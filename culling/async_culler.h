@@ -67,6 +67,7 @@ private:
     void draw(uint32_t object, RenderDevice& device);
 
     AsyncOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     std::vector<ObjectState> state_;
     // Objects with a query in flight, in issue order: a ring of capacity objectCount (one query
     // per object at most), so it never allocates after reset().

@@ -18,6 +18,7 @@ public:
 
 private:
     std::vector<NodeVisit> stack_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
 };
 
 // Front to back; each node that passes the frustum is queried and its result awaited before the
@@ -31,6 +32,7 @@ public:
 
 private:
     std::vector<NodeVisit> stack_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
 };
 
 // Draws exactly the objects the ground-truth render of this frame saw, with no queries: the
@@ -43,6 +45,7 @@ public:
 
 private:
     std::vector<NodeVisit> stack_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
 };
 
 }  // namespace occsim

@@ -160,12 +160,15 @@ public:
 
     TreeBuilder(std::vector<BspNode>& nodes, std::span<const Aabb> boxes,
                 const BspBuildOptions& options, std::vector<uint32_t>& object_node,
-                Allocate allocate)
+                BspBuildScratch& scratch, Allocate allocate)
         : nodes_(nodes),
           boxes_(boxes),
           options_(options),
           object_node_(object_node),
-          allocate_(std::move(allocate)) {}
+          allocate_(std::move(allocate)),
+          centres_(scratch.centres),
+          candidates_(scratch.candidates),
+          sorted_(scratch.sorted) {}
 
     // Builds the subtree under `node`, a leaf whose loose cell contains every box in `objects`,
     // and records each object's node.
@@ -375,9 +378,10 @@ private:
     const BspBuildOptions& options_;
     std::vector<uint32_t>& object_node_;
     Allocate allocate_;
-    std::vector<float> centres_;     // scratch for the median, reused across nodes
-    std::vector<float> candidates_;  // scratch: SAH candidate plane positions along one axis
-    std::vector<float> sorted_;      // scratch: centres reordered by nth_element
+    // The tree's scratch (BspBuildScratch), reused across nodes and across builders.
+    std::vector<float>& centres_;     // for the median
+    std::vector<float>& candidates_;  // SAH candidate plane positions along one axis
+    std::vector<float>& sorted_;      // centres reordered by nth_element
 };
 
 }  // namespace
@@ -439,7 +443,7 @@ void BspTree::build(std::span<const Aabb> object_boxes, const BspBuildOptions& o
         const Aabb& box = object_box_[object];
         if (isPlaceable(box) && contains(nodes_[0].loose_cell, box)) placeable.push_back(object);
     }
-    TreeBuilder builder(nodes_, object_box_, options_, object_node_,
+    TreeBuilder builder(nodes_, object_box_, options_, object_node_, build_scratch_,
                         [this](uint32_t parent) { return allocateSlot(parent); });
     builder.buildSubtree(root(), placeable);
 
@@ -713,11 +717,12 @@ void BspTree::splitCrowdedLeaf(uint32_t leaf) {
     std::sort(scratch_objects_.begin(), scratch_objects_.end());  // independent of list order
 
     scratch_nodes_.clear();
-    TreeBuilder builder(nodes_, object_box_, options_, object_node_, [this](uint32_t parent) {
-        const uint32_t slot = allocateSlot(parent);
-        scratch_nodes_.push_back(slot);
-        return slot;
-    });
+    TreeBuilder builder(nodes_, object_box_, options_, object_node_, build_scratch_,
+                        [this](uint32_t parent) {
+                            const uint32_t slot = allocateSlot(parent);
+                            scratch_nodes_.push_back(slot);
+                            return slot;
+                        });
     builder.buildSubtree(top, scratch_objects_);
     // Descending object order leaves every list ascending, as after build().
     std::sort(scratch_objects_.begin(), scratch_objects_.end());
@@ -744,7 +749,7 @@ bool BspTree::canSplit(uint32_t leaf) {
         if (isPlaceable(box) && contains(node.loose_cell, box)) scratch_objects_.push_back(o);
     }
     std::sort(scratch_objects_.begin(), scratch_objects_.end());
-    TreeBuilder builder(nodes_, object_box_, options_, object_node_,
+    TreeBuilder builder(nodes_, object_box_, options_, object_node_, build_scratch_,
                         [](uint32_t) -> uint32_t { return kNone; });
     return builder.wouldSplit(leaf, scratch_objects_);
 }

@@ -120,6 +120,14 @@ struct BspStats {
     uint64_t root_growths = 0;       // times the root cell grew to take a box that left it
 };
 
+// Scratch of the subtree builder behind build(), leaf splits and split checks. The tree keeps it,
+// so that the splits and split checks movers cause allocate nothing once it has grown.
+struct BspBuildScratch {
+    std::vector<float> centres;
+    std::vector<float> candidates;
+    std::vector<float> sorted;
+};
+
 class BspTree {
 public:
     static constexpr uint32_t kNone = UINT32_MAX;
@@ -195,6 +203,7 @@ private:
     std::vector<uint32_t> scratch_objects_;
     std::vector<uint32_t> scratch_nodes_;
     std::vector<uint32_t> scratch_stack_;
+    BspBuildScratch build_scratch_;
     BspStats stats_;
     uint64_t structure_version_ = 0;
     uint32_t next_generation_ = 1;

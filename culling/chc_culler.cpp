@@ -17,6 +17,7 @@ void ChcCuller::reset(const BspTree& tree) {
 
 void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     frame_ = frame.frame_index;
+    view_ = prepareView(frame.view);
     nodes_.beginFrame(tree);
     traversal_queue_.clear();
     query_queue_.clear();
@@ -38,7 +39,7 @@ void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
 
 void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                           RenderDevice& device) {
-    switch (nodes_.visit(tree, frame.view, visit)) {
+    switch (nodes_.visit(tree, view_, visit)) {
         case CoherentClassification::Visit::Culled: return;
         case CoherentClassification::Visit::NearPlane:
             traverseNode(tree, frame, visit, device);
@@ -63,7 +64,7 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
         }
     } else {
         boxes_.clear();
-        if (appendOwnObjectBoxes(tree, visit.node, frame.view.frustum, inside, boxes_) > 0) {
+        if (appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0) {
             if (query_due) {
                 issue(device, boxes_, visit, QueryKind::Own);
             } else {
@@ -88,7 +89,7 @@ void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
 
 void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
                              RenderDevice& device) {
-    drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+    drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
     traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
 }
 

@@ -79,6 +79,7 @@ private:
                QueryKind kind);
 
     ChcOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     CoherentClassification nodes_;
     DistanceQueue traversal_queue_;
     std::vector<PendingQuery> query_queue_;  // FIFO: [query_head_, size) are in flight

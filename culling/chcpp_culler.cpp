@@ -43,6 +43,7 @@ void ChcppCuller::reset(const BspTree& tree) {
 void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                 RenderDevice& device) {
     frame_ = frame.frame_index;
+    view_ = prepareView(frame.view);
     nodes_.beginFrame(tree);
     stats_ = {};
     device_state_ = DeviceState::None;
@@ -59,16 +60,16 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
             if (!device.isQueryReady(front.id)) {
                 if (!traversal_queue_.empty()) break;
                 if (!i_queue_.empty()) {
-                    issueBatch(tree, frame, device);
+                    issueBatch(tree, device);
                     continue;
                 }
                 if (!render_queue_.empty()) {
-                    flushRenderQueue(tree, frame, device);
+                    flushRenderQueue(tree, device);
                     continue;
                 }
                 if (v_head_ < v_queue_.size()) {
                     ++stats_.fill_queries;
-                    issueVisibleQuery(tree, frame, device);
+                    issueVisibleQuery(tree, device);
                     continue;
                 }
             }
@@ -78,22 +79,22 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
 
         if (!traversal_queue_.empty()) {
             visitNode(tree, frame, traversal_queue_.pop());
-            if (i_queue_.size() >= options_.batch_size) issueBatch(tree, frame, device);
+            if (i_queue_.size() >= options_.batch_size) issueBatch(tree, device);
         } else if (!i_queue_.empty()) {
-            issueBatch(tree, frame, device);
+            issueBatch(tree, device);
         } else if (v_head_ < v_queue_.size()) {
             // Nothing left to find: the remaining v-queue queries, after the remaining geometry.
-            flushRenderQueue(tree, frame, device);
-            while (v_head_ < v_queue_.size()) issueVisibleQuery(tree, frame, device);
+            flushRenderQueue(tree, device);
+            while (v_head_ < v_queue_.size()) issueVisibleQuery(tree, device);
         } else if (query_head_ == query_queue_.size()) {
             break;
         }
     }
-    flushRenderQueue(tree, frame, device);
+    flushRenderQueue(tree, device);
 }
 
 void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit) {
-    switch (nodes_.visit(tree, frame.view, visit)) {
+    switch (nodes_.visit(tree, view_, visit)) {
         case CoherentClassification::Visit::Culled: return;
         case CoherentClassification::Visit::NearPlane:
             traverseNode(tree, frame, visit);
@@ -112,7 +113,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
     if (!tree.node(visit.node).isLeaf()) {
         boxes_.clear();
         has_geometry =
-            appendOwnObjectBoxes(tree, visit.node, frame.view.frustum, inside, boxes_) > 0;
+            appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0;
         kind = QueryKind::Own;
     }
     if (has_geometry) {
@@ -138,7 +139,7 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                     n.single = true;
                     i_queue_.push_back(n);
                 }
-                if (i_queue_.size() >= options_.batch_size) issueBatch(tree, frame, device);
+                if (i_queue_.size() >= options_.batch_size) issueBatch(tree, device);
             } else {
                 for (uint32_t i = 0; i < query.count; ++i) {
                     nodes_.markInvisible(multi_nodes_[query.first + i].node, kMaxInvisibleFrames);
@@ -180,9 +181,9 @@ uint64_t ChcppCuller::firstRetestFrame(uint32_t node) const {
     return frame_ + 1 + r;
 }
 
-void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
+void ChcppCuller::issueBatch(const BspTree& tree, RenderDevice& device) {
     // Render what is waiting first, so the batch tests against as much depth as possible.
-    flushRenderQueue(tree, frame, device);
+    flushRenderQueue(tree, device);
     ++stats_.query_batches;
 
     order_.clear();
@@ -242,13 +243,12 @@ void ChcppCuller::issueBatch(const BspTree& tree, const CullFrame& frame, Render
     i_queue_.clear();
 }
 
-void ChcppCuller::issueVisibleQuery(const BspTree& tree, const CullFrame& frame,
-                                    RenderDevice& device) {
+void ChcppCuller::issueVisibleQuery(const BspTree& tree, RenderDevice& device) {
     const QueuedNode n = v_queue_[v_head_++];
     ++stats_.visible_queries;
     boxes_.clear();
     if (n.kind == QueryKind::Own) {
-        appendOwnObjectBoxes(tree, n.node, frame.view.frustum, n.inside_frustum, boxes_);
+        appendOwnObjectBoxes(tree, n.node, view_.frustum, n.inside_frustum, boxes_);
     } else {
         appendQueryBoxes(tree, n.node, 0);
     }
@@ -268,12 +268,11 @@ void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const Q
     query_queue_.push_back({id, n.node, 1, n.inside_frustum, QueryKind::Invisible});
 }
 
-void ChcppCuller::flushRenderQueue(const BspTree& tree, const CullFrame& frame,
-                                   RenderDevice& device) {
+void ChcppCuller::flushRenderQueue(const BspTree& tree, RenderDevice& device) {
     if (render_queue_.empty()) return;
     enterState(DeviceState::Render);
     for (const NodeVisit& visit : render_queue_) {
-        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
     }
     render_queue_.clear();
 }

@@ -91,14 +91,15 @@ private:
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit);
     uint64_t firstRetestFrame(uint32_t node) const;
 
-    void issueBatch(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
-    void issueVisibleQuery(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
-    void flushRenderQueue(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
+    void issueBatch(const BspTree& tree, RenderDevice& device);
+    void issueVisibleQuery(const BspTree& tree, RenderDevice& device);
+    void flushRenderQueue(const BspTree& tree, RenderDevice& device);
     void appendQueryBoxes(const BspTree& tree, uint32_t node, uint32_t depth);
     void issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& node);
     void enterState(DeviceState state);
 
     ChcppOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     ChcppFrameStats stats_;
     CoherentClassification nodes_;
     DistanceQueue traversal_queue_;

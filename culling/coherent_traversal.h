@@ -68,7 +68,8 @@ private:
 // drawNodeObjects() would draw) and returns how many. In an inner node these are the straddlers:
 // the node's own bounds cover its whole subtree, so a query on them would say nothing about the
 // straddlers alone; the boxes of exactly the drawn objects do.
-inline uint32_t appendOwnObjectBoxes(const BspTree& tree, uint32_t node, const Frustum& frustum,
+inline uint32_t appendOwnObjectBoxes(const BspTree& tree, uint32_t node,
+                                     const FrustumPlanes& frustum,
                                      bool inside_frustum, std::vector<Aabb>& out) {
     uint32_t count = 0;
     forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
@@ -114,7 +115,7 @@ public:
 
     // The common start of a node's visit: the frustum test (setting visit.inside_frustum), the
     // reset to invisible, and the near-plane rule (such a node is pulled up at once).
-    Visit visit(const BspTree& tree, const CullView& view, NodeVisit& visit) {
+    Visit visit(const BspTree& tree, const PreparedView& view, NodeVisit& visit) {
         bool inside = false;
         if (!nodeInFrustum(tree, visit, view.frustum, &inside)) return Visit::Culled;
         visit.inside_frustum = inside;

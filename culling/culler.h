@@ -24,6 +24,20 @@ struct CullView {
     float near_radius = 0.0f;  // eye to a near-plane corner; see nearPlaneTouchesBox()
 };
 
+// A CullView as the cullers read it during a frame: the frustum as its plane table, built once
+// when the culler begins the frame (prepareView), so that the frame's node and object tests only
+// run the kernel. Built by the culler rather than carried in CullView, so whoever fills a CullView
+// (the simulation, a test moving its planes) cannot leave a stale table behind.
+struct PreparedView {
+    glm::vec3 eye{0.0f};
+    FrustumPlanes frustum{};
+    float near_radius = 0.0f;
+};
+
+inline PreparedView prepareView(const CullView& view) {
+    return PreparedView{view.eye, planeTableOf(view.frustum), view.near_radius};
+}
+
 struct CullFrame {
     uint64_t frame_index = 0;
     double time_s = 0.0;  // simulation time: frame_index * dt

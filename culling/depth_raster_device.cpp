@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace occsim {
 namespace {
@@ -27,11 +26,11 @@ DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t l
     : width_(width), height_(height), latency_(latency_commands), depth_(width * height, kFar) {}
 
 void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
-                                   std::vector<Aabb> object_boxes) {
+                                   std::span<const Aabb> object_boxes) {
     view_projection_ = view_projection;
     eye_ = eye;
-    frustum_ = frustumFromViewProjection(view_projection);
-    boxes_ = std::move(object_boxes);
+    frustum_ = planeTableOf(frustumFromViewProjection(view_projection));
+    boxes_.assign(object_boxes.begin(), object_boxes.end());
     std::fill(depth_.begin(), depth_.end(), kFar);
     drawn_.clear();
     query_log_.clear();

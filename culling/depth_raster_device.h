@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace occsim {
@@ -33,8 +34,10 @@ public:
     DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
 
     // Starts a frame: the camera (OpenGL-convention view-projection and the eye) and every
-    // object's box. Clears the raster and the log.
-    void beginFrame(const glm::mat4& view_projection, glm::vec3 eye, std::vector<Aabb> object_boxes);
+    // object's box (copied into the device's own buffer, so a frame allocates nothing once it is
+    // large enough). Clears the raster and the log.
+    void beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
+                    std::span<const Aabb> object_boxes);
 
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;
@@ -66,7 +69,7 @@ private:
     uint32_t width_, height_, latency_;
     glm::mat4 view_projection_{1.0f};
     glm::vec3 eye_{0.0f};
-    Frustum frustum_{};
+    FrustumPlanes frustum_{};  // the plane table of this frame, built in beginFrame()
     std::vector<Aabb> boxes_;
     std::vector<float> depth_;  // width * height, +inf = nothing drawn
     uint64_t commands_ = 0;

@@ -12,6 +12,13 @@ void ScriptedQueryDevice::setVisibility(std::vector<uint8_t> visible, std::vecto
     boxes_ = std::move(object_boxes);
 }
 
+void ScriptedQueryDevice::updateVisibility(std::span<const uint8_t> visible,
+                                           std::span<const Aabb> object_boxes) {
+    assert(visible.size() == object_boxes.size());
+    visible_.assign(visible.begin(), visible.end());
+    boxes_.assign(object_boxes.begin(), object_boxes.end());
+}
+
 void ScriptedQueryDevice::drawObject(uint32_t object) {
     drawn_.push_back(object);
     ++commands_;

@@ -9,6 +9,7 @@
 #include "culling/render_device.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace occsim {
@@ -19,6 +20,9 @@ public:
 
     // The current frame's truth: which objects are visible, and every object's box.
     void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
+    // The same, copied into the device's own buffers: a caller that changes the truth every frame
+    // (a moving scene) allocates nothing once they are large enough.
+    void updateVisibility(std::span<const uint8_t> visible, std::span<const Aabb> object_boxes);
 
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override;

@@ -252,7 +252,7 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
         }
     } else {
         // Without virtual leaves, objects in inner nodes have no decisions of their own.
-        drawNodeObjects(tree, entry.index, frame.view.frustum, entry.inside_frustum, device);
+        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
     }
     if (!isEmpty(tree.bounds(near_child))) {
         push({entry.rank + 1, near_child, Subject::Node, entry.inside_frustum});
@@ -301,7 +301,7 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
 
 uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,
                                           uint32_t node, bool inside_frustum, RenderDevice& device) {
-    const Frustum& frustum = frame.view.frustum;
+    const FrustumPlanes& frustum = view_.frustum;
     if (!options_.object_queries) {
         drawNodeObjects(tree, node, frustum, inside_frustum, device);
         return 0;
@@ -337,11 +337,10 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
 
 bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Entry entry,
                                 RenderDevice& device) {
-    const CullView& view = frame.view;
     if (entry.subject == Subject::Node) {
         NodeVisit visit{entry.index, entry.inside_frustum};
         bool inside = false;
-        if (!nodeInFrustum(tree, visit, view.frustum, &inside)) return false;  // SKIP
+        if (!nodeInFrustum(tree, visit, view_.frustum, &inside)) return false;  // SKIP
         entry.inside_frustum = inside;
         const Aabb& box = tree.bounds(entry.index);
         const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
@@ -362,7 +361,7 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
     boxes_.clear();
     Aabb box;
     double draw_ms = 0.0;
-    forEachObjectInFrustum(tree, entry.index, view.frustum, entry.inside_frustum, [&](uint32_t o) {
+    forEachObjectInFrustum(tree, entry.index, view_.frustum, entry.inside_frustum, [&](uint32_t o) {
         boxes_.push_back(tree.objectBox(o));
         extend(box, tree.objectBox(o));
         if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
@@ -372,7 +371,7 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
     Decision decision;
     if (decide(frame, own_stats_[entry.index], box, travelOf(entry), draw_ms, query_boxes, false,
                &decision) == NodeAction::Render) {
-        drawNodeObjects(tree, entry.index, view.frustum, entry.inside_frustum, device);
+        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
         return false;
     }
     const QueryTag tag = QueryTag::nodeObjects(entry.index);
@@ -395,17 +394,16 @@ void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
     switch (e.subject) {
         case Subject::Node: renderNode(tree, frame, e, device); break;
         case Subject::OwnObjects:
-            drawNodeObjects(tree, e.index, frame.view.frustum, e.inside_frustum, device);
+            drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
             break;
         case Subject::Object: device.drawObject(e.index); break;
     }
 }
 
-void StatisticalCuller::frustumOnlyFrame(const BspTree& tree, const CullFrame& frame,
-                                         RenderDevice& device) {
+void StatisticalCuller::frustumOnlyFrame(const BspTree& tree, RenderDevice& device) {
     counters_.frustum_only = true;
-    traverseFrontToBack(tree, frame.view, vfc_stack_, [&](const NodeVisit& visit) {
-        drawNodeObjects(tree, visit.node, frame.view.frustum, visit.inside_frustum, device);
+    traverseFrontToBack(tree, view_, vfc_stack_, [&](const NodeVisit& visit) {
+        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
         return true;
     });
 }
@@ -436,10 +434,11 @@ void StatisticalCuller::endFrame(double now_s) {
 void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
     counters_ = {};
+    view_ = prepareView(frame.view);
     prepareFrame(tree, frame);
     if (frustum_only_) {
         if (frame.time_s < frustum_only_until_s_) {
-            frustumOnlyFrame(tree, frame, device);
+            frustumOnlyFrame(tree, device);
             return;
         }
         frustum_only_ = false;  // re-check: run the algorithm again

@@ -169,7 +169,7 @@ private:
 
     void syncStructure(const BspTree& tree);
     void prepareFrame(const BspTree& tree, const CullFrame& frame);
-    void frustumOnlyFrame(const BspTree& tree, const CullFrame& frame, RenderDevice& device);
+    void frustumOnlyFrame(const BspTree& tree, RenderDevice& device);
     void endFrame(double now_s);
 
     void push(const Entry& entry);
@@ -197,6 +197,7 @@ private:
     }
 
     StatisticalOptions options_;
+    PreparedView view_;  // this frame's view with its plane table (prepareView)
     CostModel costs_;
     std::string name_;
 

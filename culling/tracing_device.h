@@ -14,8 +14,8 @@
 
 #include "culling/render_device.h"
 
+#include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace occsim {
@@ -56,10 +56,21 @@ public:
     void resetCounters() override { inner_.resetCounters(); }
 
 private:
+    static constexpr size_t kClosed = SIZE_MAX;
+
+    void makeRoom(TracedQuery& q) const;
+
     RenderDevice& inner_;
     bool tracing_ = false;
     FrameTrace trace_;
-    std::unordered_map<QueryId, size_t> open_;  // id -> index in trace_.queries, until fetched
+    // Per query id, its index in trace_.queries until its result is fetched, else kClosed. Ids are
+    // small and reused by the wrapped device, so a flat array indexed by id serves as the map.
+    std::vector<size_t> open_;
+    // The traced queries of earlier traces, kept with their box and tag lists' storage, so that
+    // tracing every frame (the viewer's trace mode) allocates nothing once frames are alike.
+    std::vector<TracedQuery> spare_;
+    size_t room_boxes_ = 0;  // what every stored query has room for (see issueQuery())
+    size_t room_subjects_ = 0;
 };
 
 }  // namespace occsim

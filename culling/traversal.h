@@ -1,6 +1,8 @@
 // Pieces every hierarchical culler shares: front-to-back child order, frustum classification
 // that is inherited by the children of a node fully inside, and drawing one node's own objects
-// with a per-object frustum test.
+// with a per-object frustum test. Every test here reads the plane table of the frame's
+// PreparedView (culler.h): there is no overload taking a Frustum, so no culler can rebuild the
+// table per box by accident.
 #pragma once
 
 #include "culling/bsp_tree.h"
@@ -31,7 +33,7 @@ inline void pushChildrenFrontToBack(const BspTree& tree, uint32_t node, glm::vec
 
 // Outside: skip the subtree. Otherwise reports whether the node is fully inside (so its subtree
 // needs no further frustum tests). Empty subtrees count as outside.
-inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const Frustum& frustum,
+inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const FrustumPlanes& frustum,
                           bool* fully_inside) {
     const Aabb& b = tree.bounds(visit.node);
     if (isEmpty(b)) return false;
@@ -47,7 +49,7 @@ inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const Fru
 // Front-to-back traversal of the nodes that pass the frustum: `visit(visit)` is called with the
 // node's inherited "fully inside" flag set, and returns true to descend into its children.
 template <class Visit>
-void traverseFrontToBack(const BspTree& tree, const CullView& view, std::vector<NodeVisit>& stack,
+void traverseFrontToBack(const BspTree& tree, const PreparedView& view, std::vector<NodeVisit>& stack,
                          Visit&& visit) {
     stack.clear();
     stack.push_back({tree.root(), false});
@@ -65,7 +67,7 @@ void traverseFrontToBack(const BspTree& tree, const CullView& view, std::vector<
 // the frustum (every one when the node is fully inside). The one loop behind drawing a node's
 // objects, querying them as a virtual leaf, and deciding them one by one.
 template <class Fn>
-void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const Frustum& frustum,
+void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const FrustumPlanes& frustum,
                             bool inside_frustum, Fn&& fn) {
     for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
         if (inside_frustum || classify(frustum, tree.objectBox(o)) != FrustumTest::Outside) fn(o);
@@ -73,7 +75,7 @@ void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const Frustum& f
 }
 
 // Draws the objects stored in `node` itself (not its children) that pass the frustum.
-inline void drawNodeObjects(const BspTree& tree, uint32_t node, const Frustum& frustum,
+inline void drawNodeObjects(const BspTree& tree, uint32_t node, const FrustumPlanes& frustum,
                             bool inside_frustum, RenderDevice& device) {
     forEachObjectInFrustum(tree, node, frustum, inside_frustum,
                            [&device](uint32_t o) { device.drawObject(o); });

@@ -340,5 +340,69 @@ TEST(Frustum, ClassifyBatchEqualsClassifyElementWiseIncludingSpecialBoxes) {
     EXPECT_EQ(untouched, sentinel);
 }
 
+// The production path (a plane table built once per frame, then the inline kernel per node and
+// object, or the batch over arrays) against the one-off classify(Frustum, box) that builds the
+// table per call: the same answer, bit for bit, on random boxes around random cameras, including
+// points (zero extent), huge finite boxes, infinite ones, inverted ones and NaN. A NaN box is
+// never Outside (it is always drawn).
+TEST(Frustum, ThePerFrameTableTheBatchAndTheSingleBoxPathsAgreeOnEveryKindOfBox) {
+    std::mt19937 rng(2024);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), size(0.0f, 30.0f), fov(20.0f, 120.0f);
+    constexpr float kHuge = std::numeric_limits<float>::max();
+    size_t nan_boxes = 0;
+    for (int c = 0; c < 20; ++c) {
+        const glm::vec3 eye(50.0f * unit(rng), 20.0f * unit(rng), 50.0f * unit(rng));
+        const Camera camera = makeCamera(eye, eye + glm::vec3(unit(rng), 0.3f * unit(rng), unit(rng)),
+                                         fov(rng), 1.0f + unit(rng) * 0.5f, 0.1f, 200.0f);
+        const Frustum f = frustumFromViewProjection(camera.view_projection);
+        const FrustumPlanes table = planeTableOf(f);  // once, as a culler's frame does
+
+        std::vector<Aabb> boxes;
+        for (int i = 0; i < 500; ++i) {
+            const glm::vec3 centre = eye + 120.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
+            const glm::vec3 half = 0.5f * glm::vec3(size(rng), size(rng), size(rng));
+            Aabb box = makeAabb(centre - half, centre + half);
+            switch (i % 25) {
+                case 0: box.max = box.min; break;                                   // a point
+                case 1: box.min.x = box.max.x; break;                               // a flat box
+                case 2: box = makeAabb(glm::vec3(-kHuge), glm::vec3(kHuge)); break;  // huge
+                case 3: box.max.y = kHuge; break;
+                case 4: box.min.z = -kInf; break;
+                case 5: box = makeAabb(glm::vec3(-kInf), glm::vec3(kInf)); break;
+                case 6: (i % 2 ? box.min : box.max)[i % 3] = kNan; break;
+                case 7: box = makeAabb(glm::vec3(kNan), glm::vec3(kNan)); break;
+                case 8: std::swap(box.min.x, box.max.x); break;  // inverted: empty
+                case 9: box = Aabb{}; break;
+                default: break;
+            }
+            boxes.push_back(box);
+        }
+        std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
+        for (const Aabb& box : boxes) {
+            min_x.push_back(box.min.x);
+            min_y.push_back(box.min.y);
+            min_z.push_back(box.min.z);
+            max_x.push_back(box.max.x);
+            max_y.push_back(box.max.y);
+            max_z.push_back(box.max.z);
+        }
+        std::vector<FrustumTest> batch(boxes.size());
+        classifyBatch(table, min_x.data(), min_y.data(), min_z.data(), max_x.data(), max_y.data(),
+                      max_z.data(), boxes.size(), batch.data());
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            const FrustumTest single = classify(f, boxes[i]);
+            ASSERT_EQ(classify(table, boxes[i]), single) << "camera " << c << ", box " << i;
+            ASSERT_EQ(batch[i], single) << "camera " << c << ", box " << i;
+            const Aabb& b = boxes[i];
+            const bool has_nan = glm::any(glm::isnan(b.min)) || glm::any(glm::isnan(b.max));
+            if (has_nan) {
+                ++nan_boxes;
+                EXPECT_EQ(single, FrustumTest::Intersects) << "a NaN box is drawn, box " << i;
+            }
+        }
+    }
+    EXPECT_GT(nan_boxes, 0u);
+}
+
 }  // namespace
 }  // namespace occsim

@@ -1,7 +1,8 @@
 // Micro-benchmarks of the simulator's own work beside the rendering it measures
 // (docs/performance.md): reinserting N movers against rebuilding the tree from scratch, the
-// traversal's CPU per node for every culler, the mover update per object, and advancing one shared
-// world per frame against one world per configuration.
+// frustum test per box (one-off, with the frame's plane table, in a batch), the traversal's CPU
+// per node for every culler, the mover update per object, and advancing one shared world per
+// frame against one world per configuration.
 // Run: ./build/release/tests/benchmarks/bench_simulation
 #include "culling/algorithms.h"
 #include "culling/bsp_tree.h"
@@ -84,6 +85,48 @@ void BM_RebuildTree(benchmark::State& state) {
     state.SetItemsProcessed(int64_t(state.iterations()) * movers);
 }
 BENCHMARK(BM_RebuildTree)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// The frustum test per box, three ways over the same 30,000 boxes: 0 = classify(Frustum, box),
+// which builds the plane table for every box (the cullers' path before issue 14); 1 = the
+// production path, the table built once and the inline kernel per box, as the cullers call it
+// per node and object; 2 = classifyBatch() over structure-of-arrays boxes.
+void BM_FrustumClassifyPerBox(benchmark::State& state) {
+    const int path = static_cast<int>(state.range(0));
+    static const char* const kLabels[] = {"single, table per box", "single, table per frame",
+                                          "batch, table per frame"};
+    state.SetLabel(kLabels[path]);
+    const std::vector<Aabb> boxes = bigField(30000, 5);
+    std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
+    for (const Aabb& b : boxes) {
+        min_x.push_back(b.min.x);
+        min_y.push_back(b.min.y);
+        min_z.push_back(b.min.z);
+        max_x.push_back(b.max.x);
+        max_y.push_back(b.max.y);
+        max_z.push_back(b.max.z);
+    }
+    const Frustum f = frustumFromViewProjection(
+        glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 1000.0f) *
+        glm::lookAt(glm::vec3(0, 5, 250), glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)));
+    std::vector<FrustumTest> out(boxes.size());
+    for (auto _ : state) {
+        if (path == 0) {
+            for (size_t i = 0; i < boxes.size(); ++i) out[i] = classify(f, boxes[i]);
+        } else if (path == 1) {
+            const FrustumPlanes table = planeTableOf(f);
+            for (size_t i = 0; i < boxes.size(); ++i) out[i] = classify(table, boxes[i]);
+        } else {
+            classifyBatch(planeTableOf(f), min_x.data(), min_y.data(), min_z.data(), max_x.data(),
+                          max_y.data(), max_z.data(), boxes.size(), out.data());
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    state.counters["ns_per_box"] = benchmark::Counter(
+        static_cast<double>(boxes.size()) * static_cast<double>(state.iterations()),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_FrustumClassifyPerBox)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 // A device that answers at once and costs nothing: a query comes back hidden for one subject in
 // ten (a hash of its tag), visible otherwise, ready after a fixed number of later commands. It
