@@ -52,6 +52,9 @@ struct DeviceCounters {
     uint64_t results_waited = 0;     // results fetched before they were ready (the caller blocked)
     double wait_seconds = 0.0;       // wall-clock time blocked in queryResult()
     double submit_seconds = 0.0;     // wall-clock time spent in draw and query submission
+    // Wall-clock time asking whether answers are ready and fetching answers that were: on
+    // llvmpipe a poll can flush the command stream, so it is the driver's time, not the culler's.
+    double poll_seconds = 0.0;
 };
 
 class RenderDevice {

@@ -65,8 +65,10 @@ bool GlQueryDevice::isQueryReady(QueryId id) {
     if (latency_.deterministic) {
         return commands_ - issued_at_[id] > latency_.latency_commands;
     }
+    const auto start = Clock::now();
     GLuint available = GL_FALSE;
     glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available);
+    counters_.poll_seconds += secondsSince(start);
     return available == GL_TRUE;
 }
 
@@ -78,6 +80,8 @@ uint64_t GlQueryDevice::queryResult(QueryId id) {
     if (!ready) {
         ++counters_.results_waited;
         counters_.wait_seconds += secondsSince(start);
+    } else {
+        counters_.poll_seconds += secondsSince(start);
     }
     ++counters_.results_fetched;
     free_ids_.push_back(id);
