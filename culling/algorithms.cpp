@@ -24,7 +24,7 @@ constexpr std::array kAlgorithms = {
     AlgorithmTraits{"statistical+",
                     "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
                     "re-query by distance and a frustum fallback",
-                    F::Statistical, true, true, false, false},
+                    F::StatisticalPlus, true, true, false, false},
     AlgorithmTraits{"chc", "coherent hierarchical culling (Bittner et al. 2004)", F::Chc, true,
                     true, false, false},
     AlgorithmTraits{"chc++", "CHC++ (Mattausch et al. 2008)", F::Chcpp, true, true, false, false},
@@ -67,19 +67,23 @@ std::string algorithmNameList() {
     return out;
 }
 
+const StatisticalOptions* statisticalOptionsOf(const AlgorithmTraits& algorithm,
+                                               const CullerOptions& options) {
+    switch (algorithm.family) {
+        case F::Statistical: return &options.statistical;
+        case F::StatisticalPlus: return &options.statistical_plus;
+        default: return nullptr;
+    }
+}
+
 std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options) {
     switch (algorithm.family) {
         case F::Vfc: return std::make_unique<VfcCuller>();
         case F::StopAndWait: return std::make_unique<StopAndWaitCuller>();
         case F::Statistical:
-            // Two algorithms share the family: the paper as published and statistical+, each
-            // with its own options.
-            if (algorithm.name == "statistical+") {
-                return std::make_unique<StatisticalCuller>(options.statistical_plus,
-                                                           options.cost_model, algorithm.name);
-            }
-            return std::make_unique<StatisticalCuller>(options.statistical, options.cost_model,
-                                                       algorithm.name);
+        case F::StatisticalPlus:
+            return std::make_unique<StatisticalCuller>(*statisticalOptionsOf(algorithm, options),
+                                                       options.cost_model, algorithm.name);
         case F::Chc: return std::make_unique<ChcCuller>(options.chc);
         case F::Chcpp: return std::make_unique<ChcppCuller>(options.chcpp);
         case F::Async: return std::make_unique<AsyncCuller>(options.async);

@@ -16,7 +16,16 @@ namespace occsim {
 
 // Which options struct of CullerOptions an algorithm reads (sweeps and the tuner use it to know
 // which knobs apply).
-enum class AlgorithmFamily : uint8_t { Vfc, StopAndWait, Statistical, Chc, Chcpp, Async, Ideal };
+enum class AlgorithmFamily : uint8_t {
+    Vfc,
+    StopAndWait,
+    Statistical,      // CullerOptions::statistical (the paper as published)
+    StatisticalPlus,  // CullerOptions::statistical_plus (the same culler, improvements on)
+    Chc,
+    Chcpp,
+    Async,
+    Ideal,
+};
 
 struct AlgorithmTraits {
     std::string_view name;
@@ -44,6 +53,10 @@ const AlgorithmTraits* findAlgorithm(std::string_view name);
 const AlgorithmTraits& speedupReference();
 // "vfc, stop-and-wait, ..." for messages.
 std::string algorithmNameList();
+
+// The statistical options an algorithm reads: nullptr for the algorithms that are not statistical.
+const StatisticalOptions* statisticalOptionsOf(const AlgorithmTraits& algorithm,
+                                               const CullerOptions& options);
 
 std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options);
 

@@ -23,7 +23,7 @@ uint32_t cellCeil(float ndc, uint32_t cells) {
 }  // namespace
 
 DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands)
-    : width_(width), height_(height), latency_(latency_commands), depth_(width * height, kFar) {}
+    : width_(width), height_(height), depth_(width * height, kFar), queries_(latency_commands) {}
 
 void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
                                    std::span<const Aabb> object_boxes) {
@@ -63,7 +63,7 @@ DepthRasterDevice::Card DepthRasterDevice::cardOf(const Aabb& box) const {
 void DepthRasterDevice::drawObject(uint32_t object) {
     assert(object < boxes_.size());
     drawn_.push_back(object);
-    ++commands_;
+    queries_.countDraw();
     ++counters_.objects_drawn;
     const Card c = cardOf(boxes_[object]);
     for (uint32_t y = c.y0; y < c.y1; ++y) {
@@ -84,32 +84,14 @@ QueryId DepthRasterDevice::issueQuery(std::span<const Aabb> boxes,
         }
     }
     query_log_.push_back(subjects.empty() ? QueryTag{} : subjects.front());
-    QueryId id = 0;
-    while (id < queries_.size() && queries_[id].in_use) ++id;
-    if (id == queries_.size()) queries_.push_back({});
-    queries_[id] = {commands_++, samples, true};
-    ++counters_.queries_issued;
-    counters_.query_boxes += boxes.size();
-    return id;
+    return queries_.issue(samples, boxes.size(), counters_);
 }
 
-bool DepthRasterDevice::isQueryReady(QueryId id) {
-    assert(id < queries_.size() && queries_[id].in_use);
-    return commands_ - queries_[id].issued_at > latency_;
-}
+bool DepthRasterDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
-uint64_t DepthRasterDevice::queryResult(QueryId id) {
-    if (!isQueryReady(id)) ++counters_.results_waited;
-    ++counters_.results_fetched;
-    queries_[id].in_use = false;
-    return queries_[id].result;
-}
+uint64_t DepthRasterDevice::queryResult(QueryId id) { return queries_.take(id, counters_); }
 
-uint32_t DepthRasterDevice::pendingQueries() const {
-    uint32_t n = 0;
-    for (const Pending& p : queries_) n += p.in_use ? 1 : 0;
-    return n;
-}
+uint32_t DepthRasterDevice::pendingQueries() const { return queries_.pending(); }
 
 std::vector<uint8_t> DepthRasterDevice::groundTruth() const {
     std::vector<float> depth(width_ * height_, kFar);

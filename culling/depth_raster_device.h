@@ -18,6 +18,7 @@
 // Results become ready after a fixed number of later commands, like ScriptedQueryDevice.
 #pragma once
 
+#include "culling/command_latency_queries.h"
 #include "culling/frustum.h"
 #include "culling/render_device.h"
 
@@ -59,21 +60,15 @@ private:
         uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // cells [x0, x1) x [y0, y1); empty when x0 >= x1
         float depth = 0.0f;
     };
-    struct Pending {
-        uint64_t issued_at;
-        uint64_t result;
-        bool in_use;
-    };
     Card cardOf(const Aabb& box) const;
 
-    uint32_t width_, height_, latency_;
+    uint32_t width_, height_;
     glm::mat4 view_projection_{1.0f};
     glm::vec3 eye_{0.0f};
     FrustumPlanes frustum_{};  // the plane table of this frame, built in beginFrame()
     std::vector<Aabb> boxes_;
     std::vector<float> depth_;  // width * height, +inf = nothing drawn
-    uint64_t commands_ = 0;
-    std::vector<Pending> queries_;
+    CommandLatencyQueries queries_;
     std::vector<uint32_t> drawn_;
     std::vector<QueryTag> query_log_;
 };

@@ -21,7 +21,7 @@ void ScriptedQueryDevice::updateVisibility(std::span<const uint8_t> visible,
 
 void ScriptedQueryDevice::drawObject(uint32_t object) {
     drawn_.push_back(object);
-    ++commands_;
+    queries_.countDraw();
     ++counters_.objects_drawn;
 }
 
@@ -39,38 +39,19 @@ QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
     }
     queried_.insert(queried_.end(), boxes.begin(), boxes.end());
     tags_.push_back(subjects.empty() ? QueryTag{} : subjects.front());
-    QueryId id = 0;
-    while (id < queries_.size() && queries_[id].in_use) ++id;
-    if (id == queries_.size()) queries_.push_back({});
-    queries_[id] = {commands_++, samples, true};
-    ++counters_.queries_issued;
-    counters_.query_boxes += boxes.size();
+    const QueryId id = queries_.issue(samples, boxes.size(), counters_);
     max_pending_ = std::max(max_pending_, pendingQueries());
     return id;
 }
 
-bool ScriptedQueryDevice::isQueryReady(QueryId id) {
-    assert(id < queries_.size() && queries_[id].in_use);
-    return commands_ - queries_[id].issued_at > latency_;
-}
+bool ScriptedQueryDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
-uint64_t ScriptedQueryDevice::queryResult(QueryId id) {
-    if (!isQueryReady(id)) ++counters_.results_waited;
-    ++counters_.results_fetched;
-    queries_[id].in_use = false;
-    return queries_[id].result;
-}
+uint64_t ScriptedQueryDevice::queryResult(QueryId id) { return queries_.take(id, counters_); }
 
 void ScriptedQueryDevice::clearLog() {
     drawn_.clear();
     queried_.clear();
     tags_.clear();
-}
-
-uint32_t ScriptedQueryDevice::pendingQueries() const {
-    uint32_t n = 0;
-    for (const Pending& p : queries_) n += p.in_use ? 1 : 0;
-    return n;
 }
 
 }  // namespace occsim

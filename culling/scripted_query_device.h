@@ -6,6 +6,7 @@
 // of the GL device; fetching one earlier counts as a wait.
 #pragma once
 
+#include "culling/command_latency_queries.h"
 #include "culling/render_device.h"
 
 #include <cstdint>
@@ -16,7 +17,7 @@ namespace occsim {
 
 class ScriptedQueryDevice final : public RenderDevice {
 public:
-    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : latency_(latency_commands) {}
+    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : queries_(latency_commands) {}
 
     // The current frame's truth: which objects are visible, and every object's box.
     void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
@@ -36,22 +37,15 @@ public:
     // What each query since the last clearLog() was for (its first subject), in issue order.
     const std::vector<QueryTag>& queryTags() const { return tags_; }
     void clearLog();
-    uint32_t pendingQueries() const;
+    uint32_t pendingQueries() const { return queries_.pending(); }
     // The most queries that were ever in flight at once (issued, result not yet fetched).
     uint32_t maxPendingQueries() const { return max_pending_; }
 
 private:
-    struct Pending {
-        uint64_t issued_at;
-        uint64_t result;
-        bool in_use;
-    };
-    uint32_t latency_;
-    uint64_t commands_ = 0;
+    CommandLatencyQueries queries_;
     uint32_t max_pending_ = 0;
     std::vector<uint8_t> visible_;
     std::vector<Aabb> boxes_;
-    std::vector<Pending> queries_;
     std::vector<uint32_t> drawn_;
     std::vector<Aabb> queried_;
     std::vector<QueryTag> tags_;

@@ -40,6 +40,57 @@ inline CullView makeView(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f,
     return view;
 }
 
+// Boxes as the batch frustum kernel reads them: one array per coordinate (structure of arrays).
+struct BoxColumns {
+    std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
+    explicit BoxColumns(const std::vector<Aabb>& boxes) {
+        for (const Aabb& b : boxes) {
+            min_x.push_back(b.min.x);
+            min_y.push_back(b.min.y);
+            min_z.push_back(b.min.z);
+            max_x.push_back(b.max.x);
+            max_y.push_back(b.max.y);
+            max_z.push_back(b.max.z);
+        }
+    }
+    // classifyBatch over the first `count` boxes.
+    template <typename Planes>
+    void classify(const Planes& planes, size_t count, FrustumTest* out) const {
+        classifyBatch(planes, min_x.data(), min_y.data(), min_z.data(), max_x.data(), max_y.data(),
+                      max_z.data(), count, out);
+    }
+};
+
+// Each object visible with probability p.
+inline std::vector<uint8_t> randomVisibility(size_t count, double p, std::mt19937& rng) {
+    std::bernoulli_distribution draw(p);
+    std::vector<uint8_t> visible(count);
+    for (auto& v : visible) v = draw(rng);
+    return visible;
+}
+
+// Unit cubes on an nx-by-nz grid at height y with gaps between them: split planes fall into the
+// gaps, so no object straddles one and every node's bounds stay inside its cell.
+inline std::vector<Aabb> gridBoxes(uint32_t nx, uint32_t nz, float y = 0.0f, float spacing = 3.0f) {
+    std::vector<Aabb> boxes;
+    for (uint32_t z = 0; z < nz; ++z) {
+        for (uint32_t x = 0; x < nx; ++x) {
+            const glm::vec3 lo(spacing * static_cast<float>(x), y, -spacing * static_cast<float>(z));
+            boxes.push_back({lo, lo + glm::vec3(1.0f)});
+        }
+    }
+    return boxes;
+}
+
+// A camera far above and behind a field, seeing all of it.
+inline CullView overview(const std::vector<Aabb>& boxes) {
+    Aabb all;
+    for (const Aabb& b : boxes) extend(all, b);
+    const glm::vec3 c = center(all);
+    const float size = glm::length(extent(all));
+    return makeView(c + glm::vec3(0.0f, size, size), c);
+}
+
 inline BspTree buildTree(const std::vector<Aabb>& boxes, uint32_t leaf_size = 4,
                          BspSplitRule rule = BspSplitRule::Median) {
     BspTree tree;

@@ -19,49 +19,18 @@
 #include <string>
 #include <vector>
 
-// Counts heap allocations while `g_count_allocations` is set, to check that a culler's steady
-// state allocates nothing per frame. GCC takes free() in a replacement operator delete for a
-// mismatch with operator new once both are inlined; replacing them this way is what the
-// standard allows, so that one warning is off in this file.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-namespace {
-bool g_count_allocations = false;
-uint64_t g_allocations = 0;
-}  // namespace
-
-void* operator new(std::size_t size) {
-    if (g_count_allocations) ++g_allocations;
-    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-
 namespace occsim {
 namespace {
 
 using testing::makeFrame;
+using testing::gridBoxes;
 using testing::makeView;
+using testing::overview;
 using testing::randomBoxes;
+using testing::randomVisibility;
 
 using testing::buildTree;
 using testing::inFrustum;
-
-// Unit cubes on an nx-by-nz grid with gaps between them: split planes fall into the gaps, so no
-// object straddles one and every node's bounds stay inside its cell.
-std::vector<Aabb> gridBoxes(uint32_t nx, uint32_t nz, float spacing = 3.0f) {
-    std::vector<Aabb> boxes;
-    for (uint32_t z = 0; z < nz; ++z) {
-        for (uint32_t x = 0; x < nx; ++x) {
-            const glm::vec3 lo(spacing * static_cast<float>(x), 0.0f,
-                               -spacing * static_cast<float>(z));
-            boxes.push_back({lo, lo + glm::vec3(1.0f)});
-        }
-    }
-    return boxes;
-}
 
 // Random small boxes plus long bars across the whole field, which straddle split planes and so
 // stay in inner nodes.
@@ -78,14 +47,6 @@ std::vector<Aabb> boxesWithStraddlers(uint32_t* first_bar, uint32_t bars = 12) {
     return boxes;
 }
 
-// A camera far above and behind a field, seeing all of it.
-CullView overview(const std::vector<Aabb>& boxes) {
-    Aabb all;
-    for (const Aabb& b : boxes) extend(all, b);
-    const glm::vec3 c = center(all);
-    const float size = glm::length(extent(all));
-    return makeView(c + glm::vec3(0.0f, size, size), c);
-}
 
 // What a frame did, read from the scripted device's log.
 struct FrameLog {
@@ -165,13 +126,6 @@ void expectConsistentScene(const BspTree& tree, const std::vector<Aabb>& boxes,
     }
 }
 
-std::vector<uint8_t> randomVisibility(size_t count, double p, std::mt19937& rng) {
-    std::bernoulli_distribution draw(p);
-    std::vector<uint8_t> visible(count);
-    for (auto& v : visible) v = draw(rng);
-    return visible;
-}
-
 // --- Options and the factory --------------------------------------------------------------------
 
 TEST(PeerCullerOptions, DefaultsAreValidAndOutOfRangeValuesAreRejectedWithAMessage) {
@@ -228,49 +182,6 @@ TEST(AlgorithmRegistry, StatesWhatEachAlgorithmIs) {
         EXPECT_TRUE(findAlgorithm(name)->issues_queries) << name;
     }
 }
-
-class SteadyState : public ::testing::TestWithParam<const char*> {};
-
-// Once a static view has been rendered a few times, a frame allocates nothing: every queue and
-// scratch vector keeps its capacity from frame to frame.
-TEST_P(SteadyState, AFrameAllocatesNothing) {
-    const std::vector<Aabb> boxes = randomBoxes(1500, 31);
-    const BspTree tree = buildTree(boxes);
-    std::mt19937 rng(3);
-    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.2, rng);
-    const CullView view = makeView({0, 5, 0}, {30, 0, -100});
-    // A cost model and triangle counts, so that statistical+ runs every one of its parts.
-    CullerOptions options;
-    options.cost_model = {0.01, 5e-5, 0.005};
-    const std::vector<uint32_t> triangles(boxes.size(), 1000);
-    const std::unique_ptr<Culler> culler = testing::cullerNamed(GetParam(), options);
-    culler->reset(tree);
-    ScriptedQueryDevice device(3);
-    device.setVisibility(visible, boxes);
-    uint64_t allocations = 0, first_frame = 0;
-    for (uint64_t f = 0; f < 40; ++f) {
-        device.clearLog();
-        CullFrame frame = makeFrame(view, f, static_cast<double>(f) / 30.0);
-        frame.object_triangles = triangles;
-        g_allocations = 0;
-        g_count_allocations = true;
-        culler->cullAndRender(tree, frame, device);
-        g_count_allocations = false;
-        if (f == 0) first_frame = g_allocations;
-        if (f >= 20) allocations += g_allocations;
-    }
-    EXPECT_GT(first_frame, 0u) << "the counter sees the first frame sizing its queues";
-    EXPECT_GT(device.counters().queries_issued, 0u);
-    EXPECT_EQ(allocations, 0u) << GetParam();
-}
-
-INSTANTIATE_TEST_SUITE_P(Cullers, SteadyState,
-                         ::testing::Values("statistical", "statistical+", "chc", "chc++", "async"),
-                         [](const ::testing::TestParamInfo<const char*>& param_info) {
-                             std::string name = param_info.param;
-                             for (char& c : name) c = c == '+' ? 'p' : c;
-                             return name;
-                         });
 
 // --- CHC ----------------------------------------------------------------------------------------
 

@@ -1,5 +1,7 @@
 // The occsim executable as a user meets it: bad input ends with one line and exit code 2, good
 // input writes whole files.
+#include "shell_command.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,22 +15,10 @@
 
 namespace {
 
-struct Outcome {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
+using occsim::testing::Outcome;
+using occsim::testing::shell;
 
-Outcome runOccsim(const std::string& args) {
-    const std::string command = std::string(OCCSIM_EXE) + " " + args + " 2>&1";
-    Outcome out;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return out;
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
-    const int status = pclose(pipe);
-    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return out;
-}
+Outcome runOccsim(const std::string& args) { return shell(std::string(OCCSIM_EXE) + " " + args); }
 
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
 

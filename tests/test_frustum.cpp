@@ -6,6 +6,7 @@
 // w - x >= 0, ...) on corners transformed to clip space, with a small tolerance band in which
 // either answer is accepted (float rounding differs between the two computations).
 #include "culling/frustum.h"
+#include "culling_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -309,20 +310,11 @@ TEST(Frustum, ClassifyBatchEqualsClassifyElementWiseIncludingSpecialBoxes) {
         }
         boxes.push_back(box);
     }
-    std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
-    for (const Aabb& box : boxes) {
-        min_x.push_back(box.min.x);
-        min_y.push_back(box.min.y);
-        min_z.push_back(box.min.z);
-        max_x.push_back(box.max.x);
-        max_y.push_back(box.max.y);
-        max_z.push_back(box.max.z);
-    }
+    const testing::BoxColumns columns(boxes);
     // One extra slot after the end checks the batch writes exactly `count` results.
     const auto sentinel = static_cast<FrustumTest>(0xAB);
     std::vector<FrustumTest> out(count + 1, sentinel);
-    classifyBatch(f, min_x.data(), min_y.data(), min_z.data(), max_x.data(), max_y.data(),
-                  max_z.data(), count, out.data());
+    columns.classify(f, count, out.data());
     std::array<int, 3> seen{};
     for (size_t i = 0; i < count; ++i) {
         ASSERT_EQ(out[i], classify(f, boxes[i])) << "box " << i;
@@ -335,8 +327,7 @@ TEST(Frustum, ClassifyBatchEqualsClassifyElementWiseIncludingSpecialBoxes) {
 
     // count 0 writes nothing.
     FrustumTest untouched = sentinel;
-    classifyBatch(f, min_x.data(), min_y.data(), min_z.data(), max_x.data(), max_y.data(),
-                  max_z.data(), 0, &untouched);
+    columns.classify(f, 0, &untouched);
     EXPECT_EQ(untouched, sentinel);
 }
 
@@ -377,18 +368,9 @@ TEST(Frustum, ThePerFrameTableTheBatchAndTheSingleBoxPathsAgreeOnEveryKindOfBox)
             }
             boxes.push_back(box);
         }
-        std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
-        for (const Aabb& box : boxes) {
-            min_x.push_back(box.min.x);
-            min_y.push_back(box.min.y);
-            min_z.push_back(box.min.z);
-            max_x.push_back(box.max.x);
-            max_y.push_back(box.max.y);
-            max_z.push_back(box.max.z);
-        }
+        const testing::BoxColumns columns(boxes);
         std::vector<FrustumTest> batch(boxes.size());
-        classifyBatch(table, min_x.data(), min_y.data(), min_z.data(), max_x.data(), max_y.data(),
-                      max_z.data(), boxes.size(), batch.data());
+        columns.classify(table, boxes.size(), batch.data());
         for (size_t i = 0; i < boxes.size(); ++i) {
             const FrustumTest single = classify(f, boxes[i]);
             ASSERT_EQ(classify(table, boxes[i]), single) << "camera " << c << ", box " << i;

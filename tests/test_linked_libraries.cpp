@@ -6,6 +6,8 @@
 // Debian package's CMake configuration links libceres.a, so occtune carries Ceres inside and ldd
 // names only its dependencies, glog and SuiteSparse); and once at run time, with the loader's own
 // log (LD_DEBUG=files), that a headless bench really loads no GLFW.
+#include "shell_command.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,21 +24,8 @@
 
 namespace {
 
-struct Outcome {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
-
-Outcome shell(const std::string& command) {
-    Outcome out;
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return out;
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
-    const int status = pclose(pipe);
-    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return out;
-}
+using occsim::testing::Outcome;
+using occsim::testing::shell;
 
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });

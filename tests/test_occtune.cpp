@@ -5,6 +5,8 @@
 #include "sim/output/plots.h"
 #include "tune/sample_log.h"
 
+#include "shell_command.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -33,22 +35,10 @@ namespace fs = std::filesystem;
 
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
 
-struct Outcome {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
+using occsim::testing::Outcome;
+using occsim::testing::shell;
 
-Outcome run(const std::string& exe, const std::string& args) {
-    const std::string command = exe + " " + args + " 2>&1";
-    Outcome out;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return out;
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
-    const int status = pclose(pipe);
-    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return out;
-}
+Outcome run(const std::string& exe, const std::string& args) { return shell(exe + " " + args); }
 
 Outcome occtune(const std::string& args) { return run(OCCTUNE_EXE, args); }
 

@@ -23,8 +23,11 @@ namespace {
 using testing::buildTree;
 using testing::inFrustum;
 using testing::makeFrame;
+using testing::gridBoxes;
 using testing::makeView;
+using testing::overview;
 using testing::randomBoxes;
+using testing::randomVisibility;
 
 struct Camera {
     CullView view;
@@ -181,34 +184,6 @@ StatisticalOptions paperWith(void (*on)(StatisticalOptions&)) {
     StatisticalOptions o;
     on(o);
     return o;
-}
-
-std::vector<uint8_t> randomVisibility(size_t count, double p, std::mt19937& rng) {
-    std::bernoulli_distribution draw(p);
-    std::vector<uint8_t> visible(count);
-    for (auto& v : visible) v = draw(rng);
-    return visible;
-}
-
-// Unit cubes on an nx-by-nz grid at height y, with gaps between them (so that with SAH splits no
-// cube straddles a split plane and no query box overlaps a neighbour).
-std::vector<Aabb> gridBoxes(uint32_t nx, uint32_t nz, float y = 0.0f, float spacing = 3.0f) {
-    std::vector<Aabb> boxes;
-    for (uint32_t z = 0; z < nz; ++z) {
-        for (uint32_t x = 0; x < nx; ++x) {
-            const glm::vec3 lo(spacing * static_cast<float>(x), y, -spacing * static_cast<float>(z));
-            boxes.push_back({lo, lo + glm::vec3(1.0f)});
-        }
-    }
-    return boxes;
-}
-
-CullView overview(const std::vector<Aabb>& boxes) {
-    Aabb all;
-    for (const Aabb& b : boxes) extend(all, b);
-    const glm::vec3 c = center(all);
-    const float size = glm::length(extent(all));
-    return makeView(c + glm::vec3(0.0f, size, size), c);
 }
 
 struct ScriptedFrame {

@@ -6,6 +6,8 @@
 #include "sim/output/birds_eye.h"
 #include "sim/scenario/scenario.h"
 
+#include "shell_command.h"
+
 #include <gtest/gtest.h>
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -23,21 +25,8 @@
 namespace occsim {
 namespace {
 
-struct Outcome {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
-
-Outcome shell(const std::string& command) {
-    Outcome out;
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return out;
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), buffer.size(), pipe)) out.output += buffer.data();
-    const int status = pclose(pipe);
-    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return out;
-}
+using occsim::testing::Outcome;
+using occsim::testing::shell;
 
 const std::string kOccsim = OCCSIM_EXE;
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";

@@ -10,8 +10,10 @@ namespace {
 
 // Algorithms whose decisions come from occlusion queries: the approximation knobs apply to them.
 bool issuesQueries(const AlgorithmTraits& a) { return a.issues_queries; }
-bool isStatistical(const AlgorithmTraits& a) { return a.family == AlgorithmFamily::Statistical; }
-bool isStatisticalPlus(const AlgorithmTraits& a) { return a.name == "statistical+"; }
+bool isStatistical(const AlgorithmTraits& a) {
+    return a.family == AlgorithmFamily::Statistical || a.family == AlgorithmFamily::StatisticalPlus;
+}
+bool isStatisticalPlus(const AlgorithmTraits& a) { return a.family == AlgorithmFamily::StatisticalPlus; }
 bool isAsync(const AlgorithmTraits& a) { return a.family == AlgorithmFamily::Async; }
 
 struct Knob {

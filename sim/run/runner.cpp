@@ -56,13 +56,6 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     return m;
 }
 
-// The statistical options a configuration's culler reads, when it is a statistical culler.
-const StatisticalOptions* statisticalOptionsOf(const RunConfig& config) {
-    if (config.algorithm->family != AlgorithmFamily::Statistical) return nullptr;
-    return config.algorithm->name == "statistical+" ? &config.culler.statistical_plus
-                                                    : &config.culler.statistical;
-}
-
 // Gives every configuration whose culler weighs costs and has no cost model one: measured on this
 // renderer before the first frame, or, when decisions must be reproducible (deterministic
 // latency), the reference figures. A cost model given by the scenario is kept as it is.
@@ -71,7 +64,7 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
                                                const LatencyMode& latency) {
     std::optional<CostModelChoice> choice;
     for (RunConfig& config : configs) {
-        const StatisticalOptions* o = statisticalOptionsOf(config);
+        const StatisticalOptions* o = statisticalOptionsOf(*config.algorithm, config.culler);
         if (!o || !o->cost_model) continue;
         if (config.culler.cost_model.known()) {
             if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};

@@ -9,6 +9,7 @@
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
+#include "tests/culling_fixtures.h"
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -96,15 +97,7 @@ void BM_FrustumClassifyPerBox(benchmark::State& state) {
                                           "batch, table per frame"};
     state.SetLabel(kLabels[path]);
     const std::vector<Aabb> boxes = bigField(30000, 5);
-    std::vector<float> min_x, min_y, min_z, max_x, max_y, max_z;
-    for (const Aabb& b : boxes) {
-        min_x.push_back(b.min.x);
-        min_y.push_back(b.min.y);
-        min_z.push_back(b.min.z);
-        max_x.push_back(b.max.x);
-        max_y.push_back(b.max.y);
-        max_z.push_back(b.max.z);
-    }
+    const testing::BoxColumns columns(boxes);
     const Frustum f = frustumFromViewProjection(
         glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 1000.0f) *
         glm::lookAt(glm::vec3(0, 5, 250), glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)));
@@ -116,8 +109,7 @@ void BM_FrustumClassifyPerBox(benchmark::State& state) {
             const FrustumPlanes table = planeTableOf(f);
             for (size_t i = 0; i < boxes.size(); ++i) out[i] = classify(table, boxes[i]);
         } else {
-            classifyBatch(planeTableOf(f), min_x.data(), min_y.data(), min_z.data(), max_x.data(),
-                          max_y.data(), max_z.data(), boxes.size(), out.data());
+            columns.classify(planeTableOf(f), boxes.size(), out.data());
         }
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
