@@ -3,7 +3,7 @@
 // fetched. Draw and query submission time and blocked time are measured here, so cullers need not.
 #pragma once
 
-#include "culling/render_device.h"
+#include "occsim/culling/contract/render_device.h"
 #include "render/gl_renderer.h"
 
 #include <cstdint>

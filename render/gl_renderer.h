@@ -9,7 +9,7 @@
 // face coplanar with an occluder counts as visible (conservative).
 #pragma once
 
-#include "culling/aabb.h"
+#include "occsim/culling/geometry/aabb.h"
 #include "render/mesh_data.h"
 
 #include <glm/glm.hpp>

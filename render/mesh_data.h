@@ -1,7 +1,7 @@
 // Triangle meshes as plain CPU data: what scene sources produce and what the renderer uploads.
 #pragma once
 
-#include "culling/aabb.h"
+#include "occsim/culling/geometry/aabb.h"
 
 #include <glm/glm.hpp>
 

@@ -1,7 +1,8 @@
 // occsim: the simulator executable. Commands: run, bench, regress, info, view. Bad input (flags,
 // scenario and script files) ends with one line on stderr and exit code 2, and so does `view`
 // where no window can be opened; runtime failures (OpenGL, output) with exit 1.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
 #include "render/glfw_context.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/pictures.h"
@@ -14,6 +15,7 @@
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scenario.h"
 #include "sim/view/viewer.h"
+#include "occsim/culling/registry/registry_text.h"
 #include "sim/world/scene_info.h"
 
 #include <CLI/CLI.hpp>
@@ -83,7 +85,26 @@ struct CommonFlags {
     bool plots = false;
     int64_t birds_eye = -1;
     std::string culling;
+    std::vector<std::string> plugins;
+    std::string ablate;
 };
+
+void addPluginFlag(CLI::App* cmd, std::vector<std::string>& plugins) {
+    cmd->add_option("--plugin", plugins,
+                    "Load cullers from this shared object (repeatable; docs/plugins.md); they run "
+                    "wherever the built-ins run");
+}
+
+// Plugins load before any scenario is read: a scenario may name their cullers and options.
+void loadPlugins(const std::vector<std::string>& plugins) {
+    for (const std::string& file : plugins) {
+        try {
+            occsim::loadPlugin(file);
+        } catch (const occsim::PluginError& e) {
+            throw BadInput(std::string("--plugin ") + e.what());
+        }
+    }
+}
 
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
@@ -106,6 +127,7 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--birds-eye", flags.birds_eye,
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
+    addPluginFlag(cmd, flags.plugins);
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, e.g. occtune's "
                     "tuned.json), overriding the scenario's");
@@ -140,9 +162,17 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.repetitions = flags.repetitions;
     if (!flags.sweep.empty()) {
         try {
-            o.sweep = occsim::parseSweep(flags.sweep);
+            o.sweep = occsim::parseSweep(flags.sweep, request.algorithms);
         } catch (const std::invalid_argument& e) {
             throw BadInput(std::string("--sweep: ") + e.what());
+        }
+    }
+    if (!flags.ablate.empty()) {
+        o.ablate = flags.ablate;
+        try {
+            occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
+        } catch (const std::invalid_argument& e) {
+            throw BadInput(std::string("--ablate: ") + e.what());
         }
     }
     if (flags.deterministic_latency >= 0) {
@@ -193,7 +223,9 @@ int runCommand(const RunRequest& request) {
 }
 
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
-                   const std::string& shard, const std::string& out, const std::string& culling_file) {
+                   const std::string& shard, const std::string& out, const std::string& culling_file,
+                   const std::vector<std::string>& plugins) {
+    loadPlugins(plugins);
     occsim::RegressOptions options;
     if (!culling_file.empty()) {
         options.adjust_scenario = [culling = occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
@@ -231,9 +263,11 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
 struct ViewFlags {
     std::string scenario, algorithm, size, script, out;
     bool error = false;
+    std::vector<std::string> plugins;
 };
 
 int viewCommand(const ViewFlags& flags) {
+    loadPlugins(flags.plugins);
     occsim::ViewOptions options;
     const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
     if (!flags.algorithm.empty()) options.algorithm = algorithmNamed("--algo", flags.algorithm).name;
@@ -275,10 +309,16 @@ int main(int argc, char** argv) {
     std::vector<std::string> bench_algorithms;
     CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
-    bench->add_option("--algos", bench_algorithms, "Algorithms to compare (default: all)")->delimiter(',');
-    std::string sweep_help = "Sweep one knob, NAME=V1,V2,...: one configuration per value. Names:";
-    for (const auto& p : occsim::sweepParameters()) sweep_help += std::string("\n  ") + p.name + ": " + p.description;
-    bench->add_option("--sweep", bench_flags.sweep, sweep_help);
+    bench->add_option("--algos", bench_algorithms,
+                      "Algorithms to compare (default: every registered one, plugins' included)")
+        ->delimiter(',');
+    bench->add_option("--sweep", bench_flags.sweep,
+                      "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
+                      "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
+                      "or a key of a culler's options; occsim cullers lists them)");
+    bench->add_option("--ablate", bench_flags.ablate,
+                      "Run this algorithm also once with each mechanism its options switch on turned "
+                      "off (the ablation; occsim cullers marks them)");
 
     std::vector<std::string> regress_inputs;
     bool regress_update = false;
@@ -293,6 +333,15 @@ int main(int argc, char** argv) {
     regress->add_option("--out", regress_out, "Output folder for data and failure pictures");
     regress->add_option("--culling", regress_culling,
                         "Culling options from this file, overriding every scenario's (see run --help)");
+    std::vector<std::string> regress_plugins;
+    addPluginFlag(regress, regress_plugins);
+
+    bool cullers_markdown = false;
+    std::vector<std::string> cullers_plugins;
+    CLI::App* cullers = app.add_subcommand(
+        "cullers", "List the registered cullers, their traits and every option (docs/cullers.md)");
+    cullers->add_flag("--markdown", cullers_markdown, "As the Markdown tables of docs/cullers.md");
+    addPluginFlag(cullers, cullers_plugins);
 
     std::string info_scenario;
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
@@ -308,6 +357,7 @@ int main(int argc, char** argv) {
     view->add_option("--size", view_flags.size,
                      "Window size WIDTHxHEIGHT (default: the scenario's viewport, enlarged when small)");
     view->add_option("--script", view_flags.script, "Drive the window from a script file, then close it");
+    addPluginFlag(view, view_flags.plugins);
     view->add_option("--out", view_flags.out,
                      "Folder for screenshots and recorded scenarios (default: out/<scenario>/view)");
 
@@ -339,6 +389,7 @@ int main(int argc, char** argv) {
     const std::string command = commandLine(argc, argv);
     try {
         if (*run) {
+            loadPlugins(run_flags.plugins);
             RunRequest request{"run", command, run_flags,
                                scenarioWithCulling(run_flags.scenario, run_flags.culling), {}, ""};
             const occsim::AlgorithmTraits& algorithm =
@@ -349,6 +400,7 @@ int main(int argc, char** argv) {
             return runCommand(request);
         }
         if (*bench) {
+            loadPlugins(bench_flags.plugins);
             RunRequest request{"bench", command, bench_flags,
                                scenarioWithCulling(bench_flags.scenario, bench_flags.culling), {}, "bench"};
             if (bench_algorithms.empty()) bench_algorithms = occsim::algorithmNames();
@@ -358,7 +410,13 @@ int main(int argc, char** argv) {
             return runCommand(request);
         }
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
-                                             regress_shard, regress_out, regress_culling);
+                                             regress_shard, regress_out, regress_culling,
+                                             regress_plugins);
+        if (*cullers) {
+            loadPlugins(cullers_plugins);
+            std::printf("%s", (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
+            return 0;
+        }
         if (*info) {
             std::vector<std::string> warnings;
             const std::string text =
@@ -381,6 +439,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
     } catch (const occsim::GltfError& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
     } catch (const BadInput& e) {

@@ -2,7 +2,7 @@
 // scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
 #pragma once
 
-#include "culling/bsp_tree.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 #include <gtest/gtest.h>
 

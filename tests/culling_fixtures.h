@@ -1,10 +1,10 @@
 // Shared set-up for culler tests: random object boxes, a tree over them, and cameras.
 #pragma once
 
-#include "culling/algorithms.h"
-#include "culling/bsp_tree.h"
-#include "culling/culler.h"
-#include "culling/frustum.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/geometry/frustum.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

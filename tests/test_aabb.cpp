@@ -1,6 +1,6 @@
 // Aabb helpers: extend, closed containment, transformAabb against brute-force corner transforms,
 // and isFiniteAndOrdered on NaN, infinite and inverted boxes.
-#include "culling/aabb.h"
+#include "occsim/culling/geometry/aabb.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>

@@ -2,8 +2,8 @@
 // root cell grows for movers that leave it; all without a rebuild, keeping every invariant
 // (bsp_tree_checks.h) and the per-node state contract (BspNode::generation, structureVersion(),
 // NodeStateArray).
-#include "culling/bsp_tree.h"
-#include "culling/node_state.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/node_state.h"
 
 #include "bsp_tree_checks.h"
 

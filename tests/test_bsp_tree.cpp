@@ -2,7 +2,7 @@
 // build and after thousands of random moves; placement (loose cells, the centre's path, split
 // planes, straddlers), the split rules, reinsert walks and their counters, dirty marking,
 // degenerate input and option validation. Local adaptation is in test_bsp_adaptation.cpp.
-#include "culling/bsp_tree.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 #include "bsp_tree_checks.h"
 

@@ -1,10 +1,10 @@
 // CHC, CHC++ and the per-object asynchronous culler on the scripted query device: no OpenGL.
-#include "culling/algorithms.h"
-#include "culling/approximate_device.h"
-#include "culling/async_culler.h"
-#include "culling/chc_culler.h"
-#include "culling/chcpp_culler.h"
-#include "culling/scripted_query_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/cullers/async_culler.h"
+#include "occsim/culling/cullers/chc_culler.h"
+#include "occsim/culling/cullers/chcpp_culler.h"
+#include "occsim/culling/testing/scripted_query_device.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // Culling logic on the scripted query device: no OpenGL involved.
-#include "culling/algorithms.h"
-#include "culling/approximate_device.h"
-#include "culling/basic_cullers.h"
-#include "culling/scripted_query_device.h"
-#include "culling/statistical_culler.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/cullers/basic_cullers.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

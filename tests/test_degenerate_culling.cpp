@@ -2,10 +2,10 @@
 // stress"): a box with a NaN coordinate, zero-extent boxes, everything at one point, one object,
 // no object, the eye inside a box; and device decorators that must keep results ready in issue
 // order. All on the scripted device, every registered culler that decides without ground truth.
-#include "culling/algorithms.h"
-#include "culling/approximate_device.h"
-#include "culling/scripted_query_device.h"
-#include "culling/tracing_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/devices/tracing_device.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 // inside the clip volume. The brute force evaluates those clip-plane inequalities (w + x >= 0,
 // w - x >= 0, ...) on corners transformed to clip space, with a small tolerance band in which
 // either answer is accepted (float rounding differs between the two computations).
-#include "culling/frustum.h"
+#include "occsim/culling/geometry/frustum.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

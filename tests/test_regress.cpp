@@ -1,6 +1,6 @@
 // Regression runs catch what they exist to catch: dropped pixels, slower culling, changed
 // decisions; and they are reproducible, shardable and strict about their inputs.
-#include "culling/statistical_culler.h"
+#include "occsim/culling/cullers/statistical_culler.h"
 #include "sim/regress/regress.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // What a person looks at after a benchmark: the trace of one frame's culling decisions, the
 // bird's-eye picture drawn from it, report.md and the gnuplot charts. No OpenGL: the culler runs
 // on the scripted query device.
-#include "culling/basic_cullers.h"
-#include "culling/scripted_query_device.h"
-#include "culling/tracing_device.h"
+#include "occsim/culling/cullers/basic_cullers.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/devices/tracing_device.h"
 #include "culling_fixtures.h"
 #include "sim/output/birds_eye.h"
 #include "sim/output/markdown_report.h"

@@ -1,5 +1,5 @@
 // End to end through OSMesa: the small teapot scenario, every algorithm, ground truth and error.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/output/pictures.h"
 #include "sim/output/run_outputs.h"
 #include "sim/run/runner.h"

@@ -1,8 +1,8 @@
 // The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
 // drawn before them (culling/depth_raster_device.h): no OpenGL.
-#include "culling/depth_raster_device.h"
-#include "culling/scripted_query_device.h"
-#include "culling/statistical_culler.h"
+#include "occsim/culling/testing/depth_raster_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

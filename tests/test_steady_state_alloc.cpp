@@ -2,12 +2,12 @@
 // nothing. For every registered algorithm on every device in culling/, a moving scene (movers
 // reinserted into the BSP tree each frame, the camera circling) runs a warm-up, and then the
 // frames' cull and reinsert must make no heap allocation at all.
-#include "culling/algorithms.h"
-#include "culling/approximate_device.h"
-#include "culling/bsp_tree.h"
-#include "culling/depth_raster_device.h"
-#include "culling/scripted_query_device.h"
-#include "culling/tracing_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/testing/depth_raster_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/devices/tracing_device.h"
 #include "culling_fixtures.h"
 
 #include <gtest/gtest.h>

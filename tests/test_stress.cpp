@@ -1,7 +1,7 @@
 // Numerical traps, end to end through OSMesa (ctest label `stress`; the fast ones also run in the
 // normal suite): a scene far from the world origin must cull exactly as it does at the origin,
 // with zero error for every conservative algorithm.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 

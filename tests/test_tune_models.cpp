@@ -2,8 +2,8 @@
 // from known parameters plus noise (and a few outliers) must give those parameters back within
 // the stated tolerances; the choice, the design, the parameter flags, the sample log and
 // tuned.json each do what their headers say.
-#include "culling/algorithms.h"
-#include "culling/random.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/geometry/random.h"
 #include "sim/scenario/culling_file.h"
 #include "tune/cost_model.h"
 #include "tune/design.h"

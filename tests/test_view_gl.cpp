@@ -1,7 +1,7 @@
 // What the viewer asks of the renderer and the simulation, through OSMesa (no window): the live
 // camera, held worlds and algorithm switches on a SharedWorld, a resizable framebuffer, CPU images
 // shown in a default framebuffer, and the composed picture with the node boxes.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "render/gl_api.h"
 #include "render/gl_context.h"
 #include "render/gl_image_presenter.h"

@@ -17,13 +17,13 @@ std::string num(double v) {
 }
 
 std::string axisLabel(const TunableParameter& p) {
-    return std::string(p.name) + (p.unit[0] ? std::string(" (") + p.unit + ")" : std::string());
+    return std::string(p.name) + (!p.unit.empty() ? std::string(" (") + p.unit + ")" : std::string());
 }
 
 std::string runsData(const ChartInput& in, const std::vector<Sample>& runs, const std::vector<double>& objective) {
     std::ostringstream out;
     out << "# run";
-    for (const TunableParameter* p : in.space.parameters) out << ' ' << p->name;
+    for (const TunableParameter& p : in.space.parameters) out << ' ' << p.name;
     out << " objective_ratio\n";
     for (size_t i = 0; i < runs.size(); ++i) {
         out << i;
@@ -36,7 +36,7 @@ std::string runsData(const ChartInput& in, const std::vector<Sample>& runs, cons
 // The response along parameter j, the others at the tuned point.
 std::string curveData(const ChartInput& in, size_t j) {
     std::ostringstream out;
-    out << "# " << in.space.parameters[j]->name << " predicted_ratio lower upper\n";
+    out << "# " << in.space.parameters[j].name << " predicted_ratio lower upper\n";
     Point x = in.tuned;
     for (int k = 0; k < kCurvePoints; ++k) {
         x[j] = static_cast<double>(k) / (kCurvePoints - 1);
@@ -57,7 +57,7 @@ std::string costData(const ChartInput& in) {
 }
 
 GnuplotChart parameterChart(const ChartInput& in, size_t j) {
-    const TunableParameter& p = *in.space.parameters[j];
+    const TunableParameter& p = in.space.parameters[j];
     const std::string data = "tune-curve-" + std::string(p.name) + ".dat";
     const double paper = p.paper_value;
     const double tuned = in.space.value(j, in.tuned[j]);
@@ -105,7 +105,7 @@ PlotResult writeTuneCharts(const ChartInput& in, const std::filesystem::path& ou
     writeFileAtomically(out_dir / "tune-cost-model.dat", costData(in));
     std::vector<GnuplotChart> charts;
     for (size_t j = 0; j < in.space.size(); ++j) {
-        writeFileAtomically(out_dir / ("tune-curve-" + std::string(in.space.parameters[j]->name) + ".dat"),
+        writeFileAtomically(out_dir / ("tune-curve-" + std::string(in.space.parameters[j].name) + ".dat"),
                             curveData(in, j));
         charts.push_back(parameterChart(in, j));
     }

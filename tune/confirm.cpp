@@ -14,12 +14,13 @@ Spread spreadOf(std::vector<double> v) {
     return {median, v.front(), v.back()};
 }
 
-ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, const StatisticalOptions& tuned,
-                        const StatisticalOptions& paper, uint32_t repetitions,
+ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                        const std::string& variant, const OptionValues& tuned,
+                        const OptionValues& paper, uint32_t repetitions,
                         const std::function<void(const FrameEvent&)>& on_frame) {
     // The paper's values first: the same order as every sampling batch.
     const BenchResult result =
-        runInterleaved(scenario, {{"paper", paper}, {"tuned", tuned}}, repetitions, on_frame);
+        runInterleaved(scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 

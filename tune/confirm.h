@@ -2,7 +2,7 @@
 // run, repeated, on the frames they were fitted on and on a variant the fit never saw.
 #pragma once
 
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/culler_options.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 
@@ -31,8 +31,9 @@ struct ConfirmationRow {
     int64_t tuned_error_pixels = 0, paper_error_pixels = 0;  // over every frame of every repetition
 };
 
-ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, const StatisticalOptions& tuned,
-                        const StatisticalOptions& paper, uint32_t repetitions,
+ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                        const std::string& variant, const OptionValues& tuned,
+                        const OptionValues& paper, uint32_t repetitions,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

@@ -1,6 +1,6 @@
 #include "tune/design.h"
 
-#include "culling/random.h"
+#include "occsim/culling/geometry/random.h"
 
 #include <algorithm>
 #include <cmath>

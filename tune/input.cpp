@@ -1,5 +1,6 @@
 #include "tune/input.h"
 
+#include "occsim/culling/registry/plugin_loader.h"
 #include "sim/output/atomic_file.h"
 #include "sim/world/world.h"
 #include "tune/errors.h"
@@ -32,7 +33,21 @@ std::string fileText(const fs::path& file) {
 
 CheckedInput checkInput(const TuneOptions& o) {
     CheckedInput c;
-    c.space = parseParameterSpace(o.params, o.bounds);
+    for (const fs::path& plugin : o.plugins) {
+        try {
+            loadPlugin(plugin);
+        } catch (const PluginError& e) {
+            throw TuneInputError(std::string("--plugin ") + e.what());
+        }
+    }
+    // The scenario first: it may load plugins of its own ("plugins"), whose cullers --algo names.
+    c.scenario = parseScenarioFile(o.scenario);
+    const AlgorithmTraits* algorithm = findAlgorithm(o.algorithm);
+    if (!algorithm) {
+        throw TuneInputError("--algo: unknown algorithm '" + o.algorithm + "'; expected one of: " +
+                             algorithmNameList());
+    }
+    c.space = parseParameterSpace(*algorithm, o.params, o.bounds);
     const size_t needed = minimumSamples(c.space.size());
     if (o.budget < needed) {
         throw TuneInputError("--budget " + std::to_string(o.budget) + ": too small for the model: a quadratic in " +
@@ -42,7 +57,6 @@ CheckedInput checkInput(const TuneOptions& o) {
     }
     if (o.batch < 1) throw TuneInputError("--batch: expected at least 1 sample per run");
     if (o.repetitions < 1) throw TuneInputError("--repetitions: expected at least 1");
-    c.scenario = parseScenarioFile(o.scenario);
     if (o.frames) c.scenario.frames = *o.frames;
     if (c.scenario.frames <= c.scenario.warmup_frames) {
         throw TuneInputError("--frames " + std::to_string(c.scenario.frames) + ": the scenario has " +
@@ -60,8 +74,9 @@ CheckedInput checkInput(const TuneOptions& o) {
     s.scenario_file = o.scenario.string();
     s.scenario_name = c.scenario.name;
     s.scenario_hash = textHash(fileText(o.scenario));
+    s.algorithm = algorithm->name;
     for (size_t j = 0; j < c.space.size(); ++j) {
-        s.parameters.push_back(c.space.parameters[j]->name);
+        s.parameters.push_back(c.space.parameters[j].name);
         s.bounds.push_back(c.space.bounds[j]);
     }
     s.frames = c.scenario.frames;

@@ -1,5 +1,5 @@
-// occtune: tunes the statistical culler's BASE_TIME and decay curve to a scenario from measured
-// frame times (docs/tuning.md). Bad input ends with one line on stderr and exit code 2 before any
+// occtune: tunes a culler's tunable options (by default the statistical culler's BASE_TIME and
+// decay curve) to a scenario from measured frame times (docs/tuning.md). Bad input ends with one line on stderr and exit code 2 before any
 // run; a fit that does not converge with exit 1 (no tuned.json); Ctrl-C with exit 130, the sample
 // log whole and a line saying how to resume.
 #include "sim/scenario/errors.h"
@@ -29,15 +29,22 @@ std::string commandLine(int argc, char** argv) {
 int main(int argc, char** argv) {
     using occsim::tune::Objective;
     occsim::tune::TuneOptions o;
-    CLI::App app{"occtune: tune the statistical culler's BASE_TIME and decay curve to a scenario (docs/tuning.md)"};
+    CLI::App app{"occtune: tune a culler's options (default: the statistical culler's BASE_TIME and decay curve) to a "
+                 "scenario (docs/tuning.md)"};
     std::string scenario, objective = "mean", out;
     uint32_t frames = 0;
     uint64_t holdout_seed = 0;
     app.add_option("scenario", scenario, "Scenario file (JSON)")->required();
     app.add_option("--budget", o.budget, "Samples to measure (besides the reference runs); default 20")
         ->check(CLI::Range(1u, 100000u));
+    app.add_option("--algo", o.algorithm,
+                   "The culler to tune (default statistical): any registered culler whose options "
+                   "descriptor marks options tunable (occsim cullers lists them), a plugin's included");
+    std::vector<std::string> plugins;
+    app.add_option("--plugin", plugins, "Load cullers from this shared object first (repeatable)");
     app.add_option("--params", o.params,
-                   "Parameters to tune, comma-separated (default all): " + occsim::tune::tunableParameterNames());
+                   "Parameters to tune, comma-separated (default: every tunable option of --algo; "
+                   "statistical: base_time, decay_a, decay_b)");
     app.add_option("--bounds", o.bounds, "Search range of a parameter, NAME=LO:HI (repeatable)")->delimiter(',');
     app.add_option("--objective", objective, "What a sample is judged by: its mean or p95 frame time (ratio to the paper's values)")
         ->check(CLI::IsMember({"mean", "p95"}));
@@ -61,6 +68,7 @@ int main(int argc, char** argv) {
         return kExitBadInput;
     }
     o.scenario = scenario;
+    for (const std::string& p : plugins) o.plugins.emplace_back(p);
     o.out = out;
     o.objective = objective == "p95" ? Objective::P95 : Objective::Mean;
     if (app.count("--frames")) o.frames = frames;

@@ -1,34 +1,24 @@
 #include "tune/measure.h"
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 
 #include <stdexcept>
 
 namespace occsim::tune {
-namespace {
-
-// The culler the tuner tunes: Kovalčík & Sochor's, reading CullerOptions::statistical.
-const AlgorithmTraits& tunedAlgorithm() {
-    const AlgorithmTraits* a = findAlgorithm("statistical");
-    if (!a) throw std::logic_error("the algorithm registry has no 'statistical' culler");
-    return *a;
-}
-
-}  // namespace
-
-RunConfig statisticalConfig(const Scenario& scenario, const Setting& setting) {
+RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, const Setting& setting) {
     RunConfig config;
     config.label = setting.label;
-    config.algorithm = &tunedAlgorithm();
+    config.algorithm = &algorithm;
     config.culler = scenario.culler;
-    config.culler.statistical = setting.statistical;
+    config.culler.edit(algorithm) = setting.options;
     return config;
 }
 
-BenchResult runInterleaved(const Scenario& scenario, const std::vector<Setting>& settings, uint32_t repetitions,
+BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                           const std::vector<Setting>& settings, uint32_t repetitions,
                            const std::function<void(const FrameEvent&)>& on_frame) {
     BenchOptions options;
-    for (const Setting& s : settings) options.configs.push_back(statisticalConfig(scenario, s));
+    for (const Setting& s : settings) options.configs.push_back(configOf(scenario, algorithm, s));
     options.algorithms = {options.configs.front().algorithm};
     options.measure_error = true;  // zero expected of a conservative culler: measured, not assumed
     options.repetitions = repetitions;

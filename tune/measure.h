@@ -1,11 +1,11 @@
-// Real runs of the statistical culler: several settings interleaved frame by frame in one
+// Real runs of the tuned culler: several settings interleaved frame by frame in one
 // runBenchmark() call (BenchOptions::configs), headless through OSMesa, in measured mode (query
 // results ready when the GPU says so), with error measured against ground truth. The first
 // setting is the reference the others are divided by, so that a machine slowed by other work
 // slows both alike and the ratio stays.
 #pragma once
 
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/culler_options.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 #include "tune/sample_log.h"
@@ -18,15 +18,16 @@ namespace occsim::tune {
 
 struct Setting {
     std::string label;
-    StatisticalOptions statistical;
+    OptionValues options;  // the tuned culler's (ParameterSpace::algorithm)
 };
 
-// The scenario's own culling options with `statistical` swapped in, for the statistical culler.
-RunConfig statisticalConfig(const Scenario& scenario, const Setting& setting);
+// The scenario's own culling options with the setting's values for `algorithm` swapped in.
+RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, const Setting& setting);
 
 // Runs every setting interleaved (`repetitions` times) with error measured. `on_frame` is called
 // after every configuration's frame, outside the timing (progress, interruption).
-BenchResult runInterleaved(const Scenario& scenario, const std::vector<Setting>& settings, uint32_t repetitions,
+BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                           const std::vector<Setting>& settings, uint32_t repetitions,
                            const std::function<void(const FrameEvent&)>& on_frame);
 
 // One configuration's first repetition as a log line's figures (timed frames only).

@@ -15,17 +15,11 @@ std::string number(double v) {
     return buf;
 }
 
-const TunableParameter* find(const std::string& name) {
-    for (const TunableParameter& p : tunableParameters()) {
+const TunableParameter* find(const ParameterSpace& all, const std::string& name) {
+    for (const TunableParameter& p : all.parameters) {
         if (name == p.name) return &p;
     }
     return nullptr;
-}
-
-const TunableParameter& known(const std::string& flag, const std::string& name) {
-    if (const TunableParameter* p = find(name)) return *p;
-    throw TuneInputError(flag + ": unknown parameter '" + name + "'; expected one of: " +
-                         tunableParameterNames());
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -48,37 +42,32 @@ bool parseDouble(const std::string& text, double& out) {
     return used == text.size() && std::isfinite(out);
 }
 
-// The search box must hold only valid options. Each parameter's validity does not depend on the
-// others (StatisticalOptions::isValid checks each on its own), so its two ends suffice.
+// The search box must hold only valid values: inside the option's own range.
 void checkEndsValid(const std::string& flag, const TunableParameter& p, const Bounds& b) {
     for (double end : {b.lo, b.hi}) {
-        StatisticalOptions o;
-        o.*p.field = end;
-        std::string why;
-        if (!o.isValid(&why)) {
-            throw TuneInputError(flag + ": " + p.name + "=" + number(end) + " is not a valid setting: " + why);
+        if (!(end >= p.min && end <= p.max)) {
+            throw TuneInputError(flag + ": " + p.name + "=" + number(end) +
+                                 " is not a valid setting: expected a value in [" + number(p.min) +
+                                 ", " + number(p.max) + "]");
         }
     }
 }
 
 }  // namespace
 
-const std::vector<TunableParameter>& tunableParameters() {
-    // The paper's BASE_TIME is 2/3 s; the box reaches from re-querying every few frames to past
-    // the statistics' "too old" age (2 s by default), where a longer wait changes nothing. The
-    // decay curve a - b^occ_num must stay >= 0 (a >= 1, b in [0, 1]); a up to 4 lets a long
-    // unoccluded history wait four BASE_TIMEs.
-    static const std::vector<TunableParameter> kParameters = {
-        {"base_time", "s", 2.0 / 3.0, 0.05, 2.0, &StatisticalOptions::base_time_s},
-        {"decay_a", "", 2.0, 1.0, 4.0, &StatisticalOptions::decay_a},
-        {"decay_b", "", 0.5, 0.0, 1.0, &StatisticalOptions::decay_b},
-    };
-    return kParameters;
+std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm) {
+    std::vector<TunableParameter> out;
+    for (const OptionSpec& spec : algorithm.options) {
+        if (!spec.tunable) continue;
+        out.push_back({spec.key, spec.unit, spec.default_value, spec.tune_min, spec.tune_max,
+                       spec.min, spec.max, spec.type == OptionType::Integer});
+    }
+    return out;
 }
 
-std::string tunableParameterNames() {
+std::string tunableParameterNames(const AlgorithmTraits& algorithm) {
     std::string names;
-    for (const TunableParameter& p : tunableParameters()) names += (names.empty() ? "" : ", ") + std::string(p.name);
+    for (const TunableParameter& p : tunableParameters(algorithm)) names += (names.empty() ? "" : ", ") + p.name;
     return names;
 }
 
@@ -100,55 +89,90 @@ std::vector<double> ParameterSpace::unitPoint(const std::vector<double>& values)
 
 std::vector<double> ParameterSpace::paperUnitPoint() const {
     std::vector<double> paper_values;
-    for (const TunableParameter* p : parameters) paper_values.push_back(p->paper_value);
+    for (const TunableParameter& p : parameters) paper_values.push_back(p.paper_value);
     return unitPoint(paper_values);
 }
 
-StatisticalOptions ParameterSpace::apply(StatisticalOptions base, const std::vector<double>& values) const {
-    for (size_t j = 0; j < size(); ++j) base.*parameters[j]->field = values[j];
+OptionValues ParameterSpace::apply(OptionValues base, const std::vector<double>& values) const {
+    for (size_t j = 0; j < size(); ++j) {
+        const double v = parameters[j].integer ? std::round(values[j]) : values[j];
+        base.setWithAlternatives(parameters[j].name, v);
+    }
     return base;
 }
 
-StatisticalOptions ParameterSpace::paper(StatisticalOptions base) const {
-    for (const TunableParameter* p : parameters) base.*p->field = p->paper_value;
+OptionValues ParameterSpace::paper(OptionValues base) const {
+    for (const TunableParameter& p : parameters) base.set(p.name, p.paper_value);
     return base;
+}
+
+std::vector<std::string> ParameterSpace::boundsHit(const std::vector<double>& values) const {
+    std::vector<std::string> hit(size());
+    for (size_t j = 0; j < size(); ++j) {
+        const double margin = 0.01 * (bounds[j].hi - bounds[j].lo);
+        if (values[j] <= bounds[j].lo + margin) hit[j] = "lower";
+        if (values[j] >= bounds[j].hi - margin) hit[j] = "upper";
+    }
+    return hit;
 }
 
 std::string ParameterSpace::describe(const std::vector<double>& values) const {
     std::string text;
     for (size_t j = 0; j < size(); ++j) {
         if (j) text += ' ';
-        text += parameters[j]->name;
+        text += parameters[j].name;
         text += '=';
         text += number(values[j]);
     }
     return text;
 }
 
-ParameterSpace parseParameterSpace(const std::string& params, const std::vector<std::string>& bounds) {
+ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::string& params,
+                                   const std::vector<std::string>& bounds) {
+    ParameterSpace all;
+    all.parameters = tunableParameters(algorithm);
+    if (all.parameters.empty()) {
+        throw TuneInputError("--algo " + algorithm.name +
+                             ": its options descriptor marks no option tunable; nothing to tune");
+    }
+    const std::string names = tunableParameterNames(algorithm);
+    auto known = [&](const std::string& flag, const std::string& name) -> const TunableParameter& {
+        if (const TunableParameter* p = find(all, name)) return *p;
+        throw TuneInputError(flag + ": unknown parameter '" + name + "' of " + algorithm.name +
+                             "; expected one of: " + names);
+    };
     ParameterSpace space;
-    for (const std::string& name : split(params, ',')) {
+    space.algorithm = &algorithm;
+    const std::vector<std::string> listed =
+        params.empty() ? [&] {
+            std::vector<std::string> v;
+            for (const TunableParameter& p : all.parameters) v.push_back(p.name);
+            return v;
+        }()
+                       : split(params, ',');
+    for (const std::string& name : listed) {
         if (name.empty()) throw TuneInputError("--params: empty parameter name in '" + params + "'");
         const TunableParameter& p = known("--params", name);
-        for (const TunableParameter* q : space.parameters) {
-            if (q == &p) throw TuneInputError("--params: '" + name + "' is listed twice");
+        for (const TunableParameter& q : space.parameters) {
+            if (q.name == p.name) throw TuneInputError("--params: '" + name + "' is listed twice");
         }
-        space.parameters.push_back(&p);
+        space.parameters.push_back(p);
         space.bounds.push_back({p.default_lo, p.default_hi});
     }
-    if (space.parameters.empty()) throw TuneInputError("--params: no parameter given; expected some of: " + tunableParameterNames());
 
     for (const std::string& text : bounds) {
         const std::string flag = "--bounds " + text;
         const size_t eq = text.find('=');
         const size_t colon = text.find(':', eq == std::string::npos ? 0 : eq);
         if (eq == std::string::npos || colon == std::string::npos) {
-            throw TuneInputError(flag + ": expected name=lo:hi, e.g. base_time=0.1:2");
+            throw TuneInputError(flag + ": expected name=lo:hi, e.g. " + all.parameters.front().name + "=" +
+                                 number(all.parameters.front().default_lo) + ":" +
+                                 number(all.parameters.front().default_hi));
         }
         const std::string name = text.substr(0, eq);
         const TunableParameter& p = known(flag, name);
         size_t j = 0;
-        while (j < space.size() && space.parameters[j] != &p) ++j;
+        while (j < space.size() && space.parameters[j].name != p.name) ++j;
         if (j == space.size()) {
             throw TuneInputError(flag + ": '" + name + "' is not tuned (--params " + params + ")");
         }

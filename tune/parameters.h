@@ -1,10 +1,10 @@
-// What the tuner may tune: the statistical culler's BASE_TIME and decay curve (Kovalčík & Sochor,
-// "Occlusion Culling with Statistically Optimized Occlusion Queries", WSCG 2005, section 3:
-// re-query after last_query_time + BASE_TIME * (2 - 0.5^occ_num)), named as in a scenario's
-// "culling.statistical" object, and the box of values a run searches.
+// What the tuner may tune: the options a culler's descriptor marks tunable (for `statistical`,
+// Kovalčík & Sochor's BASE_TIME and decay curve, WSCG 2005, section 3: re-query after
+// last_query_time + BASE_TIME * (2 - 0.5^occ_num)), named as in the culler's options object of a
+// scenario, and the box of values a session searches.
 #pragma once
 
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/registry.h"
 
 #include <string>
 #include <vector>
@@ -12,16 +12,19 @@
 namespace occsim::tune {
 
 struct TunableParameter {
-    const char* name;         // key in culling.statistical, and in --params / --bounds
-    const char* unit;         // for tables and charts ("s", or "" for a plain number)
-    double paper_value;       // the paper's choice, the reference every sample is measured against
-    double default_lo, default_hi;  // the search box when --bounds does not say
-    double StatisticalOptions::*field;
+    std::string name;   // key in culling.<algorithm>, and in --params / --bounds
+    std::string unit;   // for tables and charts ("s", or "" for a plain number)
+    // The reference every sample is measured against: the culler's default (for `statistical`,
+    // the paper's choice).
+    double paper_value = 0.0;
+    double default_lo = 0.0, default_hi = 1.0;  // the search box when --bounds does not say
+    double min = 0.0, max = 0.0;                // the option's valid range (its descriptor's)
+    bool integer = false;                       // an integer option: values are rounded
 };
 
-// base_time, decay_a, decay_b.
-const std::vector<TunableParameter>& tunableParameters();
-std::string tunableParameterNames();  // "base_time, decay_a, decay_b"
+// The tunable options of `algorithm`, in descriptor order.
+std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm);
+std::string tunableParameterNames(const AlgorithmTraits& algorithm);  // "base_time, decay_a, ..."
 
 struct Bounds {
     double lo = 0.0, hi = 1.0;
@@ -30,7 +33,8 @@ struct Bounds {
 // The tuned parameters and their search box. Samples live in the unit cube [0, 1]^d; value()
 // maps a coordinate to the parameter's own unit.
 struct ParameterSpace {
-    std::vector<const TunableParameter*> parameters;
+    const AlgorithmTraits* algorithm = nullptr;
+    std::vector<TunableParameter> parameters;
     std::vector<Bounds> bounds;
 
     size_t size() const { return parameters.size(); }
@@ -38,20 +42,25 @@ struct ParameterSpace {
     double unit(size_t j, double value) const;
     std::vector<double> values(const std::vector<double>& unit_point) const;
     std::vector<double> unitPoint(const std::vector<double>& values) const;
-    // The paper's values, in the unit cube (may lie outside it when --bounds excludes them).
+    // The reference values, in the unit cube (may lie outside it when --bounds excludes them).
     std::vector<double> paperUnitPoint() const;
-    // `base` with the tuned fields set to `values`; the others untouched.
-    StatisticalOptions apply(StatisticalOptions base, const std::vector<double>& values) const;
-    // `base` with the tuned fields at the paper's values.
-    StatisticalOptions paper(StatisticalOptions base) const;
+    // `base` with the tuned options set to `values` (integers rounded; an option's alternative
+    // switched off, as a sweep does); the others untouched.
+    OptionValues apply(OptionValues base, const std::vector<double>& values) const;
+    // `base` with the tuned options at the reference values.
+    OptionValues paper(OptionValues base) const;
     // "base_time=0.667 decay_a=2" for labels and logs.
     std::string describe(const std::vector<double>& values) const;
+    // Per parameter, whether `values[j]` sits on an end of its search box (within 1% of the box):
+    // "lower", "upper" or "".
+    std::vector<std::string> boundsHit(const std::vector<double>& values) const;
 };
 
-// --params "base_time,decay_a" and --bounds "base_time=0.1:2" ... Throws TuneInputError with one
-// line: an unknown or repeated parameter, a malformed, empty or inverted range, a range for a
-// parameter that is not tuned, or a range whose ends make the culler's options invalid
-// (StatisticalOptions::isValid).
-ParameterSpace parseParameterSpace(const std::string& params, const std::vector<std::string>& bounds);
+// --params "base_time,decay_a" (empty: every tunable option of the algorithm) and --bounds
+// "base_time=0.1:2" ... Throws TuneInputError with one line: an algorithm with nothing tunable,
+// an unknown or repeated parameter, a malformed, empty or inverted range, a range for a parameter
+// that is not tuned, or a range outside the option's valid range.
+ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::string& params,
+                                   const std::vector<std::string>& bounds);
 
 }  // namespace occsim::tune

@@ -1,5 +1,6 @@
 #include "tune/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -22,7 +23,7 @@ std::string general(double v) {
 
 std::string percent(double part, double whole) { return whole > 0 ? fixed(100.0 * part / whole, 1) + " %" : "n/a"; }
 
-std::string withUnit(const TunableParameter& p, double v) { return general(v) + (p.unit[0] ? std::string(" ") + p.unit : ""); }
+std::string withUnit(const TunableParameter& p, double v) { return general(v) + (!p.unit.empty() ? std::string(" ") + p.unit : ""); }
 
 // A verdict that does not claim more than the repetitions show.
 std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
@@ -44,7 +45,7 @@ std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
 
 void samplesTable(std::ostringstream& out, const TuneResult& r) {
     out << "| # | batch | from | ";
-    for (const TunableParameter* p : r.space.parameters) out << p->name << " | ";
+    for (const TunableParameter& p : r.space.parameters) out << p.name << " | ";
     out << "mean ratio | p95 ratio | error px |\n|---|---|---|";
     for (size_t j = 0; j < r.space.size(); ++j) out << "---|";
     out << "---|---|---|\n";
@@ -57,6 +58,30 @@ void samplesTable(std::ostringstream& out, const TuneResult& r) {
 }
 
 }  // namespace
+
+std::vector<std::string> boundWarnings(const TuneResult& r) {
+    std::vector<std::string> lines;
+    for (size_t j = 0; j < r.space.size() && j < r.bounds_hit.size(); ++j) {
+        if (r.bounds_hit[j].empty()) continue;
+        const TunableParameter& p = r.space.parameters[j];
+        const Bounds& b = r.space.bounds[j];
+        const double width = b.hi - b.lo;
+        const bool lower = r.bounds_hit[j] == "lower";
+        // Suggest a box twice as wide on that side, within the option's valid range.
+        const double lo = lower ? std::max(p.min, b.lo - width) : b.lo;
+        const double hi = lower ? b.hi : std::min(p.max, b.hi + width);
+        std::string line = p.name + " = " + withUnit(p, r.tuned_values[j]) + " sits on the " +
+                           r.bounds_hit[j] + " bound of its search range [" + general(b.lo) + ", " +
+                           general(b.hi) + "]: the best value may lie beyond it";
+        if ((lower && lo < b.lo) || (!lower && hi > b.hi)) {
+            line += "; widen it, e.g. --bounds " + p.name + "=" + general(lo) + ":" + general(hi);
+        } else {
+            line += " (the end of the option's valid range)";
+        }
+        lines.push_back(line);
+    }
+    return lines;
+}
 
 const char* objectiveName(Objective objective) { return objective == Objective::Mean ? "mean" : "p95"; }
 
@@ -105,17 +130,18 @@ std::string reportMarkdown(const TuneResult& r) {
 
     out << "## Choice\n\n| parameter | paper | tuned | bounds | |\n|---|---|---|---|---|\n";
     for (size_t j = 0; j < r.space.size(); ++j) {
-        const TunableParameter& p = *r.space.parameters[j];
+        const TunableParameter& p = r.space.parameters[j];
         out << "| " << p.name << " | " << withUnit(p, p.paper_value) << " | " << withUnit(p, r.tuned_values[j])
             << " | " << general(r.space.bounds[j].lo) << " to " << general(r.space.bounds[j].hi) << " | "
             << (r.kept_at_paper[j] ? "no effect beyond noise: left at the paper's value" : "tuned") << " |\n";
     }
+    for (const std::string& line : boundWarnings(r)) out << "\n**" << line << "**\n";
     out << "\nPredicted " << objective << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3) << " +/- "
         << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives " << fixed(r.predicted_paper, 3)
         << " at the paper's own).\n";
     if (!r.dropped.empty()) {
         out << "\nParameters this scene does not exercise: ";
-        for (size_t k = 0; k < r.dropped.size(); ++k) out << (k ? ", " : "") << r.space.parameters[r.dropped[k]]->name;
+        for (size_t k = 0; k < r.dropped.size(); ++k) out << (k ? ", " : "") << r.space.parameters[r.dropped[k]].name;
         out << ". Without their terms the leave-one-out prediction error stays within one standard error of the "
                "lowest seen (" << fixed(r.full_model_loo_rms, 4) << " with every parameter, " << fixed(r.response.loo_rms, 4)
             << " without them): the samples show no effect of them beyond their noise, so they stay at the paper's "
@@ -159,7 +185,7 @@ std::string reportMarkdown(const TuneResult& r) {
         << "A quadratic in the normalised parameters (z = 2x - 1 over the bounds) of the parameters kept ("
         << (r.response.model.active.empty() ? std::string("none: a constant") : [&] {
                std::string s;
-               for (size_t j : r.response.model.active) s += (s.empty() ? "" : ", ") + std::string(r.space.parameters[j]->name);
+               for (size_t j : r.response.model.active) s += (s.empty() ? "" : ", ") + std::string(r.space.parameters[j].name);
                return s;
            }())
         << "), fitted with Ceres (" << r.response.fit.loss << ") over " << r.response.samples

@@ -5,6 +5,7 @@
 #include "tune/result.h"
 
 #include <string>
+#include <vector>
 
 namespace occsim::tune {
 
@@ -12,6 +13,11 @@ std::string reportMarkdown(const TuneResult& result);
 
 // The confirmation as a plain-text table for the console.
 std::string confirmationTable(const TuneResult& result);
+
+// One line per tuned parameter whose chosen value sits on a bound of its search range, with the
+// --bounds that widens it (on two of the three scenes tuned first, BASE_TIME went to its lower
+// bound).
+std::vector<std::string> boundWarnings(const TuneResult& result);
 
 // "1.03 [0.98-1.07]"
 std::string formatSpread(const Spread& s);

@@ -42,6 +42,7 @@ struct TuneResult {
     Point tuned_unit;
     std::vector<double> tuned_values;
     std::vector<bool> kept_at_paper;     // per parameter
+    std::vector<std::string> bounds_hit;  // per parameter: "lower", "upper" or "" (ParameterSpace)
     double predicted_tuned = 0.0, predicted_paper = 0.0;
     double predicted_tuned_sd = 0.0;  // standard deviation of that prediction
 

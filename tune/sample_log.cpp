@@ -24,6 +24,7 @@ Json settingsJson(const LogSettings& s) {
             {"scenario", s.scenario_file},
             {"scenario_name", s.scenario_name},
             {"scenario_hash", s.scenario_hash},
+            {"algorithm", s.algorithm},
             {"parameters", s.parameters},
             {"bounds", bounds},
             {"frames", s.frames},
@@ -38,6 +39,8 @@ LogSettings settingsOf(const Json& j) {
     s.scenario_file = j.at("scenario").get<std::string>();
     s.scenario_name = j.at("scenario_name").get<std::string>();
     s.scenario_hash = j.at("scenario_hash").get<uint64_t>();
+    // Logs from before occtune --algo tuned the statistical culler.
+    s.algorithm = j.contains("algorithm") ? j.at("algorithm").get<std::string>() : "statistical";
     s.parameters = j.at("parameters").get<std::vector<std::string>>();
     for (const Json& b : j.at("bounds")) s.bounds.push_back({b.at(0).get<double>(), b.at(1).get<double>()});
     s.frames = j.at("frames").get<uint32_t>();
@@ -210,6 +213,7 @@ std::string SampleLog::mismatch(const LogSettings& o) const {
     if (s.scenario_hash != o.scenario_hash || s.scenario_name != o.scenario_name) {
         return "the log was written for another scenario (or the file changed since): " + s.scenario_file;
     }
+    if (s.algorithm != o.algorithm) return "the log was written with --algo " + s.algorithm;
     if (s.parameters != o.parameters) return "the log was written with --params " + join(s.parameters);
     for (size_t j = 0; j < s.bounds.size(); ++j) {
         if (s.bounds[j].lo != o.bounds[j].lo || s.bounds[j].hi != o.bounds[j].hi) {

@@ -23,6 +23,7 @@ struct LogSettings {
     std::string scenario_file;
     std::string scenario_name;
     uint64_t scenario_hash = 0;  // of the scenario file's text: a changed file is another scenario
+    std::string algorithm = "statistical";  // the tuned culler
     std::vector<std::string> parameters;
     std::vector<Bounds> bounds;
     uint32_t frames = 0;

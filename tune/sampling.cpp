@@ -1,6 +1,6 @@
 #include "tune/sampling.h"
 
-#include "culling/random.h"
+#include "occsim/culling/geometry/random.h"
 #include "tune/interrupt.h"
 #include "tune/measure.h"
 #include "tune/response_model.h"
@@ -67,7 +67,8 @@ uint64_t workLeft(size_t samples_left, const TuneOptions& o, uint32_t frames) {
 
 void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progress& progress) {
     const ParameterSpace& space = c.space;
-    const StatisticalOptions paper = space.paper(c.scenario.culler.statistical);
+    const OptionValues base = c.scenario.culler.of(*space.algorithm);
+    const OptionValues paper = space.paper(base);
     while (log.samples().size() < o.budget) {
         const std::vector<Point> points = planBatch(log, space, o);
         if (points.empty()) throw std::runtime_error("no new sample point could be found in the bounds");
@@ -78,11 +79,11 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
         for (size_t i = 0; i < points.size(); ++i) {
             settings.push_back({"sample " + std::to_string(log.samples().size() + i) + ": " +
                                     space.describe(space.values(points[i])),
-                                space.apply(c.scenario.culler.statistical, space.values(points[i]))});
+                                space.apply(base, space.values(points[i]))});
         }
         const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" + std::to_string(o.budget) +
                                   ", running " + std::to_string(points.size()) + " more";
-        const BenchResult result = runInterleaved(c.scenario, settings, 1, [&](const FrameEvent& e) {
+        const BenchResult result = runInterleaved(c.scenario, *space.algorithm, settings, 1, [&](const FrameEvent& e) {
             progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" + std::to_string(c.scenario.frames) + ")");
             progress.frameDone();
             throwIfInterrupted();

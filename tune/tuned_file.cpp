@@ -1,6 +1,5 @@
 #include "tune/tuned_file.h"
 
-#include "culling/algorithms.h"
 #include "sim/scenario/culling_file.h"
 
 #include <stdexcept>
@@ -16,20 +15,32 @@ bool addCostOption(nlohmann::json& culling, const CostModel& model) {
     return true;
 }
 
-TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost) {
-    // Ordered, so that the file reads in the order a scenario's culling section does.
-    nlohmann::ordered_json culling = {{"algorithm", "statistical"},
-                              {"statistical",
-                               {{"base_time", tuned.base_time_s},
-                                {"decay_a", tuned.decay_a},
-                                {"decay_b", tuned.decay_b},
-                                {"history_length", tuned.history_length},
-                                {"max_statistics_age", tuned.max_statistics_age_s},
-                                {"queries_before_restart", tuned.queries_before_restart}}}};
+TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned, const CostModel& cost) {
+    // Ordered, so that the file reads in the order of the culler's descriptor.
+    nlohmann::ordered_json options = nlohmann::ordered_json::object();
+    for (const OptionSpec& spec : tuned.descriptor()) {
+        const double v = tuned.number(spec.key);
+        if (spec.type == OptionType::Boolean) {
+            options[spec.key] = v != 0.0;
+        } else if (spec.type == OptionType::Integer) {
+            options[spec.key] = static_cast<uint64_t>(v);
+        } else {
+            options[spec.key] = v;
+        }
+    }
+    nlohmann::ordered_json culling = {{"algorithm", algorithm.name}, {algorithm.name, options}};
     TunedFile file;
-    nlohmann::json cost_option = nlohmann::json::object();
-    file.has_cost_option = addCostOption(cost_option, cost);
-    for (const auto& [key, value] : cost_option.items()) culling[key] = value;
+    const bool weighs_costs =
+        algorithm.cost_model_use && algorithm.cost_model_use(tuned).wanted;
+    if (weighs_costs) {
+        nlohmann::json cost_option = nlohmann::json::object();
+        file.has_cost_option = addCostOption(cost_option, cost);
+        for (const auto& [key, value] : cost_option.items()) culling[key] = value;
+        if (file.has_cost_option) {
+            file.note = "tuned.json carries the fitted culling.cost_model: every culler that weighs "
+                        "costs reads it, not only " + algorithm.name;
+        }
+    }
     const nlohmann::ordered_json top = {{"format_version", 1}, {"culling", culling}};
     file.text = top.dump(2) + "\n";
 
@@ -41,8 +52,7 @@ TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost) {
     } catch (const ScenarioError& e) {
         throw std::runtime_error(std::string("tuned.json would be refused by occsim --culling: ") + e.what());
     }
-    if (probe.culler.statistical.base_time_s != tuned.base_time_s || probe.culler.statistical.decay_a != tuned.decay_a ||
-        probe.culler.statistical.decay_b != tuned.decay_b) {
+    if (probe.algorithm != algorithm.name || !(probe.culler.of(algorithm) == tuned)) {
         throw std::runtime_error("tuned.json does not read back as the tuned values");
     }
     return file;

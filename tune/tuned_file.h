@@ -3,7 +3,7 @@
 // own strict readers (sim/scenario/culling_file.h).
 #pragma once
 
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/registry.h"
 #include "tune/cost_model.h"
 
 #include <nlohmann/json.hpp>
@@ -12,8 +12,8 @@
 
 namespace occsim::tune {
 
-// The ONE place where the fitted cost model meets the culler option that reads it
-// (`culling.cost_model` of the statistical cullers, docs/scenario-culling.md): {"query_box_ms",
+// The ONE place where the fitted cost model meets the option that reads it
+// (`culling.cost_model`, read by the cullers that weigh costs, docs/cullers.md): {"query_box_ms",
 // "triangle_ms", "draw_call_ms"}, milliseconds per query (the fit's per-query cost: one box for
 // most queries), per drawn triangle and per draw call. Adds nothing, and returns false, when all
 // three are 0 (the culler would refuse it).
@@ -22,11 +22,15 @@ bool addCostOption(nlohmann::json& culling, const CostModel& model);
 struct TunedFile {
     std::string text;            // the file's contents
     bool has_cost_option = false;
+    std::string note;            // what else the file changes, when it carries a cost model
 };
 
-// Every StatisticalOptions key is written, so that the file says the whole setting it was tuned
-// and confirmed with. Checked by reading it back through the scenario layer (as --culling does);
-// throws std::runtime_error with that reader's one line when it would be refused.
-TunedFile tunedFile(const StatisticalOptions& tuned, const CostModel& cost);
+// Every option of the tuned culler is written, so that the file says the whole setting it was
+// tuned and confirmed with. The cost model is written only when the culler, so configured, weighs
+// costs (AlgorithmTraits::cost_model_use): since culling.cost_model is read by every culler that
+// does, the file says so in `note` when it carries one. Checked by reading it back through the
+// scenario layer (as --culling does); throws std::runtime_error with that reader's one line when it
+// would be refused, or when it does not read back as the tuned values.
+TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned, const CostModel& cost);
 
 }  // namespace occsim::tune

@@ -124,22 +124,28 @@ int runTuner(const TuneOptions& o) {
     r.kept_at_paper.assign(c.space.size(), true);
     for (size_t j : r.response.model.active) r.kept_at_paper[j] = false;
     for (size_t j = 0; j < c.space.size(); ++j) {
-        if (r.kept_at_paper[j]) r.tuned_values[j] = c.space.parameters[j]->paper_value;
+        if (r.kept_at_paper[j]) r.tuned_values[j] = c.space.parameters[j].paper_value;
+    }
+    r.bounds_hit = c.space.boundsHit(r.tuned_values);
+    for (size_t j = 0; j < c.space.size(); ++j) {
+        if (r.kept_at_paper[j]) r.bounds_hit[j].clear();
     }
     r.predicted_tuned = r.response.model.predict(r.tuned_unit);
     r.predicted_tuned_sd = r.response.predict(r.tuned_unit).stddev;
     r.predicted_paper = r.response.model.predict(paper_unit);
 
     // The confirmation: on the fitted frames, and on a variant the fit never saw (another seed).
-    const StatisticalOptions paper = c.space.paper(c.scenario.culler.statistical);
-    const StatisticalOptions tuned = c.space.apply(c.scenario.culler.statistical, r.tuned_values);
+    const AlgorithmTraits& algorithm = *c.space.algorithm;
+    const OptionValues base = c.scenario.culler.of(algorithm);
+    const OptionValues paper = c.space.paper(base);
+    const OptionValues tuned = c.space.apply(base, r.tuned_values);
     Scenario held_out = c.scenario;
     held_out.seed = o.holdout_seed.value_or(c.scenario.seed + 1);
     try {
         for (const auto& [scenario, variant] :
              {std::pair<const Scenario*, std::string>{&c.scenario, "fitted (seed " + std::to_string(c.scenario.seed) + ")"},
               std::pair<const Scenario*, std::string>{&held_out, "held out (seed " + std::to_string(held_out.seed) + ")"}}) {
-            r.confirmation.push_back(confirm(*scenario, variant, tuned, paper, o.repetitions, [&](const FrameEvent& e) {
+            r.confirmation.push_back(confirm(*scenario, algorithm, variant, tuned, paper, o.repetitions, [&](const FrameEvent& e) {
                 progress.setStage("confirming, " + variant + ": repetition " + std::to_string(e.repetition + 1) + "/" +
                                   std::to_string(o.repetitions) + ", frame " + std::to_string(e.frame + 1) + "/" +
                                   std::to_string(scenario->frames));
@@ -156,7 +162,7 @@ int runTuner(const TuneOptions& o) {
     r.renderer = r.confirmation.front().renderer;
 
     // The files: tuned.json last, so that its presence means the session finished.
-    const TunedFile tuned_file = tunedFile(tuned, r.cost.model);
+    const TunedFile tuned_file = tunedFile(algorithm, tuned, r.cost.model);
     writeFileAtomically(c.out_dir / "cost_model.json", costModelJson(r.cost));
     r.files.push_back("cost_model.json");
     const PlotResult charts = writeTuneCharts(
@@ -168,13 +174,15 @@ int runTuner(const TuneOptions& o) {
     writeFileAtomically(c.out_dir / "report.md", reportMarkdown(r));
     writeFileAtomically(c.out_dir / "tuned.json", tuned_file.text);
 
-    std::printf("%s: %zu samples, %s frame-time ratio to the paper's values\n", c.scenario.name.c_str(),
-                r.samples.size(), objectiveName(o.objective));
+    std::printf("%s, %s: %zu samples, %s frame-time ratio to the reference values\n", c.scenario.name.c_str(),
+                algorithm.name.c_str(), r.samples.size(), objectiveName(o.objective));
     for (size_t j = 0; j < c.space.size(); ++j) {
-        const TunableParameter& p = *c.space.parameters[j];
-        std::printf("  %-10s paper %-8.4g tuned %-8.4g%s\n", p.name, p.paper_value, r.tuned_values[j],
-                    r.kept_at_paper[j] ? "  (no effect beyond noise: kept at the paper's value)" : "");
+        const TunableParameter& p = c.space.parameters[j];
+        std::printf("  %-22s reference %-8.4g tuned %-8.4g%s\n", p.name.c_str(), p.paper_value, r.tuned_values[j],
+                    r.kept_at_paper[j] ? "  (no effect beyond noise: kept at the reference value)" : "");
     }
+    for (const std::string& line : boundWarnings(r)) std::printf("%s\n", line.c_str());
+    if (!tuned_file.note.empty()) std::printf("%s\n", tuned_file.note.c_str());
     std::printf("cost model: %.4g ms/query, %.4g ms/1000 triangles, %.4g ms/draw, %.4g ms constant (residual RMS %.2f ms)\n",
                 r.cost.model.query_ms, r.cost.model.kilotriangle_ms, r.cost.model.draw_ms, r.cost.model.constant_ms,
                 r.cost.residual_rms_ms);

@@ -18,7 +18,9 @@ enum class Objective { Mean, P95 };
 struct TuneOptions {
     std::filesystem::path scenario;
     uint32_t budget = 20;                         // samples, besides the references
-    std::string params = "base_time,decay_a,decay_b";
+    std::string algorithm = "statistical";        // a registered culler with tunable options
+    std::vector<std::filesystem::path> plugins;   // loaded first (--plugin), like occsim's
+    std::string params;                           // empty: every tunable option of the algorithm
     std::vector<std::string> bounds;              // "name=lo:hi"
     Objective objective = Objective::Mean;
     uint32_t repetitions = 3;                     // of the confirmation

@@ -1,6 +1,6 @@
 #include "sim/output/birds_eye.h"
 
-#include "culling/frustum.h"
+#include "occsim/culling/geometry/frustum.h"
 
 #include <algorithm>
 #include <array>

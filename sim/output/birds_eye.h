@@ -13,9 +13,9 @@
 //   the object boxes and the eye with a margin. Pure CPU drawing; deterministic.
 #pragma once
 
-#include "culling/bsp_tree.h"
-#include "culling/culler.h"
-#include "culling/tracing_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/devices/tracing_device.h"
 #include "sim/output/raster_canvas.h"
 
 #include <glm/glm.hpp>

@@ -7,7 +7,7 @@
 //   pixels of the last accepted run. `--update` rewrites it (atomically) and says what changed.
 #pragma once
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 

@@ -1,6 +1,6 @@
 #include "sim/run/calibration.h"
 
-#include "culling/bsp_tree.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "render/gl_query_device.h"
 #include "sim/run/frame_view.h"
 

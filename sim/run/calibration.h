@@ -4,7 +4,7 @@
 // Hierarchical Culling" (EGSR 2006), section 4.
 #pragma once
 
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/culler_options.h"
 #include "render/gl_renderer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"

@@ -2,7 +2,7 @@
 // renderer (world coordinates, the scenario's depth convention) each need it.
 #pragma once
 
-#include "culling/culler.h"
+#include "occsim/culling/contract/culler.h"
 #include "render/gl_renderer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"

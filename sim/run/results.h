@@ -2,7 +2,7 @@
 // once, read by the console, summary.json and report.md alike), and the worst error frames.
 #pragma once
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"

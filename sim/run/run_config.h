@@ -1,10 +1,15 @@
-// What a benchmark runs: one configuration per algorithm, or, with a sweep, one per algorithm and
-// value of the swept knob for the algorithms the knob applies to (the others run once, as
-// references). A sweep is written "name=v1,v2,..." (docs/cli.md lists the names).
+// What a benchmark runs: one configuration per algorithm; with a sweep, one per value of the swept
+// option for the algorithms it applies to (the others run once, as references); with an ablation,
+// the algorithm as configured plus once with each of its mechanisms switched off.
+//
+// A sweep is written "[algorithm:]key=v1,v2,...": key is threshold_pixels or stale_results (the
+// knobs every query-based culler shares) or an option key of a culler's descriptor (`occsim
+// cullers` lists them), and applies to every listed algorithm that has it, or only to the one
+// named before the colon.
 #pragma once
 
-#include "culling/algorithms.h"
-#include "culling/culler_options.h"
+#include "occsim/culling/registry/culler_options.h"
+#include "occsim/culling/registry/registry.h"
 
 #include <optional>
 #include <string>
@@ -14,27 +19,28 @@ namespace occsim {
 
 struct RunConfig {
     std::string label;                         // "statistical", or "statistical base_time=0.3"
-    const AlgorithmTraits* algorithm = nullptr;  // from algorithms() (culling/algorithms.h)
+    const AlgorithmTraits* algorithm = nullptr;  // a registered culler
     CullerOptions culler;                      // with the approximation knobs
 };
 
 struct Sweep {
-    std::string parameter;
+    std::string algorithm;  // empty: every listed algorithm with the key
+    std::string parameter;  // the option key
     std::vector<double> values;
 };
 
-// The sweepable knobs: name, unit and what they apply to, for help texts and errors.
-struct SweepParameter {
-    const char* name;
-    const char* description;
-};
-const std::vector<SweepParameter>& sweepParameters();
+// The keys shared by every culler that issues queries (culling.threshold_pixels and
+// culling.stale_results), which a sweep may name beside the cullers' own options.
+const std::vector<OptionSpec>& sharedQueryOptions();
 
-// Throws std::invalid_argument with a one-line reason (unknown name, bad or out-of-range value).
-Sweep parseSweep(const std::string& text);
+// Throws std::invalid_argument with a one-line reason: malformed text, an unknown algorithm, a key
+// no listed algorithm has, a value of the wrong type or out of its range.
+Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTraits*>& algorithms);
 
-// Throws std::invalid_argument when a swept value makes an algorithm's options invalid.
+// Throws std::invalid_argument when a swept value makes an algorithm's options invalid, or when
+// `ablate` names an algorithm not listed or one with no mechanism to switch off.
 std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& algorithms,
-                                   const CullerOptions& base, const std::optional<Sweep>& sweep);
+                                   const CullerOptions& base, const std::optional<Sweep>& sweep,
+                                   const std::string& ablate = {});
 
 }  // namespace occsim

@@ -2,6 +2,7 @@
 
 #include "render/gl_context.h"
 #include "sim/run/calibration.h"
+#include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
 #include "sim/run/shared_world.h"
 
@@ -56,42 +57,15 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     return m;
 }
 
-// Gives every configuration whose culler weighs costs and has no cost model one: measured on this
-// renderer before the first frame, or, when decisions must be reproducible (deterministic
-// latency), the reference figures. A cost model given by the scenario is kept as it is.
-std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, const Scene& scene,
-                                               const Scenario& scenario, GlRenderer& renderer,
-                                               const LatencyMode& latency) {
-    std::optional<CostModelChoice> choice;
-    for (RunConfig& config : configs) {
-        const StatisticalOptions* o = statisticalOptionsOf(*config.algorithm, config.culler);
-        if (!o || !o->cost_model) continue;
-        if (config.culler.cost_model.known()) {
-            if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};
-            continue;
-        }
-        if (!choice || choice->source == "scenario") {
-            // Queries are timed with as many in flight as this culler keeps.
-            const uint32_t in_flight = o->ready_answers ? o->queries_before_restart : 0;
-            choice = latency.deterministic
-                         ? CostModelChoice{referenceCostModel(), "reference"}
-                         : CostModelChoice{
-                               calibrateCostModel(scene, scenario, renderer, in_flight),
-                               "calibrated"};
-        }
-        config.culler.cost_model = choice->costs;
-    }
-    return choice;
-}
-
 }  // namespace
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
     std::vector<RunConfig> configs =
-        options.configs.empty() ? planConfigs(options.algorithms, scenario.culler, options.sweep)
-                                : options.configs;
+        options.configs.empty()
+            ? planConfigs(options.algorithms, scenario.culler, options.sweep, options.ablate)
+            : options.configs;
     const uint32_t repetitions = std::max(1u, options.repetitions);
 
     const Scene scene = buildScene(scenario);
@@ -135,7 +109,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                 options.keep_worst_error_frame && options.measure_error && rep == 0;
             if (rep == 0) sim_options.trace_frame = options.trace_frame;
             auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
-                                              : makeCuller(*config.algorithm, config.culler);
+                                              : makeConfiguredCuller(config);
             sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
                                                         std::move(culler), config.culler, renderer,
                                                         sim_options));

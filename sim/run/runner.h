@@ -4,7 +4,7 @@
 // (sim/output/run_outputs.h).
 #pragma once
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/run/results.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
@@ -49,6 +49,7 @@ struct BenchOptions {
     // ground truth): without rotation that cost lands on the same configuration every frame.
     bool rotate_order = false;
     std::optional<Sweep> sweep;           // one configuration per value (run_config.h)
+    std::string ablate;                   // an algorithm to run with each mechanism off (run_config.h)
     // Record this frame's draws and queries for every configuration (first repetition), so that
     // on_frame can picture its culling decisions (Simulation::lastTrace()).
     std::optional<uint32_t> trace_frame;

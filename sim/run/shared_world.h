@@ -6,8 +6,8 @@
 // times. The world knows no OpenGL: ground truth of its frame is rendered by GroundTruth.
 #pragma once
 
-#include "culling/bsp_tree.h"
-#include "culling/culler.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/contract/culler.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
 #include "sim/scenario/scenario.h"

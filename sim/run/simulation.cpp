@@ -1,6 +1,6 @@
 #include "sim/run/simulation.h"
 
-#include "culling/basic_cullers.h"
+#include "occsim/culling/cullers/basic_cullers.h"
 
 #include <chrono>
 #include <stdexcept>

@@ -7,11 +7,11 @@
 // A Simulation built from a scene alone owns a world and ground truth of its own.
 #pragma once
 
-#include "culling/algorithms.h"
-#include "culling/approximate_device.h"
-#include "culling/bsp_tree.h"
-#include "culling/culler.h"
-#include "culling/tracing_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/devices/tracing_device.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "sim/run/frame_stats.h"

@@ -1,6 +1,6 @@
 // The "expect" block of a scenario (docs/regression.md), read with the rest of the file so that
 // a mistake in it is reported when the scenario is parsed, whatever command reads it.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/scenario/parser_parts.h"
 
 #include <algorithm>

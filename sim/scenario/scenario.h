@@ -4,9 +4,9 @@
 // NaN/infinite numbers and missing files with a ScenarioError naming the file and JSON pointer.
 #pragma once
 
-#include "culling/aabb.h"
-#include "culling/bsp_tree.h"
-#include "culling/culler_options.h"
+#include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/registry/culler_options.h"
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scene_specs.h"
 
@@ -109,7 +109,9 @@ struct Scenario {
     CameraSpec camera;
     std::vector<SceneSourceSpec> sources;
     std::vector<MoverSpec> movers;
-    std::string algorithm = "statistical";  // a name from algorithms() (culling/algorithms.h)
+    // Plugins the scenario loads ("plugins"), resolved against its folder; loaded by the parser.
+    std::vector<std::filesystem::path> plugins;
+    std::string algorithm = "statistical";  // a registered culler (occsim/culling/registry/registry.h)
     CullerOptions culler;
     BspBuildOptions bsp;
     std::optional<Expectations> expect;  // present when the file has an "expect" block

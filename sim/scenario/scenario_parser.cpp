@@ -6,10 +6,12 @@
 // StatisticalOptions) is delegated to its isValid() so there is one definition of "valid".
 #include "sim/scenario/scenario.h"
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/parser_parts.h"
+
+#include "occsim/culling/registry/plugin_loader.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -421,6 +423,29 @@ void checkMoverObjectIndex(const Scenario& scenario, size_t mover, size_t item,
                             std::to_string(local));
 }
 
+// "plugins": shared objects with cullers (occsim/culling/registry/plugin.h), loaded before the
+// culling section is read so that it may name their cullers and give their options. Paths
+// resolve against the scenario's folder.
+static std::vector<std::filesystem::path> readPlugins(JsonObjectReader& top,
+                                               const std::filesystem::path& scenario_dir) {
+    std::vector<std::filesystem::path> plugins;
+    const auto list = top.optionalArray("plugins");
+    if (!list) return plugins;
+    for (size_t i = 0; i < list->size(); ++i) {
+        const JsonValueReader item = list->at(i);
+        const std::string text = item.asString();
+        if (text.empty()) item.failExpected("a path to a plugin (a shared object)");
+        const std::filesystem::path path = scenario_dir / text;
+        try {
+            loadPlugin(path);
+        } catch (const PluginError& e) {
+            item.fail(e.what());
+        }
+        plugins.push_back(path);
+    }
+    return plugins;
+}
+
 Scenario parseScenarioText(const std::string& text, const std::filesystem::path& file) {
     const std::string file_name = file.string();
     const Json root = parseStrictJson(text, file_name);
@@ -440,6 +465,7 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
         if (!count) continue;
         for (size_t i = 0; i < s.movers[m].objects.size(); ++i) checkMoverObjectIndex(s, m, i, *count);
     }
+    s.plugins = readPlugins(top, file.parent_path());
     readCulling(top, s);
     s.bsp = readBsp(top);
     s.expect = readExpect(top, s);

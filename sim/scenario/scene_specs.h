@@ -2,7 +2,7 @@
 // the scene layer (sim/scene/) builds from them. Units: metres, degrees.
 #pragma once
 
-#include "culling/aabb.h"
+#include "occsim/culling/geometry/aabb.h"
 
 #include <glm/glm.hpp>
 

@@ -31,7 +31,7 @@
 #include "sim/scene/generators.h"
 
 #include "sim/scene/primitives.h"
-#include "culling/random.h"
+#include "occsim/culling/geometry/random.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // generators and glTF files in their own files.
 #include "sim/scene/scene_source.h"
 
-#include "culling/random.h"
+#include "occsim/culling/geometry/random.h"
 #include "sim/scene/generators.h"
 #include "sim/scene/gltf_source.h"
 #include "sim/scene/teapot.h"

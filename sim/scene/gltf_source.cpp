@@ -22,7 +22,7 @@
 // extensions that would change the geometry, and no triangles at all.
 #include "sim/scene/gltf_source.h"
 
-#include "culling/random.h"
+#include "occsim/culling/geometry/random.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>

@@ -3,7 +3,7 @@
 // (sim/world/world.cpp) concatenates sources into one Scene.
 #pragma once
 
-#include "culling/aabb.h"
+#include "occsim/culling/geometry/aabb.h"
 #include "sim/scenario/scene_specs.h"
 #include "render/mesh_data.h"
 

@@ -4,7 +4,7 @@
 // was measured, on the CPU image that the viewer shows: the renderer's buffers stay untouched.
 #pragma once
 
-#include "culling/bsp_tree.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "render/gl_renderer.h"
 #include "sim/output/birds_eye.h"
 #include "sim/output/raster_canvas.h"

@@ -1,9 +1,10 @@
 #include "sim/view/viewer.h"
 
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "render/glfw_context.h"
 #include "render/png_writer.h"
 #include "sim/output/atomic_file.h"
+#include "sim/run/culler_setup.h"
 #include "sim/run/simulation.h"
 #include "sim/view/fly_camera.h"
 #include "sim/view/key_bindings.h"
@@ -36,9 +37,9 @@ std::pair<uint32_t, uint32_t> initialWindowSize(const Scenario& s, const ViewOpt
 }
 
 size_t algorithmIndex(std::string_view name) {
-    const auto all = algorithms();
+    const auto& all = algorithms();
     for (size_t i = 0; i < all.size(); ++i) {
-        if (all[i].name == name) return i;
+        if (all[i]->name == name) return i;
     }
     return 0;
 }
@@ -92,7 +93,7 @@ public:
     void run();
 
 private:
-    const AlgorithmTraits& algorithm() const { return algorithms()[algorithm_]; }
+    const AlgorithmTraits& algorithm() const { return *algorithms()[algorithm_]; }
     std::unique_ptr<Simulation> makeSimulation(SharedWorld& world);
     void replaceSimulation(bool keep_world);
     void restart();
@@ -127,6 +128,7 @@ private:
     std::optional<ScriptPlayer> script_;
 
     size_t algorithm_;
+    CullerOptions culler_options_ = scenario_.culler;  // with the cost model once measured
     bool error_;
     bool paused_ = false, step_ = false, dirty_ = true, quit_ = false;
     bool boxes_ = false, birds_eye_ = false, help_ = false, panel_ = true;
@@ -154,12 +156,18 @@ private:
     uint32_t picture_width_ = 0, picture_height_ = 0;
 };
 
+// The culler is made as runs make it (sim/run/culler_setup.h): a culler that weighs costs gets
+// the cost model measured on this renderer, once; later switches reuse it.
 std::unique_ptr<Simulation> Viewer::makeSimulation(SharedWorld& world) {
     SimulationOptions options;
     options.measure_error = error_;
+    std::vector<RunConfig> configs{RunConfig{algorithm().name, &algorithm(), culler_options_}};
+    if (chooseCostModel(configs, scene_, scenario_, renderer_, options.latency)) {
+        culler_options_.cost_model = configs.front().culler.cost_model;
+    }
     return std::make_unique<Simulation>(world, truth_, algorithm(),
-                                        makeCuller(algorithm(), scenario_.culler), scenario_.culler,
-                                        renderer_, options);
+                                        makeConfiguredCuller(configs.front()),
+                                        configs.front().culler, renderer_, options);
 }
 
 // A new configuration for a new algorithm or error setting, with fresh culler state; kept, the

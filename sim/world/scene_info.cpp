@@ -1,6 +1,6 @@
 #include "sim/world/scene_info.h"
 
-#include "culling/bsp_tree.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "sim/world/world.h"
 
 #include <algorithm>

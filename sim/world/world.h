@@ -4,8 +4,8 @@
 // configuration renders (sim/run/shared_world.h).
 #pragma once
 
-#include "culling/aabb.h"
-#include "culling/random.h"
+#include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/geometry/random.h"
 #include "render/mesh_data.h"
 #include "sim/scenario/scenario.h"
 

@@ -2,10 +2,10 @@
 // local adaptation, batch frustum classification, and a statistical-culler traversal on the
 // scripted query device.
 // Run: ./build/release/tests/benchmarks/bench_culling
-#include "culling/bsp_tree.h"
-#include "culling/frustum.h"
-#include "culling/scripted_query_device.h"
-#include "culling/statistical_culler.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/cullers/statistical_culler.h"
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>

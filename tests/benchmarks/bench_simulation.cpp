@@ -4,8 +4,8 @@
 // per node for every culler, the mover update per object, and advancing one shared world per
 // frame against one world per configuration.
 // Run: ./build/release/tests/benchmarks/bench_simulation
-#include "culling/algorithms.h"
-#include "culling/bsp_tree.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"

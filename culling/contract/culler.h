@@ -1,0 +1,64 @@
+// The culler interface: one frame's visibility decisions over a BspTree, carried out through a
+// RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
+// registration in culling/algorithms.h. Implementations keep their own per-node state (sized by reset()), use simulation
+// time (never wall-clock time) for every decision, and are deterministic given the device's
+// answers.
+#pragma once
+
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/contract/render_device.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace occsim {
+
+struct CullView {
+    glm::vec3 eye{0.0f};
+    Frustum frustum{};
+    float near_radius = 0.0f;  // eye to a near-plane corner; see nearPlaneTouchesBox()
+};
+
+// A CullView as the cullers read it during a frame: the frustum as its plane table, built once
+// when the culler begins the frame (prepareView), so that the frame's node and object tests only
+// run the kernel. Built by the culler rather than carried in CullView, so whoever fills a CullView
+// (the simulation, a test moving its planes) cannot leave a stale table behind.
+struct PreparedView {
+    glm::vec3 eye{0.0f};
+    FrustumPlanes frustum{};
+    float near_radius = 0.0f;
+};
+
+inline PreparedView prepareView(const CullView& view) {
+    return PreparedView{view.eye, planeTableOf(view.frustum), view.near_radius};
+}
+
+struct CullFrame {
+    uint64_t frame_index = 0;
+    double time_s = 0.0;  // simulation time: frame_index * dt
+    CullView view;
+    // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
+    // oracles (AlgorithmTraits::oracle, culling/algorithms.h); empty otherwise.
+    std::span<const uint8_t> ground_truth_visible;
+    // Per object, its triangle count. The culling layer knows no meshes, so the simulation passes
+    // a view of a table it builds once (per frame, beside the view, rather than through reset():
+    // no culler that ignores it has to change). Empty when unknown; a culler weighing draw costs
+    // (StatisticalOptions::cost_model) then leaves its cost model off.
+    std::span<const uint32_t> object_triangles;
+};
+
+class Culler {
+public:
+    virtual ~Culler() = default;
+    virtual std::string_view name() const = 0;
+    // Called once the tree is built, before the first frame; clears all per-node state.
+    virtual void reset(const BspTree& tree) = 0;
+    virtual void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) = 0;
+};
+
+}  // namespace occsim

@@ -1,0 +1,88 @@
+// The only door from a culler to the renderer. Culling code draws objects and issues occlusion
+// queries through this interface and never sees OpenGL; render/ implements it with real GL
+// queries, culling/scripted_query_device.h with a known visibility function for tests.
+//
+// Query semantics (GL_SAMPLES_PASSED on bounding boxes):
+// - issueQuery() rasterises the given boxes with colour and depth writes off against the depth
+//   buffer as it is now, without waiting, and returns an id. Several boxes make one multiquery whose
+//   result is the sum over its boxes. The subjects say what the query decides (a node, the objects
+//   stored in a node itself, one object; a multiquery over several nodes names each): devices
+//   that draw ignore them, devices that record (TracingDevice) keep them, so a picture of the
+//   frame knows what every query was for without guessing from its boxes.
+// - isQueryReady() never blocks. Results become ready in issue order.
+// - queryResult() returns the sample count, blocking until it is available; the blocked time is
+//   counted as wait time. The id is released by this call; an id is valid across frames until then.
+// - counters() are the device's true figures: a decorator reports those of the device it wraps
+//   (which does the work), so no caller ever needs to reach past a decorator.
+#pragma once
+
+#include "occsim/culling/geometry/aabb.h"
+
+#include <cstdint>
+#include <span>
+
+namespace occsim {
+
+using QueryId = uint32_t;
+
+// What one query decides. `index` is a node for Node and NodeObjects, an object for Object.
+struct QueryTag {
+    enum class Subject : uint8_t {
+        Node,         // the node's subtree (its bounds, or a tighter cover of them)
+        NodeObjects,  // only the objects stored in the node itself (a "virtual leaf")
+        Object,       // one object
+    };
+    static constexpr uint32_t kUntagged = UINT32_MAX;
+
+    Subject subject = Subject::Node;
+    uint32_t index = kUntagged;
+
+    static QueryTag node(uint32_t n) { return {Subject::Node, n}; }
+    static QueryTag nodeObjects(uint32_t n) { return {Subject::NodeObjects, n}; }
+    static QueryTag object(uint32_t o) { return {Subject::Object, o}; }
+    bool operator==(const QueryTag&) const = default;
+};
+
+struct DeviceCounters {
+    uint64_t objects_drawn = 0;
+    uint64_t triangles_drawn = 0;
+    uint64_t queries_issued = 0;     // query objects (a multiquery counts once)
+    uint64_t query_boxes = 0;        // boxes rasterised for queries
+    uint64_t results_fetched = 0;
+    uint64_t results_waited = 0;     // results fetched before they were ready (the caller blocked)
+    double wait_seconds = 0.0;       // wall-clock time blocked in queryResult()
+    double submit_seconds = 0.0;     // wall-clock time spent in draw and query submission
+    // Wall-clock time asking whether answers are ready and fetching answers that were: on
+    // llvmpipe a poll can flush the command stream, so it is the driver's time, not the culler's.
+    double poll_seconds = 0.0;
+};
+
+class RenderDevice {
+public:
+    virtual ~RenderDevice() = default;
+
+    virtual void drawObject(uint32_t object) = 0;
+    virtual QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) = 0;
+    virtual bool isQueryReady(QueryId id) = 0;
+    virtual uint64_t queryResult(QueryId id) = 0;
+
+    QueryId issueQuery(const Aabb& box, QueryTag subject = {}) {
+        return issueQuery(std::span<const Aabb>(&box, 1), std::span<const QueryTag>(&subject, 1));
+    }
+
+    virtual const DeviceCounters& counters() const { return counters_; }
+    virtual void resetCounters() { counters_ = {}; }
+
+protected:
+    DeviceCounters counters_;
+};
+
+// Deterministic latency: a query result counts as ready only once `latency` commands (draws or
+// queries) have been submitted after it; a caller that needs it sooner blocks. With latency
+// disabled the device reports what the hardware reports.
+struct LatencyMode {
+    bool deterministic = false;
+    uint32_t latency_commands = 8;
+};
+
+}  // namespace occsim

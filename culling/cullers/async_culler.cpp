@@ -1,0 +1,118 @@
+// The per-object asynchronous scheme of the PURE engine's occlusion-culling notes ("Simple
+// Pseudo-code"), with the re-test rule of the ARB_occlusion_query specification. See
+// async_culler.h for the rules.
+#include "occsim/culling/cullers/async_culler.h"
+
+#include "occsim/culling/registry/registry.h"
+namespace occsim {
+
+AsyncCuller::AsyncCuller(const AsyncOptions& options) : options_(options) {}
+
+void AsyncCuller::reset(const BspTree& tree) {
+    state_.assign(tree.objectCount(), ObjectState{});
+    pending_.assign(tree.objectCount(), 0);
+    pending_head_ = 0;
+    pending_count_ = 0;
+    pass_ = 0;
+}
+
+void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                RenderDevice& device) {
+    if (state_.size() != tree.objectCount()) reset(tree);
+    frame_ = frame.frame_index;
+    view_ = prepareView(frame.view);
+    ++pass_;
+    // Whatever arrived since the last frame decides this frame.
+    collectReadyResults(device);
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
+                               [&](uint32_t o) { decide(o, tree, frame, device); });
+        collectReadyResults(device);
+        return true;
+    });
+    collectReadyResults(device);
+}
+
+void AsyncCuller::decide(uint32_t object, const BspTree& tree, const CullFrame& frame,
+                         RenderDevice& device) {
+    ObjectState& s = state_[object];
+    if (s.in_frustum != pass_ - 1) {
+        // Back in the frustum: what was measured from an earlier view says nothing about this one.
+        s.status = Status::Untested;
+        s.next_query = 0;
+        s.streak_start = frame_;
+    }
+    s.in_frustum = pass_;
+
+    const Aabb& box = tree.objectBox(object);
+    if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
+        draw(object, device);
+        return;
+    }
+    if (!s.pending && frame_ >= s.next_query) {
+        s.query = device.issueQuery(box, QueryTag::object(object));
+        s.pending = true;
+        s.query_frame = frame_;
+        pending_[(pending_head_ + pending_count_) % pending_.size()] = object;
+        ++pending_count_;
+        collectReadyResults(device);  // with no latency the answer is already there
+    }
+    if (s.status != Status::Occluded) draw(object, device);
+}
+
+void AsyncCuller::collectReadyResults(RenderDevice& device) {
+    // Results become ready in issue order: stop at the first that is not.
+    while (pending_count_ > 0) {
+        const uint32_t object = pending_[pending_head_];
+        ObjectState& s = state_[object];
+        if (!device.isQueryReady(s.query)) break;
+        pending_head_ = static_cast<uint32_t>((pending_head_ + 1) % pending_.size());
+        --pending_count_;
+        const bool visible = device.queryResult(s.query) > 0;
+        s.pending = false;
+        if (s.query_frame < s.streak_start) {
+            s.next_query = 0;  // asked before the object left the frustum: ask again
+            continue;
+        }
+        if (visible) {
+            s.status = Status::Visible;
+            s.next_query = s.query_frame + options_.retest_interval_frames;
+            // Passed over earlier in this frame while its answer was on the way: draw it now.
+            if (s.in_frustum == pass_) draw(object, device);
+        } else {
+            s.status = Status::Occluded;
+            s.next_query = s.query_frame + 1;
+        }
+    }
+}
+
+void AsyncCuller::draw(uint32_t object, RenderDevice& device) {
+    ObjectState& s = state_[object];
+    if (s.drawn == pass_) return;
+    s.drawn = pass_;
+    device.drawObject(object);
+}
+
+// --- Registration -------------------------------------------------------------------------------
+
+AlgorithmTraits asyncRegistration() {
+    AlgorithmTraits t;
+    t.name = "async";
+    t.summary = "one asynchronous query per object (not conservative)";
+    t.conservative = false;
+    t.issues_queries = true;
+    const AsyncOptions d;
+    t.options = {
+        integerOption("retest_interval_frames", "frames", 1, 1000000, d.retest_interval_frames,
+                      "N: a visible object is queried again this many frames after its last "
+                      "query; 1 = every frame"),
+    };
+    t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
+        AsyncOptions o;
+        o.retest_interval_frames = c.options.count("retest_interval_frames");
+        return std::make_unique<AsyncCuller>(o);
+    };
+    return t;
+}
+
+}  // namespace occsim

@@ -1,0 +1,75 @@
+#include "occsim/culling/cullers/basic_cullers.h"
+
+#include "occsim/culling/registry/registry.h"
+namespace occsim {
+
+void VfcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
+    view_ = prepareView(frame.view);
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        return true;
+    });
+}
+
+void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                      RenderDevice& device) {
+    view_ = prepareView(frame.view);
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        const Aabb& box = tree.bounds(visit.node);
+        if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius) &&
+            device.queryResult(device.issueQuery(box, QueryTag::node(visit.node))) == 0) {
+            return false;  // occluded: skip the subtree
+        }
+        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        return true;
+    });
+}
+
+void IdealCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
+    view_ = prepareView(frame.view);
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone; o = tree.nextObject(o)) {
+            if (o < frame.ground_truth_visible.size() && frame.ground_truth_visible[o]) {
+                device.drawObject(o);
+            }
+        }
+        return true;
+    });
+}
+
+// --- Registration -------------------------------------------------------------------------------
+
+AlgorithmTraits vfcRegistration() {
+    AlgorithmTraits t;
+    t.name = "vfc";
+    t.summary = "view-frustum culling only (the reference)";
+    t.speedup_reference = true;
+    t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> {
+        return std::make_unique<VfcCuller>();
+    };
+    return t;
+}
+
+AlgorithmTraits stopAndWaitRegistration() {
+    AlgorithmTraits t;
+    t.name = "stop-and-wait";
+    t.summary = "hierarchical queries, each result awaited";
+    t.issues_queries = true;
+    t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> {
+        return std::make_unique<StopAndWaitCuller>();
+    };
+    return t;
+}
+
+AlgorithmTraits idealRegistration() {
+    AlgorithmTraits t;
+    t.name = "ideal";
+    t.summary = "draws what ground truth saw (the oracle)";
+    t.oracle = true;
+    t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> {
+        return std::make_unique<IdealCuller>();
+    };
+    return t;
+}
+
+}  // namespace occsim

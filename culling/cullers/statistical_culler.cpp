@@ -1,0 +1,647 @@
+// Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries",
+// WSCG 2005 short papers, section 3 (the two-queue traversal and the optimised CalcNodeAction),
+// with the improvements of StatisticalOptions (docs/statistical.md), each off by default.
+#include "occsim/culling/cullers/statistical_culler.h"
+
+#include "occsim/culling/registry/registry.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+namespace occsim {
+namespace {
+
+// Parallax re-query (requery_parallax): a node closer than this counts as this far, so a node
+// at the eye does not divide by zero.
+constexpr double kMinParallaxDistanceM = 1e-3;
+// Weight of one answer in a QueryKind's running occlusion estimate (exponential moving averages
+// over answers: about the last 16 answers of that kind count).
+constexpr double kRateWeight = 1.0 / 16.0;
+// The fallback looks at the share of visible answers only once the window holds at least this
+// many answers per frame on average, so that a handful of answers decides nothing.
+constexpr uint32_t kFallbackMinAnswersPerFrame = 2;
+
+// Orders the main queue's heap so that the lowest rank comes out first.
+struct LaterRank {
+    template <class E>
+    bool operator()(const E& a, const E& b) const {
+        return a.rank > b.rank;
+    }
+};
+
+}  // namespace
+
+NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
+                            bool near_plane_touches_box, double now_s, NodeMotion motion) {
+    if (near_plane_touches_box) return NodeAction::Render;
+    if (stats.results == 0) return NodeAction::Query;
+    if (now_s - stats.last_query_time_s > options.max_statistics_age_s) return NodeAction::Query;
+    if ((stats.history & 1u) == 0) return NodeAction::Query;  // last result: occluded
+    const uint32_t mask = options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
+    const int occ_num = std::popcount(stats.history & mask);
+    const double decay = options.decay_a - std::pow(options.decay_b, occ_num);
+    // The interval runs from the last query, or from the last time the cost model put the query
+    // off (improvement 3), whichever is later.
+    const double since_travel_m = std::max(stats.travel_at_query_m, stats.deferred_travel_m);
+    const double since_s = std::max(stats.last_query_time_s, stats.deferred_time_s);
+    if (options.requery_distance_m > 0.0) {
+        const double travelled = motion.travel_m - since_travel_m;
+        return travelled > options.requery_distance_m * decay ? NodeAction::Query
+                                                              : NodeAction::Render;
+    }
+    if (options.requery_parallax > 0.0) {
+        const double travelled = motion.travel_m - since_travel_m;
+        const double distance = std::max(motion.distance_m, kMinParallaxDistanceM);
+        return travelled > options.requery_parallax * decay * distance ? NodeAction::Query
+                                                                       : NodeAction::Render;
+    }
+    const double not_query_time = since_s + options.base_time_s * decay;
+    return now_s > not_query_time ? NodeAction::Query : NodeAction::Render;
+}
+
+void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats, bool visible,
+                       double now_s, double travel_m) {
+    stats.history = (stats.history << 1) | (visible ? 1u : 0u);
+    if (stats.results < options.history_length) ++stats.results;
+    stats.last_query_time_s = now_s;
+    stats.travel_at_query_m = travel_m;
+}
+
+QueryKind queryKindOf(const NodeStatistics& stats) {
+    if (stats.results == 0) return QueryKind::Fresh;
+    return (stats.history & 1u) ? QueryKind::LastVisible : QueryKind::LastOccluded;
+}
+
+bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& stats,
+                      double now_s) {
+    return stats.results > 0 && now_s - stats.last_query_time_s <= options.max_statistics_age_s;
+}
+
+void OcclusionEstimate::add(bool was_occluded) {
+    occluded += kRateWeight * ((was_occluded ? 1.0 : 0.0) - occluded);
+}
+
+bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate) {
+    return occlusion_rate * draw_ms > static_cast<double>(query_boxes) * costs.query_box_ms;
+}
+
+StatisticalCuller::StatisticalCuller(const StatisticalOptions& options, const CostModel& costs,
+                                     std::string_view name)
+    : options_(options), costs_(costs), name_(name) {}
+
+void StatisticalCuller::reset(const BspTree& tree) {
+    stats_.reset(tree);
+    own_stats_.reset(tree);
+    motion_.reset(tree);
+    structure_known_ = false;
+    heap_.clear();
+    pending_.clear();
+    pending_head_ = 0;
+    last_center_.clear();
+    have_last_frame_ = false;
+    camera_path_m_ = 0.0;
+    estimates_.fill(OcclusionEstimate{});
+    object_stats_.assign(tree.objectCount(), NodeStatistics{});
+    object_motion_m_.assign(tree.objectCount(), 0.0);
+    window_answers_.assign(options_.fallback_window_frames, 0);
+    window_visible_.assign(options_.fallback_window_frames, 0);
+    window_next_ = 0;
+    window_frames_ = 0;
+    frustum_only_ = false;
+    frustum_only_until_s_ = 0.0;
+    counters_ = {};
+}
+
+// Depth-first order of the nodes, and how many ranks each subtree spans: the node, the virtual
+// leaf of its own objects (inner nodes), and both children's subtrees. Only the structure
+// matters, so this runs again only when the tree's structure changed. It walks the tree rather
+// than scanning indices, so it assumes nothing about how a changing tree numbers its nodes.
+void StatisticalCuller::syncStructure(const BspTree& tree) {
+    if (structure_known_ && structure_version_ == tree.structureVersion() &&
+        subtree_ranks_.size() == tree.nodeCount()) {
+        return;
+    }
+    order_.clear();
+    scratch_stack_.clear();
+    scratch_stack_.push_back(tree.root());
+    while (!scratch_stack_.empty()) {
+        const uint32_t n = scratch_stack_.back();
+        scratch_stack_.pop_back();
+        order_.push_back(n);
+        const BspNode& node = tree.node(n);
+        if (!node.isLeaf()) {
+            scratch_stack_.push_back(node.child[1]);
+            scratch_stack_.push_back(node.child[0]);
+        }
+    }
+    subtree_ranks_.assign(tree.nodeCount(), 0);
+    for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+        const BspNode& node = tree.node(*it);
+        subtree_ranks_[*it] =
+            node.isLeaf() ? 1 : 2 + subtree_ranks_[node.child[0]] + subtree_ranks_[node.child[1]];
+    }
+    structure_version_ = tree.structureVersion();
+    structure_known_ = true;
+}
+
+void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame) {
+    stats_.sync(tree);
+    own_stats_.sync(tree);
+    motion_.sync(tree);
+    syncStructure(tree);
+
+    // Cost model: what drawing each subtree would cost, bottom-up over the tree as it is now.
+    costs_active_ = options_.cost_model && costs_.known() &&
+                    frame.object_triangles.size() == tree.objectCount();
+    if (costs_active_) {
+        subtree_draw_ms_.resize(tree.nodeCount());
+        for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+            const uint32_t n = *it;
+            double ms = 0.0;
+            for (uint32_t o = tree.firstObject(n); o != BspTree::kNone; o = tree.nextObject(o)) {
+                ms += costs_.drawMs(frame.object_triangles[o]);
+            }
+            const BspNode& node = tree.node(n);
+            if (!node.isLeaf()) ms += subtree_draw_ms_[node.child[0]] + subtree_draw_ms_[node.child[1]];
+            subtree_draw_ms_[n] = ms;
+        }
+    }
+
+    // Distance rules: the camera's path, and per node the largest step any object below it took
+    // this frame, summed over frames. Object centres stand for the movers (the culling layer
+    // knows boxes, not movers); a static object's step is 0.
+    if (options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0) {
+        const bool first = !have_last_frame_ || last_center_.size() != tree.objectCount();
+        if (first) {
+            last_center_.resize(tree.objectCount());
+            for (uint32_t o = 0; o < tree.objectCount(); ++o) last_center_[o] = center(tree.objectBox(o));
+        } else {
+            camera_path_m_ += glm::length(frame.view.eye - last_eye_);
+        }
+        last_eye_ = frame.view.eye;
+        have_last_frame_ = true;
+        step_m_.resize(tree.nodeCount());
+        for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+            const uint32_t n = *it;
+            float own = 0.0f;
+            for (uint32_t o = tree.firstObject(n); o != BspTree::kNone; o = tree.nextObject(o)) {
+                const glm::vec3 c = center(tree.objectBox(o));
+                const float step = glm::length(c - last_center_[o]);
+                last_center_[o] = c;
+                if (!(step <= 1e30f)) continue;  // a non-finite box adds nothing
+                own = std::max(own, step);
+                object_motion_m_[o] += step;
+            }
+            float subtree = own;
+            const BspNode& node = tree.node(n);
+            if (!node.isLeaf()) subtree = std::max({subtree, step_m_[node.child[0]], step_m_[node.child[1]]});
+            step_m_[n] = subtree;
+            motion_[n].own_m += own;
+            motion_[n].subtree_m += subtree;
+        }
+    }
+}
+
+double StatisticalCuller::travelOf(const Entry& e) const {
+    switch (e.subject) {
+        case Subject::Node: return camera_path_m_ + motion_[e.index].subtree_m;
+        case Subject::OwnObjects: return camera_path_m_ + motion_[e.index].own_m;
+        case Subject::Object: return camera_path_m_ + object_motion_m_[e.index];
+    }
+    return camera_path_m_;
+}
+
+NodeStatistics& StatisticalCuller::statsOf(const Entry& e) {
+    switch (e.subject) {
+        case Subject::Node: return stats_[e.index];
+        case Subject::OwnObjects: return own_stats_[e.index];
+        case Subject::Object: return object_stats_[e.index];
+    }
+    return stats_[e.index];
+}
+
+void StatisticalCuller::push(const Entry& entry) {
+    heap_.push_back(entry);
+    std::push_heap(heap_.begin(), heap_.end(), LaterRank{});
+}
+
+StatisticalCuller::Entry StatisticalCuller::pop() {
+    std::pop_heap(heap_.begin(), heap_.end(), LaterRank{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
+    return e;
+}
+
+// A rendered node: its own objects are drawn (or, with virtual leaves, queued to be decided on
+// their own statistics, between the nearer and the farther child), and its children take its
+// place in the queue, nearer child first. Empty children are left out (the paper's SKIP).
+void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
+                                   RenderDevice& device) {
+    const BspNode& n = tree.node(entry.index);
+    if (n.isLeaf()) {
+        renderObjects(tree, frame, entry.index, entry.inside_frustum, device);
+        return;
+    }
+    const bool eye_below = frame.view.eye[n.axis] < n.split;
+    const uint32_t near_child = n.child[eye_below ? 0 : 1];
+    const uint32_t far_child = n.child[eye_below ? 1 : 0];
+    const uint32_t own_rank = entry.rank + 1 + subtree_ranks_[near_child];
+    if (options_.virtual_leaves) {
+        if (n.object_count > 0) {
+            push({own_rank, entry.index, Subject::OwnObjects, entry.inside_frustum});
+        }
+    } else {
+        // Without virtual leaves, objects in inner nodes have no decisions of their own.
+        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+    }
+    if (!isEmpty(tree.bounds(near_child))) {
+        push({entry.rank + 1, near_child, Subject::Node, entry.inside_frustum});
+    }
+    if (!isEmpty(tree.bounds(far_child))) {
+        push({own_rank + 1, far_child, Subject::Node, entry.inside_frustum});
+    }
+}
+
+NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats,
+                                     const Aabb& box, double travel_m, double draw_ms,
+                                     uint32_t query_boxes, bool object_query, Decision* decision) {
+    const CullView& view = frame.view;
+    const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
+    const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
+    const NodeAction action = decideNodeAction(options_, stats, near, frame.time_s, motion);
+    decision->kind = queryKindOf(stats);
+    if (action == NodeAction::Render) {
+        ++counters_.renders_without_query;
+        return action;
+    }
+    if (!costs_active_) return NodeAction::Query;
+    // Rule 1 (Guthe et al.): a subject cheaper to draw than to query is drawn without one,
+    // statistics or not.
+    if (!queryPays(costs_, draw_ms, query_boxes, 1.0)) {
+        ++counters_.cost_model_renders;
+        return NodeAction::Render;
+    }
+    // Rule 2: with usable statistics, the occlusion estimate of this kind of query must make it
+    // pay. Without them the answer is worth more than one frame's saving (later decisions go on
+    // it), so the query is issued.
+    if (!statisticsUsable(options_, stats, frame.time_s)) return NodeAction::Query;
+    OcclusionEstimate& estimate = estimates_[estimateIndex(decision->kind, object_query)];
+    if (queryPays(costs_, draw_ms, query_boxes, estimate.occluded)) return NodeAction::Query;
+    if (++estimate.vetoes >= OcclusionEstimate::kExploreEvery) {
+        estimate.vetoes = 0;  // asked anyway, so that the estimate stays measured
+        return NodeAction::Query;
+    }
+    // Put off: CalcNodeAction's interval starts again from now, as if the node had just been
+    // found visible, but the history and the age of the statistics stay what they were.
+    stats.deferred_time_s = frame.time_s;
+    stats.deferred_travel_m = travel_m;
+    ++counters_.cost_model_renders;
+    return NodeAction::Render;
+}
+
+uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,
+                                          uint32_t node, bool inside_frustum, RenderDevice& device) {
+    const FrustumPlanes& frustum = view_.frustum;
+    if (!options_.object_queries) {
+        drawNodeObjects(tree, node, frustum, inside_frustum, device);
+        return 0;
+    }
+    // A leaf with one object in view: the leaf's own decision (its statistics, its query on
+    // bounds that are that object's box, or close to it) already was the object's.
+    if (tree.node(node).isLeaf()) {
+        uint32_t in_view = 0;
+        forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t) { ++in_view; });
+        if (in_view <= 1) {
+            drawNodeObjects(tree, node, frustum, inside_frustum, device);
+            return 0;
+        }
+    }
+    uint32_t queries = 0;
+    forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
+        const Entry entry{0, o, Subject::Object, inside_frustum};
+        const Aabb& box = tree.objectBox(o);
+        const double draw_ms = costs_active_ ? costs_.drawMs(frame.object_triangles[o]) : 0.0;
+        Decision decision;
+        if (decide(frame, object_stats_[o], box, travelOf(entry), draw_ms, 1, true, &decision) ==
+            NodeAction::Render) {
+            device.drawObject(o);
+            return;
+        }
+        const QueryTag tag = QueryTag::object(o);
+        pending_.push_back({device.issueQuery(box, tag), entry, decision});
+        ++counters_.queries;
+        ++queries;
+    });
+    return queries;
+}
+
+bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Entry entry,
+                                RenderDevice& device) {
+    if (entry.subject == Subject::Node) {
+        NodeVisit visit{entry.index, entry.inside_frustum};
+        bool inside = false;
+        if (!nodeInFrustum(tree, visit, view_.frustum, &inside)) return false;  // SKIP
+        entry.inside_frustum = inside;
+        const Aabb& box = tree.bounds(entry.index);
+        const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
+        Decision decision;
+        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &decision) ==
+            NodeAction::Render) {
+            renderNode(tree, frame, entry, device);
+            return false;
+        }
+        pending_.push_back({device.issueQuery(box, QueryTag::node(entry.index)), entry, decision});
+        ++counters_.queries;
+        return true;
+    }
+    // A virtual leaf: the objects stored in the node itself that pass the frustum.
+    if (options_.object_queries) {
+        return renderObjects(tree, frame, entry.index, entry.inside_frustum, device) > 0;
+    }
+    boxes_.clear();
+    Aabb box;
+    double draw_ms = 0.0;
+    forEachObjectInFrustum(tree, entry.index, view_.frustum, entry.inside_frustum, [&](uint32_t o) {
+        boxes_.push_back(tree.objectBox(o));
+        extend(box, tree.objectBox(o));
+        if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
+    });
+    if (boxes_.empty()) return false;
+    const uint32_t query_boxes = static_cast<uint32_t>(boxes_.size());
+    Decision decision;
+    if (decide(frame, own_stats_[entry.index], box, travelOf(entry), draw_ms, query_boxes, false,
+               &decision) == NodeAction::Render) {
+        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+        return false;
+    }
+    const QueryTag tag = QueryTag::nodeObjects(entry.index);
+    pending_.push_back(
+        {device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
+         entry, decision});
+    ++counters_.queries;
+    return true;
+}
+
+void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
+                               RenderDevice& device) {
+    const Entry& e = pending.entry;
+    const bool visible = device.queryResult(pending.id) > 0;
+    recordQueryResult(options_, statsOf(e), visible, frame.time_s, travelOf(e));
+    estimates_[estimateIndex(pending.decision.kind, e.subject == Subject::Object)].add(!visible);
+    ++counters_.answers;
+    counters_.visible_answers += visible ? 1 : 0;
+    if (!visible) return;
+    switch (e.subject) {
+        case Subject::Node: renderNode(tree, frame, e, device); break;
+        case Subject::OwnObjects:
+            drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
+            break;
+        case Subject::Object: device.drawObject(e.index); break;
+    }
+}
+
+void StatisticalCuller::frustumOnlyFrame(const BspTree& tree, RenderDevice& device) {
+    counters_.frustum_only = true;
+    traverseFrontToBack(tree, view_, vfc_stack_, [&](const NodeVisit& visit) {
+        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        return true;
+    });
+}
+
+// Fallback (improvement 5): after a frame that ran the algorithm, look at the share of visible
+// answers over the window; when it is high enough, cull by the frustum only for a while.
+void StatisticalCuller::endFrame(double now_s) {
+    if (!options_.fallback) return;
+    const uint32_t w = static_cast<uint32_t>(window_answers_.size());
+    window_answers_[window_next_] = counters_.answers;
+    window_visible_[window_next_] = counters_.visible_answers;
+    window_next_ = (window_next_ + 1) % w;
+    window_frames_ = std::min(window_frames_ + 1, w);
+    if (window_frames_ < w) return;
+    uint64_t answers = 0, visible = 0;
+    for (uint32_t i = 0; i < w; ++i) {
+        answers += window_answers_[i];
+        visible += window_visible_[i];
+    }
+    if (answers >= uint64_t{kFallbackMinAnswersPerFrame} * w &&
+        static_cast<double>(visible) >= options_.fallback_visible_share * static_cast<double>(answers)) {
+        frustum_only_ = true;
+        frustum_only_until_s_ = now_s + options_.fallback_recheck_s;
+        window_frames_ = 0;  // the next look starts from a fresh window
+    }
+}
+
+void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                      RenderDevice& device) {
+    counters_ = {};
+    view_ = prepareView(frame.view);
+    prepareFrame(tree, frame);
+    if (frustum_only_) {
+        if (frame.time_s < frustum_only_until_s_) {
+            frustumOnlyFrame(tree, device);
+            return;
+        }
+        frustum_only_ = false;  // re-check: run the algorithm again
+    }
+
+    heap_.clear();
+    pending_.clear();
+    pending_head_ = 0;
+    if (!isEmpty(tree.bounds(tree.root()))) push({0, tree.root(), Subject::Node, false});
+
+    // Takes the oldest pending answer; `work_left` says whether the main queue held anything.
+    auto take_oldest = [&](bool work_left) {
+        const uint64_t waited_before = device.counters().results_waited;
+        const Pending p = pending_[pending_head_++];
+        answer(tree, frame, p, device);
+        if (device.counters().results_waited != waited_before) {
+            ++counters_.blocked_answers;
+            counters_.blocked_with_work_left += work_left ? 1 : 0;
+        }
+        if (pending_head_ == pending_.size()) {
+            pending_.clear();
+            pending_head_ = 0;
+        }
+    };
+
+    if (!options_.ready_answers) {
+        // The paper's loop: issue until the oldest answer is ready (or enough queries were
+        // issued in this pass), then go back to the queue start and take every answer.
+        while (!heap_.empty() || pending_head_ < pending_.size()) {
+            uint32_t queries_this_pass = 0;
+            while (!heap_.empty() && queries_this_pass < options_.queries_before_restart &&
+                   !(pending_head_ < pending_.size() &&
+                     device.isQueryReady(pending_[pending_head_].id))) {
+                if (process(tree, frame, pop(), device)) ++queries_this_pass;
+            }
+            while (pending_head_ < pending_.size()) take_oldest(!heap_.empty());
+        }
+    } else {
+        // Improvement 1: every answer is taken as soon as it is ready (answers become ready in
+        // issue order, so only the oldest is polled), and the traversal goes on. The oldest
+        // answer is waited for only when the main queue is empty, or when as many queries as
+        // the paper lets one pass issue (queries_before_restart) are in flight: the paper's own
+        // bound on how far the traversal may run ahead of its answers (farther nodes queried
+        // before nearer ones are drawn come back visible more often).
+        while (true) {
+            while (pending_head_ < pending_.size() && device.isQueryReady(pending_[pending_head_].id)) {
+                take_oldest(!heap_.empty());
+            }
+            const size_t in_flight = pending_.size() - pending_head_;
+            if (!heap_.empty() && in_flight < options_.queries_before_restart) {
+                process(tree, frame, pop(), device);
+            } else if (in_flight > 0) {
+                take_oldest(false);
+            } else {
+                break;
+            }
+        }
+    }
+    endFrame(frame.time_s);
+}
+
+// --- Registration -------------------------------------------------------------------------------
+
+namespace {
+
+// The keys of culling.statistical and culling["statistical+"]; `d` gives the defaults (the
+// paper's, or every improvement on). The tunable bounds: the paper's BASE_TIME is 2/3 s; the box
+// reaches from re-querying every few frames to past the statistics' "too old" age (2 s by
+// default), where a longer wait changes nothing. The decay curve a - b^occ_num stays >= 0 (a >= 1,
+// b in [0, 1]); a up to 4 lets a long unoccluded history wait four BASE_TIMEs.
+OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) {
+    const double inf = std::numeric_limits<double>::infinity();
+    OptionSpec base_time = numberOption("base_time", "s", 0.0, inf, d.base_time_s,
+                                        "BASE_TIME: a node found visible is re-queried after "
+                                        "BASE_TIME * (a - b^occ_num) seconds");
+    OptionSpec parallax = alternativeTo(
+        switchable(numberOption("requery_parallax", "", 0.0, inf, d.requery_parallax,
+                                "re-query once the travel divided by the node's distance from the "
+                                "eye exceeds this * (a - b^occ_num); 0 = BASE_TIME seconds"),
+                   0.0),
+        "requery_distance");
+    if (plus) {
+        parallax = tunable(parallax, 0.005, 0.2);  // BASE_TIME is unused while this is > 0
+    } else {
+        base_time = tunable(base_time, 0.05, 2.0);
+    }
+    return {
+        base_time,
+        tunable(numberOption("decay_a", "", 1.0, inf, d.decay_a,
+                             "a in BASE_TIME * (a - b^occ_num): the longest wait, in BASE_TIMEs"),
+                1.0, 4.0),
+        tunable(numberOption("decay_b", "", 0.0, 1.0, d.decay_b,
+                             "b in BASE_TIME * (a - b^occ_num): how fast a visible history "
+                             "lengthens the wait"),
+                0.0, 1.0),
+        integerOption("history_length", "results", 1, 32, d.history_length,
+                      "query results remembered per node"),
+        numberOption("max_statistics_age", "s", 1e-6, inf, d.max_statistics_age_s,
+                     "statistics older than this are ignored: the node is queried"),
+        integerOption("queries_before_restart", "queries", 1, 4294967295.0,
+                      d.queries_before_restart,
+                      "the traversal returns to the queue start after this many queries (with "
+                      "ready_answers: the most queries in flight)"),
+        switchable(booleanOption("ready_answers", d.ready_answers,
+                                 "take each answer as soon as it is ready and keep traversing"),
+                   0.0),
+        switchable(booleanOption("virtual_leaves", d.virtual_leaves,
+                                 "the objects stored in an inner node get statistics and a query "
+                                 "of their own"),
+                   0.0),
+        switchable(booleanOption("object_queries", d.object_queries,
+                                 "the objects of a rendered leaf are decided one by one, each with "
+                                 "statistics of its own"),
+                   0.0),
+        switchable(booleanOption("cost_model", d.cost_model,
+                                 "weigh each query against culling.cost_model: draw without a "
+                                 "query what is cheaper to draw than to query"),
+                   0.0),
+        alternativeTo(
+            switchable(numberOption("requery_distance", "m", 0.0, inf, d.requery_distance_m,
+                                    "re-query after this distance travelled (camera and movers) "
+                                    "* (a - b^occ_num); 0 = BASE_TIME seconds"),
+                       0.0),
+            "requery_parallax"),
+        parallax,
+        switchable(booleanOption("fallback", d.fallback,
+                                 "when recent answers show little occlusion, cull by the frustum "
+                                 "only for a while"),
+                   0.0),
+        numberOption("fallback_visible_share", "", 0.0, 1.0, d.fallback_visible_share,
+                     "fall back when at least this share of the window's answers came back "
+                     "visible"),
+        integerOption("fallback_window_frames", "frames", 1, 1000, d.fallback_window_frames,
+                      "the window the share is taken over"),
+        numberOption("fallback_recheck", "s", 0.0, inf, d.fallback_recheck_s,
+                     "simulation time culled by the frustum only before the algorithm runs again"),
+    };
+}
+
+std::string validateStatistical(const OptionValues& values) {
+    std::string why;
+    statisticalOptionsFrom(values).isValid(&why);
+    return why;
+}
+
+CostModelUse statisticalCostModelUse(const OptionValues& values) {
+    const StatisticalOptions o = statisticalOptionsFrom(values);
+    return {o.cost_model, o.ready_answers ? o.queries_before_restart : 0u};
+}
+
+std::unique_ptr<Culler> makeStatistical(const CullerContext& c) {
+    return std::make_unique<StatisticalCuller>(statisticalOptionsFrom(c.options), c.cost_model,
+                                               c.name);
+}
+
+AlgorithmTraits statisticalRow(std::string name, std::string summary, bool plus) {
+    AlgorithmTraits t;
+    t.name = std::move(name);
+    t.summary = std::move(summary);
+    t.conservative = true;
+    t.issues_queries = true;
+    t.options = statisticalDescriptor(plus ? StatisticalOptions::plus() : StatisticalOptions::paper(),
+                                      plus);
+    t.factory = makeStatistical;
+    t.validate = validateStatistical;
+    t.cost_model_use = statisticalCostModelUse;
+    return t;
+}
+
+}  // namespace
+
+StatisticalOptions statisticalOptionsFrom(const OptionValues& v) {
+    StatisticalOptions o;
+    o.base_time_s = v.number("base_time");
+    o.decay_a = v.number("decay_a");
+    o.decay_b = v.number("decay_b");
+    o.history_length = v.count("history_length");
+    o.max_statistics_age_s = v.number("max_statistics_age");
+    o.queries_before_restart = v.count("queries_before_restart");
+    o.ready_answers = v.flag("ready_answers");
+    o.virtual_leaves = v.flag("virtual_leaves");
+    o.object_queries = v.flag("object_queries");
+    o.cost_model = v.flag("cost_model");
+    o.requery_distance_m = v.number("requery_distance");
+    o.requery_parallax = v.number("requery_parallax");
+    o.fallback = v.flag("fallback");
+    o.fallback_visible_share = v.number("fallback_visible_share");
+    o.fallback_window_frames = v.count("fallback_window_frames");
+    o.fallback_recheck_s = v.number("fallback_recheck");
+    return o;
+}
+
+AlgorithmTraits statisticalRegistration() {
+    return statisticalRow("statistical", "Kovalcik & Sochor 2005, as published", false);
+}
+
+AlgorithmTraits statisticalPlusRegistration() {
+    return statisticalRow("statistical+",
+                          "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
+                          "re-query by distance and a frustum fallback",
+                          true);
+}
+
+}  // namespace occsim

@@ -1,0 +1,28 @@
+#include "occsim/culling/cullers/statistical_options.h"
+
+namespace occsim {
+
+StatisticalOptions StatisticalOptions::plus() {
+    StatisticalOptions o;
+    o.ready_answers = true;
+    // With ready answers this is the most queries in flight. On llvmpipe an answer arrives only
+    // once everything before it is rasterised, so the fewer queries run ahead of their answers
+    // the more depth each one sees (docs/statistical.md has the sweep).
+    o.queries_before_restart = 4;
+    o.virtual_leaves = true;
+    o.object_queries = true;
+    o.cost_model = true;
+    o.requery_parallax = 0.025;
+    o.fallback = true;
+    return o;
+}
+
+bool StatisticalOptions::isValid(std::string* error) const {
+    if (requery_distance_m > 0.0 && requery_parallax > 0.0) {
+        if (error) *error = "requery_distance and requery_parallax are alternatives: set at most one";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace occsim

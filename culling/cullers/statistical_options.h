@@ -1,0 +1,68 @@
+// The statistical culler's options as plain data (the culler reads these; scenarios, sweeps and
+// the tuner set them through the descriptor of statisticalDescriptor(), statistical_culler.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace occsim {
+
+// Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries", WSCG
+// 2005, section 3: BASE_TIME and the decay curve of CalcNodeAction, and the two-queue traversal.
+// The first block is the paper; the second holds improvements beyond it, each off by default (so
+// that StatisticalOptions{} is the paper as published) and all on in plus() (the "statistical+"
+// algorithm). docs/statistical.md says what each does and why.
+struct StatisticalOptions {
+    double base_time_s = 2.0 / 3.0;      // BASE_TIME
+    double decay_a = 2.0;                // a in BASE_TIME * (a - b^occ_num)
+    double decay_b = 0.5;                // b in BASE_TIME * (a - b^occ_num)
+    uint32_t history_length = 8;         // query results remembered per node (1..32)
+    double max_statistics_age_s = 2.0;   // older statistics are ignored: query again
+    uint32_t queries_before_restart = 20;  // return to the queue start after this many queries
+
+    // (1) Take each answer as soon as it is ready and keep traversing; block on the oldest
+    // answer only when nothing else can be done: the queue is empty, or queries_before_restart
+    // queries are in flight (the paper's bound on how far the traversal runs ahead of its
+    // answers). Off: the paper's passes (issue until the oldest answer is ready or
+    // queries_before_restart were issued, then take every pending answer, ready or not).
+    bool ready_answers = false;
+    // (2) The objects stored in an inner node itself get statistics and queries of their own
+    // (a "virtual leaf": a query on the boxes of those objects). Off: they are drawn whenever
+    // their node is rendered, as the paper does (it keeps geometry in leaves).
+    bool virtual_leaves = false;
+    // (2b) The objects of a rendered node (a leaf's, or a virtual leaf's) are decided one by one,
+    // each with statistics and queries of its own, instead of drawn (or queried) together. A
+    // leaf holding a single object needs no more than its own query.
+    bool object_queries = false;
+    // (3) Use CullerOptions::cost_model: a node cheaper to draw than to query is drawn without
+    // one, and a query is issued only when its expected saving (the recent occlusion rate of
+    // such queries times the node's draw cost) exceeds its cost.
+    bool cost_model = false;
+    // (4) Re-query after a distance travelled instead of BASE_TIME seconds. The travel of a
+    // node since its last query is the camera's path plus, for a node holding movers, the
+    // farthest any of them moved. requery_distance_m > 0: re-query once the travel exceeds
+    // requery_distance_m * (a - b^occ_num) metres. requery_parallax > 0: once the travel divided
+    // by the node's distance from the eye (roughly the angle its view turned through) exceeds
+    // requery_parallax * (a - b^occ_num), which needs no scene scale. At most one is > 0;
+    // both 0 = the paper's seconds.
+    double requery_distance_m = 0.0;
+    double requery_parallax = 0.0;
+    // (5) When the recent answers show little occlusion (at least fallback_visible_share of the
+    // answers of the last fallback_window_frames frames came back visible), stop querying and
+    // cull by the frustum only for fallback_recheck_s seconds (simulation time), then look again.
+    bool fallback = false;
+    double fallback_visible_share = 0.9;
+    uint32_t fallback_window_frames = 8;
+    double fallback_recheck_s = 1.0;
+
+    // The paper as published (the default).
+    static StatisticalOptions paper() { return {}; }
+    // Every improvement on: the "statistical+" algorithm's defaults.
+    static StatisticalOptions plus();
+
+    // The rule that ties options together (each option's own range is the descriptor's,
+    // statisticalDescriptor()): at most one of the two re-query distances.
+    bool isValid(std::string* error) const;
+};
+
+}  // namespace occsim

@@ -1,0 +1,76 @@
+// A RenderDevice decorator that records what a culler did in one frame, for pictures of its
+// decisions (sim/birds_eye.h). It forwards every call to the wrapped device unchanged.
+//
+// Contract
+// - While tracing (between beginTrace() and endTrace()), every drawObject() call is recorded in
+//   order, and every issueQuery() call with its boxes. When queryResult() fetches the result of a
+//   query issued during the trace, its sample count is recorded; a query whose result is never
+//   fetched before endTrace() stays "pending" (fetched == false).
+// - Results fetched during the trace for queries issued before it (ids living across frames) are
+//   only counted: their boxes are unknown to this device.
+// - When not tracing, calls are forwarded and nothing is recorded.
+// - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
+#pragma once
+
+#include "occsim/culling/contract/render_device.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace occsim {
+
+struct TracedQuery {
+    std::vector<Aabb> boxes;         // one for a plain query, several for a multiquery
+    std::vector<QueryTag> subjects;  // what the query decides, as the culler tagged it
+    bool fetched = false;     // false: pending at the end of the trace
+    uint64_t samples = 0;     // the result, when fetched
+};
+
+struct FrameTrace {
+    uint64_t frame = 0;
+    std::vector<uint32_t> drawn_objects;  // in draw order
+    std::vector<TracedQuery> queries;     // in issue order
+    uint32_t earlier_results_fetched = 0; // results of queries issued before the trace began
+
+    uint32_t pendingQueries() const;
+};
+
+class TracingDevice final : public RenderDevice {
+public:
+    explicit TracingDevice(RenderDevice& inner) : inner_(inner) {}
+
+    // Starts recording a fresh trace for `frame` (any previous one is discarded).
+    void beginTrace(uint64_t frame);
+    void endTrace() { tracing_ = false; }
+    bool tracing() const { return tracing_; }
+    const FrameTrace& trace() const { return trace_; }
+
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
+    bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
+    uint64_t queryResult(QueryId id) override;
+
+    const DeviceCounters& counters() const override { return inner_.counters(); }
+    void resetCounters() override { inner_.resetCounters(); }
+
+private:
+    static constexpr size_t kClosed = SIZE_MAX;
+
+    void makeRoom(TracedQuery& q) const;
+
+    RenderDevice& inner_;
+    bool tracing_ = false;
+    FrameTrace trace_;
+    // Per query id, its index in trace_.queries until its result is fetched, else kClosed. Ids are
+    // small and reused by the wrapped device, so a flat array indexed by id serves as the map.
+    std::vector<size_t> open_;
+    // The traced queries of earlier traces, kept with their box and tag lists' storage, so that
+    // tracing every frame (the viewer's trace mode) allocates nothing once frames are alike.
+    std::vector<TracedQuery> spare_;
+    size_t room_boxes_ = 0;  // what every stored query has room for (see issueQuery())
+    size_t room_subjects_ = 0;
+};
+
+}  // namespace occsim

@@ -1,0 +1,25 @@
+// The built-in cullers, in the order tables list them. Each is registered by a function in its own
+// file (cullers/), returning its row; adding a culler in the tree is that file and one line here.
+#include "occsim/culling/registry/registry.h"
+
+namespace occsim {
+
+AlgorithmTraits vfcRegistration();             // cullers/basic_cullers.cpp
+AlgorithmTraits stopAndWaitRegistration();     // cullers/basic_cullers.cpp
+AlgorithmTraits statisticalRegistration();     // cullers/statistical_culler.cpp
+AlgorithmTraits statisticalPlusRegistration(); // cullers/statistical_culler.cpp
+AlgorithmTraits chcRegistration();             // cullers/chc_culler.cpp
+AlgorithmTraits chcppRegistration();           // cullers/chcpp_culler.cpp
+AlgorithmTraits asyncRegistration();           // cullers/async_culler.cpp
+AlgorithmTraits idealRegistration();           // cullers/basic_cullers.cpp
+
+void registerBuiltinCullers(CullerRegistry& registry) {
+    for (AlgorithmTraits (*row)() : {vfcRegistration, stopAndWaitRegistration,
+                                     statisticalRegistration, statisticalPlusRegistration,
+                                     chcRegistration, chcppRegistration, asyncRegistration,
+                                     idealRegistration}) {
+        registry.add(row());
+    }
+}
+
+}  // namespace occsim

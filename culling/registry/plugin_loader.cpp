@@ -1,0 +1,112 @@
+#include "occsim/culling/registry/plugin_loader.h"
+
+#include "occsim/culling/registry/plugin.h"
+
+#include <dlfcn.h>
+
+#include <set>
+#include <system_error>
+
+namespace occsim {
+namespace {
+
+// Collects a plugin's rows, so that they are checked together before any is registered.
+class CollectingRegistrar final : public PluginRegistrar {
+public:
+    void add(AlgorithmTraits traits) override { rows.push_back(std::move(traits)); }
+    std::vector<AlgorithmTraits> rows;
+};
+
+std::set<std::string>& loadedFiles() {
+    static std::set<std::string> files;
+    return files;
+}
+
+// Each culler made once from its defaults, with the cost model unknown: a factory that throws or
+// returns nothing fails now rather than in the middle of a run.
+void probeFactory(const AlgorithmTraits& row) {
+    const OptionValues defaults(row.options);
+    const CostModel unknown;
+    std::unique_ptr<Culler> culler;
+    try {
+        culler = row.factory(CullerContext{row.name, defaults, unknown});
+    } catch (const std::exception& e) {
+        throw RegistryError("culler '" + row.name + "': its factory threw: " + e.what());
+    } catch (...) {
+        throw RegistryError("culler '" + row.name + "': its factory threw a non-standard exception");
+    }
+    if (!culler) throw RegistryError("culler '" + row.name + "': its factory made no culler");
+}
+
+}  // namespace
+
+std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerRegistry& registry) {
+    const std::string name = file.string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) {
+        throw PluginError(name + ": no such file; expected a plugin culler (a shared object, .so)");
+    }
+    const std::string canonical = std::filesystem::canonical(file, ec).string();
+    if (loadedFiles().count(canonical)) return {};
+
+    // RTLD_LOCAL: a plugin's symbols do not leak into the next plugin's. Never closed: its
+    // cullers' code and rows live until the program ends.
+    void* handle = ::dlopen(canonical.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+        const char* why = ::dlerror();
+        throw PluginError(name + ": not a loadable shared object (" + (why ? why : "dlopen failed") +
+                          ")");
+    }
+    using Entry = const OccsimPlugin* (*)();
+    auto entry = reinterpret_cast<Entry>(::dlsym(handle, OCCSIM_PLUGIN_ENTRY_POINT));
+    if (!entry) {
+        throw PluginError(name + ": no entry point '" OCCSIM_PLUGIN_ENTRY_POINT
+                                 "'; expected a plugin built with OCCSIM_PLUGIN(...) "
+                                 "(occsim/culling/registry/plugin.h)");
+    }
+    const OccsimPlugin* plugin = entry();
+    if (!plugin || !plugin->register_cullers) {
+        throw PluginError(name + ": its entry point returned no plugin description");
+    }
+    if (plugin->abi_version != OCCSIM_PLUGIN_ABI_VERSION) {
+        throw PluginError(name + ": built for plugin ABI version " +
+                          std::to_string(plugin->abi_version) + "; this occsim loads version " +
+                          std::to_string(OCCSIM_PLUGIN_ABI_VERSION) +
+                          " (rebuild it against this occsim's headers)");
+    }
+
+    CollectingRegistrar registrar;
+    std::vector<std::string> names;
+    try {
+        plugin->register_cullers(registrar);
+        if (registrar.rows.empty()) throw RegistryError("it registers no culler");
+        for (size_t i = 0; i < registrar.rows.size(); ++i) {
+            AlgorithmTraits& row = registrar.rows[i];
+            row.source = name;
+            if (row.speedup_reference) {
+                throw RegistryError("culler '" + row.name +
+                                    "': only the built-in frustum culler is the speedup reference");
+            }
+            registry.check(row);
+            for (size_t j = 0; j < i; ++j) {
+                if (registrar.rows[j].name == row.name) {
+                    throw RegistryError("culler '" + row.name + "': registered twice");
+                }
+            }
+            probeFactory(row);
+        }
+    } catch (const RegistryError& e) {
+        throw PluginError(name + ": " + e.what());
+    } catch (const std::exception& e) {
+        throw PluginError(name + ": registering its cullers threw: " + e.what());
+    }
+    for (AlgorithmTraits& row : registrar.rows) names.push_back(registry.add(std::move(row)).name);
+    loadedFiles().insert(canonical);
+    return names;
+}
+
+std::vector<std::string> loadPlugin(const std::filesystem::path& file) {
+    return loadPlugin(file, cullerRegistry());
+}
+
+}  // namespace occsim

@@ -1,0 +1,139 @@
+#include "occsim/culling/registry/registry.h"
+
+#include "occsim/culling/registry/culler_options.h"
+
+namespace occsim {
+
+// builtin_cullers.cpp: the built-in rows, one registration line each.
+void registerBuiltinCullers(CullerRegistry& registry);
+
+namespace {
+
+bool validName(const std::string& name) {
+    if (name.empty() || name.size() > 64) return false;
+    for (char c : name) {
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+                        c == '+';
+        if (!ok) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues& values) {
+    const OptionsDescriptor& d = culler.options;
+    if (values.values().size() != d.size()) {
+        return culler.name + ": option values do not match its descriptor";
+    }
+    for (size_t i = 0; i < d.size(); ++i) {
+        if (const std::string why = checkOptionValue(d[i], values.values()[i]); !why.empty()) {
+            return d[i].key + ": " + why;
+        }
+    }
+    if (culler.validate) return culler.validate(values);
+    return {};
+}
+
+void CullerRegistry::check(const AlgorithmTraits& traits) const {
+    const std::string who = "culler '" + traits.name + "'";
+    if (!validName(traits.name)) {
+        throw RegistryError(who + ": a name is 1 to 64 characters of a-z 0-9 _ + -");
+    }
+    if (find(traits.name)) {
+        const AlgorithmTraits& taken = *find(traits.name);
+        throw RegistryError(who + ": the name is already taken (by " +
+                            (taken.source.empty() ? std::string("a built-in culler")
+                                                  : "the plugin " + taken.source) +
+                            ")");
+    }
+    if (traits.summary.empty()) throw RegistryError(who + ": no summary line");
+    if (!traits.factory) throw RegistryError(who + ": no factory");
+    if (traits.oracle && traits.issues_queries) {
+        throw RegistryError(who + ": an oracle decides from ground truth and issues no queries");
+    }
+    if (traits.speedup_reference) {
+        for (const AlgorithmTraits* a : order_) {
+            if (a->speedup_reference) {
+                throw RegistryError(who + ": '" + a->name + "' is already the speedup reference");
+            }
+        }
+    }
+    if (const std::string why = checkDescriptor(traits.options); !why.empty()) {
+        throw RegistryError(who + ": invalid options descriptor: " + why);
+    }
+    // Its defaults must pass its own rules, or no run could use it.
+    if (const std::string why = checkOptionValues(traits, OptionValues(traits.options));
+        !why.empty()) {
+        throw RegistryError(who + ": its default options are invalid: " + why);
+    }
+}
+
+const AlgorithmTraits& CullerRegistry::add(AlgorithmTraits traits) {
+    check(traits);
+    rows_.push_back(std::move(traits));
+    order_.push_back(&rows_.back());
+    return rows_.back();
+}
+
+const AlgorithmTraits* CullerRegistry::find(std::string_view name) const {
+    for (const AlgorithmTraits* a : order_) {
+        if (a->name == name) return a;
+    }
+    return nullptr;
+}
+
+CullerRegistry& cullerRegistry() {
+    static CullerRegistry* registry = [] {
+        auto* r = new CullerRegistry;  // never destroyed: plugins' rows point into it until exit
+        registerBuiltinCullers(*r);
+        return r;
+    }();
+    return *registry;
+}
+
+const std::vector<const AlgorithmTraits*>& algorithms() { return cullerRegistry().all(); }
+
+std::vector<std::string> algorithmNames() {
+    std::vector<std::string> out;
+    for (const AlgorithmTraits* a : algorithms()) out.push_back(a->name);
+    return out;
+}
+
+const AlgorithmTraits* findAlgorithm(std::string_view name) { return cullerRegistry().find(name); }
+
+const AlgorithmTraits& speedupReference() {
+    for (const AlgorithmTraits* a : algorithms()) {
+        if (a->speedup_reference) return *a;
+    }
+    return *algorithms().front();
+}
+
+std::string algorithmNameList() {
+    std::string out;
+    for (const AlgorithmTraits* a : algorithms()) out += (out.empty() ? "" : ", ") + a->name;
+    return out;
+}
+
+std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options) {
+    const OptionValues values = options.of(algorithm);
+    const CullerContext context{algorithm.name, values, options.cost_model};
+    if (algorithm.source.empty()) return algorithm.factory(context);
+    std::unique_ptr<Culler> culler;
+    try {
+        culler = algorithm.factory(context);
+    } catch (const std::exception& e) {
+        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
+                            "' threw: " + e.what());
+    } catch (...) {
+        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
+                            "' threw a non-standard exception");
+    }
+    if (!culler) {
+        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
+                            "' returned no culler");
+    }
+    return culler;
+}
+
+}  // namespace occsim

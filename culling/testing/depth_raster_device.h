@@ -1,0 +1,76 @@
+// A RenderDevice whose answers depend on what was drawn before them: a coarse CPU depth raster,
+// for testing culling logic where draw order matters (nearer drawn boxes hide farther ones). It
+// knows no OpenGL and renders no triangles.
+//
+// The model, chosen so that it is self-consistent rather than photographic:
+// - an object is a screen-aligned card: its box's projected bounding rectangle (rounded outwards
+//   to whole cells), at one depth, the distance from the eye to the box (0 when the eye is inside);
+// - drawObject() writes the card into the raster, keeping the smaller depth per cell;
+// - a query on some boxes counts, per box, the cells of its card whose stored depth is >= the
+//   box's depth (ties pass, like the GL device's GL_GEQUAL boxes), summed over the boxes;
+// - a box with a corner at or behind the eye plane covers the whole screen.
+// A box that contains another has a card containing the other's card and a depth no greater, so
+// a query on a node's bounds passes whenever one of its objects would show. Ground truth draws
+// every object in the frustum: an object is visible when it holds the smallest depth in at least
+// one cell of its card. A culler that draws every such object leaves the same raster as ground
+// truth, so "conservative" means the same here as with the GL device.
+//
+// Results become ready after a fixed number of later commands, like ScriptedQueryDevice.
+#pragma once
+
+#include "occsim/culling/testing/command_latency_queries.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/contract/render_device.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace occsim {
+
+class DepthRasterDevice final : public RenderDevice {
+public:
+    DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
+
+    // Starts a frame: the camera (OpenGL-convention view-projection and the eye) and every
+    // object's box (copied into the device's own buffer, so a frame allocates nothing once it is
+    // large enough). Clears the raster and the log.
+    void beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
+                    std::span<const Aabb> object_boxes);
+
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
+    bool isQueryReady(QueryId id) override;
+    uint64_t queryResult(QueryId id) override;
+
+    // Per object, 1 when it is visible with every object in the frustum drawn (this frame's
+    // camera and boxes; independent of what the culler drew).
+    std::vector<uint8_t> groundTruth() const;
+    // The objects drawn since beginFrame(), in order.
+    const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
+    // Queries issued since beginFrame(), in order, with what they were for.
+    const std::vector<QueryTag>& queryLog() const { return query_log_; }
+    uint32_t pendingQueries() const;
+
+private:
+    struct Card {
+        uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // cells [x0, x1) x [y0, y1); empty when x0 >= x1
+        float depth = 0.0f;
+    };
+    Card cardOf(const Aabb& box) const;
+
+    uint32_t width_, height_;
+    glm::mat4 view_projection_{1.0f};
+    glm::vec3 eye_{0.0f};
+    FrustumPlanes frustum_{};  // the plane table of this frame, built in beginFrame()
+    std::vector<Aabb> boxes_;
+    std::vector<float> depth_;  // width * height, +inf = nothing drawn
+    CommandLatencyQueries queries_;
+    std::vector<uint32_t> drawn_;
+    std::vector<QueryTag> query_log_;
+};
+
+}  // namespace occsim

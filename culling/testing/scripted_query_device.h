@@ -1,0 +1,54 @@
+// A RenderDevice with a known visibility function, for testing culling logic without OpenGL.
+// It never renders anything; a query's result is the number of visible objects whose box overlaps
+// any of the query's boxes (a stand-in for "samples passed"), so a query over a node's bounds is
+// non-zero exactly when a visible object lies in (or overlaps) that node. Results become ready
+// after a fixed number of later commands (draws or queries), like the deterministic latency mode
+// of the GL device; fetching one earlier counts as a wait.
+#pragma once
+
+#include "occsim/culling/testing/command_latency_queries.h"
+#include "occsim/culling/contract/render_device.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace occsim {
+
+class ScriptedQueryDevice final : public RenderDevice {
+public:
+    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : queries_(latency_commands) {}
+
+    // The current frame's truth: which objects are visible, and every object's box.
+    void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
+    // The same, copied into the device's own buffers: a caller that changes the truth every frame
+    // (a moving scene) allocates nothing once they are large enough.
+    void updateVisibility(std::span<const uint8_t> visible, std::span<const Aabb> object_boxes);
+
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override;
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
+    bool isQueryReady(QueryId id) override;
+    uint64_t queryResult(QueryId id) override;
+
+    // What the culler did since the last clearLog().
+    const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
+    const std::vector<Aabb>& queriedBoxes() const { return queried_; }
+    // What each query since the last clearLog() was for (its first subject), in issue order.
+    const std::vector<QueryTag>& queryTags() const { return tags_; }
+    void clearLog();
+    uint32_t pendingQueries() const { return queries_.pending(); }
+    // The most queries that were ever in flight at once (issued, result not yet fetched).
+    uint32_t maxPendingQueries() const { return max_pending_; }
+
+private:
+    CommandLatencyQueries queries_;
+    uint32_t max_pending_ = 0;
+    std::vector<uint8_t> visible_;
+    std::vector<Aabb> boxes_;
+    std::vector<uint32_t> drawn_;
+    std::vector<Aabb> queried_;
+    std::vector<QueryTag> tags_;
+};
+
+}  // namespace occsim

@@ -1,0 +1,38 @@
+#include "sim/run/culler_setup.h"
+
+#include "render/gl_renderer.h"
+#include "occsim/culling/contract/render_device.h"
+
+namespace occsim {
+
+std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, const Scene& scene,
+                                               const Scenario& scenario, GlRenderer& renderer,
+                                               const LatencyMode& latency) {
+    std::optional<CostModelChoice> choice;
+    for (RunConfig& config : configs) {
+        const AlgorithmTraits& algorithm = *config.algorithm;
+        if (!algorithm.cost_model_use) continue;
+        const CostModelUse use = algorithm.cost_model_use(config.culler.of(algorithm));
+        if (!use.wanted) continue;
+        if (config.culler.cost_model.known()) {
+            if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};
+            continue;
+        }
+        if (!choice || choice->source == "scenario") {
+            // Queries are timed with as many in flight as this culler keeps.
+            choice = latency.deterministic
+                         ? CostModelChoice{referenceCostModel(), "reference"}
+                         : CostModelChoice{calibrateCostModel(scene, scenario, renderer,
+                                                              use.queries_in_flight),
+                                           "calibrated"};
+        }
+        config.culler.cost_model = choice->costs;
+    }
+    return choice;
+}
+
+std::unique_ptr<Culler> makeConfiguredCuller(const RunConfig& config) {
+    return makeCuller(*config.algorithm, config.culler);
+}
+
+}  // namespace occsim
