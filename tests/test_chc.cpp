@@ -129,29 +129,26 @@ void expectConsistentScene(const BspTree& tree, const std::vector<Aabb>& boxes,
 // --- Options and the factory --------------------------------------------------------------------
 
 TEST(PeerCullerOptions, DefaultsAreValidAndOutOfRangeValuesAreRejectedWithAMessage) {
-    std::string error;
-    EXPECT_TRUE(ChcOptions{}.isValid(&error));
-    EXPECT_TRUE(ChcppOptions{}.isValid(&error));
-    EXPECT_TRUE(AsyncOptions{}.isValid(&error));
+    for (const char* name : {"chc", "chc++", "async"}) {
+        const AlgorithmTraits& a = *findAlgorithm(name);
+        EXPECT_EQ(checkOptionValues(a, OptionValues(a.options)), "") << name;
+    }
+    EXPECT_EQ(OptionValues(findAlgorithm("chc++")->options).count("batch_size"), ChcppOptions{}.batch_size);
     EXPECT_EQ(ChcppOptions{}.batch_size, 50u);
     EXPECT_EQ(AsyncOptions{}.retest_interval_frames, 5u);
 
-    ChcOptions chc;
-    chc.visible_frames_skip = 2000000;
-    EXPECT_FALSE(chc.isValid(&error));
-    EXPECT_NE(error.find("visible_frames_skip"), std::string::npos);
-    ChcppOptions chcpp;
-    chcpp.batch_size = 0;
-    EXPECT_FALSE(chcpp.isValid(&error));
-    EXPECT_NE(error.find("batch_size"), std::string::npos);
-    chcpp = {};
-    chcpp.tight_bounds_depth = 7;
-    EXPECT_FALSE(chcpp.isValid(&error));
-    EXPECT_NE(error.find("tight_bounds_depth"), std::string::npos);
-    AsyncOptions async;
-    async.retest_interval_frames = 0;
-    EXPECT_FALSE(async.isValid(&error));
-    EXPECT_NE(error.find("retest_interval_frames"), std::string::npos);
+    const auto rejects = [](const char* culler, const char* key, double value) {
+        const AlgorithmTraits& a = *findAlgorithm(culler);
+        OptionValues v(a.options);
+        v.set(key, value);
+        const std::string why = checkOptionValues(a, v);
+        EXPECT_EQ(why.rfind(key, 0), 0u) << culler << " " << key << ": " << why;
+    };
+    rejects("chc", "visible_frames_skip", 2000000);
+    rejects("chc++", "batch_size", 0);
+    rejects("chc++", "tight_bounds_depth", 7);
+    rejects("chc++", "multiqueries", 0.5);
+    rejects("async", "retest_interval_frames", 0);
 }
 
 TEST(PeerCullerOptions, TheFactoryKnowsTheThreeByName) {
@@ -167,7 +164,8 @@ TEST(PeerCullerOptions, TheFactoryKnowsTheThreeByName) {
 // What each algorithm is comes from its registration, and every registered culler reports the
 // name it was registered under.
 TEST(AlgorithmRegistry, StatesWhatEachAlgorithmIs) {
-    for (const AlgorithmTraits& a : algorithms()) {
+    for (const AlgorithmTraits* a_row : algorithms()) {
+        const AlgorithmTraits& a = *a_row;
         EXPECT_EQ(makeCuller(a, CullerOptions{})->name(), a.name);
         EXPECT_EQ(findAlgorithm(a.name), &a);
         EXPECT_FALSE(a.oracle && a.issues_queries) << a.name;
@@ -244,10 +242,11 @@ TEST_P(ConservativeTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible
     const std::vector<Aabb> boxes = randomBoxes(1500, 7);
     const BspTree tree = buildTree(boxes);
     CullerOptions options;
-    if (algorithm == "chc++ box") options.chcpp.tight_bounds_depth = 0;
-    if (algorithm == "chc++ skip") options.chcpp.visible_frames_skip = 10;
-    if (algorithm == "chc++ single") options.chcpp.multiqueries = false;
-    if (algorithm == "chc skip") options.chc.visible_frames_skip = 3;
+    OptionValues& chcpp = options.edit(*findAlgorithm("chc++"));
+    if (algorithm == "chc++ box") chcpp.set("tight_bounds_depth", 0);
+    if (algorithm == "chc++ skip") chcpp.set("visible_frames_skip", 10);
+    if (algorithm == "chc++ single") chcpp.set("multiqueries", 0);
+    if (algorithm == "chc skip") options.edit(*findAlgorithm("chc")).set("visible_frames_skip", 3);
     const std::string name = algorithm.substr(0, algorithm.find(' '));
     const std::unique_ptr<Culler> culler = testing::cullerNamed(name, options);
     culler->reset(tree);

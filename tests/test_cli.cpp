@@ -157,7 +157,7 @@ TEST(Cli, BadCullingFileIsOneLineNamingTheFileAndPointerWithExitCode2) {
     } cases[] = {
         {R"({"format_version": 1, "culling": {"statistical": {"base_tme": 0.3}}})",
          "/culling/statistical/base_tme: unknown key 'base_tme'; did you mean 'base_time'?"},
-        {R"({"format_version": 1, "culling": {"statistical": {"decay_b": 2}}})", "/culling/statistical: decay_b must be in [0, 1]"},
+        {R"({"format_version": 1, "culling": {"statistical": {"decay_b": 2}}})", "/culling/statistical/decay_b: expected a number in [0, 1], got 2"},
         {R"({"format_version": 1})", "missing required key 'culling'"},
         {R"({"format_version": 1, "culling": {}, "camera": {}})", "unknown key 'camera'"},
         {R"({"culling": {}})", "format_version"},

@@ -30,8 +30,8 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 std::vector<const AlgorithmTraits*> decidingCullers() {
     std::vector<const AlgorithmTraits*> out;
-    for (const AlgorithmTraits& a : algorithms()) {
-        if (!a.oracle) out.push_back(&a);
+    for (const AlgorithmTraits* a : algorithms()) {
+        if (!a->oracle) out.push_back(a);
     }
     return out;
 }

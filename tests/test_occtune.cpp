@@ -146,7 +146,11 @@ TEST(Occtune, BadInputIsOneLineWithExitCode2BeforeAnyRun) {
     const std::vector<Case> cases = {
         {kSmall + " --bounds base_time=1:1", "empty range"},
         {kSmall + " --bounds base_time=2:0.5", "inverted range"},
-        {kSmall + " --bounds decay_b=0:2", "decay_b must be in [0, 1]"},
+        {kSmall + " --bounds decay_b=0:2", "decay_b=2 is not a valid setting: expected a value in [0, 1]"},
+        {kSmall + " --algo fastest", "--algo: unknown algorithm 'fastest'"},
+        {kSmall + " --algo vfc", "--algo vfc: its options descriptor marks no option tunable"},
+        {kSmall + " --algo statistical+ --params base_time", "unknown parameter 'base_time' of statistical+"},
+        {kSmall + " --plugin /no/such/libplugin.so", "--plugin /no/such/libplugin.so: no such file"},
         {kSmall + " --params speed", "unknown parameter 'speed'"},
         {kSmall + " --params base_time --bounds decay_a=1:3", "not tuned"},
         {kSmall + " --budget 11", "--budget 11: too small for the model"},

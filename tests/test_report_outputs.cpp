@@ -322,7 +322,7 @@ TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
     c.width = 200;
     c.height = 150;
     c.command_line = "occsim bench scenarios/small/teapots-small.json --error --plots";
-    c.sweep = Sweep{"threshold", {0, 4}};
+    c.sweep = Sweep{"", "threshold", {0, 4}};
     ReportFiles files;
     files.plot_files = {"plot-frame-time.png", "plot-frame-time.svg", "plot-time-vs-error.png"};
     files.birds_eye_files = {"birds-eye-chc-frame-00020.png"};

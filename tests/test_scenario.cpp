@@ -1,6 +1,8 @@
 // The strict scenario parser: every class of bad input fails with the file name and the exact JSON
 // pointer of the offending value; a minimal file gets the documented defaults; the examples in
 // docs/scenario-format.md parse.
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
 
@@ -44,6 +46,15 @@ std::string errorFor(const json& scenario) { return errorForText(scenario.dump(2
 
 // The message must be "<file>: <pointer>: ..." (just "<file>: ..." for errors about the whole
 // file, pointer "") and contain `fragment`.
+// A culler's option values as the scenario gave them (or their defaults).
+OptionValues optionsOf(const Scenario& s, const char* culler) {
+    return s.culler.of(*findAlgorithm(culler));
+}
+
+StatisticalOptions statisticalOf(const Scenario& s, const char* culler = "statistical") {
+    return statisticalOptionsFrom(optionsOf(s, culler));
+}
+
 void expectError(const std::string& message, const std::string& pointer,
                  const std::string& fragment) {
     const std::string prefix = std::string(kFile) + ": " + (pointer.empty() ? "" : pointer + ": ");
@@ -332,23 +343,23 @@ TEST(ScenarioRanges, ReversedSizeRangeIsRejected) {
     expectError(scenario, "/scene/sources/0/size", "min <= max");
 }
 
-TEST(ScenarioRanges, InvalidStatisticalOptionsReportIsValidMessage) {
+TEST(ScenarioRanges, InvalidStatisticalOptionsReportTheDescriptorsRangeAtTheirKey) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"statistical", {{"decay_b", 1.5}}}};
-    expectError(scenario, "/culling/statistical", "decay_b must be in [0, 1]");
+    expectError(scenario, "/culling/statistical/decay_b", "expected a number in [0, 1], got 1.5");
 }
 
 TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
     json scenario = minimalScenario();
     const Scenario plain = parseScenarioText(scenario.dump(), "x.json");
-    EXPECT_FALSE(plain.culler.statistical.ready_answers) << "the paper by default";
-    EXPECT_FALSE(plain.culler.statistical.cost_model);
-    EXPECT_TRUE(plain.culler.statistical_plus.ready_answers);
-    EXPECT_TRUE(plain.culler.statistical_plus.virtual_leaves);
-    EXPECT_TRUE(plain.culler.statistical_plus.object_queries);
-    EXPECT_TRUE(plain.culler.statistical_plus.cost_model);
-    EXPECT_TRUE(plain.culler.statistical_plus.fallback);
-    EXPECT_GT(plain.culler.statistical_plus.requery_parallax, 0.0);
+    EXPECT_FALSE(statisticalOf(plain).ready_answers) << "the paper by default";
+    EXPECT_FALSE(statisticalOf(plain).cost_model);
+    EXPECT_TRUE(statisticalOf(plain, "statistical+").ready_answers);
+    EXPECT_TRUE(statisticalOf(plain, "statistical+").virtual_leaves);
+    EXPECT_TRUE(statisticalOf(plain, "statistical+").object_queries);
+    EXPECT_TRUE(statisticalOf(plain, "statistical+").cost_model);
+    EXPECT_TRUE(statisticalOf(plain, "statistical+").fallback);
+    EXPECT_GT(statisticalOf(plain, "statistical+").requery_parallax, 0.0);
     EXPECT_FALSE(plain.culler.cost_model.known()) << "measured at start-up unless given";
 
     scenario["culling"] = {
@@ -359,13 +370,13 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
         {"cost_model", {{"query_box_ms", 0.02}, {"triangle_ms", 6e-5}, {"draw_call_ms", 0.001}}}};
     const Scenario s = parseScenarioText(scenario.dump(), "x.json");
     EXPECT_EQ(s.algorithm, "statistical+");
-    EXPECT_FALSE(s.culler.statistical_plus.fallback);
-    EXPECT_TRUE(s.culler.statistical_plus.ready_answers) << "keys not given keep the plus defaults";
-    EXPECT_DOUBLE_EQ(s.culler.statistical_plus.requery_distance_m, 4.0);
-    EXPECT_DOUBLE_EQ(s.culler.statistical_plus.base_time_s, 0.5);
-    EXPECT_TRUE(s.culler.statistical.virtual_leaves);
-    EXPECT_TRUE(s.culler.statistical.object_queries);
-    EXPECT_FALSE(s.culler.statistical.ready_answers);
+    EXPECT_FALSE(statisticalOf(s, "statistical+").fallback);
+    EXPECT_TRUE(statisticalOf(s, "statistical+").ready_answers) << "keys not given keep the plus defaults";
+    EXPECT_DOUBLE_EQ(statisticalOf(s, "statistical+").requery_distance_m, 4.0);
+    EXPECT_DOUBLE_EQ(statisticalOf(s, "statistical+").base_time_s, 0.5);
+    EXPECT_TRUE(statisticalOf(s).virtual_leaves);
+    EXPECT_TRUE(statisticalOf(s).object_queries);
+    EXPECT_FALSE(statisticalOf(s).ready_answers);
     EXPECT_EQ(s.culler.cost_model, (CostModel{0.02, 6e-5, 0.001}));
 }
 
@@ -374,7 +385,7 @@ TEST(ScenarioRanges, InvalidStatisticalPlusAndCostModelReportTheirObjects) {
     scenario["culling"] = {{"statistical+", {{"requery_distance", 3.0}}}};
     expectError(scenario, "/culling/statistical+", "requery_distance and requery_parallax are alternatives");
     scenario["culling"] = {{"statistical+", {{"fallback_visible_share", 1.5}}}};
-    expectError(scenario, "/culling/statistical+", "fallback_visible_share must be in [0, 1]");
+    expectError(scenario, "/culling/statistical+/fallback_visible_share", "expected a number in [0, 1], got 1.5");
     scenario["culling"] = {{"cost_model", {{"query_box_ms", -1.0}}}};
     expectError(scenario, "/culling/cost_model", "finite numbers >= 0");
     scenario["culling"] = {{"cost_model", {{"query_box_ms", 0.0}}}};
@@ -383,18 +394,18 @@ TEST(ScenarioRanges, InvalidStatisticalPlusAndCostModelReportTheirObjects) {
     expectError(scenario, "/culling/cost_model/query_ms", "unknown key");
 }
 
-TEST(ScenarioRanges, InvalidPeerCullerOptionsReportIsValidMessageAtTheirObject) {
+TEST(ScenarioRanges, InvalidPeerCullerOptionsReportTheDescriptorsRangeAtTheirKey) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"chc", {{"visible_frames_skip", 2000000}}}};
-    expectError(scenario, "/culling/chc", "visible_frames_skip must be in [0, 1000000]");
+    expectError(scenario, "/culling/chc/visible_frames_skip", "expected an integer in [0, 1000000] (frames), got 2000000");
     scenario["culling"] = {{"chc++", {{"batch_size", 0}}}};
-    expectError(scenario, "/culling/chc++", "batch_size must be >= 1");
+    expectError(scenario, "/culling/chc++/batch_size", "expected an integer in [1, 4294967295] (nodes), got 0");
     scenario["culling"] = {{"chc++", {{"tight_bounds_depth", 9}}}};
-    expectError(scenario, "/culling/chc++", "tight_bounds_depth must be in [0, 6]");
+    expectError(scenario, "/culling/chc++/tight_bounds_depth", "expected an integer in [0, 6] (tree levels), got 9");
     scenario["culling"] = {{"chc++", {{"multiqueries", 1}}}};
     expectError(scenario, "/culling/chc++/multiqueries", "expected true or false");
     scenario["culling"] = {{"async", {{"retest_interval_frames", 0}}}};
-    expectError(scenario, "/culling/async", "retest_interval_frames must be in [1, 1000000]");
+    expectError(scenario, "/culling/async/retest_interval_frames", "expected an integer in [1, 1000000] (frames), got 0");
     scenario["culling"] = {{"async", {{"retest_interval", 3}}}};
     expectError(scenario, "/culling/async/retest_interval", "unknown key 'retest_interval'");
 }
@@ -412,18 +423,18 @@ TEST(ScenarioCulling, PeerCullerOptionsAreRead) {
         {"async", {{"retest_interval_frames", 9}}}};
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_EQ(s.algorithm, "chc++");
-    EXPECT_EQ(s.culler.chc.visible_frames_skip, 2u);
-    EXPECT_EQ(s.culler.approximation.threshold_pixels, 25u);
+    EXPECT_EQ(optionsOf(s, "chc").number("visible_frames_skip"), 2.0);
+    EXPECT_EQ(s.culler.approximation.threshold_pixels, 25.0);
     EXPECT_TRUE(s.culler.approximation.stale_results);
-    EXPECT_EQ(s.culler.chcpp.visible_frames_skip, 7u);
-    EXPECT_EQ(s.culler.chcpp.batch_size, 20u);
-    EXPECT_FALSE(s.culler.chcpp.multiqueries);
-    EXPECT_EQ(s.culler.chcpp.tight_bounds_depth, 2u);
-    EXPECT_EQ(s.culler.chcpp.seed, 99u);
-    EXPECT_EQ(s.culler.async.retest_interval_frames, 9u);
+    EXPECT_EQ(optionsOf(s, "chc++").number("visible_frames_skip"), 7.0);
+    EXPECT_EQ(optionsOf(s, "chc++").number("batch_size"), 20.0);
+    EXPECT_FALSE(optionsOf(s, "chc++").flag("multiqueries"));
+    EXPECT_EQ(optionsOf(s, "chc++").number("tight_bounds_depth"), 2.0);
+    EXPECT_EQ(optionsOf(s, "chc++").number("seed"), 99.0);
+    EXPECT_EQ(optionsOf(s, "async").number("retest_interval_frames"), 9.0);
     const Scenario defaults = parseScenarioText(minimalScenario().dump(), kFile);
-    EXPECT_EQ(defaults.culler.chcpp.batch_size, ChcppOptions{}.batch_size);
-    EXPECT_EQ(defaults.culler.async.retest_interval_frames, AsyncOptions{}.retest_interval_frames);
+    EXPECT_EQ(optionsOf(defaults, "chc++").number("batch_size"), 50.0);
+    EXPECT_EQ(optionsOf(defaults, "async").number("retest_interval_frames"), 5.0);
 }
 
 TEST(ScenarioRanges, InvalidBspOptionsReportIsValidMessage) {
@@ -548,12 +559,12 @@ TEST(ScenarioDefaults, MinimalScenarioGetsAllDocumentedDefaults) {
 
     EXPECT_TRUE(s.movers.empty());
     EXPECT_EQ(s.algorithm, "statistical");
-    EXPECT_DOUBLE_EQ(s.culler.statistical.base_time_s, statistical_defaults.base_time_s);
-    EXPECT_DOUBLE_EQ(s.culler.statistical.decay_a, 2.0);
-    EXPECT_DOUBLE_EQ(s.culler.statistical.decay_b, 0.5);
-    EXPECT_EQ(s.culler.statistical.history_length, 8u);
-    EXPECT_DOUBLE_EQ(s.culler.statistical.max_statistics_age_s, 2.0);
-    EXPECT_EQ(s.culler.statistical.queries_before_restart, 20u);
+    EXPECT_DOUBLE_EQ(statisticalOf(s).base_time_s, statistical_defaults.base_time_s);
+    EXPECT_DOUBLE_EQ(statisticalOf(s).decay_a, 2.0);
+    EXPECT_DOUBLE_EQ(statisticalOf(s).decay_b, 0.5);
+    EXPECT_EQ(statisticalOf(s).history_length, 8u);
+    EXPECT_DOUBLE_EQ(statisticalOf(s).max_statistics_age_s, 2.0);
+    EXPECT_EQ(statisticalOf(s).queries_before_restart, 20u);
     EXPECT_EQ(s.bsp.max_depth, bsp_defaults.max_depth);
     EXPECT_EQ(s.bsp.max_objects_per_leaf, 4u);
     EXPECT_EQ(s.bsp.split_rule, BspSplitRule::Median);
@@ -620,8 +631,8 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_FALSE(s.movers[1].has_region);
     EXPECT_DOUBLE_EQ(s.movers[1].radius_max_m, 1.0);
     EXPECT_EQ(s.algorithm, "vfc");
-    EXPECT_DOUBLE_EQ(s.culler.statistical.base_time_s, 1.0);
-    EXPECT_EQ(s.culler.statistical.history_length, 4u);
+    EXPECT_DOUBLE_EQ(statisticalOf(s).base_time_s, 1.0);
+    EXPECT_EQ(statisticalOf(s).history_length, 4u);
     EXPECT_EQ(s.bsp.split_rule, BspSplitRule::Sah);
     EXPECT_EQ(s.bsp.max_depth, 12u);
     EXPECT_FLOAT_EQ(s.bsp.root_margin, 0.0f);

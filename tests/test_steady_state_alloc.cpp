@@ -102,7 +102,7 @@ class SteadyStateAllocation
     : public ::testing::TestWithParam<std::tuple<size_t, DeviceKind>> {};
 
 TEST_P(SteadyStateAllocation, CullAndReinsertAllocateNothing) {
-    const AlgorithmTraits& algorithm = algorithms()[std::get<0>(GetParam())];
+    const AlgorithmTraits& algorithm = *algorithms()[std::get<0>(GetParam())];
     const DeviceKind kind = std::get<1>(GetParam());
 
     const std::vector<Aabb> initial = testing::randomBoxes(kObjects, 17, 60.0f);
@@ -179,7 +179,7 @@ INSTANTIATE_TEST_SUITE_P(
                                          DeviceKind::Approximate, DeviceKind::Tracing,
                                          DeviceKind::DepthRaster)),
     [](const ::testing::TestParamInfo<std::tuple<size_t, DeviceKind>>& param_info) {
-        std::string name(algorithms()[std::get<0>(param_info.param)].name);
+        std::string name(algorithms()[std::get<0>(param_info.param)]->name);
         for (char& c : name) {
             if (c == '+') c = 'p';
             if (c == '-') c = '_';

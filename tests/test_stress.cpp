@@ -44,7 +44,7 @@ Scenario shifted(const glm::dvec3& by) {
 
 BenchResult benchAll(const Scenario& scenario) {
     BenchOptions options;
-    for (const AlgorithmTraits& a : algorithms()) options.algorithms.push_back(&a);
+    options.algorithms = algorithms();
     options.measure_error = true;
     options.latency = {true, 8};
     return runBenchmark(scenario, options);

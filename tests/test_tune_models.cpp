@@ -248,9 +248,12 @@ TEST(Design, NextBatchStartsAtTheOptimumAndKeepsItsDistance) {
 
 // ---- parameters ----------------------------------------------------------------------------
 
-std::string inputError(const std::string& params, const std::vector<std::string>& bounds) {
+const AlgorithmTraits& statistical() { return *findAlgorithm("statistical"); }
+
+std::string inputError(const std::string& params, const std::vector<std::string>& bounds,
+                       const char* algorithm = "statistical") {
     try {
-        parseParameterSpace(params, bounds);
+        parseParameterSpace(*findAlgorithm(algorithm), params, bounds);
     } catch (const TuneInputError& e) {
         return e.what();
     }
@@ -258,33 +261,47 @@ std::string inputError(const std::string& params, const std::vector<std::string>
 }
 
 TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
-    EXPECT_NE(inputError("speed", {}).find("unknown parameter 'speed'; expected one of: base_time, decay_a, decay_b"),
+    EXPECT_NE(inputError("speed", {}).find("unknown parameter 'speed' of statistical; expected one of: base_time, decay_a, decay_b"),
               std::string::npos);
     EXPECT_NE(inputError("base_time,base_time", {}).find("twice"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=1:1"}).find("empty range"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=2:1"}).find("inverted range"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"decay_a=1:2"}).find("not tuned"), std::string::npos);
-    EXPECT_NE(inputError("decay_b", {"decay_b=0:2"}).find("decay_b must be in [0, 1]"), std::string::npos);
+    EXPECT_NE(inputError("decay_b", {"decay_b=0:2"}).find("decay_b=2 is not a valid setting: expected a value in [0, 1]"),
+              std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=0.1"}).find("expected name=lo:hi"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=a:1"}).find("two finite numbers"), std::string::npos);
-    EXPECT_NE(inputError("", {}).find("no parameter"), std::string::npos);
+    EXPECT_NE(inputError("base_time,", {}).find("empty parameter name"), std::string::npos);
+    EXPECT_NE(inputError("", {}, "vfc").find("marks no option tunable"), std::string::npos);
     for (const std::string& e : {inputError("speed", {}), inputError("base_time", {"base_time=2:1"})}) {
         EXPECT_EQ(e.find('\n'), std::string::npos);
     }
 
-    const ParameterSpace s = parseParameterSpace("decay_a,base_time", {"base_time=0.2:1.2"});
+    // No --params: every option the descriptor marks tunable, in its order; statistical+ declares
+    // its own (BASE_TIME is unused while it re-queries by parallax).
+    const ParameterSpace every = parseParameterSpace(statistical(), "", {});
+    ASSERT_EQ(every.size(), 3u);
+    EXPECT_EQ(every.parameters[0].name, "base_time");
+    const ParameterSpace plus = parseParameterSpace(*findAlgorithm("statistical+"), "", {});
+    ASSERT_EQ(plus.size(), 3u);
+    EXPECT_EQ(plus.parameters[2].name, "requery_parallax");
+
+    const ParameterSpace s = parseParameterSpace(statistical(), "decay_a,base_time", {"base_time=0.2:1.2"});
     ASSERT_EQ(s.size(), 2u);
-    EXPECT_STREQ(s.parameters[0]->name, "decay_a");
+    EXPECT_EQ(s.parameters[0].name, "decay_a");
     EXPECT_EQ(s.bounds[1].lo, 0.2);
     EXPECT_EQ(s.bounds[1].hi, 1.2);
     EXPECT_NEAR(s.value(1, 0.5), 0.7, 1e-12);
-    const StatisticalOptions o = s.apply({}, {3.0, 0.9});
-    EXPECT_EQ(o.decay_a, 3.0);
-    EXPECT_EQ(o.base_time_s, 0.9);
-    EXPECT_EQ(o.decay_b, StatisticalOptions{}.decay_b);
-    const StatisticalOptions paper = s.paper(o);
-    EXPECT_EQ(paper.base_time_s, 2.0 / 3.0);
-    EXPECT_EQ(paper.decay_a, 2.0);
+    const OptionValues o = s.apply(OptionValues(statistical().options), {3.0, 0.9});
+    EXPECT_EQ(o.number("decay_a"), 3.0);
+    EXPECT_EQ(o.number("base_time"), 0.9);
+    EXPECT_EQ(o.number("decay_b"), 0.5);
+    const OptionValues paper = s.paper(o);
+    EXPECT_EQ(paper.number("base_time"), 2.0 / 3.0);
+    EXPECT_EQ(paper.number("decay_a"), 2.0);
+    // A value on an end of its box is reported, so that the report can suggest widening it.
+    EXPECT_EQ(s.boundsHit({2.0, 0.2}), (std::vector<std::string>{"", "lower"}));
+    EXPECT_EQ(s.boundsHit({4.0, 0.7}), (std::vector<std::string>{"upper", ""}));
 }
 
 // ---- sample log ----------------------------------------------------------------------------
@@ -353,22 +370,33 @@ TEST(SampleLog, ALogThatIsNotOneIsBadInputNamingTheLine) {
 // ---- tuned.json ----------------------------------------------------------------------------
 
 TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
-    StatisticalOptions tuned;
-    tuned.base_time_s = 0.123456789012345;
-    tuned.decay_a = 2.75;
-    const TunedFile file = tunedFile(tuned, CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    OptionValues tuned(statistical().options);
+    tuned.set("base_time", 0.123456789012345);
+    tuned.set("decay_a", 2.75);
+    const TunedFile file = tunedFile(statistical(), tuned, CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
     const nlohmann::json json = nlohmann::json::parse(file.text);
     Scenario s;
     s.algorithm = "vfc";
     applyCullingFile(CullingFile{"tuned.json", json}, s);
     EXPECT_EQ(s.algorithm, "statistical");
-    EXPECT_EQ(s.culler.statistical.base_time_s, tuned.base_time_s);
-    EXPECT_EQ(s.culler.statistical.decay_a, 2.75);
-    // The fitted cost model is the culler's cost option, read back as such.
-    EXPECT_TRUE(file.has_cost_option);
-    EXPECT_DOUBLE_EQ(s.culler.cost_model.query_box_ms, 0.02);
-    EXPECT_DOUBLE_EQ(s.culler.cost_model.triangle_ms, 0.1 / 1000.0);
-    EXPECT_DOUBLE_EQ(s.culler.cost_model.draw_call_ms, 0.01);
+    EXPECT_EQ(s.culler.of(statistical()).number("base_time"), 0.123456789012345);
+    EXPECT_EQ(s.culler.of(statistical()).number("decay_a"), 2.75);
+    // The paper's culler weighs no costs: the fitted cost model stays out of the file, so that
+    // applying it changes nothing else (statistical+ reads culling.cost_model too).
+    EXPECT_FALSE(file.has_cost_option);
+    EXPECT_FALSE(s.culler.cost_model.known());
+
+    // statistical+ weighs costs: its file carries the fitted model, read back as the cost option,
+    // and says that other cullers read it too.
+    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const TunedFile plus_file = tunedFile(plus, OptionValues(plus.options), CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    Scenario p;
+    applyCullingFile(CullingFile{"tuned.json", nlohmann::json::parse(plus_file.text)}, p);
+    EXPECT_TRUE(plus_file.has_cost_option);
+    EXPECT_NE(plus_file.note.find("every culler that weighs costs"), std::string::npos);
+    EXPECT_DOUBLE_EQ(p.culler.cost_model.query_box_ms, 0.02);
+    EXPECT_DOUBLE_EQ(p.culler.cost_model.triangle_ms, 0.1 / 1000.0);
+    EXPECT_DOUBLE_EQ(p.culler.cost_model.draw_call_ms, 0.01);
     nlohmann::json culling = nlohmann::json::object();
     EXPECT_FALSE(addCostOption(culling, CostModel{1.0, 0.0, 0.0, 0.0, 1.0}));
     EXPECT_TRUE(culling.empty());

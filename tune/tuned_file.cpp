@@ -30,9 +30,8 @@ TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
     }
     nlohmann::ordered_json culling = {{"algorithm", algorithm.name}, {algorithm.name, options}};
     TunedFile file;
-    const bool weighs_costs =
-        algorithm.cost_model_use && algorithm.cost_model_use(tuned).wanted;
-    if (weighs_costs) {
+    file.weighs_costs = algorithm.cost_model_use && algorithm.cost_model_use(tuned).wanted;
+    if (file.weighs_costs) {
         nlohmann::json cost_option = nlohmann::json::object();
         file.has_cost_option = addCostOption(cost_option, cost);
         for (const auto& [key, value] : cost_option.items()) culling[key] = value;

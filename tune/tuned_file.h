@@ -22,6 +22,7 @@ bool addCostOption(nlohmann::json& culling, const CostModel& model);
 struct TunedFile {
     std::string text;            // the file's contents
     bool has_cost_option = false;
+    bool weighs_costs = false;   // the tuned culler reads culling.cost_model
     std::string note;            // what else the file changes, when it carries a cost model
 };
 

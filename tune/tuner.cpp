@@ -189,7 +189,7 @@ int runTuner(const TuneOptions& o) {
     std::printf("response model: predicted ratio %.3f +/- %.3f at the tuned values; leave-one-out error %.4f\n",
                 r.predicted_tuned, r.predicted_tuned_sd, r.response.loo_rms);
     std::printf("%s", confirmationTable(r).c_str());
-    if (!tuned_file.has_cost_option) {
+    if (tuned_file.weighs_costs && !tuned_file.has_cost_option) {
         std::printf("the fitted cost model is 0 for queries, triangles and draw calls: it is in cost_model.json only, not in tuned.json\n");
     }
     if (!charts.ok && !charts.message.empty()) std::printf("%s\n", charts.message.c_str());

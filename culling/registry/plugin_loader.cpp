@@ -4,6 +4,7 @@
 
 #include <dlfcn.h>
 
+#include <map>
 #include <set>
 #include <system_error>
 
@@ -17,9 +18,10 @@ public:
     std::vector<AlgorithmTraits> rows;
 };
 
-std::set<std::string>& loadedFiles() {
-    static std::set<std::string> files;
-    return files;
+// The files each registry has loaded (tests use registries of their own).
+std::set<std::string>& loadedFiles(const CullerRegistry& registry) {
+    static std::map<const CullerRegistry*, std::set<std::string>> files;
+    return files[&registry];
 }
 
 // Each culler made once from its defaults, with the cost model unknown: a factory that throws or
@@ -47,7 +49,7 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
         throw PluginError(name + ": no such file; expected a plugin culler (a shared object, .so)");
     }
     const std::string canonical = std::filesystem::canonical(file, ec).string();
-    if (loadedFiles().count(canonical)) return {};
+    if (loadedFiles(registry).count(canonical)) return {};
 
     // RTLD_LOCAL: a plugin's symbols do not leak into the next plugin's. Never closed: its
     // cullers' code and rows live until the program ends.
@@ -101,7 +103,7 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
         throw PluginError(name + ": registering its cullers threw: " + e.what());
     }
     for (AlgorithmTraits& row : registrar.rows) names.push_back(registry.add(std::move(row)).name);
-    loadedFiles().insert(canonical);
+    loadedFiles(registry).insert(canonical);
     return names;
 }
 

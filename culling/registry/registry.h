@@ -7,6 +7,7 @@
 
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/registry/culler_options.h"
 #include "occsim/culling/registry/options.h"
 
 #include <deque>
@@ -98,7 +99,6 @@ std::string algorithmNameList();                              // "vfc, stop-and-
 
 // The culler, made by its factory from its own values in `options`. A plugin's factory that
 // throws is reported as a RegistryError naming the plugin's file and the culler.
-struct CullerOptions;
 std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options);
 
 }  // namespace occsim

@@ -155,7 +155,7 @@ private:
 // One culler's frame over a 30,000-object tree with answers that cost nothing: the CPU the
 // traversal and its decisions cost, per node whose bounds pass the frustum.
 void BM_CullerTraversal(benchmark::State& state) {
-    const AlgorithmTraits& algorithm = algorithms()[static_cast<size_t>(state.range(0))];
+    const AlgorithmTraits& algorithm = *algorithms()[static_cast<size_t>(state.range(0))];
     state.SetLabel(std::string(algorithm.name));
     const std::vector<Aabb> boxes = bigField(30000, 3);
     BspTree tree;

@@ -1,0 +1,69 @@
+// Plugins for the loader's tests (test_plugins.cpp), one shared object per define:
+//   PLUGIN_GOOD            a conservative culler "test-frustum" (frustum culling) with options
+//   PLUGIN_NO_ENTRY        no entry point at all
+//   PLUGIN_OTHER_ABI       an entry point that carries another ABI version
+//   PLUGIN_TAKEN_NAME      registers "chc", a built-in's name
+//   PLUGIN_BAD_DESCRIPTOR  an option whose range is inverted
+//   PLUGIN_THROWING        a factory that throws
+#include "occsim/culling/registry/plugin.h"
+#include "occsim/culling/tree/traversal.h"
+
+#include <stdexcept>
+
+namespace {
+
+class FrustumOnly final : public occsim::Culler {
+public:
+    std::string_view name() const override { return "test-frustum"; }
+    void reset(const occsim::BspTree&) override {}
+    void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
+                       occsim::RenderDevice& device) override {
+        const occsim::PreparedView view = occsim::prepareView(frame.view);
+        occsim::traverseFrontToBack(tree, view, stack_, [&](const occsim::NodeVisit& v) {
+            occsim::drawNodeObjects(tree, v.node, view.frustum, v.inside_frustum, device);
+            return true;
+        });
+    }
+
+private:
+    std::vector<occsim::NodeVisit> stack_;
+};
+
+[[maybe_unused]] std::unique_ptr<occsim::Culler> make(const occsim::CullerContext&) {
+    return std::make_unique<FrustumOnly>();
+}
+
+[[maybe_unused]] std::unique_ptr<occsim::Culler> makeThrowing(const occsim::CullerContext&) {
+    throw std::runtime_error("no GPU budget configured");
+}
+
+[[maybe_unused]] void registerCullers(occsim::PluginRegistrar& registrar) {
+    occsim::AlgorithmTraits t;
+    t.name = "test-frustum";
+    t.summary = "frustum culling, from a plugin (tests)";
+    t.options = {occsim::integerOption("budget", "objects", 1, 1000, 10, "a budget nobody reads"),
+                 occsim::tunable(occsim::numberOption("margin", "m", 0.0, 5.0, 1.0,
+                                                      "a margin nobody reads"),
+                                 0.0, 2.0)};
+    t.factory = make;
+#if defined(PLUGIN_TAKEN_NAME)
+    t.name = "chc";
+#elif defined(PLUGIN_BAD_DESCRIPTOR)
+    t.options[0].min = 10;
+    t.options[0].max = 1;
+#elif defined(PLUGIN_THROWING)
+    t.factory = makeThrowing;
+#endif
+    registrar.add(std::move(t));
+}
+
+}  // namespace
+
+#if defined(PLUGIN_OTHER_ABI)
+extern "C" __attribute__((visibility("default"))) const OccsimPlugin* occsim_plugin() {
+    static const OccsimPlugin plugin{OCCSIM_PLUGIN_ABI_VERSION + 1, "old", registerCullers};
+    return &plugin;
+}
+#elif !defined(PLUGIN_NO_ENTRY)
+OCCSIM_PLUGIN("test plugin", registerCullers)
+#endif

@@ -1,0 +1,199 @@
+// Plugin cullers: the loader on each kind of bad file, and a plugin's culler running wherever a
+// built-in runs (the scenario's options with the same checks, bench tables, summaries, baselines
+// and JUnit files). The plugins are built from tests/plugins/test_plugin.cpp.
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
+#include "shell_command.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+using namespace occsim;
+using occsim::testing::Outcome;
+using occsim::testing::shell;
+namespace fs = std::filesystem;
+
+fs::path pluginFile(const std::string& kind) {
+    return fs::path(TEST_PLUGIN_DIR) / ("libtest_plugin_" + kind + ".so");
+}
+
+fs::path tempDir(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("occsim-plugins-" + std::to_string(::getpid()) + "-" + name);
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+std::string loadError(const fs::path& file, CullerRegistry& registry) {
+    try {
+        loadPlugin(file, registry);
+    } catch (const PluginError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+size_t lineCount(const std::string& s) {
+    size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+Outcome occsim(const std::string& args) { return shell(std::string(OCCSIM_EXE) + " " + args); }
+
+std::string text(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// teapots-small with the good plugin named in its "plugins" key and `culling` as its culling section.
+fs::path scenarioWithPlugin(const fs::path& dir, const nlohmann::json& culling,
+                            const nlohmann::json& expect = nullptr) {
+    nlohmann::json s = nlohmann::json::parse(text(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
+    s["plugins"] = {pluginFile("good").string()};
+    s["culling"] = culling;
+    s["frames"] = 12;
+    s.erase("expect");
+    if (!expect.is_null()) s["expect"] = expect;
+    const fs::path file = dir / "with-plugin.json";
+    std::ofstream(file) << s.dump(2);
+    return file;
+}
+
+TEST(PluginLoader, AGoodPluginRegistersItsCullersOnceWithItsFileAsTheSource) {
+    CullerRegistry registry;
+    const std::vector<std::string> names = loadPlugin(pluginFile("good"), registry);
+    ASSERT_EQ(names, std::vector<std::string>{"test-frustum"});
+    const AlgorithmTraits* a = registry.find("test-frustum");
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(a->source, pluginFile("good").string());
+    EXPECT_TRUE(a->conservative);
+    ASSERT_EQ(a->options.size(), 2u);
+    EXPECT_EQ(a->options[1].key, "margin");
+    EXPECT_TRUE(a->options[1].tunable);
+    EXPECT_TRUE(loadPlugin(pluginFile("good"), registry).empty()) << "a file already loaded is not loaded again";
+    EXPECT_EQ(registry.all().size(), 1u);
+}
+
+TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
+    const fs::path dir = tempDir("bad");
+    const fs::path text_file = dir / "libnotes.so";
+    std::ofstream(text_file) << "not a shared object\n";
+    const struct {
+        fs::path file;
+        std::string expected;
+    } cases[] = {
+        {dir / "libmissing.so", "no such file; expected a plugin culler"},
+        {text_file, "not a loadable shared object"},
+        {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
+        {pluginFile("other_abi"), "built for plugin ABI version 2; this occsim loads version 1"},
+        {pluginFile("taken_name"), "culler 'chc': the name is already taken (by a built-in culler)"},
+        {pluginFile("bad_descriptor"), "invalid options descriptor: option 0 ('budget'): the range must be ordered"},
+        {pluginFile("throwing"), "its factory threw: no GPU budget configured"},
+    };
+    for (const auto& c : cases) {
+        CullerRegistry registry;
+        registry.add(*findAlgorithm("chc"));  // the name a plugin must not take
+        const std::string why = loadError(c.file, registry);
+        EXPECT_EQ(why.rfind(c.file.string() + ": ", 0), 0u) << why;
+        EXPECT_NE(why.find(c.expected), std::string::npos) << why;
+        EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+        EXPECT_EQ(registry.all().size(), 1u) << "a refused plugin registers nothing: " << c.file;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(PluginCli, ABadPluginStopsEveryCommandWithExitCode2AndWritesNothing) {
+    const fs::path dir = tempDir("cli-bad");
+    const std::string small = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+    for (const std::string kind : {"missing", "no_entry", "other_abi", "taken_name", "bad_descriptor", "throwing"}) {
+        const fs::path plugin = kind == "missing" ? dir / "libnope.so" : pluginFile(kind);
+        for (const std::string& command : {"run " + small, "bench " + small, "regress " + small}) {
+            const Outcome o = occsim(command + " --plugin " + plugin.string() + " --out " + (dir / "out").string());
+            EXPECT_EQ(o.exit_code, 2) << command << " " << kind << ": " << o.output;
+            EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+            EXPECT_NE(o.output.find("--plugin " + plugin.string() + ": "), std::string::npos) << o.output;
+            EXPECT_FALSE(fs::exists(dir / "out")) << command << " " << kind;
+        }
+    }
+    fs::remove_all(dir);
+}
+
+TEST(PluginCli, APluginsOptionsAreCheckedLikeABuiltinsAtTheirJsonPointer) {
+    const fs::path dir = tempDir("cli-options");
+    const struct {
+        nlohmann::json culling;
+        std::string expected;
+    } cases[] = {
+        {{{"test-frustum", {{"budget", 0}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 0"},
+        {{{"test-frustum", {{"budget", 2.5}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 2.5"},
+        {{{"test-frustum", {{"budget", "ten"}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects)"},
+        {{{"test-frustum", {{"bugdet", 3}}}}, "/culling/test-frustum/bugdet: unknown key 'bugdet'; did you mean 'budget'?"},
+        {{{"algorithm", "test-frustrum"}}, "/culling/algorithm"},
+    };
+    for (const auto& c : cases) {
+        const fs::path scenario = scenarioWithPlugin(dir, c.culling);
+        const Outcome o = occsim("bench " + scenario.string() + " --out " + (dir / "out").string());
+        EXPECT_EQ(o.exit_code, 2) << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+        EXPECT_NE(o.output.find(scenario.string() + ": " + c.expected), std::string::npos) << o.output;
+        EXPECT_FALSE(fs::exists(dir / "out"));
+    }
+    fs::remove_all(dir);
+}
+
+TEST(PluginCli, APluginsCullerRunsBesideTheBuiltinsInBenchRegressAndJunit) {
+    const fs::path dir = tempDir("cli-run");
+    // bench without --algos runs the plugin's culler beside every built-in, error measured.
+    const fs::path scenario = scenarioWithPlugin(dir, {{"test-frustum", {{"budget", 20}}}});
+    const Outcome bench = occsim("bench " + scenario.string() + " --error --deterministic-latency 4 --out " +
+                                 (dir / "bench").string());
+    ASSERT_EQ(bench.exit_code, 0) << bench.output;
+    EXPECT_NE(bench.output.find("\ntest-frustum "), std::string::npos) << bench.output;
+    const nlohmann::json summary = nlohmann::json::parse(text(dir / "bench/summary.json"));
+    bool found = false;
+    for (const nlohmann::json& a : summary["algorithms"]) {
+        if (a["algorithm"] != "test-frustum") continue;
+        found = true;
+        EXPECT_EQ(a["error"]["pixels_total"], 0) << "frustum culling hides nothing";
+    }
+    EXPECT_TRUE(found) << summary.dump();
+    EXPECT_NE(text(dir / "bench/report.md").find("test-frustum"), std::string::npos);
+
+    // A regression baseline and a JUnit file with the plugin's culler in them.
+    const fs::path expecting = scenarioWithPlugin(
+        dir, {{"algorithm", "test-frustum"}},
+        {{"algorithms", {"vfc", "test-frustum"}}, {"deterministic_latency", 4}});
+    const Outcome update = occsim("regress " + expecting.string() + " --update --out " + (dir / "regress").string());
+    ASSERT_EQ(update.exit_code, 0) << update.output;
+    const fs::path baseline = dir / "with-plugin.baseline.json";
+    ASSERT_TRUE(fs::exists(baseline)) << update.output;
+    EXPECT_NE(text(baseline).find("\"test-frustum\""), std::string::npos);
+    const Outcome check = occsim("regress " + expecting.string() + " --junit " + (dir / "junit.xml").string() +
+                                 " --out " + (dir / "regress").string());
+    ASSERT_EQ(check.exit_code, 0) << check.output;
+    EXPECT_NE(text(dir / "junit.xml").find("test-frustum"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(PluginCli, OccsimCullersListsAPluginsCullerAndItsOptions) {
+    const Outcome o = occsim("cullers --plugin " + pluginFile("good").string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("test-frustum: frustum culling, from a plugin (tests) (conservative, plugin "),
+              std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("  margin = 1  number [0, 5] m (tunable 0 to 2)"), std::string::npos) << o.output;
+}
+
+}  // namespace
