@@ -5,9 +5,9 @@
 # occsim bench (e.g. --frames 100, --deterministic-latency 8, --repetitions 3).
 # Usage: scripts/ablation.sh [occsim bench options...]
 #
-# Rows "statistical+ without=N": 0 = nothing off (statistical+ itself), 1 = ready answers,
-# 2 = virtual leaves, 3 = cost model, 4 = re-query by distance (BASE_TIME seconds instead),
-# 5 = fallback to frustum culling, 6 = per-object queries.
+# Rows "statistical+ KEY=off": statistical+ itself, then one row per mechanism its options
+# descriptor marks switchable (ready_answers, virtual_leaves, object_queries, cost_model,
+# requery_parallax = 0: BASE_TIME seconds instead, fallback), each switched off alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -16,5 +16,5 @@ for scenario in scenarios/teapots.json scenarios/paper/library.json; do
   name=$(basename "$scenario" .json)
   echo "== $scenario"
   ./build/release/sim/occsim bench "$scenario" --algos vfc,statistical+,chc++,ideal \
-    --sweep without=0,1,2,3,4,5,6 --out "out/ablation/$name" "$@"
+    --ablate statistical+ --out "out/ablation/$name" "$@"
 done

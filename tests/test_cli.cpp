@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <sys/wait.h>
@@ -178,3 +179,64 @@ TEST(Cli, BadCullingFileIsOneLineNamingTheFileAndPointerWithExitCode2) {
 }
 
 }  // namespace
+
+// docs/cullers.md holds the registry's own tables between two markers: regenerate them with
+// `occsim cullers --markdown` when a descriptor changes.
+TEST(Cli, TheCullersPageIsTheRegistrysOwnOutput) {
+    std::ifstream in(std::string(OCCSIM_SOURCE_DIR) + "/docs/cullers.md");
+    std::stringstream page;
+    page << in.rdbuf();
+    const std::string text = page.str();
+    const std::string begin = "<!-- BEGIN occsim cullers --markdown -->\n";
+    const std::string end = "<!-- END occsim cullers --markdown -->";
+    const size_t b = text.find(begin), e = text.find(end);
+    ASSERT_NE(b, std::string::npos);
+    ASSERT_NE(e, std::string::npos);
+    const Outcome o = runOccsim("cullers --markdown");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), o.output)
+        << "docs/cullers.md is out of date: paste the output of occsim cullers --markdown";
+}
+
+// A sweep names an option by its JSON key and is checked against the listed algorithms'
+// descriptors before any run; --ablate switches off each mechanism a descriptor marks.
+TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
+    const auto out = tempPath("sweep");
+    const struct {
+        std::string args, expected;
+    } refused[] = {
+        {"--algos vfc,chc --sweep base_time=0.5",
+         "--sweep: 'base_time' is an option of none of the algorithms run; expected one of: threshold_pixels, "
+         "stale_results, visible_frames_skip"},
+        {"--algos statistical --sweep base_time=-1", "--sweep: base_time: expected a number >= 0 (s), got -1"},
+        {"--algos statistical --sweep history_length=2.5", "--sweep: history_length: expected an integer in [1, 32]"},
+        {"--algos statistical --sweep chc:visible_frames_skip=1", "--sweep: 'chc' is not among the algorithms run"},
+        {"--algos statistical --sweep base_time=", "--sweep: expected [ALGORITHM:]KEY=V1,V2,..."},
+        {"--algos vfc,chc --ablate chc", "--ablate: 'chc' has no mechanism switched on to switch off"},
+        {"--algos vfc --ablate statistical+", "--ablate: 'statistical+' is not among the algorithms run"},
+    };
+    for (const auto& c : refused) {
+        const Outcome o = runOccsim("bench " + kSmall + " " + c.args + " --out " + out.string());
+        EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+        EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.args << ": " << o.output;
+        EXPECT_FALSE(std::filesystem::exists(out));
+    }
+
+    const Outcome sweep = runOccsim("bench " + kSmall +
+                                    " --algos vfc,statistical,statistical+ --sweep statistical+:stale_results=false,true "
+                                    "--frames 3 --deterministic-latency 4 --out " + out.string());
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+    EXPECT_NE(sweep.output.find("\nstatistical+ stale_results=true "), std::string::npos) << sweep.output;
+    EXPECT_NE(sweep.output.find("\nstatistical "), std::string::npos) << "not swept: runs once" << sweep.output;
+
+    const Outcome ablation = runOccsim("bench " + kSmall + " --algos vfc,statistical+ --ablate statistical+ --frames 3 "
+                                       "--deterministic-latency 4 --out " + out.string());
+    ASSERT_EQ(ablation.exit_code, 0) << ablation.output;
+    for (const char* row : {"\nstatistical+ ", "\nstatistical+ ready_answers=false ", "\nstatistical+ virtual_leaves=false ",
+                            "\nstatistical+ object_queries=false ", "\nstatistical+ cost_model=false ",
+                            "\nstatistical+ requery_parallax=0 ", "\nstatistical+ fallback=false "}) {
+        EXPECT_NE(ablation.output.find(row), std::string::npos) << row << ablation.output;
+    }
+    std::filesystem::remove_all(out);
+}
