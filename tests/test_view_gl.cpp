@@ -6,6 +6,8 @@
 #include "render/gl_context.h"
 #include "render/gl_image_presenter.h"
 #include "render/gl_renderer.h"
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "sim/run/culler_setup.h"
 #include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
 #include "sim/view/node_boxes.h"
@@ -50,6 +52,29 @@ protected:
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<GlRenderer> renderer_;
 };
+
+// The viewer makes its cullers through the run layer's one construction path
+// (sim/run/culler_setup.h): a culler that weighs costs gets a cost model measured on this
+// renderer, the others are left alone, and a cost model the scenario gives is kept.
+TEST_F(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
+    std::vector<RunConfig> configs{RunConfig{"vfc", findAlgorithm("vfc"), scenario_.culler},
+                                   RunConfig{"statistical+", findAlgorithm("statistical+"), scenario_.culler}};
+    const auto choice = chooseCostModel(configs, *scene_, scenario_, *renderer_, LatencyMode{});
+    ASSERT_TRUE(choice);
+    EXPECT_EQ(choice->source, "calibrated");
+    EXPECT_FALSE(configs[0].culler.cost_model.known()) << "vfc weighs no costs";
+    ASSERT_TRUE(configs[1].culler.cost_model.known());
+    const std::unique_ptr<Culler> culler = makeConfiguredCuller(configs[1]);
+    const auto* statistical = dynamic_cast<const StatisticalCuller*>(culler.get());
+    ASSERT_NE(statistical, nullptr);
+    EXPECT_EQ(statistical->costModel(), configs[1].culler.cost_model);
+
+    Scenario given = scenario_;
+    given.culler.cost_model = CostModel{0.5, 0.001, 0.0};
+    std::vector<RunConfig> kept{RunConfig{"statistical+", findAlgorithm("statistical+"), given.culler}};
+    EXPECT_EQ(chooseCostModel(kept, *scene_, given, *renderer_, LatencyMode{})->source, "scenario");
+    EXPECT_EQ(kept[0].culler.cost_model, (CostModel{0.5, 0.001, 0.0}));
+}
 
 TEST_F(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
     auto on_path = simulation("vfc");
