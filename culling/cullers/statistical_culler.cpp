@@ -99,6 +99,8 @@ void StatisticalCuller::reset(const BspTree& tree) {
     heap_.clear();
     pending_.clear();
     pending_head_ = 0;
+    updates_.clear();  // ids still in flight on an earlier device are that device's to forget
+    updates_head_ = 0;
     last_center_.clear();
     have_last_frame_ = false;
     camera_path_m_ = 0.0;
@@ -330,6 +332,11 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
             return;
         }
         const QueryTag tag = QueryTag::object(o);
+        if (drawsWhileRequerying(decision)) {
+            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), tag, decision, device);
+            device.drawObject(o);
+            return;
+        }
         pending_.push_back({device.issueQuery(box, tag), entry, decision});
         ++counters_.queries;
         ++queries;
@@ -349,6 +356,12 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
         Decision decision;
         if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &decision) ==
             NodeAction::Render) {
+            renderNode(tree, frame, entry, device);
+            return false;
+        }
+        if (drawsWhileRequerying(decision)) {
+            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), QueryTag::node(entry.index),
+                        decision, device);
             renderNode(tree, frame, entry, device);
             return false;
         }
@@ -377,6 +390,11 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
         return false;
     }
     const QueryTag tag = QueryTag::nodeObjects(entry.index);
+    if (drawsWhileRequerying(decision)) {
+        issueUpdate(tree, frame, entry, std::span<const Aabb>(boxes_), tag, decision, device);
+        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+        return false;
+    }
     pending_.push_back(
         {device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
          entry, decision});
@@ -384,14 +402,19 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
     return true;
 }
 
+void StatisticalCuller::record(const Entry& e, const Decision& decision, bool visible,
+                               double time_s, double travel_m) {
+    recordQueryResult(options_, statsOf(e), visible, time_s, travel_m);
+    estimates_[estimateIndex(decision.kind, e.subject == Subject::Object)].add(!visible);
+    ++counters_.answers;
+    counters_.visible_answers += visible ? 1 : 0;
+}
+
 void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                                RenderDevice& device) {
     const Entry& e = pending.entry;
     const bool visible = device.queryResult(pending.id) > 0;
-    recordQueryResult(options_, statsOf(e), visible, frame.time_s, travelOf(e));
-    estimates_[estimateIndex(pending.decision.kind, e.subject == Subject::Object)].add(!visible);
-    ++counters_.answers;
-    counters_.visible_answers += visible ? 1 : 0;
+    record(e, pending.decision, visible, frame.time_s, travelOf(e));
     if (!visible) return;
     switch (e.subject) {
         case Subject::Node: renderNode(tree, frame, e, device); break;
@@ -399,6 +422,35 @@ void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
             drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
             break;
         case Subject::Object: device.drawObject(e.index); break;
+    }
+}
+
+void StatisticalCuller::issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
+                                    std::span<const Aabb> boxes, const QueryTag& tag,
+                                    const Decision& decision, RenderDevice& device) {
+    const uint32_t generation = entry.subject == Subject::Object ? 0 : tree.node(entry.index).generation;
+    updates_.push_back({device.issueQuery(boxes, std::span<const QueryTag>(&tag, 1)), entry, decision,
+                        frame.time_s, travelOf(entry), generation, frame.frame_index});
+    ++counters_.queries;
+    ++counters_.update_queries;
+}
+
+void StatisticalCuller::collectUpdates(const BspTree& tree, RenderDevice& device,
+                                       uint64_t older_than_frame) {
+    while (updates_head_ < updates_.size()) {
+        const Update& u = updates_[updates_head_];
+        if (u.frame >= older_than_frame && !device.isQueryReady(u.id)) break;
+        const bool visible = device.queryResult(u.id) > 0;
+        const bool same_subject = u.entry.subject == Subject::Object
+                                      ? u.entry.index < object_stats_.size()
+                                      : u.entry.index < tree.nodeCount() &&
+                                            tree.node(u.entry.index).generation == u.generation;
+        if (same_subject) record(u.entry, u.decision, visible, u.time_s, u.travel_m);
+        ++updates_head_;
+    }
+    if (updates_head_ == updates_.size()) {
+        updates_.clear();
+        updates_head_ = 0;
     }
 }
 
@@ -449,6 +501,10 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     heap_.clear();
     pending_.clear();
     pending_head_ = 0;
+    // Update answers from earlier frames first: the statistics they bring decide this frame. On
+    // a GPU they are ready by now (the last frame was finished); those still in flight are
+    // waited for, so that no answer lags more than a frame.
+    collectUpdates(tree, device, frame.frame_index);
     if (!isEmpty(tree.bounds(tree.root()))) push({0, tree.root(), Subject::Node, false});
 
     // Takes the oldest pending answer; `work_left` says whether the main queue held anything.
@@ -499,6 +555,7 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
             }
         }
     }
+    collectUpdates(tree, device, 0);  // the ready ones; the rest are taken next frame
     endFrame(frame.time_s);
 }
 
@@ -577,6 +634,10 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                       "the window the share is taken over"),
         numberOption("fallback_recheck", "s", 0.0, inf, d.fallback_recheck_s,
                      "simulation time culled by the frustum only before the algorithm runs again"),
+        switchable(booleanOption("draw_while_requerying", d.draw_while_requerying,
+                                 "a subject last found visible whose re-query is due is drawn at "
+                                 "once; its answer, taken when ready, only updates statistics"),
+                   0.0),
     };
 }
 
@@ -630,6 +691,7 @@ StatisticalOptions statisticalOptionsFrom(const OptionValues& v) {
     o.fallback_visible_share = v.number("fallback_visible_share");
     o.fallback_window_frames = v.count("fallback_window_frames");
     o.fallback_recheck_s = v.number("fallback_recheck");
+    o.draw_while_requerying = v.flag("draw_while_requerying");
     return o;
 }
 

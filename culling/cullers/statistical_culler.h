@@ -118,6 +118,7 @@ struct StatisticalFrameCounters {
     // ... while the culler could have gone on instead: the main queue held entries and (with
     // ready_answers) fewer than queries_before_restart queries were in flight.
     uint32_t blocked_with_work_left = 0;
+    uint32_t update_queries = 0;         // draw_while_requerying: queries whose answer only updates
     bool frustum_only = false;           // a fallback frame (improvement 5)
 };
 
@@ -167,6 +168,18 @@ private:
         Entry entry;
         Decision decision;
     };
+    // A query whose answer only updates statistics (draw_while_requerying): the subject was
+    // drawn when it was issued. Kept across frames until its answer is taken; `generation` is
+    // the node's at issue time, so an answer for a node the tree has since replaced is dropped.
+    struct Update {
+        QueryId id;
+        Entry entry;
+        Decision decision;
+        double time_s;
+        double travel_m;
+        uint32_t generation;
+        uint64_t frame;
+    };
     struct Motion {  // cumulative motion of a node's movers (metres), for the distance rules
         double subtree_m = 0.0;
         double own_m = 0.0;
@@ -193,10 +206,22 @@ private:
                       Decision* decision);
     void answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
+    // Draw-while-requerying: issues the query whose answer only updates statistics.
+    void issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
+                     std::span<const Aabb> boxes, const QueryTag& tag, const Decision& decision,
+                     RenderDevice& device);
+    // Takes the ready update answers in issue order; with `older_than_frame`, also waits for
+    // those issued before that frame.
+    void collectUpdates(const BspTree& tree, RenderDevice& device, uint64_t older_than_frame);
+    void record(const Entry& e, const Decision& decision, bool visible, double time_s,
+                double travel_m);
     void renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                     RenderDevice& device);
     NodeStatistics& statsOf(const Entry& e);
     double travelOf(const Entry& e) const;
+    bool drawsWhileRequerying(const Decision& decision) const {
+        return options_.draw_while_requerying && decision.kind == QueryKind::LastVisible;
+    }
     static size_t estimateIndex(QueryKind kind, bool object_query) {
         return static_cast<size_t>(kind) + (object_query ? 3 : 0);
     }
@@ -231,6 +256,8 @@ private:
 
     std::vector<Entry> heap_;       // the main queue (min-heap on rank)
     std::vector<Pending> pending_;  // the query queue: [pending_head_, size) in flight
+    std::vector<Update> updates_;   // draw_while_requerying: [updates_head_, size) in flight
+    size_t updates_head_ = 0;
     size_t pending_head_ = 0;
     std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;

@@ -54,6 +54,12 @@ struct StatisticalOptions {
     double fallback_visible_share = 0.9;
     uint32_t fallback_window_frames = 8;
     double fallback_recheck_s = 1.0;
+    // (6) A subject whose last answer was visible and whose re-query is due is drawn at once and
+    // queried in the same pass, as CHC does with previously visible leaves; its answer, taken
+    // when it is ready (in this frame or a later one), only updates its statistics. Off: the
+    // paper's culler waits for that answer before it draws the subject. Subjects without
+    // statistics, or whose last answer was occluded, are still queried and waited for.
+    bool draw_while_requerying = false;
 
     // The paper as published (the default).
     static StatisticalOptions paper() { return {}; }
