@@ -8,6 +8,7 @@
 #include "sim/output/birds_eye.h"
 #include "sim/output/markdown_report.h"
 #include "sim/output/plots.h"
+#include "sim/output/report.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -392,6 +393,33 @@ std::vector<std::string> filesIn(const fs::path& dir) {
     for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
     std::sort(out.begin(), out.end());
     return out;
+}
+
+// A run records the load average before and after it; one on a machine busier than its hardware
+// threads says so on the console, in report.md and in summary.json.
+TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
+    BenchResult result;
+    result.runs = sampleRuns();
+    RunMetadata& m = result.metadata;
+    m.scenario_name = "teapots-small";
+    m.frames = 40;
+    m.hardware_threads = 2;
+    m.load_before = {0.5, 0.4, 0.3};
+    m.load_after = {1.25, 0.6, 0.4};
+    EXPECT_NE(runHeadline(result).find("machine: 2 hardware threads, load average 0.50 before the run, 1.25 after"),
+              std::string::npos)
+        << runHeadline(result);
+    EXPECT_EQ(runHeadline(result).find("busy machine"), std::string::npos);
+    EXPECT_FALSE(m.busyMachine());
+    m.load_after = {5.5, 3.0, 1.0};
+    EXPECT_TRUE(m.busyMachine());
+    EXPECT_NE(runHeadline(result).find("busy machine: the load average exceeded its 2 hardware threads"),
+              std::string::npos);
+    EXPECT_NE(markdownReport(result, {}).find("**busy: the load exceeded the hardware threads"), std::string::npos);
+    const nlohmann::json summary = summaryJson(result);
+    EXPECT_EQ(summary["machine"]["busy"], true);
+    EXPECT_EQ(summary["machine"]["load_average_after"][0], 5.5);
+    EXPECT_EQ(summary["machine"]["load_average_before"].size(), 3u);
 }
 
 TEST(Plots, WithoutGnuplotOnPathSaysSoAndWritesNothing) {

@@ -37,8 +37,13 @@ void header(std::ostringstream& out, const BenchResult& result) {
     out << "| | |\n|---|---|\n";
     out << "| scenario | " << cell(c.scenario_name) << " (`" << cell(c.scenario_file) << "`), "
         << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";
+    char load[96];
+    std::snprintf(load, sizeof load, ", load average %.2f before the run and %.2f after", c.load_before[0],
+                  c.load_after[0]);
     out << "| machine | " << c.hardware_threads << " hardware threads, LP_NUM_THREADS="
-        << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << " |\n";
+        << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << load
+        << (c.busyMachine() ? " (**busy: the load exceeded the hardware threads; timings are not results**)" : "")
+        << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
         << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
     if (c.sweep) {

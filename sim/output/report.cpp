@@ -149,6 +149,9 @@ nlohmann::json summaryJson(const BenchResult& result) {
                            {"objects", m.objects},    {"triangles", m.triangles},
                            {"movers", m.movers}};
     summary["machine"] = {{"hardware_threads", m.hardware_threads},
+                          {"load_average_before", m.load_before},
+                          {"load_average_after", m.load_after},
+                          {"busy", m.busyMachine()},
                           {"llvmpipe_threads", m.lp_num_threads},
                           {"renderer", m.renderer},
                           {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
@@ -204,6 +207,17 @@ std::string runHeadline(const BenchResult& result) {
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
                   m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
     std::string headline = line;
+    char load[160];
+    std::snprintf(load, sizeof load, "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
+                  m.hardware_threads, m.load_before[0], m.load_after[0]);
+    headline += load;
+    if (m.busyMachine()) {
+        std::snprintf(load, sizeof load,
+                      "\nbusy machine: the load average exceeded its %u hardware threads; these timings "
+                      "measured other work too and are not results",
+                      m.hardware_threads);
+        headline += load;
+    }
     if (timed == 0) {
         headline += "\nnothing was timed: all " + std::to_string(m.frames) +
                     " frames are warm-up (the scenario's warmup_frames); run more frames than that "

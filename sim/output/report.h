@@ -34,7 +34,9 @@ nlohmann::json summaryJson(const BenchResult& result);
 // truth (renders and their time, or that none was rendered).
 std::string costsLine(const BenchResult& result);
 
-// The console's first line: "<scenario>: N frames (M timed after W warm-up), <renderer>".
+// The console's header: "<scenario>: N frames (M timed after W warm-up), <renderer>", the
+// machine's hardware threads and load average before and after the run, and a line saying so
+// when the machine was busier than its hardware threads.
 std::string runHeadline(const BenchResult& result);
 
 }  // namespace occsim

@@ -1,6 +1,11 @@
 #include "sim/run/results.h"
 
 namespace occsim {
+
+bool RunMetadata::busyMachine() const {
+    const double threads = static_cast<double>(hardware_threads);
+    return threads > 0 && (load_before[0] > threads || load_after[0] > threads);
+}
 namespace {
 
 // The first run of an algorithm with the given trait, unswept runs first (a sweep over a knob

@@ -7,6 +7,7 @@
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -50,6 +51,12 @@ struct RunMetadata {
     std::string cost_model_source;
     // The machine.
     uint32_t hardware_threads = 0;
+    // The load average (1, 5 and 15 minutes) when the run started and when it ended: a run on a
+    // machine busier than its hardware threads measured the other work too. Negative: unknown.
+    std::array<double, 3> load_before{-1.0, -1.0, -1.0};
+    std::array<double, 3> load_after{-1.0, -1.0, -1.0};
+    // Whether either 1-minute figure exceeded the hardware threads.
+    bool busyMachine() const;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
     std::string renderer;
     uint32_t width = 0, height = 0;

@@ -27,6 +27,15 @@ void printProgress(uint32_t done, uint32_t total, Clock::time_point start) {
     std::fflush(stderr);
 }
 
+// The 1, 5 and 15-minute load averages, or -1 where the system does not say.
+std::array<double, 3> loadAverage() {
+    std::array<double, 3> load{-1.0, -1.0, -1.0};
+    double values[3];
+    const int n = ::getloadavg(values, 3);
+    for (int i = 0; i < n && i < 3; ++i) load[static_cast<size_t>(i)] = values[i];
+    return load;
+}
+
 void printWarnings(const Scene& scene) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 }
@@ -60,6 +69,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
 }  // namespace
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
+    const std::array<double, 3> load_before = loadAverage();
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
     std::vector<RunConfig> configs =
@@ -163,6 +173,8 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
         }
     }
 
+    result.metadata.load_before = load_before;
+    result.metadata.load_after = loadAverage();
     for (RunRecord& record : result.runs) record.summary = aggregateRepetitions(record.repetitions);
     if (options.measure_error) markParetoFront(result.runs);
     return result;
