@@ -9,6 +9,8 @@
 #include "tune/design.h"
 #include "tune/errors.h"
 #include "tune/parameters.h"
+#include "tune/report.h"
+#include "tune/result.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
 #include "tune/tuned_file.h"
@@ -302,6 +304,25 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     // A value on an end of its box is reported, so that the report can suggest widening it.
     EXPECT_EQ(s.boundsHit({2.0, 0.2}), (std::vector<std::string>{"", "lower"}));
     EXPECT_EQ(s.boundsHit({4.0, 0.7}), (std::vector<std::string>{"upper", ""}));
+}
+
+// A chosen value on an end of its search box is said, with the --bounds that widens it (within
+// the option's valid range), on the console and in the report.
+TEST(Parameters, AChosenValueOnABoundIsReportedWithTheBoundsThatWidenIt) {
+    TuneResult r;
+    r.space = parseParameterSpace(statistical(), "base_time,decay_b", {});
+    r.tuned_values = {0.05, 0.0};
+    r.kept_at_paper = {false, false};
+    r.bounds_hit = r.space.boundsHit(r.tuned_values);
+    const std::vector<std::string> lines = boundWarnings(r);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_NE(lines[0].find("base_time = 0.05 s sits on the lower bound of its search range [0.05, 2]"), std::string::npos)
+        << lines[0];
+    EXPECT_NE(lines[0].find("widen it, e.g. --bounds base_time=0:2"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[1].find("(the end of the option's valid range)"), std::string::npos) << lines[1];
+    r.tuned_values = {0.7, 0.5};
+    r.bounds_hit = r.space.boundsHit(r.tuned_values);
+    EXPECT_TRUE(boundWarnings(r).empty());
 }
 
 // ---- sample log ----------------------------------------------------------------------------
