@@ -72,7 +72,8 @@ TEST(ErrorMetric, TheTeapotsShowNoErrorAndNoMissForConservativeCullersWhileAsync
     const BenchResult conservative = bench(kTeapots, algorithms);
     expectNoErrorAndNoMiss(conservative);
     // On the small plant the per-object scheme draws some newly visible objects a frame late.
-    const RunSummary& async = summaryOf(bench(kScenarios / "plant-small.json", {"async"}), "async");
+    const BenchResult plant = bench(kScenarios / "plant-small.json", {"async"});
+    const RunSummary& async = summaryOf(plant, "async");
     EXPECT_GT(async.missed_objects_total, 0);
     EXPECT_GT(async.error_pixels_total, 0);
 }
