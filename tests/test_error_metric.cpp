@@ -2,7 +2,7 @@
 // depth range of 10^-3 to 10^6 m, frustum culling, Ideal and every conservative culler show no
 // error pixel and no missed object, with the ties counted apart; and the metric still fails
 // when it should: a shrunken frustum and a culler that drops a visible object show error.
-#include "culling/algorithms.h"
+#include "occsim/culling/registry/registry.h"
 #include "sim/output/error_picture.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
