@@ -31,10 +31,19 @@ uint32_t GlQueryDevice::queriesInFlight() const {
 void GlQueryDevice::drawObject(uint32_t object) {
     const auto start = Clock::now();
     renderer_.drawObject(object);
+    if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
     ++commands_;
     ++counters_.objects_drawn;
     counters_.triangles_drawn += renderer_.triangleCount(object);
     counters_.submit_seconds += secondsSince(start);
+}
+
+void GlQueryDevice::beginDrawnSet(uint32_t objects) {
+    if (++drawn_set_ == 0) {  // wrapped after 2^32 sets: old marks could match again
+        drawn_mark_.assign(drawn_mark_.size(), 0);
+        drawn_set_ = 1;
+    }
+    drawn_mark_.resize(objects, 0);
 }
 
 QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,

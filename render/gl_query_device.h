@@ -26,6 +26,14 @@ public:
 
     uint32_t queriesInFlight() const;
 
+    // Which objects were drawn since the last beginDrawnSet(objects): what the culler actually put
+    // on screen, so that error can say which visible objects it left out (an object drawn but
+    // beaten at every pixel by a tie in depth is drawn, not missed). One store per draw.
+    void beginDrawnSet(uint32_t objects);
+    bool drew(uint32_t object) const {
+        return object < drawn_mark_.size() && drawn_mark_[object] == drawn_set_;
+    }
+
 private:
     GlRenderer& renderer_;
     LatencyMode latency_;
@@ -33,6 +41,8 @@ private:
     std::vector<uint32_t> gl_queries_;    // QueryId -> GL query object
     std::vector<uint64_t> issued_at_;     // QueryId -> commands_ when issued
     std::vector<QueryId> free_ids_;
+    std::vector<uint32_t> drawn_mark_;    // object -> drawn_set_ when drawn in the current set
+    uint32_t drawn_set_ = 1;
 };
 
 }  // namespace occsim

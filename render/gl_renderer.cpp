@@ -353,4 +353,24 @@ void GlRenderer::readColor(std::vector<uint8_t>& rgba) const {
     checkGl("glReadPixels(colour)");
 }
 
+void GlRenderer::readDepthRanks(std::vector<uint32_t>& ranks) const {
+    ranks.resize(size_t{width_} * height_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    const GLsizei w = static_cast<GLsizei>(width_), h = static_cast<GLsizei>(height_);
+    if (depth_ == DepthConvention::ReverseFloat) {
+        // A 32-bit float buffer read as GL_FLOAT is the stored value itself; its bits are its rank.
+        static_assert(sizeof(float) == sizeof(uint32_t));
+        glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, ranks.data());
+        checkGl("glReadPixels(depth)");
+        return;
+    }
+    // A 24-bit buffer read as GL_UNSIGNED_INT comes back scaled to 32 bits: the stored value is
+    // the top 24 (a float read would round values near 1, where float steps are as coarse as
+    // the buffer's).
+    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, ranks.data());
+    checkGl("glReadPixels(depth)");
+    for (uint32_t& r : ranks) r = 0xFFFFFFu - (r >> 8);
+}
+
 }  // namespace occsim

@@ -76,6 +76,12 @@ public:
     // Read back the last frame (row 0 at the bottom, as GL returns it).
     void readObjectIds(std::vector<uint32_t>& ids) const;
     void readColor(std::vector<uint8_t>& rgba) const;
+    // Each pixel's stored depth as its rank among the values the depth format can hold, nearer is
+    // larger, so that "one step" means the same in both formats: reverse-Z float, the float's bit
+    // pattern (non-negative floats order as their bits); conventional 24-bit, 2^24 - 1 minus the
+    // fixed-point value. The cleared background is rank 0. Exact: no conversion rounds.
+    void readDepthRanks(std::vector<uint32_t>& ranks) const;
+    DepthConvention depthConvention() const { return depth_; }
 
 private:
     enum class State : uint8_t { None, Draw, Query };

@@ -216,6 +216,27 @@ std::array<int, 3> checkRandomBoxesAgainstClipSpace(const Camera& camera, uint32
     return counts;
 }
 
+// Near 10^-3 m, far 10^6 m: the far plane is the difference of two nearly equal rows. Extracted
+// in double it faces back along the view from 10^6 m away in every direction; a box 50 m ahead
+// is inside. (Extracted from a float matrix it was rounding noise and culled visible objects in
+// scenarios/small/deep-depth-small.json.)
+TEST(Frustum, ADeepDepthRangeKeepsItsFarPlaneWhenExtractedInDouble) {
+    std::mt19937 rng(19);
+    std::uniform_real_distribution<double> angle(-3.14159, 3.14159), pitch(-1.2, 1.2);
+    for (int i = 0; i < 200; ++i) {
+        const double yaw = angle(rng), up_down = pitch(rng);
+        const glm::dvec3 forward(std::cos(up_down) * std::sin(yaw), std::sin(up_down), -std::cos(up_down) * std::cos(yaw));
+        const glm::dvec3 eye(3.7, 2.1, -11.3);
+        const glm::dmat4 view_projection = glm::perspective(glm::radians(60.0), 4.0 / 3.0, 1e-3, 1e6) *
+                                           glm::lookAt(eye, eye + forward, glm::dvec3(0, 1, 0));
+        const Frustum f = frustumFromViewProjection(view_projection);
+        const glm::dvec3 far_normal(f.planes[5]);
+        EXPECT_GT(glm::dot(far_normal, -forward), 0.9999) << "direction " << i;
+        const glm::vec3 ahead(eye + 50.0 * forward);
+        EXPECT_EQ(classify(f, Aabb{ahead - 0.5f, ahead + 0.5f}), FrustumTest::Inside) << "direction " << i;
+    }
+}
+
 TEST(Frustum, ClassifyAgreesWithClipSpaceCornersForRandomBoxesAroundPerspectiveCameras) {
     const Camera cameras[] = {
         makeCamera({3.0f, 2.0f, 10.0f}, {0.0f, 0.0f, 0.0f}, 60.0f, 16.0f / 9.0f, 0.5f, 60.0f),

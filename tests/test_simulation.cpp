@@ -260,11 +260,24 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     std::ifstream csv(out_dir / "frames.csv");
     std::string line;
     int lines = 0;
-    while (std::getline(csv, line)) ++lines;
+    while (std::getline(csv, line)) {
+        if (lines == 0) {
+            EXPECT_NE(line.find(",error_pixels,tie_pixels,missed_objects,drawn_unseen_objects,visible_objects"),
+                      std::string::npos) << line;
+        }
+        ++lines;
+    }
     EXPECT_EQ(lines, 1 + 2 * 6);
     const auto summary = nlohmann::json::parse(std::ifstream(out_dir / "summary.json"));
     EXPECT_EQ(summary["algorithms"].size(), 2u);
     EXPECT_EQ(summary["algorithms"][0]["error"]["pixels_total"], 0);
+    // The three figures of error, and what tells error from tie (docs/error.md).
+    for (const char* key : {"tie_pixels_total", "tie_pixels_per_frame_mean", "frames_with_ties",
+                            "missed_objects_total", "drawn_unseen_objects_total"}) {
+        EXPECT_TRUE(summary["algorithms"][0]["error"].contains(key)) << key;
+    }
+    EXPECT_EQ(summary["error_definition"]["tie_tolerance_depth_steps"], 1);
+    EXPECT_EQ(summary["error_definition"]["depth_format"], "reverse-Z, 32-bit float");
     EXPECT_TRUE(summary["algorithms"][0].contains("speedup_over_vfc"));
     EXPECT_EQ(summary["scenario"]["objects"], 300);
     // The run's own work: one world advance and one ground-truth render per frame for both.

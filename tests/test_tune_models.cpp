@@ -423,5 +423,24 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     EXPECT_TRUE(culling.empty());
 }
 
+// The confirmation shows error pixels, tie pixels and missed objects of both settings apart.
+TEST(Confirmation, TheConsoleTableShowsErrorTiesAndMissedObjectsOfBoth) {
+    TuneResult r;
+    ConfirmationRow row;
+    row.variant = "fitted (seed 7)";
+    row.tuned_error_pixels = 0;
+    row.paper_error_pixels = 0;
+    row.tuned_tie_pixels = 1234;
+    row.paper_tie_pixels = 987;
+    row.tuned_missed_objects = 0;
+    row.paper_missed_objects = 5;
+    r.confirmation.push_back(row);
+    const std::string table = confirmationTable(r);
+    EXPECT_NE(table.find("tie tuned"), std::string::npos) << table;
+    EXPECT_NE(table.find("mis paper"), std::string::npos) << table;
+    EXPECT_NE(table.find("1234"), std::string::npos) << table;
+    EXPECT_NE(table.find("987"), std::string::npos) << table;
+}
+
 }  // namespace
 }  // namespace occsim::tune

@@ -191,6 +191,8 @@ TEST(ViewHud, ShowsTheAlgorithmAndTheFrameFiguresAndErrorOnlyWhenOn) {
     s.stats.queries = 175;
     s.stats.triangles = 1054541;
     s.stats.error_pixels = 1234;
+    s.stats.tie_pixels = 56;
+    s.stats.missed_objects = 2;
     std::vector<std::string> lines = hudLines(s);
     ASSERT_GE(lines.size(), 2u);
     EXPECT_EQ(lines[0], "chc++ (5/7)   frame 12  0.40 s   path");
@@ -202,7 +204,7 @@ TEST(ViewHud, ShowsTheAlgorithmAndTheFrameFiguresAndErrorOnlyWhenOn) {
     s.recorded_frames = 9;
     lines = hudLines(s);
     EXPECT_EQ(lines[0], "chc++ (5/7)   frame 12  0.40 s   flying 3.0 m/s   rec 9 frames");
-    EXPECT_EQ(lines[1], "frame time 12.35 ms   queries 175   triangles 1,054,541   error px 1,234");
+    EXPECT_EQ(lines[1], "frame time 12.35 ms   queries 175   triangles 1,054,541   error px 1,234   ties 56   missed 2");
 }
 
 // ---- recorded flights ----------------------------------------------------------------------

@@ -36,6 +36,10 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
         p95_ratios.push_back(t.repetitions[r].frame_ms.p95 / p.repetitions[r].frame_ms.p95);
         row.tuned_error_pixels += t.repetitions[r].error_pixels_total;
         row.paper_error_pixels += p.repetitions[r].error_pixels_total;
+        row.tuned_tie_pixels += t.repetitions[r].tie_pixels_total;
+        row.paper_tie_pixels += p.repetitions[r].tie_pixels_total;
+        row.tuned_missed_objects += t.repetitions[r].missed_objects_total;
+        row.paper_missed_objects += p.repetitions[r].missed_objects_total;
     }
     row.mean_ratio = spreadOf(mean_ratios);
     row.p95_ratio = spreadOf(p95_ratios);

@@ -28,7 +28,11 @@ struct ConfirmationRow {
     double tuned_mean_ms = 0.0, paper_mean_ms = 0.0;  // medians over repetitions
     double tuned_queries = 0.0, paper_queries = 0.0;  // per frame
     double tuned_objects = 0.0, paper_objects = 0.0;  // drawn per frame
-    int64_t tuned_error_pixels = 0, paper_error_pixels = 0;  // over every frame of every repetition
+    // Over every frame of every repetition (docs/error.md): error pixels, tie pixels (another
+    // object at the same depth: no error) and objects ground truth saw that were not drawn.
+    int64_t tuned_error_pixels = 0, paper_error_pixels = 0;
+    int64_t tuned_tie_pixels = 0, paper_tie_pixels = 0;
+    int64_t tuned_missed_objects = 0, paper_missed_objects = 0;
 };
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,

@@ -30,6 +30,9 @@ std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
     if (row.tuned_error_pixels > row.paper_error_pixels) {
         return "**the tuned values showed more error pixels than the paper's**";
     }
+    if (row.tuned_missed_objects > row.paper_missed_objects) {
+        return "**the tuned values missed more objects than the paper's**";
+    }
     if (nothing_tuned) return "the same setting twice: the spread is the measurement noise";
     // Error pixels in both, no more with the tuned values: say so beside the timing verdict.
     const std::string both = row.tuned_error_pixels != 0
@@ -92,14 +95,17 @@ std::string formatSpread(const Spread& s) {
 std::string confirmationTable(const TuneResult& r) {
     std::ostringstream out;
     char line[256];
-    std::snprintf(line, sizeof line, "%-28s %6s %5s  %-22s %-22s %9s %9s %8s %8s\n", "variant", "frames", "reps",
-                  "mean ratio [min-max]", "p95 ratio [min-max]", "tuned ms", "paper ms", "err tuned", "err paper");
+    std::snprintf(line, sizeof line, "%-28s %6s %5s  %-22s %-22s %9s %9s %9s %9s %9s %9s %9s %9s\n", "variant",
+                  "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]", "tuned ms", "paper ms",
+                  "err tuned", "err paper", "tie tuned", "tie paper", "mis tuned", "mis paper");
     out << line;
     for (const ConfirmationRow& c : r.confirmation) {
-        std::snprintf(line, sizeof line, "%-28s %6u %5u  %-22s %-22s %9.2f %9.2f %8lld %8lld\n", c.variant.c_str(),
-                      c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(), formatSpread(c.p95_ratio).c_str(),
-                      c.tuned_mean_ms, c.paper_mean_ms, static_cast<long long>(c.tuned_error_pixels),
-                      static_cast<long long>(c.paper_error_pixels));
+        std::snprintf(line, sizeof line, "%-28s %6u %5u  %-22s %-22s %9.2f %9.2f %9lld %9lld %9lld %9lld %9lld %9lld\n",
+                      c.variant.c_str(), c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(),
+                      formatSpread(c.p95_ratio).c_str(), c.tuned_mean_ms, c.paper_mean_ms,
+                      static_cast<long long>(c.tuned_error_pixels), static_cast<long long>(c.paper_error_pixels),
+                      static_cast<long long>(c.tuned_tie_pixels), static_cast<long long>(c.paper_tie_pixels),
+                      static_cast<long long>(c.tuned_missed_objects), static_cast<long long>(c.paper_missed_objects));
         out << line;
     }
     return out.str();
@@ -153,14 +159,17 @@ std::string reportMarkdown(const TuneResult& r) {
         << "is the same scenario with another seed (another layout of the scene and other movers, the same camera "
            "path): the fit never saw it.\n\n"
         << "| variant | seed | frames | mean ratio, median [min-max] | p95 ratio, median [min-max] | tuned ms | paper ms "
-           "| queries/frame tuned / paper | objects/frame tuned / paper | error px tuned / paper | verdict |\n"
-        << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+           "| queries/frame tuned / paper | objects/frame tuned / paper | error px tuned / paper "
+           "| tie px tuned / paper | missed objects tuned / paper | verdict |\n"
+        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConfirmationRow& c : r.confirmation) {
         out << "| " << c.variant << " | " << c.seed << " | " << c.frames << " | " << formatSpread(c.mean_ratio) << " | "
             << formatSpread(c.p95_ratio) << " | " << fixed(c.tuned_mean_ms, 2) << " | " << fixed(c.paper_mean_ms, 2)
             << " | " << fixed(c.tuned_queries, 1) << " / " << fixed(c.paper_queries, 1) << " | "
             << fixed(c.tuned_objects, 1) << " / " << fixed(c.paper_objects, 1) << " | " << c.tuned_error_pixels
-            << " / " << c.paper_error_pixels << " | " << verdict(c, r.dropped.size() == r.space.size()) << " |\n";
+            << " / " << c.paper_error_pixels << " | " << c.tuned_tie_pixels << " / " << c.paper_tie_pixels << " | "
+            << c.tuned_missed_objects << " / " << c.paper_missed_objects << " | "
+            << verdict(c, r.dropped.size() == r.space.size()) << " |\n";
     }
 
     const CostModel& m = r.cost.model;

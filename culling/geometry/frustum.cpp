@@ -34,6 +34,22 @@ Frustum frustumFromViewProjection(const glm::mat4& view_projection) {
     return f;
 }
 
+Frustum frustumFromViewProjection(const glm::dmat4& view_projection) {
+    glm::dvec4 row[4];
+    for (int i = 0; i < 4; ++i) {
+        row[i] = glm::dvec4(view_projection[0][i], view_projection[1][i], view_projection[2][i],
+                            view_projection[3][i]);
+    }
+    const glm::dvec4 planes[6] = {row[3] + row[0], row[3] - row[0], row[3] + row[1],
+                                  row[3] - row[1], row[3] + row[2], row[3] - row[2]};
+    Frustum f{};
+    for (int p = 0; p < 6; ++p) {
+        const double length = glm::length(glm::dvec3(planes[p]));
+        f.planes[p] = glm::vec4(length > 0.0 ? planes[p] / length : planes[p]);
+    }
+    return f;
+}
+
 FrustumTest classify(const Frustum& f, const Aabb& box) { return classify(planeTableOf(f), box); }
 
 void classifyBatch(const FrustumPlanes& planes, const float* __restrict min_x,

@@ -25,6 +25,11 @@ struct Frustum {
 };
 
 Frustum frustumFromViewProjection(const glm::mat4& view_projection);
+// The same, extracted in double and stored in float. With a deep depth range the far plane is
+// the difference of two rows that nearly cancel (its normal is ~2 near / far of their size): in
+// float that difference is rounding noise (near 10^-3 m, far 10^6 m: 2e-9 against errors of
+// 1e-7), and the noisy far plane culls visible objects. Build view frustums with this one.
+Frustum frustumFromViewProjection(const glm::dmat4& view_projection);
 
 // The plane table the kernel reads, one array per coefficient so that the kernel's six-plane loop
 // reads registers, not a pointer the output might alias. Building it costs about as much as one

@@ -1,5 +1,5 @@
 // A picture of a frame that went wrong: the culled frame, ground truth, and the differences
-// marked, side by side, for a person to look at when a regression fails.
+// marked (errors apart from ties), side by side, for a person to look at when a regression fails.
 #pragma once
 
 #include "sim/run/simulation.h"
@@ -9,8 +9,12 @@
 
 namespace occsim {
 
+// Error pixels in magenta; tie pixels (another object at the same depth: no error) in yellow.
+inline constexpr uint8_t kErrorColour[3] = {255, 0, 255};
+inline constexpr uint8_t kTieColour[3] = {255, 210, 0};
+
 // RGBA8, (3 * width) x height, rows bottom-up (encode with encodePngBottomUp): culled | ground
-// truth | ground truth dimmed with every pixel whose object ID differs in magenta.
+// truth | ground truth dimmed with every error pixel in magenta and every tie pixel in yellow.
 std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height);
 
 }  // namespace occsim

@@ -61,8 +61,11 @@ void header(std::ostringstream& out, const BenchResult& result) {
                       " later draw calls"
                 : std::string("as the hardware reports it"))
         << " |\n";
-    out << "| image error | " << (c.error_measured ? "measured against a ground-truth render of every frame"
-                                                   : "not measured (run with `--error`)")
+    out << "| image error | "
+        << (c.error_measured ? "measured against a ground-truth render of every frame (object IDs and depth, " +
+                                   c.depth_format + "; a tie is within " + std::to_string(kDepthTieSteps) +
+                                   " depth step)"
+                             : std::string("not measured (run with `--error`)"))
         << " |\n\n";
     out << "Command:\n\n```sh\n" << c.command_line << "\n```\n\n";
     const uint32_t timed = c.frames > c.warmup_frames ? c.frames - c.warmup_frames : 0;
@@ -131,12 +134,16 @@ void howToRead(std::ostringstream& out) {
         << "**speedup** is VFC's mean frame time over the configuration's (above 1x: faster than "
         << "frustum culling alone); **vs ideal** is the configuration's mean frame time over the "
         << "Ideal oracle's, which draws exactly the objects ground truth sees with no queries "
-        << "(1x is the bound; the nearer, the better). **err px/fr** is the mean number of pixels "
-        << "per frame whose object differs from ground truth (0 for conservative culling), "
-        << "**p99 px** and **worst px** its tail, **missed** the objects ground truth saw that the "
-        << "frame showed nowhere. **pop max** is the longest run of consecutive frames one visible "
-        << "object stayed missing: short runs flicker (popping), long ones are holes. In the "
-        << "time-against-error plot, down and to the left is better: a configuration that buys "
+        << "(1x is the bound; the nearer, the better). **err px/fr** is the mean number of error "
+        << "pixels per frame: pixels where ground truth shows a surface nearer than the culled frame "
+        << "does (background counts as infinitely far), so something visible was left out (0 for "
+        << "conservative culling); **p99 px** and **worst px** are its tail and **err px** its "
+        << "total. **tie px** counts pixels where another object lies at the same depth (within one "
+        << "step of the depth buffer) and the draw order decided which one the pixel shows: the same "
+        << "surface, no error. **missed** counts, over the frames, objects ground truth saw that the "
+        << "culler did not draw. **pop max** is the longest run of consecutive frames one visible "
+        << "object stayed missing (not drawn): short runs flicker (popping), long ones are holes. "
+        << "In the time-against-error plot, down and to the left is better: a configuration that buys "
         << "time with error sits left of and above the conservative ones, and the Pareto line "
         << "joins those that no other configuration beats in both.\n";
 }

@@ -25,7 +25,7 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                        "median ms", "p95 ms", "queries/fr", "wait ms/fr", "tris/fr",
                                        "objs/fr"};
     if (error) {
-        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "missed", "pop max"}) {
+        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
             header.push_back(h);
         }
     }
@@ -49,6 +49,7 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
             row.push_back(fixed(s.error_pixels_p99, 0));
             row.push_back(std::to_string(s.error_pixels_worst));
             row.push_back(std::to_string(s.error_pixels_total));
+            row.push_back(std::to_string(s.tie_pixels_total));
             row.push_back(std::to_string(s.missed_objects_total));
             row.push_back(std::to_string(s.popping_max_frames));
         }
@@ -84,8 +85,8 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
 std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
-           "objects_drawn,triangles,moved_objects,node_changes,error_pixels,missed_objects,"
-           "visible_objects\n";
+           "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
+           "missed_objects,drawn_unseen_objects,visible_objects\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -94,8 +95,9 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
                     << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
                     << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
-                    << f.node_changes << ',' << f.error_pixels << ',' << f.missed_objects << ','
-                    << f.visible_objects << '\n';
+                    << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
+                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
+                    << '\n';
             }
         }
     }
@@ -131,7 +133,11 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"frames_with_error", s.frames_with_error},
                           {"pixels_per_frame_mean", s.error_pixels_mean},
                           {"pixels_per_frame_p99", s.error_pixels_p99},
+                          {"tie_pixels_total", s.tie_pixels_total},
+                          {"tie_pixels_per_frame_mean", s.tie_pixels_mean},
+                          {"frames_with_ties", s.frames_with_ties},
                           {"missed_objects_total", s.missed_objects_total},
+                          {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
                           {"popping_events", s.popping_events},
                           {"popping_mean_frames", s.popping_mean_frames},
                           {"popping_max_frames", s.popping_max_frames}};
@@ -158,6 +164,11 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["command"] = m.command_line;
     summary["repetitions"] = m.repetitions;
     summary["error_measured"] = m.error_measured;
+    if (m.error_measured) {
+        // What decides error against tie (docs/error.md), so a reader of the file knows.
+        summary["error_definition"] = {{"depth_format", m.depth_format},
+                                       {"tie_tolerance_depth_steps", kDepthTieSteps}};
+    }
     summary["deterministic_latency"] = m.deterministic_latency
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);

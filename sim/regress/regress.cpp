@@ -153,12 +153,17 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     for (const std::string& name : expect.zero_error) {
         const RunSummary& s = runOf(name).summary;
         CheckResult c{"zero error pixels: " + name, "0 on every frame", "", s.error_pixels_total == 0};
-        c.got = c.passed ? "0" : std::to_string(s.error_pixels_total) + " px on " +
+        // Ties (another object at the same depth) are no error; shown so a reader sees them apart.
+        const std::string ties = " (" + std::to_string(s.tie_pixels_total) + " tie px)";
+        c.got = c.passed ? "0" + ties : std::to_string(s.error_pixels_total) + " px on " +
                                      std::to_string(s.frames_with_error) + " frames (worst frame " +
                                      std::to_string(s.error_worst_frame) + ": " +
-                                     std::to_string(s.error_pixels_worst) + " px)";
+                                     std::to_string(s.error_pixels_worst) + " px)" + ties;
         if (!c.passed) capture(name);
         outcome.checks.push_back(c);
+        CheckResult m{"no missed objects: " + name, "0 on every frame", "", s.missed_objects_total == 0};
+        m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
+        outcome.checks.push_back(m);
     }
     for (const auto& [name, bound] : expect.max_error_pixels) {
         const RunSummary& s = runOf(name).summary;
@@ -191,6 +196,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             t.queries.push_back(f.queries);
             t.objects.push_back(f.objects_drawn);
             t.error_pixels.push_back(f.error_pixels);
+            t.missed_objects.push_back(f.missed_objects);
         }
     }
     std::optional<Baseline> old;
@@ -215,7 +221,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             }
             for (const std::string& d : {describeChange("queries", before->queries, trace.queries),
                                          describeChange("objects", before->objects, trace.objects),
-                                         describeChange("error pixels", before->error_pixels, trace.error_pixels)}) {
+                                         describeChange("error pixels", before->error_pixels, trace.error_pixels),
+                                         describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
                 if (!d.empty()) changes.push_back(name + ": " + d);
             }
         }
@@ -245,6 +252,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             outcome.checks.push_back(compareSeries("objects", name, it->second.objects, trace.objects));
             outcome.checks.push_back(compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
             if (!outcome.checks.back().passed) capture(name);
+            outcome.checks.push_back(
+                compareSeries("missed objects", name, it->second.missed_objects, trace.missed_objects));
         }
     }
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -295,6 +304,7 @@ Baseline readBaseline(const std::filesystem::path& file) {
             t.queries = readSeries<uint64_t>(trace, "queries", b.frames);
             t.objects = readSeries<uint64_t>(trace, "objects", b.frames);
             t.error_pixels = readSeries<int64_t>(trace, "error_pixels", b.frames);
+            t.missed_objects = readSeries<int64_t>(trace, "missed_objects", b.frames);
             trace.finish();
             b.algorithms[algorithm] = std::move(t);
         }
@@ -316,7 +326,8 @@ std::string baselineJson(const Baseline& b) {
     for (const auto& [name, t] : b.algorithms) {
         out << (first ? "" : ",") << "\n    " << Json(name).dump() << ": {\n      \"queries\": "
             << Json(t.queries).dump() << ",\n      \"objects\": " << Json(t.objects).dump()
-            << ",\n      \"error_pixels\": " << Json(t.error_pixels).dump() << "\n    }";
+            << ",\n      \"error_pixels\": " << Json(t.error_pixels).dump()
+            << ",\n      \"missed_objects\": " << Json(t.missed_objects).dump() << "\n    }";
         first = false;
     }
     out << "\n  }\n}\n";

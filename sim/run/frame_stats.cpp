@@ -32,8 +32,11 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
         if (f.error_pixels >= 0) {
             s.error_measured = true;
             s.error_pixels_total += f.error_pixels;
+            s.tie_pixels_total += f.tie_pixels;
             s.missed_objects_total += f.missed_objects;
+            s.drawn_unseen_objects_total += f.drawn_unseen_objects;
             if (f.error_pixels > 0) ++s.frames_with_error;
+            if (f.tie_pixels > 0) ++s.frames_with_ties;
             if (f.error_pixels > s.error_pixels_worst) {
                 s.error_pixels_worst = f.error_pixels;
                 s.error_worst_frame = f.frame;
@@ -58,6 +61,7 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
         s.error_pixels_mean = std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size());
         const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(error.size())));
         s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
+        s.tie_pixels_mean = static_cast<double>(s.tie_pixels_total) / static_cast<double>(error.size());
     }
     if (s.timed_frames > 0) {
         const double n = s.timed_frames;
@@ -131,6 +135,10 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
     out.error_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
     out.missed_objects_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
+    out.tie_pixels_mean = median([](const RunSummary& r) { return r.tie_pixels_mean; });
+    out.tie_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
+    out.drawn_unseen_objects_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
     for (const RunSummary& r : reps) {
         out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);

@@ -19,9 +19,13 @@ struct FrameStats {
     uint64_t triangles = 0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;   // reinsertions that moved an object to another BSP node
-    // Error against ground truth; -1 when error was not measured.
-    int64_t error_pixels = -1;
-    int64_t missed_objects = -1;
+    // Error against ground truth (docs/error.md); -1 when error was not measured.
+    int64_t error_pixels = -1;    // ground truth shows a nearer surface than the culled frame
+    int64_t tie_pixels = -1;      // another object at the same depth (draw order): no error
+    int64_t missed_objects = -1;  // seen by ground truth, not drawn by the culler
+    // Seen by ground truth and drawn, yet without a pixel in the culled frame: every one of its
+    // pixels went to a tie (what "missed" counted when it was judged by IDs alone).
+    int64_t drawn_unseen_objects = -1;
     int64_t visible_objects = -1;  // objects with at least one pixel in ground truth
 };
 
@@ -43,11 +47,15 @@ struct RunSummary {
     int64_t error_pixels_worst = 0;
     uint32_t error_worst_frame = 0;
     uint32_t frames_with_error = 0;
+    int64_t tie_pixels_total = 0;
+    uint32_t frames_with_ties = 0;
+    double tie_pixels_mean = 0;     // per frame, over all frames
     int64_t missed_objects_total = 0;
+    int64_t drawn_unseen_objects_total = 0;
     double error_pixels_mean = 0;   // per frame, over all frames
     double error_pixels_p99 = 0;    // per frame, nearest rank
     // Popping: runs of consecutive frames in which an object visible in ground truth was not
-    // drawn (one run per object and disappearance).
+    // drawn (one run per object and disappearance; a tie is no disappearance).
     uint32_t popping_events = 0;
     double popping_mean_frames = 0;
     uint32_t popping_max_frames = 0;

@@ -39,7 +39,7 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     const glm::dmat4 view_projection = glm::perspective(fov, aspect, camera.near_m, camera.far_m) *
                                        glm::lookAt(eye, eye + forward, up);
     view.cull.eye = glm::vec3(eye);
-    view.cull.frustum = frustumFromViewProjection(glm::mat4(view_projection));
+    view.cull.frustum = frustumFromViewProjection(view_projection);  // planes in double: deep ranges
     view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
     return view;
 }

@@ -16,6 +16,7 @@ const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colo
     renderer_.beginFrame();
     for (uint32_t o = 0; o < objects; ++o) device_.drawObject(o);
     renderer_.readObjectIds(frame_.ids);
+    renderer_.readDepthRanks(frame_.depth);
     if (with_colour) renderer_.readColor(frame_.rgba);
     frame_.visible.assign(objects, 0);
     for (uint32_t id : frame_.ids) {

@@ -1,7 +1,7 @@
-// Ground truth of a shared world's frame: every object drawn into the object-ID buffer (no
-// culling code on the way: the GPU clips) and read back, at most once per frame however many
-// configurations ask, outside every frame timing, with a count and the time it cost, so a run can
-// show that it rendered none when no error was asked for.
+// Ground truth of a shared world's frame: every object drawn into the object-ID and depth
+// buffers (no culling code on the way: the GPU clips) and both read back, at most once per frame
+// however many configurations ask, outside every frame timing, with a count and the time it
+// cost, so a run can show that it rendered none when no error was asked for.
 #pragma once
 
 #include "render/gl_query_device.h"
@@ -15,6 +15,7 @@ namespace occsim {
 
 struct GroundTruthFrame {
     std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
+    std::vector<uint32_t> depth;   // width * height, GlRenderer::readDepthRanks (nearer is larger)
     std::vector<uint8_t> visible;  // per object
     std::vector<uint8_t> rgba;     // colour, only when asked for
 };

@@ -60,6 +60,7 @@ struct RunMetadata {
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
     std::string renderer;
     uint32_t width = 0, height = 0;
+    std::string depth_format;  // the depth buffer both renders share: what a tie's step is
 };
 
 // The run's own work beside the frames it measured, over every repetition: what a reader needs to

@@ -63,6 +63,9 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.renderer = renderer;
     m.width = scenario.width;
     m.height = scenario.height;
+    m.depth_format = depthConventionOf(scenario) == DepthConvention::ReverseFloat
+                         ? "reverse-Z, 32-bit float"
+                         : "conventional, 24-bit fixed point";
     return m;
 }
 

@@ -86,6 +86,7 @@ FrameStats Simulation::renderFrame() {
     // The measured frame: culled render to glFinish.
     renderer_.setView(world_->view().render, world_->modelViews());
     device_->resetCounters();
+    gl_device_.beginDrawnSet(world_->scene().objectCount());
     const auto frame_start = Clock::now();
     renderer_.beginFrame();
     const auto cull_start = Clock::now();
@@ -112,36 +113,44 @@ FrameStats Simulation::renderFrame() {
     return stats;
 }
 
-// Object-ID buffers compared pixel by pixel; an object counts as missed when ground truth saw it
-// and the culled frame shows none of its pixels (a culled frame draws a subset of the objects, so
-// an object it drew that ground truth sees cannot be hidden in it).
+// Object IDs and depth compared pixel by pixel (sim/run/pixel_error.h: error or tie), and the
+// objects ground truth saw against those the culler drew: a visible object is missed when it was
+// not drawn. One it drew shows in ground truth's pixels at the same depth in both renders (the
+// same fragments), so where another ID holds such a pixel it is a tie, not a miss.
 void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) {
     const uint32_t objects = world_->scene().objectCount();
     renderer_.readObjectIds(culled_ids_);
+    renderer_.readDepthRanks(culled_depth_);
     ++error_read_backs_;
-    int64_t differing = 0;
+    const PixelCounts pixels = comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_);
     culled_visible_.assign(objects, 0);
-    for (size_t i = 0; i < culled_ids_.size(); ++i) {
-        differing += culled_ids_[i] != truth.ids[i];
-        if (culled_ids_[i] != 0) culled_visible_[culled_ids_[i] - 1] = 1;
+    for (uint32_t id : culled_ids_) {
+        if (id != 0) culled_visible_[id - 1] = 1;
     }
-    int64_t missed = 0, visible = 0;
+    int64_t missed = 0, unseen = 0, visible = 0;
     missing_.assign(objects, 0);
     for (uint32_t o = 0; o < objects; ++o) {
-        visible += truth.visible[o];
-        missing_[o] = truth.visible[o] && !culled_visible_[o];
-        missed += missing_[o];
+        if (!truth.visible[o]) continue;
+        ++visible;
+        const bool drawn = gl_device_.drew(o);
+        missing_[o] = !drawn;
+        missed += !drawn;
+        unseen += drawn && !culled_visible_[o];
     }
     popping_.addFrame(missing_);
-    stats.error_pixels = differing;
+    stats.error_pixels = pixels.error;
+    stats.tie_pixels = pixels.tie;
     stats.missed_objects = missed;
+    stats.drawn_unseen_objects = unseen;
     stats.visible_objects = visible;
-    if (options_.keep_worst_error_frame && differing > worst_.error_pixels) {
+    if (options_.keep_worst_error_frame && pixels.error > worst_.error_pixels) {
         worst_.frame = stats.frame;
-        worst_.error_pixels = differing;
+        worst_.error_pixels = pixels.error;
+        worst_.tie_pixels = pixels.tie;
         worst_.culled_ids = culled_ids_;
         worst_.truth_ids = truth.ids;
         worst_.truth_rgba = truth.rgba;
+        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, &worst_.differences);
         renderer_.readColor(worst_.culled_rgba);
     }
 }

@@ -17,6 +17,7 @@
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
 #include "sim/run/ground_truth.h"
+#include "sim/run/pixel_error.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
@@ -39,12 +40,16 @@ struct SimulationOptions {
     std::optional<uint32_t> trace_frame;
 };
 
-// The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them).
+// The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them),
+// with each pixel's PixelDifference (sim/run/pixel_error.h) so that a picture can tell errors
+// from ties.
 struct ErrorFrame {
     uint32_t frame = 0;
     int64_t error_pixels = 0;
+    int64_t tie_pixels = 0;
     std::vector<uint8_t> culled_rgba, truth_rgba;
     std::vector<uint32_t> culled_ids, truth_ids;
+    std::vector<uint8_t> differences;  // PixelDifference per pixel
 };
 
 class Simulation {
@@ -73,10 +78,10 @@ public:
     bool keepsWorstErrorFrame() const { return options_.keep_worst_error_frame; }
     // Empty (error_pixels 0) until a frame with error was seen.
     const ErrorFrame& worstErrorFrame() const { return worst_; }
-    // Popping: for every object that was visible in ground truth but not drawn, how many
+    // Popping: for every object that was visible in ground truth and not drawn, how many
     // consecutive frames it stayed missing (runs still open at the end are included).
     std::vector<uint32_t> poppingRuns() const { return popping_.runs(); }
-    // Culled object-ID buffers read back to count error (none unless error is measured).
+    // Culled object-ID and depth buffers read back to count error (none unless error is measured).
     uint64_t errorReadBacks() const { return error_read_backs_; }
     // The trace of options.trace_frame (or of every frame, LiveControls::trace_every_frame) once
     // that frame was rendered; null before. The tree, the world and view() stay as the culler
@@ -120,6 +125,7 @@ private:
     std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
     PoppingCounter popping_;
     std::vector<uint32_t> culled_ids_;
+    std::vector<uint32_t> culled_depth_;
     std::vector<uint8_t> culled_visible_;
 };
 

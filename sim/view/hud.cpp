@@ -45,7 +45,10 @@ std::vector<std::string> hudLines(const HudState& s) {
         std::string figures = format("frame time %.2f ms   queries %llu   triangles ", s.stats.frame_ms,
                                      static_cast<unsigned long long>(s.stats.queries)) +
                               grouped(static_cast<int64_t>(s.stats.triangles));
-        figures += s.error_on ? "   error px " + grouped(s.stats.error_pixels) : "   error off (g)";
+        figures += s.error_on ? "   error px " + grouped(s.stats.error_pixels) + "   ties " +
+                                    grouped(s.stats.tie_pixels) + "   missed " +
+                                    grouped(s.stats.missed_objects)
+                              : "   error off (g)";
         lines.push_back(figures);
     }
     if (!s.message.empty()) lines.push_back(s.message);
