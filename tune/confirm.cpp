@@ -15,11 +15,11 @@ Spread spreadOf(std::vector<double> v) {
 }
 
 ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, const StatisticalOptions& tuned,
-                        const StatisticalOptions& paper, uint32_t repetitions,
+                        const StatisticalOptions& paper, uint32_t repetitions, const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame) {
     // The paper's values first: the same order as every sampling batch.
     const BenchResult result =
-        runInterleaved(scenario, {{"paper", paper}, {"tuned", tuned}}, repetitions, on_frame);
+        runInterleaved(scenario, {{"paper", paper}, {"tuned", tuned}}, repetitions, backend, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 

@@ -32,7 +32,7 @@ struct ConfirmationRow {
 };
 
 ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, const StatisticalOptions& tuned,
-                        const StatisticalOptions& paper, uint32_t repetitions,
+                        const StatisticalOptions& paper, uint32_t repetitions, const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

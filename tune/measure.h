@@ -1,5 +1,5 @@
 // Real runs of the statistical culler: several settings interleaved frame by frame in one
-// runBenchmark() call (BenchOptions::configs), headless through OSMesa, in measured mode (query
+// runBenchmark() call (BenchOptions::configs), headless through the chosen backend (EGL by default), in measured mode (query
 // results ready when the GPU says so), with error measured against ground truth. The first
 // setting is the reference the others are divided by, so that a machine slowed by other work
 // slows both alike and the ratio stays.
@@ -27,7 +27,7 @@ RunConfig statisticalConfig(const Scenario& scenario, const Setting& setting);
 // Runs every setting interleaved (`repetitions` times) with error measured. `on_frame` is called
 // after every configuration's frame, outside the timing (progress, interruption).
 BenchResult runInterleaved(const Scenario& scenario, const std::vector<Setting>& settings, uint32_t repetitions,
-                           const std::function<void(const FrameEvent&)>& on_frame);
+                           const BackendChoice& backend, const std::function<void(const FrameEvent&)>& on_frame);
 
 // One configuration's first repetition as a log line's figures (timed frames only).
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames);

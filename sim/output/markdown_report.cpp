@@ -39,6 +39,10 @@ void header(std::ostringstream& out, const BenchResult& result) {
         << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";
     out << "| machine | " << c.hardware_threads << " hardware threads, LP_NUM_THREADS="
         << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << " |\n";
+    out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor) << ", renderer "
+        << cell(c.gl_renderer) << ", driver " << cell(c.driver)
+        << (c.gpu_time_meaningful ? "" : " (software rasteriser: GPU time not meaningful)")
+        << (c.backend_fallback.empty() ? "" : "; auto fell back to OSMesa: " + cell(c.backend_fallback)) << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
         << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
     if (c.sweep) {

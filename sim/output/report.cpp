@@ -151,6 +151,13 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["machine"] = {{"hardware_threads", m.hardware_threads},
                           {"llvmpipe_threads", m.lp_num_threads},
                           {"renderer", m.renderer},
+                          {"backend", m.backend},
+                          {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
+                          {"gl_vendor", m.gl_vendor},
+                          {"gl_renderer", m.gl_renderer},
+                          {"gl_version", m.gl_version},
+                          {"driver", m.driver},
+                          {"gpu_time_meaningful", m.gpu_time_meaningful},
                           {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
     summary["command"] = m.command_line;
     summary["repetitions"] = m.repetitions;
@@ -158,6 +165,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["deterministic_latency"] = m.deterministic_latency
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);
+    if (!m.backend_fallback.empty()) summary["machine"]["backend_fallback"] = m.backend_fallback;
     if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     const RunCosts& c = result.costs;
     summary["simulator_costs"] = {
@@ -204,6 +212,9 @@ std::string runHeadline(const BenchResult& result) {
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
                   m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
     std::string headline = line;
+    headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " + m.driver +
+                (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
+    if (!m.backend_fallback.empty()) headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
     if (timed == 0) {
         headline += "\nnothing was timed: all " + std::to_string(m.frames) +
                     " frames are warm-up (the scenario's warmup_frames); run more frames than that "

@@ -1,6 +1,6 @@
 #include "sim/run/runner.h"
 
-#include "render/gl_context.h"
+#include "render/headless_context.h"
 #include "sim/run/calibration.h"
 #include "sim/run/ground_truth.h"
 #include "sim/run/shared_world.h"
@@ -31,7 +31,7 @@ void printWarnings(const Scene& scene) {
 }
 
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
-                       uint32_t repetitions, const std::string& renderer) {
+                       uint32_t repetitions, const HeadlessContext& context) {
     RunMetadata m;
     m.command = options.command;
     m.command_line = options.command_line;
@@ -50,7 +50,16 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.sweep = options.sweep;
     m.hardware_threads = std::thread::hardware_concurrency();
     if (const char* lp_threads = std::getenv("LP_NUM_THREADS")) m.lp_num_threads = lp_threads;
-    m.renderer = renderer;
+    m.renderer = context.rendererName();
+    const ContextInfo& gl = context.info();
+    m.backend = backendName(gl.backend);
+    m.device = gl.device;
+    m.gl_vendor = gl.vendor;
+    m.gl_renderer = gl.renderer;
+    m.gl_version = gl.version;
+    m.driver = gl.driver;
+    m.gpu_time_meaningful = gl.gpu_time_meaningful;
+    m.backend_fallback = gl.fallback;
     m.width = scenario.width;
     m.height = scenario.height;
     return m;
@@ -96,7 +105,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene);
-    auto context = createOsMesaContext(scenario.width, scenario.height);
+    auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
@@ -108,7 +117,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     }
 
     BenchResult result;
-    result.metadata = metadataOf(scenario, scene, options, repetitions, context->rendererName());
+    result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
     if (costs) {
         result.metadata.cost_model = costs->costs;
         result.metadata.cost_model_source = costs->source;
