@@ -1,9 +1,11 @@
-// What the viewer asks of the renderer and the simulation, through OSMesa (no window): the live
+// What the viewer asks of the renderer and the simulation, headless (no window; on every backend
+// the build has): the live
 // camera, held worlds and algorithm switches on a SharedWorld, a resizable framebuffer, CPU images
 // shown in a default framebuffer, and the composed picture with the node boxes.
 #include "culling/algorithms.h"
 #include "render/gl_api.h"
-#include "render/gl_context.h"
+#include "headless_backends.h"
+#include "render/headless_context.h"
 #include "render/gl_image_presenter.h"
 #include "render/gl_renderer.h"
 #include "sim/run/simulation.h"
@@ -23,11 +25,11 @@ namespace {
 
 const std::filesystem::path kSmall = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
 
-class ViewGl : public ::testing::Test {
+class ViewGl : public ::testing::TestWithParam<Backend> {
 protected:
     void SetUp() override {
         scenario_ = parseScenarioFile(kSmall);
-        context_ = createOsMesaContext(scenario_.width, scenario_.height);
+        context_ = createHeadlessContext({GetParam(), {}}, scenario_.width, scenario_.height);
         scene_ = std::make_unique<Scene>(buildScene(scenario_));
         renderer_ = std::make_unique<GlRenderer>(scenario_.width, scenario_.height);
         uploadScene(*scene_, *renderer_);
@@ -46,12 +48,12 @@ protected:
     }
 
     Scenario scenario_;
-    std::unique_ptr<GlContext> context_;
+    std::unique_ptr<HeadlessContext> context_;
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<GlRenderer> renderer_;
 };
 
-TEST_F(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
+TEST_P(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
     auto on_path = simulation("vfc");
     auto live = simulation("vfc");
     for (uint32_t f = 0; f < 6; ++f) {
@@ -65,7 +67,7 @@ TEST_F(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
     }
 }
 
-TEST_F(ViewGl, AHeldWorldKeepsItsPosesWhileFramesGoOn) {
+TEST_P(ViewGl, AHeldWorldKeepsItsPosesWhileFramesGoOn) {
     auto sim = simulation("statistical");
     for (int f = 0; f < 3; ++f) sim->renderFrame();
     const std::vector<Aabb> boxes = sim->state().boxes;
@@ -86,7 +88,7 @@ TEST_F(ViewGl, AHeldWorldKeepsItsPosesWhileFramesGoOn) {
 }
 
 // The viewer keeps its world and puts a new configuration on it.
-TEST_F(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
+TEST_P(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
     SharedWorld world(*scene_, scenario_);
     GroundTruth truth(*renderer_);
     auto onWorld = [&](const std::string& algorithm, bool error) {
@@ -121,7 +123,7 @@ TEST_F(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
     EXPECT_THROW(second->renderFrame(), std::logic_error);
 }
 
-TEST_F(ViewGl, TheFramebufferFollowsANewSize) {
+TEST_P(ViewGl, TheFramebufferFollowsANewSize) {
     renderer_->resize(96, 64);
     auto sim = simulation("vfc");
     LiveControls controls;
@@ -134,7 +136,7 @@ TEST_F(ViewGl, TheFramebufferFollowsANewSize) {
     EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }), 96 * 64 / 4);
 }
 
-TEST_F(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
+TEST_P(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
     // Four quadrants of different colours, rows bottom-up.
     const uint32_t w = scenario_.width, h = scenario_.height;
     std::vector<uint8_t> image(size_t{w} * h * 4);
@@ -164,7 +166,7 @@ size_t countColour(const RasterCanvas& canvas, Rgb colour) {
     return n;
 }
 
-TEST_F(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
+TEST_P(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
     auto sim = simulation("chc");
     ViewLayers layers;
     layers.boxes = true;
@@ -188,6 +190,9 @@ TEST_F(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
     EXPECT_GT(countColour(boxed, visible), 100u);
     EXPECT_GT(countColour(boxed, nodeClassColour(NodeClass::OcclusionCulled)), 20u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, ViewGl, ::testing::ValuesIn(testing::testedBackends()),
+                         testing::backendTestName);
 
 }  // namespace
 }  // namespace occsim
