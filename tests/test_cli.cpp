@@ -95,6 +95,57 @@ TEST(Cli, BadValuesSayWhatWasExpectedAndWhatWasGiven) {
     }
 }
 
+// The headless backend and device: a choice that cannot be served is bad input, one line naming
+// what is missing and what was found, and nothing is written.
+TEST(Cli, ABackendOrDeviceThatCannotServeIsOneLineWithExitCode2) {
+    const auto out = tempPath("bad-backend");
+    const struct {
+        std::string args, must_contain;
+    } cases[] = {
+        {"bench " + kSmall + " --backend vulkan", "--backend: expected auto, egl or osmesa, got 'vulkan'"},
+        {"bench " + kSmall + " --device 64", "--device 64: out of range, EGL lists "},
+        {"run " + kSmall + " --backend egl --device 9", "--device 9: out of range"},
+        {"run " + kSmall + " --device -1", "--device: expected an integer in [0, 1023], got '-1'"},
+        {"run " + kSmall + " --backend osmesa --device 0", "--device 0: only the EGL backend has devices"},
+        {"regress " + kSmall + " --device 5", "--device 5: out of range"},
+        {"regress " + kSmall + " --backend gl", "--backend: expected auto, egl or osmesa, got 'gl'"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = runOccsim(c.args + " --out " + out.string());
+        EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << c.args << ": " << o.output;
+        EXPECT_NE(o.output.find(c.must_contain), std::string::npos) << c.args << ": " << o.output;
+        EXPECT_FALSE(std::filesystem::exists(out / "summary.json")) << c.args;
+    }
+}
+
+TEST(Cli, DevicesListsTheSoftwareDeviceWithVendorRendererAndDriver) {
+    const Outcome o = runOccsim("devices");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("EGL devices: "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("(software): vendor Mesa"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("renderer llvmpipe"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("driver Mesa "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("gpu ms not meaningful"), std::string::npos) << o.output;
+}
+
+// Where a run rendered is in its console header, summary.json and report.md.
+TEST(Cli, TheBackendDeviceAndDriverAreRecordedEverywhere) {
+    const auto out = tempPath("backend");
+    const Outcome o = runOccsim("run " + kSmall + " --algo vfc --frames 2 --backend egl --device 0 --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("backend: EGL device 0, vendor Mesa"), std::string::npos) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    for (const char* part : {"\"backend\": \"egl\"", "\"device\": 0", "\"gl_renderer\": \"llvmpipe",
+                             "\"driver\": \"Mesa ", "\"gl_vendor\"", "\"gpu_time_meaningful\": false"}) {
+        EXPECT_NE(json.find(part), std::string::npos) << part << " in " << json;
+    }
+    std::ifstream report(out / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
+    EXPECT_NE(md.find("| backend | EGL device 0: vendor Mesa"), std::string::npos) << md;
+}
+
 // A run whose every frame is warm-up has no timing to report: it says so instead of 0.00 ms.
 TEST(Cli, ARunWithOnlyWarmupFramesSaysNothingWasTimed) {
     const Outcome o = runOccsim("bench " + kSmall + " --algos vfc --frames 3 --out " +

@@ -1,4 +1,6 @@
-// End to end through OSMesa: the small teapot scenario, every algorithm, ground truth and error.
+// End to end headless (EGL by default): the small teapot scenario, every algorithm, ground truth
+// and error; and the same bench on every backend the build has.
+#include "headless_backends.h"
 #include "culling/algorithms.h"
 #include "sim/output/pictures.h"
 #include "sim/output/run_outputs.h"
@@ -124,6 +126,35 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     }
     EXPECT_EQ(counts[0], counts[1]);
     EXPECT_EQ(counts[0], counts[2]);
+}
+
+// The backend is where frames are rendered, not what the cullers decide: in deterministic-latency
+// mode every algorithm issues the same queries and draws the same objects on each backend, frame
+// by frame, and the run records which backend it was.
+TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
+    const std::vector<Backend> backends = testing::testedBackends();
+    if (backends.size() < 2) GTEST_SKIP() << "this build has one headless backend (no OSMesa)";
+    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>> counts;  // [backend][config][frame]
+    for (Backend backend : backends) {
+        BenchOptions options;
+        options.algorithms = traitsOf(algorithmNames());
+        options.latency = LatencyMode{true, 6};
+        options.backend.backend = backend;
+        options.frames = 20;
+        const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+        EXPECT_EQ(r.metadata.backend, backendName(backend));
+        counts.emplace_back();
+        for (const RunRecord& run : r.runs) {
+            counts.back().emplace_back();
+            for (const FrameStats& f : run.frames) counts.back().back().push_back({f.queries, f.objects_drawn});
+        }
+    }
+    uint64_t queries = 0;
+    for (const auto& config : counts[0]) {
+        for (const auto& frame : config) queries += frame.first;
+    }
+    EXPECT_GT(queries, 0u);
+    for (size_t b = 1; b < counts.size(); ++b) EXPECT_EQ(counts[b], counts[0]) << backendName(backends[b]);
 }
 
 // rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its
