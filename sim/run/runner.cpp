@@ -143,6 +143,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             sim_options.keep_worst_error_frame =
                 options.keep_worst_error_frame && options.measure_error && rep == 0;
             if (rep == 0) sim_options.trace_frame = options.trace_frame;
+            sim_options.measure_gpu_time = context->info().gpu_time_meaningful;
             auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                               : makeCuller(*config.algorithm, config.culler);
             sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
@@ -188,6 +189,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             RunRecord& record = result.runs[c];
             RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
             if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());
+            addAnswerLatencies(summary, sims[c]->answerLatencies());
             record.repetitions.push_back(summary);
             if (rep == 0) {
                 record.frames = std::move(frames[c]);
