@@ -4,6 +4,7 @@
 // the one-line reasons when a backend or device cannot serve.
 #include "headless_backends.h"
 #include "render/headless_context.h"
+#include "render/gl_frame_timer.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "render/png_writer.h"
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace occsim {
@@ -158,6 +160,58 @@ TEST_P(RenderTest, FetchingAnUnreadyResultCountsAsAWait) {
     const QueryId q = device.issueQuery(boxes_[2]);
     EXPECT_GT(device.queryResult(q), 0u);
     EXPECT_EQ(device.counters().results_waited, 1u);
+}
+
+// Latency as the culler feels it: the commands submitted after a query by the time the device
+// knew its answer was ready, once per answer, whether it was polled ready or waited for.
+TEST_P(RenderTest, AnswerLatencyCountsTheCommandsAfterAQueryUntilItsAnswerWasReady) {
+    GlQueryDevice device(*renderer_, LatencyMode{true, 3});
+    renderer_->beginFrame();
+    const QueryId polled = device.issueQuery(boxes_[2]);
+    const QueryId waited = device.issueQuery(boxes_[1]);  // one command after `polled`
+    for (int i = 0; i < 3; ++i) device.drawObject(0);
+    EXPECT_TRUE(device.isQueryReady(polled));   // 4 commands after it
+    EXPECT_TRUE(device.isQueryReady(polled));   // asked again: the same answer, counted once
+    device.queryResult(polled);
+    device.queryResult(waited);                 // 3 after it: not ready, waited for
+    std::vector<uint32_t> latencies;
+    device.takeAnswerLatencies(latencies);
+    EXPECT_EQ(latencies, (std::vector<uint32_t>{4, 3}));
+    device.takeAnswerLatencies(latencies);
+    EXPECT_TRUE(latencies.empty());
+}
+
+TEST_P(RenderTest, MeasuredModeRecordsEveryFetchedAnswerOnce) {
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    std::vector<QueryId> ids;
+    for (int i = 0; i < 5; ++i) {
+        ids.push_back(device.issueQuery(boxes_[2]));
+        device.drawObject(0);
+    }
+    for (QueryId id : ids) device.queryResult(id);
+    std::vector<uint32_t> latencies;
+    device.takeAnswerLatencies(latencies);
+    ASSERT_EQ(latencies.size(), 5u);
+    // The first query had 9 commands after it when the last was submitted: no answer can have
+    // been known later than that.
+    for (size_t i = 0; i < latencies.size(); ++i) EXPECT_LE(latencies[i], 9u - 2 * i) << i;
+}
+
+// The timer query brackets a frame and its result is there after glFinish. Its value is only
+// checked to be a number: on llvmpipe it does not time rasterisation.
+TEST_P(RenderTest, TheFrameTimerGivesAResultAfterFinish) {
+    GlFrameTimer timer;
+    for (int frame = 0; frame < 2; ++frame) {
+        timer.begin();
+        renderer_->beginFrame();
+        renderer_->drawObject(0);
+        timer.end();
+        renderer_->finish();
+        const double ms = timer.resultMs();
+        EXPECT_GE(ms, 0.0);
+        EXPECT_TRUE(std::isfinite(ms));
+    }
 }
 
 TEST_P(RenderTest, ManyQueriesInFlightResolveInOrderAndIdsAreReused) {

@@ -4,7 +4,9 @@
 #include "culling/algorithms.h"
 #include "sim/output/pictures.h"
 #include "sim/output/run_outputs.h"
+#include "render/gl_renderer.h"
 #include "sim/run/runner.h"
+#include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/scene_info.h"
 
@@ -155,6 +157,58 @@ TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
     }
     EXPECT_GT(queries, 0u);
     for (size_t b = 1; b < counts.size(); ++b) EXPECT_EQ(counts[b], counts[0]) << backendName(backends[b]);
+}
+
+// GPU time is measured only where it means something: on llvmpipe every frame's gpu_ms and the
+// summary's are -1 (n/a, null), and a run that times anyway (as on a GPU) fills them.
+TEST(Simulation, GpuTimeIsMeasuredOnlyWhereMeaningful) {
+    const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"chc"});
+    ASSERT_FALSE(r.metadata.gpu_time_meaningful) << r.metadata.gl_renderer;
+    for (const FrameStats& f : r.runs[0].frames) EXPECT_EQ(f.gpu_ms, -1.0);
+    EXPECT_EQ(r.runs[0].summary.gpu_ms_mean, -1.0);
+
+    const Scenario scenario = parseScenarioFile(kSmall);
+    const Scene scene = buildScene(scenario);
+    auto context = createHeadlessContext({}, scenario.width, scenario.height);
+    GlRenderer renderer(scenario.width, scenario.height);
+    uploadScene(scene, renderer);
+    SimulationOptions options;
+    options.measure_gpu_time = true;
+    const AlgorithmTraits& chc = *findAlgorithm("chc");
+    Simulation sim(scene, scenario, chc, makeCuller(chc, scenario.culler), scenario.culler, renderer, options);
+    for (int f = 0; f < 3; ++f) EXPECT_GE(sim.renderFrame().gpu_ms, 0.0);
+}
+
+// Answer latency per run: in deterministic-latency mode with N, an answer polled ready had at
+// least N commands after its query, one waited for fewer; every answer of the timed frames is
+// counted once, and the per-frame counts add up to the run's.
+TEST(Simulation, AnswerLatenciesAreSummarisedOverTheTimedFrames) {
+    const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"chc", "vfc"});
+    const RunRecord& chc = r.runs[0];
+    const RunSummary& s = chc.summary;
+    uint64_t answers = 0;
+    for (const FrameStats& f : chc.frames) {
+        if (f.frame >= parseScenarioFile(kSmall).warmup_frames) answers += f.answers;
+        EXPECT_EQ(f.answers > 0, f.answer_latency_median >= 0.0) << f.frame;
+    }
+    EXPECT_GT(s.answers, 0u);
+    EXPECT_EQ(s.answers, answers);
+    EXPECT_GE(s.answer_latency_p95, s.answer_latency_median);
+    EXPECT_LE(s.answer_latency_median, 6.0 + 1.0);
+    EXPECT_EQ(r.runs[1].summary.answers, 0u);  // vfc issues no query
+    EXPECT_EQ(r.runs[1].summary.answer_latency_median, -1.0);
+}
+
+TEST(FrameStats, AnswerLatencyRanksAreNearestRankOverTheHistogram) {
+    RunSummary s;
+    addAnswerLatencies(s, {0, 10, 0, 8, 2});  // 10 x 1, 8 x 3, 2 x 4
+    EXPECT_EQ(s.answers, 20u);
+    EXPECT_EQ(s.answer_latency_median, 1.0);  // rank 10
+    EXPECT_EQ(s.answer_latency_p95, 4.0);     // rank 19
+    addAnswerLatencies(s, {});
+    EXPECT_EQ(s.answer_latency_median, -1.0);
+    std::vector<uint32_t> frame = {7, 1, 3, 5};
+    EXPECT_EQ(medianLatency(frame), 4.0);
 }
 
 // rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its
