@@ -83,6 +83,8 @@ int main(int argc, char** argv) {
     o.command_line = commandLine(argc, argv);
 
     try {
+        // The backend and device are input too: checked before the first run writes anything.
+        occsim::createHeadlessContext(o.backend, 16, 16);
         return occsim::tune::runTuner(o);
     } catch (const occsim::BackendUnavailable& e) {
         std::fprintf(stderr, "occtune: %s\n", e.what());
