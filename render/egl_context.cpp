@@ -90,7 +90,10 @@ EglLibrary loadEgl() {
     }
     if (!missing.empty()) {
         egl.problem = "EGL lacks " + missing + " (client extensions: " +
-                      (egl.client_extensions.empty() ? "none" : egl.client_extensions) + ")";
+                      (egl.client_extensions.empty()
+                           ? "none: glvnd found no EGL vendor library; install libegl-mesa0 or the GPU vendor's"
+                           : egl.client_extensions) +
+                      ")";
         return egl;
     }
     egl.queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl.getProcAddress("eglQueryDevicesEXT"));

@@ -119,6 +119,34 @@ TEST(Cli, ABackendOrDeviceThatCannotServeIsOneLineWithExitCode2) {
     }
 }
 
+// Without EGL (here: glvnd told to load no vendor library), `auto` falls back to OSMesa where the
+// build has it and says so everywhere; `egl` is bad input; without OSMesa `auto` is bad input too.
+TEST(Cli, WithoutEglAutoFallsBackToOsmesaAndSaysWhyAndEglIsBadInput) {
+    const std::string no_egl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json ";
+    const auto out = tempPath("no-egl");
+    const Outcome egl = shell(no_egl + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --backend egl --out " +
+                              out.string());
+    EXPECT_EQ(egl.exit_code, 2) << egl.output;
+    EXPECT_EQ(lineCount(egl.output), 1u) << egl.output;
+    EXPECT_NE(egl.output.find("--backend egl: EGL: EGL lacks EGL_EXT_device_enumeration"), std::string::npos)
+        << egl.output;
+    const Outcome fallback = shell(no_egl + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --out " +
+                                   out.string());
+    if (!OCCSIM_HAVE_OSMESA) {
+        EXPECT_EQ(fallback.exit_code, 2) << fallback.output;
+        EXPECT_NE(fallback.output.find("and this build has no OSMesa"), std::string::npos) << fallback.output;
+        return;
+    }
+    ASSERT_EQ(fallback.exit_code, 0) << fallback.output;
+    EXPECT_NE(fallback.output.find("backend: OSMesa"), std::string::npos) << fallback.output;
+    EXPECT_NE(fallback.output.find("backend auto fell back to OSMesa: EGL: EGL lacks"), std::string::npos)
+        << fallback.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    EXPECT_NE(json.find("\"backend\": \"osmesa\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"backend_fallback\": \"EGL: EGL lacks"), std::string::npos) << json;
+}
+
 TEST(Cli, DevicesListsTheSoftwareDeviceWithVendorRendererAndDriver) {
     const Outcome o = runOccsim("devices");
     EXPECT_EQ(o.exit_code, 0) << o.output;
