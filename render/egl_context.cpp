@@ -204,7 +204,9 @@ public:
                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         context_ = e.createContext(display_, config, EGL_NO_CONTEXT, attributes);
         if (context_ == EGL_NO_CONTEXT) {
-            throw BackendUnavailable(where + ": cannot create an OpenGL 4.5 core context (" + eglErrorText(e) + ")");
+            const std::string error = eglErrorText(e);
+            throw BackendUnavailable(where + ": cannot create an OpenGL 4.5 core context (" + error + "), found " +
+                                     bestContextOffered(config));
         }
         if (!e.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
             const std::string error = eglErrorText(e);
@@ -230,6 +232,26 @@ public:
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
 private:
+    // What the device offers instead, for the message: a context of any version, asked for
+    // without one, and its GL_VERSION and GL_RENDERER.
+    std::string bestContextOffered(EGLConfig config) const {
+        const EGLint any[] = {EGL_NONE};
+        EGLContext probe = egl_.createContext(display_, config, EGL_NO_CONTEXT, any);
+        if (probe == EGL_NO_CONTEXT) return "no desktop OpenGL context at all";
+        std::string found = "an unknown version";
+        if (egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, probe)) {
+            using GetString = const unsigned char* (*)(unsigned);
+            if (auto get = reinterpret_cast<GetString>(egl_.getProcAddress("glGetString"))) {
+                const auto* version = reinterpret_cast<const char*>(get(0x1F02));   // GL_VERSION
+                const auto* renderer = reinterpret_cast<const char*>(get(0x1F01));  // GL_RENDERER
+                found = std::string("OpenGL \"") + (version ? version : "?") + "\" on " + (renderer ? renderer : "?");
+            }
+            egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        }
+        egl_.destroyContext(display_, probe);
+        return found;
+    }
+
     void release() {
         if (context_ == EGL_NO_CONTEXT) return;
         egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

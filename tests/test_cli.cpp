@@ -147,6 +147,22 @@ TEST(Cli, WithoutEglAutoFallsBackToOsmesaAndSaysWhyAndEglIsBadInput) {
     EXPECT_NE(json.find("\"backend_fallback\": \"EGL: EGL lacks"), std::string::npos) << json;
 }
 
+// A device whose OpenGL is too old (Mesa told to offer 4.3, or to hide the timer queries, which
+// takes it below 3.3) is bad input naming what was asked for and what was found.
+TEST(Cli, AContextBelowOpenGl45IsOneLineNamingWhatWasFound) {
+    const auto out = tempPath("old-gl");
+    for (const std::string& env : {std::string("MESA_GL_VERSION_OVERRIDE=4.3"),
+                                   std::string("MESA_EXTENSION_OVERRIDE=-GL_ARB_timer_query")}) {
+        const Outcome o = shell(env + " " + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --backend egl --out " +
+                                out.string());
+        EXPECT_EQ(o.exit_code, 2) << env << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << env << ": " << o.output;
+        EXPECT_NE(o.output.find("EGL device 0: cannot create an OpenGL 4.5 core context"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("found OpenGL \""), std::string::npos) << o.output;
+        EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+    }
+}
+
 TEST(Cli, DevicesListsTheSoftwareDeviceWithVendorRendererAndDriver) {
     const Outcome o = runOccsim("devices");
     EXPECT_EQ(o.exit_code, 0) << o.output;
