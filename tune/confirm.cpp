@@ -27,7 +27,10 @@ ConfirmationRow confirm(const Scenario& scenario, const std::string& variant, co
     row.variant = variant;
     row.seed = scenario.seed;
     row.frames = result.metadata.frames;
-    row.renderer = result.metadata.renderer;
+    // Where it rendered, as occsim's console names it: tuned values carry over only to the same
+    // kind of renderer (docs/headless-gpu.md).
+    row.renderer = result.metadata.renderer + " through " + backendLabel(result.metadata) + " (vendor " +
+                   result.metadata.gl_vendor + ", driver " + result.metadata.driver + ")";
     row.repetitions = static_cast<uint32_t>(t.repetitions.size());
     std::vector<double> mean_ratios, p95_ratios;
     for (size_t r = 0; r < t.repetitions.size(); ++r) {
