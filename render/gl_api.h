@@ -1,5 +1,5 @@
 // The OpenGL 4.5 core entry points occsim uses, loaded at run time from whichever context is
-// current (OSMesa or GLFW), so that one renderer serves both without linking libGL directly.
+// current (EGL, OSMesa or GLFW), so that one renderer serves them all without linking libGL directly.
 // Code calls them by their usual names; the macros below route those names to our pointers.
 #pragma once
 
@@ -12,6 +12,7 @@
 // X(PFN type, name) for every function we call.
 #define OCCSIM_GL_FUNCTIONS(X)                                          \
     X(PFNGLGETSTRINGPROC, glGetString)                                  \
+    X(PFNGLGETSTRINGIPROC, glGetStringi)                                \
     X(PFNGLGETINTEGERVPROC, glGetIntegerv)                              \
     X(PFNGLGETERRORPROC, glGetError)                                    \
     X(PFNGLENABLEPROC, glEnable)                                        \
@@ -88,6 +89,7 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #undef OCCSIM_GL_DECLARE
 
 #define glGetString occsim_glGetString
+#define glGetStringi occsim_glGetStringi
 #define glGetIntegerv occsim_glGetIntegerv
 #define glGetError occsim_glGetError
 #define glEnable occsim_glEnable

@@ -2,7 +2,9 @@
 
 #include "render/gl_api.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 namespace occsim {
 namespace {
@@ -59,26 +61,44 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
         glGenQueries(1, &q);
         gl_queries_.push_back(q);
         issued_at_.push_back(0);
+        answered_.push_back(0);
     }
     glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]);
     for (const Aabb& box : boxes) renderer_.drawQueryBox(box);
     glEndQuery(GL_SAMPLES_PASSED);
     issued_at_[id] = commands_++;
+    answered_[id] = 0;
     ++counters_.queries_issued;
     counters_.query_boxes += boxes.size();
     counters_.submit_seconds += secondsSince(start);
     return id;
 }
 
+void GlQueryDevice::noteAnswered(QueryId id) {
+    if (answered_[id]) return;
+    answered_[id] = 1;
+    const uint64_t after = commands_ - issued_at_[id] - 1;
+    latencies_.push_back(static_cast<uint32_t>(std::min<uint64_t>(after, UINT32_MAX)));
+}
+
+void GlQueryDevice::takeAnswerLatencies(std::vector<uint32_t>& out) {
+    out.clear();
+    out.swap(latencies_);
+}
+
 bool GlQueryDevice::isQueryReady(QueryId id) {
+    bool ready = false;
     if (latency_.deterministic) {
-        return commands_ - issued_at_[id] > latency_.latency_commands;
+        ready = commands_ - issued_at_[id] > latency_.latency_commands;
+    } else {
+        const auto start = Clock::now();
+        GLuint available = GL_FALSE;
+        glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available);
+        counters_.poll_seconds += secondsSince(start);
+        ready = available == GL_TRUE;
     }
-    const auto start = Clock::now();
-    GLuint available = GL_FALSE;
-    glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available);
-    counters_.poll_seconds += secondsSince(start);
-    return available == GL_TRUE;
+    if (ready) noteAnswered(id);
+    return ready;
 }
 
 uint64_t GlQueryDevice::queryResult(QueryId id) {
@@ -87,6 +107,8 @@ uint64_t GlQueryDevice::queryResult(QueryId id) {
     GLuint64 samples = 0;
     glGetQueryObjectui64v(gl_queries_[id], GL_QUERY_RESULT, &samples);
     if (!ready) {
+        // Waited for: the answer arrived with as many commands after the query as there are now.
+        noteAnswered(id);
         ++counters_.results_waited;
         counters_.wait_seconds += secondsSince(start);
     } else {

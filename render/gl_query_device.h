@@ -1,6 +1,9 @@
 // RenderDevice over real OpenGL occlusion queries (GL_SAMPLES_PASSED). Query objects come from a
 // pool that grows as needed and is reused; an id stays valid across frames until its result is
 // fetched. Draw and query submission time and blocked time are measured here, so cullers need not.
+// So is each query's latency as the culler feels it: how many commands (draws and queries) had
+// been submitted after it by the time its answer was known to be ready, when the culler polled
+// it or waited for it (takeAnswerLatencies()).
 #pragma once
 
 #include "occsim/culling/contract/render_device.h"
@@ -33,13 +36,20 @@ public:
     bool drew(uint32_t object) const {
         return object < drawn_mark_.size() && drawn_mark_[object] == drawn_set_;
     }
+    // The latencies of the answers that became ready since the last call (in the order they did),
+    // moved into `out` (cleared first; its capacity is reused).
+    void takeAnswerLatencies(std::vector<uint32_t>& out);
 
 private:
+    void noteAnswered(QueryId id);
+
     GlRenderer& renderer_;
     LatencyMode latency_;
     uint64_t commands_ = 0;               // draws and queries submitted so far
     std::vector<uint32_t> gl_queries_;    // QueryId -> GL query object
     std::vector<uint64_t> issued_at_;     // QueryId -> commands_ when issued
+    std::vector<uint8_t> answered_;       // QueryId -> its latency is recorded
+    std::vector<uint32_t> latencies_;     // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;    // object -> drawn_set_ when drawn in the current set
     uint32_t drawn_set_ = 1;

@@ -1,7 +1,9 @@
-// Headless GL through OSMesa. OSMesa needs a client buffer to make a context current; occsim
-// renders into its own framebuffer object, so that buffer only exists to satisfy the API.
-#include "render/gl_context.h"
+// Headless GL through OSMesa (Mesa's llvmpipe), only in builds configured with it
+// (OCCSIM_WITH_OSMESA; Mesa removed OSMesa in 25.1). OSMesa needs a client buffer to make a
+// context current; occsim renders into its own framebuffer object, so that buffer only exists
+// to satisfy the API.
 #include "render/gl_loader.h"
+#include "render/headless_backends.h"
 
 #include <GL/osmesa.h>
 
@@ -11,7 +13,7 @@
 namespace occsim {
 namespace {
 
-class OsMesaContext final : public GlContext {
+class OsMesaContext final : public HeadlessContext {
 public:
     OsMesaContext(uint32_t width, uint32_t height) : buffer_(size_t{width} * height * 4) {
         const int attribs[] = {OSMESA_FORMAT,
@@ -29,7 +31,7 @@ public:
                                0};
         context_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (context_ == nullptr) {
-            throw std::runtime_error("OSMesa: cannot create an OpenGL 4.5 core context");
+            throw BackendUnavailable("OSMesa: cannot create an OpenGL 4.5 core context");
         }
         if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE,
                                static_cast<GLsizei>(width), static_cast<GLsizei>(height))) {
@@ -41,16 +43,14 @@ public:
                 [](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); },
                 &error)) {
             OSMesaDestroyContext(context_);
-            throw std::runtime_error("OSMesa: " + error);
+            throw BackendUnavailable("OSMesa: " + error);
         }
     }
     ~OsMesaContext() override { OSMesaDestroyContext(context_); }
     OsMesaContext(const OsMesaContext&) = delete;
     OsMesaContext& operator=(const OsMesaContext&) = delete;
 
-    std::string rendererName() const override {
-        return glRendererDescription();
-    }
+    void setInfo(ContextInfo info) { info_ = std::move(info); }
 
 private:
     std::vector<unsigned char> buffer_;
@@ -59,8 +59,10 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createOsMesaContext(uint32_t width, uint32_t height) {
-    return std::make_unique<OsMesaContext>(width, height);
+std::unique_ptr<HeadlessContext> createOsMesaContext(uint32_t width, uint32_t height) {
+    auto context = std::make_unique<OsMesaContext>(width, height);
+    context->setInfo(checkedContextInfo(Backend::OsMesa, std::nullopt, "OSMesa"));
+    return context;
 }
 
 }  // namespace occsim

@@ -5,7 +5,9 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git          # toolchain
-  libosmesa6-dev                                # headless OpenGL (Mesa llvmpipe)
+  libegl-dev libopengl-dev                      # headless OpenGL through EGL (the default backend)
+  libegl-mesa0                                  # Mesa's EGL driver: the llvmpipe software device
+  libosmesa6-dev                                # headless OpenGL through OSMesa (optional backend)
   libglfw3-dev                                  # window (occsim view)
   libglm-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
   libceres-dev                                  # the tuner

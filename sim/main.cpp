@@ -1,9 +1,11 @@
-// occsim: the simulator executable. Commands: run, bench, regress, info, view. Bad input (flags,
-// scenario and script files) ends with one line on stderr and exit code 2, and so does `view`
-// where no window can be opened; runtime failures (OpenGL, output) with exit 1.
+// occsim: the simulator executable. Commands: run, bench, regress, info, devices, cullers, view.
+// Bad input (flags, scenario and script files, plugins, a headless backend or device that is
+// missing or falls short) ends with one line on stderr and exit code 2, and so does `view` where
+// no window can be opened; runtime failures (OpenGL, output) with exit 1.
 #include "occsim/culling/registry/plugin_loader.h"
 #include "occsim/culling/registry/registry.h"
 #include "render/glfw_context.h"
+#include "render/headless_context.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
@@ -73,7 +75,30 @@ std::string commandLine(int argc, char** argv) {
     return out.str();
 }
 
+// --backend and --device, on every command that renders headless.
+struct BackendFlags {
+    std::string backend = "auto";
+    int64_t device = -1;
+};
+
+void addBackendFlags(CLI::App* cmd, BackendFlags& flags) {
+    cmd->add_option("--backend", flags.backend,
+                    "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa (docs/headless-gpu.md)");
+    cmd->add_option("--device", flags.device, "EGL device index (occsim devices lists them; default 0)")
+        ->check(integerIn(0, 1023));
+}
+
+occsim::BackendChoice backendChoice(const BackendFlags& flags) {
+    occsim::BackendChoice choice;
+    const auto backend = occsim::parseBackend(flags.backend);
+    if (!backend) throw BadInput("--backend: expected auto, egl or osmesa, got '" + flags.backend + "'");
+    choice.backend = *backend;
+    if (flags.device >= 0) choice.device = static_cast<uint32_t>(flags.device);
+    return choice;
+}
+
 struct CommonFlags {
+    BackendFlags backend;
     std::string scenario;
     uint32_t repetitions = 1;
     std::string sweep;
@@ -108,6 +133,7 @@ void loadPlugins(const std::vector<std::string>& plugins) {
 
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
+    addBackendFlags(cmd, flags.backend);
     cmd->add_flag("--error", flags.error,
                   "Measure image error against a ground-truth render of every frame (outside the timing)");
     cmd->add_option("--out", flags.out, "Output folder (default: out/<scenario>/<command>)");
@@ -158,6 +184,7 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.command = request.command;
     o.command_line = request.command_line;
     o.measure_error = flags.error;
+    o.backend = backendChoice(flags.backend);
     if (flags.frames > 0) o.frames = flags.frames;
     o.repetitions = flags.repetitions;
     if (!flags.sweep.empty()) {
@@ -224,9 +251,10 @@ int runCommand(const RunRequest& request) {
 
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
                    const std::string& shard, const std::string& out, const std::string& culling_file,
-                   const std::vector<std::string>& plugins) {
+                   const std::vector<std::string>& plugins, const BackendFlags& backend) {
     loadPlugins(plugins);
     occsim::RegressOptions options;
+    options.backend = backendChoice(backend);
     if (!culling_file.empty()) {
         options.adjust_scenario = [culling = occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
             occsim::applyCullingFile(culling, s);
@@ -258,6 +286,26 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
                 options.shard.index, options.shard.count, failed, skipped);
     return report.passed() ? 0 : kExitFailure;
+}
+
+// `occsim devices`: every EGL device with what a context on it reports.
+int devicesCommand() {
+    std::printf("OSMesa: %s\n", occsim::osmesaAvailable() ? "in this build (--backend osmesa)"
+                                                         : "not in this build (OCCSIM_WITH_OSMESA=OFF)");
+    const std::vector<occsim::EglDeviceInfo> devices = occsim::listEglDevices();
+    std::printf("EGL devices: %zu\n", devices.size());
+    for (const occsim::EglDeviceInfo& d : devices) {
+        std::printf("device %u (%s): ", d.index, d.kind.c_str());
+        if (!d.problem.empty()) {
+            std::printf("unusable: %s\n", d.problem.c_str());
+            continue;
+        }
+        const occsim::ContextInfo& c = d.context;
+        std::printf("vendor %s, renderer %s, driver %s, OpenGL %s%s\n", c.vendor.c_str(),
+                    c.renderer.c_str(), c.driver.c_str(), c.version.c_str(),
+                    c.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
+    }
+    return 0;
 }
 
 struct ViewFlags {
@@ -335,6 +383,8 @@ int main(int argc, char** argv) {
                         "Culling options from this file, overriding every scenario's (see run --help)");
     std::vector<std::string> regress_plugins;
     addPluginFlag(regress, regress_plugins);
+    BackendFlags regress_backend;
+    addBackendFlags(regress, regress_backend);
 
     bool cullers_markdown = false;
     std::vector<std::string> cullers_plugins;
@@ -342,6 +392,9 @@ int main(int argc, char** argv) {
         "cullers", "List the registered cullers, their traits and every option (docs/cullers.md)");
     cullers->add_flag("--markdown", cullers_markdown, "As the Markdown tables of docs/cullers.md");
     addPluginFlag(cullers, cullers_plugins);
+
+    CLI::App* devices = app.add_subcommand(
+        "devices", "List the EGL devices headless runs can use (--device N), with vendor, renderer and driver");
 
     std::string info_scenario;
     CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
@@ -411,12 +464,13 @@ int main(int argc, char** argv) {
         }
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
                                              regress_shard, regress_out, regress_culling,
-                                             regress_plugins);
+                                             regress_plugins, regress_backend);
         if (*cullers) {
             loadPlugins(cullers_plugins);
             std::printf("%s", (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
             return 0;
         }
+        if (*devices) return devicesCommand();
         if (*info) {
             std::vector<std::string> warnings;
             const std::string text =
@@ -431,6 +485,9 @@ int main(int argc, char** argv) {
                      "occsim view: cannot open a window: %s; the headless commands need no display "
                      "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
                      e.what());
+        return kExitBadInput;
+    } catch (const occsim::BackendUnavailable& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
     } catch (const occsim::ScriptError& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());

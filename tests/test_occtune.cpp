@@ -161,6 +161,8 @@ TEST(Occtune, BadInputIsOneLineWithExitCode2BeforeAnyRun) {
         {"/no/such/scenario.json", "/no/such/scenario.json"},
         {malformed.string(), "/frames"},
         {kSmall + " --frmaes 3", "--frmaes"},
+        {kSmall + " --backend vulkan", "--backend: expected auto, egl or osmesa, got 'vulkan'"},
+        {kSmall + " --device 50", "--device 50: out of range"},
     };
     for (const Case& c : cases) {
         const Outcome o = occtune(c.args + " --out " + out.string());

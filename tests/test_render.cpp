@@ -1,6 +1,10 @@
-// The OpenGL backend through a real OSMesa context: object IDs, reverse-Z depth, and occlusion
-// queries that are conservative and asynchronous.
-#include "render/gl_context.h"
+// The OpenGL backend through a real headless context, on every backend the build has (EGL, and
+// OSMesa where configured): object IDs, reverse-Z depth, and occlusion queries that are
+// conservative and asynchronous. Then the backend choice itself: what a context must offer, and
+// the one-line reasons when a backend or device cannot serve.
+#include "headless_backends.h"
+#include "render/headless_context.h"
+#include "render/gl_frame_timer.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "render/png_writer.h"
@@ -9,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace occsim {
@@ -32,11 +37,11 @@ MeshData cubeMesh() {
     return m;
 }
 
-class RenderTest : public ::testing::Test {
+class RenderTest : public ::testing::TestWithParam<Backend> {
 protected:
     static constexpr uint32_t kW = 128, kH = 96;
     void SetUp() override {
-        context_ = createOsMesaContext(kW, kH);
+        context_ = createHeadlessContext({GetParam(), {}}, kW, kH);
         renderer_ = std::make_unique<GlRenderer>(kW, kH);
         const MeshData cube = cubeMesh();
         renderer_->uploadMeshes(std::span<const MeshData>(&cube, 1));
@@ -61,18 +66,25 @@ protected:
         }
         renderer_->setView(view, model_view_);
     }
-    std::unique_ptr<GlContext> context_;
+    std::unique_ptr<HeadlessContext> context_;
     std::unique_ptr<GlRenderer> renderer_;
     std::vector<glm::dmat4> world_;
     std::vector<glm::mat4> model_view_;
     std::vector<Aabb> boxes_;
 };
 
-TEST_F(RenderTest, ContextIsOpenGl45CoreOnMesa) {
+TEST_P(RenderTest, ContextIsOpenGl45CoreOnTheBackendAskedFor) {
     EXPECT_NE(context_->rendererName().find("4.5"), std::string::npos) << context_->rendererName();
+    const ContextInfo& info = context_->info();
+    EXPECT_EQ(info.backend, GetParam());
+    EXPECT_EQ(info.device.has_value(), GetParam() == Backend::Egl);
+    EXPECT_FALSE(info.vendor.empty());
+    EXPECT_FALSE(info.renderer.empty());
+    EXPECT_FALSE(info.driver.empty());
+    EXPECT_TRUE(info.fallback.empty());
 }
 
-TEST_F(RenderTest, ObjectIdBufferHoldsObjectIndexPlusOneAndZeroForBackground) {
+TEST_P(RenderTest, ObjectIdBufferHoldsObjectIndexPlusOneAndZeroForBackground) {
     renderer_->beginFrame();
     renderer_->drawObject(0);
     renderer_->drawObject(2);
@@ -85,7 +97,7 @@ TEST_F(RenderTest, ObjectIdBufferHoldsObjectIndexPlusOneAndZeroForBackground) {
     EXPECT_GT(std::count(ids.begin(), ids.end(), 3u), 0) << "the side cube is visible";
 }
 
-TEST_F(RenderTest, NearerObjectWinsWhateverTheDrawOrder) {
+TEST_P(RenderTest, NearerObjectWinsWhateverTheDrawOrder) {
     // Reverse-Z with GL_GREATER: the wall (nearer) hides the cube behind it in either order.
     for (int order = 0; order < 2; ++order) {
         renderer_->beginFrame();
@@ -97,7 +109,7 @@ TEST_F(RenderTest, NearerObjectWinsWhateverTheDrawOrder) {
     }
 }
 
-TEST_F(RenderTest, QueryReportsZeroSamplesForABoxBehindAnOccluderAndSomeForAVisibleOne) {
+TEST_P(RenderTest, QueryReportsZeroSamplesForABoxBehindAnOccluderAndSomeForAVisibleOne) {
     GlQueryDevice device(*renderer_, LatencyMode{});
     renderer_->beginFrame();
     device.drawObject(0);
@@ -110,7 +122,7 @@ TEST_F(RenderTest, QueryReportsZeroSamplesForABoxBehindAnOccluderAndSomeForAVisi
     EXPECT_EQ(device.counters().triangles_drawn, 12u);
 }
 
-TEST_F(RenderTest, QueryBoxesWriteNeitherColourNorDepth) {
+TEST_P(RenderTest, QueryBoxesWriteNeitherColourNorDepth) {
     GlQueryDevice device(*renderer_, LatencyMode{});
     renderer_->beginFrame();
     device.queryResult(device.issueQuery(boxes_[0]));  // the wall's box, nothing drawn
@@ -120,7 +132,7 @@ TEST_F(RenderTest, QueryBoxesWriteNeitherColourNorDepth) {
     EXPECT_GT(std::count(ids.begin(), ids.end(), 2u), 0);
 }
 
-TEST_F(RenderTest, QueryOnABoxCoplanarWithTheOccluderFaceCountsAsVisible) {
+TEST_P(RenderTest, QueryOnABoxCoplanarWithTheOccluderFaceCountsAsVisible) {
     // The query box's front face lies exactly on the wall's front face: conservative means visible.
     GlQueryDevice device(*renderer_, LatencyMode{});
     renderer_->beginFrame();
@@ -129,7 +141,7 @@ TEST_F(RenderTest, QueryOnABoxCoplanarWithTheOccluderFaceCountsAsVisible) {
     EXPECT_GT(device.queryResult(device.issueQuery(coplanar)), 0u);
 }
 
-TEST_F(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands) {
+TEST_P(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands) {
     GlQueryDevice device(*renderer_, LatencyMode{true, 3});
     renderer_->beginFrame();
     const QueryId q = device.issueQuery(boxes_[2]);
@@ -142,7 +154,7 @@ TEST_F(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands)
     EXPECT_EQ(device.counters().results_waited, 0u);
 }
 
-TEST_F(RenderTest, FetchingAnUnreadyResultCountsAsAWait) {
+TEST_P(RenderTest, FetchingAnUnreadyResultCountsAsAWait) {
     GlQueryDevice device(*renderer_, LatencyMode{true, 100});
     renderer_->beginFrame();
     const QueryId q = device.issueQuery(boxes_[2]);
@@ -150,7 +162,59 @@ TEST_F(RenderTest, FetchingAnUnreadyResultCountsAsAWait) {
     EXPECT_EQ(device.counters().results_waited, 1u);
 }
 
-TEST_F(RenderTest, ManyQueriesInFlightResolveInOrderAndIdsAreReused) {
+// Latency as the culler feels it: the commands submitted after a query by the time the device
+// knew its answer was ready, once per answer, whether it was polled ready or waited for.
+TEST_P(RenderTest, AnswerLatencyCountsTheCommandsAfterAQueryUntilItsAnswerWasReady) {
+    GlQueryDevice device(*renderer_, LatencyMode{true, 3});
+    renderer_->beginFrame();
+    const QueryId polled = device.issueQuery(boxes_[2]);
+    const QueryId waited = device.issueQuery(boxes_[1]);  // one command after `polled`
+    for (int i = 0; i < 3; ++i) device.drawObject(0);
+    EXPECT_TRUE(device.isQueryReady(polled));   // 4 commands after it
+    EXPECT_TRUE(device.isQueryReady(polled));   // asked again: the same answer, counted once
+    device.queryResult(polled);
+    device.queryResult(waited);                 // 3 after it: not ready, waited for
+    std::vector<uint32_t> latencies;
+    device.takeAnswerLatencies(latencies);
+    EXPECT_EQ(latencies, (std::vector<uint32_t>{4, 3}));
+    device.takeAnswerLatencies(latencies);
+    EXPECT_TRUE(latencies.empty());
+}
+
+TEST_P(RenderTest, MeasuredModeRecordsEveryFetchedAnswerOnce) {
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    std::vector<QueryId> ids;
+    for (int i = 0; i < 5; ++i) {
+        ids.push_back(device.issueQuery(boxes_[2]));
+        device.drawObject(0);
+    }
+    for (QueryId id : ids) device.queryResult(id);
+    std::vector<uint32_t> latencies;
+    device.takeAnswerLatencies(latencies);
+    ASSERT_EQ(latencies.size(), 5u);
+    // The first query had 9 commands after it when the last was submitted: no answer can have
+    // been known later than that.
+    for (size_t i = 0; i < latencies.size(); ++i) EXPECT_LE(latencies[i], 9u - 2 * i) << i;
+}
+
+// The timer query brackets a frame and its result is there after glFinish. Its value is only
+// checked to be a number: on llvmpipe it does not time rasterisation.
+TEST_P(RenderTest, TheFrameTimerGivesAResultAfterFinish) {
+    GlFrameTimer timer;
+    for (int frame = 0; frame < 2; ++frame) {
+        timer.begin();
+        renderer_->beginFrame();
+        renderer_->drawObject(0);
+        timer.end();
+        renderer_->finish();
+        const double ms = timer.resultMs();
+        EXPECT_GE(ms, 0.0);
+        EXPECT_TRUE(std::isfinite(ms));
+    }
+}
+
+TEST_P(RenderTest, ManyQueriesInFlightResolveInOrderAndIdsAreReused) {
     GlQueryDevice device(*renderer_, LatencyMode{});
     renderer_->beginFrame();
     device.drawObject(0);
@@ -164,7 +228,7 @@ TEST_F(RenderTest, ManyQueriesInFlightResolveInOrderAndIdsAreReused) {
     device.queryResult(again);
 }
 
-TEST_F(RenderTest, CameraFarFromTheOriginRendersTheSameImage) {
+TEST_P(RenderTest, CameraFarFromTheOriginRendersTheSameImage) {
     // Camera-relative rendering: the same scene shifted by 10^6 m renders identically.
     renderer_->beginFrame();
     renderer_->drawObject(0);
@@ -184,7 +248,7 @@ TEST_F(RenderTest, CameraFarFromTheOriginRendersTheSameImage) {
 
 // The basis of the tie tolerance (docs/error.md): a drawn object stores the same depth at a pixel
 // whatever else was drawn before it, so ground truth and a culled frame agree on it exactly.
-TEST_F(RenderTest, ADrawnObjectStoresTheSameDepthWhateverElseIsDrawn) {
+TEST_P(RenderTest, ADrawnObjectStoresTheSameDepthWhateverElseIsDrawn) {
     renderer_->beginFrame();
     renderer_->drawObject(0);
     std::vector<uint32_t> alone, ids_alone;
@@ -207,7 +271,7 @@ TEST_F(RenderTest, ADrawnObjectStoresTheSameDepthWhateverElseIsDrawn) {
     EXPECT_GT(wall, 100u);
 }
 
-TEST_F(RenderTest, DepthRanksAreZeroForBackgroundAndLargerForNearerSurfaces) {
+TEST_P(RenderTest, DepthRanksAreZeroForBackgroundAndLargerForNearerSurfaces) {
     renderer_->beginFrame();
     renderer_->drawObject(0);  // the wall at 5 m
     renderer_->drawObject(2);  // the cube at 20 m, off to the side
@@ -230,7 +294,7 @@ TEST_F(RenderTest, DepthRanksAreZeroForBackgroundAndLargerForNearerSurfaces) {
 }
 
 TEST(RenderDepthFormats, ConventionalDepthRanksAreTheFixedPointStepsNearerLarger) {
-    auto context = createOsMesaContext(64, 48);
+    auto context = createHeadlessContext({Backend::Auto, {}}, 64, 48);
     GlRenderer renderer(64, 48, DepthConvention::Conventional24);
     const MeshData cube = cubeMesh();
     renderer.uploadMeshes(std::span<const MeshData>(&cube, 1));
@@ -261,7 +325,7 @@ TEST(RenderDepthFormats, ConventionalDepthRanksAreTheFixedPointStepsNearerLarger
     EXPECT_GT(near_min, far_max);
 }
 
-TEST_F(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
+TEST_P(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     GlQueryDevice device(*renderer_, LatencyMode{});
     device.beginDrawnSet(3);
     renderer_->beginFrame();
@@ -276,7 +340,8 @@ TEST_F(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     EXPECT_TRUE(device.drew(2));
 }
 
-TEST_F(RenderTest, PngEncodingProducesAValidPngSignature) {
+
+TEST_P(RenderTest, PngEncodingProducesAValidPngSignature) {
     renderer_->beginFrame();
     renderer_->drawObject(0);
     std::vector<uint8_t> rgba;
@@ -286,6 +351,145 @@ TEST_F(RenderTest, PngEncodingProducesAValidPngSignature) {
     EXPECT_EQ(png[1], 'P');
     EXPECT_EQ(png[2], 'N');
     EXPECT_EQ(png[3], 'G');
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::ValuesIn(testing::testedBackends()),
+                         testing::backendTestName);
+
+// The same frame on every backend: the same object IDs, pixel for pixel (both are Mesa's llvmpipe
+// here; on a GPU the rasteriser differs and only the counts of deterministic runs must agree).
+TEST(HeadlessBackends, EveryBackendRendersTheSameObjectIds) {
+    std::vector<std::vector<uint32_t>> images;
+    for (Backend backend : testing::testedBackends()) {
+        auto context = createHeadlessContext({backend, {}}, 64, 48);
+        GlRenderer renderer(64, 48);
+        const MeshData cube = cubeMesh();
+        renderer.uploadMeshes(std::span<const MeshData>(&cube, 1));
+        renderer.setObjectMeshes(std::vector<uint32_t>{0});
+        ViewSetup view;
+        view.projection = reverseZPerspective(glm::radians(60.0f), 64.0f / 48.0f, 0.1f, 100.0f);
+        const std::vector<glm::mat4> model_view = {glm::translate(glm::mat4(1.0f), {0.3f, 0.1f, -3.0f})};
+        renderer.setView(view, model_view);
+        renderer.beginFrame();
+        renderer.drawObject(0);
+        images.emplace_back();
+        renderer.readObjectIds(images.back());
+        EXPECT_GT(std::count(images.back().begin(), images.back().end(), 1u), 100);
+    }
+    for (size_t i = 1; i < images.size(); ++i) EXPECT_EQ(images[i], images[0]);
+}
+
+TEST(HeadlessBackends, AutoTakesEglWhereEglIsThere) {
+    auto context = createHeadlessContext({Backend::Auto, {}}, 16, 16);
+    EXPECT_EQ(context->info().backend, Backend::Egl);
+    EXPECT_EQ(context->info().device, 0u);
+}
+
+TEST(HeadlessBackends, EglListsTheSoftwareDeviceWithItsStrings) {
+    const std::vector<EglDeviceInfo> devices = listEglDevices();
+    ASSERT_FALSE(devices.empty());
+    bool llvmpipe = false;
+    for (const EglDeviceInfo& d : devices) {
+        EXPECT_TRUE(d.problem.empty()) << d.problem;
+        llvmpipe |= d.context.renderer.find("llvmpipe") != std::string::npos;
+        if (d.context.renderer.find("llvmpipe") != std::string::npos) {
+            EXPECT_EQ(d.kind, "software");
+            EXPECT_FALSE(d.context.gpu_time_meaningful);
+        }
+    }
+    EXPECT_TRUE(llvmpipe);
+}
+
+// Asserts `make` throws BackendUnavailable whose one-line message contains every part.
+template <class F>
+void expectUnavailable(F&& make, std::initializer_list<const char*> parts) {
+    try {
+        make();
+        ADD_FAILURE() << "no BackendUnavailable";
+    } catch (const BackendUnavailable& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        for (const char* part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+}
+
+TEST(HeadlessBackends, ADeviceOutOfRangeNamesTheIndexAndWhatEglLists) {
+    const auto count = static_cast<uint32_t>(listEglDevices().size());
+    expectUnavailable([&] { createHeadlessContext({Backend::Egl, count}, 16, 16); },
+                      {"--device", "out of range", "software"});
+    expectUnavailable([&] { createHeadlessContext({Backend::Auto, count + 5}, 16, 16); },
+                      {"--device", "out of range"});
+}
+
+TEST(HeadlessBackends, OsmesaHasNoDevices) {
+    expectUnavailable([] { createHeadlessContext({Backend::OsMesa, 0u}, 16, 16); },
+                      {"--device 0", "only the EGL backend"});
+}
+
+TEST(HeadlessBackends, OsmesaInABuildWithoutItSaysSo) {
+    if (osmesaAvailable()) GTEST_SKIP() << "this build has OSMesa (the no-osmesa preset checks this)";
+    expectUnavailable([] { createHeadlessContext({Backend::OsMesa, {}}, 16, 16); },
+                      {"--backend osmesa", "no OSMesa", "OCCSIM_WITH_OSMESA=OFF"});
+}
+
+TEST(HeadlessBackends, BackendNamesRoundTrip) {
+    for (Backend b : {Backend::Auto, Backend::Egl, Backend::OsMesa}) EXPECT_EQ(parseBackend(backendName(b)), b);
+    EXPECT_FALSE(parseBackend("vulkan"));
+    EXPECT_FALSE(parseBackend("EGL"));
+}
+
+GlCapabilities enough() {
+    GlCapabilities c;
+    c.major = 4;
+    c.minor = 5;
+    c.core_profile = true;
+    c.extensions = requiredGlExtensions();
+    c.renderer = "Some GPU";
+    c.version = "4.5.0 Vendor 1.2";
+    return c;
+}
+
+TEST(GlRequirements, A45CoreContextWithTheExtensionsIsEnough) {
+    EXPECT_EQ(checkGlRequirements(enough()), "");
+    GlCapabilities newer = enough();
+    newer.minor = 6;
+    EXPECT_EQ(checkGlRequirements(newer), "");
+}
+
+TEST(GlRequirements, BelowFourFiveNamesTheVersionFound) {
+    GlCapabilities old = enough();
+    old.minor = 3;
+    old.version = "4.3 (Core Profile) Mesa 20.0";
+    const std::string problem = checkGlRequirements(old);
+    EXPECT_NE(problem.find("needs an OpenGL 4.5 core"), std::string::npos) << problem;
+    EXPECT_NE(problem.find("found OpenGL 4.3 core"), std::string::npos) << problem;
+    EXPECT_NE(problem.find("Some GPU"), std::string::npos) << problem;
+    GlCapabilities compatibility = enough();
+    compatibility.core_profile = false;
+    EXPECT_NE(checkGlRequirements(compatibility).find("found OpenGL 4.5 ("), std::string::npos);
+}
+
+TEST(GlRequirements, AMissingExtensionIsNamed) {
+    GlCapabilities c = enough();
+    c.extensions = {"GL_ARB_occlusion_query2"};
+    const std::string problem = checkGlRequirements(c);
+    EXPECT_NE(problem.find("GL_ARB_timer_query"), std::string::npos) << problem;
+    EXPECT_EQ(problem.find("GL_ARB_occlusion_query2,"), std::string::npos) << problem;
+}
+
+TEST(GlRequirements, TheDriverIsTheVersionStringWithoutTheApiVersion) {
+    EXPECT_EQ(driverOfVersion("4.5 (Core Profile) Mesa 22.3.6"), "Mesa 22.3.6");
+    EXPECT_EQ(driverOfVersion("4.6.0 NVIDIA 535.54.03"), "NVIDIA 535.54.03");
+    EXPECT_EQ(driverOfVersion("4.6 (Core Profile) Mesa 23.2.1 (LLVM 15.0.7)"), "Mesa 23.2.1 (LLVM 15.0.7)");
+    EXPECT_EQ(driverOfVersion("4.5"), "4.5");
+}
+
+TEST(GlRequirements, SoftwareRenderersAreRecognised) {
+    EXPECT_TRUE(isSoftwareRenderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+    EXPECT_TRUE(isSoftwareRenderer("softpipe"));
+    EXPECT_TRUE(isSoftwareRenderer("Google SwiftShader"));
+    EXPECT_FALSE(isSoftwareRenderer("NVIDIA GeForce RTX 3080/PCIe/SSE2"));
+    EXPECT_FALSE(isSoftwareRenderer("AMD Radeon RX 6800 (radeonsi, navi21, LLVM 15.0.6, DRM 3.49)"));
 }
 
 }  // namespace

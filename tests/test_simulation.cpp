@@ -1,8 +1,12 @@
-// End to end through OSMesa: the small teapot scenario, every algorithm, ground truth and error.
+// End to end headless (EGL by default): the small teapot scenario, every algorithm, ground truth
+// and error; and the same bench on every backend the build has.
+#include "headless_backends.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/output/pictures.h"
 #include "sim/output/run_outputs.h"
+#include "render/gl_renderer.h"
 #include "sim/run/runner.h"
+#include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/scene_info.h"
 
@@ -124,6 +128,87 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     }
     EXPECT_EQ(counts[0], counts[1]);
     EXPECT_EQ(counts[0], counts[2]);
+}
+
+// The backend is where frames are rendered, not what the cullers decide: in deterministic-latency
+// mode every algorithm issues the same queries and draws the same objects on each backend, frame
+// by frame, and the run records which backend it was.
+TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
+    const std::vector<Backend> backends = testing::testedBackends();
+    if (backends.size() < 2) GTEST_SKIP() << "this build has one headless backend (no OSMesa)";
+    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>> counts;  // [backend][config][frame]
+    for (Backend backend : backends) {
+        BenchOptions options;
+        options.algorithms = traitsOf(algorithmNames());
+        options.latency = LatencyMode{true, 6};
+        options.backend.backend = backend;
+        options.frames = 20;
+        const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+        EXPECT_EQ(r.metadata.backend, backendName(backend));
+        counts.emplace_back();
+        for (const RunRecord& run : r.runs) {
+            counts.back().emplace_back();
+            for (const FrameStats& f : run.frames) counts.back().back().push_back({f.queries, f.objects_drawn});
+        }
+    }
+    uint64_t queries = 0;
+    for (const auto& config : counts[0]) {
+        for (const auto& frame : config) queries += frame.first;
+    }
+    EXPECT_GT(queries, 0u);
+    for (size_t b = 1; b < counts.size(); ++b) EXPECT_EQ(counts[b], counts[0]) << backendName(backends[b]);
+}
+
+// GPU time is measured only where it means something: on llvmpipe every frame's gpu_ms and the
+// summary's are -1 (n/a, null), and a run that times anyway (as on a GPU) fills them.
+TEST(Simulation, GpuTimeIsMeasuredOnlyWhereMeaningful) {
+    const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"chc"});
+    ASSERT_FALSE(r.metadata.gpu_time_meaningful) << r.metadata.gl_renderer;
+    for (const FrameStats& f : r.runs[0].frames) EXPECT_EQ(f.gpu_ms, -1.0);
+    EXPECT_EQ(r.runs[0].summary.gpu_ms_mean, -1.0);
+
+    const Scenario scenario = parseScenarioFile(kSmall);
+    const Scene scene = buildScene(scenario);
+    auto context = createHeadlessContext({}, scenario.width, scenario.height);
+    GlRenderer renderer(scenario.width, scenario.height);
+    uploadScene(scene, renderer);
+    SimulationOptions options;
+    options.measure_gpu_time = true;
+    const AlgorithmTraits& chc = *findAlgorithm("chc");
+    Simulation sim(scene, scenario, chc, makeCuller(chc, scenario.culler), scenario.culler, renderer, options);
+    for (int f = 0; f < 3; ++f) EXPECT_GE(sim.renderFrame().gpu_ms, 0.0);
+}
+
+// Answer latency per run: in deterministic-latency mode with N, an answer polled ready had at
+// least N commands after its query, one waited for fewer; every answer of the timed frames is
+// counted once, and the per-frame counts add up to the run's.
+TEST(Simulation, AnswerLatenciesAreSummarisedOverTheTimedFrames) {
+    const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"chc", "vfc"});
+    const RunRecord& chc = r.runs[0];
+    const RunSummary& s = chc.summary;
+    uint64_t answers = 0;
+    for (const FrameStats& f : chc.frames) {
+        if (f.frame >= parseScenarioFile(kSmall).warmup_frames) answers += f.answers;
+        EXPECT_EQ(f.answers > 0, f.answer_latency_median >= 0.0) << f.frame;
+    }
+    EXPECT_GT(s.answers, 0u);
+    EXPECT_EQ(s.answers, answers);
+    EXPECT_GE(s.answer_latency_p95, s.answer_latency_median);
+    EXPECT_LE(s.answer_latency_median, 6.0 + 1.0);
+    EXPECT_EQ(r.runs[1].summary.answers, 0u);  // vfc issues no query
+    EXPECT_EQ(r.runs[1].summary.answer_latency_median, -1.0);
+}
+
+TEST(FrameStats, AnswerLatencyRanksAreNearestRankOverTheHistogram) {
+    RunSummary s;
+    addAnswerLatencies(s, {0, 10, 0, 8, 2});  // 10 x 1, 8 x 3, 2 x 4
+    EXPECT_EQ(s.answers, 20u);
+    EXPECT_EQ(s.answer_latency_median, 1.0);  // rank 10
+    EXPECT_EQ(s.answer_latency_p95, 4.0);     // rank 19
+    addAnswerLatencies(s, {});
+    EXPECT_EQ(s.answer_latency_median, -1.0);
+    std::vector<uint32_t> frame = {7, 1, 3, 5};
+    EXPECT_EQ(medianLatency(frame), 4.0);
 }
 
 // rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its

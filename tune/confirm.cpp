@@ -16,11 +16,11 @@ Spread spreadOf(std::vector<double> v) {
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions,
+                        const OptionValues& paper, uint32_t repetitions, const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame) {
     // The paper's values first: the same order as every sampling batch.
-    const BenchResult result =
-        runInterleaved(scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, on_frame);
+    const BenchResult result = runInterleaved(scenario, algorithm, {{"paper", paper}, {"tuned", tuned}},
+                                              repetitions, backend, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 
@@ -28,7 +28,10 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
     row.variant = variant;
     row.seed = scenario.seed;
     row.frames = result.metadata.frames;
-    row.renderer = result.metadata.renderer;
+    // Where it rendered, as occsim's console names it: tuned values carry over only to the same
+    // kind of renderer (docs/headless-gpu.md).
+    row.renderer = result.metadata.renderer + " through " + backendLabel(result.metadata) + " (vendor " +
+                   result.metadata.gl_vendor + ", driver " + result.metadata.driver + ")";
     row.repetitions = static_cast<uint32_t>(t.repetitions.size());
     std::vector<double> mean_ratios, p95_ratios;
     for (size_t r = 0; r < t.repetitions.size(); ++r) {

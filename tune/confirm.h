@@ -21,7 +21,7 @@ struct ConfirmationRow {
     uint64_t seed = 0;
     uint32_t frames = 0;
     uint32_t repetitions = 0;
-    std::string renderer;  // as the run's metadata names it
+    std::string renderer;  // the run's renderer, backend, device, vendor and driver
     // Per repetition: the tuned run's figure over the paper's, from the same interleaved run.
     Spread mean_ratio;
     Spread p95_ratio;
@@ -37,7 +37,7 @@ struct ConfirmationRow {
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions,
+                        const OptionValues& paper, uint32_t repetitions, const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

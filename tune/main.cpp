@@ -2,6 +2,7 @@
 // decay curve) to a scenario from measured frame times (docs/tuning.md). Bad input ends with one line on stderr and exit code 2 before any
 // run; a fit that does not converge with exit 1 (no tuned.json); Ctrl-C with exit 130, the sample
 // log whole and a line saying how to resume.
+#include "render/headless_context.h"
 #include "sim/scenario/errors.h"
 #include "tune/errors.h"
 #include "tune/parameters.h"
@@ -59,6 +60,12 @@ int main(int argc, char** argv) {
     app.add_option("--holdout-seed", holdout_seed, "Scenario seed of the held-out confirmation (default: the scenario's + 1)");
     app.add_option("--max-fit-iterations", o.max_fit_iterations, "Ceres iteration limit of each fit; default 200")
         ->check(CLI::Range(1, 100000));
+    std::string backend = "auto";
+    int device = -1;
+    app.add_option("--backend", backend,
+                   "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa (docs/headless-gpu.md)");
+    app.add_option("--device", device, "EGL device index (occsim devices lists them; default 0)")
+        ->check(CLI::Range(0, 1023));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -67,6 +74,13 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());
         return kExitBadInput;
     }
+    if (const auto b = occsim::parseBackend(backend)) {
+        o.backend.backend = *b;
+    } else {
+        std::fprintf(stderr, "occtune: --backend: expected auto, egl or osmesa, got '%s'\n", backend.c_str());
+        return kExitBadInput;
+    }
+    if (device >= 0) o.backend.device = static_cast<uint32_t>(device);
     o.scenario = scenario;
     for (const std::string& p : plugins) o.plugins.emplace_back(p);
     o.out = out;
@@ -77,7 +91,11 @@ int main(int argc, char** argv) {
     o.command_line = commandLine(argc, argv);
 
     try {
+        // The backend and device are input too: checked before the first run writes anything.
+        occsim::createHeadlessContext(o.backend, 16, 16);
         return occsim::tune::runTuner(o);
+    } catch (const occsim::BackendUnavailable& e) {
+        std::fprintf(stderr, "occtune: %s\n", e.what());
     } catch (const occsim::tune::TuneInputError& e) {
         std::fprintf(stderr, "occtune: %s\n", e.what());
     } catch (const occsim::ScenarioError& e) {

@@ -16,8 +16,9 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, c
 
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const std::function<void(const FrameEvent&)>& on_frame) {
+                           const BackendChoice& backend, const std::function<void(const FrameEvent&)>& on_frame) {
     BenchOptions options;
+    options.backend = backend;
     for (const Setting& s : settings) options.configs.push_back(configOf(scenario, algorithm, s));
     options.algorithms = {options.configs.front().algorithm};
     options.measure_error = true;  // zero expected of a conservative culler: measured, not assumed

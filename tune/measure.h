@@ -1,6 +1,6 @@
 // Real runs of the tuned culler: several settings interleaved frame by frame in one
-// runBenchmark() call (BenchOptions::configs), headless through OSMesa, in measured mode (query
-// results ready when the GPU says so), with error measured against ground truth. The first
+// runBenchmark() call (BenchOptions::configs), headless through the chosen backend (EGL by
+// default), in measured mode (query results ready when the GPU says so), with error measured against ground truth. The first
 // setting is the reference the others are divided by, so that a machine slowed by other work
 // slows both alike and the ratio stays.
 #pragma once
@@ -28,7 +28,7 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, c
 // after every configuration's frame, outside the timing (progress, interruption).
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const std::function<void(const FrameEvent&)>& on_frame);
+                           const BackendChoice& backend, const std::function<void(const FrameEvent&)>& on_frame);
 
 // One configuration's first repetition as a log line's figures (timed frames only).
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames);

@@ -83,7 +83,7 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
         }
         const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" + std::to_string(o.budget) +
                                   ", running " + std::to_string(points.size()) + " more";
-        const BenchResult result = runInterleaved(c.scenario, *space.algorithm, settings, 1, [&](const FrameEvent& e) {
+        const BenchResult result = runInterleaved(c.scenario, *space.algorithm, settings, 1, o.backend, [&](const FrameEvent& e) {
             progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" + std::to_string(c.scenario.frames) + ")");
             progress.frameDone();
             throwIfInterrupted();

@@ -145,7 +145,7 @@ int runTuner(const TuneOptions& o) {
         for (const auto& [scenario, variant] :
              {std::pair<const Scenario*, std::string>{&c.scenario, "fitted (seed " + std::to_string(c.scenario.seed) + ")"},
               std::pair<const Scenario*, std::string>{&held_out, "held out (seed " + std::to_string(held_out.seed) + ")"}}) {
-            r.confirmation.push_back(confirm(*scenario, algorithm, variant, tuned, paper, o.repetitions, [&](const FrameEvent& e) {
+            r.confirmation.push_back(confirm(*scenario, algorithm, variant, tuned, paper, o.repetitions, o.backend, [&](const FrameEvent& e) {
                 progress.setStage("confirming, " + variant + ": repetition " + std::to_string(e.repetition + 1) + "/" +
                                   std::to_string(o.repetitions) + ", frame " + std::to_string(e.frame + 1) + "/" +
                                   std::to_string(scenario->frames));

@@ -5,6 +5,8 @@
 // docs/tuning.md explains the method.
 #pragma once
 
+#include "render/headless_context.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -32,6 +34,7 @@ struct TuneOptions {
     std::optional<uint64_t> holdout_seed;         // default: the scenario's seed + 1
     int max_fit_iterations = 200;
     bool progress = false;                        // the progress line (stderr)
+    BackendChoice backend;                        // --backend, --device
     std::string command_line;
 };
 

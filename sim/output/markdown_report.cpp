@@ -44,6 +44,10 @@ void header(std::ostringstream& out, const BenchResult& result) {
         << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << load
         << (c.busyMachine() ? " (**busy: the load exceeded the hardware threads; timings are not results**)" : "")
         << " |\n";
+    out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor) << ", renderer "
+        << cell(c.gl_renderer) << ", driver " << cell(c.driver)
+        << (c.gpu_time_meaningful ? "" : " (software rasteriser: GPU time not meaningful)")
+        << (c.backend_fallback.empty() ? "" : "; auto fell back to OSMesa: " + cell(c.backend_fallback)) << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
         << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
     if (c.sweep) {
@@ -131,6 +135,12 @@ void pictures(std::ostringstream& out, const ReportFiles& c) {
 void howToRead(std::ostringstream& out) {
     out << "## How to read this\n\n"
         << "Frame times are wall clock from frame start to `glFinish`, culled render only. "
+        << "**gpu ms** is the GPU's own time for that render (a `GL_TIME_ELAPSED` query), shown "
+        << "only where it means something: on a software rasteriser such as llvmpipe it reads "
+        << "n/a, since its timer queries do not time rasterisation. **answer lat p50/p95** is how "
+        << "many commands (draws and queries) had been submitted after a query by the time its "
+        << "answer was ready, median and 95th percentile over every answer of the timed frames: "
+        << "what decides how long a culler waits, comparable between a GPU and llvmpipe. "
         << "**speedup** is VFC's mean frame time over the configuration's (above 1x: faster than "
         << "frustum culling alone); **vs ideal** is the configuration's mean frame time over the "
         << "Ideal oracle's, which draws exactly the objects ground truth sees with no queries "

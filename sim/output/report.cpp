@@ -22,8 +22,8 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
         repeated |= r.summary.repetitions > 1;
     }
     std::vector<std::string> header = {"configuration", repeated ? "mean ms [min-max]" : "mean ms",
-                                       "median ms", "p95 ms", "queries/fr", "wait ms/fr", "tris/fr",
-                                       "objs/fr"};
+                                       "median ms", "p95 ms", "gpu ms", "queries/fr", "wait ms/fr",
+                                       "answer lat p50/p95", "tris/fr", "objs/fr"};
     if (error) {
         for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
             header.push_back(h);
@@ -38,9 +38,15 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
         const double speedup = speedupOverReference(runs, s), ideal = ratioToOracle(runs, s);
         std::string mean = fixed(s.frame_ms.mean, 2);
         if (repeated) mean += " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+        // GPU time only where it was measured: never on a software rasteriser, whose timer
+        // queries do not time rasterisation (see the console's backend line).
+        const std::string gpu = s.gpu_ms_mean >= 0 ? fixed(s.gpu_ms_mean, 2) : "n/a";
+        const std::string latency = s.answer_latency_median >= 0
+                                        ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
+                                        : "-";
         std::vector<std::string> row = {s.algorithm, mean, fixed(s.frame_ms.median, 2),
-                                        fixed(s.frame_ms.p95, 2), fixed(s.queries_mean, 1),
-                                        fixed(s.wait_ms_mean, 3), fixed(s.triangles_mean, 0),
+                                        fixed(s.frame_ms.p95, 2), gpu, fixed(s.queries_mean, 1),
+                                        fixed(s.wait_ms_mean, 3), latency, fixed(s.triangles_mean, 0),
                                         fixed(s.objects_mean, 1)};
         // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
         if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
@@ -86,7 +92,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
-           "missed_objects,drawn_unseen_objects,visible_objects\n";
+           "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_median\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -96,8 +102,10 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
                     << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
                     << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
-                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
-                    << '\n';
+                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects << ','
+                    // Empty where not measured (gpu_ms on a software rasteriser; no answers).
+                    << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
+                    << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "") << '\n';
             }
         }
     }
@@ -125,6 +133,14 @@ nlohmann::json summaryJson(const BenchResult& result) {
             {"queries_per_frame", s.queries_mean},
             {"objects_per_frame", s.objects_mean},
             {"triangles_per_frame", s.triangles_mean},
+            // null where not measured: see machine.gpu_time_meaningful.
+            {"gpu_ms", s.gpu_ms_mean >= 0 ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
+                                          : nlohmann::json(nullptr)},
+            {"answer_latency_commands",
+             s.answer_latency_median >= 0
+                 ? nlohmann::json{{"answers", s.answers}, {"median", s.answer_latency_median},
+                                  {"p95", s.answer_latency_p95}}
+                 : nlohmann::json(nullptr)},
         };
         if (s.error_measured) {
             j["error"] = {{"pixels_total", s.error_pixels_total},
@@ -160,6 +176,13 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"busy", m.busyMachine()},
                           {"llvmpipe_threads", m.lp_num_threads},
                           {"renderer", m.renderer},
+                          {"backend", m.backend},
+                          {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
+                          {"gl_vendor", m.gl_vendor},
+                          {"gl_renderer", m.gl_renderer},
+                          {"gl_version", m.gl_version},
+                          {"driver", m.driver},
+                          {"gpu_time_meaningful", m.gpu_time_meaningful},
                           {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
     summary["command"] = m.command_line;
     summary["repetitions"] = m.repetitions;
@@ -172,6 +195,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["deterministic_latency"] = m.deterministic_latency
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);
+    if (!m.backend_fallback.empty()) summary["machine"]["backend_fallback"] = m.backend_fallback;
     if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     const RunCosts& c = result.costs;
     summary["simulator_costs"] = {
@@ -229,6 +253,9 @@ std::string runHeadline(const BenchResult& result) {
                       m.hardware_threads);
         headline += load;
     }
+    headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " + m.driver +
+                (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
+    if (!m.backend_fallback.empty()) headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
     if (timed == 0) {
         headline += "\nnothing was timed: all " + std::to_string(m.frames) +
                     " frames are warm-up (the scenario's warmup_frames); run more frames than that "

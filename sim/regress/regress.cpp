@@ -125,6 +125,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     bench.command = "regress";
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
+    bench.backend = options.backend;
     const std::filesystem::path out_dir = options.out_dir / safeFileName(outcome.name);
     const BenchResult result = runBenchmark(scenario, bench);
     writeRunOutputs(result, OutputRequest{out_dir, false, {}});
@@ -190,6 +191,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     now.scenario = scenario.name;
     now.deterministic_latency = expect.deterministic_latency;
     now.frames = static_cast<uint32_t>(result.runs.front().frames.size());
+    now.backend = result.metadata.backend;
+    now.renderer = result.metadata.gl_renderer;
     for (const RunRecord& r : result.runs) {
         AlgorithmTrace& t = now.algorithms[r.summary.algorithm];
         for (const FrameStats& f : r.frames) {
@@ -236,6 +239,18 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         for (const auto& c : changes) outcome.note += "\n    " + c;
     } else if (!baseline_problem.empty()) {
         outcome.checks.push_back({"baseline", "a readable baseline of this format", baseline_problem, false});
+    }
+    std::string elsewhere;
+    if (!options.update && old && ((!old->backend.empty() && old->backend != now.backend) ||
+                                   (!old->renderer.empty() && old->renderer != now.renderer))) {
+        // Deterministic counts should not depend on where they were rendered; if a check below
+        // fails, this says what differed besides the code.
+        elsewhere = "baseline made on " + old->backend + " (" + old->renderer + "), this run on " +
+                    now.backend + " (" + now.renderer + ")";
+        outcome.note = expect.baseline.string() + ": " + elsewhere;
+    }
+    if (options.update || !baseline_problem.empty()) {
+        // Written or reported above.
     } else if (old->deterministic_latency != now.deterministic_latency || old->frames != now.frames) {
         outcome.checks.push_back({"baseline settings",
                                   std::to_string(old->frames) + " frames, latency " + std::to_string(old->deterministic_latency),
@@ -254,6 +269,12 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             if (!outcome.checks.back().passed) capture(name);
             outcome.checks.push_back(
                 compareSeries("missed objects", name, it->second.missed_objects, trace.missed_objects));
+            // A count check that fails against a baseline made on another backend says so.
+            if (!elsewhere.empty()) {
+                for (size_t k = outcome.checks.size() - 4; k < outcome.checks.size(); ++k) {
+                    if (!outcome.checks[k].passed) outcome.checks[k].got += " [" + elsewhere + "]";
+                }
+            }
         }
     }
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -295,6 +316,8 @@ Baseline readBaseline(const std::filesystem::path& file) {
         b.scenario = top.string("scenario", "");
         b.deterministic_latency = static_cast<uint32_t>(top.requiredUnsignedInteger("deterministic_latency"));
         b.frames = static_cast<uint32_t>(top.requiredUnsignedInteger("frames", 1));
+        b.backend = top.string("backend", "");
+        b.renderer = top.string("renderer", "");
         const JsonValueReader algorithms_value = top.required("algorithms");
         JsonObjectReader algorithms = algorithms_value.asObject();
         for (const auto& item : algorithms_value.json().items()) {
@@ -321,7 +344,10 @@ std::string baselineJson(const Baseline& b) {
     std::ostringstream out;
     out << "{\n  \"format\": \"occsim-baseline\",\n  \"version\": " << Baseline::kFormatVersion
         << ",\n  \"scenario\": " << Json(b.scenario).dump() << ",\n  \"deterministic_latency\": "
-        << b.deterministic_latency << ",\n  \"frames\": " << b.frames << ",\n  \"algorithms\": {";
+        << b.deterministic_latency << ",\n  \"frames\": " << b.frames;
+    if (!b.backend.empty()) out << ",\n  \"backend\": " << Json(b.backend).dump();
+    if (!b.renderer.empty()) out << ",\n  \"renderer\": " << Json(b.renderer).dump();
+    out << ",\n  \"algorithms\": {";
     bool first = true;
     for (const auto& [name, t] : b.algorithms) {
         out << (first ? "" : ",") << "\n    " << Json(name).dump() << ": {\n      \"queries\": "

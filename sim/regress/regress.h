@@ -38,6 +38,10 @@ struct Baseline {
     std::string scenario;
     uint32_t deterministic_latency = 0;
     uint32_t frames = 0;
+    // Where it was made ("egl", "llvmpipe (LLVM 15.0.6, 256 bits)"); empty in baselines written
+    // before backends were recorded. Deterministic counts should not depend on them, so a
+    // difference is reported beside the checks rather than failing one.
+    std::string backend, renderer;
     std::map<std::string, AlgorithmTrace> algorithms;
 };
 
@@ -92,6 +96,7 @@ struct RegressOptions {
     bool update = false;
     std::filesystem::path out_dir = "out/regress";
     bool progress = false;
+    BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
     // Applied to each scenario after it is parsed (occsim regress --culling FILE).

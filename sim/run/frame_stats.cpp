@@ -26,7 +26,8 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
     RunSummary s;
     s.algorithm = algorithm;
     s.frames = static_cast<uint32_t>(frames.size());
-    std::vector<double> frame_ms;
+    std::vector<double> frame_ms, gpu_ms;
+    bool gpu_measured = true;
     double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
     for (const FrameStats& f : frames) {
         if (f.error_pixels >= 0) {
@@ -44,6 +45,8 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
         }
         if (f.frame < warmup_frames) continue;
         frame_ms.push_back(f.frame_ms);
+        gpu_measured &= f.gpu_ms >= 0;
+        gpu_ms.push_back(f.gpu_ms);
         cull += f.cull_cpu_ms;
         wait += f.wait_ms;
         update += f.update_ms;
@@ -54,6 +57,11 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
     s.frame_ms_mean_min = s.frame_ms_mean_max = s.frame_ms.mean;
+    if (gpu_measured && !gpu_ms.empty()) {
+        const Distribution gpu = distributionOf(gpu_ms);
+        s.gpu_ms_mean = gpu.mean;
+        s.gpu_ms_p95 = gpu.p95;
+    }
     if (s.error_measured) {
         std::vector<double> error;
         for (const FrameStats& f : frames) error.push_back(static_cast<double>(f.error_pixels));
@@ -110,6 +118,35 @@ void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs) 
     summary.popping_mean_frames = missing_runs.empty() ? 0.0 : total / static_cast<double>(missing_runs.size());
 }
 
+void addAnswerLatencies(RunSummary& summary, const std::vector<uint64_t>& histogram) {
+    uint64_t total = 0;
+    for (uint64_t count : histogram) total += count;
+    summary.answers = total;
+    if (total == 0) {
+        summary.answer_latency_median = summary.answer_latency_p95 = -1;
+        return;
+    }
+    // Nearest rank, as distributionOf() takes its p95.
+    auto rankValue = [&](double fraction) {
+        const uint64_t rank = std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(fraction * static_cast<double>(total))));
+        uint64_t seen = 0;
+        for (size_t k = 0; k < histogram.size(); ++k) {
+            seen += histogram[k];
+            if (seen >= rank) return static_cast<double>(k);
+        }
+        return static_cast<double>(histogram.size() - 1);
+    };
+    summary.answer_latency_median = rankValue(0.5);
+    summary.answer_latency_p95 = rankValue(0.95);
+}
+
+double medianLatency(std::vector<uint32_t>& latencies) {
+    if (latencies.empty()) return -1;
+    std::sort(latencies.begin(), latencies.end());
+    const size_t n = latencies.size();
+    return n % 2 ? latencies[n / 2] : 0.5 * (double(latencies[n / 2 - 1]) + double(latencies[n / 2]));
+}
+
 RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     RunSummary out = reps.front();
     const size_t n = reps.size();
@@ -131,6 +168,10 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.queries_mean = median([](const RunSummary& r) { return r.queries_mean; });
     out.objects_mean = median([](const RunSummary& r) { return r.objects_mean; });
     out.triangles_mean = median([](const RunSummary& r) { return r.triangles_mean; });
+    out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
+    out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
+    out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });
+    out.answer_latency_p95 = median([](const RunSummary& r) { return r.answer_latency_p95; });
     out.error_pixels_mean = median([](const RunSummary& r) { return r.error_pixels_mean; });
     out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
     out.error_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));

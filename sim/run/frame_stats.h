@@ -14,6 +14,13 @@ struct FrameStats {
     double cull_cpu_ms = 0.0;    // culler's own CPU time (traversal minus submission and waits)
     double wait_ms = 0.0;        // blocked on query results
     double update_ms = 0.0;      // movers, BSP reinsertion and refit (outside frame_ms)
+    // GL_TIME_ELAPSED around the culled render; -1 when not measured (a software rasteriser,
+    // whose timer queries do not time rasterisation: ContextInfo::gpu_time_meaningful).
+    double gpu_ms = -1.0;
+    // Query answers that became ready this frame, and the median of their latencies: commands
+    // (draws and queries) submitted after a query by the time its answer was ready (-1: none).
+    uint64_t answers = 0;
+    double answer_latency_median = -1.0;
     uint64_t queries = 0;
     uint64_t objects_drawn = 0;
     uint64_t triangles = 0;
@@ -41,6 +48,12 @@ struct RunSummary {
     uint32_t timed_frames = 0;    // frames after warm-up, over which timing figures are taken
     Distribution frame_ms;
     double cull_cpu_ms_mean = 0, wait_ms_mean = 0, update_ms_mean = 0;
+    // Over the timed frames; -1 when GPU time was not measured (see FrameStats::gpu_ms).
+    double gpu_ms_mean = -1, gpu_ms_p95 = -1;
+    // Every answer of the timed frames (addAnswerLatencies): median and p95 of its latency in
+    // commands; -1 when no query was answered.
+    uint64_t answers = 0;
+    double answer_latency_median = -1, answer_latency_p95 = -1;
     double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
     bool error_measured = false;
     int64_t error_pixels_total = 0;
@@ -83,6 +96,13 @@ private:
 
 // Fills the popping figures from the lengths of the missing runs.
 void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs);
+
+// Counts of answer latencies: histogram[k] answers had k commands submitted after their query
+// by the time they were ready (Simulation::answerLatencies()).
+void addAnswerLatencies(RunSummary& summary, const std::vector<uint64_t>& histogram);
+
+// Median of the latencies a frame's answers had (-1 when there were none); sorts `latencies`.
+double medianLatency(std::vector<uint32_t>& latencies);
 
 // One summary for several repetitions of the same configuration: every figure is the median
 // over the repetitions; frame_ms_mean_min/max give the spread of the mean frame time.

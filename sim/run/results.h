@@ -58,7 +58,14 @@ struct RunMetadata {
     // Whether either 1-minute figure exceeded the hardware threads.
     bool busyMachine() const;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
-    std::string renderer;
+    std::string renderer;  // "GL_RENDERER, OpenGL GL_VERSION"
+    // The headless context (render/headless_context.h): which backend and device made it, and
+    // what it says it is.
+    std::string backend;                   // "egl" or "osmesa"
+    std::optional<uint32_t> device;        // the EGL device index
+    std::string gl_vendor, gl_renderer, gl_version, driver;
+    bool gpu_time_meaningful = false;      // false on software rasterisers (llvmpipe)
+    std::string backend_fallback;          // why --backend auto took OSMesa; empty when it did not
     uint32_t width = 0, height = 0;
     std::string depth_format;  // the depth buffer both renders share: what a tie's step is
 };
@@ -88,6 +95,9 @@ struct BenchResult {
     std::vector<RunRecord> runs;
     std::vector<ErrorFrame> worst_error_frames;  // per run, when keep_worst_error_frame
 };
+
+// "EGL device 0" or "OSMesa": where the run rendered, for the console and reports.
+std::string backendLabel(const RunMetadata& m);
 
 // Speedup over the reference (its mean / this mean) and ratio to the oracle (this mean / the
 // oracle's mean); 0 when that algorithm is not among the runs.

@@ -1,6 +1,6 @@
 #include "sim/run/runner.h"
 
-#include "render/gl_context.h"
+#include "render/headless_context.h"
 #include "sim/run/calibration.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
@@ -41,7 +41,7 @@ void printWarnings(const Scene& scene) {
 }
 
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
-                       uint32_t repetitions, const std::string& renderer) {
+                       uint32_t repetitions, const HeadlessContext& context) {
     RunMetadata m;
     m.command = options.command;
     m.command_line = options.command_line;
@@ -60,7 +60,16 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.sweep = options.sweep;
     m.hardware_threads = std::thread::hardware_concurrency();
     if (const char* lp_threads = std::getenv("LP_NUM_THREADS")) m.lp_num_threads = lp_threads;
-    m.renderer = renderer;
+    m.renderer = context.rendererName();
+    const ContextInfo& gl = context.info();
+    m.backend = backendName(gl.backend);
+    m.device = gl.device;
+    m.gl_vendor = gl.vendor;
+    m.gl_renderer = gl.renderer;
+    m.gl_version = gl.version;
+    m.driver = gl.driver;
+    m.gpu_time_meaningful = gl.gpu_time_meaningful;
+    m.backend_fallback = gl.fallback;
     m.width = scenario.width;
     m.height = scenario.height;
     m.depth_format = depthConventionOf(scenario) == DepthConvention::ReverseFloat
@@ -83,7 +92,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene);
-    auto context = createOsMesaContext(scenario.width, scenario.height);
+    auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
@@ -95,7 +104,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     }
 
     BenchResult result;
-    result.metadata = metadataOf(scenario, scene, options, repetitions, context->rendererName());
+    result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
     if (costs) {
         result.metadata.cost_model = costs->costs;
         result.metadata.cost_model_source = costs->source;
@@ -121,6 +130,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             sim_options.keep_worst_error_frame =
                 options.keep_worst_error_frame && options.measure_error && rep == 0;
             if (rep == 0) sim_options.trace_frame = options.trace_frame;
+            sim_options.measure_gpu_time = context->info().gpu_time_meaningful;
             auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                               : makeConfiguredCuller(config);
             sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
@@ -166,6 +176,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             RunRecord& record = result.runs[c];
             RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
             if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());
+            addAnswerLatencies(summary, sims[c]->answerLatencies());
             record.repetitions.push_back(summary);
             if (rep == 0) {
                 record.frames = std::move(frames[c]);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "occsim/culling/registry/registry.h"
+#include "render/headless_context.h"
 #include "sim/run/results.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
@@ -37,6 +38,7 @@ struct BenchOptions {
     std::vector<RunConfig> configs;
     bool measure_error = false;
     LatencyMode latency;
+    BackendChoice backend;                // --backend, --device
     std::optional<uint32_t> frames;       // overrides the scenario's frame count
     std::string command = "bench";        // recorded in the metadata
     std::string command_line;             // recorded in the metadata
@@ -58,7 +60,8 @@ struct BenchOptions {
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
 };
 
-// Throws std::runtime_error on rendering failures, std::invalid_argument for a sweep value that
+// Throws BackendUnavailable when the backend or device asked for cannot serve (bad input),
+// std::runtime_error on rendering failures, std::invalid_argument for a sweep value that
 // makes an algorithm's options invalid, and the scene builder's errors (ScenarioError, GltfError).
 BenchResult runBenchmark(const Scenario& scenario, const BenchOptions& options);
 

@@ -55,6 +55,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       device_(approximate_device_ ? static_cast<RenderDevice*>(approximate_device_.get())
                                   : &gl_device_),
       tracer_(*device_) {
+    if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
     culler_->reset(world_->tree());
 }
 
@@ -88,6 +89,7 @@ FrameStats Simulation::renderFrame() {
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
     const auto frame_start = Clock::now();
+    if (gpu_timer_) gpu_timer_->begin();
     renderer_.beginFrame();
     const auto cull_start = Clock::now();
     const bool trace = world_->liveControls().trace_every_frame ||
@@ -97,8 +99,11 @@ FrameStats Simulation::renderFrame() {
     tracer_.endTrace();
     traced_ |= trace;
     const double cull_ms = msSince(cull_start);
+    if (gpu_timer_) gpu_timer_->end();
     renderer_.finish();
     stats.frame_ms = msSince(frame_start);
+    if (gpu_timer_) stats.gpu_ms = gpu_timer_->resultMs();
+    recordAnswerLatencies(frame, stats);
 
     const DeviceCounters& c = device_->counters();
     stats.wait_ms = c.wait_seconds * 1e3;
@@ -111,6 +116,18 @@ FrameStats Simulation::renderFrame() {
 
     if (options_.measure_error) measureError(*truth, stats);
     return stats;
+}
+
+void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
+    gl_device_.takeAnswerLatencies(frame_latencies_);
+    stats.answers = frame_latencies_.size();
+    if (frame >= world_->scenario().warmup_frames) {
+        for (uint32_t latency : frame_latencies_) {
+            if (latency >= answer_latencies_.size()) answer_latencies_.resize(size_t{latency} + 1, 0);
+            ++answer_latencies_[latency];
+        }
+    }
+    stats.answer_latency_median = medianLatency(frame_latencies_);
 }
 
 // Object IDs and depth compared pixel by pixel (sim/run/pixel_error.h: error or tie), and the

@@ -13,6 +13,7 @@
 #include "occsim/culling/contract/culler.h"
 #include "occsim/culling/devices/tracing_device.h"
 #include "render/gl_query_device.h"
+#include "render/gl_frame_timer.h"
 #include "render/gl_renderer.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
@@ -38,6 +39,9 @@ struct SimulationOptions {
     // Record this frame's draws and queries (for the bird's-eye picture); see lastTrace(). The
     // recording sits inside that frame's timing (a vector append per draw or query).
     std::optional<uint32_t> trace_frame;
+    // Time the culled render on the GPU (GL_TIME_ELAPSED): only where the figure means
+    // something (ContextInfo::gpu_time_meaningful; not on llvmpipe).
+    bool measure_gpu_time = false;
 };
 
 // The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them),
@@ -81,6 +85,9 @@ public:
     // Popping: for every object that was visible in ground truth and not drawn, how many
     // consecutive frames it stayed missing (runs still open at the end are included).
     std::vector<uint32_t> poppingRuns() const { return popping_.runs(); }
+    // The answer latencies of the frames after the scenario's warm-up, as counts per latency
+    // (addAnswerLatencies()).
+    const std::vector<uint64_t>& answerLatencies() const { return answer_latencies_; }
     // Culled object-ID and depth buffers read back to count error (none unless error is measured).
     uint64_t errorReadBacks() const { return error_read_backs_; }
     // The trace of options.trace_frame (or of every frame, LiveControls::trace_every_frame) once
@@ -102,6 +109,7 @@ private:
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
+    void recordAnswerLatencies(uint32_t frame, FrameStats& stats);
 
     std::unique_ptr<SharedWorld> own_world_;  // only for a simulation alone
     std::unique_ptr<GroundTruth> own_truth_;
@@ -124,6 +132,9 @@ private:
     ErrorFrame worst_;
     std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
     PoppingCounter popping_;
+    std::unique_ptr<GlFrameTimer> gpu_timer_;  // when options_.measure_gpu_time
+    std::vector<uint32_t> frame_latencies_;
+    std::vector<uint64_t> answer_latencies_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint32_t> culled_depth_;
     std::vector<uint8_t> culled_visible_;
