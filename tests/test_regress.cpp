@@ -285,6 +285,11 @@ TEST(Regress, BaselineOfAnotherFormatVersionSaysSoInsteadOfComparing) {
     ASSERT_EQ(report.scenarios[0].checks.back().check, "baseline");
     EXPECT_NE(report.scenarios[0].checks.back().got.find("baseline format version 1; this program reads version 2"),
               std::string::npos);
+    // --update replaces it and says that the old file was not compared.
+    const RegressReport rewritten = runRegression(o);
+    EXPECT_NE(rewritten.scenarios[0].note.find("the old file was not compared"), std::string::npos)
+        << rewritten.scenarios[0].note;
+    EXPECT_TRUE(runRegression(optionsFor(file)).passed());
 }
 
 TEST(Regress, JunitXmlHasOneTestcasePerCheckAndFailuresWithMessages) {

@@ -6,6 +6,7 @@
 #include "occsim/culling/devices/tracing_device.h"
 #include "culling_fixtures.h"
 #include "sim/output/birds_eye.h"
+#include "sim/output/error_picture.h"
 #include "sim/output/markdown_report.h"
 #include "sim/output/plots.h"
 #include "sim/output/report.h"
@@ -482,6 +483,27 @@ TEST(Plots, WithGnuplotWritesNonEmptyPngAndSvgOfEveryChart) {
         else EXPECT_TRUE(head.starts_with("<?xml") || head.starts_with("<svg")) << f;
     }
     for (const std::string& f : filesIn(out)) EXPECT_EQ(f.find(".tmp-"), std::string::npos) << f;
+}
+
+// The worst-frame picture: culled | ground truth | ground truth dimmed with error pixels in
+// magenta and tie pixels in yellow (docs/error.md).
+TEST(ErrorPicture, MarksErrorsAndTiesInTheirOwnColours) {
+    const uint32_t w = 3, h = 1;
+    ErrorFrame frame;
+    frame.culled_rgba.assign(w * h * 4, 30);
+    frame.truth_rgba.assign(w * h * 4, 90);
+    frame.culled_ids = {1, 2, 0};
+    frame.truth_ids = {1, 3, 4};
+    frame.differences = {static_cast<uint8_t>(PixelDifference::Same), static_cast<uint8_t>(PixelDifference::Tie),
+                         static_cast<uint8_t>(PixelDifference::Error)};
+    const std::vector<uint8_t> picture = composeErrorPicture(frame, w, h);
+    ASSERT_EQ(picture.size(), size_t{3 * w} * h * 4);
+    const uint8_t* marks = picture.data() + 2 * w * 4;
+    EXPECT_EQ(marks[0], 30) << "an unchanged pixel is ground truth dimmed";
+    EXPECT_EQ(std::vector<uint8_t>(marks + 4, marks + 7), std::vector<uint8_t>(kTieColour, kTieColour + 3));
+    EXPECT_EQ(std::vector<uint8_t>(marks + 8, marks + 11), std::vector<uint8_t>(kErrorColour, kErrorColour + 3));
+    frame.differences.pop_back();
+    EXPECT_THROW(composeErrorPicture(frame, w, h), std::invalid_argument);
 }
 
 }  // namespace

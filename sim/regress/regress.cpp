@@ -204,7 +204,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     }
     std::optional<Baseline> old;
     std::string baseline_problem;
-    if (std::filesystem::exists(expect.baseline)) {
+    const bool had_baseline = std::filesystem::exists(expect.baseline);
+    if (had_baseline) {
         try {
             old = readBaseline(expect.baseline);
         } catch (const BaselineError& e) {
@@ -236,6 +237,11 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         }
         writeFileAtomically(expect.baseline, baselineJson(now));
         outcome.note = expect.baseline.string() + (changes.empty() ? ": unchanged" : ": updated");
+        // An unreadable old file (another format version) is replaced, not compared: say so, or
+        // every algorithm would read as new.
+        if (had_baseline && !old) {
+            outcome.note += " (the old file was not compared: " + baseline_problem + ")";
+        }
         for (const auto& c : changes) outcome.note += "\n    " + c;
     } else if (!baseline_problem.empty()) {
         outcome.checks.push_back({"baseline", "a readable baseline of this format", baseline_problem, false});
