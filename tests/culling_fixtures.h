@@ -125,4 +125,21 @@ inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) 
     return frame;
 }
 
+// Frustum culling whose planes sit 1.5 m inside the true frustum: it drops objects at the edges
+// of the view. Ground truth draws every object and lets the GPU clip, so it shares nothing with
+// this mistake: an error metric that works shows it.
+class ShrunkenFrustumCuller final : public Culler {
+public:
+    std::string_view name() const override { return "vfc"; }
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        CullFrame shrunk = frame;
+        for (glm::vec4& plane : shrunk.view.frustum.planes) plane.w -= 1.5f;
+        inner_->cullAndRender(tree, shrunk, device);
+    }
+
+private:
+    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
+};
+
 }  // namespace occsim::testing

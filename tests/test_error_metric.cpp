@@ -3,6 +3,7 @@
 // error pixel and no missed object, with the ties counted apart; and the metric still fails
 // when it should: a shrunken frustum and a culler that drops a visible object show error.
 #include "occsim/culling/registry/registry.h"
+#include "culling_fixtures.h"
 #include "sim/output/error_picture.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
@@ -78,21 +79,6 @@ TEST(ErrorMetric, TheTeapotsShowNoErrorAndNoMissForConservativeCullersWhileAsync
     EXPECT_GT(async.error_pixels_total, 0);
 }
 
-// Frustum culling with every plane 1.5 m inside the true frustum: objects at the edges go.
-class ShrunkenFrustumCuller final : public Culler {
-public:
-    std::string_view name() const override { return "vfc"; }
-    void reset(const BspTree& tree) override { inner_->reset(tree); }
-    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
-        CullFrame shrunk = frame;
-        for (glm::vec4& plane : shrunk.view.frustum.planes) plane.w -= 1.5f;
-        inner_->cullAndRender(tree, shrunk, device);
-    }
-
-private:
-    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
-};
-
 // A device that never draws one object: what a culler that wrongly drops it puts on screen.
 class DroppingDevice final : public RenderDevice {
 public:
@@ -138,7 +124,7 @@ BenchOptions withCuller(std::function<std::unique_ptr<Culler>()> make) {
 TEST(ErrorMetric, AShrunkenFrustumStillShowsErrorOnBothTestScenes) {
     for (const auto& file : {kSharedFaces, kDeepDepth}) {
         const BenchResult result =
-            bench(file, {"vfc"}, 12, withCuller([] { return std::make_unique<ShrunkenFrustumCuller>(); }));
+            bench(file, {"vfc"}, 12, withCuller([] { return std::make_unique<testing::ShrunkenFrustumCuller>(); }));
         EXPECT_GT(result.runs[0].summary.error_pixels_total, 0) << file;
         EXPECT_GT(result.runs[0].summary.missed_objects_total, 0) << file;
     }

@@ -1,5 +1,6 @@
 // End to end headless (EGL by default): the small teapot scenario, every algorithm, ground truth
 // and error; and the same bench on every backend the build has.
+#include "culling_fixtures.h"
 #include "headless_backends.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/output/pictures.h"
@@ -62,30 +63,13 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
     }
 }
 
-// Frustum culling whose planes sit a little inside the true frustum: it drops objects at the
-// edges of the view. Ground truth draws every object and lets the GPU clip, so it shares nothing
-// with this mistake, and the error shows.
-class ShrunkenFrustumCuller final : public Culler {
-public:
-    std::string_view name() const override { return "vfc"; }
-    void reset(const BspTree& tree) override { inner_->reset(tree); }
-    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
-        CullFrame shrunk = frame;
-        for (glm::vec4& plane : shrunk.view.frustum.planes) plane.w -= 1.5f;  // 1.5 m inward
-        inner_->cullAndRender(tree, shrunk, device);
-    }
-
-private:
-    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
-};
-
 TEST(Simulation, GroundTruthIsIndependentOfTheCullersFrustumTest) {
     BenchOptions options;
     options.algorithms = traitsOf({"vfc"});
     options.measure_error = true;
     options.frames = 12;
     options.make_culler = [](const AlgorithmTraits&, const CullerOptions&) {
-        return std::unique_ptr<Culler>(new ShrunkenFrustumCuller);
+        return std::unique_ptr<Culler>(new testing::ShrunkenFrustumCuller);
     };
     const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
     EXPECT_GT(result.runs[0].summary.error_pixels_total, 0) << "the dropped edge objects show";
