@@ -15,6 +15,7 @@
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
 #include "sim/scenario/errors.h"
+#include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
 #include "sim/view/viewer.h"
 #include "occsim/culling/registry/registry_text.h"
@@ -22,6 +23,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <cstdlib>
@@ -110,6 +112,7 @@ struct CommonFlags {
     bool plots = false;
     int64_t birds_eye = -1;
     std::string culling;
+    bool out_given = false;  // --out on the command line (an empty one is refused)
     std::vector<std::string> plugins;
     std::string ablate;
 };
@@ -222,8 +225,70 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     return o;
 }
 
+// An output path is checked before any work, so that a run never ends on a path it cannot
+// write: a folder flag must not name a file, a file flag not a folder, and neither may be empty
+// when given.
+void checkOutputFolder(const std::string& flag, const std::string& path, bool given) {
+    if (given && path.empty()) throw BadInput(flag + ": empty; expected a folder (created when missing)");
+    std::error_code ec;
+    if (!path.empty() && std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec)) {
+        throw BadInput(flag + " " + path + ": is a file; expected a folder (created when missing)");
+    }
+}
+
+void checkOutputFile(const std::string& flag, const std::string& path, bool given) {
+    if (given && path.empty()) throw BadInput(flag + ": empty; expected a file name");
+    std::error_code ec;
+    if (!path.empty() && std::filesystem::is_directory(path, ec)) {
+        throw BadInput(flag + " " + path + ": is a folder; expected a file name");
+    }
+}
+
+// --algos as given: every name registered, none twice, none empty (a trailing comma).
+std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::string& list) {
+    std::vector<std::string> names;
+    size_t start = 0;
+    while (true) {
+        const size_t comma = list.find(',', start);
+        names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    std::vector<const occsim::AlgorithmTraits*> out;
+    for (const std::string& name : names) {
+        if (name.empty()) throw BadInput("--algos: an empty algorithm name (a comma too many?)");
+        const occsim::AlgorithmTraits* a = &algorithmNamed("--algos", name);
+        if (std::find(out.begin(), out.end(), a) != out.end()) {
+            throw BadInput("--algos: '" + name + "' is listed twice");
+        }
+        out.push_back(a);
+    }
+    return out;
+}
+
+// "The following argument was not expected: --frame" gets the nearest flag of the program.
+std::string withSuggestion(const CLI::App& app, const std::string& message) {
+    const std::string marker = "not expected: ";
+    const size_t at = message.find(marker);
+    if (at == std::string::npos) return message;
+    std::istringstream rest(message.substr(at + marker.size()));
+    std::string word;
+    while (rest >> word && word.rfind("--", 0) != 0) {
+    }
+    if (word.rfind("--", 0) != 0) return message;
+    std::vector<std::string> flags;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        for (const CLI::Option* option : sub->get_options()) {
+            for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+        }
+    }
+    if (const auto match = occsim::closestMatch(word, flags)) return message + "; did you mean '" + *match + "'?";
+    return message;
+}
+
 int runCommand(const RunRequest& request) {
     const CommonFlags& flags = request.flags;
+    checkOutputFolder("--out", flags.out, flags.out_given);
     occsim::BenchOptions options = benchOptions(request);
     const std::filesystem::path out_dir =
         flags.out.empty() ? std::filesystem::path("out") / request.scenario.name / request.default_subdir
@@ -251,7 +316,10 @@ int runCommand(const RunRequest& request) {
 
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
                    const std::string& shard, const std::string& out, const std::string& culling_file,
-                   const std::vector<std::string>& plugins, const BackendFlags& backend) {
+                   const std::vector<std::string>& plugins, const BackendFlags& backend,
+                   bool junit_given) {
+    checkOutputFile("--junit", junit, junit_given);
+    checkOutputFolder("--out", out, true);
     loadPlugins(plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(backend);
@@ -354,12 +422,11 @@ int main(int argc, char** argv) {
                     "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
 
     CommonFlags bench_flags;
-    std::vector<std::string> bench_algorithms;
+    std::string bench_algorithms;
     CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
     bench->add_option("--algos", bench_algorithms,
-                      "Algorithms to compare (default: every registered one, plugins' included)")
-        ->delimiter(',');
+                      "Algorithms to compare (default: every registered one, plugins' included)");
     bench->add_option("--sweep", bench_flags.sweep,
                       "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
                       "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
@@ -435,9 +502,11 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "occsim: %s (see occsim --help)\n", e.what());
+        std::fprintf(stderr, "occsim: %s (see occsim --help)\n", withSuggestion(app, e.what()).c_str());
         return kExitBadInput;
     }
+    run_flags.out_given = run->count("--out") > 0;
+    bench_flags.out_given = bench->count("--out") > 0;
 
     const std::string command = commandLine(argc, argv);
     try {
@@ -456,15 +525,14 @@ int main(int argc, char** argv) {
             loadPlugins(bench_flags.plugins);
             RunRequest request{"bench", command, bench_flags,
                                scenarioWithCulling(bench_flags.scenario, bench_flags.culling), {}, "bench"};
-            if (bench_algorithms.empty()) bench_algorithms = occsim::algorithmNames();
-            for (const auto& a : bench_algorithms) {
-                request.algorithms.push_back(&algorithmNamed("--algos", a));
-            }
+            request.algorithms =
+                bench->count("--algos") > 0 ? algorithmsNamed(bench_algorithms) : occsim::algorithms();
             return runCommand(request);
         }
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
                                              regress_shard, regress_out, regress_culling,
-                                             regress_plugins, regress_backend);
+                                             regress_plugins, regress_backend,
+                                             regress->count("--junit") > 0);
         if (*cullers) {
             loadPlugins(cullers_plugins);
             std::printf("%s", (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());

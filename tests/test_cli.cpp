@@ -335,3 +335,34 @@ TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
     }
     std::filesystem::remove_all(out);
 }
+
+// Nonsense on the command line is refused before any work, one line each: a name listed twice
+// or an empty one in --algos, an output folder that is a file or empty, a JUnit file that is a
+// folder; a misspelt flag gets the nearest one.
+TEST(Cli, NonsenseAndUnwritableOutputsAreRefusedBeforeAnyRun) {
+    const auto dir = tempPath("nonsense");
+    std::filesystem::create_directories(dir);
+    const auto file = dir / "a-file";
+    std::ofstream(file) << "x";
+    const auto out = dir / "out";
+    const struct {
+        std::string args, expected;
+    } cases[] = {
+        {"bench " + kSmall + " --algos vfc,chc,vfc --out " + out.string(), "--algos: 'vfc' is listed twice"},
+        {"bench " + kSmall + " --algos vfc,chc, --out " + out.string(), "--algos: an empty algorithm name"},
+        {"bench " + kSmall + " --out " + file.string(), "--out " + file.string() + ": is a file; expected a folder"},
+        {"run " + kSmall + " --out ''", "--out: empty; expected a folder"},
+        {"regress " + kSmall + " --junit " + dir.string() + " --out " + out.string(),
+         "--junit " + dir.string() + ": is a folder; expected a file name"},
+        {"bench " + kSmall + " --frame 3", "not expected: 3 --frame; did you mean '--frames'?"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = runOccsim(c.args);
+        EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+        EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.args << ": " << o.output;
+        EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+        EXPECT_FALSE(std::filesystem::exists("out/teapots-small/run-statistical/summary.json.tmp"));
+    }
+    std::filesystem::remove_all(dir);
+}
