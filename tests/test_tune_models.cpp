@@ -280,13 +280,19 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     }
 
     // No --params: every option the descriptor marks tunable, in its order; statistical+ declares
-    // its own (BASE_TIME is unused while it re-queries by parallax).
+    // its own (BASE_TIME is unused while it re-queries by parallax; the bound on queries in
+    // flight, an integer, is rounded when applied).
     const ParameterSpace every = parseParameterSpace(statistical(), "", {});
     ASSERT_EQ(every.size(), 3u);
     EXPECT_EQ(every.parameters[0].name, "base_time");
     const ParameterSpace plus = parseParameterSpace(*findAlgorithm("statistical+"), "", {});
-    ASSERT_EQ(plus.size(), 3u);
-    EXPECT_EQ(plus.parameters[2].name, "requery_parallax");
+    ASSERT_EQ(plus.size(), 4u);
+    EXPECT_EQ(plus.parameters[2].name, "queries_before_restart");
+    EXPECT_TRUE(plus.parameters[2].integer);
+    EXPECT_EQ(plus.parameters[3].name, "requery_parallax");
+    EXPECT_EQ(plus.apply(OptionValues(findAlgorithm("statistical+")->options), {2.0, 0.5, 7.6, 0.05})
+                  .number("queries_before_restart"),
+              8.0);
 
     const ParameterSpace s = parseParameterSpace(statistical(), "decay_a,base_time", {"base_time=0.2:1.2"});
     ASSERT_EQ(s.size(), 2u);

@@ -579,8 +579,14 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                                 "eye exceeds this * (a - b^occ_num); 0 = BASE_TIME seconds"),
                    0.0),
         "requery_distance");
+    OptionSpec in_flight = integerOption(
+        "queries_before_restart", "queries", 1, 4294967295.0, d.queries_before_restart,
+        "the traversal returns to the queue start after this many queries (with ready_answers: "
+        "the most queries in flight)");
     if (plus) {
         parallax = tunable(parallax, 0.005, 0.2);  // BASE_TIME is unused while this is > 0
+        // The best bound on queries in flight depends on the scene (docs/statistical.md, (1)).
+        in_flight = tunable(in_flight, 2, 32);
     } else {
         base_time = tunable(base_time, 0.05, 2.0);
     }
@@ -597,10 +603,7 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                       "query results remembered per node"),
         numberOption("max_statistics_age", "s", 1e-6, inf, d.max_statistics_age_s,
                      "statistics older than this are ignored: the node is queried"),
-        integerOption("queries_before_restart", "queries", 1, 4294967295.0,
-                      d.queries_before_restart,
-                      "the traversal returns to the queue start after this many queries (with "
-                      "ready_answers: the most queries in flight)"),
+        in_flight,
         switchable(booleanOption("ready_answers", d.ready_answers,
                                  "take each answer as soon as it is ready and keep traversing"),
                    0.0),

@@ -103,8 +103,7 @@ std::string checkOptionValue(const OptionSpec& spec, double value) {
     bool ok = std::isfinite(value) && value >= spec.min && value <= spec.max;
     if (spec.type != OptionType::Number) ok = ok && integral;
     if (ok) return {};
-    const std::string given = spec.type == OptionType::Boolean ? number(value) : number(value);
-    return "expected " + describeOptionRange(spec) + ", got " + given;
+    return "expected " + describeOptionRange(spec) + ", got " + number(value);
 }
 
 std::string checkDescriptor(const OptionsDescriptor& descriptor) {
