@@ -5,8 +5,11 @@
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 #include "gltf_builder.h"
+#include "shell_command.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 namespace occsim {
 namespace {
@@ -101,6 +104,42 @@ TEST(AnimationRun, TheAnimatedScenarioShowsNoErrorForConservativeCullers) {
         }
         EXPECT_EQ(moved, 77u * 89u) << "every animated and moving object counts on every step";
     }
+}
+
+// Through the executable: a file the glTF specification forbids, and playback keys that do not
+// fit the file, end with one line naming the place and exit code 2; `info` lists the animations.
+TEST(AnimationCli, BadAnimationsAreOneLineWithExitCode2AndInfoListsAnimations) {
+    TempDir dir;
+    GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    b.animation("Wobble", {{0, "rotation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "VEC3"}});
+    dir.write("bad.gltf", b.text());
+    const json camera = {{"keyframes", {{{"time", 0}, {"position", {0, 2, 10}}, {"target", {0, 0, 0}}}}}};
+    const json bad_file = {{"format_version", 1}, {"name", "bad"}, {"camera", camera},
+                           {"scene", {{"sources", {{{"type", "gltf"}, {"path", "bad.gltf"}}}}}}};
+    const std::string exe = OCCSIM_EXE;
+    testing::Outcome o = testing::shell(exe + " info " + dir.write("bad.json", bad_file.dump()).string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("bad.gltf: /animations/0/samplers/0/output: a rotation output must be VEC4, got VEC3"),
+              std::string::npos) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+
+    const std::string box = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
+    const json bad_play = {{"format_version", 1}, {"name", "bad"}, {"camera", camera},
+                           {"scene", {{"sources", {{{"type", "gltf"}, {"path", box},
+                                                    {"animation", {{"play", json::array({5})}}}}}}}}};
+    o = testing::shell(exe + " info " + dir.write("play.json", bad_play.dump()).string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("/scene/sources/0/animation/play/0: expected an animation index < 2"),
+              std::string::npos) << o.output;
+
+    o = testing::shell(exe + " info " + std::string(OCCSIM_SOURCE_DIR) + "/scenarios/gltf-animated.json");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("animations    source 0: 2 animations, 42 animated copies of 2 objects"),
+              std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("node 0 translation, LINEAR, 4 keys"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("3.708 s, plays"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("moves 1 object of each copy (1)"), std::string::npos) << o.output;
 }
 
 }  // namespace
