@@ -434,6 +434,13 @@ TEST(AnimatedWorld, SpawnMakesMovingCopiesOfAGltfSourcesModel) {
         EXPECT_EQ(scene.object_mesh[7 + 2 * k], scene.object_mesh[0]);
         EXPECT_EQ(scene.object_mesh[8 + 2 * k], scene.object_mesh[1]);
     }
+
+    // "place": false: the model stands nowhere of its own; only the spawned copies exist.
+    const Scene spawned_only = buildScene(scenarioWith(
+        dir, json::array({boxAnimatedSource({{"place", false}}), teapots}), json::array({spawn})));
+    EXPECT_EQ(spawned_only.objectCount(), 5u + 3u * 2u);
+    EXPECT_EQ(spawned_only.object_mesh[5], scene.object_mesh[0]);
+    EXPECT_EQ(initialState(spawned_only).moved.size(), 3u * 2u);
 }
 
 }  // namespace

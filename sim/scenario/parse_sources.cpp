@@ -117,6 +117,10 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
     if (auto replicate = source.optionalObject("replicate")) {
         spec.replicate = readReplication(std::move(*replicate));
     }
+    spec.place = source.boolean("place", spec.place);
+    if (!spec.place && source.has("replicate")) {
+        source.fail("replicate", "a source with \"place\": false places no copies to replicate");
+    }
     if (auto animation = source.optionalObject("animation")) {
         spec.animation = readAnimationPlayback(std::move(*animation));
     }

@@ -94,6 +94,7 @@ struct GltfSourceSpec {
     glm::dvec3 offset{0.0};           // translation applied after scaling (metres)
     GltfReplication replicate;
     GltfAnimationSpec animation;
+    bool place = true;                // false: only movers' "spawn": {"model": ...} place it
 };
 
 enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };

@@ -54,11 +54,24 @@ uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose) {
     return scene.objectCount() - 1;
 }
 
-SourceRange addSource(Scene& scene, SourceOutput source) {
+// A source's meshes and objects into the scene; a glTF source with "place": false adds its meshes
+// only (its model is placed by spawning movers). `copy_meshes` gets the meshes of one copy's
+// objects, for spawning.
+SourceRange addSource(Scene& scene, SourceOutput source, bool place,
+                      std::vector<uint32_t>& copy_meshes) {
+    const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
+    const size_t per_copy = source.model ? source.model->object_visit.size() : 0;
+    for (size_t j = 0; j < per_copy && j < source.objects.size(); ++j) {
+        copy_meshes.push_back(first_mesh + source.objects[j].mesh);
+    }
+    if (!place) {
+        source.objects.clear();
+        source.model_copies.clear();
+        source.lanes.clear();
+    }
     SourceRange range{scene.objectCount(), static_cast<uint32_t>(source.objects.size()), source.region, {}, -1, {}, {}};
     range.placements = std::move(source.model_copies);
     range.copy_state.assign(range.placements.size(), -1);
-    const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
     for (MeshData& mesh : source.meshes) addMesh(scene, std::move(mesh));
     for (const PlacedObject& o : source.objects) {
         ObjectPose pose;
@@ -352,10 +365,13 @@ Scene buildScene(const Scenario& scenario) {
     for (size_t s = 0; s < scenario.sources.size(); ++s) {
         SourceOutput source = generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
         std::shared_ptr<const AnimatedModel> model = source.model;
-        ranges.push_back(addSource(scene, std::move(source)));
+        const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
+        std::vector<uint32_t> copy_meshes;
+        ranges.push_back(addSource(scene, std::move(source), place, copy_meshes));
         if (model) {
             ranges.back().model = static_cast<int32_t>(scene.models.size());
             scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
+            scene.models.back().object_mesh = std::move(copy_meshes);
             animateCopies(scene, scenario, s, ranges.back());
         }
     }
@@ -414,7 +430,7 @@ Scene buildScene(const Scenario& scenario) {
                 copy.rigid = true;
                 if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
                 for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) {
-                    addObject(scene, scene.object_mesh[model_range.first + j], ObjectPose{});
+                    addObject(scene, sm.object_mesh[j], ObjectPose{});
                 }
                 objects.push_back(copy.first_object);
                 object_copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
@@ -512,6 +528,11 @@ Scene buildScene(const Scenario& scenario) {
             }
             scene.initial_movers.push_back(mover);
         }
+    }
+    if (scene.objectCount() == 0) {
+        throw ScenarioError(scenario.file.string(), "/scene/sources",
+                            "nothing is placed: the glTF sources have \"place\": false and no "
+                            "mover spawns their models");
     }
     // Moving copies start in their pose at time 0 (animations and anchors as the movers placed them).
     ModelPoseBuffers buffers = makePoseBuffers(scene.models);

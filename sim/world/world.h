@@ -86,6 +86,7 @@ struct SceneModel {
     uint32_t source = 0;                   // index into Scenario::sources
     std::vector<uint8_t> playing;          // per animation of the model
     std::vector<uint8_t> object_animated;  // per object of a copy: moved by a playing animation
+    std::vector<uint32_t> object_mesh;     // per object of a copy: its mesh in Scene::meshes
     double speed = 1.0;
     AnimationMode mode = AnimationMode::Loop;
     double time_offset_s = 0.0;
