@@ -332,6 +332,40 @@ json boxAnimatedSource(const json& extra = json::object()) {
     return source;
 }
 
+std::string parseErrorOf(const TempDir& dir, const json& sources, const json& movers = json::array()) {
+    try {
+        scenarioWith(dir, sources, movers);
+    } catch (const ScenarioError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(AnimationKeys, BadKeysNameTheirPlace) {
+    TempDir dir;
+    std::string e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"play", "some"}}}})}));
+    EXPECT_NE(e.find("/scene/sources/0/animation/play"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"mode", "bounce"}}}})}));
+    EXPECT_NE(e.find("/scene/sources/0/animation/mode"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"speed", -1}}}})}));
+    EXPECT_NE(e.find("/scene/sources/0/animation/speed"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"loop", true}}}})}));
+    EXPECT_NE(e.find("/scene/sources/0/animation"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource(
+                              {{"place", false}, {"replicate", {{"mode", "grid"}, {"count_x", 2}}}})}));
+    EXPECT_NE(e.find("/scene/sources/0/replicate"), std::string::npos) << e;
+    const json teapots = {{"type", "teapots"}, {"count", 5}};
+    e = parseErrorOf(dir, json::array({teapots}),
+                     json::array({{{"fraction", 1}, {"whole_copies", true}, {"motion", "spin"}}}));
+    EXPECT_NE(e.find("/movers/0/whole_copies: whole copies are copies of a glTF model"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource(), teapots}),
+                     json::array({{{"spawn", {{"count", 2}, {"model", 1}}}, {"motion", "spin"}}}));
+    EXPECT_NE(e.find("/movers/0/spawn/model: expected the index of a glTF source"), std::string::npos) << e;
+    e = parseErrorOf(dir, json::array({boxAnimatedSource()}),
+                     json::array({{{"spawn", {{"count", 2}, {"model", 0}, {"shape", "box"}}}, {"motion", "spin"}}}));
+    EXPECT_NE(e.find("/movers/0/spawn/model: give either 'shape' or 'model'"), std::string::npos) << e;
+}
+
 TEST(AnimatedWorld, AnimatedObjectsAreMoversWithTightBoxesOnSimulationTime) {
     TempDir dir;
     const Scene scene = buildScene(scenarioWith(dir, json::array({boxAnimatedSource()})));
