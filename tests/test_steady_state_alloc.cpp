@@ -9,6 +9,8 @@
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "occsim/culling/devices/tracing_device.h"
 #include "culling_fixtures.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +18,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <unistd.h>
 #include <memory>
 #include <new>
 #include <string>
@@ -170,6 +174,62 @@ TEST_P(SteadyStateAllocation, CullAndReinsertAllocateNothing) {
     EXPECT_EQ(measured_cull, 0u) << algorithm.name << " on the " << nameOf(kind)
                                  << " device allocated " << measured_cull << " times in "
                                  << kMeasuredFrames << " steady frames";
+}
+
+// A world with glTF animations (issue 22): a grid of BoxAnimated copies playing their animations
+// at seeded phases, a fifth of the copies spinning whole, teapots orbiting. After a warm-up, the
+// world's step (movers, every copy posed through its hierarchy, boxes) and the tree's reinsert
+// and refit allocate nothing, and neither does a culler on that tree.
+TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("occsim-alloc-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string box = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
+    std::ofstream(dir / "animated.json") << R"({"format_version": 1, "name": "animated", "seed": 3,
+      "camera": {"keyframes": [{"time": 0, "position": [0, 3, 30], "target": [0, 0, 0]}]},
+      "scene": {"sources": [
+        {"type": "gltf", "path": ")" << box << R"(", "offset": [-10, 0, -10],
+         "replicate": {"mode": "grid", "count_x": 6, "count_z": 6, "spacing": 4},
+         "animation": {"random_phase": true}},
+        {"type": "teapots", "count": 40, "region": {"min": [-12, 0, -12], "max": [12, 2, 12]}}]},
+      "movers": [{"source": 0, "fraction": 0.2, "whole_copies": true, "motion": "spin"},
+                 {"source": 1, "fraction": 0.5, "motion": "orbit", "speed": [1, 2]}]})";
+    const Scenario scenario = parseScenarioFile(dir / "animated.json");
+    std::filesystem::remove_all(dir);
+    const Scene scene = buildScene(scenario);
+    WorldState state = initialState(scene);
+    ASSERT_GT(state.copies.size(), 0u);
+    BspTree tree;
+    tree.build(state.boxes, scenario.bsp);
+    ScriptedQueryDevice device(3);
+    std::vector<uint8_t> visible(scene.objectCount(), 0);
+    for (uint32_t o = 0; o < scene.objectCount(); o += 3) visible[o] = 1;
+    const std::unique_ptr<Culler> culler = makeCuller(*findAlgorithm("chc++"), CullerOptions{});
+    culler->reset(tree);
+    const CullView view = testing::makeView(glm::vec3(0, 3, 30), glm::vec3(0.0f));
+    constexpr uint64_t kWarmUp = 600, kMeasured = 200;  // 20 s of warm-up at 30 frames per second
+    uint64_t measured = 0;
+    for (uint64_t f = 0; f < kWarmUp + kMeasured; ++f) {
+        g_allocations = 0;
+        g_counting = true;
+        stepMovers(scene, state, 1.0 / 30.0);
+        for (const uint32_t o : state.moved) tree.reinsert(o, state.boxes[o]);
+        tree.refitDirtyBounds();
+        device.updateVisibility(visible, state.boxes);
+        device.clearLog();
+        culler->cullAndRender(tree, testing::makeFrame(view, f, static_cast<double>(f) / 30.0), device);
+        g_counting = false;
+        if (f >= kWarmUp) measured += g_allocations;
+    }
+    g_allocations = 0;
+    g_counting = true;
+    const WorldState copy = state;
+    g_counting = false;
+    EXPECT_GT(g_allocations, 0u) << "the counter sees a world's buffers being allocated";
+    EXPECT_GT(state.moved.size(), 36u) << "every copy's inner box, the spinning copies, the teapots";
+    EXPECT_GT(tree.stats().reinserts_moved, 0u);
+    EXPECT_EQ(measured, 0u) << "an animated world allocated " << measured << " times in " << kMeasured
+                            << " steady frames";
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -52,13 +52,13 @@ void SharedWorld::advance() {
 
     // The world moves (not on frame 0: it shows the initial state). Skipped without movers.
     const auto update_start = Clock::now();
-    if (frame_ > 0 && !state_.movers.empty() && !live_.hold_world) {
+    if (frame_ > 0 && !state_.moved.empty() && !live_.hold_world) {
         const uint64_t moved_before = tree_.stats().reinserts_moved;
         stepMovers(scene_, state_, scenario_.dt_s);
         requireFiniteBoxes(state_, frame_);
-        for (const Mover& mover : state_.movers) tree_.reinsert(mover.object, state_.boxes[mover.object]);
+        for (const uint32_t o : state_.moved) tree_.reinsert(o, state_.boxes[o]);
         tree_.refitDirtyBounds();
-        stats.moved_objects = state_.movers.size();
+        stats.moved_objects = state_.moved.size();
         stats.node_changes = tree_.stats().reinserts_moved - moved_before;
         ++steps_;
     }

@@ -43,6 +43,47 @@ GltfReplication readReplication(JsonObjectReader replicate) {
     return r;
 }
 
+// "animation": which of the file's animations play and how (names and indices are checked
+// against the file when the scene is built).
+GltfAnimationSpec readAnimationPlayback(JsonObjectReader animation) {
+    static const std::vector<std::string> kModes = {"loop", "clamp", "ping_pong"};
+    GltfAnimationSpec spec;
+    if (const auto play = animation.optional("play")) {
+        if (play->json().is_string()) {
+            spec.play_all = play->asEnum({"all", "none"}) == "all";
+        } else if (play->json().is_array()) {
+            spec.play_all = false;
+            const JsonArrayReader list = play->asArray();
+            list.requireAtLeast(1, "animation name or index");
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const JsonValueReader item = list.at(i);
+                AnimationPick pick;
+                if (item.json().is_string()) {
+                    pick.name = item.asString();
+                    if (pick.name.empty()) item.failExpected("an animation name or index");
+                } else if (item.json().is_number()) {
+                    pick.index = static_cast<uint32_t>(item.asUnsigned(0, UINT32_MAX));
+                } else {
+                    item.failExpected("an animation name or index");
+                }
+                spec.play.push_back(pick);
+            }
+        } else {
+            play->failExpected("\"all\", \"none\" or a list of animation names and indices");
+        }
+    }
+    spec.speed = animation.number("speed", spec.speed, NumberRange::closed(0.0, 1000.0));
+    const std::string mode = animation.enumeration("mode", kModes, "loop");
+    spec.mode = mode == "loop"    ? AnimationMode::Loop
+                : mode == "clamp" ? AnimationMode::Clamp
+                                  : AnimationMode::PingPong;
+    spec.time_offset_s =
+        animation.number("time_offset", spec.time_offset_s, NumberRange::closed(-1e6, 1e6));
+    spec.random_phase = animation.boolean("random_phase", spec.random_phase);
+    animation.finish();
+    return spec;
+}
+
 }  // namespace
 
 TeapotFieldSpec readTeapotField(JsonObjectReader& source) {
@@ -75,6 +116,13 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
     spec.offset = source.vec3("offset", spec.offset);
     if (auto replicate = source.optionalObject("replicate")) {
         spec.replicate = readReplication(std::move(*replicate));
+    }
+    spec.place = source.boolean("place", spec.place);
+    if (!spec.place && source.has("replicate")) {
+        source.fail("replicate", "a source with \"place\": false places no copies to replicate");
+    }
+    if (auto animation = source.optionalObject("animation")) {
+        spec.animation = readAnimationPlayback(std::move(*animation));
     }
     return spec;
 }

@@ -49,8 +49,11 @@ enum class SpawnShape : uint8_t { Teapot, Box, Sphere };
 struct SpawnSpec {
     uint32_t count = 0;
     SpawnShape shape = SpawnShape::Teapot;
-    double size_min_m = 1.0;  // height of each spawned object
+    double size_min_m = 1.0;  // height of each spawned object; a model's scale factor
     double size_max_m = 2.0;
+    // "model": spawn copies of this glTF source's model instead of a shape (each copy moves as
+    // one rigid body about its origin, and plays the source's animations).
+    int32_t model_source = -1;
 };
 
 struct MoverSpec {
@@ -59,6 +62,9 @@ struct MoverSpec {
     double fraction = 0.0;          // Fraction: share of the source's objects, [0, 1]
     std::vector<uint32_t> objects;  // Objects: indices within the source
     SpawnSpec spawn;                // Spawn
+    // A glTF source's copies, each moved as one rigid body about its origin: the fraction is a
+    // share of its copies, the objects are copy indices.
+    bool whole_copies = false;
     MotionType motion = MotionType::Bounce;
     double speed_min_mps = 1.0;
     double speed_max_mps = 4.0;

@@ -263,6 +263,13 @@ void readSelection(JsonObjectReader& mover, MoverSpec& spec) {
         spec.spawn.shape = shape == "teapot" ? SpawnShape::Teapot
                            : shape == "box"  ? SpawnShape::Box
                                              : SpawnShape::Sphere;
+        if (const auto model = spawn.optional("model")) {
+            if (spawn.has("shape")) spawn.fail("model", "give either 'shape' or 'model', not both");
+            // Checked against the sources (a glTF one) when the scene is built.
+            spec.spawn.model_source = static_cast<int32_t>(model->asUnsigned(0, INT32_MAX));
+            // A model keeps its own size unless 'size' scales it.
+            spec.spawn.size_min_m = spec.spawn.size_max_m = 1.0;
+        }
         const auto size = spawn.range("size", {spec.spawn.size_min_m, spec.spawn.size_max_m},
                                       NumberRange::greaterThan(0.0));
         spec.spawn.size_min_m = size.first;
@@ -282,6 +289,11 @@ MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
                         (source_count == 1 ? " entry" : " entries"));
     }
     readSelection(mover, spec);
+    spec.whole_copies = mover.boolean("whole_copies", false);
+    if (spec.whole_copies && spec.selection == MoverSelection::Spawn) {
+        mover.fail("whole_copies", "'whole_copies' applies to 'fraction' and 'objects'; spawned "
+                                   "models always move whole");
+    }
     spec.motion = motionFromName(mover.requiredEnumeration("motion", kMotionTypes));
     const std::string motion_name = mover.required("motion").asString();
     for (const MotionKey& k : kMotionKeys) {
@@ -461,6 +473,20 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     s.sources = readScene(top.object("scene"), file.parent_path());
     s.movers = readMovers(top, s.sources.size());
     for (size_t m = 0; m < s.movers.size(); ++m) {
+        const MoverSpec& mover = s.movers[m];
+        const std::string at = "/movers/" + std::to_string(m);
+        if (mover.whole_copies && s.sources[mover.source].type != SourceType::Gltf) {
+            throw ScenarioError(file_name, at + "/whole_copies",
+                                "whole copies are copies of a glTF model; source " +
+                                    std::to_string(mover.source) + " is not a glTF source");
+        }
+        if (mover.spawn.model_source >= 0 &&
+            (static_cast<size_t>(mover.spawn.model_source) >= s.sources.size() ||
+             s.sources[static_cast<size_t>(mover.spawn.model_source)].type != SourceType::Gltf)) {
+            throw ScenarioError(file_name, at + "/spawn/model",
+                                "expected the index of a glTF source in scene.sources, got " +
+                                    std::to_string(mover.spawn.model_source));
+        }
         const std::optional<uint32_t> count = knownObjectCount(s.sources[s.movers[m].source]);
         if (!count) continue;
         for (size_t i = 0; i < s.movers[m].objects.size(); ++i) checkMoverObjectIndex(s, m, i, *count);

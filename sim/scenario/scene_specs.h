@@ -8,7 +8,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <variant>
+#include <vector>
 
 namespace occsim {
 
@@ -67,11 +69,32 @@ struct GltfReplication {
     bool random_yaw = true;             // random: rotate each copy about y
 };
 
+// How a glTF source's node animations play (docs/scenario-gltf.md, "Animations"). An
+// animation's own time is time_offset + phase + speed · (simulation time), wrapped by `mode`
+// over its own duration.
+enum class AnimationMode : uint8_t { Loop, Clamp, PingPong };
+
+struct AnimationPick {
+    std::string name;    // by name when not empty
+    uint32_t index = 0;  // else by index
+};
+
+struct GltfAnimationSpec {
+    bool play_all = true;             // "play": "all" (the default)
+    std::vector<AnimationPick> play;  // "play": [names or indices]; empty with !play_all: none
+    double speed = 1.0;               // >= 0
+    AnimationMode mode = AnimationMode::Loop;
+    double time_offset_s = 0.0;       // the animations' time at simulation time 0
+    bool random_phase = false;        // each copy starts at its own seeded phase
+};
+
 struct GltfSourceSpec {
     std::filesystem::path path;       // resolved against the scenario file's folder
     double scale = 1.0;               // uniform scale applied to the whole model
     glm::dvec3 offset{0.0};           // translation applied after scaling (metres)
     GltfReplication replicate;
+    GltfAnimationSpec animation;
+    bool place = true;                // false: only movers' "spawn": {"model": ...} place it
 };
 
 enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };

@@ -16,17 +16,19 @@
 //
 // Skipped with a warning: POINTS and LINES primitives, primitives without POSITION or with
 // quantized (integer) positions, sparse accessors, morph targets (base positions are used), skins
-// (meshes drawn in their bind pose), cameras, animations (the static pose is used).
+// (meshes drawn rigid in their bind pose), cameras. Node animations are read by gltf_animation.cpp
+// and the model's hierarchy is kept (SourceOutput::model) so the world can pose it each frame.
 // Errors (GltfError, "<file>: <reason>"): unreadable file, tinygltf parse errors, references out
 // of range, index values past the vertex count, non-finite positions or transforms, required
 // extensions that would change the geometry, and no triangles at all.
 #include "sim/scene/gltf_source.h"
 
+#include "sim/scene/gltf_detail.h"
+
 #include "occsim/culling/geometry/random.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cctype>
@@ -41,14 +43,10 @@
 namespace occsim {
 namespace {
 
-namespace tg = tinygltf;
+using namespace gltf_detail;
 
 // A replicated model can multiply a big file by a big count; this keeps a typo within memory.
 constexpr size_t kMaxObjects = 10'000'000;
-
-[[noreturn]] void fail(const std::string& file, const std::string& reason) {
-    throw GltfError(file + ": " + reason);
-}
 
 std::vector<std::string> nonEmptyLines(const std::string& text) {
     std::vector<std::string> lines;
@@ -128,86 +126,9 @@ void checkRequiredExtensions(const tg::Model& model, const std::string& file) {
     }
 }
 
-struct Context {
-    const tg::Model& model;
-    const std::string& file;
-    std::vector<std::string>& warnings;
-};
-
 std::string meshLabel(const tg::Model& model, size_t mesh) {
     const std::string& name = model.meshes[mesh].name;
     return name.empty() ? "mesh #" + std::to_string(mesh) : "mesh '" + name + "'";
-}
-
-std::string plural(size_t n, const std::string& word) {
-    return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
-}
-
-// ---- Accessors -----------------------------------------------------------------------------
-
-// The bytes of a validated accessor: element i starts at data + i * stride.
-struct AccessorView {
-    const unsigned char* data = nullptr;
-    size_t stride = 0;
-    size_t count = 0;
-    int component_type = 0;
-    int type = 0;
-};
-
-// Either a view or the reason the primitive using it has to be skipped.
-struct ViewOrSkip {
-    std::optional<AccessorView> view;
-    std::string skip_reason;
-};
-
-// Checks every reference and byte range of accessor `index` (used as `what`); a broken file
-// throws, a valid accessor this loader does not read (sparse, no bufferView) is a skip.
-ViewOrSkip viewAccessor(const Context& c, int index, const std::string& what) {
-    const tg::Model& m = c.model;
-    if (index < 0 || static_cast<size_t>(index) >= m.accessors.size()) {
-        fail(c.file, what + " refers to accessor " + std::to_string(index) + ", but the file has " +
-                         plural(m.accessors.size(), "accessor"));
-    }
-    const tg::Accessor& a = m.accessors[static_cast<size_t>(index)];
-    const std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (a.sparse.isSparse) return {std::nullopt, "sparse accessors"};
-    if (a.bufferView < 0) return {std::nullopt, "accessors without a bufferView"};
-    if (static_cast<size_t>(a.bufferView) >= m.bufferViews.size()) {
-        fail(c.file, name + " refers to bufferView " + std::to_string(a.bufferView) +
-                         ", but the file has " + plural(m.bufferViews.size(), "bufferView"));
-    }
-    const tg::BufferView& bv = m.bufferViews[static_cast<size_t>(a.bufferView)];
-    if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= m.buffers.size()) {
-        fail(c.file, "bufferView " + std::to_string(a.bufferView) + " refers to buffer " +
-                         std::to_string(bv.buffer) + ", but the file has " +
-                         plural(m.buffers.size(), "buffer"));
-    }
-    const std::vector<unsigned char>& bytes = m.buffers[static_cast<size_t>(bv.buffer)].data;
-    if (bv.byteOffset > bytes.size() || bv.byteLength > bytes.size() - bv.byteOffset) {
-        fail(c.file, "bufferView " + std::to_string(a.bufferView) +
-                         " runs past the end of buffer " + std::to_string(bv.buffer));
-    }
-    const int component_size = tg::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
-    const int components = tg::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-    const int stride = a.ByteStride(bv);
-    if (component_size <= 0 || components <= 0 || stride < component_size * components) {
-        fail(c.file, name + " has an invalid type, componentType or byteStride");
-    }
-    const auto element = static_cast<size_t>(component_size * components);
-    // Compared step by step so that a huge count or offset cannot overflow the arithmetic.
-    if (a.count > 0 &&
-        (a.byteOffset > bv.byteLength ||
-         a.count - 1 > bv.byteLength / static_cast<size_t>(stride) ||
-         a.byteOffset + (a.count - 1) * static_cast<size_t>(stride) + element > bv.byteLength)) {
-        fail(c.file, name + " runs past the end of bufferView " + std::to_string(a.bufferView));
-    }
-    AccessorView view;
-    view.data = bytes.data() + bv.byteOffset + a.byteOffset;
-    view.stride = static_cast<size_t>(stride);
-    view.count = a.count;
-    view.component_type = a.componentType;
-    view.type = a.type;
-    return {view, {}};
 }
 
 glm::vec3 readVec3(const AccessorView& v, size_t i) {
@@ -441,32 +362,35 @@ MeshData reversedWinding(MeshData mesh) {
 
 // ---- Scene graph ---------------------------------------------------------------------------
 
-glm::dmat4 localMatrix(const Context& c, const tg::Node& node, size_t index) {
+// A node's rest transform, checked.
+ModelNode restOf(const Context& c, const tg::Node& node, size_t index) {
     const std::string name = "node " + std::to_string(index);
+    ModelNode rest;
     if (!node.matrix.empty()) {
         if (node.matrix.size() != 16) fail(c.file, name + " has a matrix without 16 numbers");
-        glm::dmat4 m;
-        for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = node.matrix[static_cast<size_t>(i)];
-        return m;  // glTF matrices are column-major, as glm's
+        rest.has_matrix = true;
+        for (int i = 0; i < 16; ++i) rest.matrix[i / 4][i % 4] = node.matrix[static_cast<size_t>(i)];
+        return rest;  // glTF matrices are column-major, as glm's
     }
-    glm::dmat4 m(1.0);
     if (!node.translation.empty()) {
         if (node.translation.size() != 3) {
             fail(c.file, name + " has a translation without 3 numbers");
         }
-        m = glm::translate(
-            m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        rest.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
     }
     if (!node.rotation.empty()) {
         if (node.rotation.size() != 4) fail(c.file, name + " has a rotation without 4 numbers");
         const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-        m = m * glm::mat4_cast(glm::normalize(q));  // exporters round; a unit quaternion rotates
+        rest.rotation = glm::normalize(q);  // exporters round; a unit quaternion rotates
     }
     if (!node.scale.empty()) {
         if (node.scale.size() != 3) fail(c.file, name + " has a scale without 3 numbers");
-        m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+        rest.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
     }
-    return m;
+    rest.matrix = glm::scale(glm::translate(glm::dmat4(1.0), rest.translation) *
+                                 glm::mat4_cast(rest.rotation),
+                             rest.scale);
+    return rest;
 }
 
 bool isFinite(const glm::dmat4& m) {
@@ -504,10 +428,13 @@ std::vector<int> sceneRoots(const Context& c) {
 struct MeshInstance {
     size_t mesh = 0;
     glm::dmat4 world{1.0};
+    uint32_t visit = 0;  // index into SceneContent::visits
 };
 
 struct SceneContent {
     std::vector<MeshInstance> instances;
+    std::vector<ModelNode> nodes;    // per node of the file (rest transforms of visited ones)
+    std::vector<HierarchyVisit> visits;   // the hierarchy as visited, parents first
     size_t skinned = 0;
     size_t cameras = 0;
 };
@@ -521,11 +448,13 @@ SceneContent flattenScene(const Context& c) {
         int node;
         glm::dmat4 parent;
         size_t depth;
+        int32_t parent_visit;
     };
     std::vector<Pending> stack;
-    for (int root : sceneRoots(c)) stack.push_back({root, glm::dmat4(1.0), 0});
+    for (int root : sceneRoots(c)) stack.push_back({root, glm::dmat4(1.0), 0, -1});
     std::reverse(stack.begin(), stack.end());  // visit roots in file order
     SceneContent content;
+    content.nodes.resize(m.nodes.size());
     size_t visits = 0;
     while (!stack.empty()) {
         const Pending at = stack.back();
@@ -538,7 +467,10 @@ SceneContent flattenScene(const Context& c) {
         if (++visits > kMaxObjects) fail(c.file, "the node hierarchy is too large");
         const auto index = static_cast<size_t>(at.node);
         const tg::Node& node = m.nodes[index];
-        const glm::dmat4 world = at.parent * localMatrix(c, node, index);
+        content.nodes[index] = restOf(c, node, index);
+        const glm::dmat4 world = at.parent * content.nodes[index].matrix;
+        const auto visit = static_cast<uint32_t>(content.visits.size());
+        content.visits.push_back({static_cast<uint32_t>(index), at.parent_visit});
         if (!isFinite(world)) {
             fail(c.file, "node " + std::to_string(index) + " has a non-finite transform");
         }
@@ -548,12 +480,12 @@ SceneContent flattenScene(const Context& c) {
                                  std::to_string(node.mesh) + ", but the file has " +
                                  std::to_string(m.meshes.size()) + " meshes");
             }
-            content.instances.push_back({static_cast<size_t>(node.mesh), world});
+            content.instances.push_back({static_cast<size_t>(node.mesh), world, visit});
             if (node.skin >= 0) ++content.skinned;
         }
         if (node.camera >= 0) ++content.cameras;
         for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
-            stack.push_back({*child, world, at.depth + 1});
+            stack.push_back({*child, world, at.depth + 1, static_cast<int32_t>(visit)});
         }
     }
     return content;
@@ -562,15 +494,10 @@ SceneContent flattenScene(const Context& c) {
 void warnAboutIgnoredParts(const Context& c, const SceneContent& content) {
     if (content.skinned > 0) {
         c.warnings.push_back(c.file + ": ignored the skins of " + plural(content.skinned, "node") +
-                             " (meshes drawn in bind pose)");
+                             " (each mesh is drawn rigid in its bind pose, moved by its node)");
     }
     if (content.cameras > 0) {
         c.warnings.push_back(c.file + ": ignored " + plural(content.cameras, "camera node"));
-    }
-    if (!c.model.animations.empty()) {
-        c.warnings.push_back(c.file + ": ignored " +
-                             plural(c.model.animations.size(), "animation") +
-                             " (the static pose is drawn)");
     }
 }
 
@@ -581,7 +508,8 @@ bool isMirrored(const glm::dmat4& world) { return glm::determinant(glm::dmat3(wo
 // One object per mesh node; each glTF mesh is converted once however many nodes use it, and
 // output in the variants (as is, mirrored) that nodes use. Object transforms include the spec's
 // scale but not its offset.
-SourceOutput placeModel(const Context& c, const SceneContent& content, double scale) {
+SourceOutput placeModel(const Context& c, const SceneContent& content, double scale,
+                        std::vector<uint32_t>& object_visit) {
     const size_t mesh_count = c.model.meshes.size();
     std::vector<uint8_t> used(mesh_count * 2, 0);  // [mesh * 2 + mirrored]
     for (const MeshInstance& instance : content.instances) {
@@ -611,6 +539,7 @@ SourceOutput placeModel(const Context& c, const SceneContent& content, double sc
         object.position = scale * glm::dvec3(instance.world[3]);
         object.linear = glm::mat3(glm::dmat3(instance.world) * scale);
         out.objects.push_back(object);
+        object_visit.push_back(instance.visit);
     }
     return out;
 }
@@ -688,7 +617,9 @@ SourceOutput replicate(SourceOutput model, const GltfSourceSpec& spec, uint64_t 
     std::vector<PlacedObject> one_copy = std::move(model.objects);
     model.objects.clear();
     model.objects.reserve(copies.size() * one_copy.size());
+    model.model_copies.reserve(copies.size());
     for (const Copy& copy : copies) {
+        model.model_copies.push_back({spec.offset + copy.origin, copy.yaw});
         const glm::dmat3 yaw(glm::rotate(glm::dmat4(1.0), copy.yaw, glm::dvec3(0, 1, 0)));
         for (PlacedObject object : one_copy) {
             object.position = spec.offset + copy.origin + yaw * object.position;
@@ -713,7 +644,9 @@ SourceOutput loadGltfSource(const GltfSourceSpec& spec, uint64_t seed) {
     const Context c{model, file, warnings};
     const SceneContent content = flattenScene(c);
     warnAboutIgnoredParts(c, content);
-    SourceOutput out = placeModel(c, content, spec.scale);
+    auto animated = std::make_shared<AnimatedModel>();
+    animated->animations = readAnimations(c);
+    SourceOutput out = placeModel(c, content, spec.scale, animated->object_visit);
     if (out.objects.empty()) {
         // The first warning usually says why (e.g. only LINES primitives); it has the file already.
         const std::string why =
@@ -721,6 +654,10 @@ SourceOutput loadGltfSource(const GltfSourceSpec& spec, uint64_t seed) {
         fail(file, "no triangles to draw (" + plural(content.instances.size(), "mesh node") +
                        " in the scene" + why + ")");
     }
+    animated->nodes = content.nodes;
+    animated->visits = content.visits;
+    animated->scale = spec.scale;
+    out.model = std::move(animated);
     out = replicate(std::move(out), spec, seed, file);
     out.warnings = std::move(warnings);
     return out;

@@ -3,7 +3,9 @@
 // flattened); a mesh used by several nodes is converted once and shared. Only indexed or
 // non-indexed TRIANGLES primitives with POSITION are used (TRIANGLE_STRIP and TRIANGLE_FAN are
 // converted to lists); other parts (other primitive modes, skins, morph targets, cameras) are
-// skipped with a warning naming them. See docs/scenario-gltf.md for the scenario keys.
+// skipped with a warning naming them. Node animations are read and checked (gltf_animation.cpp)
+// and returned with the hierarchy in SourceOutput::model; the world evaluates them. See
+// docs/scenario-gltf.md for the scenario keys.
 #pragma once
 
 #include "sim/scenario/errors.h"

@@ -5,11 +5,13 @@
 
 #include "occsim/culling/geometry/aabb.h"
 #include "sim/scenario/scene_specs.h"
+#include "sim/scene/model_animation.h"
 #include "render/mesh_data.h"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,13 @@ struct PlacedObject {
     glm::mat3 linear{1.0f};
 };
 
+// Where one copy of a glTF model went: T(origin) · R_y(yaw) places the model (its scale is in
+// AnimatedModel::scale).
+struct ModelCopyPlacement {
+    glm::dvec3 origin{0.0};  // the source's offset plus the copy's origin
+    double yaw = 0.0;        // radians about +y
+};
+
 struct SourceOutput {
     std::vector<MeshData> meshes;
     std::vector<PlacedObject> objects;
@@ -32,6 +41,10 @@ struct SourceOutput {
     std::vector<std::vector<glm::dvec3>> lanes;
     Aabb region;                        // bounds of the content; the default region for movers
     std::vector<std::string> warnings;  // things skipped or approximated, shown to the user
+    // glTF sources: the model's hierarchy and animations, and its copies. The objects of copy k
+    // are objects[k * n .. (k + 1) * n - 1], n = model->object_visit.size().
+    std::shared_ptr<const AnimatedModel> model;
+    std::vector<ModelCopyPlacement> model_copies;
 };
 
 // Bounds of every object's mesh bounds under its placement.

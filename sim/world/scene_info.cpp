@@ -48,6 +48,80 @@ void describeTree(const BspTree& tree, const glm::dvec3& culling_origin, std::os
     out << line;
 }
 
+const char* propertyName(AnimatedProperty p) {
+    switch (p) {
+        case AnimatedProperty::Translation: return "translation";
+        case AnimatedProperty::Rotation: return "rotation";
+        case AnimatedProperty::Scale: return "scale";
+    }
+    return "?";
+}
+
+const char* interpolationName(Interpolation i) {
+    switch (i) {
+        case Interpolation::Linear: return "LINEAR";
+        case Interpolation::Step: return "STEP";
+        case Interpolation::CubicSpline: return "CUBICSPLINE";
+    }
+    return "?";
+}
+
+const char* modeName(AnimationMode m) {
+    switch (m) {
+        case AnimationMode::Loop: return "loop";
+        case AnimationMode::Clamp: return "clamp";
+        case AnimationMode::PingPong: return "ping_pong";
+    }
+    return "?";
+}
+
+// Each glTF source's animations: channels (node, property, interpolation), duration, whether it
+// plays and how, and the objects it moves (indices within a copy, as movers' "objects" count).
+void describeAnimations(const Scene& scene, std::ostringstream& out) {
+    for (size_t mi = 0; mi < scene.models.size(); ++mi) {
+        const SceneModel& m = scene.models[mi];
+        const AnimatedModel& model = *m.model;
+        if (model.animations.empty()) continue;
+        uint32_t animated_copies = 0;
+        for (const ModelCopy& copy : scene.initial_copies) {
+            if (copy.model == mi && copy.animated) ++animated_copies;
+        }
+        out << "animations    source " << m.source << ": " << model.animations.size()
+            << (model.animations.size() == 1 ? " animation" : " animations") << ", "
+            << animated_copies << " animated copies of " << m.objectsPerCopy()
+            << " objects; " << modeName(m.mode) << ", speed " << m.speed << ", time offset "
+            << m.time_offset_s << " s\n";
+        for (size_t a = 0; a < model.animations.size(); ++a) {
+            const NodeAnimation& animation = model.animations[a];
+            char line[256];
+            std::snprintf(line, sizeof line, "  #%zu %s%s%s  %zu channel%s, %.3f s, %s\n", a,
+                          animation.name.empty() ? "" : "'", animation.name.c_str(),
+                          animation.name.empty() ? "(unnamed)" : "'", animation.channels.size(),
+                          animation.channels.size() == 1 ? "" : "s", animation.duration_s,
+                          m.playing[a] ? "plays" : "does not play");
+            out << line;
+            for (const AnimationChannel& c : animation.channels) {
+                const AnimationSampler& sampler = animation.samplers[c.sampler];
+                out << "      node " << c.node << " " << propertyName(c.property) << ", "
+                    << interpolationName(sampler.interpolation) << ", " << sampler.times.size()
+                    << (sampler.times.size() == 1 ? " key\n" : " keys\n");
+            }
+            const std::vector<uint8_t> moved = model.objectsMovedBy(a);
+            std::string list;
+            size_t count = 0;
+            for (size_t o = 0; o < moved.size(); ++o) {
+                if (!moved[o]) continue;
+                if (++count > 12) continue;
+                if (!list.empty()) list += ' ';
+                list += std::to_string(o);
+            }
+            if (count > 12) list += " ...";
+            out << "      moves " << count << " object" << (count == 1 ? "" : "s")
+                << " of each copy" << (count ? " (" + list + ")" : std::string()) << "\n";
+        }
+    }
+}
+
 }  // namespace
 
 std::string describeScenario(const Scenario& scenario, std::vector<std::string>& warnings) {
@@ -62,7 +136,9 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     out << "scenario      " << scenario.name << " (" << scenario.file.string() << ")\n";
     out << "objects       " << scene.objectCount() << " (" << scene.meshes.size() << " meshes)\n";
     out << "triangles     " << scene.triangle_count << "\n";
-    out << "movers        " << scene.initial_movers.size() << "\n";
+    out << "movers        " << scene.initial_movers.size() << " (" << state.moved.size()
+        << " objects move each frame)\n";
+    describeAnimations(scene, out);
     out << "frames        " << scenario.frames << " x " << scenario.dt_s << " s, "
         << scenario.width << "x" << scenario.height << " pixels\n";
     std::snprintf(line, sizeof line, "bsp           %s split, looseness %.2f, %s\n",
@@ -76,13 +152,13 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     // The world layer alone: the movers stepped through every frame of the scenario exactly as a
     // run does (frame 0 shows the initial state), each moved object reinserted and the tree
     // adapted once per frame; nothing is rendered.
-    if (!state.movers.empty() && scenario.frames > 1) {
+    if (!state.moved.empty() && scenario.frames > 1) {
         tree.resetStats();
         const uint64_t version_before = tree.structureVersion();
         for (uint32_t frame = 1; frame < scenario.frames; ++frame) {
             stepMovers(scene, state, scenario.dt_s);
             requireFiniteBoxes(state, frame);
-            for (const Mover& mover : state.movers) tree.reinsert(mover.object, state.boxes[mover.object]);
+            for (const uint32_t o : state.moved) tree.reinsert(o, state.boxes[o]);
             tree.refitDirtyBounds();
         }
         const BspStats& s = tree.stats();

@@ -1,5 +1,7 @@
 #include "sim/world/world.h"
 
+#include "sim/world/model_copies.h"
+
 #include "sim/scene/primitives.h"
 #include "sim/scene/scene_source.h"
 #include "sim/scene/teapot.h"
@@ -17,7 +19,13 @@ namespace occsim {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-enum SeedPurpose : uint64_t { kPlacement = 1, kMoverPick = 2, kMoverMotion = 3, kSpawn = 4 };
+enum SeedPurpose : uint64_t {
+    kPlacement = 1,
+    kMoverPick = 2,
+    kMoverMotion = 3,
+    kSpawn = 4,
+    kAnimationPhase = 5,
+};
 constexpr uint32_t kSpawnTeapotTessellation = 4;
 
 // Where a source's content went in the scene.
@@ -26,6 +34,11 @@ struct SourceRange {
     uint32_t count = 0;
     Aabb region;
     std::vector<uint32_t> lanes;  // indices into Scene::paths
+    // glTF sources: the model (index into Scene::models), where each copy went, and each copy's
+    // index into Scene::initial_copies once it moves (-1 while it stands still).
+    int32_t model = -1;
+    std::vector<ModelCopyPlacement> placements;
+    std::vector<int32_t> copy_state;
 };
 
 uint32_t addMesh(Scene& scene, MeshData mesh) {
@@ -41,9 +54,24 @@ uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose) {
     return scene.objectCount() - 1;
 }
 
-SourceRange addSource(Scene& scene, SourceOutput source) {
-    SourceRange range{scene.objectCount(), static_cast<uint32_t>(source.objects.size()), source.region, {}};
+// A source's meshes and objects into the scene; a glTF source with "place": false adds its meshes
+// only (its model is placed by spawning movers). `copy_meshes` gets the meshes of one copy's
+// objects, for spawning.
+SourceRange addSource(Scene& scene, SourceOutput source, bool place,
+                      std::vector<uint32_t>& copy_meshes) {
     const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
+    const size_t per_copy = source.model ? source.model->object_visit.size() : 0;
+    for (size_t j = 0; j < per_copy && j < source.objects.size(); ++j) {
+        copy_meshes.push_back(first_mesh + source.objects[j].mesh);
+    }
+    if (!place) {
+        source.objects.clear();
+        source.model_copies.clear();
+        source.lanes.clear();
+    }
+    SourceRange range{scene.objectCount(), static_cast<uint32_t>(source.objects.size()), source.region, {}, -1, {}, {}};
+    range.placements = std::move(source.model_copies);
+    range.copy_state.assign(range.placements.size(), -1);
     for (MeshData& mesh : source.meshes) addMesh(scene, std::move(mesh));
     for (const PlacedObject& o : source.objects) {
         ObjectPose pose;
@@ -63,6 +91,108 @@ SourceRange addSource(Scene& scene, SourceOutput source) {
     }
     for (std::string& w : source.warnings) scene.warnings.push_back(std::move(w));
     return range;
+}
+
+[[noreturn]] void sourceError(const Scenario& s, size_t source, const std::string& key,
+                              const std::string& message) {
+    throw ScenarioError(s.file.string(), "/scene/sources/" + std::to_string(source) + "/" + key,
+                        message);
+}
+
+// Which animations of source s's model play (its "animation" keys), and what they move.
+SceneModel makeSceneModel(const Scenario& scenario, size_t s,
+                          std::shared_ptr<const AnimatedModel> model) {
+    const GltfSourceSpec& gltf = std::get<GltfSourceSpec>(scenario.sources[s].spec);
+    const GltfAnimationSpec& spec = gltf.animation;
+    SceneModel m;
+    m.source = static_cast<uint32_t>(s);
+    m.speed = spec.speed;
+    m.mode = spec.mode;
+    m.time_offset_s = spec.time_offset_s;
+    const size_t count = model->animations.size();
+    m.playing.assign(count, spec.play_all ? 1 : 0);
+    for (size_t j = 0; j < spec.play.size(); ++j) {
+        const AnimationPick& pick = spec.play[j];
+        const std::string key = "animation/play/" + std::to_string(j);
+        size_t a = pick.index;
+        if (!pick.name.empty()) {
+            std::string names;
+            for (a = 0; a < count && model->animations[a].name != pick.name; ++a) {}
+            if (a == count) {
+                for (const NodeAnimation& animation : model->animations) {
+                    if (!names.empty()) names += ", ";
+                    names += "'";
+                    names += animation.name;
+                    names += "'";
+                }
+                sourceError(scenario, s, key, "no animation named '" + pick.name + "' in " +
+                                                  gltf.path.string() + " (it has " +
+                                                  (count == 0 ? std::string("none") : names) + ")");
+            }
+        } else if (a >= count) {
+            sourceError(scenario, s, key, "expected an animation index < " + std::to_string(count) +
+                                              " (" + gltf.path.string() + " has " +
+                                              std::to_string(count) + "), got " + std::to_string(a));
+        }
+        m.playing[a] = 1;
+    }
+    m.object_animated.assign(model->object_visit.size(), 0);
+    for (size_t a = 0; a < count; ++a) {
+        if (!m.playing[a]) continue;
+        const std::vector<uint8_t> moved = model->objectsMovedBy(a);
+        for (size_t o = 0; o < moved.size(); ++o) m.object_animated[o] |= moved[o];
+    }
+    m.model = std::move(model);
+    return m;
+}
+
+double longestPlayingDuration(const SceneModel& m) {
+    double longest = 0.0;
+    for (size_t a = 0; a < m.playing.size(); ++a) {
+        if (m.playing[a]) longest = std::max(longest, m.model->animations[a].duration_s);
+    }
+    return longest;
+}
+
+bool animatesSomething(const SceneModel& m) {
+    return std::any_of(m.object_animated.begin(), m.object_animated.end(),
+                       [](uint8_t a) { return a != 0; });
+}
+
+// The anchor of a copy placed by its source: T(origin) · R_y(yaw).
+ObjectPose anchorOf(const ModelCopyPlacement& placement) {
+    ObjectPose anchor;
+    anchor.position = placement.origin;
+    anchor.linear = glm::mat3(glm::rotate(glm::dmat4(1.0), placement.yaw, glm::dvec3(0, 1, 0)));
+    return anchor;
+}
+
+// Copy k of a glTF source's range as a moving copy (made on first use).
+uint32_t movingCopy(Scene& scene, SourceRange& range, uint32_t k) {
+    if (range.copy_state[k] < 0) {
+        ModelCopy copy;
+        copy.model = static_cast<uint32_t>(range.model);
+        copy.first_object = range.first + k * scene.models[copy.model].objectsPerCopy();
+        copy.anchor = anchorOf(range.placements[k]);
+        range.copy_state[k] = static_cast<int32_t>(scene.initial_copies.size());
+        scene.initial_copies.push_back(copy);
+    }
+    return static_cast<uint32_t>(range.copy_state[k]);
+}
+
+// Every copy of an animated model moves by its animations, each at its own seeded phase when
+// the source asks for one.
+void animateCopies(Scene& scene, const Scenario& scenario, size_t s, SourceRange& range) {
+    const SceneModel& m = scene.models[static_cast<size_t>(range.model)];
+    if (!animatesSomething(m)) return;
+    const GltfAnimationSpec& spec = std::get<GltfSourceSpec>(scenario.sources[s].spec).animation;
+    Rng phase(deriveSeed(scenario.seed, s, kAnimationPhase));
+    const double longest = longestPlayingDuration(m);
+    for (uint32_t k = 0; k < range.placements.size(); ++k) {
+        ModelCopy& copy = scene.initial_copies[movingCopy(scene, range, k)];
+        copy.animated = true;
+        if (spec.random_phase) copy.phase_s = phase.uniform(0.0, longest);
+    }
 }
 
 // Picks round(fraction * count) distinct objects of the range that do not move yet (partial
@@ -141,6 +271,63 @@ glm::dvec3 cullingOriginOf(const Scene& scene) {
     return glm::round(0.5 * lo + 0.5 * hi);
 }
 
+// A whole-copy mover's copies: a share of the source's copies that move neither whole nor by an
+// object mover of their own, or the listed copy indices. Each is made a rigid moving copy.
+void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRange& range, Rng& pick,
+                     std::vector<uint8_t>& moving, const std::vector<uint8_t>& own_mover,
+                     std::vector<uint8_t>& rigid_copy, std::vector<uint32_t>& objects,
+                     std::vector<int32_t>& object_copy) {
+    const MoverSpec& spec = scenario.movers[m];
+    const auto copy_count = static_cast<uint32_t>(range.placements.size());
+    const uint32_t per_copy = copy_count ? range.count / copy_count : 0;
+    auto rigid = [&](uint32_t k) {
+        const int32_t state = range.copy_state[k];
+        return state >= 0 && static_cast<size_t>(state) < rigid_copy.size() && rigid_copy[static_cast<size_t>(state)];
+    };
+    auto hasObjectMover = [&](uint32_t k) {
+        for (uint32_t j = 0; j < per_copy; ++j) {
+            if (own_mover[range.first + k * per_copy + j]) return true;
+        }
+        return false;
+    };
+    std::vector<uint32_t> picked;
+    if (spec.selection == MoverSelection::Fraction) {
+        for (uint32_t k = 0; k < copy_count; ++k) {
+            if (!rigid(k) && !hasObjectMover(k)) picked.push_back(k);
+        }
+        const auto free_count = static_cast<uint32_t>(picked.size());
+        const auto wanted = std::min(free_count, static_cast<uint32_t>(std::lround(spec.fraction * copy_count)));
+        for (uint32_t i = 0; i < wanted; ++i) std::swap(picked[i], picked[i + pick.below(free_count - i)]);
+        picked.resize(wanted);
+        std::sort(picked.begin(), picked.end());
+    } else {
+        for (size_t i = 0; i < spec.objects.size(); ++i) {
+            const uint32_t k = spec.objects[i];
+            const std::string key = "objects/" + std::to_string(i);
+            if (k >= copy_count) {
+                moverError(scenario, m, key, "expected a copy index < " + std::to_string(copy_count) +
+                                                 " (source " + std::to_string(spec.source) +
+                                                 "'s copies, with \"whole_copies\"), got " + std::to_string(k));
+            }
+            if (rigid(k)) moverError(scenario, m, key, "copy " + std::to_string(k) + " already has a motion");
+            if (hasObjectMover(k)) {
+                moverError(scenario, m, key, "an object of copy " + std::to_string(k) + " already has a mover of its own");
+            }
+            picked.push_back(k);
+        }
+    }
+    for (uint32_t k : picked) {
+        const uint32_t index = movingCopy(scene, range, k);
+        rigid_copy.resize(scene.initial_copies.size(), 0);
+        rigid_copy[index] = 1;
+        ModelCopy& copy = scene.initial_copies[index];
+        copy.rigid = true;
+        for (uint32_t j = 0; j < per_copy; ++j) moving[copy.first_object + j] = 1;
+        objects.push_back(copy.first_object);
+        object_copy.push_back(static_cast<int32_t>(index));
+    }
+}
+
 }  // namespace
 
 MotionPath makePath(std::vector<glm::dvec3> points) {
@@ -176,12 +363,31 @@ Scene buildScene(const Scenario& scenario) {
     Scene scene;
     std::vector<SourceRange> ranges;
     for (size_t s = 0; s < scenario.sources.size(); ++s) {
-        ranges.push_back(addSource(scene, generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement))));
+        SourceOutput source = generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
+        std::shared_ptr<const AnimatedModel> model = source.model;
+        const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
+        std::vector<uint32_t> copy_meshes;
+        ranges.push_back(addSource(scene, std::move(source), place, copy_meshes));
+        if (model) {
+            ranges.back().model = static_cast<int32_t>(scene.models.size());
+            scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
+            scene.models.back().object_mesh = std::move(copy_meshes);
+            animateCopies(scene, scenario, s, ranges.back());
+        }
     }
-    std::vector<uint8_t> moving(scene.objectCount(), 0);  // an object gets one motion at most
+    // An object gets one motion at most: its glTF animation, a mover of its own, or its copy's.
+    std::vector<uint8_t> moving(scene.objectCount(), 0), animated(scene.objectCount(), 0),
+        own_mover(scene.objectCount(), 0);
+    for (const ModelCopy& copy : scene.initial_copies) {
+        const SceneModel& m = scene.models[copy.model];
+        for (uint32_t j = 0; j < m.objectsPerCopy(); ++j) {
+            if (m.object_animated[j]) moving[copy.first_object + j] = animated[copy.first_object + j] = 1;
+        }
+    }
+    std::vector<uint8_t> rigid_copy;  // per initial copy: a mover moves it whole
     for (size_t m = 0; m < scenario.movers.size(); ++m) {
         const MoverSpec& spec = scenario.movers[m];
-        const SourceRange& range = ranges.at(spec.source);
+        SourceRange& range = ranges.at(spec.source);
         Rng pick(deriveSeed(scenario.seed, m, kMoverPick));
         Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
         const Aabb region = spec.has_region ? spec.region : range.region;
@@ -198,14 +404,53 @@ Scene buildScene(const Scenario& scenario) {
             }
         }
 
-        // The objects: picked from the source, listed, or spawned.
+        // The objects: picked from the source, listed, or spawned; or whole copies of a model.
         std::vector<uint32_t> objects;
-        if (spec.selection == MoverSelection::Fraction) {
+        std::vector<int32_t> object_copy;  // per entry of objects: the copy it moves whole, or -1
+        if (spec.whole_copies) {
+            pickWholeCopies(scene, scenario, m, range, pick, moving, own_mover, rigid_copy, objects,
+                            object_copy);
+        } else if (spec.spawn.model_source >= 0 && spec.selection == MoverSelection::Spawn) {
+            SourceRange& model_range = ranges.at(static_cast<size_t>(spec.spawn.model_source));
+            Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
+            const auto model = static_cast<uint32_t>(model_range.model);
+            const SceneModel& sm = scene.models[model];
+            const GltfAnimationSpec& play =
+                std::get<GltfSourceSpec>(scenario.sources[sm.source].spec).animation;
+            const double longest = longestPlayingDuration(sm);
+            const bool animates = animatesSomething(sm);
+            for (uint32_t i = 0; i < spec.spawn.count; ++i) {
+                ModelCopy copy;
+                copy.model = model;
+                copy.first_object = scene.objectCount();
+                copy.anchor.position = randomPointIn(region, spawn);
+                copy.anchor.linear = glm::mat3(static_cast<float>(
+                    spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
+                copy.animated = animates;
+                copy.rigid = true;
+                if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
+                for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) {
+                    addObject(scene, sm.object_mesh[j], ObjectPose{});
+                }
+                objects.push_back(copy.first_object);
+                object_copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
+                scene.initial_copies.push_back(copy);
+            }
+            moving.resize(scene.objectCount(), 1);
+            animated.resize(scene.objectCount(), 0);
+            own_mover.resize(scene.objectCount(), 0);
+        } else if (spec.selection == MoverSelection::Fraction) {
             objects = pickFraction(range, spec.fraction, pick, moving);
         } else if (spec.selection == MoverSelection::Objects) {
             for (size_t i = 0; i < spec.objects.size(); ++i) {
                 checkMoverObjectIndex(scenario, m, i, range.count);
                 const uint32_t local = spec.objects[i];
+                if (animated[range.first + local]) {
+                    moverError(scenario, m, "objects/" + std::to_string(i),
+                               "object " + std::to_string(local) +
+                                   " is moved by its glTF animation; a mover can move its whole "
+                                   "copy (\"whole_copies\": true)");
+                }
                 if (moving[range.first + local]) {
                     moverError(scenario, m, "objects/" + std::to_string(i),
                                "object " + std::to_string(local) + " already has a motion");
@@ -222,13 +467,20 @@ Scene buildScene(const Scenario& scenario) {
                 objects.push_back(addObject(scene, mesh, pose));
             }
             moving.resize(scene.objectCount(), 0);
+            animated.resize(scene.objectCount(), 0);
+            own_mover.resize(scene.objectCount(), 0);
         }
+        object_copy.resize(objects.size(), -1);
 
-        for (uint32_t object : objects) {
+        for (size_t i = 0; i < objects.size(); ++i) {
+            const uint32_t object = objects[i];
+            const int32_t copy = object_copy[i];
             moving[object] = 1;
-            ObjectPose& pose = scene.initial_poses[object];
+            if (copy < 0) own_mover[object] = 1;
+            ObjectPose& pose = copy >= 0 ? scene.initial_copies[static_cast<size_t>(copy)].anchor
+                                         : scene.initial_poses[object];
             const double speed = motion.uniform(spec.speed_min_mps, spec.speed_max_mps);
-            Mover mover{object, BounceMotion{}};
+            Mover mover{object, BounceMotion{}, copy};
             switch (spec.motion) {
                 case MotionType::Bounce: {
                     // Mostly horizontal, like traffic; a little vertical drift where the box allows.
@@ -277,6 +529,14 @@ Scene buildScene(const Scenario& scenario) {
             scene.initial_movers.push_back(mover);
         }
     }
+    if (scene.objectCount() == 0) {
+        throw ScenarioError(scenario.file.string(), "/scene/sources",
+                            "nothing is placed: the glTF sources have \"place\": false and no "
+                            "mover spawns their models");
+    }
+    // Moving copies start in their pose at time 0 (animations and anchors as the movers placed them).
+    ModelPoseBuffers buffers = makePoseBuffers(scene.models);
+    poseCopies(scene, 0.0, scene.initial_copies, buffers, scene.initial_poses, nullptr);
     scene.culling_origin = cullingOriginOf(scene);
     return scene;
 }
@@ -285,6 +545,9 @@ WorldState initialState(const Scene& scene) {
     WorldState state;
     state.poses = scene.initial_poses;
     state.movers = scene.initial_movers;
+    state.copies = scene.initial_copies;
+    state.moved = movedObjects(scene, state.movers, state.copies);
+    state.pose_buffers = makePoseBuffers(scene.models);
     state.boxes.resize(scene.objectCount());
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
         state.boxes[o] = worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o],
@@ -359,8 +622,10 @@ void reflectInto(double& position, double& velocity, double lo, double hi) {
 }  // namespace
 
 void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
+    state.time_s += dt_s;
     for (Mover& mover : state.movers) {
-        ObjectPose& pose = state.poses[mover.object];
+        ObjectPose& pose = mover.copy >= 0 ? state.copies[static_cast<size_t>(mover.copy)].anchor
+                                           : state.poses[mover.object];
         if (auto* bounce = std::get_if<BounceMotion>(&mover.motion)) {
             pose.position += bounce->velocity * dt_s;
             for (int axis = 0; axis < 3; ++axis) {
@@ -393,8 +658,13 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             spin->angle = std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * kPi);
             pose.rotation = glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
         }
-        state.boxes[mover.object] =
-            worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]], pose, scene.culling_origin);
+        if (mover.copy < 0) {
+            state.boxes[mover.object] = worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]],
+                                                 pose, scene.culling_origin);
+        }
+    }
+    if (!state.copies.empty()) {
+        poseCopies(scene, state.time_s, state.copies, state.pose_buffers, state.poses, &state.boxes);
     }
 }
 
@@ -421,8 +691,13 @@ void requireFiniteBoxes(const WorldState& state, uint32_t frame) {
     }
     for (size_t m = 0; m < state.movers.size(); ++m) {
         const uint32_t o = state.movers[m].object;
-        if (!isFiniteAndOrdered(state.boxes[o])) {
+        if (state.movers[m].copy < 0 && !isFiniteAndOrdered(state.boxes[o])) {
             throwNotFinite(state, o, frame, "moved by mover " + std::to_string(m));
+        }
+    }
+    for (const uint32_t o : state.moved) {
+        if (!isFiniteAndOrdered(state.boxes[o])) {
+            throwNotFinite(state, o, frame, "moved with its glTF model (animation or whole-copy mover)");
         }
     }
 }

@@ -7,12 +7,14 @@
 #include "occsim/culling/geometry/aabb.h"
 #include "occsim/culling/geometry/random.h"
 #include "render/mesh_data.h"
+#include "sim/scene/model_animation.h"
 #include "sim/scenario/scenario.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -69,9 +71,45 @@ struct SpinMotion {
 
 using Motion = std::variant<BounceMotion, OrbitMotion, PathMotion, RandomWalkMotion, SpinMotion>;
 
+// A mover moves one object, or (copy >= 0) a whole copy of a glTF model: then its motion moves
+// the copy's anchor (WorldState::copies) and `object` is the copy's first object.
 struct Mover {
     uint32_t object = 0;
     Motion motion;
+    int32_t copy = -1;
+};
+
+// A glTF source's model as the scene plays it: which of its animations play and how, and which
+// objects of a copy they move.
+struct SceneModel {
+    std::shared_ptr<const AnimatedModel> model;
+    uint32_t source = 0;                   // index into Scenario::sources
+    std::vector<uint8_t> playing;          // per animation of the model
+    std::vector<uint8_t> object_animated;  // per object of a copy: moved by a playing animation
+    std::vector<uint32_t> object_mesh;     // per object of a copy: its mesh in Scene::meshes
+    double speed = 1.0;
+    AnimationMode mode = AnimationMode::Loop;
+    double time_offset_s = 0.0;
+
+    uint32_t objectsPerCopy() const { return static_cast<uint32_t>(object_animated.size()); }
+};
+
+// A copy of a glTF model that moves: its animations pose its objects, a whole-copy mover moves
+// its anchor, or both. Each object's model matrix is
+// T(anchor.position) · R(anchor.rotation) · anchor.linear · (the model's posed world matrix).
+struct ModelCopy {
+    uint32_t model = 0;         // index into Scene::models
+    uint32_t first_object = 0;  // its objects: first_object .. first_object + objects per copy - 1
+    ObjectPose anchor;          // position: the copy's origin; linear: its yaw (and spawn scale)
+    double phase_s = 0.0;       // added to its animations' time
+    bool animated = false;      // a playing animation moves some of its objects
+    bool rigid = false;         // a mover moves the whole copy
+};
+
+// Per world: the buffers posing models needs, sized once (so a step allocates nothing).
+struct ModelPoseBuffers {
+    std::vector<ModelPoseScratch> per_model;
+    std::vector<std::vector<double>> animation_times;  // per model, per animation
 };
 
 // A closed polyline with its cumulative arc lengths (lengths[i] = distance from point 0 to i;
@@ -89,6 +127,8 @@ struct Scene {
     std::vector<ObjectPose> initial_poses;
     std::vector<Mover> initial_movers;
     std::vector<MotionPath> paths;
+    std::vector<SceneModel> models;      // one per glTF source (and per spawned model's source)
+    std::vector<ModelCopy> initial_copies;  // the copies that move
     std::vector<std::string> warnings;  // from sources (e.g. glTF parts skipped)
     uint64_t triangle_count = 0;        // over all objects
     // The origin of the culling frame, in world coordinates (metres, double): the centre of the
@@ -104,6 +144,13 @@ struct WorldState {
     std::vector<ObjectPose> poses;
     std::vector<Aabb> boxes;  // per object, relative to Scene::culling_origin (float, rounded out)
     std::vector<Mover> movers;
+    std::vector<ModelCopy> copies;
+    // Every object a step may move (the movers' own objects, the objects of rigid copies, the
+    // animated objects of animated copies), each once: what a frame reinserts into the tree and
+    // counts in moved_objects.
+    std::vector<uint32_t> moved;
+    double time_s = 0.0;  // simulation time since frame 0: what animations play at
+    ModelPoseBuffers pose_buffers;
 };
 
 // Builds the scene a scenario describes; deterministic for a given scenario (and its seed).
@@ -118,7 +165,8 @@ glm::dmat4 modelMatrix(const ObjectPose& pose);
 // to float, so that it always contains the object however far from the origin it is.
 Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose, const glm::dvec3& origin = {});
 
-// Advances every mover by dt seconds and refreshes the world boxes of the objects it moved.
+// Advances every mover by dt seconds, poses the moving copies of glTF models at the new time, and
+// refreshes the world boxes of every object in `moved`.
 void stepMovers(const Scene& scene, WorldState& state, double dt_s);
 
 // A motion (or a placement) that took an object out of finite float coordinates: the run cannot
@@ -130,7 +178,7 @@ public:
 };
 
 // Throws MotionError for the first object whose world box is not finite: every object on frame
-// 0 (placements), the movers' objects after a step (`frame` > 0).
+// 0 (placements), the moved objects after a step (`frame` > 0).
 void requireFiniteBoxes(const WorldState& state, uint32_t frame);
 
 // The point at `distance` along a closed path, and the unit direction of travel there.

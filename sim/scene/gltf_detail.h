@@ -1,0 +1,55 @@
+// Parts of the glTF reader shared by its files (gltf_source.cpp: meshes and the scene graph,
+// gltf_accessors.cpp: checked accessor views, gltf_animation.cpp: animations). Internal to the
+// scene layer; includes tinygltf.
+#pragma once
+
+#include "sim/scenario/errors.h"
+#include "sim/scene/model_animation.h"
+
+#include <tiny_gltf.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace occsim::gltf_detail {
+
+namespace tg = tinygltf;
+
+[[noreturn]] void fail(const std::string& file, const std::string& reason);
+
+std::string plural(size_t n, const std::string& word);
+
+struct Context {
+    const tg::Model& model;
+    const std::string& file;
+    std::vector<std::string>& warnings;
+};
+
+// The bytes of a validated accessor: element i starts at data + i * stride.
+struct AccessorView {
+    const unsigned char* data = nullptr;
+    size_t stride = 0;
+    size_t count = 0;
+    int component_type = 0;
+    int type = 0;
+    bool normalized = false;
+};
+
+// Either a view or the reason the primitive using it has to be skipped.
+struct ViewOrSkip {
+    std::optional<AccessorView> view;
+    std::string skip_reason;
+};
+
+// Checks every reference and byte range of accessor `index` (used as `what`); a broken file
+// throws, a valid accessor this loader does not read (sparse, no bufferView) is a skip.
+ViewOrSkip viewAccessor(const Context& c, int index, const std::string& what);
+
+// The node animations of the file (gltf_animation.cpp). Throws GltfError, with the JSON path,
+// for what the glTF specification forbids (key times not increasing, output counts that do not
+// match the interpolation, a rotation output that is not VEC4, ...); warns about what is not
+// evaluated (morph-target weights, channels without a target node).
+std::vector<NodeAnimation> readAnimations(const Context& c);
+
+}  // namespace occsim::gltf_detail
