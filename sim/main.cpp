@@ -245,14 +245,17 @@ void checkOutputFile(const std::string& flag, const std::string& path, bool give
 }
 
 // --algos as given: every name registered, none twice, none empty (a trailing comma).
-std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::string& list) {
+// The names come comma-separated, space-separated or both ("vfc,chc" or "vfc chc").
+std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<std::string>& lists) {
     std::vector<std::string> names;
-    size_t start = 0;
-    while (true) {
-        const size_t comma = list.find(',', start);
-        names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
+    for (const std::string& list : lists) {
+        size_t start = 0;
+        while (true) {
+            const size_t comma = list.find(',', start);
+            names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+            if (comma == std::string::npos) break;
+            start = comma + 1;
+        }
     }
     std::vector<const occsim::AlgorithmTraits*> out;
     for (const std::string& name : names) {
@@ -422,7 +425,7 @@ int main(int argc, char** argv) {
                     "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
 
     CommonFlags bench_flags;
-    std::string bench_algorithms;
+    std::vector<std::string> bench_algorithms;  // split here, not by CLI11: it drops empty names
     CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
     bench->add_option("--algos", bench_algorithms,
