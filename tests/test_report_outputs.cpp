@@ -412,11 +412,16 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
         << runHeadline(result);
     EXPECT_EQ(runHeadline(result).find("busy machine"), std::string::npos);
     EXPECT_FALSE(m.busyMachine());
+    m.load_after = {3.5, 3.0, 1.0};
+    EXPECT_FALSE(m.busyMachine()) << "after a run its own threads count in the load";
     m.load_after = {5.5, 3.0, 1.0};
     EXPECT_TRUE(m.busyMachine());
-    EXPECT_NE(runHeadline(result).find("busy machine: the load average exceeded its 2 hardware threads"),
-              std::string::npos);
-    EXPECT_NE(markdownReport(result, {}).find("**busy: the load exceeded the hardware threads"), std::string::npos);
+    m.load_after = {1.0, 1.0, 1.0};
+    m.load_before = {2.5, 1.0, 1.0};
+    EXPECT_TRUE(m.busyMachine()) << "other work when the run began";
+    m.load_after = {5.5, 3.0, 1.0};
+    EXPECT_NE(runHeadline(result).find("busy machine: other work ran beside this run"), std::string::npos);
+    EXPECT_NE(markdownReport(result, {}).find("**busy: other work ran beside this run"), std::string::npos);
     const nlohmann::json summary = summaryJson(result);
     EXPECT_EQ(summary["machine"]["busy"], true);
     EXPECT_EQ(summary["machine"]["load_average_after"][0], 5.5);

@@ -42,7 +42,7 @@ void header(std::ostringstream& out, const BenchResult& result) {
                   c.load_after[0]);
     out << "| machine | " << c.hardware_threads << " hardware threads, LP_NUM_THREADS="
         << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << load
-        << (c.busyMachine() ? " (**busy: the load exceeded the hardware threads; timings are not results**)" : "")
+        << (c.busyMachine() ? " (**busy: other work ran beside this run; timings are not results**)" : "")
         << " |\n";
     out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor) << ", renderer "
         << cell(c.gl_renderer) << ", driver " << cell(c.driver)

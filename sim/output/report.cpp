@@ -242,14 +242,14 @@ std::string runHeadline(const BenchResult& result) {
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
                   m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
     std::string headline = line;
-    char load[160];
+    char load[256];
     std::snprintf(load, sizeof load, "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
                   m.hardware_threads, m.load_before[0], m.load_after[0]);
     headline += load;
     if (m.busyMachine()) {
         std::snprintf(load, sizeof load,
-                      "\nbusy machine: the load average exceeded its %u hardware threads; these timings "
-                      "measured other work too and are not results",
+                      "\nbusy machine: other work ran beside this run (load average above its %u hardware "
+                      "threads before it, or above twice that after it); these timings are not results",
                       m.hardware_threads);
         headline += load;
     }

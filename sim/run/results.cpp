@@ -2,9 +2,12 @@
 
 namespace occsim {
 
+// The load after a run includes the run itself (llvmpipe keeps every core busy, and its threads
+// count beside the main one): only a load beyond twice the hardware threads says that other work
+// ran beside it. Before the run, anything beyond the hardware threads is other work.
 bool RunMetadata::busyMachine() const {
     const double threads = static_cast<double>(hardware_threads);
-    return threads > 0 && (load_before[0] > threads || load_after[0] > threads);
+    return threads > 0 && (load_before[0] > threads || load_after[0] > 2.0 * threads);
 }
 namespace {
 

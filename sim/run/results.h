@@ -55,7 +55,8 @@ struct RunMetadata {
     // machine busier than its hardware threads measured the other work too. Negative: unknown.
     std::array<double, 3> load_before{-1.0, -1.0, -1.0};
     std::array<double, 3> load_after{-1.0, -1.0, -1.0};
-    // Whether either 1-minute figure exceeded the hardware threads.
+    // Other work beside the run: the 1-minute load before it above the hardware threads, or after
+    // it above twice that (the run's own threads count in the figure after it).
     bool busyMachine() const;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
     std::string renderer;  // "GL_RENDERER, OpenGL GL_VERSION"
