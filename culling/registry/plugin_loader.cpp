@@ -24,21 +24,6 @@ std::set<std::string>& loadedFiles(const CullerRegistry& registry) {
     return files[&registry];
 }
 
-// Each culler made once from its defaults, with the cost model unknown: a factory that throws or
-// returns nothing fails now rather than in the middle of a run.
-void probeFactory(const AlgorithmTraits& row) {
-    const OptionValues defaults(row.options);
-    const CostModel unknown;
-    std::unique_ptr<Culler> culler;
-    try {
-        culler = row.factory(CullerContext{row.name, defaults, unknown});
-    } catch (const std::exception& e) {
-        throw RegistryError("culler '" + row.name + "': its factory threw: " + e.what());
-    } catch (...) {
-        throw RegistryError("culler '" + row.name + "': its factory threw a non-standard exception");
-    }
-    if (!culler) throw RegistryError("culler '" + row.name + "': its factory made no culler");
-}
 
 }  // namespace
 
@@ -95,7 +80,9 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
                     throw RegistryError("culler '" + row.name + "': registered twice");
                 }
             }
-            probeFactory(row);
+            // Made once from its defaults, the cost model unknown: a factory that throws or
+            // makes nothing fails now rather than in the middle of a run.
+            makeCheckedCuller(row, OptionValues(row.options), CostModel{});
         }
     } catch (const RegistryError& e) {
         throw PluginError(name + ": " + e.what());

@@ -115,25 +115,31 @@ std::string algorithmNameList() {
     return out;
 }
 
-std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options) {
-    const OptionValues values = options.of(algorithm);
-    const CullerContext context{algorithm.name, values, options.cost_model};
-    if (algorithm.source.empty()) return algorithm.factory(context);
+std::unique_ptr<Culler> makeCheckedCuller(const AlgorithmTraits& algorithm,
+                                          const OptionValues& values, const CostModel& costs) {
+    const std::string who = "culler '" + algorithm.name + "': its factory";
     std::unique_ptr<Culler> culler;
     try {
-        culler = algorithm.factory(context);
+        culler = algorithm.factory(CullerContext{algorithm.name, values, costs});
     } catch (const std::exception& e) {
-        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
-                            "' threw: " + e.what());
+        throw RegistryError(who + " threw: " + e.what());
     } catch (...) {
-        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
-                            "' threw a non-standard exception");
+        throw RegistryError(who + " threw a non-standard exception");
     }
-    if (!culler) {
-        throw RegistryError(algorithm.source + ": the factory of culler '" + algorithm.name +
-                            "' returned no culler");
-    }
+    if (!culler) throw RegistryError(who + " made no culler");
     return culler;
+}
+
+std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options) {
+    const OptionValues values = options.of(algorithm);
+    if (algorithm.source.empty()) {
+        return algorithm.factory(CullerContext{algorithm.name, values, options.cost_model});
+    }
+    try {
+        return makeCheckedCuller(algorithm, values, options.cost_model);
+    } catch (const RegistryError& e) {
+        throw RegistryError(algorithm.source + ": " + e.what());
+    }
 }
 
 }  // namespace occsim

@@ -100,5 +100,10 @@ std::string algorithmNameList();                              // "vfc, stop-and-
 // The culler, made by its factory from its own values in `options`. A plugin's factory that
 // throws is reported as a RegistryError naming the plugin's file and the culler.
 std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options);
+// The factory called with every failure (an exception, no culler) turned into a RegistryError
+// "culler 'NAME': its factory ...": what makeCuller reports for a plugin, and what the plugin
+// loader checks each row's defaults with.
+std::unique_ptr<Culler> makeCheckedCuller(const AlgorithmTraits& algorithm,
+                                          const OptionValues& values, const CostModel& costs);
 
 }  // namespace occsim
