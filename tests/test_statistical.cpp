@@ -250,6 +250,41 @@ TEST(StatisticalReadyAnswers, BlocksOnlyWhenTheQueueHoldsNothingElse) {
     EXPECT_LT(ready_waited, paper_waited / 2);
 }
 
+// (7) Weighed in-flight bound: with ready answers, queries whose kind mostly comes back occluded
+// count for less than one against queries_before_restart, so more of them run ahead at once (at
+// most kMaxRunAhead times the bound), while each query still counts as one without the option.
+TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
+    const BspTree tree = buildTree(boxes);
+    std::mt19937 rng(11);
+    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.05, rng);
+    const auto options = [](bool weigh) {
+        StatisticalOptions o;
+        o.ready_answers = true;
+        o.queries_before_restart = 4;
+        o.weigh_in_flight = weigh;
+        return o;
+    };
+    uint32_t most_in_flight[2] = {0, 0};
+    for (const bool weigh : {false, true}) {
+        StatisticalCuller culler(options(weigh));
+        culler.reset(tree);
+        ScriptedQueryDevice device(200);  // answers arrive late: the bound is what stops issuing
+        for (uint32_t f = 0; f < 20; ++f) {
+            const float a = 0.05f * static_cast<float>(f);
+            const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
+            const CullFrame frame = makeFrame(view, f, f / 30.0);
+            const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
+            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            EXPECT_EQ(device.pendingQueries(), 0u) << "every answer taken within its frame";
+        }
+        most_in_flight[weigh ? 1 : 0] = device.maxPendingQueries();
+    }
+    EXPECT_LE(most_in_flight[0], 4u) << "each query counts as one";
+    EXPECT_GT(most_in_flight[1], 8u) << "queries likely occluded count for less";
+    EXPECT_LE(most_in_flight[1], 4u * static_cast<uint32_t>(StatisticalOptions::kMaxRunAhead));
+}
+
 // (6) Draw while re-querying: a node last found visible whose re-query is due is drawn in the
 // same pass as its query, and its answer, arriving late, only updates its statistics (in the next
 // frame). The paper's culler waits for that answer before it draws.

@@ -99,6 +99,7 @@ void StatisticalCuller::reset(const BspTree& tree) {
     heap_.clear();
     pending_.clear();
     pending_head_ = 0;
+    in_flight_weight_ = 0.0;
     updates_.clear();  // ids still in flight on an earlier device are that device's to forget
     updates_head_ = 0;
     last_center_.clear();
@@ -337,8 +338,7 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
             device.drawObject(o);
             return;
         }
-        pending_.push_back({device.issueQuery(box, tag), entry, decision});
-        ++counters_.queries;
+        enqueue(device.issueQuery(box, tag), entry, decision);
         ++queries;
     });
     return queries;
@@ -365,8 +365,7 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
             renderNode(tree, frame, entry, device);
             return false;
         }
-        pending_.push_back({device.issueQuery(box, QueryTag::node(entry.index)), entry, decision});
-        ++counters_.queries;
+        enqueue(device.issueQuery(box, QueryTag::node(entry.index)), entry, decision);
         return true;
     }
     // A virtual leaf: the objects stored in the node itself that pass the frustum.
@@ -395,10 +394,8 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
         drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
         return false;
     }
-    pending_.push_back(
-        {device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
-         entry, decision});
-    ++counters_.queries;
+    enqueue(device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
+            entry, decision);
     return true;
 }
 
@@ -408,6 +405,18 @@ void StatisticalCuller::record(const Entry& e, const Decision& decision, bool vi
     estimates_[estimateIndex(decision.kind, e.subject == Subject::Object)].add(!visible);
     ++counters_.answers;
     counters_.visible_answers += visible ? 1 : 0;
+}
+
+void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& decision) {
+    double weight = 1.0;
+    if (options_.weigh_in_flight) {
+        const double visible =
+            1.0 - estimates_[estimateIndex(decision.kind, entry.subject == Subject::Object)].occluded;
+        weight = std::max(visible, 1.0 / StatisticalOptions::kMaxRunAhead);
+    }
+    pending_.push_back({id, entry, decision, weight});
+    in_flight_weight_ += weight;
+    ++counters_.queries;
 }
 
 void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
@@ -501,6 +510,7 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     heap_.clear();
     pending_.clear();
     pending_head_ = 0;
+    in_flight_weight_ = 0.0;
     // Update answers from earlier frames first: the statistics they bring decide this frame. On
     // a GPU they are ready by now (the last frame was finished); those still in flight are
     // waited for, so that no answer lags more than a frame.
@@ -511,6 +521,7 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     auto take_oldest = [&](bool work_left) {
         const uint64_t waited_before = device.counters().results_waited;
         const Pending p = pending_[pending_head_++];
+        in_flight_weight_ -= p.weight;
         answer(tree, frame, p, device);
         if (device.counters().results_waited != waited_before) {
             ++counters_.blocked_answers;
@@ -519,6 +530,7 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
         if (pending_head_ == pending_.size()) {
             pending_.clear();
             pending_head_ = 0;
+            in_flight_weight_ = 0.0;  // no drift from the sums of weights
         }
     };
 
@@ -545,8 +557,13 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
             while (pending_head_ < pending_.size() && device.isQueryReady(pending_[pending_head_].id)) {
                 take_oldest(!heap_.empty());
             }
+            // With weigh_in_flight the weights stand for the count (each weight is 1 without).
             const size_t in_flight = pending_.size() - pending_head_;
-            if (!heap_.empty() && in_flight < options_.queries_before_restart) {
+            const double bound = static_cast<double>(options_.queries_before_restart);
+            const bool room = options_.weigh_in_flight
+                                  ? in_flight_weight_ < bound - 1e-9
+                                  : in_flight < options_.queries_before_restart;
+            if (!heap_.empty() && room) {
                 process(tree, frame, pop(), device);
             } else if (in_flight > 0) {
                 take_oldest(false);
@@ -641,6 +658,10 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                                  "a subject last found visible whose re-query is due is drawn at "
                                  "once; its answer, taken when ready, only updates statistics"),
                    0.0),
+        switchable(booleanOption("weigh_in_flight", d.weigh_in_flight,
+                                 "with ready_answers, each query in flight counts by its chance of "
+                                 "coming back visible against queries_before_restart"),
+                   0.0),
     };
 }
 
@@ -695,6 +716,7 @@ StatisticalOptions statisticalOptionsFrom(const OptionValues& v) {
     o.fallback_window_frames = v.count("fallback_window_frames");
     o.fallback_recheck_s = v.number("fallback_recheck");
     o.draw_while_requerying = v.flag("draw_while_requerying");
+    o.weigh_in_flight = v.flag("weigh_in_flight");
     return o;
 }
 

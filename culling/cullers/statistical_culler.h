@@ -167,6 +167,7 @@ private:
         QueryId id;
         Entry entry;
         Decision decision;
+        double weight;  // what it counts against the bound on queries in flight (weigh_in_flight)
     };
     // A query whose answer only updates statistics (draw_while_requerying): the subject was
     // drawn when it was issued. Kept across frames until its answer is taken; `generation` is
@@ -206,6 +207,8 @@ private:
                       Decision* decision);
     void answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
+    // Puts an issued query into the query queue with its weight against the in-flight bound.
+    void enqueue(QueryId id, const Entry& entry, const Decision& decision);
     // Draw-while-requerying: issues the query whose answer only updates statistics.
     void issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                      std::span<const Aabb> boxes, const QueryTag& tag, const Decision& decision,
@@ -259,6 +262,7 @@ private:
     std::vector<Update> updates_;   // draw_while_requerying: [updates_head_, size) in flight
     size_t updates_head_ = 0;
     size_t pending_head_ = 0;
+    double in_flight_weight_ = 0.0;  // the weights of [pending_head_, size)
     std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;
 

@@ -60,6 +60,16 @@ struct StatisticalOptions {
     // paper's culler waits for that answer before it draws the subject. Subjects without
     // statistics, or whose last answer was occluded, are still queried and waited for.
     bool draw_while_requerying = false;
+    // (7) With ready_answers, the bound on queries in flight counts each query by its chance of
+    // coming back visible (the running visible share of the answers to its kind of query, the
+    // estimate the cost model keeps) instead of as one: queries on subjects last found occluded,
+    // whose answers rarely draw anything, do not hold the traversal back, while those likely
+    // visible, whose late answers let farther nodes be queried against a depth buffer that
+    // misses them, do. A query counts at least 1 / kMaxRunAhead, so at most kMaxRunAhead *
+    // queries_before_restart are in flight. Off (also in plus(), until measured on a quiet
+    // machine: docs/statistical.md): each query counts as one.
+    bool weigh_in_flight = false;
+    static constexpr double kMaxRunAhead = 8.0;
 
     // The paper as published (the default).
     static StatisticalOptions paper() { return {}; }
