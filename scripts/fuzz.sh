@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# Fuzzes the scenario parser and the glTF loading path with libFuzzer (clang, ASan + UBSan).
-# Usage: scripts/fuzz.sh [seconds per target, default 60] [target...]   (targets: scenario gltf)
-# Seeds: every scenario under scenarios/ and the bundled glTF models, plus the regression inputs
-# in tests/fuzz/regressions/<target>/. Findings land in out/fuzz/<target>/ as crash-*, leak-*,
+# Fuzzes every reader of outside input with libFuzzer (clang, ASan + UBSan): scenarios, glTF,
+# viewer scripts, regression baselines, the tuner's sample log, --sweep strings, --culling files
+# (a plugin culler's options included) and plugin option descriptors (tests/fuzz/fuzz_inputs.h).
+# Usage: scripts/fuzz.sh [seconds per target, default 60] [target...]
+#   targets: scenario gltf view_script baseline sample_log sweep culling_file plugin_descriptor
+# Seeds: the regression inputs in tests/fuzz/regressions/<target>/ (each holds a valid-* seed),
+# plus every scenario under scenarios/ (scenario), the bundled glTF models (gltf) and the
+# committed baselines (baseline). Findings land in out/fuzz/<target>/ as crash-*, leak-*,
 # timeout-* files: fix the bug, then copy the file into tests/fuzz/regressions/<target>/ so the
 # normal suite replays it (test_fuzz_regressions).
 set -euo pipefail
@@ -10,7 +14,12 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scenario gltf)
+all_targets=(scenario gltf view_script baseline sample_log sweep culling_file plugin_descriptor)
+[ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
+for target in "${targets[@]}"; do
+  [[ " ${all_targets[*]} " == *" $target "* ]] ||
+    { echo "fuzz: unknown target '$target'; expected one of: ${all_targets[*]}" >&2; exit 2; }
+done
 
 bash scripts/setup.sh
 # clang and its libFuzzer runtime are needed here only.
@@ -32,9 +41,9 @@ for target in "${targets[@]}"; do
   work="out/fuzz/$target"
   mkdir -p "$work/corpus"
   case "$target" in
-    scenario) find scenarios -name '*.json' -exec cp {} "$work/corpus/" \; ;;
+    scenario) find scenarios -name '*.json' ! -name '*.baseline.json' -exec cp {} "$work/corpus/" \; ;;
     gltf) find scenarios/assets \( -name '*.gltf' -o -name '*.glb' \) -exec cp {} "$work/corpus/" \; ;;
-    *) echo "fuzz: unknown target '$target'; expected scenario or gltf" >&2; exit 2 ;;
+    baseline) find scenarios -name '*.baseline.json' -exec cp {} "$work/corpus/" \; ;;
   esac
   cp tests/fuzz/regressions/"$target"/* "$work/corpus/" 2>/dev/null || true
   echo "== fuzz_$target for $seconds s (corpus: $work/corpus, findings: $work/)"
