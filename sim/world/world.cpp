@@ -328,6 +328,231 @@ void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRan
     }
 }
 
+// Every source's content into the scene, glTF models with their copies' animations.
+std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
+    std::vector<SourceRange> ranges;
+    for (size_t s = 0; s < scenario.sources.size(); ++s) {
+        SourceOutput source = generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
+        std::shared_ptr<const AnimatedModel> model = source.model;
+        const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
+        std::vector<uint32_t> copy_meshes;
+        ranges.push_back(addSource(scene, std::move(source), place, copy_meshes));
+        if (model) {
+            ranges.back().model = static_cast<int32_t>(scene.models.size());
+            scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
+            scene.models.back().object_mesh = std::move(copy_meshes);
+            animateCopies(scene, scenario, s, ranges.back());
+        }
+    }
+    return ranges;
+}
+
+// An object gets one motion at most: its glTF animation, a mover of its own, or its copy's. Per
+// object, grown as movers spawn objects.
+struct MotionFlags {
+    std::vector<uint8_t> moving, animated, own_mover;
+    void grow(size_t objects, uint8_t spawned_moving) {
+        moving.resize(objects, spawned_moving);
+        animated.resize(objects, 0);
+        own_mover.resize(objects, 0);
+    }
+};
+
+MotionFlags animatedObjects(const Scene& scene) {
+    MotionFlags flags;
+    flags.grow(scene.objectCount(), 0);
+    for (const ModelCopy& copy : scene.initial_copies) {
+        const SceneModel& m = scene.models[copy.model];
+        for (uint32_t j = 0; j < m.objectsPerCopy(); ++j) {
+            if (m.object_animated[j]) flags.moving[copy.first_object + j] = flags.animated[copy.first_object + j] = 1;
+        }
+    }
+    return flags;
+}
+
+// The paths a mover's objects follow (indices into Scene::paths): its waypoints, or its source's
+// lanes.
+std::vector<uint32_t> moverPaths(Scene& scene, const Scenario& scenario, size_t m,
+                                 const SourceRange& range) {
+    const MoverSpec& spec = scenario.movers[m];
+    std::vector<uint32_t> paths = range.lanes;
+    if (spec.motion != MotionType::Path) return paths;
+    if (!spec.waypoints.empty()) {
+        paths = {static_cast<uint32_t>(scene.paths.size())};
+        scene.paths.push_back(makePath(spec.waypoints));
+    } else if (paths.empty()) {
+        moverError(scenario, m, "motion", "motion \"path\" needs 'waypoints': source " +
+                                              std::to_string(spec.source) + " has no lanes");
+    }
+    return paths;
+}
+
+// The objects a mover moves, and per object the copy it moves whole (-1: the object alone).
+struct MoverObjects {
+    std::vector<uint32_t> objects;
+    std::vector<int32_t> copy;
+};
+
+// A spawning mover's new copies of a glTF model, each moved whole.
+void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m, const SourceRange& model_range,
+                      const Aabb& region, MoverObjects& out, MotionFlags& flags) {
+    const MoverSpec& spec = scenario.movers[m];
+    Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
+    const auto model = static_cast<uint32_t>(model_range.model);
+    const SceneModel& sm = scene.models[model];
+    const GltfAnimationSpec& play = std::get<GltfSourceSpec>(scenario.sources[sm.source].spec).animation;
+    const double longest = longestPlayingDuration(sm);
+    const bool animates = animatesSomething(sm);
+    for (uint32_t i = 0; i < spec.spawn.count; ++i) {
+        ModelCopy copy;
+        copy.model = model;
+        copy.first_object = scene.objectCount();
+        copy.anchor.position = randomPointIn(region, spawn);
+        copy.anchor.linear =
+            glm::mat3(static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
+        copy.animated = animates;
+        copy.rigid = true;
+        if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
+        for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) addObject(scene, sm.object_mesh[j], ObjectPose{});
+        out.objects.push_back(copy.first_object);
+        out.copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
+        scene.initial_copies.push_back(copy);
+    }
+    flags.grow(scene.objectCount(), 1);
+}
+
+// A spawning mover's new objects of a built-in shape.
+std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t m, const Aabb& region,
+                                  MotionFlags& flags) {
+    const MoverSpec& spec = scenario.movers[m];
+    Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
+    const uint32_t mesh = addMesh(scene, spawnMesh(spec.spawn.shape));
+    std::vector<uint32_t> objects;
+    for (uint32_t i = 0; i < spec.spawn.count; ++i) {
+        ObjectPose pose;
+        pose.position = randomPointIn(region, spawn);
+        pose.linear = glm::mat3(static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
+        objects.push_back(addObject(scene, mesh, pose));
+    }
+    flags.grow(scene.objectCount(), 0);
+    return objects;
+}
+
+// A mover's listed objects of its source, each free to move.
+std::vector<uint32_t> listedObjects(const Scenario& scenario, size_t m, const SourceRange& range,
+                                    const MotionFlags& flags) {
+    const MoverSpec& spec = scenario.movers[m];
+    std::vector<uint32_t> objects;
+    for (size_t i = 0; i < spec.objects.size(); ++i) {
+        checkMoverObjectIndex(scenario, m, i, range.count);
+        const uint32_t local = spec.objects[i];
+        if (flags.animated[range.first + local]) {
+            moverError(scenario, m, "objects/" + std::to_string(i),
+                       "object " + std::to_string(local) +
+                           " is moved by its glTF animation; a mover can move its whole "
+                           "copy (\"whole_copies\": true)");
+        }
+        if (flags.moving[range.first + local]) {
+            moverError(scenario, m, "objects/" + std::to_string(i),
+                       "object " + std::to_string(local) + " already has a motion");
+        }
+        objects.push_back(range.first + local);
+    }
+    return objects;
+}
+
+// The objects a mover moves: picked from the source, listed, or spawned; or whole copies of a model.
+MoverObjects selectMoverObjects(Scene& scene, const Scenario& scenario, size_t m,
+                                std::vector<SourceRange>& ranges, const Aabb& region, Rng& pick,
+                                MotionFlags& flags, std::vector<uint8_t>& rigid_copy) {
+    const MoverSpec& spec = scenario.movers[m];
+    SourceRange& range = ranges.at(spec.source);
+    MoverObjects out;
+    if (spec.whole_copies) {
+        pickWholeCopies(scene, scenario, m, range, pick, flags.moving, flags.own_mover, rigid_copy,
+                        out.objects, out.copy);
+    } else if (spec.spawn.model_source >= 0 && spec.selection == MoverSelection::Spawn) {
+        spawnModelCopies(scene, scenario, m, ranges.at(static_cast<size_t>(spec.spawn.model_source)),
+                         region, out, flags);
+    } else if (spec.selection == MoverSelection::Fraction) {
+        out.objects = pickFraction(range, spec.fraction, pick, flags.moving);
+    } else if (spec.selection == MoverSelection::Objects) {
+        out.objects = listedObjects(scenario, m, range, flags);
+    } else {
+        out.objects = spawnShapes(scene, scenario, m, region, flags);
+    }
+    out.copy.resize(out.objects.size(), -1);
+    return out;
+}
+
+// One object's (or copy's) motion under a mover; a path motion also places `pose` on its path.
+Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose, const Aabb& region,
+                   const std::vector<uint32_t>& paths, Rng& pick, Rng& motion) {
+    const double speed = motion.uniform(spec.speed_min_mps, spec.speed_max_mps);
+    switch (spec.motion) {
+        case MotionType::Bounce: {
+            // Mostly horizontal, like traffic; a little vertical drift where the box allows.
+            const double a = motion.uniform(0.0, 2.0 * kPi);
+            const glm::dvec3 dir(std::cos(a), motion.uniform(-0.2, 0.2), std::sin(a));
+            return BounceMotion{speed * glm::normalize(dir), region};
+        }
+        case MotionType::Orbit: {
+            const double radius = motion.uniform(spec.radius_min_m, spec.radius_max_m);
+            const double angle = motion.uniform(0.0, 2.0 * kPi);
+            const double sign = motion.uniform() < 0.5 ? -1.0 : 1.0;
+            // Centre chosen so that the orbit passes through the object's start position.
+            const glm::dvec3 center = pose.position - radius * glm::dvec3(std::cos(angle), 0, std::sin(angle));
+            return OrbitMotion{center, radius, sign * speed / radius, angle};
+        }
+        case MotionType::Path: {
+            const uint32_t path = paths[pick.below(static_cast<uint32_t>(paths.size()))];
+            const MotionPath& p = scene.paths[path];
+            const double distance = spec.selection == MoverSelection::Spawn
+                                        ? motion.uniform(0.0, p.total())
+                                        : nearestDistanceOnPath(p, pose.position);
+            glm::dvec3 direction;
+            pose.position = pointOnPath(p, distance, &direction);
+            pose.rotation = yawTowards(direction);
+            return PathMotion{path, distance, speed};
+        }
+        case MotionType::RandomWalk: {
+            RandomWalkMotion walk;
+            walk.speed_mps = speed;
+            walk.heading = motion.uniform(0.0, 2.0 * kPi);
+            walk.turn_rate = glm::radians(spec.turn_rate_deg_s);
+            walk.region = region;
+            walk.rng = Rng(motion.next());
+            return walk;
+        }
+        case MotionType::Spin: {
+            const double rate = glm::radians(motion.uniform(spec.spin_min_deg_s, spec.spin_max_deg_s));
+            return SpinMotion{motion.uniform() < 0.5 ? -rate : rate, 0.0, pose.rotation};
+        }
+    }
+    return BounceMotion{};
+}
+
+// One mover of the scenario: its objects chosen or spawned, each given its motion.
+void placeMover(Scene& scene, const Scenario& scenario, size_t m, std::vector<SourceRange>& ranges,
+                MotionFlags& flags, std::vector<uint8_t>& rigid_copy) {
+    const MoverSpec& spec = scenario.movers[m];
+    Rng pick(deriveSeed(scenario.seed, m, kMoverPick));
+    Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
+    const Aabb region = spec.has_region ? spec.region : ranges.at(spec.source).region;
+    const std::vector<uint32_t> paths = moverPaths(scene, scenario, m, ranges.at(spec.source));
+    const MoverObjects chosen = selectMoverObjects(scene, scenario, m, ranges, region, pick, flags, rigid_copy);
+    for (size_t i = 0; i < chosen.objects.size(); ++i) {
+        const uint32_t object = chosen.objects[i];
+        const int32_t copy = chosen.copy[i];
+        flags.moving[object] = 1;
+        if (copy < 0) flags.own_mover[object] = 1;
+        ObjectPose& pose = copy >= 0 ? scene.initial_copies[static_cast<size_t>(copy)].anchor
+                                     : scene.initial_poses[object];
+        const Motion m_motion = moverMotion(spec, scene, pose, region, paths, pick, motion);
+        scene.initial_movers.push_back(Mover{object, m_motion, copy});
+    }
+}
+
 }  // namespace
 
 MotionPath makePath(std::vector<glm::dvec3> points) {
@@ -361,173 +586,11 @@ glm::dvec3 pointOnPath(const MotionPath& path, double distance, glm::dvec3* dire
 
 Scene buildScene(const Scenario& scenario) {
     Scene scene;
-    std::vector<SourceRange> ranges;
-    for (size_t s = 0; s < scenario.sources.size(); ++s) {
-        SourceOutput source = generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
-        std::shared_ptr<const AnimatedModel> model = source.model;
-        const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
-        std::vector<uint32_t> copy_meshes;
-        ranges.push_back(addSource(scene, std::move(source), place, copy_meshes));
-        if (model) {
-            ranges.back().model = static_cast<int32_t>(scene.models.size());
-            scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
-            scene.models.back().object_mesh = std::move(copy_meshes);
-            animateCopies(scene, scenario, s, ranges.back());
-        }
-    }
-    // An object gets one motion at most: its glTF animation, a mover of its own, or its copy's.
-    std::vector<uint8_t> moving(scene.objectCount(), 0), animated(scene.objectCount(), 0),
-        own_mover(scene.objectCount(), 0);
-    for (const ModelCopy& copy : scene.initial_copies) {
-        const SceneModel& m = scene.models[copy.model];
-        for (uint32_t j = 0; j < m.objectsPerCopy(); ++j) {
-            if (m.object_animated[j]) moving[copy.first_object + j] = animated[copy.first_object + j] = 1;
-        }
-    }
+    std::vector<SourceRange> ranges = addSources(scene, scenario);
+    MotionFlags flags = animatedObjects(scene);
     std::vector<uint8_t> rigid_copy;  // per initial copy: a mover moves it whole
     for (size_t m = 0; m < scenario.movers.size(); ++m) {
-        const MoverSpec& spec = scenario.movers[m];
-        SourceRange& range = ranges.at(spec.source);
-        Rng pick(deriveSeed(scenario.seed, m, kMoverPick));
-        Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
-        const Aabb region = spec.has_region ? spec.region : range.region;
-
-        // The paths this mover's objects follow.
-        std::vector<uint32_t> paths = range.lanes;
-        if (spec.motion == MotionType::Path) {
-            if (!spec.waypoints.empty()) {
-                paths = {static_cast<uint32_t>(scene.paths.size())};
-                scene.paths.push_back(makePath(spec.waypoints));
-            } else if (paths.empty()) {
-                moverError(scenario, m, "motion", "motion \"path\" needs 'waypoints': source " +
-                                                      std::to_string(spec.source) + " has no lanes");
-            }
-        }
-
-        // The objects: picked from the source, listed, or spawned; or whole copies of a model.
-        std::vector<uint32_t> objects;
-        std::vector<int32_t> object_copy;  // per entry of objects: the copy it moves whole, or -1
-        if (spec.whole_copies) {
-            pickWholeCopies(scene, scenario, m, range, pick, moving, own_mover, rigid_copy, objects,
-                            object_copy);
-        } else if (spec.spawn.model_source >= 0 && spec.selection == MoverSelection::Spawn) {
-            SourceRange& model_range = ranges.at(static_cast<size_t>(spec.spawn.model_source));
-            Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
-            const auto model = static_cast<uint32_t>(model_range.model);
-            const SceneModel& sm = scene.models[model];
-            const GltfAnimationSpec& play =
-                std::get<GltfSourceSpec>(scenario.sources[sm.source].spec).animation;
-            const double longest = longestPlayingDuration(sm);
-            const bool animates = animatesSomething(sm);
-            for (uint32_t i = 0; i < spec.spawn.count; ++i) {
-                ModelCopy copy;
-                copy.model = model;
-                copy.first_object = scene.objectCount();
-                copy.anchor.position = randomPointIn(region, spawn);
-                copy.anchor.linear = glm::mat3(static_cast<float>(
-                    spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
-                copy.animated = animates;
-                copy.rigid = true;
-                if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
-                for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) {
-                    addObject(scene, sm.object_mesh[j], ObjectPose{});
-                }
-                objects.push_back(copy.first_object);
-                object_copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
-                scene.initial_copies.push_back(copy);
-            }
-            moving.resize(scene.objectCount(), 1);
-            animated.resize(scene.objectCount(), 0);
-            own_mover.resize(scene.objectCount(), 0);
-        } else if (spec.selection == MoverSelection::Fraction) {
-            objects = pickFraction(range, spec.fraction, pick, moving);
-        } else if (spec.selection == MoverSelection::Objects) {
-            for (size_t i = 0; i < spec.objects.size(); ++i) {
-                checkMoverObjectIndex(scenario, m, i, range.count);
-                const uint32_t local = spec.objects[i];
-                if (animated[range.first + local]) {
-                    moverError(scenario, m, "objects/" + std::to_string(i),
-                               "object " + std::to_string(local) +
-                                   " is moved by its glTF animation; a mover can move its whole "
-                                   "copy (\"whole_copies\": true)");
-                }
-                if (moving[range.first + local]) {
-                    moverError(scenario, m, "objects/" + std::to_string(i),
-                               "object " + std::to_string(local) + " already has a motion");
-                }
-                objects.push_back(range.first + local);
-            }
-        } else {
-            Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
-            const uint32_t mesh = addMesh(scene, spawnMesh(spec.spawn.shape));
-            for (uint32_t i = 0; i < spec.spawn.count; ++i) {
-                ObjectPose pose;
-                pose.position = randomPointIn(region, spawn);
-                pose.linear = glm::mat3(static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
-                objects.push_back(addObject(scene, mesh, pose));
-            }
-            moving.resize(scene.objectCount(), 0);
-            animated.resize(scene.objectCount(), 0);
-            own_mover.resize(scene.objectCount(), 0);
-        }
-        object_copy.resize(objects.size(), -1);
-
-        for (size_t i = 0; i < objects.size(); ++i) {
-            const uint32_t object = objects[i];
-            const int32_t copy = object_copy[i];
-            moving[object] = 1;
-            if (copy < 0) own_mover[object] = 1;
-            ObjectPose& pose = copy >= 0 ? scene.initial_copies[static_cast<size_t>(copy)].anchor
-                                         : scene.initial_poses[object];
-            const double speed = motion.uniform(spec.speed_min_mps, spec.speed_max_mps);
-            Mover mover{object, BounceMotion{}, copy};
-            switch (spec.motion) {
-                case MotionType::Bounce: {
-                    // Mostly horizontal, like traffic; a little vertical drift where the box allows.
-                    const double a = motion.uniform(0.0, 2.0 * kPi);
-                    const glm::dvec3 dir(std::cos(a), motion.uniform(-0.2, 0.2), std::sin(a));
-                    mover.motion = BounceMotion{speed * glm::normalize(dir), region};
-                    break;
-                }
-                case MotionType::Orbit: {
-                    const double radius = motion.uniform(spec.radius_min_m, spec.radius_max_m);
-                    const double angle = motion.uniform(0.0, 2.0 * kPi);
-                    const double sign = motion.uniform() < 0.5 ? -1.0 : 1.0;
-                    // Centre chosen so that the orbit passes through the object's start position.
-                    const glm::dvec3 center = pose.position - radius * glm::dvec3(std::cos(angle), 0, std::sin(angle));
-                    mover.motion = OrbitMotion{center, radius, sign * speed / radius, angle};
-                    break;
-                }
-                case MotionType::Path: {
-                    const uint32_t path = paths[pick.below(static_cast<uint32_t>(paths.size()))];
-                    const MotionPath& p = scene.paths[path];
-                    const double distance = spec.selection == MoverSelection::Spawn
-                                                ? motion.uniform(0.0, p.total())
-                                                : nearestDistanceOnPath(p, pose.position);
-                    mover.motion = PathMotion{path, distance, speed};
-                    glm::dvec3 direction;
-                    pose.position = pointOnPath(p, distance, &direction);
-                    pose.rotation = yawTowards(direction);
-                    break;
-                }
-                case MotionType::RandomWalk: {
-                    RandomWalkMotion walk;
-                    walk.speed_mps = speed;
-                    walk.heading = motion.uniform(0.0, 2.0 * kPi);
-                    walk.turn_rate = glm::radians(spec.turn_rate_deg_s);
-                    walk.region = region;
-                    walk.rng = Rng(motion.next());
-                    mover.motion = walk;
-                    break;
-                }
-                case MotionType::Spin: {
-                    const double rate = glm::radians(motion.uniform(spec.spin_min_deg_s, spec.spin_max_deg_s));
-                    mover.motion = SpinMotion{motion.uniform() < 0.5 ? -rate : rate, 0.0, pose.rotation};
-                    break;
-                }
-            }
-            scene.initial_movers.push_back(mover);
-        }
+        placeMover(scene, scenario, m, ranges, flags, rigid_copy);
     }
     if (scene.objectCount() == 0) {
         throw ScenarioError(scenario.file.string(), "/scene/sources",
