@@ -162,6 +162,109 @@ std::vector<glm::dvec3> ring(double x0, double z0, double x1, double z1, double 
     return {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}};
 }
 
+// The street grid's measures: street width, half of it, block pitch, and the city's extent.
+struct CityGrid {
+    explicit CityGrid(const CitySpec& spec)
+        : street(spec.street_width_m),
+          half(spec.street_width_m / 2),
+          pitch(spec.block_size_m + spec.street_width_m),
+          width(spec.blocks_x * pitch),
+          depth(spec.blocks_z * pitch) {}
+    double street, half, pitch, width, depth;
+};
+
+constexpr uint32_t kUnitBox = 0;  // the mesh every slab and street is a scaled copy of
+
+// The bedrock under everything, and the streets: along x at full length, crossings included;
+// along z one segment between each pair of crossings.
+void addGroundAndStreets(const CitySpec& spec, const CityGrid& g, SourceOutput& out) {
+    out.objects.push_back(placeUnitBox(kUnitBox, {-g.half, kBedrockTopM - 1.0, -g.half},
+                                       {g.width + g.half, kBedrockTopM, g.depth + g.half}));
+    for (uint32_t j = 0; j <= spec.blocks_z; ++j) {
+        const double z = j * g.pitch;
+        out.objects.push_back(placeUnitBox(kUnitBox, {-g.half, -kSlabDepthM, z - g.half},
+                                           {g.width + g.half, 0.0, z + g.half}));
+    }
+    for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
+        const double x = i * g.pitch;
+        for (uint32_t j = 0; j < spec.blocks_z; ++j) {
+            out.objects.push_back(placeUnitBox(kUnitBox,
+                                               {x - g.half, -kSlabDepthM, j * g.pitch + g.half + kCrackM},
+                                               {x + g.half, 0.0, (j + 1) * g.pitch - g.half - kCrackM}));
+        }
+    }
+}
+
+// The building on a lot's footprint `f` (setbacks applied), `height` metres tall, with the mesh
+// of its archetype (made on first use).
+PlacedObject placeBuilding(const Rect& f, double height, std::map<Archetype, uint32_t>& archetype_mesh,
+                           SourceOutput& out) {
+    // Archetypes are wider in x than in z; a building deeper than wide uses one turned a quarter
+    // about y, so both orientations share a mesh.
+    const bool turned = f.depth() > f.width();
+    const double along = turned ? f.depth() : f.width();
+    const double across = turned ? f.width() : f.depth();
+    const double base = kPavementTopM + kCrackM;
+    const Archetype a{archetypeCount(height - base, kStoreyM, 2), archetypeCount(along, kBayM, 1),
+                      archetypeCount(across, kBayM, 1)};
+    auto [it, added] = archetype_mesh.try_emplace(a, static_cast<uint32_t>(out.meshes.size()));
+    if (added) out.meshes.push_back(buildingMesh(a));
+    const glm::vec3 nominal = nominalSize(a);
+    PlacedObject building;
+    building.mesh = it->second;
+    building.position = {0.5 * (f.x0 + f.x1), base, 0.5 * (f.z0 + f.z1)};
+    building.linear = scaleMatrix(glm::vec3(static_cast<float>(along / nominal.x),
+                                            static_cast<float>((height - base) / nominal.y),
+                                            static_cast<float>(across / nominal.z)));
+    // A quarter turn about y: x -> -z, z -> x (determinant +1, faces stay outward).
+    if (turned) building.linear = glm::mat3(0, 0, -1, 0, 1, 0, 1, 0, 0) * building.linear;
+    return building;
+}
+
+// Block (i, j): its pavement slab, then its lots, most with a building.
+void addBlock(const CitySpec& spec, const CityGrid& g, uint32_t i, uint32_t j, Rng& rng,
+              std::map<Archetype, uint32_t>& archetype_mesh, uint32_t& small_lots, SourceOutput& out) {
+    const Rect block{i * g.pitch + g.half, j * g.pitch + g.half, (i + 1) * g.pitch - g.half,
+                     (j + 1) * g.pitch - g.half};
+    out.objects.push_back(placeUnitBox(kUnitBox, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
+                                       {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
+    std::vector<Rect> lots;
+    splitLots(block, spec.buildings_per_block, rng, lots);
+    for (const Rect& lot : lots) {
+        // Draw every random number of a lot whether or not it gets a building, so that one lot's
+        // outcome does not shift the next lot's layout.
+        const double empty = rng.uniform();
+        const double height = buildingHeight(spec, rng);
+        const double setback[4] = {rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5),
+                                   rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5)};
+        if (empty < kEmptyLotChance) continue;
+        // Setbacks shrink so a building keeps about 60 % of its lot, but stay wider than the
+        // cornice and windows reach out, so that neighbours never touch.
+        const double kx = std::min(1.0, 0.4 * lot.width() / (setback[0] + setback[1]));
+        const double kz = std::min(1.0, 0.4 * lot.depth() / (setback[2] + setback[3]));
+        const auto back = [](double k, double b) { return std::max(0.5, k * b); };
+        const Rect f{lot.x0 + back(kx, setback[0]), lot.z0 + back(kz, setback[2]),
+                     lot.x1 - back(kx, setback[1]), lot.z1 - back(kz, setback[3])};
+        if (f.width() < kMinBuildingSideM || f.depth() < kMinBuildingSideM) {
+            ++small_lots;
+            continue;
+        }
+        out.objects.push_back(placeBuilding(f, height, archetype_mesh, out));
+    }
+}
+
+// Ring roads, a quarter street width inside the ring's own side of each street: around each row
+// of blocks, then around each column.
+void addRingRoads(const CitySpec& spec, const CityGrid& g, SourceOutput& out) {
+    const double lane = g.street / 4, y = kLaneHeightM;
+    for (uint32_t j = 0; j < spec.blocks_z; ++j) {
+        out.lanes.push_back(ring(-lane, j * g.pitch + lane, g.width + lane, (j + 1) * g.pitch - lane, y));
+    }
+    for (uint32_t i = 0; i < spec.blocks_x; ++i) {
+        out.lanes.push_back(ring(i * g.pitch + lane, -lane, (i + 1) * g.pitch - lane, g.depth + lane, y));
+    }
+}
+
 }  // namespace
 
 SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
@@ -172,86 +275,14 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
     }
     SourceOutput out;
     Rng rng(seed);
-    const double s = spec.street_width_m, half = s / 2;
-    const double pitch = spec.block_size_m + s;
-    const double width = spec.blocks_x * pitch, depth = spec.blocks_z * pitch;
-
-    out.meshes.push_back(makeBox(glm::vec3(1.0f)));
-    const uint32_t unit_box = 0;
-
-    out.objects.push_back(placeUnitBox(unit_box, {-half, kBedrockTopM - 1.0, -half},
-                                       {width + half, kBedrockTopM, depth + half}));
-    // Streets along x: full length, crossings included.
-    for (uint32_t j = 0; j <= spec.blocks_z; ++j) {
-        const double z = j * pitch;
-        out.objects.push_back(
-            placeUnitBox(unit_box, {-half, -kSlabDepthM, z - half}, {width + half, 0.0, z + half}));
-    }
-    // Streets along z: one segment between each pair of crossings.
-    for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
-        const double x = i * pitch;
-        for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-            out.objects.push_back(placeUnitBox(unit_box,
-                                               {x - half, -kSlabDepthM, j * pitch + half + kCrackM},
-                                               {x + half, 0.0, (j + 1) * pitch - half - kCrackM}));
-        }
-    }
-
+    const CityGrid grid(spec);
+    out.meshes.push_back(makeBox(glm::vec3(1.0f)));  // the unit box, mesh 0
+    addGroundAndStreets(spec, grid, out);
     std::map<Archetype, uint32_t> archetype_mesh;
     uint32_t small_lots = 0;
     for (uint32_t j = 0; j < spec.blocks_z; ++j) {
         for (uint32_t i = 0; i < spec.blocks_x; ++i) {
-            const Rect block{i * pitch + half, j * pitch + half, (i + 1) * pitch - half,
-                             (j + 1) * pitch - half};
-            out.objects.push_back(
-                placeUnitBox(unit_box, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
-                             {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
-            std::vector<Rect> lots;
-            splitLots(block, spec.buildings_per_block, rng, lots);
-            for (const Rect& lot : lots) {
-                // Draw every random number of a lot whether or not it gets a building, so that one
-                // lot's outcome does not shift the next lot's layout.
-                const double empty = rng.uniform();
-                const double height = buildingHeight(spec, rng);
-                const double setback[4] = {rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5),
-                                           rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5)};
-                if (empty < kEmptyLotChance) continue;
-                // Setbacks shrink so a building keeps about 60 % of its lot, but stay wider than
-                // the cornice and windows reach out, so that neighbours never touch.
-                const double kx = std::min(1.0, 0.4 * lot.width() / (setback[0] + setback[1]));
-                const double kz = std::min(1.0, 0.4 * lot.depth() / (setback[2] + setback[3]));
-                const auto back = [](double k, double b) { return std::max(0.5, k * b); };
-                const Rect f{lot.x0 + back(kx, setback[0]), lot.z0 + back(kz, setback[2]),
-                             lot.x1 - back(kx, setback[1]), lot.z1 - back(kz, setback[3])};
-                if (f.width() < kMinBuildingSideM || f.depth() < kMinBuildingSideM) {
-                    ++small_lots;
-                    continue;
-                }
-                // Archetypes are wider in x than in z; a building deeper than wide uses one
-                // turned a quarter about y, so both orientations share a mesh.
-                const bool turned = f.depth() > f.width();
-                const double along = turned ? f.depth() : f.width();
-                const double across = turned ? f.width() : f.depth();
-                const double base = kPavementTopM + kCrackM;
-                const Archetype a{archetypeCount(height - base, kStoreyM, 2),
-                                  archetypeCount(along, kBayM, 1),
-                                  archetypeCount(across, kBayM, 1)};
-                auto [it, added] =
-                    archetype_mesh.try_emplace(a, static_cast<uint32_t>(out.meshes.size()));
-                if (added) out.meshes.push_back(buildingMesh(a));
-                const glm::vec3 nominal = nominalSize(a);
-                PlacedObject building;
-                building.mesh = it->second;
-                building.position = {0.5 * (f.x0 + f.x1), base, 0.5 * (f.z0 + f.z1)};
-                building.linear =
-                    scaleMatrix(glm::vec3(static_cast<float>(along / nominal.x),
-                                          static_cast<float>((height - base) / nominal.y),
-                                          static_cast<float>(across / nominal.z)));
-                // A quarter turn about y: x -> -z, z -> x (determinant +1, faces stay outward).
-                if (turned)
-                    building.linear = glm::mat3(0, 0, -1, 0, 1, 0, 1, 0, 0) * building.linear;
-                out.objects.push_back(building);
-            }
+            addBlock(spec, grid, i, j, rng, archetype_mesh, small_lots, out);
         }
     }
     if (small_lots > 0) {
@@ -259,16 +290,7 @@ SourceOutput generateCity(const CitySpec& spec, uint64_t seed) {
                                " lots were too small for a building (fewer buildings_per_block or "
                                "a larger block_size fills them)");
     }
-
-    // Ring roads, a quarter street width inside the ring's own side of each street.
-    const double lane = s / 4, y = kLaneHeightM;
-    for (uint32_t j = 0; j < spec.blocks_z; ++j) {  // around each row of blocks
-        out.lanes.push_back(ring(-lane, j * pitch + lane, width + lane, (j + 1) * pitch - lane, y));
-    }
-    for (uint32_t i = 0; i < spec.blocks_x; ++i) {  // around each column of blocks
-        out.lanes.push_back(ring(i * pitch + lane, -lane, (i + 1) * pitch - lane, depth + lane, y));
-    }
-
+    addRingRoads(spec, grid, out);
     out.region = sourceBounds(out);
     return out;
 }

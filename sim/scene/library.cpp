@@ -68,6 +68,101 @@ MeshData bookMesh(uint32_t bands, float cover) {
     return m;
 }
 
+constexpr uint32_t kUnitBox = 0;        // the mesh every board, panel and wall is a scaled copy of
+constexpr uint32_t kFirstBookMesh = 1;  // then kBookMeshes book meshes
+
+// The room's measures, from the spec.
+struct LibraryLayout {
+    explicit LibraryLayout(const LibrarySpec& spec)
+        : aisle(spec.aisle_width_m),
+          pitch(kShelfDepth + aisle),
+          unit(spec.books_per_level * kBookSlot + kSideThickness),
+          row_length(spec.shelves_per_row * unit + kSideThickness),
+          // The side panels rise 2 cm above the top board, so their tops and its top are not
+          // coplanar.
+          shelf_height(kFirstBoardY + spec.levels * kLevelPitch + kBoardThickness + 0.02),
+          room_x0(-aisle),
+          room_x1(row_length + aisle),
+          room_z0(-aisle),
+          room_z1((spec.rows - 1) * pitch + kShelfDepth + aisle),
+          wall_height(shelf_height + kWallAboveShelves) {}
+    double aisle, pitch, unit, row_length, shelf_height;
+    double room_x0, room_x1, room_z0, room_z1, wall_height;
+};
+
+// Floor and walls. The walls along x run past the corners; those along z stop 1 cm short of
+// them, so the corners show no crack and no two walls touch.
+void addFloorAndWalls(const LibraryLayout& l, SourceOutput& out) {
+    const double t = kWallThickness, f = kAboveFloor;
+    out.objects.push_back(
+        placeUnitBox(kUnitBox, {l.room_x0 - t, -0.2, l.room_z0 - t}, {l.room_x1 + t, 0.0, l.room_z1 + t}));
+    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z0 - t},
+                                       {l.room_x1 + 1.5 * t, l.wall_height, l.room_z0}));
+    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z1},
+                                       {l.room_x1 + 1.5 * t, l.wall_height, l.room_z1 + t}));
+    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - t, f, l.room_z0 + 0.01},
+                                       {l.room_x0, l.wall_height, l.room_z1 - 0.01}));
+    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x1, f, l.room_z0 + 0.01},
+                                       {l.room_x1 + t, l.wall_height, l.room_z1 - 0.01}));
+}
+
+// One board's row of books between inner0 and inner1 (x), standing on board_top, their backs
+// towards z1. Thickness, height, depth, gap and set-back of each book are drawn before placing so
+// the row can be squeezed to fit the board exactly when it comes out too wide.
+void addBooks(const LibrarySpec& spec, double inner0, double inner1, double board_top, double z1,
+              Rng& rng, SourceOutput& out) {
+    struct Book {
+        double thick, height, depth, gap, setback;
+        uint32_t mesh;
+    };
+    std::vector<Book> books(spec.books_per_level);
+    double total = 0.0;
+    for (Book& b : books) {
+        b.thick = rng.uniform(0.018, 0.048);
+        b.height = rng.uniform() < 0.15 ? rng.uniform(0.30, 0.36) : rng.uniform(0.18, 0.29);
+        b.depth = rng.uniform(0.14, 0.30);
+        b.gap = rng.uniform(0.0015, 0.004);  // books never touch (see above)
+        b.setback = rng.uniform(kBoardInset + 0.003, kBoardInset + 0.03);
+        b.mesh = kFirstBookMesh + rng.below(kBookMeshes);
+        total += b.thick + b.gap;
+    }
+    const double room = inner1 - inner0 - 0.004;
+    const double squeeze = total > room ? room / total : 1.0;
+    double x = inner0 + 0.002 + rng.uniform(0.0, std::max(0.0, room - total));
+    for (const Book& b : books) {
+        const double thick = b.thick * squeeze;
+        PlacedObject book;
+        book.mesh = b.mesh;
+        book.position = {x + 0.5 * thick, board_top + kBookLift, z1 - b.setback - 0.5 * b.depth};
+        book.linear = scaleMatrix(glm::vec3(static_cast<float>(thick), static_cast<float>(b.height),
+                                            static_cast<float>(b.depth)));
+        out.objects.push_back(book);
+        x += thick + b.gap * squeeze;
+    }
+}
+
+// Shelf unit u of row r: its side panels (one on the left of every unit, plus the last unit's
+// right one), its boards, and the books on every board but the top one.
+void addShelfUnit(const LibrarySpec& spec, const LibraryLayout& l, uint32_t r, uint32_t u, Rng& rng,
+                  SourceOutput& out) {
+    const double z0 = r * l.pitch, z1 = z0 + kShelfDepth;
+    const double x0 = u * l.unit;  // left face of this unit's left side panel
+    out.objects.push_back(
+        placeUnitBox(kUnitBox, {x0, kAboveFloor, z0}, {x0 + kSideThickness, l.shelf_height, z1}));
+    if (u + 1 == spec.shelves_per_row) {
+        out.objects.push_back(placeUnitBox(kUnitBox, {x0 + l.unit, kAboveFloor, z0},
+                                           {x0 + l.unit + kSideThickness, l.shelf_height, z1}));
+    }
+    const double inner0 = x0 + kSideThickness + kClear, inner1 = x0 + l.unit - kClear;
+    for (uint32_t level = 0; level <= spec.levels; ++level) {
+        const double board_top = kFirstBoardY + level * kLevelPitch + kBoardThickness;
+        out.objects.push_back(placeUnitBox(kUnitBox, {inner0, board_top - kBoardThickness, z0},
+                                           {inner1, board_top, z1 - kBoardInset}));
+        if (level == spec.levels) break;  // the top board carries no books
+        addBooks(spec, inner0, inner1, board_top, z1, rng, out);
+    }
+}
+
 }  // namespace
 
 SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
@@ -77,101 +172,22 @@ SourceOutput generateLibrary(const LibrarySpec& spec, uint64_t seed) {
     }
     SourceOutput out;
     Rng rng(seed);
-    const double aisle = spec.aisle_width_m;
-    const double pitch = kShelfDepth + aisle;
-    const double unit = spec.books_per_level * kBookSlot + kSideThickness;
-    const double row_length = spec.shelves_per_row * unit + kSideThickness;
-    // The side panels rise 2 cm above the top board, so their tops and its top are not coplanar.
-    const double top_board = kFirstBoardY + spec.levels * kLevelPitch + kBoardThickness;
-    const double shelf_height = top_board + 0.02;
-    const double room_x0 = -aisle, room_x1 = row_length + aisle;
-    const double room_z0 = -aisle, room_z1 = (spec.rows - 1) * pitch + kShelfDepth + aisle;
-    const double wall_height = shelf_height + kWallAboveShelves;
-
-    out.meshes.push_back(makeBox(glm::vec3(1.0f)));
-    const uint32_t unit_box = 0;
-    const uint32_t first_book_mesh = 1;
-    out.meshes.push_back(bookMesh(0, 0.12f));
+    const LibraryLayout l(spec);
+    out.meshes.push_back(makeBox(glm::vec3(1.0f)));  // the unit box, mesh 0
+    out.meshes.push_back(bookMesh(0, 0.12f));        // the book meshes, from kFirstBookMesh
     out.meshes.push_back(bookMesh(2, 0.10f));
     out.meshes.push_back(bookMesh(3, 0.14f));
     out.meshes.push_back(bookMesh(2, 0.18f));
-
-    // Floor and walls. The walls along x run past the corners; those along z stop 1 cm short of
-    // them, so the corners show no crack and no two walls touch.
-    const double t = kWallThickness, f = kAboveFloor;
-    out.objects.push_back(
-        placeUnitBox(unit_box, {room_x0 - t, -0.2, room_z0 - t}, {room_x1 + t, 0.0, room_z1 + t}));
-    out.objects.push_back(placeUnitBox(unit_box, {room_x0 - 1.5 * t, f, room_z0 - t},
-                                       {room_x1 + 1.5 * t, wall_height, room_z0}));
-    out.objects.push_back(placeUnitBox(unit_box, {room_x0 - 1.5 * t, f, room_z1},
-                                       {room_x1 + 1.5 * t, wall_height, room_z1 + t}));
-    out.objects.push_back(placeUnitBox(unit_box, {room_x0 - t, f, room_z0 + 0.01},
-                                       {room_x0, wall_height, room_z1 - 0.01}));
-    out.objects.push_back(placeUnitBox(unit_box, {room_x1, f, room_z0 + 0.01},
-                                       {room_x1 + t, wall_height, room_z1 - 0.01}));
-
+    addFloorAndWalls(l, out);
     for (uint32_t r = 0; r < spec.rows; ++r) {
-        const double z0 = r * pitch, z1 = z0 + kShelfDepth;
-        for (uint32_t u = 0; u < spec.shelves_per_row; ++u) {
-            const double x0 = u * unit;  // left face of this unit's left side panel
-            // Side panels: one on the left of every unit, plus the last unit's right one.
-            out.objects.push_back(placeUnitBox(unit_box, {x0, kAboveFloor, z0},
-                                               {x0 + kSideThickness, shelf_height, z1}));
-            if (u + 1 == spec.shelves_per_row) {
-                out.objects.push_back(placeUnitBox(unit_box, {x0 + unit, kAboveFloor, z0},
-                                                   {x0 + unit + kSideThickness, shelf_height, z1}));
-            }
-            const double inner0 = x0 + kSideThickness + kClear, inner1 = x0 + unit - kClear;
-            for (uint32_t level = 0; level <= spec.levels; ++level) {
-                const double board_top = kFirstBoardY + level * kLevelPitch + kBoardThickness;
-                out.objects.push_back(placeUnitBox(unit_box,
-                                                   {inner0, board_top - kBoardThickness, z0},
-                                                   {inner1, board_top, z1 - kBoardInset}));
-                if (level == spec.levels) break;  // the top board carries no books
-
-                // Thickness, height, depth, gap and set-back of each book, drawn before placing
-                // so the row can be squeezed to fit the board exactly when it comes out too wide.
-                struct Book {
-                    double thick, height, depth, gap, setback;
-                    uint32_t mesh;
-                };
-                std::vector<Book> books(spec.books_per_level);
-                double total = 0.0;
-                for (Book& b : books) {
-                    b.thick = rng.uniform(0.018, 0.048);
-                    b.height =
-                        rng.uniform() < 0.15 ? rng.uniform(0.30, 0.36) : rng.uniform(0.18, 0.29);
-                    b.depth = rng.uniform(0.14, 0.30);
-                    b.gap = rng.uniform(0.0015, 0.004);  // books never touch (see above)
-                    b.setback = rng.uniform(kBoardInset + 0.003, kBoardInset + 0.03);
-                    b.mesh = first_book_mesh + rng.below(kBookMeshes);
-                    total += b.thick + b.gap;
-                }
-                const double room = inner1 - inner0 - 0.004;
-                const double squeeze = total > room ? room / total : 1.0;
-                double x = inner0 + 0.002 + rng.uniform(0.0, std::max(0.0, room - total));
-                for (const Book& b : books) {
-                    const double thick = b.thick * squeeze;
-                    PlacedObject book;
-                    book.mesh = b.mesh;
-                    book.position = {x + 0.5 * thick, board_top + kBookLift,
-                                     z1 - b.setback - 0.5 * b.depth};
-                    book.linear = scaleMatrix(glm::vec3(static_cast<float>(thick),
-                                                        static_cast<float>(b.height),
-                                                        static_cast<float>(b.depth)));
-                    out.objects.push_back(book);
-                    x += thick + b.gap * squeeze;
-                }
-            }
-        }
+        for (uint32_t u = 0; u < spec.shelves_per_row; ++u) addShelfUnit(spec, l, r, u, rng, out);
     }
-
     // One loop round each row, 3/8 of an aisle out from its shelves, clockwise seen from above.
-    const double d = 0.375 * aisle, y = kLaneHeight;
+    const double d = 0.375 * l.aisle, y = kLaneHeight;
     for (uint32_t r = 0; r < spec.rows; ++r) {
-        const double z0 = r * pitch - d, z1 = r * pitch + kShelfDepth + d;
+        const double z0 = r * l.pitch - d, z1 = r * l.pitch + kShelfDepth + d;
         out.lanes.push_back(
-            {{-d, y, z0}, {row_length + d, y, z0}, {row_length + d, y, z1}, {-d, y, z1}});
+            {{-d, y, z0}, {l.row_length + d, y, z0}, {l.row_length + d, y, z1}, {-d, y, z1}});
     }
     out.region = sourceBounds(out);
     return out;
