@@ -8,7 +8,8 @@
 #   paper:   scenarios/paper/{teapots,city,library,plant}.json (the default set)
 #   general: scenarios/general/*.json (the generalisation set)
 #   default: scenarios/teapots.json
-# Output: out/results/<set>/<scene>/run-<n>/{summary.json,frames.csv,report.md}
+# Output: out/results/<set>/<scene>/run-<n>/{summary.json,frames.csv,report.md}, then the set's
+# table (scripts/results_table.py: means, spreads, the fastest conservative culler, loads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 set_name=${1:-paper}
@@ -29,3 +30,6 @@ for scene in "${scenes[@]}"; do
     ./build/release/sim/occsim bench "$scene" --error --out "out/results/$set_name/$name/run-$run" "$@"
   done
 done
+# The table of this set (docs/results.md's format): means of the two runs, their spread, loads.
+command -v python3 >/dev/null || { echo "results.sh: the table needs python3 (apt-get install python3)" >&2; exit 1; }
+python3 scripts/results_table.py "out/results/$set_name"

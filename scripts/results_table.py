@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""The tables of docs/results.md from the runs scripts/results.sh made.
+
+Usage: scripts/results_table.py out/results/<set> [more sets...]
+
+Reads <set>/<scene>/run-<n>/summary.json (two or more runs per scene) and prints, per set, one
+markdown table: per scene and algorithm the speedup over VFC as the mean of the runs with their
+spread (half the range), VFC's frame time, the ratio of statistical+ to Ideal, the fastest
+conservative culler (bold; every culler within the spread of the fastest is marked too), the
+error (pixels and missed objects, summed over the runs) and the load average before and after each
+run. A run whose summary says busy is flagged: such a table is not a result.
+"""
+import json
+import os
+import sys
+
+ORDER = ["vfc", "stop-and-wait", "statistical", "statistical+", "chc", "chc++", "async", "ideal"]
+NOT_CONSERVATIVE = {"async", "ideal"}  # async may miss; ideal is the oracle, not a culler
+
+
+def runs_of(scene_dir):
+    runs = []
+    for name in sorted(os.listdir(scene_dir)):
+        path = os.path.join(scene_dir, name, "summary.json")
+        if name.startswith("run-") and os.path.isfile(path):
+            with open(path) as f:
+                runs.append(json.load(f))
+    return runs
+
+
+def by_configuration(summary):
+    return {a["configuration"]: a for a in summary["algorithms"]}
+
+
+def fmt_load(machine):
+    before = machine.get("load_average_before") or [float("nan")]
+    after = machine.get("load_average_after") or [float("nan")]
+    return f"{before[0]:.2f}/{after[0]:.2f}"
+
+
+def scene_row(scene, runs):
+    tables = [by_configuration(r) for r in runs]
+    configs = [c for c in ORDER if all(c in t for t in tables)]
+    configs += [c for c in tables[0] if c not in configs and all(c in t for t in tables)]
+    speed = {}
+    for c in configs:
+        values = [t[c]["speedup_over_vfc"] for t in tables]
+        if any(v is None for v in values):
+            continue
+        speed[c] = (sum(values) / len(values), (max(values) - min(values)) / 2)
+    conservative = [c for c in speed if c not in NOT_CONSERVATIVE]
+    fastest = max(conservative, key=lambda c: speed[c][0]) if conservative else None
+    best_mean, best_spread = speed[fastest] if fastest else (0.0, 0.0)
+    cells = []
+    for c in configs:
+        if c not in speed:
+            cells.append("n/a")
+            continue
+        mean, spread = speed[c]
+        text = f"{mean:.2f}× ±{spread:.2f}"
+        if c == fastest:
+            text = f"**{text}**"
+        elif c in conservative and mean + spread >= best_mean - best_spread:
+            text = f"_{text}_"  # within the spread of the fastest
+        cells.append(text)
+    vfc_ms = [t["vfc"]["frame_ms"]["mean"] for t in tables if "vfc" in t]
+    error_px = sum(t[c].get("error", {}).get("pixels_total", 0) for t in tables for c in configs
+                   if c not in NOT_CONSERVATIVE)
+    missed = sum(t[c].get("error", {}).get("missed_objects_total", 0) for t in tables for c in configs
+                 if c not in NOT_CONSERVATIVE)
+    ideal_ratio = ""
+    if "statistical+" in configs and all(t["statistical+"].get("ratio_to_ideal") for t in tables):
+        ratios = [t["statistical+"]["ratio_to_ideal"] for t in tables]
+        ideal_ratio = f"{sum(ratios) / len(ratios):.2f}"
+    loads = ", ".join(fmt_load(r["machine"]) + (" BUSY" if r["machine"].get("busy") else "")
+                      for r in runs)
+    vfc = f"{sum(vfc_ms) / len(vfc_ms):.1f}" if vfc_ms else "n/a"
+    return configs, [scene, vfc] + cells + [ideal_ratio, f"{error_px} / {missed}", loads], fastest
+
+
+def table(set_dir):
+    rows, header, leads, scenes = [], None, 0, 0
+    for scene in sorted(os.listdir(set_dir)):
+        scene_dir = os.path.join(set_dir, scene)
+        if not os.path.isdir(scene_dir):
+            continue
+        runs = runs_of(scene_dir)
+        if len(runs) < 2:
+            print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need two",
+                  file=sys.stderr)
+            continue
+        configs, row, fastest = scene_row(scene, runs)
+        if header is None:
+            header = ["scene", "VFC ms"] + configs + ["statistical+ / Ideal",
+                                                      "error px / missed (conservative)",
+                                                      "load before/after per run"]
+        rows.append(row)
+        scenes += 1
+        leads += fastest == "statistical+"
+    if header is None:
+        return f"(no scene of {set_dir} has two runs)\n"
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(r) + " |" for r in rows]
+    out.append("")
+    out.append(f"statistical+ fastest conservative culler on {leads} of {scenes} scenes "
+               f"(bold: fastest; italic: within the spread of the fastest).")
+    return "\n".join(out) + "\n"
+
+
+def main(argv):
+    if len(argv) < 2:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    for set_dir in argv[1:]:
+        if not os.path.isdir(set_dir):
+            print(f"results_table: {set_dir}: no such folder (run scripts/results.sh first)",
+                  file=sys.stderr)
+            return 2
+        print(f"### {os.path.basename(os.path.normpath(set_dir))}\n")
+        print(table(set_dir))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
