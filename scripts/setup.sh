@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and micro-benchmarks
   xvfb xauth                                    # window test under a virtual X server
   gnuplot-nox                                   # charts (occsim bench --plots)
+  clang-format                                  # the format check (scripts/format.sh)
 )
 
 missing=()
