@@ -285,6 +285,40 @@ TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound)
     EXPECT_LE(most_in_flight[1], 4u * static_cast<uint32_t>(StatisticalOptions::kMaxRunAhead));
 }
 
+// (8) Descend visible inner nodes: an inner node last found visible whose re-query is due is not
+// queried; its children decide. Leaves are still re-queried, and the paper queries both.
+TEST(StatisticalDescendVisibleInnerNodes, AVisibleInnerNodeDueForAQueryIsNotQueried) {
+    const std::vector<Aabb> boxes = randomBoxes(300, 5);
+    const BspTree tree = buildTree(boxes);
+    const std::vector<uint8_t> visible(boxes.size(), 1);
+    const CullView view = makeView({0, 5, 0}, {100, 0, 0});
+    for (const bool descend : {false, true}) {
+        StatisticalOptions o;
+        o.ready_answers = true;
+        o.base_time_s = 0.1;
+        o.descend_visible_inner_nodes = descend;
+        StatisticalCuller culler(o);
+        culler.reset(tree);
+        ScriptedQueryDevice device(4);
+        runScripted(culler, tree, device, boxes, visible, makeFrame(view, 0, 0.0));
+        // 0.5 s later every re-query is due (0.1 s * (2 - 0.5)).
+        const ScriptedFrame f = runScripted(culler, tree, device, boxes, visible, makeFrame(view, 1, 0.5));
+        expectConservative(f, boxes, visible, view, descend ? "descend" : "paper");
+        uint32_t inner = 0, leaves = 0;
+        for (const QueryTag& q : f.queries) {
+            if (q.subject != QueryTag::Subject::Node) continue;
+            (tree.node(q.index).isLeaf() ? leaves : inner) += 1;
+        }
+        EXPECT_GT(leaves, 0u) << "leaves are re-queried either way";
+        if (descend) {
+            EXPECT_EQ(inner, 0u) << "no visible inner node is re-queried";
+            EXPECT_GT(culler.lastFrame().inner_descents, 0u);
+        } else {
+            EXPECT_GT(inner, 0u) << "the paper re-queries inner nodes too";
+        }
+    }
+}
+
 // (6) Draw while re-querying: a node last found visible whose re-query is due is drawn in the
 // same pass as its query, and its answer, arriving late, only updates its statistics (in the next
 // frame). The paper's culler waits for that answer before it draws.
@@ -652,6 +686,15 @@ StatisticalOptions optionsNamed(const std::string& name) {
         o.ready_answers = true;
         o.draw_while_requerying = true;
     }
+    if (name == "weigh") {
+        o.ready_answers = true;
+        o.weigh_in_flight = true;
+    }
+    if (name == "descend") {
+        o.ready_answers = true;
+        o.descend_visible_inner_nodes = true;
+        o.draw_while_requerying = true;
+    }
     return o;
 }
 
@@ -713,7 +756,8 @@ TEST_P(StatisticalConservative, DrawsEverythingGroundTruthSeesAndDecidesTheSameT
 
 INSTANTIATE_TEST_SUITE_P(Options, StatisticalConservative,
                          ::testing::Values("paper", "ready", "leaves", "objects", "costs",
-                                           "distance", "parallax", "fallback", "draw", "plus"));
+                                           "distance", "parallax", "fallback", "draw", "weigh",
+                                           "descend", "plus"));
 
 }  // namespace
 }  // namespace occsim

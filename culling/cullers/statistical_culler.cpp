@@ -359,6 +359,16 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
             renderNode(tree, frame, entry, device);
             return false;
         }
+        if (options_.descend_visible_inner_nodes && decision.kind == QueryKind::LastVisible &&
+            !tree.node(entry.index).isLeaf()) {
+            // Improvement 8: its children decide; the interval runs again from now, as when the
+            // cost model puts a query off, and the statistics keep their age.
+            stats_[entry.index].deferred_time_s = frame.time_s;
+            stats_[entry.index].deferred_travel_m = travelOf(entry);
+            ++counters_.inner_descents;
+            renderNode(tree, frame, entry, device);
+            return false;
+        }
         if (drawsWhileRequerying(decision)) {
             issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), QueryTag::node(entry.index),
                         decision, device);
@@ -658,6 +668,10 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                                  "a subject last found visible whose re-query is due is drawn at "
                                  "once; its answer, taken when ready, only updates statistics"),
                    0.0),
+        switchable(booleanOption("descend_visible_inner_nodes", d.descend_visible_inner_nodes,
+                                 "an inner node last found visible whose re-query is due is not "
+                                 "queried: its children decide"),
+                   0.0),
         switchable(booleanOption("weigh_in_flight", d.weigh_in_flight,
                                  "with ready_answers, each query in flight counts by its chance of "
                                  "coming back visible against queries_before_restart"),
@@ -717,6 +731,7 @@ StatisticalOptions statisticalOptionsFrom(const OptionValues& v) {
     o.fallback_recheck_s = v.number("fallback_recheck");
     o.draw_while_requerying = v.flag("draw_while_requerying");
     o.weigh_in_flight = v.flag("weigh_in_flight");
+    o.descend_visible_inner_nodes = v.flag("descend_visible_inner_nodes");
     return o;
 }
 

@@ -119,6 +119,7 @@ struct StatisticalFrameCounters {
     // ready_answers) fewer than queries_before_restart queries were in flight.
     uint32_t blocked_with_work_left = 0;
     uint32_t update_queries = 0;         // draw_while_requerying: queries whose answer only updates
+    uint32_t inner_descents = 0;         // descend_visible_inner_nodes: re-queries not issued
     bool frustum_only = false;           // a fallback frame (improvement 5)
 };
 

@@ -69,6 +69,13 @@ struct StatisticalOptions {
     // queries_before_restart are in flight. Off (also in plus(), until measured on a quiet
     // machine: docs/statistical.md): each query counts as one.
     bool weigh_in_flight = false;
+    // (8) An inner node last found visible whose re-query is due is not queried: its subtree is
+    // traversed and its children decide, as CHC pulls an inner node's visibility up from its
+    // leaves instead of querying it. The re-query interval starts again from now; once the
+    // statistics are older than max_statistics_age_s the node is queried afresh. Leaves, virtual
+    // leaves and single objects are decided as before (with draw_while_requerying, drawn at once
+    // and queried in the same pass). Off: the paper re-queries inner nodes like leaves.
+    bool descend_visible_inner_nodes = false;
     static constexpr double kMaxRunAhead = 8.0;
 
     // The paper as published (the default).
