@@ -142,9 +142,12 @@ int runTuner(const TuneOptions& o) {
     Scenario held_out = c.scenario;
     held_out.seed = o.holdout_seed.value_or(c.scenario.seed + 1);
     try {
-        for (const auto& [scenario, variant] :
+        for (const auto& run :
              {std::pair<const Scenario*, std::string>{&c.scenario, "fitted (seed " + std::to_string(c.scenario.seed) + ")"},
               std::pair<const Scenario*, std::string>{&held_out, "held out (seed " + std::to_string(held_out.seed) + ")"}}) {
+            // Named, not a structured binding: clang 14 (the fuzz preset) cannot capture one.
+            const Scenario* scenario = run.first;
+            const std::string& variant = run.second;
             r.confirmation.push_back(confirm(*scenario, algorithm, variant, tuned, paper, o.repetitions, o.backend, [&](const FrameEvent& e) {
                 progress.setStage("confirming, " + variant + ": repetition " + std::to_string(e.repetition + 1) + "/" +
                                   std::to_string(o.repetitions) + ", frame " + std::to_string(e.frame + 1) + "/" +
