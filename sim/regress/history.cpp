@@ -86,7 +86,7 @@ double numberOr(const Json& j, const char* key, double fallback) {
 }  // namespace
 
 std::string HistoryEntry::series() const {
-    return hostname + " | " + cpu + " | " + renderer + " | " + backend;
+    return hostname + "; " + cpu + "; " + renderer + "; " + backend;
 }
 
 HistoryEntry historyEntryNow(const std::vector<std::pair<std::string, Json>>& summaries,
