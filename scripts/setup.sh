@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs exactly the Debian 12 packages occsim needs that are missing, and nothing when all are
 # present. Needs root (or sudo) only when something must be installed.
+# `setup.sh cluster` installs instead what the cluster test needs (tests/cluster/slurm_regress.sh:
+# a single-node Slurm with munge), which the README's build and test commands do not.
 set -euo pipefail
 
 packages=(
@@ -16,6 +18,12 @@ packages=(
   gnuplot-nox                                   # charts (occsim bench --plots)
   clang-format                                  # the format check (scripts/format.sh)
 )
+if [ "${1:-}" = cluster ]; then
+  packages=(slurm-wlm munge)
+elif [ $# -gt 0 ]; then
+  echo "setup: unknown argument '$1'; expected none or 'cluster'" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,4 +1,5 @@
-// occsim: the simulator executable. Commands: run, bench, regress, info, devices, cullers, view.
+// occsim: the simulator executable. Commands: run, bench, regress, merge, history, info, devices,
+// cullers, view.
 // Bad input (flags, scenario and script files, plugins, a headless backend or device that is
 // missing or falls short) ends with one line on stderr and exit code 2, and so does `view` where
 // no window can be opened; runtime failures (OpenGL, output) with exit 1.
@@ -11,6 +12,8 @@
 #include "sim/output/report.h"
 #include "sim/output/run_outputs.h"
 #include "sim/regress/regress.h"
+#include "sim/regress/result_files.h"
+#include "sim/regress_commands.h"
 #include "sim/run/run_config.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
@@ -320,9 +323,10 @@ int runCommand(const RunRequest& request) {
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
                    const std::string& shard, const std::string& out, const std::string& culling_file,
                    const std::vector<std::string>& plugins, const BackendFlags& backend,
-                   bool junit_given) {
+                   bool junit_given, const std::string& history, const std::string& commit) {
     checkOutputFile("--junit", junit, junit_given);
     checkOutputFolder("--out", out, true);
+    occsim_cli::checkHistoryFlag(history);
     loadPlugins(plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(backend);
@@ -354,6 +358,7 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
         if (junit_path.has_parent_path()) std::filesystem::create_directories(junit_path.parent_path());
         occsim::writeFileAtomically(junit_path, occsim::junitXml(report));
     }
+    if (!update) occsim_cli::writeRegressResults(options, report, history, commit);
     std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
                 options.shard.index, options.shard.count, failed, skipped);
     return report.passed() ? 0 : kExitFailure;
@@ -455,6 +460,36 @@ int main(int argc, char** argv) {
     addPluginFlag(regress, regress_plugins);
     BackendFlags regress_backend;
     addBackendFlags(regress, regress_backend);
+    std::string regress_history, regress_commit;
+    regress->add_option("--history", regress_history,
+                        "Append this run's figures to a history folder (occsim history DIR reports it)");
+    regress->add_option("--commit", regress_commit,
+                        "Commit recorded in the history (default: $OCCSIM_COMMIT, $GITHUB_SHA, "
+                        "$CI_COMMIT_SHA or git rev-parse HEAD)");
+
+    occsim_cli::MergeFlags merge_flags;
+    CLI::App* merge = app.add_subcommand(
+        "merge", "Join the --out folders of the shards of one regress run into one report, checking that "
+                 "every scenario ran exactly once");
+    merge->add_option("shards", merge_flags.dirs, "The shards' --out folders")->required();
+    merge->add_option("--out", merge_flags.out, "Folder for the merged report (default out/merged)");
+    merge->add_option("--junit", merge_flags.junit, "Also write the merged JUnit XML to this file");
+    merge->add_option("--history", merge_flags.history, "Append the merged run's figures to a history folder");
+    merge->add_option("--commit", merge_flags.commit, "Commit recorded in the history (as for regress)");
+
+    occsim_cli::HistoryFlags history_flags;
+    CLI::App* history = app.add_subcommand(
+        "history", "Report a history folder: plots over the runs, changes beyond the run-to-run spread flagged");
+    history->add_option("dir", history_flags.dir, "History folder (regress --history)")->required();
+    history->add_option("--out", history_flags.out, "Folder for report.md and the plots (default out/history)");
+    history->add_option("--window", history_flags.window,
+                        "Compare the median of the last N runs with the N before (default 3)")
+        ->check(integerIn(1, 1000));
+    history->add_option("--min-change", history_flags.min_change,
+                        "Smallest relative change flagged, beside the spread (default 0.05)")
+        ->check(CLI::Range(0.0, 10.0));
+    history->add_flag("--fail-on-change", history_flags.fail_on_change,
+                      "Exit with status 1 when a figure got worse beyond the spread");
 
     bool cullers_markdown = false;
     std::vector<std::string> cullers_plugins;
@@ -535,7 +570,9 @@ int main(int argc, char** argv) {
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
                                              regress_shard, regress_out, regress_culling,
                                              regress_plugins, regress_backend,
-                                             regress->count("--junit") > 0);
+                                             regress->count("--junit") > 0, regress_history, regress_commit);
+        if (*merge) return occsim_cli::mergeCommand(merge_flags);
+        if (*history) return occsim_cli::historyCommand(history_flags);
         if (*cullers) {
             loadPlugins(cullers_plugins);
             std::printf("%s", (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
@@ -570,6 +607,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
     } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const occsim::ResultFileError& e) {  // a shard result, a history entry
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
     } catch (const BadInput& e) {

@@ -1,0 +1,173 @@
+#include "sim/regress/shard_result.h"
+
+#include "sim/output/atomic_file.h"
+#include "sim/regress/junit_reader.h"
+#include "sim/regress/result_files.h"
+#include "sim/scenario/json_reader.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace occsim {
+namespace {
+
+constexpr const char* kFormat = "occsim-regress-shard";
+
+void fnv1a(uint64_t& h, const std::string& bytes) {
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    h ^= 0xff;  // separator: "ab"+"c" differs from "a"+"bc"
+    h *= 1099511628211ull;
+}
+
+std::string fileText(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream s;
+    if (in) s << in.rdbuf();
+    return s.str();
+}
+
+Json outcomeJson(const ScenarioOutcome& s) {
+    Json checks = Json::array();
+    for (const CheckResult& c : s.checks) {
+        checks.push_back({{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
+    }
+    return {{"file", s.scenario}, {"name", s.name},       {"skipped", s.skipped},   {"note", s.note},
+            {"seconds", s.seconds}, {"captures", s.captures}, {"checks", checks}};
+}
+
+std::vector<std::string> stringList(JsonObjectReader& object, const char* key) {
+    const JsonArrayReader array = object.array(key);
+    std::vector<std::string> out;
+    for (size_t i = 0; i < array.size(); ++i) out.push_back(array.at(i).asString());
+    return out;
+}
+
+ScenarioOutcome readOutcome(const JsonValueReader& value) {
+    JsonObjectReader o = value.asObject();
+    ScenarioOutcome s;
+    s.scenario = o.required("file").asString();
+    s.name = o.required("name").asString();
+    s.skipped = o.required("skipped").asBool();
+    s.note = o.required("note").asString();
+    s.seconds = o.required("seconds").asNumber(NumberRange::atLeast(0));
+    s.captures = stringList(o, "captures");
+    const JsonArrayReader checks = o.array("checks");
+    for (size_t i = 0; i < checks.size(); ++i) {
+        JsonObjectReader c = checks.at(i).asObject();
+        s.checks.push_back({c.required("check").asString(), c.required("expected").asString(),
+                            c.required("got").asString(), c.required("passed").asBool()});
+        c.finish();
+    }
+    o.finish();
+    return s;
+}
+
+// The junit.xml beside shard.json must hold the same scenarios with the same counts: a file cut
+// short or edited fails here, not in the merged report.
+void checkJunitAgrees(const std::filesystem::path& file, const RegressReport& report) {
+    const std::vector<JunitSuite> suites = readJunit(file);
+    if (suites.size() != report.scenarios.size()) {
+        throw ResultFileError(file.string() + ": expected " + std::to_string(report.scenarios.size()) +
+                              " testsuites (one per scenario in shard.json), got " + std::to_string(suites.size()));
+    }
+    for (size_t i = 0; i < suites.size(); ++i) {
+        const ScenarioOutcome& s = report.scenarios[i];
+        size_t failed = 0;
+        for (const CheckResult& c : s.checks) failed += !c.passed;
+        const size_t tests = s.skipped ? 1 : s.checks.size();
+        if (suites[i].name != s.name || suites[i].testcases != tests || suites[i].failures != failed) {
+            throw ResultFileError(file.string() + ": testsuite " + std::to_string(i + 1) + " ('" + suites[i].name +
+                                  "', " + std::to_string(suites[i].testcases) + " testcases, " +
+                                  std::to_string(suites[i].failures) + " failures) differs from shard.json ('" +
+                                  s.name + "', " + std::to_string(tests) + " checks, " + std::to_string(failed) +
+                                  " failed)");
+        }
+    }
+}
+
+}  // namespace
+
+ScenarioSet scenarioSetOf(const std::vector<std::filesystem::path>& inputs) {
+    ScenarioSet set;
+    uint64_t h = 14695981039346656037ull;
+    for (const auto& path : collectScenarios(inputs, Shard{})) {
+        set.scenarios.push_back(path.string());
+        fnv1a(h, path.string());
+        fnv1a(h, fileText(path));
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    set.id = buf;
+    return set;
+}
+
+std::string shardResultJson(const ShardResult& r) {
+    Json scenarios = Json::array();
+    for (const ScenarioOutcome& s : r.report.scenarios) scenarios.push_back(outcomeJson(s));
+    const Json j = {{"format", kFormat},
+                    {"version", ShardResult::kFormatVersion},
+                    {"scenario_set", {{"id", r.set.id}, {"scenarios", r.set.scenarios}}},
+                    {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
+                    {"scenarios", scenarios}};
+    return j.dump(2) + "\n";
+}
+
+void writeShardResult(const std::filesystem::path& dir, const ShardResult& result) {
+    std::filesystem::create_directories(dir);
+    writeFileAtomically(dir / "junit.xml", junitXml(result.report));
+    writeFileAtomically(dir / "shard.json", shardResultJson(result));
+}
+
+ShardResult readShardResult(const std::filesystem::path& dir) {
+    const std::filesystem::path file = dir / "shard.json";
+    const std::string name = file.string();
+    if (!std::filesystem::is_regular_file(file)) {
+        throw ResultFileError(name + ": missing; expected the --out folder of an `occsim regress` run");
+    }
+    ShardResult r;
+    r.dir = dir;
+    try {
+        const Json root = parseStrictJson(fileText(file), name);
+        JsonObjectReader top(root, "", name);
+        if (top.string("format", "") != kFormat) {
+            top.fail("format", std::string("expected \"") + kFormat + "\": not a shard result of occsim regress");
+        }
+        const JsonValueReader version = top.required("version");
+        if (!(version.json().is_number_integer() && version.json() == ShardResult::kFormatVersion)) {
+            version.fail("shard result format version " + version.json().dump() + "; this program reads version " +
+                         std::to_string(ShardResult::kFormatVersion) + " (rerun the shard with this occsim)");
+        }
+        JsonObjectReader set = top.object("scenario_set");
+        r.set.id = set.required("id").asString();
+        r.set.scenarios = stringList(set, "scenarios");
+        set.finish();
+        JsonObjectReader shard = top.object("shard");
+        r.shard.count = static_cast<uint32_t>(shard.requiredUnsignedInteger("count", 1, 1000000));
+        r.shard.index = static_cast<uint32_t>(shard.requiredUnsignedInteger("index", 0, r.shard.count - 1));
+        shard.finish();
+        const JsonArrayReader scenarios = top.array("scenarios");
+        for (size_t i = 0; i < scenarios.size(); ++i) r.report.scenarios.push_back(readOutcome(scenarios.at(i)));
+        top.finish();
+    } catch (const ScenarioError& e) {
+        throw ResultFileError(e.what());
+    }
+    checkJunitAgrees(dir / "junit.xml", r.report);
+    return r;
+}
+
+Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& outcome) {
+    const std::filesystem::path file = dir / safeFileName(outcome.name) / "summary.json";
+    if (outcome.skipped || !std::filesystem::is_regular_file(file)) return nullptr;
+    try {
+        return parseStrictJson(fileText(file), file.string());
+    } catch (const ScenarioError& e) {
+        throw ResultFileError(e.what());
+    }
+}
+
+}  // namespace occsim
