@@ -1,6 +1,8 @@
 #include "render/gl_query_device.h"
 
+#include "occsim/culling/contract/query_id_check.h"
 #include "render/gl_api.h"
+#include "render/gl_checked_call.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,7 +24,8 @@ GlQueryDevice::GlQueryDevice(GlRenderer& renderer, LatencyMode latency)
 
 GlQueryDevice::~GlQueryDevice() {
     if (!gl_queries_.empty()) {
-        glDeleteQueries(static_cast<GLsizei>(gl_queries_.size()), gl_queries_.data());
+        OCCSIM_GL_CHECKED(
+            glDeleteQueries(static_cast<GLsizei>(gl_queries_.size()), gl_queries_.data()));
     }
 }
 
@@ -58,16 +61,18 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
     } else {
         id = static_cast<QueryId>(gl_queries_.size());
         GLuint q = 0;
-        glGenQueries(1, &q);
+        OCCSIM_GL_CHECKED(glGenQueries(1, &q));
         gl_queries_.push_back(q);
         issued_at_.push_back(0);
         answered_.push_back(0);
+        live_.push_back(0);
     }
-    glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]);
+    OCCSIM_GL_CHECKED(glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]));
     for (const Aabb& box : boxes) renderer_.drawQueryBox(box);
-    glEndQuery(GL_SAMPLES_PASSED);
+    OCCSIM_GL_CHECKED(glEndQuery(GL_SAMPLES_PASSED));
     issued_at_[id] = commands_++;
     answered_[id] = 0;
+    live_[id] = 1;
     ++counters_.queries_issued;
     counters_.query_boxes += boxes.size();
     counters_.submit_seconds += secondsSince(start);
@@ -86,14 +91,25 @@ void GlQueryDevice::takeAnswerLatencies(std::vector<uint32_t>& out) {
     out.swap(latencies_);
 }
 
-bool GlQueryDevice::isQueryReady(QueryId id) {
+bool GlQueryDevice::isLive(QueryId id, const char* call) const {
+    const bool issued = id < live_.size();
+    if (issued && live_[id]) return true;
+    if (kCheckQueryIds) {
+        failQueryId("GlQueryDevice", call, id,
+                    issued ? "is not in flight (already taken)" : "was never issued");
+    }
+    return false;
+}
+
+bool GlQueryDevice::pollReady(QueryId id) {
     bool ready = false;
     if (latency_.deterministic) {
         ready = commands_ - issued_at_[id] > latency_.latency_commands;
     } else {
         const auto start = Clock::now();
         GLuint available = GL_FALSE;
-        glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available);
+        OCCSIM_GL_CHECKED(
+            glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available));
         counters_.poll_seconds += secondsSince(start);
         ready = available == GL_TRUE;
     }
@@ -101,11 +117,18 @@ bool GlQueryDevice::isQueryReady(QueryId id) {
     return ready;
 }
 
-uint64_t GlQueryDevice::queryResult(QueryId id) {
-    const bool ready = isQueryReady(id);
+bool GlQueryDevice::isQueryReady(QueryId id) {
+    if (!isLive(id, "isQueryReady")) return true;  // release builds: nothing to wait for
+    return answered_[id] || pollReady(id);          // once ready, never polled again
+}
+
+QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {
+    // Release builds: a dead id is answered "visible" (the safe answer) and released nothing.
+    if (!isLive(id, "takeAnswer")) return {};
+    const bool ready = answered_[id] || pollReady(id);
     const auto start = Clock::now();
     GLuint64 samples = 0;
-    glGetQueryObjectui64v(gl_queries_[id], GL_QUERY_RESULT, &samples);
+    OCCSIM_GL_CHECKED(glGetQueryObjectui64v(gl_queries_[id], GL_QUERY_RESULT, &samples));
     if (!ready) {
         // Waited for: the answer arrived with as many commands after the query as there are now.
         noteAnswered(id);
@@ -115,8 +138,9 @@ uint64_t GlQueryDevice::queryResult(QueryId id) {
         counters_.poll_seconds += secondsSince(start);
     }
     ++counters_.results_fetched;
+    live_[id] = 0;
     free_ids_.push_back(id);
-    return samples;
+    return {samples > 0, samples, !ready};
 }
 
 }  // namespace occsim

@@ -1,6 +1,11 @@
 // RenderDevice over real OpenGL occlusion queries (GL_SAMPLES_PASSED). Query objects come from a
 // pool that grows as needed and is reused; an id stays valid across frames until its result is
 // fetched. Draw and query submission time and blocked time are measured here, so cullers need not.
+// An answer is polled only until it is known to be ready: the device remembers that, so asking
+// again, or taking the answer, asks the driver nothing more than the result itself. Ids handed
+// back are checked (query_id_check.h: in debug builds a dead id aborts with a message; in every
+// build a dead id is never released twice), and so is every GL call here in debug builds
+// (gl_checked_call.h).
 // So is each query's latency as the culler feels it: how many commands (draws and queries) had
 // been submitted after it by the time its answer was known to be ready, when the culler polled
 // it or waited for it (takeAnswerLatencies()).
@@ -25,7 +30,7 @@ public:
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
-    uint64_t queryResult(QueryId id) override;
+    QueryAnswer takeAnswer(QueryId id) override;
 
     uint32_t queriesInFlight() const;
 
@@ -42,13 +47,18 @@ public:
 
 private:
     void noteAnswered(QueryId id);
+    bool pollReady(QueryId id);             // asks the driver (or the latency model) once
+    bool isLive(QueryId id, const char* call) const;  // issued and not yet taken
 
     GlRenderer& renderer_;
     LatencyMode latency_;
     uint64_t commands_ = 0;               // draws and queries submitted so far
     std::vector<uint32_t> gl_queries_;    // QueryId -> GL query object
     std::vector<uint64_t> issued_at_;     // QueryId -> commands_ when issued
-    std::vector<uint8_t> answered_;       // QueryId -> its latency is recorded
+    // QueryId -> known to be ready (its latency is recorded): the cache that keeps an answer
+    // from being polled again.
+    std::vector<uint8_t> answered_;
+    std::vector<uint8_t> live_;           // QueryId -> issued, answer not yet taken
     std::vector<uint32_t> latencies_;     // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;    // object -> drawn_set_ when drawn in the current set

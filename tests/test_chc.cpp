@@ -454,7 +454,7 @@ public:
         return inner_.issueQuery(boxes, tags);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
-    uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
     std::vector<std::vector<Aabb>> queries;
 
 private:
@@ -639,9 +639,10 @@ public:
         return inner_.issueQuery(boxes, tags);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
-    uint64_t queryResult(QueryId id) override {
-        EXPECT_TRUE(inner_.isQueryReady(id)) << "the asynchronous culler never waits";
-        return inner_.queryResult(id);
+    QueryAnswer takeAnswer(QueryId id) override {
+        const QueryAnswer answer = inner_.takeAnswer(id);
+        EXPECT_FALSE(answer.waited) << "the asynchronous culler never waits";
+        return answer;
     }
     std::vector<Command> log;
     uint64_t frame = 0;

@@ -2,6 +2,7 @@
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/cullers/basic_cullers.h"
+#include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "occsim/culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
@@ -345,10 +346,14 @@ TEST(ApproximateDevice, ThresholdTurnsSmallSampleCountsIntoOccluded) {
     ScriptedQueryDevice scripted(0);
     scripted.setVisibility({1, 1}, w.boxes);  // the scripted "samples" are visible objects hit
     ApproximateDevice device(scripted, {2, false});
-    EXPECT_EQ(device.queryResult(device.issueQuery(w.boxes[0])), 0u) << "1 sample <= 2";
-    EXPECT_EQ(device.queryResult(device.issueQuery(w.both)), 0u) << "2 samples <= 2";
+    const QueryAnswer one = device.takeAnswer(device.issueQuery(w.boxes[0]));
+    EXPECT_FALSE(one.visible) << "1 sample <= 2";
+    EXPECT_EQ(one.samples, 1u) << "the samples are reported as they were";
+    EXPECT_FALSE(device.takeAnswer(device.issueQuery(w.both)).visible) << "2 samples <= 2";
     ApproximateDevice exact(scripted, {0, false});
-    EXPECT_EQ(exact.queryResult(exact.issueQuery(w.boxes[0])), 1u);
+    const QueryAnswer seen = exact.takeAnswer(exact.issueQuery(w.boxes[0]));
+    EXPECT_TRUE(seen.visible);
+    EXPECT_EQ(seen.samples, 1u);
 }
 
 TEST(ApproximateDevice, StaleResultsAnswerAtOnceWithTheLastResultForTheSameBoxes) {
@@ -357,13 +362,17 @@ TEST(ApproximateDevice, StaleResultsAnswerAtOnceWithTheLastResultForTheSameBoxes
     ApproximateDevice device(scripted, {0, true});
     scripted.setVisibility({1, 0}, w.boxes);
     // No previous result: it waits, like any device.
-    EXPECT_EQ(device.queryResult(device.issueQuery(w.boxes[0])), 1u);
+    const QueryAnswer first = device.takeAnswer(device.issueQuery(w.boxes[0]));
+    EXPECT_TRUE(first.visible);
+    EXPECT_TRUE(first.waited);
     EXPECT_EQ(scripted.counters().results_waited, 1u);
     // The object disappears; the next query is not ready and gets last frame's answer at once.
     scripted.setVisibility({0, 0}, w.boxes);
     const QueryId q = device.issueQuery(w.boxes[0]);
     EXPECT_TRUE(device.isQueryReady(q));
-    EXPECT_EQ(device.queryResult(q), 1u) << "stale: still visible";
+    const QueryAnswer stale = device.takeAnswer(q);
+    EXPECT_TRUE(stale.visible) << "stale: still visible";
+    EXPECT_FALSE(stale.waited) << "a stale answer is not waited for";
     EXPECT_EQ(device.staleAnswers(), 1u);
     EXPECT_EQ(scripted.counters().results_waited, 1u) << "no new wait";
     EXPECT_EQ(device.lateResultsPending(), 1u);
@@ -371,7 +380,8 @@ TEST(ApproximateDevice, StaleResultsAnswerAtOnceWithTheLastResultForTheSameBoxes
     for (int i = 0; i < 120; ++i) scripted.drawObject(1);
     const QueryId again = device.issueQuery(w.boxes[0]);
     EXPECT_EQ(device.lateResultsPending(), 0u);
-    EXPECT_EQ(device.queryResult(again), 0u) << "the late result (occluded) is now the last one";
+    EXPECT_FALSE(device.takeAnswer(again).visible)
+        << "the late result (occluded) is now the last one";
 }
 
 TEST(ApproximateDevice, MakesTheStatisticalCullerMissObjectsOnlyWhenActive) {
@@ -396,6 +406,81 @@ TEST(ApproximateDevice, MakesTheStatisticalCullerMissObjectsOnlyWhenActive) {
             EXPECT_GT(missed, 0u) << "a threshold of 3 hides nodes with few visible objects";
         }
     }
+}
+
+// --- Query answers: one type, decided by the device, ids checked ------------------------------
+
+TEST(QueryAnswer, SaysVisibleTheSamplesAndWhetherTheCallerWaited) {
+    TwoObjects w;
+    ScriptedQueryDevice device(2);  // ready after 2 later commands
+    device.setVisibility({1, 0}, w.boxes);
+    const QueryId seen = device.issueQuery(w.both);
+    const QueryId hidden = device.issueQuery(w.boxes[1]);
+    device.drawObject(0);  // 2 commands after `seen`, 1 after `hidden`
+    EXPECT_TRUE(device.isQueryReady(seen));
+    const QueryAnswer a = device.takeAnswer(seen);
+    EXPECT_TRUE(a.visible);
+    EXPECT_EQ(a.samples, 1u);
+    EXPECT_FALSE(a.waited) << "it was ready";
+    const QueryAnswer b = device.takeAnswer(hidden);  // one command short of ready
+    EXPECT_FALSE(b.visible);
+    EXPECT_EQ(b.samples, 0u);
+    EXPECT_TRUE(b.waited);
+    EXPECT_EQ(device.counters().results_waited, 1u);
+}
+
+// A wrapper that forwards queries but keeps counters of its own (all zero): a culler that looked
+// at the device's counters to learn whether it blocked would never see a wait through it.
+class OwnCountersDevice final : public RenderDevice {
+public:
+    explicit OwnCountersDevice(RenderDevice& inner) : inner_(inner) {}
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override { inner_.drawObject(object); }
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> tags) override {
+        return inner_.issueQuery(boxes, tags);
+    }
+    bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
+
+private:
+    RenderDevice& inner_;
+};
+
+TEST(StatisticalCuller, CountsTheAnswersItBlockedOnFromTheAnswersThemselves) {
+    const std::vector<Aabb> boxes = randomBoxes(800, 5);
+    const BspTree tree = buildTree(boxes, 1);
+    StatisticalCuller culler;
+    culler.reset(tree);
+    ScriptedQueryDevice scripted(1000000);  // never ready: every answer is waited for
+    scripted.setVisibility(std::vector<uint8_t>(boxes.size(), 1), boxes);
+    OwnCountersDevice device(scripted);
+    culler.cullAndRender(tree, makeFrame(makeView({0, 5, 0}, {0, 0, -100}), 0, 0.0), device);
+    ASSERT_GT(scripted.counters().results_waited, 0u);
+    EXPECT_EQ(device.counters().results_waited, 0u) << "the wrapper's own counters";
+    EXPECT_EQ(culler.lastFrame().blocked_answers, scripted.counters().results_waited);
+}
+
+// Taking an answer twice, or asking about an id never issued, is a bug in the caller: the test
+// devices abort with a message naming the device, the call and the id, in every build.
+TEST(QueryAnswerDeathTest, TakingAnAnswerTwiceAbortsWithAMessage) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    TwoObjects w;
+    ScriptedQueryDevice device(0);
+    device.setVisibility({1, 1}, w.boxes);
+    const QueryId id = device.issueQuery(w.boxes[0]);
+    device.takeAnswer(id);
+    EXPECT_DEATH(device.takeAnswer(id),
+                 "ScriptedQueryDevice::takeAnswer: query id 0 is not in flight \\(already taken\\)");
+    EXPECT_DEATH(device.isQueryReady(id), "ScriptedQueryDevice::isQueryReady: query id 0 is not");
+}
+
+TEST(QueryAnswerDeathTest, AnIdNeverIssuedAbortsWithAMessage) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    ScriptedQueryDevice scripted(0);
+    EXPECT_DEATH(scripted.takeAnswer(7),
+                 "ScriptedQueryDevice::takeAnswer: query id 7 was never issued");
+    DepthRasterDevice raster(4, 4);
+    EXPECT_DEATH(raster.isQueryReady(3), "DepthRasterDevice::isQueryReady: query id 3 was never");
 }
 
 }  // namespace

@@ -165,7 +165,7 @@ void expectReadyInIssueOrder(RenderDevice& device, const std::vector<Aabb>& boxe
         if (action < 2 || open.empty()) {
             open.push_back(device.issueQuery(boxes[rng() % boxes.size()]));
         } else if (action == 2) {
-            device.queryResult(open.front());
+            device.takeAnswer(open.front());
             open.erase(open.begin());
         } else {
             device.drawObject(static_cast<uint32_t>(rng() % boxes.size()));

@@ -90,7 +90,7 @@ public:
         return inner_.issueQuery(boxes, subjects);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
-    uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 

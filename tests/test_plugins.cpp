@@ -97,7 +97,7 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
         {dir / "libmissing.so", "no such file; expected a plugin culler"},
         {text_file, "not a loadable shared object"},
         {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
-        {pluginFile("other_abi"), "built for plugin ABI version 2; this occsim loads version 1"},
+        {pluginFile("other_abi"), "built for plugin ABI version 3; this occsim loads version 2"},
         {pluginFile("taken_name"), "culler 'chc': the name is already taken (by a built-in culler)"},
         {pluginFile("bad_descriptor"), "invalid options descriptor: option 0 ('budget'): the range must be ordered"},
         {pluginFile("throwing"), "its factory threw: no GPU budget configured"},

@@ -51,7 +51,7 @@ public:
         return inner_.issueQuery(boxes, tags);
     }
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
-    uint64_t queryResult(QueryId id) override { return inner_.queryResult(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
 
 private:
     RenderDevice& inner_;
@@ -81,7 +81,7 @@ public:
                 break;
             }
             case Sabotage::ExtraQuery:
-                device.queryResult(device.issueQuery(tree.bounds(tree.root())));
+                device.takeAnswer(device.issueQuery(tree.bounds(tree.root())));
                 break;
         }
         inner_.cullAndRender(tree, frame, device);

@@ -4,6 +4,7 @@
 // the one-line reasons when a backend or device cannot serve.
 #include "headless_backends.h"
 #include "render/headless_context.h"
+#include "render/gl_checked_call.h"
 #include "render/gl_frame_timer.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
@@ -115,8 +116,8 @@ TEST_P(RenderTest, QueryReportsZeroSamplesForABoxBehindAnOccluderAndSomeForAVisi
     device.drawObject(0);
     const QueryId hidden = device.issueQuery(boxes_[1]);
     const QueryId visible = device.issueQuery(boxes_[2]);
-    EXPECT_EQ(device.queryResult(hidden), 0u);
-    EXPECT_GT(device.queryResult(visible), 0u);
+    EXPECT_FALSE(device.takeAnswer(hidden).visible);
+    EXPECT_TRUE(device.takeAnswer(visible).visible);
     EXPECT_EQ(device.counters().queries_issued, 2u);
     EXPECT_EQ(device.counters().objects_drawn, 1u);
     EXPECT_EQ(device.counters().triangles_drawn, 12u);
@@ -125,7 +126,7 @@ TEST_P(RenderTest, QueryReportsZeroSamplesForABoxBehindAnOccluderAndSomeForAVisi
 TEST_P(RenderTest, QueryBoxesWriteNeitherColourNorDepth) {
     GlQueryDevice device(*renderer_, LatencyMode{});
     renderer_->beginFrame();
-    device.queryResult(device.issueQuery(boxes_[0]));  // the wall's box, nothing drawn
+    device.takeAnswer(device.issueQuery(boxes_[0]));  // the wall's box, nothing drawn
     device.drawObject(1);                             // must still show: no depth was written
     std::vector<uint32_t> ids;
     renderer_->readObjectIds(ids);
@@ -138,7 +139,7 @@ TEST_P(RenderTest, QueryOnABoxCoplanarWithTheOccluderFaceCountsAsVisible) {
     renderer_->beginFrame();
     device.drawObject(0);
     const Aabb coplanar{{-1, -1, -6}, {1, 1, -4.9f}};
-    EXPECT_GT(device.queryResult(device.issueQuery(coplanar)), 0u);
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(coplanar)).visible);
 }
 
 TEST_P(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands) {
@@ -150,7 +151,10 @@ TEST_P(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands)
         device.drawObject(0);
     }
     EXPECT_TRUE(device.isQueryReady(q));
-    EXPECT_GT(device.queryResult(q), 0u);
+    const QueryAnswer answer = device.takeAnswer(q);
+    EXPECT_TRUE(answer.visible);
+    EXPECT_GT(answer.samples, 0u);
+    EXPECT_FALSE(answer.waited);
     EXPECT_EQ(device.counters().results_waited, 0u);
 }
 
@@ -158,8 +162,43 @@ TEST_P(RenderTest, FetchingAnUnreadyResultCountsAsAWait) {
     GlQueryDevice device(*renderer_, LatencyMode{true, 100});
     renderer_->beginFrame();
     const QueryId q = device.issueQuery(boxes_[2]);
-    EXPECT_GT(device.queryResult(q), 0u);
+    const QueryAnswer answer = device.takeAnswer(q);
+    EXPECT_TRUE(answer.visible);
+    EXPECT_TRUE(answer.waited);
     EXPECT_EQ(device.counters().results_waited, 1u);
+}
+
+// A second take of the same id is a bug in the caller. Debug builds abort with a message; every
+// build leaves the pool alone: the id is not released twice, so two later queries never share
+// one GL query object (they did when a double take pushed the id onto the free list twice).
+TEST_P(RenderTest, TakingAnAnswerTwiceNeverReleasesItsIdTwice) {
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    const QueryId q = device.issueQuery(boxes_[2]);
+    device.takeAnswer(q);
+#ifdef NDEBUG
+    const QueryAnswer again = device.takeAnswer(q);
+    EXPECT_TRUE(again.visible) << "the safe answer";
+    EXPECT_EQ(device.queriesInFlight(), 0u);
+    const QueryId a = device.issueQuery(boxes_[2]);
+    const QueryId b = device.issueQuery(boxes_[1]);
+    EXPECT_NE(a, b);
+    EXPECT_EQ(device.queriesInFlight(), 2u);
+    device.takeAnswer(a);
+    device.takeAnswer(b);
+#else
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(device.takeAnswer(q), "GlQueryDevice::takeAnswer: query id 0 is not in flight");
+#endif
+}
+
+// The debug builds' checked calls on the query path report a GL error with the call's text.
+TEST_P(RenderTest, AGlErrorOnTheQueryPathIsReportedWithTheCallsName) {
+    EXPECT_EQ(glErrorAfter("glFlush()"), "") << "no error pending";
+    glEndQuery(GL_SAMPLES_PASSED);  // no query begun: GL_INVALID_OPERATION
+    EXPECT_EQ(glErrorAfter("glEndQuery(GL_SAMPLES_PASSED)"),
+              "glEndQuery(GL_SAMPLES_PASSED): GL_INVALID_OPERATION (0x502)");
+    EXPECT_EQ(glErrorAfter("glFlush()"), "") << "the reported error is cleared";
 }
 
 // Latency as the culler feels it: the commands submitted after a query by the time the device
@@ -172,8 +211,8 @@ TEST_P(RenderTest, AnswerLatencyCountsTheCommandsAfterAQueryUntilItsAnswerWasRea
     for (int i = 0; i < 3; ++i) device.drawObject(0);
     EXPECT_TRUE(device.isQueryReady(polled));   // 4 commands after it
     EXPECT_TRUE(device.isQueryReady(polled));   // asked again: the same answer, counted once
-    device.queryResult(polled);
-    device.queryResult(waited);                 // 3 after it: not ready, waited for
+    device.takeAnswer(polled);
+    device.takeAnswer(waited);                 // 3 after it: not ready, waited for
     std::vector<uint32_t> latencies;
     device.takeAnswerLatencies(latencies);
     EXPECT_EQ(latencies, (std::vector<uint32_t>{4, 3}));
@@ -189,7 +228,7 @@ TEST_P(RenderTest, MeasuredModeRecordsEveryFetchedAnswerOnce) {
         ids.push_back(device.issueQuery(boxes_[2]));
         device.drawObject(0);
     }
-    for (QueryId id : ids) device.queryResult(id);
+    for (QueryId id : ids) device.takeAnswer(id);
     std::vector<uint32_t> latencies;
     device.takeAnswerLatencies(latencies);
     ASSERT_EQ(latencies.size(), 5u);
@@ -221,11 +260,11 @@ TEST_P(RenderTest, ManyQueriesInFlightResolveInOrderAndIdsAreReused) {
     std::vector<QueryId> ids;
     for (int i = 0; i < 50; ++i) ids.push_back(device.issueQuery(boxes_[i % 2 ? 2 : 1]));
     EXPECT_EQ(device.queriesInFlight(), 50u);
-    for (int i = 0; i < 50; ++i) EXPECT_EQ(device.queryResult(ids[i]) > 0, i % 2 == 1) << i;
+    for (int i = 0; i < 50; ++i) EXPECT_EQ(device.takeAnswer(ids[i]).visible, i % 2 == 1) << i;
     EXPECT_EQ(device.queriesInFlight(), 0u);
     const QueryId again = device.issueQuery(boxes_[2]);
     EXPECT_LT(again, 50u) << "a released query object is reused";
-    device.queryResult(again);
+    device.takeAnswer(again);
 }
 
 TEST_P(RenderTest, CameraFarFromTheOriginRendersTheSameImage) {

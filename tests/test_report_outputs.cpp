@@ -99,13 +99,13 @@ TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
     const QueryId hidden = tracer.issueQuery(std::span<const Aabb>(pair, 2), pair_tags);
     const QueryId seen = tracer.issueQuery(kBoxes[6]);
     const QueryId left_open = tracer.issueQuery(kBoxes[0]);
-    EXPECT_EQ(tracer.queryResult(before), 1u);  // the wall is visible
-    EXPECT_EQ(tracer.queryResult(hidden), 0u);
-    EXPECT_EQ(tracer.queryResult(seen), 1u);
+    EXPECT_EQ(tracer.takeAnswer(before).samples, 1u);  // the wall is visible
+    EXPECT_FALSE(tracer.takeAnswer(hidden).visible);
+    EXPECT_EQ(tracer.takeAnswer(seen).samples, 1u);
     EXPECT_EQ(tracer.isQueryReady(left_open), inner.isQueryReady(left_open));  // forwarded
     tracer.endTrace();
     tracer.drawObject(6);  // after the trace: not recorded
-    tracer.queryResult(left_open);
+    tracer.takeAnswer(left_open);
 
     const FrameTrace& t = tracer.trace();
     EXPECT_EQ(t.frame, 3u);
@@ -115,8 +115,10 @@ TEST(TracingDevice, RecordsDrawsQueriesResultsAndPendingOnlyWhileTracing) {
     EXPECT_EQ(t.queries[0].subjects, (std::vector<QueryTag>{QueryTag::node(3), QueryTag::node(4)}));
     EXPECT_TRUE(t.queries[0].fetched);
     EXPECT_EQ(t.queries[0].samples, 0u);
+    EXPECT_FALSE(t.queries[0].visible);
     EXPECT_TRUE(t.queries[1].fetched);
     EXPECT_EQ(t.queries[1].samples, 1u);
+    EXPECT_TRUE(t.queries[1].visible);
     EXPECT_FALSE(t.queries[2].fetched);  // never fetched while tracing: pending
     EXPECT_EQ(t.pendingQueries(), 1u);
     EXPECT_EQ(t.earlier_results_fetched, 1u);

@@ -70,14 +70,14 @@ TEST(DepthRasterDevice, ANearerDrawnBoxHidesAFartherOne) {
     const std::vector<Aabb> boxes = {{glm::vec3(-5, -5, -1), glm::vec3(5, 5, 0)},
                                      {glm::vec3(-1, 0, -20), glm::vec3(1, 2, -18)}};
     device.beginFrame(cam.view_projection, cam.view.eye, boxes);
-    EXPECT_GT(device.queryResult(device.issueQuery(boxes[1])), 0u) << "nothing drawn yet";
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(boxes[1])).visible) << "nothing drawn yet";
     device.drawObject(0);
-    EXPECT_EQ(device.queryResult(device.issueQuery(boxes[1])), 0u) << "behind the drawn wall";
-    EXPECT_GT(device.queryResult(device.issueQuery(boxes[0])), 0u) << "ties pass";
+    EXPECT_FALSE(device.takeAnswer(device.issueQuery(boxes[1])).visible) << "behind the drawn wall";
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(boxes[0])).visible) << "ties pass";
     // A box containing a hidden object and part of the wall passes; ground truth sees the wall.
     Aabb both = boxes[0];
     extend(both, boxes[1]);
-    EXPECT_GT(device.queryResult(device.issueQuery(both)), 0u);
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(both)).visible);
     EXPECT_EQ(device.groundTruth(), (std::vector<uint8_t>{1, 0}));
 }
 

@@ -9,9 +9,16 @@
 //   stored in a node itself, one object; a multiquery over several nodes names each): devices
 //   that draw ignore them, devices that record (TracingDevice) keep them, so a picture of the
 //   frame knows what every query was for without guessing from its boxes.
-// - isQueryReady() never blocks. Results become ready in issue order.
-// - queryResult() returns the sample count, blocking until it is available; the blocked time is
-//   counted as wait time. The id is released by this call; an id is valid across frames until then.
+// - isQueryReady() never blocks. Results become ready in issue order. Once it said yes for an id
+//   it says yes without asking the driver again: a device remembers what its poll learned, so an
+//   answer is polled at most until it is known to be ready, and never again by takeAnswer().
+// - takeAnswer() returns the answer (QueryAnswer), blocking until it is available; the blocked
+//   time is counted as wait time. The device decides `visible` (a decorator may apply a pixel
+//   threshold), so no caller compares sample counts, and says whether the caller waited, so no
+//   caller compares counters. The id is released by this call; an id is valid across frames
+//   until then. Taking an id twice, or one never issued, is a programming error: debug builds
+//   abort with a message naming the device and the id (query_id_check.h), and no build releases
+//   an id twice.
 // - counters() are the device's true figures: a decorator reports those of the device it wraps
 //   (which does the work), so no caller ever needs to reach past a decorator.
 #pragma once
@@ -43,6 +50,13 @@ struct QueryTag {
     bool operator==(const QueryTag&) const = default;
 };
 
+// The answer to one query, as takeAnswer() hands it over.
+struct QueryAnswer {
+    bool visible = true;   // the subject counts as visible (decided by the device, never the culler)
+    uint64_t samples = 0;  // the samples the answer rests on (the query's, or a stale one's)
+    bool waited = false;   // it was not ready when taken: the caller blocked for it
+};
+
 struct DeviceCounters {
     uint64_t objects_drawn = 0;
     uint64_t triangles_drawn = 0;
@@ -50,7 +64,7 @@ struct DeviceCounters {
     uint64_t query_boxes = 0;        // boxes rasterised for queries
     uint64_t results_fetched = 0;
     uint64_t results_waited = 0;     // results fetched before they were ready (the caller blocked)
-    double wait_seconds = 0.0;       // wall-clock time blocked in queryResult()
+    double wait_seconds = 0.0;       // wall-clock time blocked in takeAnswer()
     double submit_seconds = 0.0;     // wall-clock time spent in draw and query submission
     // Wall-clock time asking whether answers are ready and fetching answers that were: on
     // llvmpipe a poll can flush the command stream, so it is the driver's time, not the culler's.
@@ -64,7 +78,7 @@ public:
     virtual void drawObject(uint32_t object) = 0;
     virtual QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) = 0;
     virtual bool isQueryReady(QueryId id) = 0;
-    virtual uint64_t queryResult(QueryId id) = 0;
+    virtual QueryAnswer takeAnswer(QueryId id) = 0;
 
     QueryId issueQuery(const Aabb& box, QueryTag subject = {}) {
         return issueQuery(std::span<const Aabb>(&box, 1), std::span<const QueryTag>(&subject, 1));

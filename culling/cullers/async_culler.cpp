@@ -68,7 +68,7 @@ void AsyncCuller::collectReadyResults(RenderDevice& device) {
         if (!device.isQueryReady(s.query)) break;
         pending_head_ = static_cast<uint32_t>((pending_head_ + 1) % pending_.size());
         --pending_count_;
-        const bool visible = device.queryResult(s.query) > 0;
+        const bool visible = device.takeAnswer(s.query).visible;
         s.pending = false;
         if (s.query_frame < s.streak_start) {
             s.next_query = 0;  // asked before the object left the frustum: ask again

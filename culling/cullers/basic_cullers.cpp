@@ -17,7 +17,7 @@ void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
         const Aabb& box = tree.bounds(visit.node);
         if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius) &&
-            device.queryResult(device.issueQuery(box, QueryTag::node(visit.node))) == 0) {
+            !device.takeAnswer(device.issueQuery(box, QueryTag::node(visit.node))).visible) {
             return false;  // occluded: skip the subtree
         }
         drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);

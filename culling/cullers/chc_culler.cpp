@@ -31,7 +31,7 @@ void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
         while (query_head_ < query_queue_.size() &&
                (traversal_queue_.empty() || device.isQueryReady(query_queue_[query_head_].id))) {
             const PendingQuery query = query_queue_[query_head_++];
-            handleResult(tree, frame, query, device.queryResult(query.id), device);
+            handleResult(tree, frame, query, device.takeAnswer(query.id), device);
         }
         // PART 2: one step of the front-to-back traversal.
         if (!traversal_queue_.empty()) visitNode(tree, frame, traversal_queue_.pop(), device);
@@ -77,8 +77,9 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
 }
 
 void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
-                             const PendingQuery& query, uint64_t samples, RenderDevice& device) {
-    if (samples == 0) return;  // stays invisible
+                             const PendingQuery& query, const QueryAnswer& answer,
+                             RenderDevice& device) {
+    if (!answer.visible) return;  // stays invisible
     // Found visible: assumed visible (no query on its geometry) for the next t_av frames.
     nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
     nodes_.pullUp(tree, query.node);

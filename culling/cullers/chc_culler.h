@@ -81,7 +81,7 @@ private:
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                    RenderDevice& device);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
-                      uint64_t samples, RenderDevice& device);
+                      const QueryAnswer& answer, RenderDevice& device);
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
                       RenderDevice& device);
     void issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,

@@ -75,7 +75,7 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                 }
             }
             const PendingQuery query = query_queue_[query_head_++];
-            handleResult(tree, frame, query, device.queryResult(query.id), device);
+            handleResult(tree, frame, query, device.takeAnswer(query.id), device);
         }
 
         if (!traversal_queue_.empty()) {
@@ -128,8 +128,9 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
 }
 
 void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
-                               const PendingQuery& query, uint64_t samples, RenderDevice& device) {
-    const bool visible = samples > 0;
+                               const PendingQuery& query, const QueryAnswer& answer,
+                               RenderDevice& device) {
+    const bool visible = answer.visible;
     switch (query.kind) {
         case QueryKind::Multi:
             if (visible) {

@@ -105,7 +105,7 @@ private:
 
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
-                      uint64_t samples, RenderDevice& device);
+                      const QueryAnswer& answer, RenderDevice& device);
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit);
     uint64_t firstRetestFrame(uint32_t node) const;
 

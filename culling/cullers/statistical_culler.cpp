@@ -429,12 +429,12 @@ void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& 
     ++counters_.queries;
 }
 
-void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
+bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                                RenderDevice& device) {
     const Entry& e = pending.entry;
-    const bool visible = device.queryResult(pending.id) > 0;
-    record(e, pending.decision, visible, frame.time_s, travelOf(e));
-    if (!visible) return;
+    const QueryAnswer a = device.takeAnswer(pending.id);
+    record(e, pending.decision, a.visible, frame.time_s, travelOf(e));
+    if (!a.visible) return a.waited;
     switch (e.subject) {
         case Subject::Node: renderNode(tree, frame, e, device); break;
         case Subject::OwnObjects:
@@ -442,6 +442,7 @@ void StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
             break;
         case Subject::Object: device.drawObject(e.index); break;
     }
+    return a.waited;
 }
 
 void StatisticalCuller::issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
@@ -459,7 +460,7 @@ void StatisticalCuller::collectUpdates(const BspTree& tree, RenderDevice& device
     while (updates_head_ < updates_.size()) {
         const Update& u = updates_[updates_head_];
         if (u.frame >= older_than_frame && !device.isQueryReady(u.id)) break;
-        const bool visible = device.queryResult(u.id) > 0;
+        const bool visible = device.takeAnswer(u.id).visible;
         const bool same_subject = u.entry.subject == Subject::Object
                                       ? u.entry.index < object_stats_.size()
                                       : u.entry.index < tree.nodeCount() &&
@@ -529,11 +530,9 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
 
     // Takes the oldest pending answer; `work_left` says whether the main queue held anything.
     auto take_oldest = [&](bool work_left) {
-        const uint64_t waited_before = device.counters().results_waited;
         const Pending p = pending_[pending_head_++];
         in_flight_weight_ -= p.weight;
-        answer(tree, frame, p, device);
-        if (device.counters().results_waited != waited_before) {
+        if (answer(tree, frame, p, device)) {
             ++counters_.blocked_answers;
             counters_.blocked_with_work_left += work_left ? 1 : 0;
         }

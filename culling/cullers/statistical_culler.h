@@ -206,7 +206,8 @@ private:
     NodeAction decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
                       double travel_m, double draw_ms, uint32_t query_boxes, bool object_query,
                       Decision* decision);
-    void answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
+    // Takes the pending query's answer and acts on it; returns whether the device waited for it.
+    bool answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
     // Puts an issued query into the query queue with its weight against the in-flight bound.
     void enqueue(QueryId id, const Entry& entry, const Decision& decision);

@@ -1,5 +1,7 @@
 #include "occsim/culling/devices/approximate_device.h"
 
+#include "occsim/culling/contract/query_id_check.h"
+
 #include <algorithm>
 #include <cstring>
 
@@ -59,8 +61,8 @@ void ApproximateDevice::storeLast(uint64_t key, uint64_t samples) {
     last_[key & (kLastResultSlots - 1)] = {key, samples};  // evict the first probe
 }
 
-uint64_t ApproximateDevice::apply(uint64_t samples) const {
-    return samples <= options_.threshold_pixels ? 0 : samples;
+QueryAnswer ApproximateDevice::answerFrom(uint64_t samples, bool waited) const {
+    return {samples > options_.threshold_pixels, samples, waited};
 }
 
 void ApproximateDevice::collectLateResults() {
@@ -68,7 +70,7 @@ void ApproximateDevice::collectLateResults() {
     size_t done = 0;
     while (done < late_.size() && inner_.isQueryReady(late_[done])) {
         const QueryId id = late_[done++];
-        storeLast(key_of_id_[id], inner_.queryResult(id));
+        storeLast(key_of_id_[id], inner_.takeAnswer(id).samples);
     }
     late_.erase(late_.begin(), late_.begin() + static_cast<std::ptrdiff_t>(done));
 }
@@ -90,6 +92,9 @@ bool ApproximateDevice::answerable(QueryId id) {
 }
 
 bool ApproximateDevice::isQueryReady(QueryId id) {
+    if (kCheckQueryIds && id >= key_of_id_.size()) {
+        failQueryId("ApproximateDevice", "isQueryReady", id, "was never issued");
+    }
     if (inner_.isQueryReady(id)) return true;
     if (!options_.stale_results) return false;
     // A stale answer may be given at once, but only when every earlier open query could be
@@ -101,7 +106,10 @@ bool ApproximateDevice::isQueryReady(QueryId id) {
     return false;
 }
 
-uint64_t ApproximateDevice::queryResult(QueryId id) {
+QueryAnswer ApproximateDevice::takeAnswer(QueryId id) {
+    if (kCheckQueryIds && id >= key_of_id_.size()) {
+        failQueryId("ApproximateDevice", "takeAnswer", id, "was never issued");
+    }
     if (options_.stale_results) {
         const auto at = std::find(open_.begin(), open_.end(), id);
         if (at != open_.end()) open_.erase(at);
@@ -109,13 +117,13 @@ uint64_t ApproximateDevice::queryResult(QueryId id) {
             if (const LastResult* last = findLast(key_of_id_[id])) {
                 ++stale_answers_;
                 late_.push_back(id);
-                return apply(last->samples);
+                return answerFrom(last->samples, false);
             }
         }
     }
-    const uint64_t samples = inner_.queryResult(id);
-    storeLast(key_of_id_[id], samples);
-    return apply(samples);
+    const QueryAnswer inner = inner_.takeAnswer(id);
+    storeLast(key_of_id_[id], inner.samples);
+    return answerFrom(inner.samples, inner.waited);
 }
 
 }  // namespace occsim

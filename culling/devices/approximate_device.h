@@ -2,12 +2,13 @@
 // applied to any culler by wrapping its RenderDevice:
 //
 // - A pixel threshold (approximate visibility, as in the CHC paper): a query that passes at most
-//   `threshold_pixels` samples reports 0, so the node counts as occluded.
+//   `threshold_pixels` samples is answered occluded (QueryAnswer::visible false; its samples
+//   are reported as they were). This device is the only place the threshold is applied.
 // - Stale results: a result that is not ready when the culler asks for it is not waited for;
 //   the last result seen for the same subjects (the nodes or objects the query was tagged with,
 //   or its boxes when untagged; normally from the previous frame) is returned instead, and the
 //   real result, once it arrives, becomes the "last result" for next time. Without a previous
-//   result the device waits as usual.
+//   result the device waits as usual. A stale answer never counts as waited for.
 //
 // Both make conservative cullers approximate; the error shows in the numbers. With threshold 0
 // and stale results off this device changes nothing.
@@ -34,7 +35,7 @@ public:
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
-    uint64_t queryResult(QueryId id) override;
+    QueryAnswer takeAnswer(QueryId id) override;
 
     // Results fetched late (after a stale answer was given) still pending in the wrapped device.
     size_t lateResultsPending() const { return late_.size(); }
@@ -57,7 +58,7 @@ private:
     void storeLast(uint64_t key, uint64_t samples);
     bool answerable(QueryId id);  // ready in the wrapped device, or a stale answer exists
     void collectLateResults();
-    uint64_t apply(uint64_t samples) const;
+    QueryAnswer answerFrom(uint64_t samples, bool waited) const;  // applies the threshold
 
     RenderDevice& inner_;
     ApproximationOptions options_;

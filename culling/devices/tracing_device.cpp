@@ -63,23 +63,25 @@ QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes,
         q.boxes.assign(boxes.begin(), boxes.end());
         q.subjects.assign(subjects.begin(), subjects.end());
         q.fetched = false;
+        q.visible = false;
         q.samples = 0;
     }
     return id;
 }
 
-uint64_t TracingDevice::queryResult(QueryId id) {
-    const uint64_t samples = inner_.queryResult(id);
-    if (!tracing_) return samples;
+QueryAnswer TracingDevice::takeAnswer(QueryId id) {
+    const QueryAnswer answer = inner_.takeAnswer(id);
+    if (!tracing_) return answer;
     if (id >= open_.size() || open_[id] == kClosed) {
         ++trace_.earlier_results_fetched;
-        return samples;
+        return answer;
     }
     TracedQuery& q = trace_.queries[open_[id]];
     q.fetched = true;
-    q.samples = samples;
+    q.visible = answer.visible;
+    q.samples = answer.samples;
     open_[id] = kClosed;
-    return samples;
+    return answer;
 }
 
 }  // namespace occsim

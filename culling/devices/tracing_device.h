@@ -3,8 +3,8 @@
 //
 // Contract
 // - While tracing (between beginTrace() and endTrace()), every drawObject() call is recorded in
-//   order, and every issueQuery() call with its boxes. When queryResult() fetches the result of a
-//   query issued during the trace, its sample count is recorded; a query whose result is never
+//   order, and every issueQuery() call with its boxes. When takeAnswer() fetches the answer to a
+//   query issued during the trace, the answer is recorded; a query whose answer is never
 //   fetched before endTrace() stays "pending" (fetched == false).
 // - Results fetched during the trace for queries issued before it (ids living across frames) are
 //   only counted: their boxes are unknown to this device.
@@ -24,7 +24,8 @@ struct TracedQuery {
     std::vector<Aabb> boxes;         // one for a plain query, several for a multiquery
     std::vector<QueryTag> subjects;  // what the query decides, as the culler tagged it
     bool fetched = false;     // false: pending at the end of the trace
-    uint64_t samples = 0;     // the result, when fetched
+    bool visible = false;     // the answer, when fetched
+    uint64_t samples = 0;     // the samples it rests on, when fetched
 };
 
 struct FrameTrace {
@@ -50,7 +51,7 @@ public:
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
-    uint64_t queryResult(QueryId id) override;
+    QueryAnswer takeAnswer(QueryId id) override;
 
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }

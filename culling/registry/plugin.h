@@ -22,7 +22,7 @@
 
 #include <cstdint>
 
-#define OCCSIM_PLUGIN_ABI_VERSION 1u
+#define OCCSIM_PLUGIN_ABI_VERSION 2u
 
 namespace occsim {
 

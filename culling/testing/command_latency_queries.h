@@ -1,12 +1,14 @@
 // The query bookkeeping of the CPU test devices (ScriptedQueryDevice, DepthRasterDevice): an
 // answer, known when the query is issued, counts as ready only after `latency` later commands
 // (draws or queries), like --deterministic-latency on the GL device. Query slots are reused, so a
-// steady state allocates nothing; `counters` are the owning device's.
+// steady state allocates nothing; `counters` are the owning device's. Every id handed back is
+// checked in every build (query_id_check.h): taking an answer twice, or asking about an id never
+// issued, aborts with a message naming `device`.
 #pragma once
 
+#include "occsim/culling/contract/query_id_check.h"
 #include "occsim/culling/contract/render_device.h"
 
-#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -14,7 +16,8 @@ namespace occsim {
 
 class CommandLatencyQueries {
 public:
-    explicit CommandLatencyQueries(uint32_t latency_commands) : latency_(latency_commands) {}
+    CommandLatencyQueries(uint32_t latency_commands, const char* device)
+        : latency_(latency_commands), device_(device) {}
 
     void countDraw() { ++commands_; }
 
@@ -29,15 +32,17 @@ public:
     }
 
     bool ready(QueryId id) const {
-        assert(id < slots_.size() && slots_[id].in_use);
-        return commands_ - slots_[id].issued_at > latency_;
+        checkLive(id, "isQueryReady");
+        return isReady(id);
     }
 
-    uint64_t take(QueryId id, DeviceCounters& counters) {
-        if (!ready(id)) ++counters.results_waited;
+    QueryAnswer take(QueryId id, DeviceCounters& counters) {
+        checkLive(id, "takeAnswer");
+        const bool waited = !isReady(id);
+        if (waited) ++counters.results_waited;
         ++counters.results_fetched;
         slots_[id].in_use = false;
-        return slots_[id].result;
+        return {slots_[id].result > 0, slots_[id].result, waited};
     }
 
     uint32_t pending() const {
@@ -52,7 +57,15 @@ private:
         uint64_t result;
         bool in_use;
     };
+
+    bool isReady(QueryId id) const { return commands_ - slots_[id].issued_at > latency_; }
+    void checkLive(QueryId id, const char* call) const {
+        if (id >= slots_.size()) failQueryId(device_, call, id, "was never issued");
+        if (!slots_[id].in_use) failQueryId(device_, call, id, "is not in flight (already taken)");
+    }
+
     uint32_t latency_;
+    const char* device_;
     uint64_t commands_ = 0;
     std::vector<Slot> slots_;
 };

@@ -23,7 +23,8 @@ uint32_t cellCeil(float ndc, uint32_t cells) {
 }  // namespace
 
 DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands)
-    : width_(width), height_(height), depth_(width * height, kFar), queries_(latency_commands) {}
+    : width_(width), height_(height), depth_(width * height, kFar),
+      queries_(latency_commands, "DepthRasterDevice") {}
 
 void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
                                    std::span<const Aabb> object_boxes) {
@@ -89,7 +90,7 @@ QueryId DepthRasterDevice::issueQuery(std::span<const Aabb> boxes,
 
 bool DepthRasterDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
-uint64_t DepthRasterDevice::queryResult(QueryId id) { return queries_.take(id, counters_); }
+QueryAnswer DepthRasterDevice::takeAnswer(QueryId id) { return queries_.take(id, counters_); }
 
 uint32_t DepthRasterDevice::pendingQueries() const { return queries_.pending(); }
 

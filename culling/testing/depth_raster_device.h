@@ -44,7 +44,7 @@ public:
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
-    uint64_t queryResult(QueryId id) override;
+    QueryAnswer takeAnswer(QueryId id) override;
 
     // Per object, 1 when it is visible with every object in the frustum drawn (this frame's
     // camera and boxes; independent of what the culler drew).

@@ -46,7 +46,7 @@ QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
 
 bool ScriptedQueryDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
-uint64_t ScriptedQueryDevice::queryResult(QueryId id) { return queries_.take(id, counters_); }
+QueryAnswer ScriptedQueryDevice::takeAnswer(QueryId id) { return queries_.take(id, counters_); }
 
 void ScriptedQueryDevice::clearLog() {
     drawn_.clear();

@@ -3,7 +3,8 @@
 // any of the query's boxes (a stand-in for "samples passed"), so a query over a node's bounds is
 // non-zero exactly when a visible object lies in (or overlaps) that node. Results become ready
 // after a fixed number of later commands (draws or queries), like the deterministic latency mode
-// of the GL device; fetching one earlier counts as a wait.
+// of the GL device; taking one earlier counts as a wait. An answer is visible when its count is
+// above 0.
 #pragma once
 
 #include "occsim/culling/testing/command_latency_queries.h"
@@ -17,7 +18,7 @@ namespace occsim {
 
 class ScriptedQueryDevice final : public RenderDevice {
 public:
-    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : queries_(latency_commands) {}
+    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : queries_(latency_commands, "ScriptedQueryDevice") {}
 
     // The current frame's truth: which objects are visible, and every object's box.
     void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
@@ -29,7 +30,7 @@ public:
     void drawObject(uint32_t object) override;
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
-    uint64_t queryResult(QueryId id) override;
+    QueryAnswer takeAnswer(QueryId id) override;
 
     // What the culler did since the last clearLog().
     const std::vector<uint32_t>& drawnObjects() const { return drawn_; }

@@ -17,7 +17,7 @@ void TrustVisibleCuller::cullAndRender(const occsim::BspTree& tree, const occsim
         // A box the near plane may cut is never queried: a clipped query could report nothing.
         if (!trusted && !occsim::nearPlaneTouchesBox(box, view.eye, view.near_radius)) {
             const occsim::QueryId id = device.issueQuery(box, occsim::QueryTag::node(visit.node));
-            if (device.queryResult(id) == 0) return false;  // occluded: skip the subtree
+            if (!device.takeAnswer(id).visible) return false;  // occluded: skip the subtree
             seen.time_s = frame.time_s;
         }
         occsim::drawNodeObjects(tree, visit.node, view.frustum, visit.inside_frustum, device);

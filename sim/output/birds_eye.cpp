@@ -28,7 +28,7 @@ QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
             if (tag.subject == QueryTag::Subject::Object || tag.index >= tree.nodeCount()) continue;
             const uint32_t n = tag.index;
             if (!q.fetched) m.pending[n] = 1;
-            else if (q.samples > 0) m.visible[n] = 1;
+            else if (q.visible) m.visible[n] = 1;
             else if (tag.subject == QueryTag::Subject::Node) m.zero[n] = 1;
         }
     }

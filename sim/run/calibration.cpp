@@ -146,12 +146,12 @@ CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRen
         const size_t lag = queries_in_flight > 0 ? queries_in_flight : node_boxes.size();
         const double ms = medianMs(renderer, [&] {
             for (size_t i = 0; i < node_boxes.size(); ++i) {
-                if (i >= lag) device.queryResult(ids[i - lag]);
+                if (i >= lag) device.takeAnswer(ids[i - lag]);
                 ids[i] = device.issueQuery(node_boxes[i]);
             }
             for (size_t i = node_boxes.size() > lag ? node_boxes.size() - lag : 0;
                  i < node_boxes.size(); ++i) {
-                device.queryResult(ids[i]);
+                device.takeAnswer(ids[i]);
             }
         });
         costs.query_box_ms = ms / static_cast<double>(node_boxes.size());

@@ -139,7 +139,9 @@ public:
         return id;
     }
     bool isQueryReady(QueryId id) override { return commands_ - slots_[id].issued_at > 8; }
-    uint64_t queryResult(QueryId id) override { return slots_[id].samples; }
+    QueryAnswer takeAnswer(QueryId id) override {
+        return {slots_[id].samples > 0, slots_[id].samples, !isQueryReady(id)};
+    }
 
 private:
     static constexpr uint32_t kSlots = 1u << 16;
