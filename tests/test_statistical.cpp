@@ -547,7 +547,7 @@ TEST(StatisticalCostModel, QueriesThatDoNotPayAreDroppedAndThoseThatPayAreKept) 
         } else {
             EXPECT_LT(queries_weighed, queries_plain / 3) << "visible: re-queries do not pay";
             EXPECT_GT(queries_weighed, 0u) << "some are still asked";
-            EXPECT_LT(b.occlusionEstimate(QueryKind::LastVisible).occluded, 0.05);
+            EXPECT_LT(b.occlusionEstimate(PriorResult::LastVisible).occluded, 0.05);
         }
     }
 }

@@ -47,7 +47,7 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
             return;
         case CoherentClassification::Visit::PreviouslyInvisible:
             issue(device, std::span<const Aabb>(&tree.bounds(visit.node), 1), visit,
-                  QueryKind::Invisible);
+                  QueryPurpose::Invisible);
             return;
         case CoherentClassification::Visit::PreviouslyVisible: break;
     }
@@ -59,7 +59,7 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
     const bool query_due = frame_ >= nodes_[visit.node].next_query;
     if (tree.node(visit.node).isLeaf()) {
         if (query_due) {
-            issue(device, std::span<const Aabb>(&box, 1), visit, QueryKind::Visible);
+            issue(device, std::span<const Aabb>(&box, 1), visit, QueryPurpose::Visible);
         } else {
             nodes_.pullUp(tree, visit.node);
         }
@@ -67,7 +67,7 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
         boxes_.clear();
         if (appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0) {
             if (query_due) {
-                issue(device, boxes_, visit, QueryKind::Own);
+                issue(device, boxes_, visit, QueryPurpose::Own);
             } else {
                 nodes_.pullUp(tree, visit.node);
             }
@@ -84,7 +84,7 @@ void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
     nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
     nodes_.pullUp(tree, query.node);
     // Only a node that was waited for is traversed now; the others were rendered at their visit.
-    if (query.kind == QueryKind::Invisible) {
+    if (query.purpose == QueryPurpose::Invisible) {
         traverseNode(tree, frame, {query.node, query.inside_frustum}, device);
     }
 }
@@ -96,11 +96,11 @@ void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const 
 }
 
 void ChcCuller::issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
-                      QueryKind kind) {
-    const QueryTag subject = kind == QueryKind::Own ? QueryTag::nodeObjects(visit.node)
+                      QueryPurpose purpose) {
+    const QueryTag subject = purpose == QueryPurpose::Own ? QueryTag::nodeObjects(visit.node)
                                                     : QueryTag::node(visit.node);
     const QueryId id = device.issueQuery(boxes, std::span<const QueryTag>(&subject, 1));
-    query_queue_.push_back({id, visit.node, visit.inside_frustum, kind});
+    query_queue_.push_back({id, visit.node, visit.inside_frustum, purpose});
 }
 
 // --- Registration -------------------------------------------------------------------------------

@@ -67,16 +67,11 @@ public:
     bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
 
 private:
-    enum class QueryKind : uint8_t {
-        Invisible,  // a previously invisible node: the traversal waits for this result
-        Visible,    // a previously visible leaf, already rendered: the result is for next frame
-        Own,        // the own objects of an opened inner node, already rendered: likewise
-    };
     struct PendingQuery {
         QueryId id;
         uint32_t node;
         bool inside_frustum;
-        QueryKind kind;
+        QueryPurpose purpose;  // Invisible, Visible or Own
     };
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                    RenderDevice& device);
@@ -85,7 +80,7 @@ private:
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
                       RenderDevice& device);
     void issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
-               QueryKind kind);
+               QueryPurpose purpose);
 
     ChcOptions options_;
     PreparedView view_;  // this frame's view with its plane table (prepareView)

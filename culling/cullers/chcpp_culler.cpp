@@ -101,7 +101,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
             traverseNode(tree, frame, visit);
             return;
         case CoherentClassification::Visit::PreviouslyInvisible:
-            i_queue_.push_back({visit.node, visit.inside_frustum, false, QueryKind::Invisible});
+            i_queue_.push_back({visit.node, visit.inside_frustum, false, QueryPurpose::Invisible});
             return;
         case CoherentClassification::Visit::PreviouslyVisible: break;
     }
@@ -110,16 +110,16 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
     s.invisible_frames = 0;
     const bool query_due = frame_ >= s.next_query;
     bool has_geometry = true;
-    QueryKind kind = QueryKind::Visible;
+    QueryPurpose purpose = QueryPurpose::Visible;
     if (!tree.node(visit.node).isLeaf()) {
         boxes_.clear();
         has_geometry =
             appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0;
-        kind = QueryKind::Own;
+        purpose = QueryPurpose::Own;
     }
     if (has_geometry) {
         if (query_due) {
-            v_queue_.push_back({visit.node, inside, false, kind});
+            v_queue_.push_back({visit.node, inside, false, purpose});
         } else {
             nodes_.pullUp(tree, visit.node);  // still assumed visible
         }
@@ -131,8 +131,8 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                                const PendingQuery& query, const QueryAnswer& answer,
                                RenderDevice& device) {
     const bool visible = answer.visible;
-    switch (query.kind) {
-        case QueryKind::Multi:
+    switch (query.purpose) {
+        case QueryPurpose::Multi:
             if (visible) {
                 // Coherence broke somewhere in the group: query each node on its own.
                 ++stats_.failed_multiqueries;
@@ -148,7 +148,7 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                 }
             }
             break;
-        case QueryKind::Invisible:
+        case QueryPurpose::Invisible:
             if (visible) {
                 CoherentClassification::NodeState& s = nodes_[query.first];
                 s.invisible_frames = 0;
@@ -159,8 +159,8 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                 nodes_.markInvisible(query.first, kMaxInvisibleFrames);
             }
             break;
-        case QueryKind::Visible:
-        case QueryKind::Own:
+        case QueryPurpose::Visible:
+        case QueryPurpose::Own:
             if (visible) {
                 // Visible at its previous test too: the regular interval.
                 nodes_[query.first].next_query = frame_ + 1 + options_.visible_frames_skip;
@@ -236,7 +236,7 @@ void ChcppCuller::issueBatch(const BspTree& tree, RenderDevice& device) {
             }
             enterState(DeviceState::Query);
             query_queue_.push_back({device.issueQuery(boxes_, tags_), start,
-                                    static_cast<uint32_t>(end - i), false, QueryKind::Multi});
+                                    static_cast<uint32_t>(end - i), false, QueryPurpose::Multi});
             ++stats_.multiqueries;
             stats_.multiquery_nodes += static_cast<uint32_t>(end - i);
         }
@@ -249,16 +249,16 @@ void ChcppCuller::issueVisibleQuery(const BspTree& tree, RenderDevice& device) {
     const QueuedNode n = v_queue_[v_head_++];
     ++stats_.visible_queries;
     boxes_.clear();
-    if (n.kind == QueryKind::Own) {
+    if (n.purpose == QueryPurpose::Own) {
         appendOwnObjectBoxes(tree, n.node, view_.frustum, n.inside_frustum, boxes_);
     } else {
         appendQueryBoxes(tree, n.node, 0);
     }
     enterState(DeviceState::Query);
     const QueryTag subject =
-        n.kind == QueryKind::Own ? QueryTag::nodeObjects(n.node) : QueryTag::node(n.node);
+        n.purpose == QueryPurpose::Own ? QueryTag::nodeObjects(n.node) : QueryTag::node(n.node);
     const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
-    query_queue_.push_back({id, n.node, 1, n.inside_frustum, n.kind});
+    query_queue_.push_back({id, n.node, 1, n.inside_frustum, n.purpose});
 }
 
 void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& n) {
@@ -267,7 +267,7 @@ void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const Q
     enterState(DeviceState::Query);
     const QueryTag subject = QueryTag::node(n.node);
     const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
-    query_queue_.push_back({id, n.node, 1, n.inside_frustum, QueryKind::Invisible});
+    query_queue_.push_back({id, n.node, 1, n.inside_frustum, QueryPurpose::Invisible});
 }
 
 void ChcppCuller::flushRenderQueue(const BspTree& tree, RenderDevice& device) {

@@ -82,24 +82,18 @@ public:
 
 private:
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
-    enum class QueryKind : uint8_t {
-        Invisible,  // one previously invisible node: waited for
-        Multi,      // several previously invisible nodes (multi_nodes_[first, first + count))
-        Visible,    // a previously visible leaf, already rendered: the result is for next frame
-        Own,        // the own objects of an opened inner node, already rendered: likewise
-    };
     struct PendingQuery {
         QueryId id;
         uint32_t first;  // the node, or the first entry of multi_nodes_ for a multiquery
-        uint32_t count;
+        uint32_t count;  // multi_nodes_[first, first + count) for Multi; 1 otherwise
         bool inside_frustum;
-        QueryKind kind;
+        QueryPurpose purpose;
     };
     struct QueuedNode {
         uint32_t node;
         bool inside_frustum;
         bool single;     // i-queue: its multiquery failed, query it alone
-        QueryKind kind;  // v-queue: Visible or Own
+        QueryPurpose purpose;  // v-queue: Visible or Own
     };
     enum class DeviceState : uint8_t { None, Render, Query };
 

@@ -20,6 +20,15 @@
 
 namespace occsim {
 
+// What a coherent culler's query is for: what its answer decides, and so what the culler does
+// with it. CHC uses every purpose but Multi (CHC++'s multiqueries).
+enum class QueryPurpose : uint8_t {
+    Invisible,  // one previously invisible node: the traversal waits for this answer
+    Multi,      // several previously invisible nodes in one multiquery (CHC++)
+    Visible,    // a previously visible leaf, already rendered: the answer is for the next frame
+    Own,        // the own objects of an opened inner node, already rendered: likewise
+};
+
 // A min-heap of nodes keyed by the distance from the eye to their bounds. The storage is reused
 // from frame to frame, so a steady state allocates nothing.
 class DistanceQueue {

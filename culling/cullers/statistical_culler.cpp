@@ -16,7 +16,7 @@ namespace {
 // Parallax re-query (requery_parallax): a node closer than this counts as this far, so a node
 // at the eye does not divide by zero.
 constexpr double kMinParallaxDistanceM = 1e-3;
-// Weight of one answer in a QueryKind's running occlusion estimate (exponential moving averages
+// Weight of one answer in a PriorResult's running occlusion estimate (exponential moving averages
 // over answers: about the last 16 answers of that kind count).
 constexpr double kRateWeight = 1.0 / 16.0;
 // The fallback looks at the share of visible answers only once the window holds at least this
@@ -69,9 +69,9 @@ void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats,
     stats.travel_at_query_m = travel_m;
 }
 
-QueryKind queryKindOf(const NodeStatistics& stats) {
-    if (stats.results == 0) return QueryKind::Fresh;
-    return (stats.history & 1u) ? QueryKind::LastVisible : QueryKind::LastOccluded;
+PriorResult priorResultOf(const NodeStatistics& stats) {
+    if (stats.results == 0) return PriorResult::Fresh;
+    return (stats.history & 1u) ? PriorResult::LastVisible : PriorResult::LastOccluded;
 }
 
 bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& stats,
@@ -210,7 +210,7 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
 double StatisticalCuller::travelOf(const Entry& e) const {
     switch (e.subject) {
         case Subject::Node: return camera_path_m_ + motion_[e.index].subtree_m;
-        case Subject::OwnObjects: return camera_path_m_ + motion_[e.index].own_m;
+        case Subject::NodeObjects: return camera_path_m_ + motion_[e.index].own_m;
         case Subject::Object: return camera_path_m_ + object_motion_m_[e.index];
     }
     return camera_path_m_;
@@ -219,7 +219,7 @@ double StatisticalCuller::travelOf(const Entry& e) const {
 NodeStatistics& StatisticalCuller::statsOf(const Entry& e) {
     switch (e.subject) {
         case Subject::Node: return stats_[e.index];
-        case Subject::OwnObjects: return own_stats_[e.index];
+        case Subject::NodeObjects: return own_stats_[e.index];
         case Subject::Object: return object_stats_[e.index];
     }
     return stats_[e.index];
@@ -253,7 +253,7 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
     const uint32_t own_rank = entry.rank + 1 + subtree_ranks_[near_child];
     if (options_.virtual_leaves) {
         if (n.object_count > 0) {
-            push({own_rank, entry.index, Subject::OwnObjects, entry.inside_frustum});
+            push({own_rank, entry.index, Subject::NodeObjects, entry.inside_frustum});
         }
     } else {
         // Without virtual leaves, objects in inner nodes have no decisions of their own.
@@ -274,7 +274,7 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
     const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
     const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
     const NodeAction action = decideNodeAction(options_, stats, near, frame.time_s, motion);
-    decision->kind = queryKindOf(stats);
+    decision->prior = priorResultOf(stats);
     if (action == NodeAction::Render) {
         ++counters_.renders_without_query;
         return action;
@@ -290,7 +290,7 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
     // pay. Without them the answer is worth more than one frame's saving (later decisions go on
     // it), so the query is issued.
     if (!statisticsUsable(options_, stats, frame.time_s)) return NodeAction::Query;
-    OcclusionEstimate& estimate = estimates_[estimateIndex(decision->kind, object_query)];
+    OcclusionEstimate& estimate = estimates_[estimateIndex(decision->prior, object_query)];
     if (queryPays(costs_, draw_ms, query_boxes, estimate.occluded)) return NodeAction::Query;
     if (++estimate.vetoes >= OcclusionEstimate::kExploreEvery) {
         estimate.vetoes = 0;  // asked anyway, so that the estimate stays measured
@@ -359,7 +359,7 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
             renderNode(tree, frame, entry, device);
             return false;
         }
-        if (options_.descend_visible_inner_nodes && decision.kind == QueryKind::LastVisible &&
+        if (options_.descend_visible_inner_nodes && decision.prior == PriorResult::LastVisible &&
             !tree.node(entry.index).isLeaf()) {
             // Improvement 8: its children decide; the interval runs again from now, as when the
             // cost model puts a query off, and the statistics keep their age.
@@ -412,7 +412,7 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
 void StatisticalCuller::record(const Entry& e, const Decision& decision, bool visible,
                                double time_s, double travel_m) {
     recordQueryResult(options_, statsOf(e), visible, time_s, travel_m);
-    estimates_[estimateIndex(decision.kind, e.subject == Subject::Object)].add(!visible);
+    estimates_[estimateIndex(decision.prior, e.subject == Subject::Object)].add(!visible);
     ++counters_.answers;
     counters_.visible_answers += visible ? 1 : 0;
 }
@@ -421,7 +421,7 @@ void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& 
     double weight = 1.0;
     if (options_.weigh_in_flight) {
         const double visible =
-            1.0 - estimates_[estimateIndex(decision.kind, entry.subject == Subject::Object)].occluded;
+            1.0 - estimates_[estimateIndex(decision.prior, entry.subject == Subject::Object)].occluded;
         weight = std::max(visible, 1.0 / StatisticalOptions::kMaxRunAhead);
     }
     pending_.push_back({id, entry, decision, weight});
@@ -437,7 +437,7 @@ bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
     if (!a.visible) return a.waited;
     switch (e.subject) {
         case Subject::Node: renderNode(tree, frame, e, device); break;
-        case Subject::OwnObjects:
+        case Subject::NodeObjects:
             drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
             break;
         case Subject::Object: device.drawObject(e.index); break;

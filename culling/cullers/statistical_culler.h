@@ -78,14 +78,14 @@ void recordQueryResult(const StatisticalOptions& options, NodeStatistics& stats,
                        double now_s, double travel_m = 0.0);
 
 // What a node's statistics say about the query CalcNodeAction asks for: its last result, or none.
-// Each kind has its own recent occlusion rate in the cost model (improvement 3), kept over the
-// answers to queries of that kind.
-enum class QueryKind : uint8_t {
+// Queries with each prior result have their own recent occlusion rate in the cost model
+// (improvement 3), kept over the answers to those queries.
+enum class PriorResult : uint8_t {
     Fresh,         // no statistics yet
     LastVisible,   // the last result was visible (the re-query interval ran out, or too old)
     LastOccluded,  // the last result was occluded
 };
-QueryKind queryKindOf(const NodeStatistics& stats);
+PriorResult priorResultOf(const NodeStatistics& stats);
 // Statistics exist and are not older than max_statistics_age_s.
 bool statisticsUsable(const StatisticalOptions& options, const NodeStatistics& stats, double now_s);
 
@@ -139,18 +139,17 @@ public:
     // The statistics of one object (object_queries).
     const NodeStatistics& objectStatistics(uint32_t object) const { return object_stats_[object]; }
     const StatisticalFrameCounters& lastFrame() const { return counters_; }
-    // The cost model's occlusion estimate of each QueryKind, for queries on nodes (and virtual
+    // The cost model's occlusion estimate of each PriorResult, for queries on nodes (and virtual
     // leaves) and on single objects.
-    const OcclusionEstimate& occlusionEstimate(QueryKind kind, bool object_query = false) const {
-        return estimates_[estimateIndex(kind, object_query)];
+    const OcclusionEstimate& occlusionEstimate(PriorResult prior, bool object_query = false) const {
+        return estimates_[estimateIndex(prior, object_query)];
     }
 
 private:
-    enum class Subject : uint8_t {
-        Node,        // a node's whole subtree (its bounds)
-        OwnObjects,  // the objects stored in an inner node itself (virtual leaf)
-        Object,      // one object (object_queries); only ever a pending query, never queued
-    };
+    // What an entry decides is what a query on it decides (QueryTag::Subject): a node's subtree,
+    // the objects stored in an inner node itself (its virtual leaf), or one object
+    // (object_queries; only ever a pending query, never queued).
+    using Subject = QueryTag::Subject;
     // An entry of the main queue, or what a pending query is about. `index` is a node, or an
     // object for Subject::Object. `rank` is the entry's place in the front-to-back depth-first
     // order of the tree for this frame's eye.
@@ -162,7 +161,7 @@ private:
     };
     // What decide() found besides the action, kept with a query until its answer.
     struct Decision {
-        QueryKind kind = QueryKind::Fresh;
+        PriorResult prior = PriorResult::Fresh;
     };
     struct Pending {
         QueryId id;
@@ -225,10 +224,10 @@ private:
     NodeStatistics& statsOf(const Entry& e);
     double travelOf(const Entry& e) const;
     bool drawsWhileRequerying(const Decision& decision) const {
-        return options_.draw_while_requerying && decision.kind == QueryKind::LastVisible;
+        return options_.draw_while_requerying && decision.prior == PriorResult::LastVisible;
     }
-    static size_t estimateIndex(QueryKind kind, bool object_query) {
-        return static_cast<size_t>(kind) + (object_query ? 3 : 0);
+    static size_t estimateIndex(PriorResult prior, bool object_query) {
+        return static_cast<size_t>(prior) + (object_query ? 3 : 0);
     }
 
     StatisticalOptions options_;
@@ -268,7 +267,7 @@ private:
     std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;
 
-    std::array<OcclusionEstimate, 6> estimates_{};  // per QueryKind, node then object queries
+    std::array<OcclusionEstimate, 6> estimates_{};  // per PriorResult, node then object queries
 
     // Fallback (improvement 5): answers and visible answers of the last frames, in a ring.
     std::vector<uint32_t> window_answers_;
