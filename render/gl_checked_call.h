@@ -4,9 +4,9 @@
 // release builds the macro is the bare call, so the measured figures pay nothing for it.
 #pragma once
 
-#include "render/gl_api.h"
-
 #include <string>
+
+#include "render/gl_api.h"
 
 namespace occsim {
 
@@ -23,9 +23,9 @@ void checkGlCall(const char* call);
 #ifdef NDEBUG
 #define OCCSIM_GL_CHECKED(call) call
 #else
-#define OCCSIM_GL_CHECKED(call)          \
-    do {                                 \
-        call;                            \
-        ::occsim::checkGlCall(#call);    \
+#define OCCSIM_GL_CHECKED(call)       \
+    do {                              \
+        call;                         \
+        ::occsim::checkGlCall(#call); \
     } while (0)
 #endif

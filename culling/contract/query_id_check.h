@@ -7,10 +7,10 @@
 // since tests are where such a bug should show.
 #pragma once
 
-#include "occsim/culling/contract/render_device.h"
-
 #include <cstdio>
 #include <cstdlib>
+
+#include "occsim/culling/contract/render_device.h"
 
 namespace occsim {
 
