@@ -323,7 +323,8 @@ int runCommand(const RunRequest& request) {
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
                    const std::string& shard, const std::string& out, const std::string& culling_file,
                    const std::vector<std::string>& plugins, const BackendFlags& backend,
-                   bool junit_given, const std::string& history, const std::string& commit) {
+                   bool junit_given, const std::string& history, const std::string& commit,
+                   bool allow_empty) {
     checkOutputFile("--junit", junit, junit_given);
     checkOutputFolder("--out", out, true);
     occsim_cli::checkHistoryFlag(history);
@@ -361,6 +362,13 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     if (!update) occsim_cli::writeRegressResults(options, report, history, commit);
     std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
                 options.shard.index, options.shard.count, failed, skipped);
+    // Green with nothing checked would let a CI job pass on a wrong path or a lost expect block.
+    if (report.scenarios.size() == skipped && !allow_empty) {
+        std::fprintf(stderr, "occsim regress: nothing was checked: %s (--allow-empty when that is expected)\n",
+                     report.scenarios.empty() ? "no scenario file found under the paths given"
+                                              : "no scenario found has an expect block");
+        return kExitFailure;
+    }
     return report.passed() ? 0 : kExitFailure;
 }
 
@@ -444,12 +452,14 @@ int main(int argc, char** argv) {
                       "off (the ablation; occsim cullers marks them)");
 
     std::vector<std::string> regress_inputs;
-    bool regress_update = false;
+    bool regress_update = false, regress_allow_empty = false;
     std::string regress_junit, regress_shard, regress_out = "out/regress", regress_culling;
     CLI::App* regress = app.add_subcommand(
         "regress", "Run every scenario with an expect block (files or folders, recursively) and check it");
     regress->add_option("paths", regress_inputs, "Scenario files or folders")->required();
     regress->add_flag("--update", regress_update, "Rewrite the baselines from this run (prints what changed)");
+    regress->add_flag("--allow-empty", regress_allow_empty,
+                      "Exit 0 even when no scenario found has an expect block (default: that fails)");
     regress->add_option("--junit", regress_junit, "Write JUnit XML results to this file");
     regress->add_option("--shard", regress_shard,
                         "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
@@ -570,7 +580,8 @@ int main(int argc, char** argv) {
         if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
                                              regress_shard, regress_out, regress_culling,
                                              regress_plugins, regress_backend,
-                                             regress->count("--junit") > 0, regress_history, regress_commit);
+                                             regress->count("--junit") > 0, regress_history, regress_commit,
+                                             regress_allow_empty);
         if (*merge) return occsim_cli::mergeCommand(merge_flags);
         if (*history) return occsim_cli::historyCommand(history_flags);
         if (*cullers) {

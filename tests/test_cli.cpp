@@ -366,3 +366,28 @@ TEST(Cli, NonsenseAndUnwritableOutputsAreRefusedBeforeAnyRun) {
     }
     std::filesystem::remove_all(dir);
 }
+
+// A regression run that checks nothing (an empty folder, or scenarios without expect blocks)
+// fails with one line saying why, unless --allow-empty says that is expected.
+TEST(Cli, RegressWithNothingToCheckFailsUnlessAllowed) {
+    const auto dir = tempPath("regress-empty");
+    const auto empty = dir / "empty", plain = dir / "plain";
+    std::filesystem::create_directories(empty);
+    std::filesystem::create_directories(plain);
+    std::ifstream in(kSmall);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    text = text.substr(0, text.find(",\n  \"expect\"")) + "\n}\n";  // the same scenario, no expect
+    std::ofstream(plain / "plain.json") << text;
+    const std::string out = " --out " + (dir / "out").string();
+    for (const auto& [folder, why] : {std::pair{empty, "no scenario file found"},
+                                      std::pair{plain, "no scenario found has an expect block"}}) {
+        const Outcome o = runOccsim("regress " + folder.string() + out);
+        EXPECT_EQ(o.exit_code, 1) << o.output;
+        EXPECT_NE(o.output.find("occsim regress: nothing was checked: " + std::string(why)), std::string::npos)
+            << o.output;
+        const Outcome allowed = runOccsim("regress " + folder.string() + " --allow-empty" + out);
+        EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+        EXPECT_EQ(allowed.output.find("nothing was checked"), std::string::npos) << allowed.output;
+    }
+    std::filesystem::remove_all(dir);
+}

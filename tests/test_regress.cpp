@@ -201,6 +201,20 @@ TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
     EXPECT_FALSE(ratio->passed) << ratio->got;
 }
 
+// With every expected frame inside the warm-up nothing is timed: the ratio check has nothing to
+// judge and fails, saying so, instead of passing on 0 / 0.
+TEST(Regress, ARatioCheckWithNothingTimedFails) {
+    nlohmann::json expect = kExpect;
+    expect["frames"] = 2;  // makeScenario's warmup_frames is 2
+    expect["ratios"] = {{{"algorithm", "statistical"}, {"reference", "vfc"}, {"max", 1.0}}};
+    const RegressReport report = runRegression(optionsFor(makeScenario("untimed", expect)));
+    const CheckResult* ratio = findCheck(report, "frame time statistical / vfc");
+    ASSERT_NE(ratio, nullptr);
+    EXPECT_FALSE(ratio->passed) << ratio->got;
+    EXPECT_NE(ratio->got.find("nothing timed"), std::string::npos) << ratio->got;
+    EXPECT_FALSE(report.passed());
+}
+
 TEST(Regress, AChangedQueryCountFailsTheExactCheckNamingTheFrame) {
     const fs::path file = makeScenario("queries", kExpect);
     RegressOptions o = optionsFor(file);

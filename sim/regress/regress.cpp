@@ -175,15 +175,25 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         outcome.checks.push_back(c);
     }
     for (const RatioExpectation& r : expect.ratios) {
-        const double a = runOf(r.algorithm).summary.frame_ms.mean;
-        const double b = runOf(r.reference).summary.frame_ms.mean;
-        const double ratio = b > 0 ? a / b : 0.0;
+        const RunSummary& sa = runOf(r.algorithm).summary;
+        const RunSummary& sb = runOf(r.reference).summary;
+        const double a = sa.frame_ms.mean, b = sb.frame_ms.mean;
         const double limit = r.max * (1.0 + r.tolerance);
-        outcome.checks.push_back({"frame time " + r.algorithm + " / " + r.reference,
-                                  "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) +
-                                      "% = " + fixed(limit, 2) + ")",
-                                  fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)",
-                                  ratio <= limit});
+        CheckResult c{"frame time " + r.algorithm + " / " + r.reference,
+                      "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) + "% = " + fixed(limit, 2) + ")",
+                      "", false};
+        // A ratio of nothing (every frame warm-up, or a reference that took no time) cannot
+        // judge anything: it fails rather than read 0/0 as a pass.
+        if (sa.timed_frames == 0 || sb.timed_frames == 0 || !(b > 0)) {
+            c.got = "nothing timed: " + std::to_string(std::min(sa.timed_frames, sb.timed_frames)) +
+                    " frames after warm-up (" + std::to_string(expect.frames.value_or(scenario.frames)) + " frames, warmup_frames " +
+                    std::to_string(scenario.warmup_frames) + "); raise expect.frames";
+        } else {
+            const double ratio = a / b;
+            c.got = fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)";
+            c.passed = ratio <= limit;
+        }
+        outcome.checks.push_back(c);
     }
 
     // Baseline.
