@@ -157,6 +157,22 @@ TEST(ScenarioSyntax, NumberOverflowingInsideAnArrayNamesTheElement) {
     expectError(errorForText(text), "/camera/keyframes/0/position/1", "1e400");
 }
 
+// Finite as a double but infinite as the float the world and the GPU hold: refused at the
+// element, for the camera and for objects alike.
+TEST(ScenarioSyntax, CoordinatesBeyondFloatRangeAreRefusedAtTheElement) {
+    json camera = minimalScenario();
+    camera["camera"]["keyframes"][0]["position"] = {0, 1e39, 0};
+    expectError(errorFor(camera), "/camera/keyframes/0/position/1",
+                "expected a coordinate that fits a 32-bit float (|x| < 3.4e38), got 1e");
+    json orbit = minimalScenario();
+    orbit["camera"] = json::parse(R"({"orbit": {"center": [-1e39, 0, 0], "radius": 5, "height": 2}})");
+    expectError(errorFor(orbit), "/camera/orbit/center/0", "fits a 32-bit float");
+    json gltf = minimalScenario();
+    gltf["scene"]["sources"] = json::parse(R"([{"type": "gltf", "path": ")" + std::string(OCCSIM_SOURCE_DIR) +
+                                           R"(/scenarios/assets/Box/box.gltf", "offset": [0, 0, 1e39]}])");
+    expectError(errorFor(gltf), "/scene/sources/0/offset/2", "fits a 32-bit float");
+}
+
 TEST(ScenarioSyntax, TopLevelValueMustBeAnObject) {
     expectError(errorForText("[1, 2, 3]"), "", "expected an object, got an array of 3 elements");
 }

@@ -365,7 +365,17 @@ std::string JsonValueReader::asEnum(const std::vector<std::string>& allowed) con
 glm::dvec3 JsonValueReader::asVec3() const {
     if (!value_->is_array() || value_->size() != 3) failExpected("an array [x, y, z] of 3 numbers");
     const JsonArrayReader elements(*value_, pointer_, file_);
-    return {elements.at(0).asNumber(), elements.at(1).asNumber(), elements.at(2).asNumber()};
+    // Points end up as 32-bit floats (the world, the camera, the GPU): a coordinate finite as a
+    // double but beyond float range would silently become infinite there.
+    auto coordinate = [&](size_t i) {
+        const JsonValueReader at = elements.at(i);
+        const double v = at.asNumber();
+        if (!std::isfinite(static_cast<float>(v))) {
+            at.failExpected("a coordinate that fits a 32-bit float (|x| < 3.4e38)");
+        }
+        return v;
+    };
+    return {coordinate(0), coordinate(1), coordinate(2)};
 }
 
 std::pair<double, double> JsonValueReader::asRange(const NumberRange& element) const {
