@@ -1,8 +1,10 @@
 // The viewer's parts that need no window: scripted input, the flying camera, the key table, the
 // text panel and recorded flights as scenario files.
+#include "occsim/culling/registry/registry.h"
 #include "render/window_events.h"
 #include "sim/view/fly_camera.h"
 #include "sim/view/hud.h"
+#include "sim/view/node_boxes.h"
 #include "sim/view/key_bindings.h"
 #include "sim/view/recorded_scenario.h"
 #include "sim/view/view_script.h"
@@ -205,6 +207,80 @@ TEST(ViewHud, ShowsTheAlgorithmAndTheFrameFiguresAndErrorOnlyWhenOn) {
     lines = hudLines(s);
     EXPECT_EQ(lines[0], "chc++ (5/7)   frame 12  0.40 s   flying 3.0 m/s   rec 9 frames");
     EXPECT_EQ(lines[1], "frame time 12.35 ms   queries 175   triangles 1,054,541   error px 1,234   ties 56   missed 2");
+}
+
+// Every row of the panel, keys and legend included, lies inside the picture and apart from the
+// others, in a 400-pixel-tall window wide enough for the large font and in narrower ones.
+TEST(ViewHud, EveryRowFitsA400PixelTallWindow) {
+    HudState s;
+    s.algorithm = "statistical+";
+    s.has_stats = true;
+    s.message = "screenshot written: out/x.png";
+    s.help = true;
+    s.legend = true;
+    const size_t rows = hudLines(s).size() + shownNodeBoxClasses().size();
+    for (const auto& [w, h] : {std::pair{1200u, 400u}, std::pair{1000u, 400u}, std::pair{800u, 400u},
+                               std::pair{1600u, 300u}}) {
+        const HudLayout layout = layoutHud(w, h, s);
+        ASSERT_EQ(layout.rows.size(), rows);
+        const int text_h = RasterCanvas::textHeight(layout.scale);
+        for (size_t i = 0; i < layout.rows.size(); ++i) {
+            const HudRow& r = layout.rows[i];
+            EXPECT_GE(r.y, 0) << w << "x" << h << " row " << i;
+            EXPECT_LE(r.y + text_h, static_cast<int>(h)) << w << "x" << h << " row " << i;
+            EXPECT_GE(r.x, 0) << w << "x" << h << " row " << i;
+            EXPECT_LE(r.x + r.width, static_cast<int>(w)) << w << "x" << h << " row " << i;
+            for (size_t j = 0; j < i; ++j) {
+                const HudRow& o = layout.rows[j];
+                const bool apart = r.x >= o.x + o.width || o.x >= r.x + r.width || r.y >= o.y + text_h ||
+                                   o.y >= r.y + text_h;
+                EXPECT_TRUE(apart) << w << "x" << h << " rows " << j << " and " << i;
+            }
+        }
+        EXPECT_LE(layout.panel_height, static_cast<int>(h));
+    }
+}
+
+// ---- docs/viewer.md follows the program's tables ------------------------------------------
+
+// The keys table lists exactly the program's action keys; the digit keys name the algorithms in
+// the program's order; every "press DIGIT  # name" in the docs presses that algorithm; --algo
+// lists every built-in algorithm.
+TEST(ViewDocs, TheKeysAndAlgorithmsOfViewerMdAreTheProgramsOwn) {
+    const std::string doc = readText(std::filesystem::path(OCCSIM_SOURCE_DIR) / "docs/viewer.md");
+    const size_t keys_at = doc.find("## Keys");
+    ASSERT_NE(keys_at, std::string::npos);
+    const std::string keys = doc.substr(keys_at, doc.find("Flying", keys_at) - keys_at);
+    size_t rows = 0;
+    for (size_t at = keys.find("\n| `"); at != std::string::npos; at = keys.find("\n| `", at + 1)) ++rows;
+    EXPECT_EQ(rows, actionKeys().size()) << keys;
+    for (const KeyBinding& k : actionKeys()) {
+        EXPECT_NE(keys.find("\n| `" + std::string(k.keys) + "` |"), std::string::npos) << k.keys;
+    }
+    const auto& all = algorithms();
+    std::string digits;
+    for (size_t i = 0; i < all.size() && i < 9; ++i) {
+        digits += (i ? ", `" : "`") + std::to_string(i + 1) + "` " + std::string(all[i]->name);
+    }
+    EXPECT_NE(keys.find(digits), std::string::npos) << "expected the digit keys as: " << digits;
+    std::istringstream lines(doc);
+    std::string line;
+    size_t presses = 0;
+    while (std::getline(lines, line)) {
+        unsigned digit = 0;
+        char name[64] = {};
+        if (std::sscanf(line.c_str(), "press %u # %63[^: ]", &digit, name) == 2 && digit >= 1 && digit <= all.size()) {
+            EXPECT_EQ(std::string(name), all[digit - 1]->name) << line;
+            ++presses;
+        }
+    }
+    EXPECT_GT(presses, 0u) << "the session example presses an algorithm's digit";
+    const size_t algo_at = doc.find("| `--algo NAME` |");
+    ASSERT_NE(algo_at, std::string::npos);
+    const std::string algo_row = doc.substr(algo_at, doc.find('\n', algo_at) - algo_at);
+    for (const AlgorithmTraits* a : all) {
+        EXPECT_NE(algo_row.find("`" + std::string(a->name) + "`"), std::string::npos) << a->name;
+    }
 }
 
 // ---- recorded flights ----------------------------------------------------------------------

@@ -110,7 +110,7 @@ TEST(ViewWindow, BadScriptsAndSizesAreOneLineWithExitCode2BeforeAnyWindow) {
 // screenshot again. A screenshot shows the frame after the input before it, hence the waits.
 constexpr const char* kSession = R"(# scripted viewer session (tests/test_view_window.cpp)
 wait 3
-press 4            # chc
+press 4            # statistical+
 press b            # node boxes
 press m            # bird's-eye inset
 press g            # ground truth

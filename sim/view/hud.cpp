@@ -61,34 +61,68 @@ std::vector<std::string> hudLines(const HudState& s) {
     return lines;
 }
 
-void drawHud(RasterCanvas& canvas, const HudState& state) {
-    const int scale = canvas.width() >= 1000 ? 2 : 1;
+namespace {
+
+// Rows at this scale in as few columns of rows_per_column as the height allows.
+HudLayout placeRows(const std::vector<int>& widths, int scale, uint32_t height) {
+    HudLayout layout;
+    layout.scale = scale;
+    layout.pad = 4 * scale;
+    layout.swatch = RasterCanvas::textHeight(scale);
     const int line_h = RasterCanvas::textHeight(scale) + 4 * scale;
-    const int pad = 4 * scale;
-    const int swatch = RasterCanvas::textHeight(scale);
-    const std::vector<std::string> lines = hudLines(state);
-
-    int width = 0;
-    for (const std::string& l : lines) width = std::max(width, RasterCanvas::textWidth(l, scale));
-    const auto legend = shownNodeBoxClasses();
-    if (state.legend) {
-        for (const NodeBoxClass& c : legend) {
-            width = std::max(width, swatch + pad + RasterCanvas::textWidth(c.label, scale));
+    const int usable = static_cast<int>(height) - 2 * layout.pad + 4 * scale;
+    const size_t per_column = static_cast<size_t>(std::max(1, usable / line_h));
+    int x = layout.pad, column_width = 0, deepest = 0;
+    for (size_t i = 0; i < widths.size(); ++i) {
+        if (i > 0 && i % per_column == 0) {
+            x += column_width + 3 * layout.pad;
+            column_width = 0;
         }
+        const int y = layout.pad + static_cast<int>(i % per_column) * line_h;
+        layout.rows.push_back({x, y, widths[i]});
+        column_width = std::max(column_width, widths[i]);
+        deepest = std::max(deepest, y + RasterCanvas::textHeight(scale));
     }
-    const int rows = static_cast<int>(lines.size() + (state.legend ? legend.size() : 0));
-    canvas.fillRect(0, 0, width + 2 * pad, rows * line_h + 2 * pad - 4 * scale, kPanel, 0.75f);
+    layout.panel_width = x + column_width + layout.pad;
+    layout.panel_height = deepest + layout.pad;
+    return layout;
+}
 
-    int y = pad;
-    for (size_t i = 0; i < lines.size(); ++i, y += line_h) {
+}  // namespace
+
+HudLayout layoutHud(uint32_t width, uint32_t height, const HudState& state) {
+    const int large = width >= 1000 ? 2 : 1;
+    for (int scale = large;; --scale) {
+        std::vector<int> widths;
+        for (const std::string& l : hudLines(state)) widths.push_back(RasterCanvas::textWidth(l, scale));
+        if (state.legend) {
+            for (const NodeBoxClass& c : shownNodeBoxClasses()) {
+                widths.push_back(RasterCanvas::textHeight(scale) + 4 * scale + RasterCanvas::textWidth(c.label, scale));
+            }
+        }
+        HudLayout layout = placeRows(widths, scale, height);
+        // The large font only where one column holds every row; the small one wraps.
+        const bool one_column = layout.rows.empty() || layout.rows.back().x == layout.pad;
+        if (scale == 1 || one_column) return layout;
+    }
+}
+
+void drawHud(RasterCanvas& canvas, const HudState& state) {
+    const HudLayout layout = layoutHud(canvas.width(), canvas.height(), state);
+    const int scale = layout.scale;
+    const std::vector<std::string> lines = hudLines(state);
+    canvas.fillRect(0, 0, layout.panel_width - 1, layout.panel_height - 1, kPanel, 0.75f);
+    for (size_t i = 0; i < lines.size(); ++i) {
         const bool first = i == 0;
-        canvas.text(pad, y, lines[i], first && state.recording ? kRecording : first ? kText : kDim, scale);
+        canvas.text(layout.rows[i].x, layout.rows[i].y, lines[i],
+                    first && state.recording ? kRecording : first ? kText : kDim, scale);
     }
     if (!state.legend) return;
-    for (const NodeBoxClass& c : legend) {
-        canvas.outlineRect(pad, y, pad + swatch - 1, y + swatch - 1, nodeClassColour(c.node_class));
-        canvas.text(pad + swatch + pad, y, c.label, kText, scale);
-        y += line_h;
+    size_t i = lines.size();
+    for (const NodeBoxClass& c : shownNodeBoxClasses()) {
+        const HudRow& r = layout.rows[i++];
+        canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1, nodeClassColour(c.node_class));
+        canvas.text(r.x + layout.swatch + layout.pad, r.y, c.label, kText, scale);
     }
 }
 

@@ -34,7 +34,25 @@ struct HudState {
 // The lines of the panel, as printed (tests read them).
 std::vector<std::string> hudLines(const HudState& state);
 
-// Draws the panel at the top left; font scale 2 on wide pictures, 1 otherwise.
+// Where each row of the panel goes in a width x height picture: the text lines first, then the
+// legend entries when shown. Pure, so tests can check that every row lands inside the picture.
+struct HudRow {
+    int x = 0, y = 0;  // top left of the row's text (or of a legend swatch)
+    int width = 0;     // of its text, swatch included
+};
+struct HudLayout {
+    int scale = 1;
+    int pad = 4;
+    int swatch = 7;
+    std::vector<HudRow> rows;
+    int panel_width = 0, panel_height = 0;  // the dark panel behind them, from (0, 0)
+};
+
+// Font scale 2 on wide pictures when every row fits the height, 1 otherwise; rows that still do
+// not fit go on in further columns to the right rather than past the bottom.
+HudLayout layoutHud(uint32_t width, uint32_t height, const HudState& state);
+
+// Draws the panel at the top left, as layoutHud() places it.
 void drawHud(RasterCanvas& canvas, const HudState& state);
 
 }  // namespace occsim
