@@ -276,6 +276,34 @@ TEST(BirdsEye, TheCameraDotSitsAtTheEyeInATopViewWithMinusZUp) {
     EXPECT_LT(sx / n, 0.4 * p.width);
 }
 
+// A drawn ground slab under every object (a city's ground, a library's floor) lies under them in
+// the picture: the objects that were not drawn stay visible on it.
+TEST(BirdsEye, ADrawnGroundSlabHidesNoObjectThatWasNotDrawn) {
+    auto hiddenPixels = [](bool with_ground) {
+        std::vector<Aabb> boxes = kBoxes;
+        if (with_ground) boxes.push_back({{-12, -0.1f, -25}, {75, 0, 3}});
+        BspTree tree;
+        BspBuildOptions options;
+        options.max_objects_per_leaf = 1;
+        tree.build(boxes, options);
+        std::vector<uint32_t> drawn = {0, 1, 6};
+        if (with_ground) drawn.push_back(7);
+        const std::vector<NodeClass> classes(tree.nodeCount(), NodeClass::Empty);
+        BirdsEyeInput in;
+        in.tree = &tree;
+        in.object_boxes = boxes;
+        in.drawn_objects = drawn;
+        in.node_classes = classes;
+        in.view = sceneView();
+        in.draw_legend = false;
+        const Picture p{renderBirdsEye(in, 640, 400), 640, 400};
+        return p.count(kHiddenObjectColour);
+    };
+    const size_t without = hiddenPixels(false), with = hiddenPixels(true);
+    ASSERT_GT(without, 0u);
+    EXPECT_GT(with, without / 2) << "the ground slab covers the hidden objects";
+}
+
 // ---- markdownReport -----------------------------------------------------------------------
 
 RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,

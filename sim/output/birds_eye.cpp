@@ -274,20 +274,42 @@ void drawWedgeLines(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
 
 Rgb darker(Rgb c) { return {static_cast<uint8_t>(c.r / 2), static_cast<uint8_t>(c.g / 2), static_cast<uint8_t>(c.b / 2)}; }
 
+// Footprints covering at least this share of the picture's area are ground: floors and slabs.
+constexpr double kGroundShare = 0.05;
+
 void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
     std::vector<uint8_t> drawn(in.object_boxes.size(), 0);
     for (uint32_t o : in.drawn_objects) {
         if (o < drawn.size()) drawn[o] = 1;
     }
-    // Hidden ones first, so a drawn object is never painted over by a hidden neighbour. A darker
+    // Ground first (the largest footprint lowest), whether drawn or not: the always-drawn floor
+    // of a city or a library must lie under the objects on it, not be painted over them. Then
+    // the hidden ones, so a drawn object is never painted over by a hidden neighbour. A darker
     // border keeps overlapping objects apart.
+    const double picture_area = double(canvas.width()) * double(canvas.height());
+    std::vector<std::pair<double, size_t>> ground;
+    std::vector<uint8_t> is_ground(in.object_boxes.size(), 0);
+    for (size_t o = 0; o < in.object_boxes.size(); ++o) {
+        if (!isFiniteAndOrdered(in.object_boxes[o])) continue;
+        const PixelRect r = rectOf(v, in.object_boxes[o]);
+        const double area = double(r.x1 - r.x0 + 1) * double(r.y1 - r.y0 + 1);
+        if (area >= kGroundShare * picture_area) {
+            ground.emplace_back(area, o);
+            is_ground[o] = 1;
+        }
+    }
+    std::sort(ground.begin(), ground.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    auto paint = [&](size_t o) {
+        const Rgb fill = drawn[o] ? kDrawnObjectColour : kHiddenObjectColour;
+        const PixelRect r = rectOf(v, in.object_boxes[o]);
+        canvas.fillRect(r.x0, r.y0, r.x1, r.y1, fill);
+        if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3) canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
+    };
+    for (const auto& g : ground) paint(g.second);
     for (int pass = 0; pass < 2; ++pass) {
-        const Rgb fill = pass ? kDrawnObjectColour : kHiddenObjectColour;
         for (size_t o = 0; o < in.object_boxes.size(); ++o) {
-            if (drawn[o] != pass || !isFiniteAndOrdered(in.object_boxes[o])) continue;
-            const PixelRect r = rectOf(v, in.object_boxes[o]);
-            canvas.fillRect(r.x0, r.y0, r.x1, r.y1, fill);
-            if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3) canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
+            if (drawn[o] != pass || is_ground[o] || !isFiniteAndOrdered(in.object_boxes[o])) continue;
+            paint(o);
         }
     }
 }
