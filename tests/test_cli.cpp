@@ -391,3 +391,35 @@ TEST(Cli, RegressWithNothingToCheckFailsUnlessAllowed) {
     }
     std::filesystem::remove_all(dir);
 }
+
+// A camera that looks away from every object measures empty frames: the run warns in one line
+// and gives no speedup (n/a), in the table, report.md and summary.json.
+TEST(Cli, ACameraThatSeesNothingWarnsAndGivesNoSpeedup) {
+    const auto dir = tempPath("looks-away");
+    std::filesystem::create_directories(dir);
+    std::ifstream in(kSmall);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    // The teapots stand at z in [-60, 0]; this camera at z = 6 looks towards +z.
+    const std::string from = "\"target\": [0, 1.5, -20]", to = "\"target\": [0, 2, 40]";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), to);
+    const std::string from2 = "\"target\": [-3, 1.5, -35]";
+    ASSERT_NE(text.find(from2), std::string::npos);
+    text.replace(text.find(from2), from2.size(), "\"target\": [3, 2.5, 40]");
+    const auto scenario = dir / "away.json";
+    std::ofstream(scenario) << text;
+    const auto out = dir / "out";
+    const Outcome o = runOccsim("bench " + scenario.string() + " --algos vfc,chc,ideal --frames 8 --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("warning: the camera sees no object on any frame"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("1.00x"), std::string::npos) << "no speedup, not even vfc over itself: " << o.output;
+    EXPECT_NE(o.output.find("n/a"), std::string::npos) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    EXPECT_NE(json.find("\"nothing_in_view\": true"), std::string::npos) << json;
+    EXPECT_EQ(json.find("speedup_over_vfc"), std::string::npos) << json;
+    std::ifstream report(out / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
+    EXPECT_NE(md.find("the camera sees no object on any frame"), std::string::npos) << md;
+    std::filesystem::remove_all(dir);
+}

@@ -83,7 +83,12 @@ void header(std::ostringstream& out, const BenchResult& result) {
 void table(std::ostringstream& out, const BenchResult& result) {
     const ComparisonTable t = comparisonTable(result.runs);
     const bool has_pareto = !t.header.empty() && t.header.back() == "pareto";
-    out << "## Comparison\n\n|";
+    out << "## Comparison\n\n";
+    if (nothingInView(result.runs)) {
+        out << "**Warning:** the camera sees no object on any frame (none drawn, none visible): "
+               "the speedups are n/a.\n\n";
+    }
+    out << "|";
     for (const std::string& h : t.header) out << ' ' << cell(h) << " |";
     out << "\n|";
     for (size_t i = 0; i < t.header.size(); ++i) out << (i == 0 ? "---|" : "---:|");

@@ -32,6 +32,7 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
     for (const char* h : {"speedup", "vs ideal"}) header.push_back(h);
     if (error) header.push_back("pareto");
 
+    const bool nothing_in_view = nothingInView(runs);
     std::vector<std::vector<std::string>> rows;
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
@@ -59,8 +60,10 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
             row.push_back(std::to_string(s.missed_objects_total));
             row.push_back(std::to_string(s.popping_max_frames));
         }
-        row.push_back(speedup > 0 ? fixed(speedup, 2) + "x" : "-");
-        row.push_back(ideal > 0 ? fixed(ideal, 2) + "x" : "-");
+        // Ratios of empty frames mean nothing: n/a, and the headline says why.
+        const std::string none = nothing_in_view ? "n/a" : "-";
+        row.push_back(speedup > 0 ? fixed(speedup, 2) + "x" : none);
+        row.push_back(ideal > 0 ? fixed(ideal, 2) + "x" : none);
         if (error) row.push_back(r.pareto ? "*" : "");
         rows.push_back(row);
     }
@@ -185,6 +188,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"gpu_time_meaningful", m.gpu_time_meaningful},
                           {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
     summary["command"] = m.command_line;
+    summary["nothing_in_view"] = nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
     summary["error_measured"] = m.error_measured;
     if (m.error_measured) {
@@ -256,6 +260,10 @@ std::string runHeadline(const BenchResult& result) {
     headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " + m.driver +
                 (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
     if (!m.backend_fallback.empty()) headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
+    if (nothingInView(result.runs)) {
+        headline += "\nwarning: the camera sees no object on any frame (none drawn, none visible): "
+                    "speedups are n/a; aim the camera at the scene";
+    }
     if (timed == 0) {
         headline += "\nnothing was timed: all " + std::to_string(m.frames) +
                     " frames are warm-up (the scenario's warmup_frames); run more frames than that "

@@ -32,12 +32,23 @@ std::string backendLabel(const RunMetadata& m) {
     return m.backend.empty() ? "unknown backend" : m.backend;
 }
 
+bool nothingInView(const std::vector<RunRecord>& runs) {
+    for (const RunRecord& r : runs) {
+        for (const FrameStats& f : r.frames) {
+            if (f.objects_drawn > 0 || f.visible_objects > 0) return false;
+        }
+    }
+    return !runs.empty();
+}
+
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s) {
+    if (nothingInView(runs)) return 0.0;
     const RunSummary* ref = findRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
     return ref && s.frame_ms.mean > 0 ? ref->frame_ms.mean / s.frame_ms.mean : 0.0;
 }
 
 double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s) {
+    if (nothingInView(runs)) return 0.0;
     const RunSummary* oracle = findRun(runs, [](const AlgorithmTraits& a) { return a.oracle; });
     return oracle && oracle->frame_ms.mean > 0 ? s.frame_ms.mean / oracle->frame_ms.mean : 0.0;
 }

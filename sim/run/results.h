@@ -100,8 +100,12 @@ struct BenchResult {
 // "EGL device 0" or "OSMesa": where the run rendered, for the console and reports.
 std::string backendLabel(const RunMetadata& m);
 
+// True when no configuration drew an object on any frame and ground truth (where rendered) saw
+// none: the camera looks at nothing, so frame-time ratios compare empty frames.
+bool nothingInView(const std::vector<RunRecord>& runs);
+
 // Speedup over the reference (its mean / this mean) and ratio to the oracle (this mean / the
-// oracle's mean); 0 when that algorithm is not among the runs.
+// oracle's mean); 0 when that algorithm is not among the runs, or when nothingInView(runs).
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s);
 double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s);
 
