@@ -11,6 +11,7 @@
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
 #include "sim/output/run_outputs.h"
+#include "sim/output/shell_quote.h"
 #include "sim/regress/regress.h"
 #include "sim/regress/result_files.h"
 #include "sim/regress_commands.h"
@@ -74,11 +75,8 @@ CLI::Validator integerIn(long long lo, long long hi) {
         "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
-std::string commandLine(int argc, char** argv) {
-    std::ostringstream out;
-    for (int i = 0; i < argc; ++i) out << (i ? " " : "") << argv[i];
-    return out.str();
-}
+// As typed, quoted for a shell, so that summary.json's command pastes back.
+std::string commandLine(int argc, char** argv) { return occsim::shellCommand({argv, argv + argc}); }
 
 // --backend and --device, on every command that renders headless.
 struct BackendFlags {
@@ -304,7 +302,7 @@ int runCommand(const RunRequest& request) {
 
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
     const occsim::OutputFiles files =
-        occsim::writeRunOutputs(result, {out_dir, flags.plots, pictures.birdsEyeFiles()});
+        occsim::writeRunOutputs(result, {out_dir, flags.plots, pictures.birdsEyeFiles(), {}});
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
@@ -331,6 +329,12 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     loadPlugins(plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(backend);
+    for (const std::string& plugin : plugins) options.rerun_flags.insert(options.rerun_flags.end(), {"--plugin", plugin});
+    if (!culling_file.empty()) options.rerun_flags.insert(options.rerun_flags.end(), {"--culling", culling_file});
+    if (backend.backend != "auto") options.rerun_flags.insert(options.rerun_flags.end(), {"--backend", backend.backend});
+    if (backend.device >= 0) {
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--device", std::to_string(backend.device)});
+    }
     if (!culling_file.empty()) {
         options.adjust_scenario = [culling = occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
             occsim::applyCullingFile(culling, s);

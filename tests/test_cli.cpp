@@ -423,3 +423,34 @@ TEST(Cli, ACameraThatSeesNothingWarnsAndGivesNoSpeedup) {
     EXPECT_NE(md.find("the camera sees no object on any frame"), std::string::npos) << md;
     std::filesystem::remove_all(dir);
 }
+
+// summary.json says what ran and how to run it again: the version and commit, every option of
+// every culler after defaults, and the command shell-quoted, which pasted back runs as typed.
+TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
+    const auto dir = tempPath("repro");
+    const auto out = dir / "it's a folder";
+    const Outcome o = runOccsim("bench " + kSmall + " --algos vfc,statistical+ --frames 2 --out \"" + out.string() + "\"");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    EXPECT_NE(json.find("\"occsim\": {\n    \"commit\": \""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"version\": \"0."), std::string::npos) << json;
+    for (const char* option : {"\"options\": {", "\"base_time\": ", "\"cost_model\": ", "\"threshold_pixels\": 0"}) {
+        EXPECT_NE(json.find(option), std::string::npos) << option << " in " << json;
+    }
+    std::string quoted = (dir / "it'\\\\''s a folder").string();
+    quoted.insert(quoted.begin(), '\'');
+    quoted.push_back('\'');
+    const size_t at = json.find("\"command\": \"");
+    ASSERT_NE(at, std::string::npos) << json;
+    const size_t start = at + std::string("\"command\": \"").size();
+    std::string command = json.substr(start, json.find("\",\n", start) - start);
+    EXPECT_NE(command.find(quoted), std::string::npos) << command << " lacks " << quoted;
+    // JSON escapes the backslash of '\'' once: undo that, then run it again from the shell.
+    for (size_t p = command.find("\\\\"); p != std::string::npos; p = command.find("\\\\", p + 1)) command.erase(p, 1);
+    std::filesystem::remove_all(out);
+    const Outcome again = shell(command);
+    EXPECT_EQ(again.exit_code, 0) << command << ": " << again.output;
+    EXPECT_TRUE(std::filesystem::exists(out / "summary.json")) << command;
+    std::filesystem::remove_all(dir);
+}

@@ -215,6 +215,25 @@ TEST(Regress, ARatioCheckWithNothingTimedFails) {
     EXPECT_FALSE(report.passed());
 }
 
+// Each scenario's report.md gives the command that reruns it and lists its check results.
+TEST(Regress, TheScenarioReportHasTheRerunCommandAndTheChecks) {
+    const fs::path file = makeScenario("report", kExpect, 8);
+    RegressOptions o = optionsFor(file);
+    o.rerun_flags = {"--culling", "my tuned.json"};
+    const RegressReport report = runRegression(o);
+    std::ifstream in(o.out_dir / "report" / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_NE(md.find("```sh\noccsim regress " + file.string() + " --culling 'my tuned.json' --out " +
+                      o.out_dir.string() + "\n```"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("## Checks"), std::string::npos) << md;
+    EXPECT_NE(md.find("| zero error pixels: vfc | 0 on every frame | 0 ("), std::string::npos) << md;
+    EXPECT_NE(md.find("| baseline | a readable baseline of this format |"), std::string::npos) << md;
+    EXPECT_NE(md.find("**FAIL**"), std::string::npos) << "no baseline yet: " << md;
+    ASSERT_FALSE(report.scenarios[0].checks.empty());
+}
+
 TEST(Regress, AChangedQueryCountFailsTheExactCheckNamingTheFrame) {
     const fs::path file = makeScenario("queries", kExpect);
     RegressOptions o = optionsFor(file);

@@ -169,6 +169,7 @@ std::string markdownReport(const BenchResult& result, const ReportFiles& files) 
     std::ostringstream out;
     header(out, result);
     table(out, result);
+    out << files.extra_markdown;
     pictures(out, files);
     howToRead(out);
     return out.str();

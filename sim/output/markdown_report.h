@@ -25,6 +25,7 @@ struct ReportFiles {
     std::vector<std::string> plot_files;       // PNG and SVG; the PNGs are shown
     std::vector<std::string> birds_eye_files;
     std::string plots_note;                    // why plots are missing or incomplete, if so
+    std::string extra_markdown;                // a whole section, after the table (regress: the checks)
 };
 
 std::string markdownReport(const BenchResult& result, const ReportFiles& files);

@@ -1,5 +1,7 @@
 #include "sim/output/report.h"
 
+#include "sim/output/build_info.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
@@ -11,6 +13,26 @@ std::string fixed(double v, int decimals) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
     return buf;
+}
+
+// Every option of the culler as it ran, by key, in its descriptor's order and JSON type: what a
+// reader needs to rerun the configuration exactly.
+nlohmann::json optionsJson(const OptionValues& values) {
+    nlohmann::json out = nlohmann::json::object();
+    if (values.values().empty()) return out;
+    const OptionsDescriptor& descriptor = values.descriptor();
+    for (size_t i = 0; i < descriptor.size(); ++i) {
+        const OptionSpec& spec = descriptor[i];
+        const double v = values.values()[i];
+        if (spec.type == OptionType::Boolean) {
+            out[spec.key] = v != 0.0;
+        } else if (spec.type == OptionType::Integer) {
+            out[spec.key] = static_cast<int64_t>(v);
+        } else {
+            out[spec.key] = v;
+        }
+    }
+    return out;
 }
 
 }  // namespace
@@ -162,6 +184,9 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"popping_max_frames", s.popping_max_frames}};
             j["pareto"] = r.pareto;
         }
+        j["options"] = optionsJson(r.options);
+        j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
+                              {"stale_results", r.approximation.stale_results}};
         if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
         if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
         algorithms.push_back(j);
@@ -188,6 +213,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"gpu_time_meaningful", m.gpu_time_meaningful},
                           {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
     summary["command"] = m.command_line;
+    summary["occsim"] = {{"version", OCCSIM_VERSION}, {"commit", OCCSIM_GIT_COMMIT}};
     summary["nothing_in_view"] = nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
     summary["error_measured"] = m.error_measured;

@@ -4,6 +4,7 @@
 #include "sim/output/atomic_file.h"
 #include "sim/output/error_picture.h"
 #include "sim/output/run_outputs.h"
+#include "sim/output/shell_quote.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/json_reader.h"
 
@@ -96,6 +97,27 @@ std::string fixed(double v, int decimals) {
     return buf;
 }
 
+// The checks as a section of the scenario's report.md.
+std::string checksMarkdown(const ScenarioOutcome& outcome) {
+    auto cell = [](const std::string& s) {
+        std::string out;
+        for (char c : s) out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+        return out;
+    };
+    size_t failed = 0;
+    for (const CheckResult& c : outcome.checks) failed += !c.passed;
+    std::ostringstream out;
+    out << "## Checks\n\n" << outcome.checks.size() << " checks, " << failed << " failed.\n\n"
+        << "| check | expected | got | result |\n|---|---|---|---|\n";
+    for (const CheckResult& c : outcome.checks) {
+        out << "| " << cell(c.check) << " | " << cell(c.expected) << " | " << cell(c.got) << " | "
+            << (c.passed ? "pass" : "**FAIL**") << " |\n";
+    }
+    if (!outcome.note.empty()) out << "\n" << outcome.note << "\n";
+    out << "\n";
+    return out.str();
+}
+
 ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& options) {
     ScenarioOutcome outcome;
     outcome.scenario = file.string();
@@ -123,12 +145,16 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     bench.latency = {true, expect.deterministic_latency};
     bench.frames = expect.frames;
     bench.command = "regress";
+    std::vector<std::string> rerun = {"occsim", "regress", file.string()};
+    rerun.insert(rerun.end(), options.rerun_flags.begin(), options.rerun_flags.end());
+    rerun.insert(rerun.end(), {"--out", options.out_dir.string()});
+    bench.command_line = shellCommand(rerun);
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
     bench.backend = options.backend;
     const std::filesystem::path out_dir = options.out_dir / safeFileName(outcome.name);
     const BenchResult result = runBenchmark(scenario, bench);
-    writeRunOutputs(result, OutputRequest{out_dir, false, {}});
+    std::filesystem::create_directories(out_dir);  // pictures of failures go there first
 
     auto runOf = [&](const std::string& name) -> const RunRecord& {
         for (const RunRecord& r : result.runs) {
@@ -293,6 +319,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             }
         }
     }
+    writeRunOutputs(result, OutputRequest{out_dir, false, {}, checksMarkdown(outcome)});
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return outcome;
 }

@@ -101,6 +101,9 @@ struct RegressOptions {
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
     // Applied to each scenario after it is parsed (occsim regress --culling FILE).
     std::function<void(Scenario&)> adjust_scenario;
+    // The flags that shaped each scenario's run (--culling FILE, --backend, --plugin, ...), for
+    // the command its report.md and summary.json give to rerun that one scenario.
+    std::vector<std::string> rerun_flags;
 };
 
 struct RegressReport {

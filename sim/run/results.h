@@ -23,6 +23,10 @@ struct RunRecord {
     std::vector<std::vector<FrameStats>> later_repetitions;
     std::vector<RunSummary> repetitions;                 // one per repetition
     const AlgorithmTraits* algorithm = nullptr;          // the culler
+    // What the culler was configured with: every option after defaults, sweeps and --culling
+    // (summary.json records them), and the shared approximation knobs.
+    OptionValues options;
+    ApproximationOptions approximation;
     bool pareto = false;                                 // on the time-against-error front
 };
 

@@ -110,7 +110,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
         result.metadata.cost_model_source = costs->source;
     }
     result.runs.resize(configs.size());
-    for (size_t c = 0; c < configs.size(); ++c) result.runs[c].algorithm = configs[c].algorithm;
+    for (size_t c = 0; c < configs.size(); ++c) {
+        result.runs[c].algorithm = configs[c].algorithm;
+        result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
+        result.runs[c].approximation = configs[c].culler.approximation;
+    }
 
     const auto start = Clock::now();
     auto last_progress = start;
