@@ -6,12 +6,13 @@
 
 namespace occsim::tune {
 
-bool addCostOption(nlohmann::json& culling, const CostModel& model) {
+bool addCostOption(nlohmann::json& culling, const CostModel& model, const std::string& culler) {
     // The culler refuses a cost model whose three figures are all 0 (nothing would cost anything).
     if (model.query_ms <= 0.0 && model.triangleMs() <= 0.0 && model.draw_ms <= 0.0) return false;
     culling["cost_model"] = {{"query_box_ms", model.query_ms},
                              {"triangle_ms", model.triangleMs()},
-                             {"draw_call_ms", model.draw_ms}};
+                             {"draw_call_ms", model.draw_ms},
+                             {"cullers", {culler}}};
     return true;
 }
 
@@ -33,11 +34,11 @@ TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
     file.weighs_costs = algorithm.cost_model_use && algorithm.cost_model_use(tuned).wanted;
     if (file.weighs_costs) {
         nlohmann::json cost_option = nlohmann::json::object();
-        file.has_cost_option = addCostOption(cost_option, cost);
+        file.has_cost_option = addCostOption(cost_option, cost, algorithm.name);
         for (const auto& [key, value] : cost_option.items()) culling[key] = value;
         if (file.has_cost_option) {
-            file.note = "tuned.json carries the fitted culling.cost_model: every culler that weighs "
-                        "costs reads it, not only " + algorithm.name;
+            file.note = "tuned.json carries the fitted culling.cost_model for " + algorithm.name +
+                        " only (\"cullers\": [\"" + algorithm.name + "\"]): no other culler reads it";
         }
     }
     const nlohmann::ordered_json top = {{"format_version", 1}, {"culling", culling}};

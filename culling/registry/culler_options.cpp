@@ -17,6 +17,9 @@ OptionValues& CullerOptions::edit(const AlgorithmTraits& culler) {
 
 bool CullerOptions::isValid(std::string* error) const {
     if (!cost_model.isValid(error)) return false;
+    for (const auto& [name, model] : cost_model_of) {
+        if (!model.isValid(error)) return false;
+    }
     for (const auto& [name, values] : given) {
         const AlgorithmTraits* culler = findAlgorithm(name);
         const std::string why = culler ? checkOptionValues(*culler, values)

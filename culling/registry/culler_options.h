@@ -17,6 +17,9 @@ struct AlgorithmTraits;
 
 struct CullerOptions {
     CostModel cost_model;  // unknown (all zero) unless given or measured at start-up
+    // A cost model given for these cullers only (culling.cost_model with "cullers"): it replaces
+    // cost_model for them and reaches no other culler (a tuned.json changes what it was tuned for).
+    std::map<std::string, CostModel, std::less<>> cost_model_of;
     ApproximationOptions approximation;
     // The values given for a culler (scenario, --culling file, sweep, tuner), by culler name.
     std::map<std::string, OptionValues, std::less<>> given;

@@ -187,6 +187,11 @@ nlohmann::json summaryJson(const BenchResult& result) {
         j["options"] = optionsJson(r.options);
         j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
                               {"stale_results", r.approximation.stale_results}};
+        if (r.cost_model) {
+            j["cost_model"] = {{"query_box_ms", r.cost_model->query_box_ms},
+                               {"triangle_ms", r.cost_model->triangle_ms},
+                               {"draw_call_ms", r.cost_model->draw_call_ms}};
+        }
         if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
         if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
         algorithms.push_back(j);

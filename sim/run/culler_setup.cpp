@@ -14,6 +14,10 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
         if (!algorithm.cost_model_use) continue;
         const CostModelUse use = algorithm.cost_model_use(config.culler.of(algorithm));
         if (!use.wanted) continue;
+        // A cost model given for this culler alone wins over the shared one.
+        if (const auto it = config.culler.cost_model_of.find(algorithm.name); it != config.culler.cost_model_of.end()) {
+            config.culler.cost_model = it->second;
+        }
         if (config.culler.cost_model.known()) {
             if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};
             continue;

@@ -21,7 +21,8 @@ struct Scene;
 // Gives every configuration whose culler weighs costs (AlgorithmTraits::cost_model_use) and has no
 // cost model one: measured on this renderer before the first frame, or, when decisions must be
 // reproducible (deterministic latency), the reference figures. A cost model given by the scenario
-// is kept as it is. Returns what was chosen, nullopt when no configuration weighs costs.
+// is kept as it is; one given for a culler alone (CullerOptions::cost_model_of) goes to that culler
+// only. Returns what was chosen, nullopt when no configuration weighs costs.
 std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, const Scene& scene,
                                                const Scenario& scenario, GlRenderer& renderer,
                                                const LatencyMode& latency);

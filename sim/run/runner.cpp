@@ -114,6 +114,10 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
         result.runs[c].algorithm = configs[c].algorithm;
         result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
         result.runs[c].approximation = configs[c].culler.approximation;
+        const AlgorithmTraits& a = *configs[c].algorithm;
+        if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
+            result.runs[c].cost_model = configs[c].culler.cost_model;
+        }
     }
 
     const auto start = Clock::now();

@@ -41,11 +41,16 @@ OptionValues readCullerOptions(JsonObjectReader reader, const AlgorithmTraits& c
 }
 
 // What drawing and querying cost (milliseconds); the tuner writes it, or calibration measures it.
-CostModel readCostModel(JsonObjectReader reader) {
+// With "cullers": [NAME, ...], the model is for those cullers only (their names into *cullers).
+CostModel readCostModel(JsonObjectReader reader, std::vector<std::string>* cullers) {
     CostModel c;
     c.query_box_ms = reader.number("query_box_ms", c.query_box_ms);
     c.triangle_ms = reader.number("triangle_ms", c.triangle_ms);
     c.draw_call_ms = reader.number("draw_call_ms", c.draw_call_ms);
+    if (auto names = reader.optionalArray("cullers")) {
+        names->requireAtLeast(1, "culler");
+        for (size_t i = 0; i < names->size(); ++i) cullers->push_back(names->at(i).asEnum(algorithmNames()));
+    }
     reader.finish();
     std::string why;
     if (!c.isValid(&why)) reader.failHere(why);
@@ -65,7 +70,10 @@ void readCulling(JsonObjectReader& top, Scenario& s) {
     s.culler.approximation.stale_results =
         culling->boolean("stale_results", s.culler.approximation.stale_results);
     if (auto costs = culling->optionalObject("cost_model")) {
-        s.culler.cost_model = readCostModel(std::move(*costs));
+        std::vector<std::string> cullers;
+        const CostModel model = readCostModel(std::move(*costs), &cullers);
+        if (cullers.empty()) s.culler.cost_model = model;
+        for (const std::string& name : cullers) s.culler.cost_model_of.insert_or_assign(name, model);
     }
     for (const AlgorithmTraits* culler : algorithms()) {
         if (auto options = culling->optionalObject(culler->name)) {
