@@ -77,6 +77,10 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     const fs::path dir = tempDir("session");
     const Outcome o = occtune(kSmall + kQuick + " --out " + dir.string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
+    // The verdict is on the console (one repetition can reject only for error, never here).
+    EXPECT_TRUE(o.output.find("verdict: accepted: ") != std::string::npos ||
+                o.output.find("verdict: no change: ") != std::string::npos)
+        << o.output;
 
     // tuned.json: the scenario's culling form, the tuned value within its bounds.
     const nlohmann::json tuned = nlohmann::json::parse(text(dir / "tuned.json"));

@@ -413,20 +413,63 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     EXPECT_FALSE(file.has_cost_option);
     EXPECT_FALSE(s.culler.cost_model.known());
 
-    // statistical+ weighs costs: its file carries the fitted model, read back as the cost option,
-    // and says that other cullers read it too.
+    // statistical+ weighs costs: its file carries the fitted model for statistical+ alone, read
+    // back as that culler's cost model; the shared one, which other cullers read, stays unknown.
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
     const TunedFile plus_file = tunedFile(plus, OptionValues(plus.options), CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
     Scenario p;
     applyCullingFile(CullingFile{"tuned.json", nlohmann::json::parse(plus_file.text)}, p);
     EXPECT_TRUE(plus_file.has_cost_option);
-    EXPECT_NE(plus_file.note.find("every culler that weighs costs"), std::string::npos);
-    EXPECT_DOUBLE_EQ(p.culler.cost_model.query_box_ms, 0.02);
-    EXPECT_DOUBLE_EQ(p.culler.cost_model.triangle_ms, 0.1 / 1000.0);
-    EXPECT_DOUBLE_EQ(p.culler.cost_model.draw_call_ms, 0.01);
+    EXPECT_NE(plus_file.note.find("for statistical+ only"), std::string::npos) << plus_file.note;
+    EXPECT_FALSE(p.culler.cost_model.known()) << "no other culler gets the fitted cost model";
+    ASSERT_EQ(p.culler.cost_model_of.count("statistical+"), 1u);
+    const occsim::CostModel& scoped = p.culler.cost_model_of.at("statistical+");
+    EXPECT_DOUBLE_EQ(scoped.query_box_ms, 0.02);
+    EXPECT_DOUBLE_EQ(scoped.triangle_ms, 0.1 / 1000.0);
+    EXPECT_DOUBLE_EQ(scoped.draw_call_ms, 0.01);
     nlohmann::json culling = nlohmann::json::object();
-    EXPECT_FALSE(addCostOption(culling, CostModel{1.0, 0.0, 0.0, 0.0, 1.0}));
+    EXPECT_FALSE(addCostOption(culling, CostModel{1.0, 0.0, 0.0, 0.0, 1.0}, "statistical+"));
     EXPECT_TRUE(culling.empty());
+}
+
+// The verdict of the whole confirmation: rejected for more error or missed objects, or for being
+// slower in every one of several repetitions; "no change" when the decisions were the paper's.
+TEST(Confirmation, TheVerdictRejectsWhatItsOwnConfirmationShowsWorseAndCallsSameDecisionsNoChange) {
+    ConfirmationRow fitted;
+    fitted.variant = "fitted (seed 7)";
+    fitted.repetitions = 3;
+    fitted.mean_ratio = {0.97, 0.95, 0.99};
+    ConfirmationRow held = fitted;
+    held.variant = "held out (seed 8)";
+    EXPECT_EQ(judgeConfirmation({fitted, held}, false).kind, Verdict::Kind::Accepted);
+    EXPECT_STREQ(judgeConfirmation({fitted, held}, false).fileName(), "tuned.json");
+
+    ConfirmationRow slower = fitted;
+    slower.mean_ratio = {1.04, 1.01, 1.08};
+    const Verdict rejected = judgeConfirmation({slower, held}, false);
+    EXPECT_EQ(rejected.kind, Verdict::Kind::Rejected);
+    EXPECT_STREQ(rejected.fileName(), "tuned.rejected.json");
+    EXPECT_NE(rejected.reason.find("fitted (seed 7): slower in every repetition"), std::string::npos) << rejected.reason;
+    slower.repetitions = 1;  // one repetition shows no "every"
+    EXPECT_EQ(judgeConfirmation({slower, held}, false).kind, Verdict::Kind::Accepted);
+
+    ConfirmationRow worse = fitted;
+    worse.tuned_missed_objects = 3;
+    EXPECT_EQ(judgeConfirmation({fitted, worse}, false).kind, Verdict::Kind::Rejected);
+    worse = fitted;
+    worse.tuned_error_pixels = 10;
+    EXPECT_EQ(judgeConfirmation({worse, held}, false).kind, Verdict::Kind::Rejected);
+
+    ConfirmationRow same = slower;
+    same.repetitions = 3;
+    same.same_decisions = true;
+    ConfirmationRow same_held = held;
+    same_held.same_decisions = true;
+    const Verdict noise = judgeConfirmation({same, same_held}, false);
+    EXPECT_EQ(noise.kind, Verdict::Kind::NoChange) << "same decisions: slower is noise";
+    EXPECT_STREQ(noise.name(), "no change");
+    EXPECT_EQ(judgeConfirmation({fitted, same_held}, false).kind, Verdict::Kind::Accepted);
+    EXPECT_EQ(judgeConfirmation({fitted, held}, true).kind, Verdict::Kind::NoChange);
 }
 
 // The confirmation shows error pixels, tie pixels and missed objects of both settings apart.

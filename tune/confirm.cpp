@@ -14,6 +14,41 @@ Spread spreadOf(std::vector<double> v) {
     return {median, v.front(), v.back()};
 }
 
+const char* Verdict::name() const {
+    switch (kind) {
+        case Kind::Accepted: return "accepted";
+        case Kind::NoChange: return "no change";
+        case Kind::Rejected: return "REJECTED";
+    }
+    return "";
+}
+
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing_tuned) {
+    for (const ConfirmationRow& r : rows) {
+        if (r.tuned_error_pixels > r.paper_error_pixels) {
+            return {Verdict::Kind::Rejected, r.variant + ": the tuned values showed more error pixels than the paper's"};
+        }
+        if (r.tuned_missed_objects > r.paper_missed_objects) {
+            return {Verdict::Kind::Rejected, r.variant + ": the tuned values missed more objects than the paper's"};
+        }
+    }
+    const bool same = !rows.empty() && std::all_of(rows.begin(), rows.end(), [](const ConfirmationRow& r) { return r.same_decisions; });
+    if (nothing_tuned) return {Verdict::Kind::NoChange, "every parameter kept at the paper's value"};
+    if (same) {
+        return {Verdict::Kind::NoChange,
+                "the tuned values made the same decisions as the paper's on every confirmation frame: "
+                "their difference in time is noise"};
+    }
+    for (const ConfirmationRow& r : rows) {
+        if (r.repetitions >= 2 && r.mean_ratio.min > 1.0) {
+            return {Verdict::Kind::Rejected, r.variant + ": slower in every repetition"};
+        }
+    }
+    const bool one = std::any_of(rows.begin(), rows.end(), [](const ConfirmationRow& r) { return r.repetitions < 2; });
+    return {Verdict::Kind::Accepted, one ? "not slower nor worse (one repetition: too few to tell time apart)"
+                                         : "not slower in every repetition, no more error"};
+}
+
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
                         const OptionValues& paper, uint32_t repetitions, const BackendChoice& backend,
@@ -43,6 +78,17 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
         row.paper_tie_pixels += p.repetitions[r].tie_pixels_total;
         row.tuned_missed_objects += t.repetitions[r].missed_objects_total;
         row.paper_missed_objects += p.repetitions[r].missed_objects_total;
+    }
+    auto sameDecisions = [](const std::vector<FrameStats>& a, const std::vector<FrameStats>& b) {
+        if (a.size() != b.size()) return false;
+        for (size_t f = 0; f < a.size(); ++f) {
+            if (a[f].queries != b[f].queries || a[f].objects_drawn != b[f].objects_drawn) return false;
+        }
+        return true;
+    };
+    row.same_decisions = sameDecisions(t.frames, p.frames) && t.later_repetitions.size() == p.later_repetitions.size();
+    for (size_t r = 0; row.same_decisions && r < t.later_repetitions.size(); ++r) {
+        row.same_decisions = sameDecisions(t.later_repetitions[r], p.later_repetitions[r]);
     }
     row.mean_ratio = spreadOf(mean_ratios);
     row.p95_ratio = spreadOf(p95_ratios);

@@ -33,7 +33,27 @@ struct ConfirmationRow {
     int64_t tuned_error_pixels = 0, paper_error_pixels = 0;
     int64_t tuned_tie_pixels = 0, paper_tie_pixels = 0;
     int64_t tuned_missed_objects = 0, paper_missed_objects = 0;
+    // The tuned and the paper's values issued as many queries and drew as many objects on every
+    // frame of every repetition: the same decisions, so any difference in time is noise.
+    bool same_decisions = false;
 };
+
+// What the confirmation says of the tuned values as a whole, for the console and the exit status.
+struct Verdict {
+    enum class Kind { Accepted, NoChange, Rejected };
+    Kind kind = Kind::Accepted;
+    std::string reason;  // one line
+    // "accepted", "no change", "REJECTED"
+    const char* name() const;
+    // tuned.json, or tuned.rejected.json for a result its own confirmation rejects.
+    const char* fileName() const { return kind == Kind::Rejected ? "tuned.rejected.json" : "tuned.json"; }
+};
+
+// Rejected when any variant shows more error pixels or missed objects with the tuned values, or
+// is slower in every one of at least two repetitions (one repetition cannot show that); "no
+// change" when nothing was tuned or the two settings made the same decisions on every variant;
+// accepted otherwise.
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing_tuned);
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,

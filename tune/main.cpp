@@ -1,7 +1,8 @@
 // occtune: tunes a culler's tunable options (by default the statistical culler's BASE_TIME and
 // decay curve) to a scenario from measured frame times (docs/tuning.md). Bad input ends with one line on stderr and exit code 2 before any
-// run; a fit that does not converge with exit 1 (no tuned.json); Ctrl-C with exit 130, the sample
-// log whole and a line saying how to resume.
+// run; a fit that does not converge with exit 1 (no tuned.json); a result its own confirmation
+// rejects with exit 3 (tuned.rejected.json, no tuned.json); Ctrl-C with exit 130, the sample log
+// whole and a line saying how to resume. The verdict is the console's last line but one.
 #include "render/headless_context.h"
 #include "sim/scenario/errors.h"
 #include "tune/errors.h"

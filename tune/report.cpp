@@ -34,6 +34,7 @@ std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
         return "**the tuned values missed more objects than the paper's**";
     }
     if (nothing_tuned) return "the same setting twice: the spread is the measurement noise";
+    if (row.same_decisions) return "no change: the same decisions as the paper's on every frame (the spread is noise)";
     // Error pixels in both, no more with the tuned values: say so beside the timing verdict.
     const std::string both = row.tuned_error_pixels != 0
                                  ? "; error pixels in both, no more with the tuned values"
@@ -171,6 +172,9 @@ std::string reportMarkdown(const TuneResult& r) {
             << c.tuned_missed_objects << " / " << c.paper_missed_objects << " | "
             << verdict(c, r.dropped.size() == r.space.size()) << " |\n";
     }
+
+    out << "\n**Verdict: " << r.verdict.name() << "**: " << r.verdict.reason << " (written as `"
+        << r.verdict.fileName() << "`).\n";
 
     const CostModel& m = r.cost.model;
     out << "\n## Fit quality\n\n### Cost model (per frame)\n\n"

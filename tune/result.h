@@ -47,6 +47,7 @@ struct TuneResult {
     double predicted_tuned_sd = 0.0;  // standard deviation of that prediction
 
     std::vector<ConfirmationRow> confirmation;  // fitted, then held out
+    Verdict verdict;                            // judgeConfirmation() of them
     std::vector<std::string> files;             // written, in out_dir
     std::string charts_message;
 };

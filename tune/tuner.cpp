@@ -174,8 +174,12 @@ int runTuner(const TuneOptions& o) {
         c.out_dir);
     r.charts_message = charts.message;
     r.files.insert(r.files.end(), charts.files.begin(), charts.files.end());
+    r.verdict = judgeConfirmation(r.confirmation, r.dropped.size() == c.space.size());
     writeFileAtomically(c.out_dir / "report.md", reportMarkdown(r));
-    writeFileAtomically(c.out_dir / "tuned.json", tuned_file.text);
+    // A result its own confirmation rejects is kept under a name that says so, and no tuned.json
+    // (not even one left from before) stands beside it to be applied by mistake.
+    std::filesystem::remove(c.out_dir / (r.verdict.kind == Verdict::Kind::Rejected ? "tuned.json" : "tuned.rejected.json"));
+    writeFileAtomically(c.out_dir / r.verdict.fileName(), tuned_file.text);
 
     std::printf("%s, %s: %zu samples, %s frame-time ratio to the reference values\n", c.scenario.name.c_str(),
                 algorithm.name.c_str(), r.samples.size(), objectiveName(o.objective));
@@ -196,8 +200,10 @@ int runTuner(const TuneOptions& o) {
         std::printf("the fitted cost model is 0 for queries, triangles and draw calls: it is in cost_model.json only, not in tuned.json\n");
     }
     if (!charts.ok && !charts.message.empty()) std::printf("%s\n", charts.message.c_str());
-    std::printf("written: %s/{tuned.json,report.md,cost_model.json,samples.jsonl}\n", c.out_dir.string().c_str());
-    return kExitDone;
+    std::printf("verdict: %s: %s\n", r.verdict.name(), r.verdict.reason.c_str());
+    std::printf("written: %s/{%s,report.md,cost_model.json,samples.jsonl}\n", c.out_dir.string().c_str(),
+                r.verdict.fileName());
+    return r.verdict.kind == Verdict::Kind::Rejected ? kExitRejected : kExitDone;
 }
 
 }  // namespace occsim::tune

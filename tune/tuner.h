@@ -40,9 +40,12 @@ struct TuneOptions {
 
 inline constexpr int kExitDone = 0;
 inline constexpr int kExitFitFailed = 1;
+inline constexpr int kExitRejected = 3;  // the confirmation rejected the tuned values
 inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
-// Returns kExitDone, kExitFitFailed (a fit did not converge: no tuned.json) or kExitInterrupted
+// Returns kExitDone (tuned.json; its verdict accepted or "no change"), kExitRejected (the
+// confirmation rejected the values: tuned.rejected.json, no tuned.json), kExitFitFailed (a fit
+// did not converge: no tuned.json) or kExitInterrupted
 // (the sample log is whole; no tuned.json). Throws TuneInputError, ScenarioError or GltfError for
 // bad input, before any run; std::runtime_error for failures while running.
 int runTuner(const TuneOptions& options);
