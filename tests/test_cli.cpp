@@ -454,3 +454,107 @@ TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
     EXPECT_TRUE(std::filesystem::exists(out / "summary.json")) << command;
     std::filesystem::remove_all(dir);
 }
+
+// A cost model a culling file gives for one culler (as tuned.json does) reaches that culler
+// only: statistical+ keeps the reference figures of a deterministic run.
+TEST(Cli, ACostModelForOneCullerChangesNoOther) {
+    const auto dir = tempPath("scoped-cost");
+    std::filesystem::create_directories(dir);
+    const auto file = dir / "tuned.json";
+    std::ofstream(file) << R"({"format_version": 1, "culling": {"algorithm": "statistical",
+        "statistical": {"cost_model": true},
+        "cost_model": {"query_box_ms": 0.5, "triangle_ms": 0.25, "draw_call_ms": 0.125, "cullers": ["statistical"]}}})";
+    const auto out = dir / "out";
+    const Outcome o = runOccsim("bench " + kSmall + " --algos statistical,statistical+ --frames 2 "
+                                "--deterministic-latency 4 --culling " + file.string() + " --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    const size_t plus = json.find("\"configuration\": \"statistical+\"");
+    const size_t paper = json.find("\"configuration\": \"statistical\"");
+    ASSERT_NE(plus, std::string::npos) << json;
+    ASSERT_NE(paper, std::string::npos) << json;
+    // Each algorithm's object: from its start to the next configuration (or the end of the list).
+    auto objectOf = [&](size_t at) {
+        const size_t open = json.rfind("\n    {", at);
+        return json.substr(open, json.find("\n    }", at) - open);
+    };
+    EXPECT_NE(objectOf(paper).find("\"query_box_ms\": 0.5"), std::string::npos) << objectOf(paper);
+    EXPECT_NE(objectOf(plus).find("\"cost_model\": {"), std::string::npos) << objectOf(plus);
+    EXPECT_EQ(objectOf(plus).find("\"query_box_ms\": 0.5"), std::string::npos) << objectOf(plus);
+    std::filesystem::remove_all(dir);
+}
+
+// ---- the docs' command blocks --------------------------------------------------------------
+
+// A fenced block after "<!-- runnable -->" (or "<!-- runnable: exit N -->") in a Markdown file:
+// a shell script the docs promise exits 0 (or N).
+struct DocBlock {
+    std::string where;  // file:line of the marker
+    int expect = 0;
+    std::string script;
+};
+
+std::vector<DocBlock> runnableBlocks(const std::string& text, const std::string& file) {
+    std::vector<DocBlock> blocks;
+    std::istringstream in(text);
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        int expect = 0;
+        if (line != "<!-- runnable -->" && std::sscanf(line.c_str(), "<!-- runnable: exit %d -->", &expect) != 1) {
+            continue;
+        }
+        DocBlock block{file + ":" + std::to_string(number), expect, ""};
+        if (!std::getline(in, line) || line.rfind("```", 0) != 0) {
+            ADD_FAILURE() << block.where << ": a runnable marker must stand right above a fenced block";
+            continue;
+        }
+        ++number;
+        while (std::getline(in, line) && line.rfind("```", 0) != 0) {
+            ++number;
+            block.script += line + "\n";
+        }
+        ++number;
+        blocks.push_back(block);
+    }
+    return blocks;
+}
+
+// Runs the block with `set -e` (the first failing command ends it with its status) in `dir`, the
+// built occsim first on PATH and the README's ./build/release/sim/occsim replaced by it.
+Outcome runBlock(const DocBlock& block, const std::filesystem::path& dir) {
+    std::string script = block.script;
+    const std::string local = "./build/release/sim/occsim";
+    for (size_t at = script.find(local); at != std::string::npos; at = script.find(local, at + 1)) {
+        script.replace(at, local.size(), OCCSIM_EXE);
+    }
+    const auto file = dir / "block.sh";
+    std::ofstream(file) << "set -e\nexport PATH='" << std::filesystem::path(OCCSIM_EXE).parent_path().string()
+                        << "':\"$PATH\"\ncd '" << dir.string() << "'\n" << script;
+    return shell("sh " + file.string());
+}
+
+TEST(Docs, EveryRunnableCommandBlockExitsAsDocumented) {
+    const auto dir = tempPath("doc-blocks");
+    std::filesystem::create_directories(dir);
+    std::filesystem::create_directory_symlink(std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios", dir / "scenarios");
+
+    // The runner can fail: a marked command that fails is caught.
+    const auto broken = runnableBlocks("<!-- runnable -->\n```sh\noccsim frobnicate\n```\n", "self-test.md");
+    ASSERT_EQ(broken.size(), 1u);
+    EXPECT_NE(runBlock(broken[0], dir).exit_code, 0);
+
+    for (const char* doc : {"README.md", "docs/cli.md"}) {
+        std::ifstream in(std::filesystem::path(OCCSIM_SOURCE_DIR) / doc);
+        const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        const std::vector<DocBlock> blocks = runnableBlocks(text, doc);
+        EXPECT_FALSE(blocks.empty()) << doc << " marks no block runnable";
+        for (const DocBlock& block : blocks) {
+            const Outcome o = runBlock(block, dir);
+            EXPECT_EQ(o.exit_code, block.expect) << block.where << ":\n" << block.script << o.output;
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
