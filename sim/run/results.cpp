@@ -33,12 +33,15 @@ std::string backendLabel(const RunMetadata& m) {
 }
 
 bool nothingInView(const std::vector<RunRecord>& runs) {
+    bool any_frame = false;  // without frames (a summary alone) there is nothing to tell
     for (const RunRecord& r : runs) {
+        if (r.summary.objects_mean > 0) return false;
         for (const FrameStats& f : r.frames) {
+            any_frame = true;
             if (f.objects_drawn > 0 || f.visible_objects > 0) return false;
         }
     }
-    return !runs.empty();
+    return any_frame;
 }
 
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s) {
