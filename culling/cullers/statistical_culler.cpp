@@ -741,7 +741,8 @@ AlgorithmTraits statisticalRegistration() {
 AlgorithmTraits statisticalPlusRegistration() {
     return statisticalRow("statistical+",
                           "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
-                          "re-query by distance and a frustum fallback",
+                          "re-query by distance, a frustum fallback, and CHC's treatment of what "
+                          "was visible",
                           true);
 }
 

@@ -66,8 +66,7 @@ struct StatisticalOptions {
     // whose answers rarely draw anything, do not hold the traversal back, while those likely
     // visible, whose late answers let farther nodes be queried against a depth buffer that
     // misses them, do. A query counts at least 1 / kMaxRunAhead, so at most kMaxRunAhead *
-    // queries_before_restart are in flight. Off (also in plus(), until measured on a quiet
-    // machine: docs/statistical.md): each query counts as one.
+    // queries_before_restart are in flight. Off: each query counts as one.
     bool weigh_in_flight = false;
     // (8) An inner node last found visible whose re-query is due is not queried: its subtree is
     // traversed and its children decide, as CHC pulls an inner node's visibility up from its
