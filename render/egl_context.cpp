@@ -3,12 +3,8 @@
 // (EGL_KHR_surfaceless_context); occsim renders into its own framebuffer objects. libEGL is
 // opened with dlopen, so an occsim binary starts (and falls back to OSMesa) where it is missing.
 // The same code serves Mesa's software device and a GPU vendor's EGL driver (through glvnd).
-#include "render/gl_loader.h"
-#include "render/headless_backends.h"
-
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-
 #include <dlfcn.h>
 
 #include <cstdio>
@@ -16,6 +12,9 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+
+#include "render/gl_loader.h"
+#include "render/headless_backends.h"
 
 namespace occsim {
 namespace {
@@ -82,7 +81,8 @@ EglLibrary loadEgl() {
     // EGL_EXT_device_base is the older name of enumeration and query together.
     const bool base = hasExtension(egl.client_extensions, "EGL_EXT_device_base");
     std::string missing;
-    for (const char* e : {"EGL_EXT_device_enumeration", "EGL_EXT_device_query", "EGL_EXT_platform_device"}) {
+    for (const char* e :
+         {"EGL_EXT_device_enumeration", "EGL_EXT_device_query", "EGL_EXT_platform_device"}) {
         const bool in_base = std::strcmp(e, "EGL_EXT_platform_device") != 0 && base;
         if (!in_base && !hasExtension(egl.client_extensions, e)) {
             missing += (missing.empty() ? "" : ", ") + std::string(e);
@@ -90,15 +90,16 @@ EglLibrary loadEgl() {
     }
     if (!missing.empty()) {
         egl.problem = "EGL lacks " + missing + " (client extensions: " +
-                      (egl.client_extensions.empty()
-                           ? "none: glvnd found no EGL vendor library; install libegl-mesa0 or the GPU vendor's"
-                           : egl.client_extensions) +
+                      (egl.client_extensions.empty() ? "none: glvnd found no EGL vendor library; "
+                                                       "install libegl-mesa0 or the GPU vendor's"
+                                                     : egl.client_extensions) +
                       ")";
         return egl;
     }
-    egl.queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl.getProcAddress("eglQueryDevicesEXT"));
-    egl.queryDeviceString =
-        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(egl.getProcAddress("eglQueryDeviceStringEXT"));
+    egl.queryDevices =
+        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl.getProcAddress("eglQueryDevicesEXT"));
+    egl.queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+        egl.getProcAddress("eglQueryDeviceStringEXT"));
     if (!egl.queryDevices || !egl.queryDeviceString) {
         egl.problem = "EGL advertises device enumeration but has no eglQueryDevicesEXT";
         return egl;
@@ -134,7 +135,8 @@ std::string deviceKind(const EglLibrary& e, EGLDeviceEXT device) {
     const std::string extensions = ext ? ext : "";
     if (hasExtension(extensions, "EGL_MESA_device_software")) return "software";
     if (hasExtension(extensions, "EGL_EXT_device_drm_render_node")) {
-        if (const char* node = e.queryDeviceString(device, EGL_DRM_RENDER_NODE_FILE_EXT)) return node;
+        if (const char* node = e.queryDeviceString(device, EGL_DRM_RENDER_NODE_FILE_EXT))
+            return node;
     }
     if (hasExtension(extensions, "EGL_EXT_device_drm")) {
         if (const char* file = e.queryDeviceString(device, EGL_DRM_DEVICE_FILE_EXT)) return file;
@@ -165,10 +167,12 @@ Display displayOf(const EglLibrary& e, EGLDeviceEXT device, const std::string& w
         display = e.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         ok = display != EGL_NO_DISPLAY && e.initialize(display, &major, &minor);
     }
-    if (!ok) throw BackendUnavailable(where + ": cannot initialise its EGL display (" + eglErrorText(e) + ")");
+    if (!ok)
+        throw BackendUnavailable(where + ": cannot initialise its EGL display (" + eglErrorText(e) +
+                                 ")");
     if (major < 1 || (major == 1 && minor < 5)) {
-        throw BackendUnavailable(where + ": needs EGL 1.5, found EGL " + std::to_string(major) + "." +
-                                 std::to_string(minor));
+        throw BackendUnavailable(where + ": needs EGL 1.5, found EGL " + std::to_string(major) +
+                                 "." + std::to_string(minor));
     }
     Display d;
     d.display = display;
@@ -177,19 +181,22 @@ Display displayOf(const EglLibrary& e, EGLDeviceEXT device, const std::string& w
     d.vendor = vendor ? vendor : "";
     d.extensions = extensions ? extensions : "";
     if (!hasExtension(d.extensions, "EGL_KHR_surfaceless_context")) {
-        throw BackendUnavailable(where + ": its EGL display lacks EGL_KHR_surfaceless_context (a context "
-                                 "current without a surface); found: " + d.extensions);
+        throw BackendUnavailable(where +
+                                 ": its EGL display lacks EGL_KHR_surfaceless_context (a context "
+                                 "current without a surface); found: " +
+                                 d.extensions);
     }
     displays.emplace(device, d);
     return d;
 }
 
 class EglContext final : public HeadlessContext {
-public:
+  public:
     EglContext(const EglLibrary& e, const Display& display, const std::string& where)
         : egl_(e), display_(display.display) {
         if (!e.bindApi(EGL_OPENGL_API)) {
-            throw BackendUnavailable(where + ": EGL cannot bind the desktop OpenGL API (" + eglErrorText(e) + ")");
+            throw BackendUnavailable(where + ": EGL cannot bind the desktop OpenGL API (" +
+                                     eglErrorText(e) + ")");
         }
         EGLConfig config = EGL_NO_CONFIG_KHR;
         if (!hasExtension(display.extensions, "EGL_KHR_no_config_context")) {
@@ -199,19 +206,24 @@ public:
                 throw BackendUnavailable(where + ": no EGL config renders desktop OpenGL");
             }
         }
-        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_NONE};
         context_ = e.createContext(display_, config, EGL_NO_CONTEXT, attributes);
         if (context_ == EGL_NO_CONTEXT) {
             const std::string error = eglErrorText(e);
-            throw BackendUnavailable(where + ": cannot create an OpenGL 4.5 core context (" + error + "), found " +
-                                     bestContextOffered(config));
+            throw BackendUnavailable(where + ": cannot create an OpenGL 4.5 core context (" +
+                                     error + "), found " + bestContextOffered(config));
         }
         if (!e.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
             const std::string error = eglErrorText(e);
             e.destroyContext(display_, context_);
-            throw BackendUnavailable(where + ": cannot make the context current without a surface (" + error + ")");
+            throw BackendUnavailable(
+                where + ": cannot make the context current without a surface (" + error + ")");
         }
         std::string error;
         const bool loaded = loadGlFunctions(
@@ -231,7 +243,7 @@ public:
 
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
-private:
+  private:
     // What the device offers instead, for the message: a context of any version, asked for
     // without one, and its GL_VERSION and GL_RENDERER.
     std::string bestContextOffered(EGLConfig config) const {
@@ -244,7 +256,8 @@ private:
             if (auto get = reinterpret_cast<GetString>(egl_.getProcAddress("glGetString"))) {
                 const auto* version = reinterpret_cast<const char*>(get(0x1F02));   // GL_VERSION
                 const auto* renderer = reinterpret_cast<const char*>(get(0x1F01));  // GL_RENDERER
-                found = std::string("OpenGL \"") + (version ? version : "?") + "\" on " + (renderer ? renderer : "?");
+                found = std::string("OpenGL \"") + (version ? version : "?") + "\" on " +
+                        (renderer ? renderer : "?");
             }
             egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         }
@@ -287,9 +300,10 @@ std::unique_ptr<HeadlessContext> createEglContext(std::optional<uint32_t> device
     if (list.empty()) throw EglMissing("EGL lists no device (no EGL driver installed?)");
     const uint32_t index = device.value_or(0);
     if (index >= list.size()) {
-        throw BackendUnavailable("--device " + std::to_string(index) + ": out of range, EGL lists " +
-                                 std::to_string(list.size()) + (list.size() == 1 ? " device" : " devices") +
-                                 " (" + deviceList(e, list) + "; see occsim devices)");
+        throw BackendUnavailable("--device " + std::to_string(index) +
+                                 ": out of range, EGL lists " + std::to_string(list.size()) +
+                                 (list.size() == 1 ? " device" : " devices") + " (" +
+                                 deviceList(e, list) + "; see occsim devices)");
     }
     return contextOn(e, list[index], index, "EGL device " + std::to_string(index));
 }

@@ -12,11 +12,11 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DEFINE)
 namespace occsim {
 
 bool loadGlFunctions(const GlProcLoader& loader, std::string* error) {
-#define OCCSIM_GL_LOAD(type, name)                                         \
-    occsim_##name = reinterpret_cast<type>(loader(#name));                 \
-    if (occsim_##name == nullptr) {                                        \
+#define OCCSIM_GL_LOAD(type, name)                                        \
+    occsim_##name = reinterpret_cast<type>(loader(#name));                \
+    if (occsim_##name == nullptr) {                                       \
         if (error) *error = "OpenGL function " #name " is not available"; \
-        return false;                                                      \
+        return false;                                                     \
     }
     OCCSIM_GL_FUNCTIONS(OCCSIM_GL_LOAD)
 #undef OCCSIM_GL_LOAD

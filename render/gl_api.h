@@ -1,85 +1,86 @@
 // The OpenGL 4.5 core entry points occsim uses, loaded at run time from whichever context is
-// current (EGL, OSMesa or GLFW), so that one renderer serves them all without linking libGL directly.
-// Code calls them by their usual names; the macros below route those names to our pointers.
+// current (EGL, OSMesa or GLFW), so that one renderer serves them all without linking libGL
+// directly. Code calls them by their usual names; the macros below route those names to our
+// pointers.
 #pragma once
-
-#include "render/gl_loader.h"
 
 #include <GL/glcorearb.h>
 
 #include <string>
 
+#include "render/gl_loader.h"
+
 // X(PFN type, name) for every function we call.
-#define OCCSIM_GL_FUNCTIONS(X)                                          \
-    X(PFNGLGETSTRINGPROC, glGetString)                                  \
-    X(PFNGLGETSTRINGIPROC, glGetStringi)                                \
-    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                              \
-    X(PFNGLGETERRORPROC, glGetError)                                    \
-    X(PFNGLENABLEPROC, glEnable)                                        \
-    X(PFNGLDISABLEPROC, glDisable)                                      \
-    X(PFNGLVIEWPORTPROC, glViewport)                                    \
-    X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                          \
-    X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                        \
-    X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                  \
-    X(PFNGLDEPTHMASKPROC, glDepthMask)                                  \
-    X(PFNGLCOLORMASKPROC, glColorMask)                                  \
-    X(PFNGLCOLORMASKIPROC, glColorMaski)                                \
-    X(PFNGLCULLFACEPROC, glCullFace)                                    \
-    X(PFNGLCLIPCONTROLPROC, glClipControl)                              \
-    X(PFNGLFINISHPROC, glFinish)                                        \
-    X(PFNGLFLUSHPROC, glFlush)                                          \
-    X(PFNGLREADPIXELSPROC, glReadPixels)                                \
-    X(PFNGLREADBUFFERPROC, glReadBuffer)                                \
-    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                              \
-    X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                              \
-    X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                      \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)                \
-    X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                      \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)      \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)        \
-    X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                      \
-    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)            \
-    X(PFNGLGENTEXTURESPROC, glGenTextures)                              \
-    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                        \
-    X(PFNGLBINDTEXTUREPROC, glBindTexture)                              \
-    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                \
-    X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                    \
-    X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)              \
-    X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                    \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)              \
-    X(PFNGLGENBUFFERSPROC, glGenBuffers)                                \
-    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                          \
-    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                \
-    X(PFNGLBUFFERDATAPROC, glBufferData)                                \
-    X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                      \
-    X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                \
-    X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                      \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)      \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)              \
-    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, glDrawElementsBaseVertex)        \
-    X(PFNGLDRAWELEMENTSPROC, glDrawElements)                            \
-    X(PFNGLCREATESHADERPROC, glCreateShader)                            \
-    X(PFNGLSHADERSOURCEPROC, glShaderSource)                            \
-    X(PFNGLCOMPILESHADERPROC, glCompileShader)                          \
-    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                              \
-    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                    \
-    X(PFNGLDELETESHADERPROC, glDeleteShader)                            \
-    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                          \
-    X(PFNGLATTACHSHADERPROC, glAttachShader)                            \
-    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                              \
-    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                            \
-    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                  \
-    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                          \
-    X(PFNGLUSEPROGRAMPROC, glUseProgram)                                \
-    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                \
-    X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                    \
-    X(PFNGLUNIFORM3FVPROC, glUniform3fv)                                \
-    X(PFNGLUNIFORM1UIPROC, glUniform1ui)                                \
-    X(PFNGLGENQUERIESPROC, glGenQueries)                                \
-    X(PFNGLDELETEQUERIESPROC, glDeleteQueries)                          \
-    X(PFNGLBEGINQUERYPROC, glBeginQuery)                                \
-    X(PFNGLENDQUERYPROC, glEndQuery)                                    \
-    X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)                  \
+#define OCCSIM_GL_FUNCTIONS(X)                                     \
+    X(PFNGLGETSTRINGPROC, glGetString)                             \
+    X(PFNGLGETSTRINGIPROC, glGetStringi)                           \
+    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                         \
+    X(PFNGLGETERRORPROC, glGetError)                               \
+    X(PFNGLENABLEPROC, glEnable)                                   \
+    X(PFNGLDISABLEPROC, glDisable)                                 \
+    X(PFNGLVIEWPORTPROC, glViewport)                               \
+    X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                     \
+    X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                   \
+    X(PFNGLDEPTHFUNCPROC, glDepthFunc)                             \
+    X(PFNGLDEPTHMASKPROC, glDepthMask)                             \
+    X(PFNGLCOLORMASKPROC, glColorMask)                             \
+    X(PFNGLCOLORMASKIPROC, glColorMaski)                           \
+    X(PFNGLCULLFACEPROC, glCullFace)                               \
+    X(PFNGLCLIPCONTROLPROC, glClipControl)                         \
+    X(PFNGLFINISHPROC, glFinish)                                   \
+    X(PFNGLFLUSHPROC, glFlush)                                     \
+    X(PFNGLREADPIXELSPROC, glReadPixels)                           \
+    X(PFNGLREADBUFFERPROC, glReadBuffer)                           \
+    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                         \
+    X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                         \
+    X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                 \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)           \
+    X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                 \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer) \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)   \
+    X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                 \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)       \
+    X(PFNGLGENTEXTURESPROC, glGenTextures)                         \
+    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                   \
+    X(PFNGLBINDTEXTUREPROC, glBindTexture)                         \
+    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                           \
+    X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)               \
+    X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)         \
+    X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)               \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)         \
+    X(PFNGLGENBUFFERSPROC, glGenBuffers)                           \
+    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                     \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                           \
+    X(PFNGLBUFFERDATAPROC, glBufferData)                           \
+    X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                 \
+    X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)           \
+    X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                 \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray) \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)         \
+    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, glDrawElementsBaseVertex)   \
+    X(PFNGLDRAWELEMENTSPROC, glDrawElements)                       \
+    X(PFNGLCREATESHADERPROC, glCreateShader)                       \
+    X(PFNGLSHADERSOURCEPROC, glShaderSource)                       \
+    X(PFNGLCOMPILESHADERPROC, glCompileShader)                     \
+    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                         \
+    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)               \
+    X(PFNGLDELETESHADERPROC, glDeleteShader)                       \
+    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                     \
+    X(PFNGLATTACHSHADERPROC, glAttachShader)                       \
+    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                         \
+    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                       \
+    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)             \
+    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                     \
+    X(PFNGLUSEPROGRAMPROC, glUseProgram)                           \
+    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)           \
+    X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)               \
+    X(PFNGLUNIFORM3FVPROC, glUniform3fv)                           \
+    X(PFNGLUNIFORM1UIPROC, glUniform1ui)                           \
+    X(PFNGLGENQUERIESPROC, glGenQueries)                           \
+    X(PFNGLDELETEQUERIESPROC, glDeleteQueries)                     \
+    X(PFNGLBEGINQUERYPROC, glBeginQuery)                           \
+    X(PFNGLENDQUERYPROC, glEndQuery)                               \
+    X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)             \
     X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
 
 #define OCCSIM_GL_DECLARE(type, name) extern type occsim_##name;
@@ -167,8 +168,8 @@ void checkGl(const char* what);
 
 }  // namespace occsim
 
-#define OCCSIM_GL_CHECK(call) \
-    do {                      \
-        call;                 \
+#define OCCSIM_GL_CHECK(call)     \
+    do {                          \
+        call;                     \
         ::occsim::checkGl(#call); \
     } while (0)

@@ -1,10 +1,10 @@
 // What a context offers against what occsim needs, and what a run records about it.
-#include "render/gl_api.h"
-#include "render/headless_backends.h"
-
 #include <algorithm>
 #include <cctype>
 #include <sstream>
+
+#include "render/gl_api.h"
+#include "render/headless_backends.h"
 
 namespace occsim {
 namespace {
@@ -24,7 +24,8 @@ GlCapabilities currentCapabilities() {
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
     for (GLint i = 0; i < count; ++i) {
-        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+        const auto* e =
+            reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
         if (e) c.extensions.emplace_back(e);
     }
     c.renderer = glString(GL_RENDERER);
@@ -37,27 +38,31 @@ GlCapabilities currentCapabilities() {
 }
 
 std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
     return s;
 }
 
 }  // namespace
 
 const std::vector<std::string>& requiredGlExtensions() {
-    static const std::vector<std::string> required = {"GL_ARB_occlusion_query2", "GL_ARB_timer_query"};
+    static const std::vector<std::string> required = {"GL_ARB_occlusion_query2",
+                                                      "GL_ARB_timer_query"};
     return required;
 }
 
 std::string checkGlRequirements(const GlCapabilities& found) {
     const std::string what_found = "found OpenGL " + std::to_string(found.major) + "." +
-                                   std::to_string(found.minor) + (found.core_profile ? " core" : "") +
-                                   " (\"" + found.version + "\" on " + found.renderer + ")";
+                                   std::to_string(found.minor) +
+                                   (found.core_profile ? " core" : "") + " (\"" + found.version +
+                                   "\" on " + found.renderer + ")";
     if (found.major < 4 || (found.major == 4 && found.minor < 5) || !found.core_profile) {
         return "needs an OpenGL 4.5 core profile context, " + what_found;
     }
     std::string missing;
     for (const std::string& e : requiredGlExtensions()) {
-        if (std::find(found.extensions.begin(), found.extensions.end(), e) == found.extensions.end()) {
+        if (std::find(found.extensions.begin(), found.extensions.end(), e) ==
+            found.extensions.end()) {
             missing += (missing.empty() ? "" : ", ") + e;
         }
     }

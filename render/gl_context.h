@@ -9,7 +9,7 @@
 namespace occsim {
 
 class GlContext {
-public:
+  public:
     virtual ~GlContext() = default;
     virtual std::string rendererName() const = 0;
 };

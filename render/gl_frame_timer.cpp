@@ -1,8 +1,8 @@
 #include "render/gl_frame_timer.h"
 
-#include "render/gl_api.h"
-
 #include <stdexcept>
+
+#include "render/gl_api.h"
 
 namespace occsim {
 

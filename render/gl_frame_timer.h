@@ -8,7 +8,7 @@
 namespace occsim {
 
 class GlFrameTimer {
-public:
+  public:
     GlFrameTimer();  // needs a current context
     ~GlFrameTimer();
     GlFrameTimer(const GlFrameTimer&) = delete;
@@ -19,7 +19,7 @@ public:
     // The last begin()-end() span in milliseconds; call after the frame's glFinish.
     double resultMs();
 
-private:
+  private:
     uint32_t query_ = 0;
     bool running_ = false;
 };

@@ -9,7 +9,7 @@
 namespace occsim {
 
 class GlImagePresenter {
-public:
+  public:
     GlImagePresenter();
     ~GlImagePresenter();
     GlImagePresenter(const GlImagePresenter&) = delete;
@@ -20,7 +20,7 @@ public:
     void draw(std::span<const uint8_t> rgba, uint32_t width, uint32_t height, uint32_t target_width,
               uint32_t target_height);
 
-private:
+  private:
     uint32_t texture_ = 0, framebuffer_ = 0;
 };
 

@@ -1,12 +1,12 @@
 #include "render/gl_query_device.h"
 
-#include "occsim/culling/contract/query_id_check.h"
-#include "render/gl_api.h"
-#include "render/gl_checked_call.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+
+#include "occsim/culling/contract/query_id_check.h"
+#include "render/gl_api.h"
+#include "render/gl_checked_call.h"
 
 namespace occsim {
 namespace {
@@ -119,7 +119,7 @@ bool GlQueryDevice::pollReady(QueryId id) {
 
 bool GlQueryDevice::isQueryReady(QueryId id) {
     if (!isLive(id, "isQueryReady")) return true;  // release builds: nothing to wait for
-    return answered_[id] || pollReady(id);          // once ready, never polled again
+    return answered_[id] || pollReady(id);         // once ready, never polled again
 }
 
 QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {

@@ -11,16 +11,16 @@
 // it or waited for it (takeAnswerLatencies()).
 #pragma once
 
-#include "occsim/culling/contract/render_device.h"
-#include "render/gl_renderer.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/render_device.h"
+#include "render/gl_renderer.h"
 
 namespace occsim {
 
 class GlQueryDevice final : public RenderDevice {
-public:
+  public:
     GlQueryDevice(GlRenderer& renderer, LatencyMode latency);
     ~GlQueryDevice() override;
     GlQueryDevice(const GlQueryDevice&) = delete;
@@ -45,23 +45,23 @@ public:
     // moved into `out` (cleared first; its capacity is reused).
     void takeAnswerLatencies(std::vector<uint32_t>& out);
 
-private:
+  private:
     void noteAnswered(QueryId id);
-    bool pollReady(QueryId id);             // asks the driver (or the latency model) once
+    bool pollReady(QueryId id);                       // asks the driver (or the latency model) once
     bool isLive(QueryId id, const char* call) const;  // issued and not yet taken
 
     GlRenderer& renderer_;
     LatencyMode latency_;
-    uint64_t commands_ = 0;               // draws and queries submitted so far
-    std::vector<uint32_t> gl_queries_;    // QueryId -> GL query object
-    std::vector<uint64_t> issued_at_;     // QueryId -> commands_ when issued
+    uint64_t commands_ = 0;             // draws and queries submitted so far
+    std::vector<uint32_t> gl_queries_;  // QueryId -> GL query object
+    std::vector<uint64_t> issued_at_;   // QueryId -> commands_ when issued
     // QueryId -> known to be ready (its latency is recorded): the cache that keeps an answer
     // from being polled again.
     std::vector<uint8_t> answered_;
-    std::vector<uint8_t> live_;           // QueryId -> issued, answer not yet taken
-    std::vector<uint32_t> latencies_;     // since the last takeAnswerLatencies()
+    std::vector<uint8_t> live_;        // QueryId -> issued, answer not yet taken
+    std::vector<uint32_t> latencies_;  // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
-    std::vector<uint32_t> drawn_mark_;    // object -> drawn_set_ when drawn in the current set
+    std::vector<uint32_t> drawn_mark_;  // object -> drawn_set_ when drawn in the current set
     uint32_t drawn_set_ = 1;
 };
 

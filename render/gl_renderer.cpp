@@ -1,12 +1,11 @@
 #include "render/gl_renderer.h"
 
-#include "render/gl_api.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "render/gl_api.h"
 
 namespace occsim {
 namespace {
@@ -145,7 +144,8 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw std::runtime_error("OpenGL: the colour + object-ID + depth framebuffer is incomplete");
+        throw std::runtime_error(
+            "OpenGL: the colour + object-ID + depth framebuffer is incomplete");
     }
     checkGl("framebuffer set-up");
 
@@ -241,8 +241,9 @@ void GlRenderer::uploadMeshes(std::span<const MeshData> meshes) {
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
                  vertices.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh_ibo_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-                 indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);

@@ -9,14 +9,13 @@
 // face coplanar with an occluder counts as visible (conservative).
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-#include "render/mesh_data.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
+#include "render/mesh_data.h"
 
 namespace occsim {
 
@@ -44,7 +43,7 @@ glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspec
                          float far_plane);
 
 class GlRenderer {
-public:
+  public:
     GlRenderer(uint32_t width, uint32_t height,
                DepthConvention depth = DepthConvention::ReverseFloat);
     ~GlRenderer();
@@ -83,7 +82,7 @@ public:
     void readDepthRanks(std::vector<uint32_t>& ranks) const;
     DepthConvention depthConvention() const { return depth_; }
 
-private:
+  private:
     enum class State : uint8_t { None, Draw, Query };
     void useState(State wanted);
 

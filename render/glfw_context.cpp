@@ -15,7 +15,8 @@ std::string lastGlfwError(const GlfwLibrary& glfw) {
 
 // GLFW key codes to the names of window_events.h; keys not listed are not reported.
 std::string_view keyName(int key) {
-    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return keyNames()[static_cast<size_t>(key - GLFW_KEY_A)];
+    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z)
+        return keyNames()[static_cast<size_t>(key - GLFW_KEY_A)];
     if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) {
         return keyNames()[26 + static_cast<size_t>(key - GLFW_KEY_0)];
     }
@@ -23,29 +24,58 @@ std::string_view keyName(int key) {
         return keyNames()[36 + static_cast<size_t>(key - GLFW_KEY_F1)];
     }
     switch (key) {
-        case GLFW_KEY_SPACE: return findKeyName("space");
-        case GLFW_KEY_TAB: return findKeyName("tab");
-        case GLFW_KEY_ENTER: case GLFW_KEY_KP_ENTER: return findKeyName("enter");
-        case GLFW_KEY_ESCAPE: return findKeyName("escape");
-        case GLFW_KEY_BACKSPACE: return findKeyName("backspace");
-        case GLFW_KEY_DELETE: return findKeyName("delete");
-        case GLFW_KEY_INSERT: return findKeyName("insert");
-        case GLFW_KEY_HOME: return findKeyName("home");
-        case GLFW_KEY_END: return findKeyName("end");
-        case GLFW_KEY_PAGE_UP: return findKeyName("page_up");
-        case GLFW_KEY_PAGE_DOWN: return findKeyName("page_down");
-        case GLFW_KEY_UP: return findKeyName("up");
-        case GLFW_KEY_DOWN: return findKeyName("down");
-        case GLFW_KEY_LEFT: return findKeyName("left");
-        case GLFW_KEY_RIGHT: return findKeyName("right");
-        case GLFW_KEY_LEFT_SHIFT: case GLFW_KEY_RIGHT_SHIFT: return findKeyName("shift");
-        case GLFW_KEY_LEFT_CONTROL: case GLFW_KEY_RIGHT_CONTROL: return findKeyName("ctrl");
-        case GLFW_KEY_LEFT_ALT: case GLFW_KEY_RIGHT_ALT: return findKeyName("alt");
-        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: return findKeyName("minus");
-        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: return findKeyName("equal");
-        case GLFW_KEY_COMMA: return findKeyName("comma");
-        case GLFW_KEY_PERIOD: return findKeyName("period");
-        default: return {};
+        case GLFW_KEY_SPACE:
+            return findKeyName("space");
+        case GLFW_KEY_TAB:
+            return findKeyName("tab");
+        case GLFW_KEY_ENTER:
+        case GLFW_KEY_KP_ENTER:
+            return findKeyName("enter");
+        case GLFW_KEY_ESCAPE:
+            return findKeyName("escape");
+        case GLFW_KEY_BACKSPACE:
+            return findKeyName("backspace");
+        case GLFW_KEY_DELETE:
+            return findKeyName("delete");
+        case GLFW_KEY_INSERT:
+            return findKeyName("insert");
+        case GLFW_KEY_HOME:
+            return findKeyName("home");
+        case GLFW_KEY_END:
+            return findKeyName("end");
+        case GLFW_KEY_PAGE_UP:
+            return findKeyName("page_up");
+        case GLFW_KEY_PAGE_DOWN:
+            return findKeyName("page_down");
+        case GLFW_KEY_UP:
+            return findKeyName("up");
+        case GLFW_KEY_DOWN:
+            return findKeyName("down");
+        case GLFW_KEY_LEFT:
+            return findKeyName("left");
+        case GLFW_KEY_RIGHT:
+            return findKeyName("right");
+        case GLFW_KEY_LEFT_SHIFT:
+        case GLFW_KEY_RIGHT_SHIFT:
+            return findKeyName("shift");
+        case GLFW_KEY_LEFT_CONTROL:
+        case GLFW_KEY_RIGHT_CONTROL:
+            return findKeyName("ctrl");
+        case GLFW_KEY_LEFT_ALT:
+        case GLFW_KEY_RIGHT_ALT:
+            return findKeyName("alt");
+        case GLFW_KEY_MINUS:
+        case GLFW_KEY_KP_SUBTRACT:
+            return findKeyName("minus");
+        case GLFW_KEY_EQUAL:
+        case GLFW_KEY_KP_ADD:
+            return findKeyName("equal");
+        case GLFW_KEY_COMMA:
+            return findKeyName("comma");
+        case GLFW_KEY_PERIOD:
+            return findKeyName("period");
+        default:
+            return {};
     }
 }
 
@@ -69,12 +99,13 @@ GlfwWindow::GlfwWindow(uint32_t width, uint32_t height, const std::string& title
     glfw.glfwWindowHint(GLFW_DEPTH_BITS, 0);
     glfw.glfwWindowHint(GLFW_STENCIL_BITS, 0);
     glfw.glfwWindowHint(GLFW_DOUBLEBUFFER, GLFW_TRUE);
-    window_ = glfw.glfwCreateWindow(static_cast<int>(width), static_cast<int>(height), title.c_str(),
-                                    nullptr, nullptr);
+    window_ = glfw.glfwCreateWindow(static_cast<int>(width), static_cast<int>(height),
+                                    title.c_str(), nullptr, nullptr);
     if (window_ == nullptr) {
         const std::string why = lastGlfwError(glfw);
         glfw.glfwTerminate();
-        throw WindowUnavailable("cannot open a window with an OpenGL 4.5 core context (" + why + ")");
+        throw WindowUnavailable("cannot open a window with an OpenGL 4.5 core context (" + why +
+                                ")");
     }
     glfw.glfwMakeContextCurrent(window_);
     // The viewer paces itself by the scenario's time step; waiting for vertical blank would only
@@ -82,8 +113,9 @@ GlfwWindow::GlfwWindow(uint32_t width, uint32_t height, const std::string& title
     glfw.glfwSwapInterval(0);
     std::string error;
     const auto get_proc = glfw.glfwGetProcAddress;
-    if (!loadGlFunctions([get_proc](const char* name) { return reinterpret_cast<void*>(get_proc(name)); },
-                         &error)) {
+    if (!loadGlFunctions(
+            [get_proc](const char* name) { return reinterpret_cast<void*>(get_proc(name)); },
+            &error)) {
         glfw.glfwDestroyWindow(window_);
         glfw.glfwTerminate();
         throw WindowUnavailable("the window's OpenGL context: " + error);
@@ -118,7 +150,8 @@ GlfwWindow::GlfwWindow(uint32_t width, uint32_t height, const std::string& title
         GlfwWindow& self = of(win);
         self.fb_width_ = static_cast<uint32_t>(fw);
         self.fb_height_ = static_cast<uint32_t>(fh);
-        self.push({WindowEvent::Type::Resize, {}, 0, static_cast<double>(fw), static_cast<double>(fh)});
+        self.push(
+            {WindowEvent::Type::Resize, {}, 0, static_cast<double>(fw), static_cast<double>(fh)});
     });
     glfw.glfwSetWindowCloseCallback(window_, [](GLFWwindow* win) {
         of(win).push({WindowEvent::Type::Close, {}, 0, 0.0, 0.0});

@@ -3,16 +3,16 @@
 // ever made here. One window per process.
 #pragma once
 
-#include "render/gl_context.h"
-#include "render/gl_image_presenter.h"
-#include "render/window_events.h"
-
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "render/gl_context.h"
+#include "render/gl_image_presenter.h"
+#include "render/window_events.h"
 
 struct GLFWwindow;
 
@@ -25,7 +25,7 @@ struct WindowUnavailable : std::runtime_error {
 };
 
 class GlfwWindow final : public GlContext {
-public:
+  public:
     // Opens a window whose framebuffer is about width x height pixels, makes its context current
     // and loads the GL entry points. Throws WindowUnavailable.
     GlfwWindow(uint32_t width, uint32_t height, const std::string& title);
@@ -52,7 +52,7 @@ public:
     // Shows an RGBA8 image (rows bottom-up) scaled to the framebuffer, then swaps buffers.
     void present(std::span<const uint8_t> rgba, uint32_t width, uint32_t height);
 
-private:
+  private:
     static GlfwWindow& of(GLFWwindow* window);
     void push(const WindowEvent& event) { queue_.push_back(event); }
 

@@ -1,10 +1,10 @@
 #include "render/glfw_library.h"
 
-#include "render/glfw_context.h"
-
 #include <dlfcn.h>
 
 #include <string>
+
+#include "render/glfw_context.h"
 
 namespace occsim {
 namespace {
@@ -22,11 +22,11 @@ GlfwLibrary load() {
                                 "); install GLFW 3 (Debian: libglfw3)");
     }
     GlfwLibrary lib;
-#define OCCSIM_GLFW_LOOKUP(name)                                                             \
-    lib.name = reinterpret_cast<decltype(lib.name)>(dlsym(handle, #name));                   \
-    if (lib.name == nullptr) {                                                               \
-        throw WindowUnavailable(std::string(kLibraryName) + " has no " #name                 \
-                                "; occsim needs GLFW 3.3 or newer");                         \
+#define OCCSIM_GLFW_LOOKUP(name)                                                                 \
+    lib.name = reinterpret_cast<decltype(lib.name)>(dlsym(handle, #name));                       \
+    if (lib.name == nullptr) {                                                                   \
+        throw WindowUnavailable(std::string(kLibraryName) + " has no " #name                     \
+                                                            "; occsim needs GLFW 3.3 or newer"); \
     }
     OCCSIM_GLFW_FUNCTIONS(OCCSIM_GLFW_LOOKUP)
 #undef OCCSIM_GLFW_LOOKUP

@@ -8,31 +8,31 @@
 
 // X(name) for every GLFW function we call; the header supplies their types (decltype of the
 // declaration needs no definition, so nothing here references the library's symbols).
-#define OCCSIM_GLFW_FUNCTIONS(X)        \
-    X(glfwInit)                         \
-    X(glfwTerminate)                    \
-    X(glfwGetError)                     \
-    X(glfwWindowHint)                   \
-    X(glfwCreateWindow)                 \
-    X(glfwDestroyWindow)                \
-    X(glfwMakeContextCurrent)           \
-    X(glfwGetProcAddress)               \
-    X(glfwSwapBuffers)                  \
-    X(glfwSwapInterval)                 \
-    X(glfwPollEvents)                   \
-    X(glfwWaitEventsTimeout)            \
-    X(glfwWindowShouldClose)            \
-    X(glfwSetWindowShouldClose)         \
-    X(glfwSetWindowTitle)               \
-    X(glfwSetWindowSize)                \
-    X(glfwGetFramebufferSize)           \
-    X(glfwSetWindowUserPointer)         \
-    X(glfwGetWindowUserPointer)         \
-    X(glfwSetKeyCallback)               \
-    X(glfwSetMouseButtonCallback)       \
-    X(glfwSetCursorPosCallback)         \
-    X(glfwSetScrollCallback)            \
-    X(glfwSetFramebufferSizeCallback)   \
+#define OCCSIM_GLFW_FUNCTIONS(X)      \
+    X(glfwInit)                       \
+    X(glfwTerminate)                  \
+    X(glfwGetError)                   \
+    X(glfwWindowHint)                 \
+    X(glfwCreateWindow)               \
+    X(glfwDestroyWindow)              \
+    X(glfwMakeContextCurrent)         \
+    X(glfwGetProcAddress)             \
+    X(glfwSwapBuffers)                \
+    X(glfwSwapInterval)               \
+    X(glfwPollEvents)                 \
+    X(glfwWaitEventsTimeout)          \
+    X(glfwWindowShouldClose)          \
+    X(glfwSetWindowShouldClose)       \
+    X(glfwSetWindowTitle)             \
+    X(glfwSetWindowSize)              \
+    X(glfwGetFramebufferSize)         \
+    X(glfwSetWindowUserPointer)       \
+    X(glfwGetWindowUserPointer)       \
+    X(glfwSetKeyCallback)             \
+    X(glfwSetMouseButtonCallback)     \
+    X(glfwSetCursorPosCallback)       \
+    X(glfwSetScrollCallback)          \
+    X(glfwSetFramebufferSizeCallback) \
     X(glfwSetWindowCloseCallback)
 
 namespace occsim {

@@ -1,11 +1,11 @@
 // The backends behind createHeadlessContext() (render/headless_context.h), for its own use.
 #pragma once
 
-#include "render/headless_context.h"
-
 #include <cstdint>
 #include <memory>
 #include <optional>
+
+#include "render/headless_context.h"
 
 namespace occsim {
 

@@ -6,9 +6,12 @@ namespace occsim {
 
 const char* backendName(Backend backend) {
     switch (backend) {
-        case Backend::Auto: return "auto";
-        case Backend::Egl: return "egl";
-        case Backend::OsMesa: return "osmesa";
+        case Backend::Auto:
+            return "auto";
+        case Backend::Egl:
+            return "egl";
+        case Backend::OsMesa:
+            return "osmesa";
     }
     return "?";
 }
@@ -55,10 +58,12 @@ std::unique_ptr<HeadlessContext> createHeadlessContext(const BackendChoice& choi
             try {
                 return createEglContext(choice.device);
             } catch (const EglMissing& missing) {
-                // A device was asked for: only EGL has devices, so there is nothing to fall back on.
+                // A device was asked for: only EGL has devices, so there is nothing to fall back
+                // on.
                 if (choice.device || !osmesaAvailable()) {
-                    throw BackendUnavailable(std::string("no headless backend: ") + missing.what() +
-                                             (osmesaAvailable() ? "" : ", and this build has no OSMesa"));
+                    throw BackendUnavailable(
+                        std::string("no headless backend: ") + missing.what() +
+                        (osmesaAvailable() ? "" : ", and this build has no OSMesa"));
                 }
                 auto context = createOsMesaContext(width, height);
                 context->noteFallback(missing.what());

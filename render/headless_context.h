@@ -5,8 +5,6 @@
 // (OCCSIM_WITH_OSMESA).
 #pragma once
 
-#include "render/gl_context.h"
-
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -15,12 +13,14 @@
 #include <string_view>
 #include <vector>
 
+#include "render/gl_context.h"
+
 namespace occsim {
 
 enum class Backend : uint8_t { Auto, Egl, OsMesa };
 
-const char* backendName(Backend backend);                       // "auto", "egl", "osmesa"
-std::optional<Backend> parseBackend(std::string_view name);     // nullopt for an unknown name
+const char* backendName(Backend backend);                    // "auto", "egl", "osmesa"
+std::optional<Backend> parseBackend(std::string_view name);  // nullopt for an unknown name
 bool osmesaAvailable();  // this build was configured with OSMesa
 
 // What the user asked for (--backend, --device).
@@ -49,12 +49,12 @@ struct BackendUnavailable : std::runtime_error {
 };
 
 class HeadlessContext : public GlContext {
-public:
+  public:
     const ContextInfo& info() const { return info_; }
     std::string rendererName() const override;
     void noteFallback(const std::string& why) { info_.fallback = why; }
 
-protected:
+  protected:
     ContextInfo info_;
 };
 
@@ -69,8 +69,8 @@ std::unique_ptr<HeadlessContext> createHeadlessContext(const BackendChoice& choi
 // when that fails, `problem` says why and they stay empty.
 struct EglDeviceInfo {
     uint32_t index = 0;
-    std::string kind;         // "software" (EGL_MESA_device_software), a DRM node, or "unknown"
-    std::string egl_vendor;   // EGL_VENDOR of its display
+    std::string kind;        // "software" (EGL_MESA_device_software), a DRM node, or "unknown"
+    std::string egl_vendor;  // EGL_VENDOR of its display
     ContextInfo context;
     std::string problem;
 };

@@ -1,12 +1,11 @@
 // Triangle meshes as plain CPU data: what scene sources produce and what the renderer uploads.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 

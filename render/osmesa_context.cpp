@@ -2,19 +2,19 @@
 // (OCCSIM_WITH_OSMESA; Mesa removed OSMesa in 25.1). OSMesa needs a client buffer to make a
 // context current; occsim renders into its own framebuffer object, so that buffer only exists
 // to satisfy the API.
-#include "render/gl_loader.h"
-#include "render/headless_backends.h"
-
 #include <GL/osmesa.h>
 
 #include <stdexcept>
 #include <vector>
 
+#include "render/gl_loader.h"
+#include "render/headless_backends.h"
+
 namespace occsim {
 namespace {
 
 class OsMesaContext final : public HeadlessContext {
-public:
+  public:
     OsMesaContext(uint32_t width, uint32_t height) : buffer_(size_t{width} * height * 4) {
         const int attribs[] = {OSMESA_FORMAT,
                                OSMESA_RGBA,
@@ -40,7 +40,9 @@ public:
         }
         std::string error;
         if (!loadGlFunctions(
-                [](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); },
+                [](const char* name) {
+                    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+                },
                 &error)) {
             OSMesaDestroyContext(context_);
             throw BackendUnavailable("OSMesa: " + error);
@@ -52,7 +54,7 @@ public:
 
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
-private:
+  private:
     std::vector<unsigned char> buffer_;
     OSMesaContext context_ = nullptr;
 };

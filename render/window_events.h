@@ -10,7 +10,16 @@
 namespace occsim {
 
 struct WindowEvent {
-    enum class Type : uint8_t { KeyDown, KeyUp, MouseDown, MouseUp, CursorMove, Scroll, Resize, Close };
+    enum class Type : uint8_t {
+        KeyDown,
+        KeyUp,
+        MouseDown,
+        MouseUp,
+        CursorMove,
+        Scroll,
+        Resize,
+        Close
+    };
     Type type = Type::Close;
     // KeyDown, KeyUp: one of keyNames() (static storage, so events are cheap to copy).
     std::string_view key;

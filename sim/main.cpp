@@ -3,8 +3,20 @@
 // Bad input (flags, scenario and script files, plugins, a headless backend or device that is
 // missing or falls short) ends with one line on stderr and exit code 2, and so does `view` where
 // no window can be opened; runtime failures (OpenGL, output) with exit 1.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
 #include "occsim/culling/registry/plugin_loader.h"
 #include "occsim/culling/registry/registry.h"
+#include "occsim/culling/registry/registry_text.h"
 #include "render/glfw_context.h"
 #include "render/headless_context.h"
 #include "sim/output/atomic_file.h"
@@ -22,20 +34,7 @@
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
 #include "sim/view/viewer.h"
-#include "occsim/culling/registry/registry_text.h"
 #include "sim/world/scene_info.h"
-
-#include <CLI/CLI.hpp>
-
-#include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <cstdlib>
-#include <fstream>
-#include <iostream>
-#include <sstream>
-
-#include <unistd.h>
 
 namespace {
 
@@ -49,8 +48,8 @@ struct BadInput : std::runtime_error {
 // The one place a command-line algorithm name is checked.
 const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name) {
     if (const occsim::AlgorithmTraits* a = occsim::findAlgorithm(name)) return *a;
-    throw BadInput(flag + ": unknown algorithm '" + name + "'; expected one of: " +
-                   occsim::algorithmNameList());
+    throw BadInput(flag + ": unknown algorithm '" + name +
+                   "'; expected one of: " + occsim::algorithmNameList());
 }
 
 // A whole number in [lo, hi], checked on the text before CLI11 converts it, so a bad value gets
@@ -86,15 +85,18 @@ struct BackendFlags {
 
 void addBackendFlags(CLI::App* cmd, BackendFlags& flags) {
     cmd->add_option("--backend", flags.backend,
-                    "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa (docs/headless-gpu.md)");
-    cmd->add_option("--device", flags.device, "EGL device index (occsim devices lists them; default 0)")
+                    "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa "
+                    "(docs/headless-gpu.md)");
+    cmd->add_option("--device", flags.device,
+                    "EGL device index (occsim devices lists them; default 0)")
         ->check(integerIn(0, 1023));
 }
 
 occsim::BackendChoice backendChoice(const BackendFlags& flags) {
     occsim::BackendChoice choice;
     const auto backend = occsim::parseBackend(flags.backend);
-    if (!backend) throw BadInput("--backend: expected auto, egl or osmesa, got '" + flags.backend + "'");
+    if (!backend)
+        throw BadInput("--backend: expected auto, egl or osmesa, got '" + flags.backend + "'");
     choice.backend = *backend;
     if (flags.device >= 0) choice.device = static_cast<uint32_t>(flags.device);
     return choice;
@@ -138,8 +140,9 @@ void loadPlugins(const std::vector<std::string>& plugins) {
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
     addBackendFlags(cmd, flags.backend);
-    cmd->add_flag("--error", flags.error,
-                  "Measure image error against a ground-truth render of every frame (outside the timing)");
+    cmd->add_flag(
+        "--error", flags.error,
+        "Measure image error against a ground-truth render of every frame (outside the timing)");
     cmd->add_option("--out", flags.out, "Output folder (default: out/<scenario>/<command>)");
     cmd->add_option("--frames", flags.frames, "Run this many frames instead of the scenario's")
         ->check(integerIn(1, 10000000));
@@ -149,24 +152,29 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--repetitions", flags.repetitions,
                     "Run every configuration N times (interleaved); report medians and min-max")
         ->check(integerIn(1, 1000));
-    cmd->add_option("--deterministic-latency", flags.deterministic_latency,
-                    "A query result counts as ready only after N later draw calls (reproducible counts)")
+    cmd->add_option(
+           "--deterministic-latency", flags.deterministic_latency,
+           "A query result counts as ready only after N later draw calls (reproducible counts)")
         ->check(integerIn(0, 1000000));
-    cmd->add_flag("--plots", flags.plots,
-                  "Chart frame time, time against error, queries and triangles with gnuplot (PNG and SVG)");
+    cmd->add_flag(
+        "--plots", flags.plots,
+        "Chart frame time, time against error, queries and triangles with gnuplot (PNG and SVG)");
     cmd->add_option("--birds-eye", flags.birds_eye,
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
     addPluginFlag(cmd, flags.plugins);
     cmd->add_option("--culling", flags.culling,
-                    "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, e.g. occtune's "
+                    "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
+                    "e.g. occtune's "
                     "tuned.json), overriding the scenario's");
 }
 
 // The scenario with the --culling file, when given, applied over its own culling options.
-occsim::Scenario scenarioWithCulling(const std::string& scenario_file, const std::string& culling_file) {
+occsim::Scenario scenarioWithCulling(const std::string& scenario_file,
+                                     const std::string& culling_file) {
     occsim::Scenario scenario = occsim::parseScenarioFile(scenario_file);
-    if (!culling_file.empty()) occsim::applyCullingFile(occsim::readCullingFile(culling_file), scenario);
+    if (!culling_file.empty())
+        occsim::applyCullingFile(occsim::readCullingFile(culling_file), scenario);
     return scenario;
 }
 
@@ -214,7 +222,8 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     auto checkFrame = [frames](const char* flag, int64_t frame) {
         if (frame >= frames) {
             throw BadInput(std::string(flag) + ": frame " + std::to_string(frame) +
-                           " is past the last frame (" + std::to_string(frames) + " frames, from 0)");
+                           " is past the last frame (" + std::to_string(frames) +
+                           " frames, from 0)");
         }
     };
     if (flags.birds_eye >= 0) {
@@ -230,9 +239,11 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
 // write: a folder flag must not name a file, a file flag not a folder, and neither may be empty
 // when given.
 void checkOutputFolder(const std::string& flag, const std::string& path, bool given) {
-    if (given && path.empty()) throw BadInput(flag + ": empty; expected a folder (created when missing)");
+    if (given && path.empty())
+        throw BadInput(flag + ": empty; expected a folder (created when missing)");
     std::error_code ec;
-    if (!path.empty() && std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec)) {
+    if (!path.empty() && std::filesystem::exists(path, ec) &&
+        !std::filesystem::is_directory(path, ec)) {
         throw BadInput(flag + " " + path + ": is a file; expected a folder (created when missing)");
     }
 }
@@ -253,7 +264,8 @@ std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<st
         size_t start = 0;
         while (true) {
             const size_t comma = list.find(',', start);
-            names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+            names.push_back(
+                list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
             if (comma == std::string::npos) break;
             start = comma + 1;
         }
@@ -286,7 +298,8 @@ std::string withSuggestion(const CLI::App& app, const std::string& message) {
             for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
         }
     }
-    if (const auto match = occsim::closestMatch(word, flags)) return message + "; did you mean '" + *match + "'?";
+    if (const auto match = occsim::closestMatch(word, flags))
+        return message + "; did you mean '" + *match + "'?";
     return message;
 }
 
@@ -295,8 +308,9 @@ int runCommand(const RunRequest& request) {
     checkOutputFolder("--out", flags.out, flags.out_given);
     occsim::BenchOptions options = benchOptions(request);
     const std::filesystem::path out_dir =
-        flags.out.empty() ? std::filesystem::path("out") / request.scenario.name / request.default_subdir
-                          : std::filesystem::path(flags.out);
+        flags.out.empty()
+            ? std::filesystem::path("out") / request.scenario.name / request.default_subdir
+            : std::filesystem::path(flags.out);
     occsim::PictureRecorder pictures(out_dir, flags.capture, options.trace_frame);
     options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
 
@@ -309,7 +323,8 @@ int runCommand(const RunRequest& request) {
     std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (!pictures.birdsEyeFiles().empty()) {
-        std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n", pictures.birdsEyeFiles().size());
+        std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
+                    pictures.birdsEyeFiles().size());
     }
     size_t plots = 0;
     for (const std::string& f : files.files) plots += f.rfind("plot-", 0) == 0;
@@ -319,30 +334,36 @@ int runCommand(const RunRequest& request) {
 }
 
 int regressCommand(const std::vector<std::string>& inputs, bool update, const std::string& junit,
-                   const std::string& shard, const std::string& out, const std::string& culling_file,
-                   const std::vector<std::string>& plugins, const BackendFlags& backend,
-                   bool junit_given, const std::string& history, const std::string& commit,
-                   bool allow_empty) {
+                   const std::string& shard, const std::string& out,
+                   const std::string& culling_file, const std::vector<std::string>& plugins,
+                   const BackendFlags& backend, bool junit_given, const std::string& history,
+                   const std::string& commit, bool allow_empty) {
     checkOutputFile("--junit", junit, junit_given);
     checkOutputFolder("--out", out, true);
     occsim_cli::checkHistoryFlag(history);
     loadPlugins(plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(backend);
-    for (const std::string& plugin : plugins) options.rerun_flags.insert(options.rerun_flags.end(), {"--plugin", plugin});
-    if (!culling_file.empty()) options.rerun_flags.insert(options.rerun_flags.end(), {"--culling", culling_file});
-    if (backend.backend != "auto") options.rerun_flags.insert(options.rerun_flags.end(), {"--backend", backend.backend});
+    for (const std::string& plugin : plugins)
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--plugin", plugin});
+    if (!culling_file.empty())
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--culling", culling_file});
+    if (backend.backend != "auto")
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--backend", backend.backend});
     if (backend.device >= 0) {
-        options.rerun_flags.insert(options.rerun_flags.end(), {"--device", std::to_string(backend.device)});
+        options.rerun_flags.insert(options.rerun_flags.end(),
+                                   {"--device", std::to_string(backend.device)});
     }
     if (!culling_file.empty()) {
-        options.adjust_scenario = [culling = occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
+        options.adjust_scenario = [culling =
+                                       occsim::readCullingFile(culling_file)](occsim::Scenario& s) {
             occsim::applyCullingFile(culling, s);
         };
     }
     for (const auto& input : inputs) options.inputs.emplace_back(input);
     try {
-        options.shard = shard.empty() ? occsim::shardFromEnvironment(std::getenv) : occsim::parseShard(shard);
+        options.shard =
+            shard.empty() ? occsim::shardFromEnvironment(std::getenv) : occsim::parseShard(shard);
     } catch (const std::invalid_argument& e) {
         throw BadInput(std::string("--shard: ") + e.what());
     }
@@ -356,21 +377,25 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
         failed += !s.passed();
         skipped += s.skipped;
         if (!s.note.empty() && !s.skipped) std::printf("%s\n", s.note.c_str());
-        for (const auto& capture : s.captures) std::printf("picture of the worst frame: %s\n", capture.c_str());
+        for (const auto& capture : s.captures)
+            std::printf("picture of the worst frame: %s\n", capture.c_str());
     }
     if (!junit.empty()) {
         const std::filesystem::path junit_path(junit);
-        if (junit_path.has_parent_path()) std::filesystem::create_directories(junit_path.parent_path());
+        if (junit_path.has_parent_path())
+            std::filesystem::create_directories(junit_path.parent_path());
         occsim::writeFileAtomically(junit_path, occsim::junitXml(report));
     }
     if (!update) occsim_cli::writeRegressResults(options, report, history, commit);
-    std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n", report.scenarios.size(),
-                options.shard.index, options.shard.count, failed, skipped);
+    std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n",
+                report.scenarios.size(), options.shard.index, options.shard.count, failed, skipped);
     // Green with nothing checked would let a CI job pass on a wrong path or a lost expect block.
     if (report.scenarios.size() == skipped && !allow_empty) {
-        std::fprintf(stderr, "occsim regress: nothing was checked: %s (--allow-empty when that is expected)\n",
-                     report.scenarios.empty() ? "no scenario file found under the paths given"
-                                              : "no scenario found has an expect block");
+        std::fprintf(
+            stderr,
+            "occsim regress: nothing was checked: %s (--allow-empty when that is expected)\n",
+            report.scenarios.empty() ? "no scenario file found under the paths given"
+                                     : "no scenario found has an expect block");
         return kExitFailure;
     }
     return report.passed() ? 0 : kExitFailure;
@@ -378,8 +403,9 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
 
 // `occsim devices`: every EGL device with what a context on it reports.
 int devicesCommand() {
-    std::printf("OSMesa: %s\n", occsim::osmesaAvailable() ? "in this build (--backend osmesa)"
-                                                         : "not in this build (OCCSIM_WITH_OSMESA=OFF)");
+    std::printf("OSMesa: %s\n", occsim::osmesaAvailable()
+                                    ? "in this build (--backend osmesa)"
+                                    : "not in this build (OCCSIM_WITH_OSMESA=OFF)");
     const std::vector<occsim::EglDeviceInfo> devices = occsim::listEglDevices();
     std::printf("EGL devices: %zu\n", devices.size());
     for (const occsim::EglDeviceInfo& d : devices) {
@@ -406,14 +432,16 @@ int viewCommand(const ViewFlags& flags) {
     loadPlugins(flags.plugins);
     occsim::ViewOptions options;
     const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
-    if (!flags.algorithm.empty()) options.algorithm = algorithmNamed("--algo", flags.algorithm).name;
+    if (!flags.algorithm.empty())
+        options.algorithm = algorithmNamed("--algo", flags.algorithm).name;
     options.error = flags.error;
     if (!flags.size.empty()) {
         unsigned w = 0, h = 0;
         char extra = 0;
         if (std::sscanf(flags.size.c_str(), "%ux%u%c", &w, &h, &extra) != 2 || w < 16 || h < 16 ||
             w > 8192 || h > 8192) {
-            throw BadInput("--size: expected WIDTHxHEIGHT, each in [16, 8192], got '" + flags.size + "'");
+            throw BadInput("--size: expected WIDTHxHEIGHT, each in [16, 8192], got '" + flags.size +
+                           "'");
         }
         options.width = w;
         options.height = h;
@@ -430,77 +458,95 @@ int viewCommand(const ViewFlags& flags) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
+    CLI::App app{
+        "occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Help for every command");
 
     CommonFlags run_flags;
     std::string run_algorithm;
-    CLI::App* run = app.add_subcommand("run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
+    CLI::App* run = app.add_subcommand(
+        "run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
     addCommonFlags(run, run_flags);
     run->add_option("--algo", run_algorithm,
                     "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
 
     CommonFlags bench_flags;
     std::vector<std::string> bench_algorithms;  // split here, not by CLI11: it drops empty names
-    CLI::App* bench = app.add_subcommand("bench", "Run several algorithms over the same frames, interleaved, in one table");
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, bench_flags);
     bench->add_option("--algos", bench_algorithms,
                       "Algorithms to compare (default: every registered one, plugins' included)");
-    bench->add_option("--sweep", bench_flags.sweep,
-                      "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
-                      "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
-                      "or a key of a culler's options; occsim cullers lists them)");
-    bench->add_option("--ablate", bench_flags.ablate,
-                      "Run this algorithm also once with each mechanism its options switch on turned "
-                      "off (the ablation; occsim cullers marks them)");
+    bench->add_option(
+        "--sweep", bench_flags.sweep,
+        "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
+        "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
+        "or a key of a culler's options; occsim cullers lists them)");
+    bench->add_option(
+        "--ablate", bench_flags.ablate,
+        "Run this algorithm also once with each mechanism its options switch on turned "
+        "off (the ablation; occsim cullers marks them)");
 
     std::vector<std::string> regress_inputs;
     bool regress_update = false, regress_allow_empty = false;
     std::string regress_junit, regress_shard, regress_out = "out/regress", regress_culling;
     CLI::App* regress = app.add_subcommand(
-        "regress", "Run every scenario with an expect block (files or folders, recursively) and check it");
+        "regress",
+        "Run every scenario with an expect block (files or folders, recursively) and check it");
     regress->add_option("paths", regress_inputs, "Scenario files or folders")->required();
-    regress->add_flag("--update", regress_update, "Rewrite the baselines from this run (prints what changed)");
-    regress->add_flag("--allow-empty", regress_allow_empty,
-                      "Exit 0 even when no scenario found has an expect block (default: that fails)");
+    regress->add_flag("--update", regress_update,
+                      "Rewrite the baselines from this run (prints what changed)");
+    regress->add_flag(
+        "--allow-empty", regress_allow_empty,
+        "Exit 0 even when no scenario found has an expect block (default: that fails)");
     regress->add_option("--junit", regress_junit, "Write JUnit XML results to this file");
     regress->add_option("--shard", regress_shard,
                         "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
     regress->add_option("--out", regress_out, "Output folder for data and failure pictures");
-    regress->add_option("--culling", regress_culling,
-                        "Culling options from this file, overriding every scenario's (see run --help)");
+    regress->add_option(
+        "--culling", regress_culling,
+        "Culling options from this file, overriding every scenario's (see run --help)");
     std::vector<std::string> regress_plugins;
     addPluginFlag(regress, regress_plugins);
     BackendFlags regress_backend;
     addBackendFlags(regress, regress_backend);
     std::string regress_history, regress_commit;
-    regress->add_option("--history", regress_history,
-                        "Append this run's figures to a history folder (occsim history DIR reports it)");
+    regress->add_option(
+        "--history", regress_history,
+        "Append this run's figures to a history folder (occsim history DIR reports it)");
     regress->add_option("--commit", regress_commit,
                         "Commit recorded in the history (default: $OCCSIM_COMMIT, $GITHUB_SHA, "
                         "$CI_COMMIT_SHA or git rev-parse HEAD)");
 
     occsim_cli::MergeFlags merge_flags;
     CLI::App* merge = app.add_subcommand(
-        "merge", "Join the --out folders of the shards of one regress run into one report, checking that "
-                 "every scenario ran exactly once");
+        "merge",
+        "Join the --out folders of the shards of one regress run into one report, checking that "
+        "every scenario ran exactly once");
     merge->add_option("shards", merge_flags.dirs, "The shards' --out folders")->required();
-    merge->add_option("--out", merge_flags.out, "Folder for the merged report (default out/merged)");
+    merge->add_option("--out", merge_flags.out,
+                      "Folder for the merged report (default out/merged)");
     merge->add_option("--junit", merge_flags.junit, "Also write the merged JUnit XML to this file");
-    merge->add_option("--history", merge_flags.history, "Append the merged run's figures to a history folder");
-    merge->add_option("--commit", merge_flags.commit, "Commit recorded in the history (as for regress)");
+    merge->add_option("--history", merge_flags.history,
+                      "Append the merged run's figures to a history folder");
+    merge->add_option("--commit", merge_flags.commit,
+                      "Commit recorded in the history (as for regress)");
 
     occsim_cli::HistoryFlags history_flags;
-    CLI::App* history = app.add_subcommand(
-        "history", "Report a history folder: plots over the runs, changes beyond the run-to-run spread flagged");
+    CLI::App* history = app.add_subcommand("history",
+                                           "Report a history folder: plots over the runs, changes "
+                                           "beyond the run-to-run spread flagged");
     history->add_option("dir", history_flags.dir, "History folder (regress --history)")->required();
-    history->add_option("--out", history_flags.out, "Folder for report.md and the plots (default out/history)");
-    history->add_option("--window", history_flags.window,
-                        "Compare the median of the last N runs with the N before (default 3)")
+    history->add_option("--out", history_flags.out,
+                        "Folder for report.md and the plots (default out/history)");
+    history
+        ->add_option("--window", history_flags.window,
+                     "Compare the median of the last N runs with the N before (default 3)")
         ->check(integerIn(1, 1000));
-    history->add_option("--min-change", history_flags.min_change,
-                        "Smallest relative change flagged, beside the spread (default 0.05)")
+    history
+        ->add_option("--min-change", history_flags.min_change,
+                     "Smallest relative change flagged, beside the spread (default 0.05)")
         ->check(CLI::Range(0.0, 10.0));
     history->add_flag("--fail-on-change", history_flags.fail_on_change,
                       "Exit with status 1 when a figure got worse beyond the spread");
@@ -512,26 +558,34 @@ int main(int argc, char** argv) {
     cullers->add_flag("--markdown", cullers_markdown, "As the Markdown tables of docs/cullers.md");
     addPluginFlag(cullers, cullers_plugins);
 
-    CLI::App* devices = app.add_subcommand(
-        "devices", "List the EGL devices headless runs can use (--device N), with vendor, renderer and driver");
+    CLI::App* devices = app.add_subcommand("devices",
+                                           "List the EGL devices headless runs can use (--device "
+                                           "N), with vendor, renderer and driver");
 
     std::string info_scenario;
-    CLI::App* info = app.add_subcommand("info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
+    CLI::App* info = app.add_subcommand(
+        "info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
     info->add_option("scenario", info_scenario, "Scenario file (JSON)")->required();
 
     ViewFlags view_flags;
-    CLI::App* view = app.add_subcommand(
-        "view", "Watch a scenario in a window: fly, switch algorithms live, record a camera path (docs/viewer.md)");
+    CLI::App* view = app.add_subcommand("view",
+                                        "Watch a scenario in a window: fly, switch algorithms "
+                                        "live, record a camera path (docs/viewer.md)");
     view->add_option("scenario", view_flags.scenario, "Scenario file (JSON)")->required();
     view->add_option("--algo", view_flags.algorithm,
-                     "Culling algorithm to start with (default: the scenario's): " + occsim::algorithmNameList());
-    view->add_flag("--error", view_flags.error, "Render ground truth every frame and show error pixels (key g)");
-    view->add_option("--size", view_flags.size,
-                     "Window size WIDTHxHEIGHT (default: the scenario's viewport, enlarged when small)");
-    view->add_option("--script", view_flags.script, "Drive the window from a script file, then close it");
+                     "Culling algorithm to start with (default: the scenario's): " +
+                         occsim::algorithmNameList());
+    view->add_flag("--error", view_flags.error,
+                   "Render ground truth every frame and show error pixels (key g)");
+    view->add_option(
+        "--size", view_flags.size,
+        "Window size WIDTHxHEIGHT (default: the scenario's viewport, enlarged when small)");
+    view->add_option("--script", view_flags.script,
+                     "Drive the window from a script file, then close it");
     addPluginFlag(view, view_flags.plugins);
-    view->add_option("--out", view_flags.out,
-                     "Folder for screenshots and recorded scenarios (default: out/<scenario>/view)");
+    view->add_option(
+        "--out", view_flags.out,
+        "Folder for screenshots and recorded scenarios (default: out/<scenario>/view)");
 
     // CLI11 would answer an unknown command with "A subcommand is required".
     if (argc > 1 && argv[1][0] != '-') {
@@ -542,7 +596,8 @@ int main(int argc, char** argv) {
             known |= sub->get_name() == argv[1];
         }
         if (!known) {
-            std::fprintf(stderr, "occsim: unknown command '%s'; expected one of: %s (see occsim --help)\n",
+            std::fprintf(stderr,
+                         "occsim: unknown command '%s'; expected one of: %s (see occsim --help)\n",
                          argv[1], commands.c_str());
             return kExitBadInput;
         }
@@ -554,7 +609,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "occsim: %s (see occsim --help)\n", withSuggestion(app, e.what()).c_str());
+        std::fprintf(stderr, "occsim: %s (see occsim --help)\n",
+                     withSuggestion(app, e.what()).c_str());
         return kExitBadInput;
     }
     run_flags.out_given = run->count("--out") > 0;
@@ -564,8 +620,10 @@ int main(int argc, char** argv) {
     try {
         if (*run) {
             loadPlugins(run_flags.plugins);
-            RunRequest request{"run", command, run_flags,
-                               scenarioWithCulling(run_flags.scenario, run_flags.culling), {}, ""};
+            RunRequest request{
+                "run",     command,
+                run_flags, scenarioWithCulling(run_flags.scenario, run_flags.culling),
+                {},        ""};
             const occsim::AlgorithmTraits& algorithm =
                 run_algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
                                       : algorithmNamed("--algo", run_algorithm);
@@ -575,22 +633,26 @@ int main(int argc, char** argv) {
         }
         if (*bench) {
             loadPlugins(bench_flags.plugins);
-            RunRequest request{"bench", command, bench_flags,
-                               scenarioWithCulling(bench_flags.scenario, bench_flags.culling), {}, "bench"};
-            request.algorithms =
-                bench->count("--algos") > 0 ? algorithmsNamed(bench_algorithms) : occsim::algorithms();
+            RunRequest request{
+                "bench",     command,
+                bench_flags, scenarioWithCulling(bench_flags.scenario, bench_flags.culling),
+                {},          "bench"};
+            request.algorithms = bench->count("--algos") > 0 ? algorithmsNamed(bench_algorithms)
+                                                             : occsim::algorithms();
             return runCommand(request);
         }
-        if (*regress) return regressCommand(regress_inputs, regress_update, regress_junit,
-                                             regress_shard, regress_out, regress_culling,
-                                             regress_plugins, regress_backend,
-                                             regress->count("--junit") > 0, regress_history, regress_commit,
-                                             regress_allow_empty);
+        if (*regress)
+            return regressCommand(regress_inputs, regress_update, regress_junit, regress_shard,
+                                  regress_out, regress_culling, regress_plugins, regress_backend,
+                                  regress->count("--junit") > 0, regress_history, regress_commit,
+                                  regress_allow_empty);
         if (*merge) return occsim_cli::mergeCommand(merge_flags);
         if (*history) return occsim_cli::historyCommand(history_flags);
         if (*cullers) {
             loadPlugins(cullers_plugins);
-            std::printf("%s", (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
+            std::printf(
+                "%s",
+                (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
             return 0;
         }
         if (*devices) return devicesCommand();

@@ -4,12 +4,12 @@
 // and exits with status 2, and nothing has been written by then.
 #pragma once
 
-#include "sim/regress/regress.h"
-
 #include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "sim/regress/regress.h"
 
 namespace occsim_cli {
 

@@ -2,8 +2,6 @@
 // scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +9,8 @@
 #include <limits>
 #include <random>
 #include <vector>
+
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim::testing {
 
@@ -28,9 +28,8 @@ inline bool isInfiniteBox(const Aabb& b) {
 }
 
 inline ::testing::Message describe(const Aabb& b) {
-    return ::testing::Message() << "[(" << b.min.x << ", " << b.min.y << ", " << b.min.z
-                                << ") .. (" << b.max.x << ", " << b.max.y << ", " << b.max.z
-                                << ")]";
+    return ::testing::Message() << "[(" << b.min.x << ", " << b.min.y << ", " << b.min.z << ") .. ("
+                                << b.max.x << ", " << b.max.y << ", " << b.max.z << ")]";
 }
 
 inline Aabb translated(const Aabb& b, glm::vec3 by) { return makeAabb(b.min + by, b.max + by); }
@@ -162,7 +161,8 @@ inline void expectTreeInvariants(const BspTree& tree) {
         ASSERT_EQ(listed, tree.node(n).object_count) << "node " << n;
     }
     for (uint32_t o = 0; o < object_count; ++o) {
-        ASSERT_EQ(times_listed[o], 1) << "object " << o << " listed " << times_listed[o] << " times";
+        ASSERT_EQ(times_listed[o], 1)
+            << "object " << o << " listed " << times_listed[o] << " times";
     }
 
     // Placement: where the rule puts the box, whatever the history; and the local form of the
@@ -217,9 +217,8 @@ inline void expectTreeInvariants(const BspTree& tree) {
     for (uint32_t n = 0; n < node_count; ++n) {
         if (!tree.isLive(n)) continue;
         const Aabb& bounds = tree.bounds(n);
-        ASSERT_TRUE(sameBox(bounds, expected[n]))
-            << "node " << n << " bounds " << describe(bounds) << ", recomputed "
-            << describe(expected[n]);
+        ASSERT_TRUE(sameBox(bounds, expected[n])) << "node " << n << " bounds " << describe(bounds)
+                                                  << ", recomputed " << describe(expected[n]);
         ASSERT_EQ(tree.node(n).subtree_object_count, expected_count[n]) << "node " << n;
     }
     EXPECT_EQ(tree.node(tree.root()).subtree_object_count, object_count);

@@ -1,19 +1,18 @@
 // Shared set-up for culler tests: random object boxes, a tree over them, and cameras.
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/geometry/frustum.h"
-
 #include <glm/gtc/matrix_transform.hpp>
-
 #include <memory>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string_view>
-#include <set>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim::testing {
 
@@ -75,7 +74,8 @@ inline std::vector<Aabb> gridBoxes(uint32_t nx, uint32_t nz, float y = 0.0f, flo
     std::vector<Aabb> boxes;
     for (uint32_t z = 0; z < nz; ++z) {
         for (uint32_t x = 0; x < nx; ++x) {
-            const glm::vec3 lo(spacing * static_cast<float>(x), y, -spacing * static_cast<float>(z));
+            const glm::vec3 lo(spacing * static_cast<float>(x), y,
+                               -spacing * static_cast<float>(z));
             boxes.push_back({lo, lo + glm::vec3(1.0f)});
         }
     }
@@ -129,7 +129,7 @@ inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) 
 // of the view. Ground truth draws every object and lets the GPU clip, so it shares nothing with
 // this mistake: an error metric that works shows it.
 class ShrunkenFrustumCuller final : public Culler {
-public:
+  public:
     std::string_view name() const override { return "vfc"; }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
@@ -138,7 +138,7 @@ public:
         inner_->cullAndRender(tree, shrunk, device);
     }
 
-private:
+  private:
     std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
 };
 

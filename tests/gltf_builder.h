@@ -2,8 +2,6 @@
 // folders to write them (and scenarios using them) to.
 #pragma once
 
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <cmath>
@@ -11,6 +9,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -135,7 +135,9 @@ class GltfBuilder {
     int animation(const std::string& name, const std::vector<Track>& tracks) {
         json samplers = json::array(), channels = json::array();
         for (const Track& t : tracks) {
-            const std::string type = !t.type.empty() ? t.type : t.path == "rotation" ? "VEC4" : "VEC3";
+            const std::string type = !t.type.empty()        ? t.type
+                                     : t.path == "rotation" ? "VEC4"
+                                                            : "VEC3";
             samplers.push_back({{"input", floats(t.times, "SCALAR")},
                                 {"output", floats(t.values, type)},
                                 {"interpolation", t.interpolation}});

@@ -1,13 +1,14 @@
 // The headless backends the tests that touch OpenGL run on: EGL always, OSMesa where the build
-// has it (OCCSIM_WITH_OSMESA). Use with INSTANTIATE_TEST_SUITE_P(..., testedBackends(), backendTestName).
+// has it (OCCSIM_WITH_OSMESA). Use with INSTANTIATE_TEST_SUITE_P(..., testedBackends(),
+// backendTestName).
 #pragma once
-
-#include "render/headless_context.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
+
+#include "render/headless_context.h"
 
 namespace occsim::testing {
 

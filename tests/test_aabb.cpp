@@ -1,13 +1,13 @@
 // Aabb helpers: extend, closed containment, transformAabb against brute-force corner transforms,
 // and isFiniteAndOrdered on NaN, infinite and inverted boxes.
-#include "occsim/culling/geometry/aabb.h"
-
 #include <gtest/gtest.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 namespace {
@@ -55,7 +55,8 @@ TEST(Aabb, ContainsIsClosedSoTouchingFacesAndEqualBoxesAreInside) {
     EXPECT_TRUE(contains(outer, outer));
     EXPECT_TRUE(contains(outer, makeAabb({0.0f, 0.5f, 0.5f}, {1.0f, 1.0f, 1.0f})));  // min face
     EXPECT_TRUE(contains(outer, makeAabb({1.0f, 1.0f, 1.0f}, {2.0f, 2.0f, 2.0f})));  // max corner
-    EXPECT_TRUE(contains(outer, makeAabb({2.0f, 1.0f, 1.0f}, {2.0f, 1.0f, 1.0f})));  // flat, on face
+    EXPECT_TRUE(
+        contains(outer, makeAabb({2.0f, 1.0f, 1.0f}, {2.0f, 1.0f, 1.0f})));  // flat, on face
     EXPECT_FALSE(contains(outer, makeAabb({-0.001f, 0.5f, 0.5f}, {1.0f, 1.0f, 1.0f})));
     EXPECT_FALSE(contains(outer, makeAabb({1.0f, 1.0f, 1.0f}, {1.5f, 2.001f, 1.5f})));
     EXPECT_FALSE(contains(outer, makeAabb({-1.0f, -1.0f, -1.0f}, {3.0f, 3.0f, 3.0f})));
@@ -110,8 +111,8 @@ TEST(Aabb, TransformAabbEqualsBoundsOfTheEightTransformedCorners) {
             extend(expected, glm::vec3(m * glm::vec4(p, 1.0f)));
         }
         const Aabb actual = transformAabb(local, m);
-        const float tolerance = 1e-4f * (1.0f + glm::length(extent(expected)) +
-                                         glm::length(glm::vec3(m[3])));
+        const float tolerance =
+            1e-4f * (1.0f + glm::length(extent(expected)) + glm::length(glm::vec3(m[3])));
         for (int axis = 0; axis < 3; ++axis) {
             ASSERT_NEAR(actual.min[axis], expected.min[axis], tolerance) << "trial " << trial;
             ASSERT_NEAR(actual.max[axis], expected.max[axis], tolerance) << "trial " << trial;

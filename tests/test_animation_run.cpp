@@ -1,15 +1,15 @@
 // Animated real content through the whole run, with OpenGL (issue 22): an animated box rises from
 // behind a wall, and every conservative culler draws it on the first frame ground truth sees it;
 // the animated scenario in scenarios/ shows no error for conservative cullers.
-#include "occsim/culling/registry/registry.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/scenario.h"
-#include "gltf_builder.h"
-#include "shell_command.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+
+#include "gltf_builder.h"
+#include "occsim/culling/registry/registry.h"
+#include "shell_command.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 namespace {
@@ -18,8 +18,14 @@ using namespace testing_gltf;
 
 // A closed unit cube (-0.5 .. 0.5), counter-clockwise seen from outside.
 int cubeMesh(GltfBuilder& b, const std::string& name) {
-    const int p = b.vec3({{-.5f, -.5f, -.5f}, {.5f, -.5f, -.5f}, {.5f, .5f, -.5f}, {-.5f, .5f, -.5f},
-                          {-.5f, -.5f, .5f}, {.5f, -.5f, .5f}, {.5f, .5f, .5f}, {-.5f, .5f, .5f}});
+    const int p = b.vec3({{-.5f, -.5f, -.5f},
+                          {.5f, -.5f, -.5f},
+                          {.5f, .5f, -.5f},
+                          {-.5f, .5f, -.5f},
+                          {-.5f, -.5f, .5f},
+                          {.5f, -.5f, .5f},
+                          {.5f, .5f, .5f},
+                          {-.5f, .5f, .5f}});
     const int i = b.indices({0, 3, 2, 0, 2, 1, 4, 5, 6, 4, 6, 7, 0, 4, 7, 0, 7, 3,
                              1, 2, 6, 1, 6, 5, 0, 1, 5, 0, 5, 4, 3, 7, 6, 3, 6, 2});
     return b.mesh(name, json::array({GltfBuilder::primitive(p, i)}));
@@ -48,10 +54,13 @@ Scenario risingBoxScenario(const TempDir& dir) {
         {"frames", 60},
         {"dt", 1.0 / 30.0},
         {"viewport", {{"width", 160}, {"height", 120}}},
-        {"camera", {{"near", 0.1}, {"far", 100},
-                    {"keyframes", {{{"time", 0}, {"position", {0, 1.7, 10}}, {"target", {0, 1.7, 0}}}}}}},
-        {"scene", {{"sources", {{{"type", "gltf"}, {"path", "rising.gltf"},
-                                 {"animation", {{"mode", "clamp"}}}}}}}},
+        {"camera",
+         {{"near", 0.1},
+          {"far", 100},
+          {"keyframes", {{{"time", 0}, {"position", {0, 1.7, 10}}, {"target", {0, 1.7, 0}}}}}}},
+        {"scene",
+         {{"sources",
+           {{{"type", "gltf"}, {"path", "rising.gltf"}, {"animation", {{"mode", "clamp"}}}}}}}},
         {"bsp", {{"max_objects_per_leaf", 1}}}};
     return parseScenarioFile(dir.write("rising.json", scenario.dump()));
 }
@@ -70,9 +79,11 @@ void expectNoConservativeMisses(const BenchResult& result, const std::string& mo
         EXPECT_EQ(run.frames[emerges - 1].visible_objects, 1);
         EXPECT_GE(run.frames[emerges].moved_objects, 1u) << "the animated box is a mover";
         for (const FrameStats& f : run.frames) {
-            EXPECT_EQ(f.missed_objects, 0) << run.summary.algorithm << " (" << mode << ") frame " << f.frame
-                                           << (f.frame == emerges ? ", the first the box is seen" : "");
-            EXPECT_EQ(f.error_pixels, 0) << run.summary.algorithm << " (" << mode << ") frame " << f.frame;
+            EXPECT_EQ(f.missed_objects, 0)
+                << run.summary.algorithm << " (" << mode << ") frame " << f.frame
+                << (f.frame == emerges ? ", the first the box is seen" : "");
+            EXPECT_EQ(f.error_pixels, 0)
+                << run.summary.algorithm << " (" << mode << ") frame " << f.frame;
         }
     }
 }
@@ -93,8 +104,10 @@ TEST(AnimationRun, TheAnimatedScenarioShowsNoErrorForConservativeCullers) {
     options.algorithms = conservativeAlgorithms();
     options.measure_error = true;
     options.latency = LatencyMode{true, 8};
-    const BenchResult result = runBenchmark(
-        parseScenarioFile(std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/gltf-animated.json"), options);
+    const BenchResult result =
+        runBenchmark(parseScenarioFile(std::filesystem::path(OCCSIM_SOURCE_DIR) /
+                                       "scenarios/gltf-animated.json"),
+                     options);
     for (const RunRecord& run : result.runs) {
         uint64_t moved = 0;
         for (const FrameStats& f : run.frames) {
@@ -114,29 +127,45 @@ TEST(AnimationCli, BadAnimationsAreOneLineWithExitCode2AndInfoListsAnimations) {
     b.node({{"mesh", b.triangleMesh("Tri")}});
     b.animation("Wobble", {{0, "rotation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "VEC3"}});
     dir.write("bad.gltf", b.text());
-    const json camera = {{"keyframes", {{{"time", 0}, {"position", {0, 2, 10}}, {"target", {0, 0, 0}}}}}};
-    const json bad_file = {{"format_version", 1}, {"name", "bad"}, {"camera", camera},
+    const json camera = {
+        {"keyframes", {{{"time", 0}, {"position", {0, 2, 10}}, {"target", {0, 0, 0}}}}}};
+    const json bad_file = {{"format_version", 1},
+                           {"name", "bad"},
+                           {"camera", camera},
                            {"scene", {{"sources", {{{"type", "gltf"}, {"path", "bad.gltf"}}}}}}};
     const std::string exe = OCCSIM_EXE;
-    testing::Outcome o = testing::shell(exe + " info " + dir.write("bad.json", bad_file.dump()).string());
+    testing::Outcome o =
+        testing::shell(exe + " info " + dir.write("bad.json", bad_file.dump()).string());
     EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find("bad.gltf: /animations/0/samplers/0/output: a rotation output must be VEC4, got VEC3"),
-              std::string::npos) << o.output;
+    EXPECT_NE(
+        o.output.find(
+            "bad.gltf: /animations/0/samplers/0/output: a rotation output must be VEC4, got VEC3"),
+        std::string::npos)
+        << o.output;
     EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
 
-    const std::string box = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
-    const json bad_play = {{"format_version", 1}, {"name", "bad"}, {"camera", camera},
-                           {"scene", {{"sources", {{{"type", "gltf"}, {"path", box},
-                                                    {"animation", {{"play", json::array({5})}}}}}}}}};
+    const std::string box =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
+    const json bad_play = {
+        {"format_version", 1},
+        {"name", "bad"},
+        {"camera", camera},
+        {"scene",
+         {{"sources",
+           {{{"type", "gltf"}, {"path", box}, {"animation", {{"play", json::array({5})}}}}}}}}};
     o = testing::shell(exe + " info " + dir.write("play.json", bad_play.dump()).string());
     EXPECT_EQ(o.exit_code, 2) << o.output;
     EXPECT_NE(o.output.find("/scene/sources/0/animation/play/0: expected an animation index < 2"),
-              std::string::npos) << o.output;
+              std::string::npos)
+        << o.output;
 
-    o = testing::shell(exe + " info " + std::string(OCCSIM_SOURCE_DIR) + "/scenarios/gltf-animated.json");
+    o = testing::shell(exe + " info " + std::string(OCCSIM_SOURCE_DIR) +
+                       "/scenarios/gltf-animated.json");
     EXPECT_EQ(o.exit_code, 0) << o.output;
-    EXPECT_NE(o.output.find("animations    source 0: 2 animations, 42 animated copies of 2 objects"),
-              std::string::npos) << o.output;
+    EXPECT_NE(
+        o.output.find("animations    source 0: 2 animations, 42 animated copies of 2 objects"),
+        std::string::npos)
+        << o.output;
     EXPECT_NE(o.output.find("node 0 translation, LINEAR, 4 keys"), std::string::npos) << o.output;
     EXPECT_NE(o.output.find("3.708 s, plays"), std::string::npos) << o.output;
     EXPECT_NE(o.output.find("moves 1 object of each copy (1)"), std::string::npos) << o.output;

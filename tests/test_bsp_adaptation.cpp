@@ -2,11 +2,6 @@
 // root cell grows for movers that leave it; all without a rebuild, keeping every invariant
 // (bsp_tree_checks.h) and the per-node state contract (BspNode::generation, structureVersion(),
 // NodeStateArray).
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/tree/node_state.h"
-
-#include "bsp_tree_checks.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +9,10 @@
 #include <random>
 #include <set>
 #include <vector>
+
+#include "bsp_tree_checks.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/node_state.h"
 
 namespace occsim {
 namespace {
@@ -237,7 +236,8 @@ TEST(BspAdaptation, MoversBeyondTheGrowthCapLiveInTheRootUntilTheyReturn) {
 
     // Beyond max_root_growth times the largest extent: no growth, the root holds it, its bounds
     // (finite) include it.
-    const Aabb lost = translated(home, glm::vec3(0, 2.0f * tree.options().max_root_growth * largest, 0));
+    const Aabb lost =
+        translated(home, glm::vec3(0, 2.0f * tree.options().max_root_growth * largest, 0));
     field.move(object, lost);
     EXPECT_EQ(tree.stats().root_growths, 0u);
     EXPECT_TRUE(sameBox(tree.node(tree.root()).cell, built));
@@ -263,8 +263,8 @@ TEST(BspAdaptation, MoversFasterThanACellPerFrameAreReplacedExactly) {
     for (int frame = 1; frame <= 200; ++frame) {
         const BspStats before = tree.stats();
         for (uint32_t o = 0; o < 200; ++o) {
-            Aabb box = translated(field.boxes[o], glm::vec3(jump(rng), 0.5f * jump(rng) / 60.0f,
-                                                            2.0f * jump(rng)));
+            Aabb box = translated(field.boxes[o],
+                                  glm::vec3(jump(rng), 0.5f * jump(rng) / 60.0f, 2.0f * jump(rng)));
             // Keep them roughly in the field (bouncing off a wide margin around it).
             const glm::vec3 c = center(box);
             if (std::abs(c.x) > 45.0f) box = translated(box, glm::vec3(-c.x, 0, 0));
@@ -321,7 +321,8 @@ TEST(BspAdaptation, StructureVersionAndGenerationsChangeExactlyForNewNodes) {
     const uint32_t children[2] = {tree.node(pair).child[0], tree.node(pair).child[1]};
     std::vector<uint32_t> leaving;
     for (uint32_t c : children) {
-        for (uint32_t o = tree.firstObject(c); o != kNone; o = tree.nextObject(o)) leaving.push_back(o);
+        for (uint32_t o = tree.firstObject(c); o != kNone; o = tree.nextObject(o))
+            leaving.push_back(o);
     }
     for (uint32_t o : leaving) field.move(o, translated(field.boxes[o], glm::vec3(1e8f, 0, 0)));
     before = generations(tree);
@@ -339,7 +340,8 @@ TEST(BspAdaptation, StructureVersionAndGenerationsChangeExactlyForNewNodes) {
     // have generations never used before.
     // Generations come from a counter: a new node's exceeds every one handed out before.
     uint32_t highest = 0;
-    for (uint32_t n = 0; n < tree.nodeCount(); ++n) highest = std::max(highest, tree.node(n).generation);
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n)
+        highest = std::max(highest, tree.node(n).generation);
     for (const auto& [n, generation] : before) highest = std::max(highest, generation);
     before = generations(tree);
     version = tree.structureVersion();
@@ -384,7 +386,8 @@ TEST(BspAdaptation, NodeStateArrayKeepsTheStateOfUnchangedNodesAcrossSplitsAndMe
     const Aabb cell = tree.node(leaf).cell;
     for (size_t k = 0; k < far.size(); ++k) {
         if (k < 10) {
-            const glm::vec3 p = glm::mix(cell.min, cell.max, glm::vec3(0.05f + 0.09f * k, 0.5f, 0.5f));
+            const glm::vec3 p =
+                glm::mix(cell.min, cell.max, glm::vec3(0.05f + 0.09f * k, 0.5f, 0.5f));
             field.move(far[k], makeAabb(p - 0.01f, p + 0.01f));
         } else {
             field.move(far[k], translated(field.boxes[far[k]], glm::vec3(0, 0, -1e8f)));

@@ -2,10 +2,6 @@
 // build and after thousands of random moves; placement (loose cells, the centre's path, split
 // planes, straddlers), the split rules, reinsert walks and their counters, dirty marking,
 // degenerate input and option validation. Local adaptation is in test_bsp_adaptation.cpp.
-#include "occsim/culling/tree/bsp_tree.h"
-
-#include "bsp_tree_checks.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +11,9 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include "bsp_tree_checks.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
 namespace {
@@ -114,9 +113,16 @@ TEST_P(BspTreeRandomMoves, EveryObjectSitsWhereThePlacementRulePutsItAfter10000R
         } else if (roll < 5) {
             // NaN, infinite or inverted.
             switch (rng() % 3) {
-                case 0: box.min.y = kNan; break;
-                case 1: box.max.x = kInf; break;
-                default: std::swap(box.min.z, box.max.z); box.min.z += 1.0f; break;
+                case 0:
+                    box.min.y = kNan;
+                    break;
+                case 1:
+                    box.max.x = kInf;
+                    break;
+                default:
+                    std::swap(box.min.z, box.max.z);
+                    box.min.z += 1.0f;
+                    break;
             }
             non_finite.push_back(object);
             ++made_non_finite;
@@ -272,7 +278,7 @@ TEST(BspTree, RootCellIsTheSceneBoundsEnlargedByTheMarginOnEachSide) {
     const std::vector<Aabb> boxes = {
         makeAabb({-10.0f, 0.0f, 5.0f}, {-8.0f, 2.0f, 6.0f}),
         makeAabb({10.0f, 4.0f, -5.0f}, {12.0f, 6.0f, -4.0f}),
-        makeAabb(glm::vec3(kNan), glm::vec3(kNan)),  // ignored by the root cell
+        makeAabb(glm::vec3(kNan), glm::vec3(kNan)),   // ignored by the root cell
         makeAabb(glm::vec3(-1e9f), glm::vec3(kInf)),  // so is this
     };
     BspBuildOptions options;
@@ -401,7 +407,6 @@ TEST(BspTree, IdenticalObjectsDoNotCauseUselessSplits) {
     }
 }
 
-
 TEST(BspTree, StraddlersOfSplitPlanesReachLeavesWithLooseCellsAndStayInInnerNodesWithout) {
     // The default scenario's field: with plain cells (looseness 0) a large share of the objects
     // straddle some split and stay in inner nodes; with loose cells they reach leaves.
@@ -516,7 +521,8 @@ TEST(BspTree, DegenerateInputBuildsAndReinsertsKeepingEveryInvariant) {
     // Zero-extent boxes (points), many of them on the same coordinates along some axes.
     std::vector<Aabb> points;
     for (int i = 0; i < 300; ++i) {
-        const glm::vec3 p(static_cast<float>(i % 10), static_cast<float>(i % 3), static_cast<float>(i / 10));
+        const glm::vec3 p(static_cast<float>(i % 10), static_cast<float>(i % 3),
+                          static_cast<float>(i / 10));
         points.push_back(makeAabb(p, p));
     }
     BspTree point_tree;
@@ -608,8 +614,8 @@ struct SmallWorld {
     uint32_t deepLeafObject() const {
         for (uint32_t o = 0; o < tree.objectCount(); ++o) {
             const BspNode& node = tree.node(tree.nodeOf(o));
-            if (node.isLeaf() && node.depth >= 3 && glm::all(glm::greaterThan(
-                                                        extent(boxes[o]), glm::vec3(0.0f)))) {
+            if (node.isLeaf() && node.depth >= 3 &&
+                glm::all(glm::greaterThan(extent(boxes[o]), glm::vec3(0.0f)))) {
                 return o;
             }
         }
@@ -663,12 +669,12 @@ TEST(BspTree, ReinsertWalksUpToTheCommonAncestorAndDownAndCountsEveryNode) {
     uint64_t in_place = 0, moved = 0;
     for (int move = 0; move < 3000; ++move) {
         const uint32_t object = rng() % tree.objectCount();
-        const Aabb box = rng() % 4 == 0
-                             ? translated(world.boxes[object],
-                                          50.0f * glm::vec3(unit(rng), unit(rng), unit(rng)) -
-                                              center(world.boxes[object]))
-                             : translated(world.boxes[object],
-                                          glm::vec3(step(rng), step(rng), step(rng)));
+        const Aabb box =
+            rng() % 4 == 0
+                ? translated(world.boxes[object],
+                             50.0f * glm::vec3(unit(rng), unit(rng), unit(rng)) -
+                                 center(world.boxes[object]))
+                : translated(world.boxes[object], glm::vec3(step(rng), step(rng), step(rng)));
         const uint32_t start = tree.nodeOf(object);
         const uint32_t target = placementByRule(tree, box);
         const std::vector<uint32_t> up = ancestorsAndSelf(tree, start);

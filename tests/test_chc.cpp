@@ -1,12 +1,4 @@
 // CHC, CHC++ and the per-object asynchronous culler on the scripted query device: no OpenGL.
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/devices/approximate_device.h"
-#include "occsim/culling/cullers/async_culler.h"
-#include "occsim/culling/cullers/chc_culler.h"
-#include "occsim/culling/cullers/chcpp_culler.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "culling_fixtures.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,11 +11,19 @@
 #include <string>
 #include <vector>
 
+#include "culling_fixtures.h"
+#include "occsim/culling/cullers/async_culler.h"
+#include "occsim/culling/cullers/chc_culler.h"
+#include "occsim/culling/cullers/chcpp_culler.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+
 namespace occsim {
 namespace {
 
-using testing::makeFrame;
 using testing::gridBoxes;
+using testing::makeFrame;
 using testing::makeView;
 using testing::overview;
 using testing::randomBoxes;
@@ -46,7 +46,6 @@ std::vector<Aabb> boxesWithStraddlers(uint32_t* first_bar, uint32_t bars = 12) {
     }
     return boxes;
 }
-
 
 // What a frame did, read from the scripted device's log.
 struct FrameLog {
@@ -133,7 +132,8 @@ TEST(PeerCullerOptions, DefaultsAreValidAndOutOfRangeValuesAreRejectedWithAMessa
         const AlgorithmTraits& a = *findAlgorithm(name);
         EXPECT_EQ(checkOptionValues(a, OptionValues(a.options)), "") << name;
     }
-    EXPECT_EQ(OptionValues(findAlgorithm("chc++")->options).count("batch_size"), ChcppOptions{}.batch_size);
+    EXPECT_EQ(OptionValues(findAlgorithm("chc++")->options).count("batch_size"),
+              ChcppOptions{}.batch_size);
     EXPECT_EQ(ChcppOptions{}.batch_size, 50u);
     EXPECT_EQ(AsyncOptions{}.retest_interval_frames, 5u);
 
@@ -231,8 +231,7 @@ TEST_P(ChcSettling, AStaticSceneSettlesToQueryingOnlyTheTerminationNodes) {
 
 INSTANTIATE_TEST_SUITE_P(Latencies, ChcSettling, ::testing::Values(0u, 3u, 1000u));
 
-class ConservativeTraversal
-    : public ::testing::TestWithParam<std::tuple<std::string, uint32_t>> {};
+class ConservativeTraversal : public ::testing::TestWithParam<std::tuple<std::string, uint32_t>> {};
 
 // Over frames with visibility changing at random, a turning camera and any query latency, the
 // statistical cullers, CHC and CHC++ (threshold 0) draw every visible object in the frustum,
@@ -445,7 +444,7 @@ struct RowScene {
 
 // A device that logs each query's boxes, in order, around the scripted device.
 class QueryLoggingDevice final : public RenderDevice {
-public:
+  public:
     explicit QueryLoggingDevice(ScriptedQueryDevice& inner) : inner_(inner) {}
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override { inner_.drawObject(object); }
@@ -457,7 +456,7 @@ public:
     QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
     std::vector<std::vector<Aabb>> queries;
 
-private:
+  private:
     ScriptedQueryDevice& inner_;
 };
 
@@ -617,7 +616,7 @@ TEST(ChcppCuller, TheRandomisedRetestIsSpreadAndTheSameInEveryRun) {
 // A device that records every command (draw or query) in order, with its frame, around the
 // scripted device: the test can then tell exactly when a query's result becomes ready.
 class CommandLoggingDevice final : public RenderDevice {
-public:
+  public:
     struct Command {
         uint64_t frame;
         bool query;
@@ -647,7 +646,7 @@ public:
     std::vector<Command> log;
     uint64_t frame = 0;
 
-private:
+  private:
     ScriptedQueryDevice& inner_;
     const std::vector<Aabb>& boxes_;
 };

@@ -1,8 +1,7 @@
 // The occsim executable as a user meets it: bad input ends with one line and exit code 2, good
 // input writes whole files.
-#include "shell_command.h"
-
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -12,7 +11,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <sys/wait.h>
+
+#include "shell_command.h"
 
 namespace {
 
@@ -24,7 +24,8 @@ Outcome runOccsim(const std::string& args) { return shell(std::string(OCCSIM_EXE
 const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
 
 std::filesystem::path tempPath(const std::string& name) {
-    const auto p = std::filesystem::temp_directory_path() / ("occsim-cli-" + std::to_string(::getpid()) + "-" + name);
+    const auto p = std::filesystem::temp_directory_path() /
+                   ("occsim-cli-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(p);
     return p;
 }
@@ -36,7 +37,8 @@ size_t lineCount(const std::string& s) {
 }
 
 TEST(Cli, UnknownAlgorithmIsOneLineNamingTheFlagAndTheChoicesWithExitCode2) {
-    const Outcome o = runOccsim("run " + kSmall + " --algo fastest --out " + tempPath("a").string());
+    const Outcome o =
+        runOccsim("run " + kSmall + " --algo fastest --out " + tempPath("a").string());
     EXPECT_EQ(o.exit_code, 2);
     EXPECT_EQ(lineCount(o.output), 1u) << o.output;
     EXPECT_NE(o.output.find("--algo"), std::string::npos) << o.output;
@@ -82,9 +84,12 @@ TEST(Cli, BadValuesSayWhatWasExpectedAndWhatWasGiven) {
         std::string args, must_contain;
     } cases[] = {
         {"frobnicate " + kSmall, "unknown command 'frobnicate'; expected one of: run, bench"},
-        {"run " + kSmall + " --frames abc", "--frames: expected an integer in [1, 10000000], got 'abc'"},
-        {"run " + kSmall + " --capture 1,x", "--capture: expected an integer in [0, 9999999], got 'x'"},
-        {"run " + kSmall + " --capture 40", "--capture: frame 40 is past the last frame (40 frames"},
+        {"run " + kSmall + " --frames abc",
+         "--frames: expected an integer in [1, 10000000], got 'abc'"},
+        {"run " + kSmall + " --capture 1,x",
+         "--capture: expected an integer in [0, 9999999], got 'x'"},
+        {"run " + kSmall + " --capture 40",
+         "--capture: frame 40 is past the last frame (40 frames"},
         {"run " + kSmall + " --birds-eye 40", "--birds-eye: frame 40 is past the last frame"},
         {"bench " + kSmall + " --repetitions 0", "--repetitions: expected an integer in [1, 1000]"},
     };
@@ -103,13 +108,16 @@ TEST(Cli, ABackendOrDeviceThatCannotServeIsOneLineWithExitCode2) {
     const struct {
         std::string args, must_contain;
     } cases[] = {
-        {"bench " + kSmall + " --backend vulkan", "--backend: expected auto, egl or osmesa, got 'vulkan'"},
+        {"bench " + kSmall + " --backend vulkan",
+         "--backend: expected auto, egl or osmesa, got 'vulkan'"},
         {"bench " + kSmall + " --device 64", "--device 64: out of range, EGL lists "},
         {"run " + kSmall + " --backend egl --device 9", "--device 9: out of range"},
         {"run " + kSmall + " --device -1", "--device: expected an integer in [0, 1023], got '-1'"},
-        {"run " + kSmall + " --backend osmesa --device 0", "--device 0: only the EGL backend has devices"},
+        {"run " + kSmall + " --backend osmesa --device 0",
+         "--device 0: only the EGL backend has devices"},
         {"regress " + kSmall + " --device 5", "--device 5: out of range"},
-        {"regress " + kSmall + " --backend gl", "--backend: expected auto, egl or osmesa, got 'gl'"},
+        {"regress " + kSmall + " --backend gl",
+         "--backend: expected auto, egl or osmesa, got 'gl'"},
     };
     for (const auto& c : cases) {
         const Outcome o = runOccsim(c.args + " --out " + out.string());
@@ -125,25 +133,29 @@ TEST(Cli, ABackendOrDeviceThatCannotServeIsOneLineWithExitCode2) {
 TEST(Cli, WithoutEglAutoFallsBackToOsmesaAndSaysWhyAndEglIsBadInput) {
     const std::string no_egl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json ";
     const auto out = tempPath("no-egl");
-    const Outcome egl = shell(no_egl + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --backend egl --out " +
-                              out.string());
+    const Outcome egl = shell(no_egl + OCCSIM_EXE + " run " + kSmall +
+                              " --algo vfc --frames 2 --backend egl --out " + out.string());
     EXPECT_EQ(egl.exit_code, 2) << egl.output;
     EXPECT_EQ(lineCount(egl.output), 1u) << egl.output;
-    EXPECT_NE(egl.output.find("--backend egl: EGL: EGL lacks EGL_EXT_device_enumeration"), std::string::npos)
+    EXPECT_NE(egl.output.find("--backend egl: EGL: EGL lacks EGL_EXT_device_enumeration"),
+              std::string::npos)
         << egl.output;
-    const Outcome fallback = shell(no_egl + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --out " +
-                                   out.string());
+    const Outcome fallback = shell(no_egl + OCCSIM_EXE + " run " + kSmall +
+                                   " --algo vfc --frames 2 --out " + out.string());
     if (!OCCSIM_HAVE_OSMESA) {
         EXPECT_EQ(fallback.exit_code, 2) << fallback.output;
-        EXPECT_NE(fallback.output.find("and this build has no OSMesa"), std::string::npos) << fallback.output;
+        EXPECT_NE(fallback.output.find("and this build has no OSMesa"), std::string::npos)
+            << fallback.output;
         return;
     }
     ASSERT_EQ(fallback.exit_code, 0) << fallback.output;
     EXPECT_NE(fallback.output.find("backend: OSMesa"), std::string::npos) << fallback.output;
-    EXPECT_NE(fallback.output.find("backend auto fell back to OSMesa: EGL: EGL lacks"), std::string::npos)
+    EXPECT_NE(fallback.output.find("backend auto fell back to OSMesa: EGL: EGL lacks"),
+              std::string::npos)
         << fallback.output;
     std::ifstream summary(out / "summary.json");
-    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
     EXPECT_NE(json.find("\"backend\": \"osmesa\""), std::string::npos) << json;
     EXPECT_NE(json.find("\"backend_fallback\": \"EGL: EGL lacks"), std::string::npos) << json;
 }
@@ -154,11 +166,13 @@ TEST(Cli, AContextBelowOpenGl45IsOneLineNamingWhatWasFound) {
     const auto out = tempPath("old-gl");
     for (const std::string& env : {std::string("MESA_GL_VERSION_OVERRIDE=4.3"),
                                    std::string("MESA_EXTENSION_OVERRIDE=-GL_ARB_timer_query")}) {
-        const Outcome o = shell(env + " " + OCCSIM_EXE + " run " + kSmall + " --algo vfc --frames 2 --backend egl --out " +
-                                out.string());
+        const Outcome o = shell(env + " " + OCCSIM_EXE + " run " + kSmall +
+                                " --algo vfc --frames 2 --backend egl --out " + out.string());
         EXPECT_EQ(o.exit_code, 2) << env << ": " << o.output;
         EXPECT_EQ(lineCount(o.output), 1u) << env << ": " << o.output;
-        EXPECT_NE(o.output.find("EGL device 0: cannot create an OpenGL 4.5 core context"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("EGL device 0: cannot create an OpenGL 4.5 core context"),
+                  std::string::npos)
+            << o.output;
         EXPECT_NE(o.output.find("found OpenGL \""), std::string::npos) << o.output;
         EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
     }
@@ -177,13 +191,16 @@ TEST(Cli, DevicesListsTheSoftwareDeviceWithVendorRendererAndDriver) {
 // Where a run rendered is in its console header, summary.json and report.md.
 TEST(Cli, TheBackendDeviceAndDriverAreRecordedEverywhere) {
     const auto out = tempPath("backend");
-    const Outcome o = runOccsim("run " + kSmall + " --algo vfc --frames 2 --backend egl --device 0 --out " + out.string());
+    const Outcome o = runOccsim(
+        "run " + kSmall + " --algo vfc --frames 2 --backend egl --device 0 --out " + out.string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
     EXPECT_NE(o.output.find("backend: EGL device 0, vendor Mesa"), std::string::npos) << o.output;
     std::ifstream summary(out / "summary.json");
-    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
-    for (const char* part : {"\"backend\": \"egl\"", "\"device\": 0", "\"gl_renderer\": \"llvmpipe",
-                             "\"driver\": \"Mesa ", "\"gl_vendor\"", "\"gpu_time_meaningful\": false"}) {
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
+    for (const char* part :
+         {"\"backend\": \"egl\"", "\"device\": 0", "\"gl_renderer\": \"llvmpipe",
+          "\"driver\": \"Mesa ", "\"gl_vendor\"", "\"gpu_time_meaningful\": false"}) {
         EXPECT_NE(json.find(part), std::string::npos) << part << " in " << json;
     }
     std::ifstream report(out / "report.md");
@@ -203,7 +220,8 @@ TEST(Cli, ARunWithOnlyWarmupFramesSaysNothingWasTimed) {
 
 TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
     const auto out = tempPath("ok");
-    const Outcome o = runOccsim("run " + kSmall + " --algo statistical --frames 5 --error --out " + out.string());
+    const Outcome o =
+        runOccsim("run " + kSmall + " --algo statistical --frames 5 --error --out " + out.string());
     EXPECT_EQ(o.exit_code, 0) << o.output;
     EXPECT_NE(o.output.find("statistical"), std::string::npos) << o.output;
     EXPECT_TRUE(std::filesystem::exists(out / "frames.csv"));
@@ -213,9 +231,11 @@ TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
 // The console says what the run cost beside its frames: without --error that no ground truth
 // was rendered, with it how many renders and what they took.
 TEST(Cli, RunStatesItsWallClockAgainstFrameTimeAndWhatGroundTruthCost) {
-    const Outcome plain = runOccsim("run " + kSmall + " --algo chc --frames 5 --out " + tempPath("plain").string());
+    const Outcome plain =
+        runOccsim("run " + kSmall + " --algo chc --frames 5 --out " + tempPath("plain").string());
     EXPECT_EQ(plain.exit_code, 0) << plain.output;
-    EXPECT_NE(plain.output.find("ms wall clock after set-up for"), std::string::npos) << plain.output;
+    EXPECT_NE(plain.output.find("ms wall clock after set-up for"), std::string::npos)
+        << plain.output;
     EXPECT_NE(plain.output.find("no ground truth rendered"), std::string::npos) << plain.output;
     const Outcome measured = runOccsim("run " + kSmall + " --algo chc --frames 5 --error --out " +
                                        tempPath("measured").string());
@@ -235,10 +255,11 @@ TEST(Cli, CullingFileOverridesTheScenariosCullingOptions) {
     const auto dir = tempPath("culling");
     std::filesystem::create_directories(dir);
     const auto file = dir / "culling.json";
-    std::ofstream(file) << R"({"format_version": 1, "culling": {"algorithm": "vfc", "statistical": {"base_time": 0.3}}})";
+    std::ofstream(file)
+        << R"({"format_version": 1, "culling": {"algorithm": "vfc", "statistical": {"base_time": 0.3}}})";
     // The scenario's algorithm is statistical; the file's wins.
-    const Outcome o = runOccsim("run " + kSmall + " --frames 3 --culling " + file.string() + " --out " +
-                                (dir / "run").string());
+    const Outcome o = runOccsim("run " + kSmall + " --frames 3 --culling " + file.string() +
+                                " --out " + (dir / "run").string());
     EXPECT_EQ(o.exit_code, 0) << o.output;
     EXPECT_NE(o.output.find("\nvfc "), std::string::npos) << o.output;
     EXPECT_EQ(o.output.find("statistical"), std::string::npos) << o.output;
@@ -253,7 +274,8 @@ TEST(Cli, BadCullingFileIsOneLineNamingTheFileAndPointerWithExitCode2) {
     } cases[] = {
         {R"({"format_version": 1, "culling": {"statistical": {"base_tme": 0.3}}})",
          "/culling/statistical/base_tme: unknown key 'base_tme'; did you mean 'base_time'?"},
-        {R"({"format_version": 1, "culling": {"statistical": {"decay_b": 2}}})", "/culling/statistical/decay_b: expected a number in [0, 1], got 2"},
+        {R"({"format_version": 1, "culling": {"statistical": {"decay_b": 2}}})",
+         "/culling/statistical/decay_b: expected a number in [0, 1], got 2"},
         {R"({"format_version": 1})", "missing required key 'culling'"},
         {R"({"format_version": 1, "culling": {}, "camera": {}})", "unknown key 'camera'"},
         {R"({"culling": {}})", "format_version"},
@@ -261,8 +283,10 @@ TEST(Cli, BadCullingFileIsOneLineNamingTheFileAndPointerWithExitCode2) {
     for (const auto& c : cases) {
         const auto file = dir / "culling.json";
         std::ofstream(file) << c.contents;
-        for (const std::string& command : {"run " + kSmall, "bench " + kSmall, "regress " + kSmall}) {
-            const Outcome o = runOccsim(command + " --culling " + file.string() + " --out " + (dir / "out").string());
+        for (const std::string& command :
+             {"run " + kSmall, "bench " + kSmall, "regress " + kSmall}) {
+            const Outcome o = runOccsim(command + " --culling " + file.string() + " --out " +
+                                        (dir / "out").string());
             EXPECT_EQ(o.exit_code, 2) << command << " " << c.contents << ": " << o.output;
             EXPECT_EQ(lineCount(o.output), 1u) << command << ": " << o.output;
             EXPECT_NE(o.output.find(file.string()), std::string::npos) << o.output;
@@ -301,14 +325,20 @@ TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
         std::string args, expected;
     } refused[] = {
         {"--algos vfc,chc --sweep base_time=0.5",
-         "--sweep: 'base_time' is an option of none of the algorithms run; expected one of: threshold_pixels, "
+         "--sweep: 'base_time' is an option of none of the algorithms run; expected one of: "
+         "threshold_pixels, "
          "stale_results, visible_frames_skip"},
-        {"--algos statistical --sweep base_time=-1", "--sweep: base_time: expected a number >= 0 (s), got -1"},
-        {"--algos statistical --sweep history_length=2.5", "--sweep: history_length: expected an integer in [1, 32]"},
-        {"--algos statistical --sweep chc:visible_frames_skip=1", "--sweep: 'chc' is not among the algorithms run"},
+        {"--algos statistical --sweep base_time=-1",
+         "--sweep: base_time: expected a number >= 0 (s), got -1"},
+        {"--algos statistical --sweep history_length=2.5",
+         "--sweep: history_length: expected an integer in [1, 32]"},
+        {"--algos statistical --sweep chc:visible_frames_skip=1",
+         "--sweep: 'chc' is not among the algorithms run"},
         {"--algos statistical --sweep base_time=", "--sweep: expected [ALGORITHM:]KEY=V1,V2,..."},
-        {"--algos vfc,chc --ablate chc", "--ablate: 'chc' has no mechanism switched on to switch off"},
-        {"--algos vfc --ablate statistical+", "--ablate: 'statistical+' is not among the algorithms run"},
+        {"--algos vfc,chc --ablate chc",
+         "--ablate: 'chc' has no mechanism switched on to switch off"},
+        {"--algos vfc --ablate statistical+",
+         "--ablate: 'statistical+' is not among the algorithms run"},
     };
     for (const auto& c : refused) {
         const Outcome o = runOccsim("bench " + kSmall + " " + c.args + " --out " + out.string());
@@ -318,19 +348,27 @@ TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
         EXPECT_FALSE(std::filesystem::exists(out));
     }
 
-    const Outcome sweep = runOccsim("bench " + kSmall +
-                                    " --algos vfc,statistical,statistical+ --sweep statistical+:stale_results=false,true "
-                                    "--frames 3 --deterministic-latency 4 --out " + out.string());
+    const Outcome sweep = runOccsim(
+        "bench " + kSmall +
+        " --algos vfc,statistical,statistical+ --sweep statistical+:stale_results=false,true "
+        "--frames 3 --deterministic-latency 4 --out " +
+        out.string());
     ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
-    EXPECT_NE(sweep.output.find("\nstatistical+ stale_results=true "), std::string::npos) << sweep.output;
-    EXPECT_NE(sweep.output.find("\nstatistical "), std::string::npos) << "not swept: runs once" << sweep.output;
+    EXPECT_NE(sweep.output.find("\nstatistical+ stale_results=true "), std::string::npos)
+        << sweep.output;
+    EXPECT_NE(sweep.output.find("\nstatistical "), std::string::npos)
+        << "not swept: runs once" << sweep.output;
 
-    const Outcome ablation = runOccsim("bench " + kSmall + " --algos vfc,statistical+ --ablate statistical+ --frames 3 "
-                                       "--deterministic-latency 4 --out " + out.string());
+    const Outcome ablation = runOccsim("bench " + kSmall +
+                                       " --algos vfc,statistical+ --ablate statistical+ --frames 3 "
+                                       "--deterministic-latency 4 --out " +
+                                       out.string());
     ASSERT_EQ(ablation.exit_code, 0) << ablation.output;
-    for (const char* row : {"\nstatistical+ ", "\nstatistical+ ready_answers=false ", "\nstatistical+ virtual_leaves=false ",
-                            "\nstatistical+ object_queries=false ", "\nstatistical+ cost_model=false ",
-                            "\nstatistical+ requery_parallax=0 ", "\nstatistical+ fallback=false "}) {
+    for (const char* row :
+         {"\nstatistical+ ", "\nstatistical+ ready_answers=false ",
+          "\nstatistical+ virtual_leaves=false ", "\nstatistical+ object_queries=false ",
+          "\nstatistical+ cost_model=false ", "\nstatistical+ requery_parallax=0 ",
+          "\nstatistical+ fallback=false "}) {
         EXPECT_NE(ablation.output.find(row), std::string::npos) << row << ablation.output;
     }
     std::filesystem::remove_all(out);
@@ -348,9 +386,12 @@ TEST(Cli, NonsenseAndUnwritableOutputsAreRefusedBeforeAnyRun) {
     const struct {
         std::string args, expected;
     } cases[] = {
-        {"bench " + kSmall + " --algos vfc,chc,vfc --out " + out.string(), "--algos: 'vfc' is listed twice"},
-        {"bench " + kSmall + " --algos vfc,chc, --out " + out.string(), "--algos: an empty algorithm name"},
-        {"bench " + kSmall + " --out " + file.string(), "--out " + file.string() + ": is a file; expected a folder"},
+        {"bench " + kSmall + " --algos vfc,chc,vfc --out " + out.string(),
+         "--algos: 'vfc' is listed twice"},
+        {"bench " + kSmall + " --algos vfc,chc, --out " + out.string(),
+         "--algos: an empty algorithm name"},
+        {"bench " + kSmall + " --out " + file.string(),
+         "--out " + file.string() + ": is a file; expected a folder"},
         {"run " + kSmall + " --out ''", "--out: empty; expected a folder"},
         {"regress " + kSmall + " --junit " + dir.string() + " --out " + out.string(),
          "--junit " + dir.string() + ": is a folder; expected a file name"},
@@ -383,7 +424,8 @@ TEST(Cli, RegressWithNothingToCheckFailsUnlessAllowed) {
                                       std::pair{plain, "no scenario found has an expect block"}}) {
         const Outcome o = runOccsim("regress " + folder.string() + out);
         EXPECT_EQ(o.exit_code, 1) << o.output;
-        EXPECT_NE(o.output.find("occsim regress: nothing was checked: " + std::string(why)), std::string::npos)
+        EXPECT_NE(o.output.find("occsim regress: nothing was checked: " + std::string(why)),
+                  std::string::npos)
             << o.output;
         const Outcome allowed = runOccsim("regress " + folder.string() + " --allow-empty" + out);
         EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
@@ -409,13 +451,17 @@ TEST(Cli, ACameraThatSeesNothingWarnsAndGivesNoSpeedup) {
     const auto scenario = dir / "away.json";
     std::ofstream(scenario) << text;
     const auto out = dir / "out";
-    const Outcome o = runOccsim("bench " + scenario.string() + " --algos vfc,chc,ideal --frames 8 --out " + out.string());
+    const Outcome o = runOccsim("bench " + scenario.string() +
+                                " --algos vfc,chc,ideal --frames 8 --out " + out.string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
-    EXPECT_NE(o.output.find("warning: the camera sees no object on any frame"), std::string::npos) << o.output;
-    EXPECT_EQ(o.output.find("1.00x"), std::string::npos) << "no speedup, not even vfc over itself: " << o.output;
+    EXPECT_NE(o.output.find("warning: the camera sees no object on any frame"), std::string::npos)
+        << o.output;
+    EXPECT_EQ(o.output.find("1.00x"), std::string::npos)
+        << "no speedup, not even vfc over itself: " << o.output;
     EXPECT_NE(o.output.find("n/a"), std::string::npos) << o.output;
     std::ifstream summary(out / "summary.json");
-    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
     EXPECT_NE(json.find("\"nothing_in_view\": true"), std::string::npos) << json;
     EXPECT_EQ(json.find("speedup_over_vfc"), std::string::npos) << json;
     std::ifstream report(out / "report.md");
@@ -429,13 +475,16 @@ TEST(Cli, ACameraThatSeesNothingWarnsAndGivesNoSpeedup) {
 TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
     const auto dir = tempPath("repro");
     const auto out = dir / "it's a folder";
-    const Outcome o = runOccsim("bench " + kSmall + " --algos vfc,statistical+ --frames 2 --out \"" + out.string() + "\"");
+    const Outcome o = runOccsim(
+        "bench " + kSmall + " --algos vfc,statistical+ --frames 2 --out \"" + out.string() + "\"");
     ASSERT_EQ(o.exit_code, 0) << o.output;
     std::ifstream summary(out / "summary.json");
-    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
     EXPECT_NE(json.find("\"occsim\": {\n    \"commit\": \""), std::string::npos) << json;
     EXPECT_NE(json.find("\"version\": \"0."), std::string::npos) << json;
-    for (const char* option : {"\"options\": {", "\"base_time\": ", "\"cost_model\": ", "\"threshold_pixels\": 0"}) {
+    for (const char* option :
+         {"\"options\": {", "\"base_time\": ", "\"cost_model\": ", "\"threshold_pixels\": 0"}) {
         EXPECT_NE(json.find(option), std::string::npos) << option << " in " << json;
     }
     std::string quoted = (dir / "it'\\\\''s a folder").string();
@@ -447,7 +496,8 @@ TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
     std::string command = json.substr(start, json.find("\",\n", start) - start);
     EXPECT_NE(command.find(quoted), std::string::npos) << command << " lacks " << quoted;
     // JSON escapes the backslash of '\'' once: undo that, then run it again from the shell.
-    for (size_t p = command.find("\\\\"); p != std::string::npos; p = command.find("\\\\", p + 1)) command.erase(p, 1);
+    for (size_t p = command.find("\\\\"); p != std::string::npos; p = command.find("\\\\", p + 1))
+        command.erase(p, 1);
     std::filesystem::remove_all(out);
     const Outcome again = shell(command);
     EXPECT_EQ(again.exit_code, 0) << command << ": " << again.output;
@@ -465,11 +515,14 @@ TEST(Cli, ACostModelForOneCullerChangesNoOther) {
         "statistical": {"cost_model": true},
         "cost_model": {"query_box_ms": 0.5, "triangle_ms": 0.25, "draw_call_ms": 0.125, "cullers": ["statistical"]}}})";
     const auto out = dir / "out";
-    const Outcome o = runOccsim("bench " + kSmall + " --algos statistical,statistical+ --frames 2 "
-                                "--deterministic-latency 4 --culling " + file.string() + " --out " + out.string());
+    const Outcome o = runOccsim("bench " + kSmall +
+                                " --algos statistical,statistical+ --frames 2 "
+                                "--deterministic-latency 4 --culling " +
+                                file.string() + " --out " + out.string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
     std::ifstream summary(out / "summary.json");
-    const std::string json{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
     const size_t plus = json.find("\"configuration\": \"statistical+\"");
     const size_t paper = json.find("\"configuration\": \"statistical\"");
     ASSERT_NE(plus, std::string::npos) << json;
@@ -503,12 +556,14 @@ std::vector<DocBlock> runnableBlocks(const std::string& text, const std::string&
     while (std::getline(in, line)) {
         ++number;
         int expect = 0;
-        if (line != "<!-- runnable -->" && std::sscanf(line.c_str(), "<!-- runnable: exit %d -->", &expect) != 1) {
+        if (line != "<!-- runnable -->" &&
+            std::sscanf(line.c_str(), "<!-- runnable: exit %d -->", &expect) != 1) {
             continue;
         }
         DocBlock block{file + ":" + std::to_string(number), expect, ""};
         if (!std::getline(in, line) || line.rfind("```", 0) != 0) {
-            ADD_FAILURE() << block.where << ": a runnable marker must stand right above a fenced block";
+            ADD_FAILURE() << block.where
+                          << ": a runnable marker must stand right above a fenced block";
             continue;
         }
         ++number;
@@ -531,29 +586,35 @@ Outcome runBlock(const DocBlock& block, const std::filesystem::path& dir) {
         script.replace(at, local.size(), OCCSIM_EXE);
     }
     const auto file = dir / "block.sh";
-    std::ofstream(file) << "set -e\nexport PATH='" << std::filesystem::path(OCCSIM_EXE).parent_path().string()
-                        << "':\"$PATH\"\ncd '" << dir.string() << "'\n" << script;
+    std::ofstream(file) << "set -e\nexport PATH='"
+                        << std::filesystem::path(OCCSIM_EXE).parent_path().string()
+                        << "':\"$PATH\"\ncd '" << dir.string() << "'\n"
+                        << script;
     return shell("sh " + file.string());
 }
 
 TEST(Docs, EveryRunnableCommandBlockExitsAsDocumented) {
     const auto dir = tempPath("doc-blocks");
     std::filesystem::create_directories(dir);
-    std::filesystem::create_directory_symlink(std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios", dir / "scenarios");
+    std::filesystem::create_directory_symlink(
+        std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios", dir / "scenarios");
 
     // The runner can fail: a marked command that fails is caught.
-    const auto broken = runnableBlocks("<!-- runnable -->\n```sh\noccsim frobnicate\n```\n", "self-test.md");
+    const auto broken =
+        runnableBlocks("<!-- runnable -->\n```sh\noccsim frobnicate\n```\n", "self-test.md");
     ASSERT_EQ(broken.size(), 1u);
     EXPECT_NE(runBlock(broken[0], dir).exit_code, 0);
 
     for (const char* doc : {"README.md", "docs/cli.md"}) {
         std::ifstream in(std::filesystem::path(OCCSIM_SOURCE_DIR) / doc);
-        const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        const std::string text{std::istreambuf_iterator<char>(in),
+                               std::istreambuf_iterator<char>()};
         const std::vector<DocBlock> blocks = runnableBlocks(text, doc);
         EXPECT_FALSE(blocks.empty()) << doc << " marks no block runnable";
         for (const DocBlock& block : blocks) {
             const Outcome o = runBlock(block, dir);
-            EXPECT_EQ(o.exit_code, block.expect) << block.where << ":\n" << block.script << o.output;
+            EXPECT_EQ(o.exit_code, block.expect) << block.where << ":\n"
+                                                 << block.script << o.output;
         }
     }
     std::filesystem::remove_all(dir);

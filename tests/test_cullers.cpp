@@ -1,17 +1,17 @@
 // Culling logic on the scripted query device: no OpenGL involved.
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/devices/approximate_device.h"
-#include "occsim/culling/cullers/basic_cullers.h"
-#include "occsim/culling/testing/depth_raster_device.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "culling_fixtures.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 #include <set>
+
+#include "culling_fixtures.h"
+#include "occsim/culling/cullers/basic_cullers.h"
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/testing/depth_raster_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
 
 namespace occsim {
 namespace {
@@ -92,7 +92,8 @@ TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingT
         EXPECT_EQ(rejected("decay_b", 1.5), "decay_b: expected a number in [0, 1], got 1.5");
         EXPECT_EQ(rejected("history_length", 0).rfind("history_length: ", 0), 0u);
         EXPECT_EQ(rejected("base_time", std::nan("")).rfind("base_time: ", 0), 0u);
-        EXPECT_EQ(rejected("ready_answers", 2).rfind("ready_answers: expected true or false", 0), 0u);
+        EXPECT_EQ(rejected("ready_answers", 2).rfind("ready_answers: expected true or false", 0),
+                  0u);
     }
     // The rule tying two options together is the culler's own (its validate hook).
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
@@ -104,8 +105,9 @@ TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingT
     EXPECT_EQ(both.number("requery_parallax"), 0.0);
     EXPECT_EQ(checkOptionValues(plus, both), "");
     // The values a culler reads are the descriptor's defaults: the paper's, or every improvement.
-    EXPECT_EQ(statisticalOptionsFrom(OptionValues(findAlgorithm("statistical")->options)).base_time_s,
-              StatisticalOptions::paper().base_time_s);
+    EXPECT_EQ(
+        statisticalOptionsFrom(OptionValues(findAlgorithm("statistical")->options)).base_time_s,
+        StatisticalOptions::paper().base_time_s);
     EXPECT_TRUE(statisticalOptionsFrom(OptionValues(plus.options)).fallback);
 }
 
@@ -273,8 +275,9 @@ TEST(VfcCuller, DrawsExactlyTheObjectsABruteForceFrustumTestKeeps) {
     device.setVisibility(std::vector<uint8_t>(boxes.size(), 0), boxes);
     for (int i = 0; i < 12; ++i) {
         const float a = 0.5f * static_cast<float>(i);
-        const CullView view = makeView({10 * std::sin(a), 3, 10 * std::cos(a)},
-                                       {100 * std::cos(a), -5, 100 * std::sin(a)}, 50.0f, 0.5f, 80.0f);
+        const CullView view =
+            makeView({10 * std::sin(a), 3, 10 * std::cos(a)},
+                     {100 * std::cos(a), -5, 100 * std::sin(a)}, 50.0f, 0.5f, 80.0f);
         device.clearLog();
         vfc.cullAndRender(tree, makeFrame(view, 0, 0.0), device);
         std::vector<uint32_t> drawn = device.drawnObjects();
@@ -397,7 +400,8 @@ TEST(ApproximateDevice, MakesTheStatisticalCullerMissObjectsOnlyWhenActive) {
         StatisticalCuller culler;
         culler.reset(tree);
         culler.cullAndRender(tree, makeFrame(view, 0, 0.0), device);
-        const std::set<uint32_t> drawn(scripted.drawnObjects().begin(), scripted.drawnObjects().end());
+        const std::set<uint32_t> drawn(scripted.drawnObjects().begin(),
+                                       scripted.drawnObjects().end());
         size_t missed = 0;
         for (uint32_t o : inFrustum(boxes, view.frustum)) missed += visible[o] && !drawn.count(o);
         if (threshold == 0) {
@@ -432,7 +436,7 @@ TEST(QueryAnswer, SaysVisibleTheSamplesAndWhetherTheCallerWaited) {
 // A wrapper that forwards queries but keeps counters of its own (all zero): a culler that looked
 // at the device's counters to learn whether it blocked would never see a wait through it.
 class OwnCountersDevice final : public RenderDevice {
-public:
+  public:
     explicit OwnCountersDevice(RenderDevice& inner) : inner_(inner) {}
     using RenderDevice::issueQuery;
     void drawObject(uint32_t object) override { inner_.drawObject(object); }
@@ -442,7 +446,7 @@ public:
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
 
-private:
+  private:
     RenderDevice& inner_;
 };
 
@@ -469,8 +473,9 @@ TEST(QueryAnswerDeathTest, TakingAnAnswerTwiceAbortsWithAMessage) {
     device.setVisibility({1, 1}, w.boxes);
     const QueryId id = device.issueQuery(w.boxes[0]);
     device.takeAnswer(id);
-    EXPECT_DEATH(device.takeAnswer(id),
-                 "ScriptedQueryDevice::takeAnswer: query id 0 is not in flight \\(already taken\\)");
+    EXPECT_DEATH(
+        device.takeAnswer(id),
+        "ScriptedQueryDevice::takeAnswer: query id 0 is not in flight \\(already taken\\)");
     EXPECT_DEATH(device.isQueryReady(id), "ScriptedQueryDevice::isQueryReady: query id 0 is not");
 }
 

@@ -2,12 +2,6 @@
 // stress"): a box with a NaN coordinate, zero-extent boxes, everything at one point, one object,
 // no object, the eye inside a box; and device decorators that must keep results ready in issue
 // order. All on the scripted device, every registered culler that decides without ground truth.
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/devices/approximate_device.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/devices/tracing_device.h"
-#include "culling_fixtures.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +11,12 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include "culling_fixtures.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/devices/tracing_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/testing/scripted_query_device.h"
 
 namespace occsim {
 namespace {
@@ -37,7 +37,8 @@ std::vector<const AlgorithmTraits*> decidingCullers() {
 }
 
 // Runs `frames` frames of a static view and returns the objects drawn in each.
-std::vector<std::set<uint32_t>> run(const AlgorithmTraits& algorithm, const std::vector<Aabb>& boxes,
+std::vector<std::set<uint32_t>> run(const AlgorithmTraits& algorithm,
+                                    const std::vector<Aabb>& boxes,
                                     const std::vector<uint8_t>& visible, const CullView& view,
                                     uint32_t latency, uint32_t frames) {
     const BspTree tree = buildTree(boxes);
@@ -105,7 +106,8 @@ void expectDrawsEveryVisible(const std::vector<Aabb>& boxes, const CullView& vie
 TEST(DegenerateScenes, ZeroExtentBoxesAreDrawn) {
     std::vector<Aabb> boxes;
     for (int i = 0; i < 40; ++i) {
-        const glm::vec3 p(static_cast<float>(i % 8) * 2.0f, 0.0f, -static_cast<float>(i / 8) * 3.0f);
+        const glm::vec3 p(static_cast<float>(i % 8) * 2.0f, 0.0f,
+                          -static_cast<float>(i / 8) * 3.0f);
         boxes.push_back({p, p});  // points
     }
     expectDrawsEveryVisible(boxes, makeView({7, 2, 10}, {7, 0, -6}), "points");
@@ -117,7 +119,8 @@ TEST(DegenerateScenes, EveryObjectAtOnePointIsDrawn) {
 }
 
 TEST(DegenerateScenes, OneObjectAndNoObjectWork) {
-    expectDrawsEveryVisible({Aabb{{-1, -1, -6}, {1, 1, -4}}}, makeView({0, 0, 5}, {0, 0, -5}), "one");
+    expectDrawsEveryVisible({Aabb{{-1, -1, -6}, {1, 1, -4}}}, makeView({0, 0, 5}, {0, 0, -5}),
+                            "one");
     expectDrawsEveryVisible({}, makeView({0, 0, 5}, {0, 0, -5}), "none");
 }
 
@@ -126,7 +129,7 @@ TEST(DegenerateScenes, OneObjectAndNoObjectWork) {
 TEST(DegenerateScenes, BoxesAroundTheEyeOrCutByTheNearPlaneAreDrawnNotQueried) {
     std::vector<Aabb> boxes = randomBoxes(200, 9, 30.0f);
     const glm::vec3 eye(3, 1, 3);
-    boxes.push_back({eye - glm::vec3(2), eye + glm::vec3(2)});                   // around the eye
+    boxes.push_back({eye - glm::vec3(2), eye + glm::vec3(2)});  // around the eye
     boxes.push_back({eye + glm::vec3(-1, -1, -0.15f), eye + glm::vec3(1, 1, -0.05f)});  // cut
     const CullView view = makeView(eye, eye + glm::vec3(0, 0, -10), 60.0f, 0.1f);
     std::vector<uint8_t> visible(boxes.size(), 0);  // the script would call every query "hidden"

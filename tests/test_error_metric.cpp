@@ -2,20 +2,21 @@
 // depth range of 10^-3 to 10^6 m, frustum culling, Ideal and every conservative culler show no
 // error pixel and no missed object, with the ties counted apart; and the metric still fails
 // when it should: a shrunken frustum and a culler that drops a visible object show error.
-#include "occsim/culling/registry/registry.h"
-#include "culling_fixtures.h"
-#include "sim/output/error_picture.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/scenario.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
+#include "culling_fixtures.h"
+#include "occsim/culling/registry/registry.h"
+#include "sim/output/error_picture.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
+
 namespace occsim {
 namespace {
 
-const std::filesystem::path kScenarios = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small";
+const std::filesystem::path kScenarios =
+    std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small";
 const std::filesystem::path kSharedFaces = kScenarios / "shared-faces-small.json";
 const std::filesystem::path kDeepDepth = kScenarios / "deep-depth-small.json";
 const std::filesystem::path kTeapots = kScenarios / "teapots-small.json";
@@ -68,7 +69,8 @@ TEST(ErrorMetric, ADeepDepthRangeShowsNoErrorAndNoMissForConservativeCullers) {
     expectNoErrorAndNoMiss(bench(kDeepDepth, conservativeAlgorithms()));
 }
 
-TEST(ErrorMetric, TheTeapotsShowNoErrorAndNoMissForConservativeCullersWhileAsyncStillMissesOnThePlant) {
+TEST(ErrorMetric,
+     TheTeapotsShowNoErrorAndNoMissForConservativeCullersWhileAsyncStillMissesOnThePlant) {
     std::vector<std::string> algorithms = conservativeAlgorithms();
     const BenchResult conservative = bench(kTeapots, algorithms);
     expectNoErrorAndNoMiss(conservative);
@@ -81,7 +83,7 @@ TEST(ErrorMetric, TheTeapotsShowNoErrorAndNoMissForConservativeCullersWhileAsync
 
 // A device that never draws one object: what a culler that wrongly drops it puts on screen.
 class DroppingDevice final : public RenderDevice {
-public:
+  public:
     DroppingDevice(RenderDevice& inner, uint32_t dropped) : inner_(inner), dropped_(dropped) {}
     void drawObject(uint32_t object) override {
         if (object != dropped_) inner_.drawObject(object);
@@ -94,13 +96,13 @@ public:
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 
-private:
+  private:
     RenderDevice& inner_;
     uint32_t dropped_;
 };
 
 class DroppingCuller final : public Culler {
-public:
+  public:
     explicit DroppingCuller(uint32_t dropped) : dropped_(dropped) {}
     std::string_view name() const override { return "vfc"; }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
@@ -109,7 +111,7 @@ public:
         inner_->cullAndRender(tree, frame, dropping);
     }
 
-private:
+  private:
     uint32_t dropped_;
     std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
 };
@@ -124,7 +126,8 @@ BenchOptions withCuller(std::function<std::unique_ptr<Culler>()> make) {
 TEST(ErrorMetric, AShrunkenFrustumStillShowsErrorOnBothTestScenes) {
     for (const auto& file : {kSharedFaces, kDeepDepth}) {
         const BenchResult result =
-            bench(file, {"vfc"}, 12, withCuller([] { return std::make_unique<testing::ShrunkenFrustumCuller>(); }));
+            bench(file, {"vfc"}, 12,
+                  withCuller([] { return std::make_unique<testing::ShrunkenFrustumCuller>(); }));
         EXPECT_GT(result.runs[0].summary.error_pixels_total, 0) << file;
         EXPECT_GT(result.runs[0].summary.missed_objects_total, 0) << file;
     }
@@ -133,8 +136,8 @@ TEST(ErrorMetric, AShrunkenFrustumStillShowsErrorOnBothTestScenes) {
 TEST(ErrorMetric, ACullerThatDropsAVisibleObjectShowsErrorAndTheMissAndItsPopping) {
     // Object 433: one of the four large boxes in front of the grid, in view from frame 0, with
     // grid boxes behind it.
-    const BenchResult result =
-        bench(kSharedFaces, {"vfc"}, 8, withCuller([] { return std::make_unique<DroppingCuller>(433); }));
+    const BenchResult result = bench(
+        kSharedFaces, {"vfc"}, 8, withCuller([] { return std::make_unique<DroppingCuller>(433); }));
     const RunSummary& s = result.runs[0].summary;
     EXPECT_GT(s.error_pixels_total, 0);
     EXPECT_EQ(s.missed_objects_total, 8) << "missed on every one of the 8 frames";
@@ -149,7 +152,8 @@ TEST(ErrorMetric, ACullerThatDropsAVisibleObjectShowsErrorAndTheMissAndItsPoppin
     for (uint32_t y = 0; y < h; ++y) {
         for (uint32_t x = 0; x < w; ++x) {
             const uint8_t* p = picture.data() + (size_t{y} * 3 * w + 2 * w + x) * 4;
-            magenta += p[0] == kErrorColour[0] && p[1] == kErrorColour[1] && p[2] == kErrorColour[2];
+            magenta +=
+                p[0] == kErrorColour[0] && p[1] == kErrorColour[1] && p[2] == kErrorColour[2];
             yellow += p[0] == kTieColour[0] && p[1] == kTieColour[1] && p[2] == kTieColour[2];
         }
     }

@@ -5,18 +5,18 @@
 // inside the clip volume. The brute force evaluates those clip-plane inequalities (w + x >= 0,
 // w - x >= 0, ...) on corners transformed to clip space, with a small tolerance band in which
 // either answer is accepted (float rounding differs between the two computations).
-#include "occsim/culling/geometry/frustum.h"
-#include "culling_fixtures.h"
-
 #include <gtest/gtest.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <array>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
 #include <utility>
 #include <vector>
+
+#include "culling_fixtures.h"
+#include "occsim/culling/geometry/frustum.h"
 
 namespace occsim {
 namespace {
@@ -75,9 +75,12 @@ std::array<glm::vec3, 8> cornersOf(const Aabb& box) {
 
 const char* name(FrustumTest t) {
     switch (t) {
-        case FrustumTest::Outside: return "Outside";
-        case FrustumTest::Intersects: return "Intersects";
-        case FrustumTest::Inside: return "Inside";
+        case FrustumTest::Outside:
+            return "Outside";
+        case FrustumTest::Intersects:
+            return "Intersects";
+        case FrustumTest::Inside:
+            return "Inside";
     }
     return "?";
 }
@@ -85,13 +88,14 @@ const char* name(FrustumTest t) {
 TEST(Frustum, IdentityMatrixGivesTheClipCubeFacesInLeftRightBottomTopNearFarOrder) {
     const Frustum f = frustumFromViewProjection(glm::mat4(1.0f));
     const glm::vec4 expected[6] = {
-        {1.0f, 0.0f, 0.0f, 1.0f},  {-1.0f, 0.0f, 0.0f, 1.0f},  // left, right
-        {0.0f, 1.0f, 0.0f, 1.0f},  {0.0f, -1.0f, 0.0f, 1.0f},  // bottom, top
-        {0.0f, 0.0f, 1.0f, 1.0f},  {0.0f, 0.0f, -1.0f, 1.0f},  // near, far
+        {1.0f, 0.0f, 0.0f, 1.0f}, {-1.0f, 0.0f, 0.0f, 1.0f},  // left, right
+        {0.0f, 1.0f, 0.0f, 1.0f}, {0.0f, -1.0f, 0.0f, 1.0f},  // bottom, top
+        {0.0f, 0.0f, 1.0f, 1.0f}, {0.0f, 0.0f, -1.0f, 1.0f},  // near, far
     };
     for (int p = 0; p < 6; ++p) {
         for (int i = 0; i < 4; ++i) {
-            EXPECT_FLOAT_EQ(f.planes[p][i], expected[p][i]) << "plane " << p << " coefficient " << i;
+            EXPECT_FLOAT_EQ(f.planes[p][i], expected[p][i])
+                << "plane " << p << " coefficient " << i;
         }
     }
 }
@@ -99,9 +103,9 @@ TEST(Frustum, IdentityMatrixGivesTheClipCubeFacesInLeftRightBottomTopNearFarOrde
 TEST(Frustum, PerspectivePlanesAreNormalisedInwardAndGiveWorldDistances) {
     const float fovy = glm::radians(60.0f);
     const float aspect = 16.0f / 9.0f;
-    const glm::mat4 vp = glm::perspective(fovy, aspect, 0.5f, 50.0f) *
-                         glm::lookAt(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f),
-                                     glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::mat4 vp =
+        glm::perspective(fovy, aspect, 0.5f, 50.0f) *
+        glm::lookAt(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
     const Frustum f = frustumFromViewProjection(vp);
     for (int p = 0; p < 6; ++p) {
         EXPECT_NEAR(glm::length(glm::vec3(f.planes[p])), 1.0f, 1e-5f) << "plane " << p;
@@ -112,9 +116,12 @@ TEST(Frustum, PerspectivePlanesAreNormalisedInwardAndGiveWorldDistances) {
     const glm::vec4 on_axis(0.0f, 0.0f, -5.0f, 1.0f);
     const float half_horizontal = std::atan(aspect * std::tan(0.5f * fovy));
     const float half_vertical = 0.5f * fovy;
-    const float expected[6] = {5.0f * std::sin(half_horizontal), 5.0f * std::sin(half_horizontal),
-                               5.0f * std::sin(half_vertical),   5.0f * std::sin(half_vertical),
-                               4.5f,                             45.0f};
+    const float expected[6] = {5.0f * std::sin(half_horizontal),
+                               5.0f * std::sin(half_horizontal),
+                               5.0f * std::sin(half_vertical),
+                               5.0f * std::sin(half_vertical),
+                               4.5f,
+                               45.0f};
     for (int p = 0; p < 6; ++p) {
         EXPECT_NEAR(glm::dot(f.planes[p], on_axis), expected[p], 1e-3f) << "plane " << p;
     }
@@ -188,10 +195,10 @@ std::array<int, 3> checkRandomBoxesAgainstClipSpace(const Camera& camera, uint32
         }
 
         const auto describe = [&] {
-            return ::testing::Message() << "box " << i << " min (" << box.min.x << ", "
-                                        << box.min.y << ", " << box.min.z << ") max ("
-                                        << box.max.x << ", " << box.max.y << ", " << box.max.z
-                                        << ") classified " << name(result);
+            return ::testing::Message()
+                   << "box " << i << " min (" << box.min.x << ", " << box.min.y << ", " << box.min.z
+                   << ") max (" << box.max.x << ", " << box.max.y << ", " << box.max.z
+                   << ") classified " << name(result);
         };
         if (result == FrustumTest::Outside) {
             EXPECT_TRUE(some_plane_possibly_excludes_all)
@@ -225,15 +232,18 @@ TEST(Frustum, ADeepDepthRangeKeepsItsFarPlaneWhenExtractedInDouble) {
     std::uniform_real_distribution<double> angle(-3.14159, 3.14159), pitch(-1.2, 1.2);
     for (int i = 0; i < 200; ++i) {
         const double yaw = angle(rng), up_down = pitch(rng);
-        const glm::dvec3 forward(std::cos(up_down) * std::sin(yaw), std::sin(up_down), -std::cos(up_down) * std::cos(yaw));
+        const glm::dvec3 forward(std::cos(up_down) * std::sin(yaw), std::sin(up_down),
+                                 -std::cos(up_down) * std::cos(yaw));
         const glm::dvec3 eye(3.7, 2.1, -11.3);
-        const glm::dmat4 view_projection = glm::perspective(glm::radians(60.0), 4.0 / 3.0, 1e-3, 1e6) *
-                                           glm::lookAt(eye, eye + forward, glm::dvec3(0, 1, 0));
+        const glm::dmat4 view_projection =
+            glm::perspective(glm::radians(60.0), 4.0 / 3.0, 1e-3, 1e6) *
+            glm::lookAt(eye, eye + forward, glm::dvec3(0, 1, 0));
         const Frustum f = frustumFromViewProjection(view_projection);
         const glm::dvec3 far_normal(f.planes[5]);
         EXPECT_GT(glm::dot(far_normal, -forward), 0.9999) << "direction " << i;
         const glm::vec3 ahead(eye + 50.0 * forward);
-        EXPECT_EQ(classify(f, Aabb{ahead - 0.5f, ahead + 0.5f}), FrustumTest::Inside) << "direction " << i;
+        EXPECT_EQ(classify(f, Aabb{ahead - 0.5f, ahead + 0.5f}), FrustumTest::Inside)
+            << "direction " << i;
     }
 }
 
@@ -322,12 +332,23 @@ TEST(Frustum, ClassifyBatchEqualsClassifyElementWiseIncludingSpecialBoxes) {
         const glm::vec3 half = 0.5f * glm::vec3(size(rng), size(rng), size(rng));
         Aabb box = makeAabb(centre - half, centre + half);
         switch (i % 50) {
-            case 0: box.min.y = kNan; break;
-            case 1: box = Aabb{}; break;
-            case 2: std::swap(box.min.z, box.max.z); break;
-            case 3: box = makeAabb(glm::vec3(-kInf), glm::vec3(kInf)); break;
-            case 4: box.max.x = kInf; break;
-            default: break;
+            case 0:
+                box.min.y = kNan;
+                break;
+            case 1:
+                box = Aabb{};
+                break;
+            case 2:
+                std::swap(box.min.z, box.max.z);
+                break;
+            case 3:
+                box = makeAabb(glm::vec3(-kInf), glm::vec3(kInf));
+                break;
+            case 4:
+                box.max.x = kInf;
+                break;
+            default:
+                break;
         }
         boxes.push_back(box);
     }
@@ -364,8 +385,9 @@ TEST(Frustum, ThePerFrameTableTheBatchAndTheSingleBoxPathsAgreeOnEveryKindOfBox)
     size_t nan_boxes = 0;
     for (int c = 0; c < 20; ++c) {
         const glm::vec3 eye(50.0f * unit(rng), 20.0f * unit(rng), 50.0f * unit(rng));
-        const Camera camera = makeCamera(eye, eye + glm::vec3(unit(rng), 0.3f * unit(rng), unit(rng)),
-                                         fov(rng), 1.0f + unit(rng) * 0.5f, 0.1f, 200.0f);
+        const Camera camera =
+            makeCamera(eye, eye + glm::vec3(unit(rng), 0.3f * unit(rng), unit(rng)), fov(rng),
+                       1.0f + unit(rng) * 0.5f, 0.1f, 200.0f);
         const Frustum f = frustumFromViewProjection(camera.view_projection);
         const FrustumPlanes table = planeTableOf(f);  // once, as a culler's frame does
 
@@ -375,17 +397,38 @@ TEST(Frustum, ThePerFrameTableTheBatchAndTheSingleBoxPathsAgreeOnEveryKindOfBox)
             const glm::vec3 half = 0.5f * glm::vec3(size(rng), size(rng), size(rng));
             Aabb box = makeAabb(centre - half, centre + half);
             switch (i % 25) {
-                case 0: box.max = box.min; break;                                   // a point
-                case 1: box.min.x = box.max.x; break;                               // a flat box
-                case 2: box = makeAabb(glm::vec3(-kHuge), glm::vec3(kHuge)); break;  // huge
-                case 3: box.max.y = kHuge; break;
-                case 4: box.min.z = -kInf; break;
-                case 5: box = makeAabb(glm::vec3(-kInf), glm::vec3(kInf)); break;
-                case 6: (i % 2 ? box.min : box.max)[i % 3] = kNan; break;
-                case 7: box = makeAabb(glm::vec3(kNan), glm::vec3(kNan)); break;
-                case 8: std::swap(box.min.x, box.max.x); break;  // inverted: empty
-                case 9: box = Aabb{}; break;
-                default: break;
+                case 0:
+                    box.max = box.min;
+                    break;  // a point
+                case 1:
+                    box.min.x = box.max.x;
+                    break;  // a flat box
+                case 2:
+                    box = makeAabb(glm::vec3(-kHuge), glm::vec3(kHuge));
+                    break;  // huge
+                case 3:
+                    box.max.y = kHuge;
+                    break;
+                case 4:
+                    box.min.z = -kInf;
+                    break;
+                case 5:
+                    box = makeAabb(glm::vec3(-kInf), glm::vec3(kInf));
+                    break;
+                case 6:
+                    (i % 2 ? box.min : box.max)[i % 3] = kNan;
+                    break;
+                case 7:
+                    box = makeAabb(glm::vec3(kNan), glm::vec3(kNan));
+                    break;
+                case 8:
+                    std::swap(box.min.x, box.max.x);
+                    break;  // inverted: empty
+                case 9:
+                    box = Aabb{};
+                    break;
+                default:
+                    break;
             }
             boxes.push_back(box);
         }

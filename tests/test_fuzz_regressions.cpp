@@ -1,8 +1,6 @@
 // Every input a fuzzer found (tests/fuzz/regressions/<target>/) goes through the same function
 // its fuzz target calls, in the normal suite and under the sanitizers: each must end in the
 // documented error or parse, never crash. The folders also hold a few hand-made hostile inputs.
-#include "fuzz_inputs.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +8,8 @@
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "fuzz_inputs.h"
 
 namespace {
 

@@ -1,11 +1,6 @@
 // The procedural scene generators (city, library, plant) and the primitives they are built from:
 // deterministic per seed, scaling with their spec, valid closed meshes with outward faces, lanes
 // that keep movers out of the geometry, and everything inside the source's region.
-#include "sim/scene/generators.h"
-#include "sim/scene/primitives.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/world.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +9,11 @@
 #include <map>
 #include <set>
 #include <tuple>
+
+#include "sim/scenario/scenario.h"
+#include "sim/scene/generators.h"
+#include "sim/scene/primitives.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {

@@ -2,13 +2,7 @@
 // the triangle and node counts of their README, instanced meshes are converted once, transforms
 // and replication place objects where the contract says, and broken files fail with one line.
 // Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
-#include "sim/scene/gltf_source.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/world.h"
-#include "gltf_builder.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,7 +11,13 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <set>
+
+#include "gltf_builder.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scene/gltf_source.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -29,7 +29,6 @@ const std::filesystem::path kAssets = std::filesystem::path(OCCSIM_SOURCE_DIR) /
 const std::filesystem::path kTeapot = kAssets / "Teapot/teapot.gltf";
 const std::filesystem::path kSubpass = kAssets / "SubpassSceneOpaque/subpass_scene_opaque.gltf";
 const std::filesystem::path kHouse = kAssets / "FZK-Haus/AC14-FZK-Haus.glb";
-
 
 SourceOutput load(const std::filesystem::path& path, double scale = 1.0,
                   glm::dvec3 offset = glm::dvec3(0.0), GltfReplication replicate = {},
@@ -620,8 +619,9 @@ TEST(GltfScenario, APathThatIsAFolderSaysSo) {
         ADD_FAILURE() << "expected a ScenarioError";
     } catch (const ScenarioError& e) {
         const std::string message = e.what();
-        EXPECT_NE(message.find("/scene/sources/0/path: expected a .gltf or .glb file, got a directory"),
-                  std::string::npos)
+        EXPECT_NE(
+            message.find("/scene/sources/0/path: expected a .gltf or .glb file, got a directory"),
+            std::string::npos)
             << message;
     }
 }

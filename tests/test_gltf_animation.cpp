@@ -3,17 +3,17 @@
 // reader's errors (with the JSON path) and warnings; the real BoxAnimated file; and the world:
 // animated objects are movers with tight boxes, playback keys, seeded per-copy phases, whole-copy
 // movers that keep a model in one piece, spawned models.
-#include "sim/scene/gltf_source.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/model_copies.h"
-#include "sim/world/world.h"
-#include "gltf_builder.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include "gltf_builder.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scene/gltf_source.h"
+#include "sim/world/model_copies.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -35,7 +35,8 @@ void expectNear(const glm::dvec4& got, const glm::dvec4& want, double tolerance 
 // ---- Interpolation, by hand ----------------------------------------------------------------
 
 TEST(AnimationSampling, LinearInterpolatesAndHoldsTheEndValuesOutsideTheKeys) {
-    const AnimationSampler s = sampler(Interpolation::Linear, {0.0, 2.0}, {{0, 0, 0, 0}, {4, 2, 0, 0}});
+    const AnimationSampler s =
+        sampler(Interpolation::Linear, {0.0, 2.0}, {{0, 0, 0, 0}, {4, 2, 0, 0}});
     expectNear(sampleAt(s, 0.5), {1.0, 0.5, 0, 0});  // a quarter of the way
     expectNear(sampleAt(s, 1.0), {2.0, 1.0, 0, 0});
     expectNear(sampleAt(s, -1.0), {0, 0, 0, 0});
@@ -56,8 +57,12 @@ TEST(AnimationSampling, StepHoldsEachKeyUntilTheNext) {
 // p(s) = -2 s^3 + 3 s^2.
 TEST(AnimationSampling, CubicSplineUsesInValueOutTripletsWithTangentsScaledByTheInterval) {
     const AnimationSampler s = sampler(Interpolation::CubicSpline, {0.0, 2.0},
-                                       {{9, 9, 9, 0}, {0, 0, 0, 0}, {1, 0, 0, 0},     // key 0: in, value, out
-                                        {0, 0, 0, 0}, {0, 1, 0, 0}, {9, 9, 9, 0}});  // key 1
+                                       {{9, 9, 9, 0},
+                                        {0, 0, 0, 0},
+                                        {1, 0, 0, 0},  // key 0: in, value, out
+                                        {0, 0, 0, 0},
+                                        {0, 1, 0, 0},
+                                        {9, 9, 9, 0}});      // key 1
     expectNear(sampleAt(s, 1.0), {0.25, 0.5, 0, 0});         // s = 0.5
     expectNear(sampleAt(s, 0.5), {0.28125, 0.15625, 0, 0});  // s = 0.25
     expectNear(sampleAt(s, 2.0), {0, 1, 0, 0});              // the value, not a tangent
@@ -96,17 +101,26 @@ TEST(AnimationSampling, LinearRotationIsSphericalAlongTheShorterArc) {
 }
 
 TEST(AnimationSampling, RotationsStayUnitQuaternionsInEveryMode) {
-    const glm::dvec4 a(0.1, 0.7, -0.2, 0.5), b(-0.6, 0.1, 0.3, 0.2);  // not unit, as exporters round
-    for (Interpolation mode : {Interpolation::Linear, Interpolation::Step, Interpolation::CubicSpline}) {
+    const glm::dvec4 a(0.1, 0.7, -0.2, 0.5),
+        b(-0.6, 0.1, 0.3, 0.2);  // not unit, as exporters round
+    for (Interpolation mode :
+         {Interpolation::Linear, Interpolation::Step, Interpolation::CubicSpline}) {
         AnimatedModel model;
         model.nodes.resize(1);
         model.visits = {{0, -1}};
         model.object_visit = {0};
         NodeAnimation animation;
         animation.samplers = {mode == Interpolation::CubicSpline
-                                  ? sampler(mode, {0.0, 0.7, 1.5}, {{1, 2, 3, 4}, a, {0.5, -1, 0, 2},
-                                                                    {3, 0, 1, -1}, b, {0, 0, 1, 0},
-                                                                    {2, 2, 2, 2}, a, {1, 1, 1, 1}})
+                                  ? sampler(mode, {0.0, 0.7, 1.5},
+                                            {{1, 2, 3, 4},
+                                             a,
+                                             {0.5, -1, 0, 2},
+                                             {3, 0, 1, -1},
+                                             b,
+                                             {0, 0, 1, 0},
+                                             {2, 2, 2, 2},
+                                             a,
+                                             {1, 1, 1, 1}})
                                   : sampler(mode, {0.0, 0.7, 1.5}, {a, b, a})};
         animation.channels = {{0, 0, AnimatedProperty::Rotation}};
         model.animations = {animation};
@@ -186,7 +200,7 @@ TEST(GltfAnimationReader, ChannelsPoseTheHierarchyWithParentsFirst) {
     ModelPoseScratch scratch(model);
     poseModel(model, {1.0, 0.5}, {1, 1}, scratch);
     const glm::dmat4& world = scratch.visit_world[model.object_visit[0]];
-    EXPECT_NEAR(world[3].y, 2.0, 1e-12);  // half of the 4 m lift
+    EXPECT_NEAR(world[3].y, 2.0, 1e-12);                      // half of the 4 m lift
     const glm::dvec3 x_axis(world * glm::dvec4(1, 0, 0, 0));  // 45 degrees about y
     EXPECT_NEAR(x_axis.x, std::sqrt(0.5), 1e-9);
     EXPECT_NEAR(x_axis.z, -std::sqrt(0.5), 1e-9);
@@ -209,7 +223,10 @@ TEST(GltfAnimationReader, StepAndCubicSplineFromAFile) {
     const int mesh = cubic.triangleMesh("Tri");
     cubic.node({{"mesh", mesh}});
     // The x and y curves of CubicSplineUsesInValueOutTriplets..., read from a file.
-    cubic.animation("", {{0, "translation", "CUBICSPLINE", {0.0f, 2.0f},
+    cubic.animation("", {{0,
+                          "translation",
+                          "CUBICSPLINE",
+                          {0.0f, 2.0f},
                           {9, 9, 9, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 9, 9, 9}}});
     const SourceOutput c = loadDocument(cubic.text());
     ModelPoseScratch cubic_scratch(*c.model);
@@ -222,16 +239,20 @@ TEST(GltfAnimationReader, WhatTheSpecificationForbidsIsAnErrorWithItsJsonPath) {
     GltfBuilder not_increasing;
     const int mesh = not_increasing.triangleMesh("Tri");
     not_increasing.node({{"mesh", mesh}});
-    not_increasing.animation("", {{0, "translation", "LINEAR", {0.0f, 1.0f, 1.0f},
-                                   {0, 0, 0, 1, 0, 0, 2, 0, 0}}});
+    not_increasing.animation(
+        "", {{0, "translation", "LINEAR", {0.0f, 1.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 2, 0, 0}}});
     std::string e = errorOfDocument(not_increasing.text());
-    EXPECT_NE(e.find("/animations/0/samplers/0/input: key times must increase"), std::string::npos) << e;
+    EXPECT_NE(e.find("/animations/0/samplers/0/input: key times must increase"), std::string::npos)
+        << e;
 
     GltfBuilder linear_count;
     linear_count.node({{"mesh", linear_count.triangleMesh("Tri")}});
-    linear_count.animation("", {{0, "translation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 2, 0, 0}}});
+    linear_count.animation(
+        "", {{0, "translation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 2, 0, 0}}});
     e = errorOfDocument(linear_count.text());
-    EXPECT_NE(e.find("/animations/0/samplers/0/output: has 3 values, but 2 keys"), std::string::npos) << e;
+    EXPECT_NE(e.find("/animations/0/samplers/0/output: has 3 values, but 2 keys"),
+              std::string::npos)
+        << e;
 
     GltfBuilder cubic_count;
     cubic_count.node({{"mesh", cubic_count.triangleMesh("Tri")}});
@@ -242,16 +263,19 @@ TEST(GltfAnimationReader, WhatTheSpecificationForbidsIsAnErrorWithItsJsonPath) {
 
     GltfBuilder vec3_rotation;
     vec3_rotation.node({{"mesh", vec3_rotation.triangleMesh("Tri")}});
-    vec3_rotation.animation("", {{0, "rotation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "VEC3"}});
+    vec3_rotation.animation("",
+                            {{0, "rotation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "VEC3"}});
     e = errorOfDocument(vec3_rotation.text());
     EXPECT_NE(e.find("/animations/0/samplers/0/output: a rotation output must be VEC4, got VEC3"),
-              std::string::npos) << e;
+              std::string::npos)
+        << e;
 
     GltfBuilder bad_node;
     bad_node.node({{"mesh", bad_node.triangleMesh("Tri")}});
     bad_node.animation("", {{7, "translation", "LINEAR", {0.0f}, {0, 0, 0}}});
     e = errorOfDocument(bad_node.text());
-    EXPECT_NE(e.find("/animations/0/channels/0/target/node: refers to node 7"), std::string::npos) << e;
+    EXPECT_NE(e.find("/animations/0/channels/0/target/node: refers to node 7"), std::string::npos)
+        << e;
 
     GltfBuilder matrix_node;
     matrix_node.node({{"mesh", matrix_node.triangleMesh("Tri")},
@@ -272,12 +296,15 @@ TEST(GltfAnimationReader, WeightsSkinsAndUntargetedChannelsAreWarnedAbout) {
     std::string all;
     for (const std::string& w : out.warnings) all += w + "\n";
     EXPECT_NE(all.find("animation 'Morph': 1 channel animating morph-target weights not evaluated "
-                       "(the base positions are drawn)"), std::string::npos) << all;
+                       "(the base positions are drawn)"),
+              std::string::npos)
+        << all;
     // tinygltf 2.7 drops a channel without a target node itself; its message is passed on.
     EXPECT_NE(all.find("`node` field is missing in animation.channels.target"), std::string::npos)
         << all;
     EXPECT_NE(all.find("ignored the skins of 1 node (each mesh is drawn rigid in its bind pose"),
-              std::string::npos) << all;
+              std::string::npos)
+        << all;
 }
 
 TEST(GltfAnimationReader, BoxAnimatedLiftsItsInnerBoxAndTurnsIt) {
@@ -309,20 +336,23 @@ TEST(GltfAnimationReader, BoxAnimatedLiftsItsInnerBoxAndTurnsIt) {
     EXPECT_NEAR(scratch.visit_world[model.object_visit[1]][1].y, -1.0, 1e-6);  // turned over
     for (double t = 0.0; t < 3.8; t += 0.05) {
         poseModel(model, {t, t}, {1, 1}, scratch);
-        EXPECT_NEAR(glm::determinant(glm::dmat3(scratch.visit_world[model.object_visit[1]])), 1.0, 1e-9);
+        EXPECT_NEAR(glm::determinant(glm::dmat3(scratch.visit_world[model.object_visit[1]])), 1.0,
+                    1e-9);
     }
 }
 
 // ---- The world -----------------------------------------------------------------------------
 
 Scenario scenarioWith(const TempDir& dir, const json& sources, const json& movers = json::array()) {
-    const json doc = {{"format_version", 1},
-                      {"name", "animated"},
-                      {"seed", 5},
-                      {"frames", 10},
-                      {"camera", {{"keyframes", {{{"time", 0}, {"position", {0, 2, 10}}, {"target", {0, 0, 0}}}}}}},
-                      {"scene", {{"sources", sources}}},
-                      {"movers", movers}};
+    const json doc = {
+        {"format_version", 1},
+        {"name", "animated"},
+        {"seed", 5},
+        {"frames", 10},
+        {"camera",
+         {{"keyframes", {{{"time", 0}, {"position", {0, 2, 10}}, {"target", {0, 0, 0}}}}}}},
+        {"scene", {{"sources", sources}}},
+        {"movers", movers}};
     return parseScenarioFile(dir.write("scenario.json", doc.dump()));
 }
 
@@ -332,7 +362,8 @@ json boxAnimatedSource(const json& extra = json::object()) {
     return source;
 }
 
-std::string parseErrorOf(const TempDir& dir, const json& sources, const json& movers = json::array()) {
+std::string parseErrorOf(const TempDir& dir, const json& sources,
+                         const json& movers = json::array()) {
     try {
         scenarioWith(dir, sources, movers);
     } catch (const ScenarioError& e) {
@@ -343,7 +374,8 @@ std::string parseErrorOf(const TempDir& dir, const json& sources, const json& mo
 
 TEST(AnimationKeys, BadKeysNameTheirPlace) {
     TempDir dir;
-    std::string e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"play", "some"}}}})}));
+    std::string e =
+        parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"play", "some"}}}})}));
     EXPECT_NE(e.find("/scene/sources/0/animation/play"), std::string::npos) << e;
     e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"mode", "bounce"}}}})}));
     EXPECT_NE(e.find("/scene/sources/0/animation/mode"), std::string::npos) << e;
@@ -351,19 +383,26 @@ TEST(AnimationKeys, BadKeysNameTheirPlace) {
     EXPECT_NE(e.find("/scene/sources/0/animation/speed"), std::string::npos) << e;
     e = parseErrorOf(dir, json::array({boxAnimatedSource({{"animation", {{"loop", true}}}})}));
     EXPECT_NE(e.find("/scene/sources/0/animation"), std::string::npos) << e;
-    e = parseErrorOf(dir, json::array({boxAnimatedSource(
-                              {{"place", false}, {"replicate", {{"mode", "grid"}, {"count_x", 2}}}})}));
+    e = parseErrorOf(dir,
+                     json::array({boxAnimatedSource(
+                         {{"place", false}, {"replicate", {{"mode", "grid"}, {"count_x", 2}}}})}));
     EXPECT_NE(e.find("/scene/sources/0/replicate"), std::string::npos) << e;
     const json teapots = {{"type", "teapots"}, {"count", 5}};
     e = parseErrorOf(dir, json::array({teapots}),
                      json::array({{{"fraction", 1}, {"whole_copies", true}, {"motion", "spin"}}}));
-    EXPECT_NE(e.find("/movers/0/whole_copies: whole copies are copies of a glTF model"), std::string::npos) << e;
+    EXPECT_NE(e.find("/movers/0/whole_copies: whole copies are copies of a glTF model"),
+              std::string::npos)
+        << e;
     e = parseErrorOf(dir, json::array({boxAnimatedSource(), teapots}),
                      json::array({{{"spawn", {{"count", 2}, {"model", 1}}}, {"motion", "spin"}}}));
-    EXPECT_NE(e.find("/movers/0/spawn/model: expected the index of a glTF source"), std::string::npos) << e;
+    EXPECT_NE(e.find("/movers/0/spawn/model: expected the index of a glTF source"),
+              std::string::npos)
+        << e;
     e = parseErrorOf(dir, json::array({boxAnimatedSource()}),
-                     json::array({{{"spawn", {{"count", 2}, {"model", 0}, {"shape", "box"}}}, {"motion", "spin"}}}));
-    EXPECT_NE(e.find("/movers/0/spawn/model: give either 'shape' or 'model'"), std::string::npos) << e;
+                     json::array({{{"spawn", {{"count", 2}, {"model", 0}, {"shape", "box"}}},
+                                   {"motion", "spin"}}}));
+    EXPECT_NE(e.find("/movers/0/spawn/model: give either 'shape' or 'model'"), std::string::npos)
+        << e;
 }
 
 TEST(AnimatedWorld, AnimatedObjectsAreMoversWithTightBoxesOnSimulationTime) {
@@ -379,14 +418,16 @@ TEST(AnimatedWorld, AnimatedObjectsAreMoversWithTightBoxesOnSimulationTime) {
         // Default playback: every animation from 0, looping over its own duration.
         EXPECT_NEAR(state.time_s, t, 1e-9);
         const AnimatedModel& model = *scene.models[0].model;
-        poseModel(model,
-                  {animationTime(scene.models[0], model.animations[0].duration_s, 0.0, state.time_s),
-                   animationTime(scene.models[0], model.animations[1].duration_s, 0.0, state.time_s)},
-                  {1, 1}, scratch);
+        poseModel(
+            model,
+            {animationTime(scene.models[0], model.animations[0].duration_s, 0.0, state.time_s),
+             animationTime(scene.models[0], model.animations[1].duration_s, 0.0, state.time_s)},
+            {1, 1}, scratch);
         EXPECT_LE(t, model.animations[1].duration_s) << "the lift has not looped yet";
         const glm::dmat4& world = scratch.visit_world[scene.models[0].model->object_visit[1]];
         EXPECT_NEAR(state.poses[1].position.y, world[3].y, 1e-9) << "t " << t;
-        const Aabb tight = worldBox(scene.mesh_bounds[scene.object_mesh[1]], state.poses[1], scene.culling_origin);
+        const Aabb tight =
+            worldBox(scene.mesh_bounds[scene.object_mesh[1]], state.poses[1], scene.culling_origin);
         EXPECT_EQ(state.boxes[1].min, tight.min);
         EXPECT_EQ(state.boxes[1].max, tight.max);
         EXPECT_EQ(state.poses[0].position, outer.position);
@@ -397,14 +438,17 @@ TEST(AnimatedWorld, PlaybackKeysChooseAnimationsAndSeededPhasesDifferPerCopy) {
     TempDir dir;
     const json grid = {{"mode", "grid"}, {"count_x", 4}, {"count_z", 1}, {"spacing", 3}};
     const Scene none = buildScene(scenarioWith(
-        dir, json::array({boxAnimatedSource({{"replicate", grid}, {"animation", {{"play", "none"}}}})})));
+        dir, json::array(
+                 {boxAnimatedSource({{"replicate", grid}, {"animation", {{"play", "none"}}}})})));
     EXPECT_TRUE(initialState(none).moved.empty());
 
-    const Scene one = buildScene(scenarioWith(
-        dir, json::array({boxAnimatedSource({{"animation", {{"play", json::array({1})}, {"mode", "clamp"}}}})})));
+    const Scene one = buildScene(
+        scenarioWith(dir, json::array({boxAnimatedSource(
+                              {{"animation", {{"play", json::array({1})}, {"mode", "clamp"}}}})})));
     EXPECT_EQ(one.models[0].playing, (std::vector<uint8_t>{0, 1}));
 
-    const json phased = boxAnimatedSource({{"replicate", grid}, {"animation", {{"random_phase", true}}}});
+    const json phased =
+        boxAnimatedSource({{"replicate", grid}, {"animation", {{"random_phase", true}}}});
     const Scene a = buildScene(scenarioWith(dir, json::array({phased})));
     const Scene b = buildScene(scenarioWith(dir, json::array({phased})));
     ASSERT_EQ(a.initial_copies.size(), 4u);
@@ -416,24 +460,30 @@ TEST(AnimatedWorld, PlaybackKeysChooseAnimationsAndSeededPhasesDifferPerCopy) {
         EXPECT_LT(a.initial_copies[k].phase_s, 3.71);
     }
     std::sort(phases.begin(), phases.end());
-    EXPECT_EQ(std::unique(phases.begin(), phases.end()), phases.end()) << "no two copies in lockstep";
+    EXPECT_EQ(std::unique(phases.begin(), phases.end()), phases.end())
+        << "no two copies in lockstep";
     // At time 0 the copies already stand at their own phases.
     EXPECT_NE(a.initial_poses[1].position.y, a.initial_poses[3].position.y);
 
     try {
-        buildScene(scenarioWith(dir, json::array({boxAnimatedSource({{"animation", {{"play", json::array({"Dance"})}}}})})));
+        buildScene(scenarioWith(
+            dir,
+            json::array({boxAnimatedSource({{"animation", {{"play", json::array({"Dance"})}}}})})));
         ADD_FAILURE() << "an unknown animation name must fail";
     } catch (const ScenarioError& e) {
-        EXPECT_NE(std::string(e.what()).find("/scene/sources/0/animation/play/0: no animation named 'Dance'"),
-                  std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(
+                      "/scene/sources/0/animation/play/0: no animation named 'Dance'"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
 TEST(AnimatedWorld, AWholeCopyMoverMovesTheModelAsOneRigidBody) {
     TempDir dir;
     const json source = boxAnimatedSource({{"animation", {{"play", "none"}}}});
-    const json mover = {{"source", 0}, {"objects", json::array({0})}, {"whole_copies", true}, {"motion", "orbit"},
-                        {"speed", {2, 2}}, {"radius", {3, 3}}};
+    const json mover = {{"source", 0},          {"objects", json::array({0})},
+                        {"whole_copies", true}, {"motion", "orbit"},
+                        {"speed", {2, 2}},      {"radius", {3, 3}}};
     const Scene scene = buildScene(scenarioWith(dir, json::array({source}), json::array({mover})));
     WorldState state = initialState(scene);
     EXPECT_EQ(state.moved, (std::vector<uint32_t>{0, 1}));
@@ -441,7 +491,8 @@ TEST(AnimatedWorld, AWholeCopyMoverMovesTheModelAsOneRigidBody) {
     const glm::dvec3 start = state.poses[0].position;
     for (int i = 0; i < 20; ++i) stepMovers(scene, state, 0.1);
     EXPECT_GT(glm::length(state.poses[0].position - start), 1.0) << "the copy moved";
-    EXPECT_NEAR(glm::length(state.poses[1].position - state.poses[0].position), glm::length(apart), 1e-9)
+    EXPECT_NEAR(glm::length(state.poses[1].position - state.poses[0].position), glm::length(apart),
+                1e-9)
         << "the inner box stays with the outer one";
 
     // An animated object cannot get a mover of its own: the scenario says what to do instead.
@@ -450,20 +501,24 @@ TEST(AnimatedWorld, AWholeCopyMoverMovesTheModelAsOneRigidBody) {
         buildScene(scenarioWith(dir, json::array({boxAnimatedSource()}), json::array({own})));
         ADD_FAILURE() << "a mover on an animated object must fail";
     } catch (const ScenarioError& e) {
-        EXPECT_NE(std::string(e.what()).find("/movers/0/objects/0: object 1 is moved by its glTF animation"),
-                  std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(
+                      "/movers/0/objects/0: object 1 is moved by its glTF animation"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
 TEST(AnimatedWorld, SpawnMakesMovingCopiesOfAGltfSourcesModel) {
     TempDir dir;
     const json teapots = {{"type", "teapots"}, {"count", 5}};
-    const json spawn = {{"source", 1}, {"spawn", {{"count", 3}, {"model", 0}}}, {"motion", "bounce"}};
-    const Scene scene =
-        buildScene(scenarioWith(dir, json::array({boxAnimatedSource(), teapots}), json::array({spawn})));
+    const json spawn = {
+        {"source", 1}, {"spawn", {{"count", 3}, {"model", 0}}}, {"motion", "bounce"}};
+    const Scene scene = buildScene(
+        scenarioWith(dir, json::array({boxAnimatedSource(), teapots}), json::array({spawn})));
     EXPECT_EQ(scene.objectCount(), 2u + 5u + 3u * 2u);
     const WorldState state = initialState(scene);
-    EXPECT_EQ(state.moved.size(), 1u + 3u * 2u);  // copy 0's inner box, every object of a spawned copy
+    EXPECT_EQ(state.moved.size(),
+              1u + 3u * 2u);  // copy 0's inner box, every object of a spawned copy
     for (uint32_t k = 0; k < 3; ++k) {
         EXPECT_EQ(scene.object_mesh[7 + 2 * k], scene.object_mesh[0]);
         EXPECT_EQ(scene.object_mesh[8 + 2 * k], scene.object_mesh[1]);

@@ -8,21 +8,21 @@
 // Debian package's CMake configuration links libceres.a, so occtune carries Ceres inside and ldd
 // names only its dependencies, glog and SuiteSparse); and once at run time, with the loader's own
 // log (LD_DEBUG=files), that a headless bench loads EGL (the default backend) and no GLFW.
-#include "shell_command.h"
-
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
+
+#include "shell_command.h"
 
 namespace {
 
@@ -44,7 +44,8 @@ std::vector<std::string> linkedLibraries(const std::string& executable) {
     while (std::getline(lines, line)) {
         std::istringstream words(line);
         std::string first;
-        if (words >> first) names.push_back(lower(std::filesystem::path(first).filename().string()));
+        if (words >> first)
+            names.push_back(lower(std::filesystem::path(first).filename().string()));
     }
     return names;
 }
@@ -106,7 +107,8 @@ TEST(LinkedLibraries, AHeadlessBenchLoadsEglAndNoGlfw) {
     std::filesystem::remove_all(out);
     const Outcome o = shell("LD_DEBUG=files '" + kOccsim + "' bench '" + OCCSIM_SOURCE_DIR +
                             "/scenarios/small/teapots-small.json' --frames 2 --algos vfc chc "
-                            "--out '" + out.string() + "'");
+                            "--out '" +
+                            out.string() + "'");
     std::filesystem::remove_all(out);
     ASSERT_EQ(o.exit_code, 0) << o.output.substr(0, 4000);
     const std::string log = lower(o.output);

@@ -3,9 +3,6 @@
 // Every 10^4 frames the tree is checked from scratch; the object count must be conserved and the
 // resident memory flat. It prints the figures docs/stability.md quotes.
 // OCCSIM_LONG_RUN_FRAMES overrides the frame count (for trying it out).
-#include "bsp_tree_checks.h"
-#include "sim/world/world.h"
-
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -13,6 +10,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+
+#include "bsp_tree_checks.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -22,7 +22,8 @@ long statusKb(const std::string& key) {
     std::ifstream in("/proc/self/status");
     std::string line;
     while (std::getline(in, line)) {
-        if (line.rfind(key + ":", 0) == 0) return std::strtol(line.c_str() + key.size() + 1, nullptr, 10);
+        if (line.rfind(key + ":", 0) == 0)
+            return std::strtol(line.c_str() + key.size() + 1, nullptr, 10);
     }
     return -1;
 }
@@ -70,7 +71,8 @@ TEST(LongRun, AMillionFramesOfFastMoversLoseNoObjectKeepTheTreeValidAndTheMemory
     for (uint64_t frame = 1; frame <= frames; ++frame) {
         stepMovers(scene, state, scenario.dt_s);
         requireFiniteBoxes(state, static_cast<uint32_t>(frame));
-        for (const Mover& mover : state.movers) tree.reinsert(mover.object, state.boxes[mover.object]);
+        for (const Mover& mover : state.movers)
+            tree.reinsert(mover.object, state.boxes[mover.object]);
         tree.refitDirtyBounds();
         if (frame % kCheckEvery == 0 || frame == frames) {
             ASSERT_EQ(tree.objectCount(), scene.objectCount());
@@ -80,7 +82,8 @@ TEST(LongRun, AMillionFramesOfFastMoversLoseNoObjectKeepTheTreeValidAndTheMemory
             }
             ASSERT_EQ(placed, scene.objectCount()) << "frame " << frame;
             testing::expectTreeInvariants(tree);
-            if (::testing::Test::HasFailure()) FAIL() << "tree invariants broken at frame " << frame;
+            if (::testing::Test::HasFailure())
+                FAIL() << "tree invariants broken at frame " << frame;
             // Memory is measured from the first check on, once every structure has its size.
             if (rss_start_kb < 0) rss_start_kb = statusKb("VmRSS");
         }
@@ -89,12 +92,13 @@ TEST(LongRun, AMillionFramesOfFastMoversLoseNoObjectKeepTheTreeValidAndTheMemory
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const long rss_end_kb = statusKb("VmRSS");
     const long peak_kb = statusKb("VmHWM");
-    std::printf("long run: %llu frames, %zu movers, %u objects: %.1f s, %.3f ms per frame; "
-                "resident %ld kB after %llu frames, %ld kB at the end, peak %ld kB; %u live nodes\n",
-                static_cast<unsigned long long>(frames), state.movers.size(), scene.objectCount(),
-                seconds, 1e3 * seconds / static_cast<double>(frames), rss_start_kb,
-                static_cast<unsigned long long>(std::min<uint64_t>(kCheckEvery, frames)), rss_end_kb,
-                peak_kb, tree.liveNodeCount());
+    std::printf(
+        "long run: %llu frames, %zu movers, %u objects: %.1f s, %.3f ms per frame; "
+        "resident %ld kB after %llu frames, %ld kB at the end, peak %ld kB; %u live nodes\n",
+        static_cast<unsigned long long>(frames), state.movers.size(), scene.objectCount(), seconds,
+        1e3 * seconds / static_cast<double>(frames), rss_start_kb,
+        static_cast<unsigned long long>(std::min<uint64_t>(kCheckEvery, frames)), rss_end_kb,
+        peak_kb, tree.liveNodeCount());
     EXPECT_LE(rss_end_kb, rss_start_kb + rss_start_kb / 20 + 1024) << "memory must stay flat";
 }
 

@@ -1,14 +1,6 @@
 // Merging the shards of a regression run, and the history of runs, on results made here (no
 // rendering): what is joined, what is refused (one line, exit 2, nothing overwritten), what a
 // history report plots and flags.
-#include "sim/regress/history.h"
-#include "sim/regress/history_plot.h"
-#include "sim/regress/history_report.h"
-#include "sim/regress/junit_reader.h"
-#include "sim/regress/merge.h"
-#include "sim/regress/result_files.h"
-#include "sim/regress/shard_result.h"
-
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,13 +11,22 @@
 #include <fstream>
 #include <sstream>
 
+#include "sim/regress/history.h"
+#include "sim/regress/history_plot.h"
+#include "sim/regress/history_report.h"
+#include "sim/regress/junit_reader.h"
+#include "sim/regress/merge.h"
+#include "sim/regress/result_files.h"
+#include "sim/regress/shard_result.h"
+
 namespace occsim {
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("occsim-merge-" + std::to_string(::getpid()) + "-" + name);
+    const fs::path dir =
+        fs::temp_directory_path() / ("occsim-merge-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -38,13 +39,16 @@ std::string readFile(const fs::path& file) {
     return s.str();
 }
 
-void writeFile(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+void writeFile(const fs::path& file, const std::string& text) {
+    std::ofstream(file, std::ios::binary) << text;
+}
 
 // Six scenarios a..f; scenario c fails one check, e is skipped.
 ScenarioSet sixScenarios() {
     ScenarioSet set;
     set.id = "0123456789abcdef";
-    for (const char* n : {"a", "b", "c", "d", "e", "f"}) set.scenarios.push_back(std::string("scenarios/") + n + ".json");
+    for (const char* n : {"a", "b", "c", "d", "e", "f"})
+        set.scenarios.push_back(std::string("scenarios/") + n + ".json");
     return set;
 }
 
@@ -59,17 +63,20 @@ ScenarioOutcome outcomeOf(const std::string& file) {
     }
     o.checks.push_back({"zero error pixels: chc", "0 on every frame", "0 (3 tie px)", true});
     o.checks.push_back({"queries per frame = baseline: chc", "identical over 3 frames",
-                        o.name == "c" ? "frame 1: 7 <b>&\"" : "identical over 3 frames", o.name != "c"});
+                        o.name == "c" ? "frame 1: 7 <b>&\"" : "identical over 3 frames",
+                        o.name != "c"});
     o.seconds = 0.25;
     return o;
 }
 
 // Shard i of n of the six, as `occsim regress --shard i/n --out dir` leaves it.
-fs::path writeShard(const fs::path& root, uint32_t i, uint32_t n, const ScenarioSet& set = sixScenarios()) {
+fs::path writeShard(const fs::path& root, uint32_t i, uint32_t n,
+                    const ScenarioSet& set = sixScenarios()) {
     ShardResult r;
     r.set = set;
     r.shard = {i, n};
-    for (size_t k = i; k < set.scenarios.size(); k += n) r.report.scenarios.push_back(outcomeOf(set.scenarios[k]));
+    for (size_t k = i; k < set.scenarios.size(); k += n)
+        r.report.scenarios.push_back(outcomeOf(set.scenarios[k]));
     const fs::path dir = root / ("shard-" + std::to_string(i));
     writeShardResult(dir, r);
     return dir;
@@ -167,7 +174,8 @@ TEST(Merge, JoinsFourShardsInTheOrderOfTheSet) {
 
 TEST(Merge, RefusesAMissingShard) {
     const fs::path root = freshDir("missing");
-    const std::string e = mergeError({writeShard(root, 0, 4), writeShard(root, 1, 4), writeShard(root, 3, 4)});
+    const std::string e =
+        mergeError({writeShard(root, 0, 4), writeShard(root, 1, 4), writeShard(root, 3, 4)});
     EXPECT_NE(e.find("shard(s) 2 of 4 missing"), std::string::npos) << e;
 }
 
@@ -183,9 +191,12 @@ TEST(Merge, RefusesAShardFromAnotherScenarioSet) {
     const fs::path root = freshDir("otherset");
     ScenarioSet other = sixScenarios();
     other.id = "fedcba9876543210";
-    const std::string e = mergeError({writeShard(root / "x", 0, 2), writeShard(root / "y", 1, 2, other)});
-    EXPECT_NE(e.find("y/shard-1/shard.json: /scenario_set: from another scenario set (id fedcba9876543210"),
-              std::string::npos)
+    const std::string e =
+        mergeError({writeShard(root / "x", 0, 2), writeShard(root / "y", 1, 2, other)});
+    EXPECT_NE(
+        e.find(
+            "y/shard-1/shard.json: /scenario_set: from another scenario set (id fedcba9876543210"),
+        std::string::npos)
         << e;
     // Shards of a different count are of another run too.
     const std::string f = mergeError({writeShard(root / "z", 0, 2), writeShard(root / "w", 1, 3)});
@@ -200,7 +211,9 @@ TEST(Merge, RefusesTwoShardsClaimingTheSameScenario) {
     r.report.scenarios.push_back(outcomeOf("scenarios/a.json"));
     writeShardResult(s1, r);
     const std::string e = mergeError({s0, s1});
-    EXPECT_NE(e.find("shard-1/shard.json: /scenarios: scenarios/a.json is also claimed by"), std::string::npos) << e;
+    EXPECT_NE(e.find("shard-1/shard.json: /scenarios: scenarios/a.json is also claimed by"),
+              std::string::npos)
+        << e;
 }
 
 TEST(Merge, RefusesATruncatedOrDisagreeingJunitFile) {
@@ -224,12 +237,15 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
     const std::string shards = s0.string() + " " + s1.string();
     const Command good = runOccsim("merge " + shards + " --out " + out.string());
     EXPECT_EQ(good.status, 1) << good.output;  // scenario c failed a check
-    EXPECT_NE(good.output.find("merge: 6 scenarios from 2 shards, 1 failed, 1 skipped"), std::string::npos)
+    EXPECT_NE(good.output.find("merge: 6 scenarios from 2 shards, 1 failed, 1 skipped"),
+              std::string::npos)
         << good.output;
     ASSERT_TRUE(fs::exists(out / "report.md"));
 
-    expectRefused("merge " + s0.string() + " --out " + out.string(), "shard(s) 1 of 2 missing", out);
-    expectRefused("merge " + shards + " " + s1.string() + " --out " + out.string(), "ran twice", out);
+    expectRefused("merge " + s0.string() + " --out " + out.string(), "shard(s) 1 of 2 missing",
+                  out);
+    expectRefused("merge " + shards + " " + s1.string() + " --out " + out.string(), "ran twice",
+                  out);
     expectRefused("merge " + shards + " --out " + s0.string(), "is the shard folder", out);
     ScenarioSet other = sixScenarios();
     other.scenarios.pop_back();
@@ -239,17 +255,20 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
     ShardResult claimed = readShardResult(s1);
     claimed.report.scenarios.push_back(outcomeOf("scenarios/a.json"));
     writeShardResult(root / "claimed", claimed);
-    expectRefused("merge " + s0.string() + " " + (root / "claimed").string() + " --out " + out.string(),
-                  "is also claimed by", out);
+    expectRefused(
+        "merge " + s0.string() + " " + (root / "claimed").string() + " --out " + out.string(),
+        "is also claimed by", out);
     const std::string xml = readFile(s1 / "junit.xml");
     writeFile(s1 / "junit.xml", xml.substr(0, xml.size() - 20));
     expectRefused("merge " + shards + " --out " + out.string(), "junit.xml: line ", out);
     writeFile(s1 / "junit.xml", "<html>not junit</html>\n");
-    expectRefused("merge " + shards + " --out " + out.string(), "junit.xml: line 1: unexpected element <html>", out);
+    expectRefused("merge " + shards + " --out " + out.string(),
+                  "junit.xml: line 1: unexpected element <html>", out);
 }
 
 // A history entry of machine `host`, with statistical's speedup and queries in scenario s.
-HistoryEntry entry(const std::string& date, const std::string& host, double speedup, double queries = 40) {
+HistoryEntry entry(const std::string& date, const std::string& host, double speedup,
+                   double queries = 40) {
     HistoryEntry e;
     e.commit = "c0ffee" + date.substr(8, 2);
     e.date = date;
@@ -284,7 +303,8 @@ TEST(History, AnEntryReadsBackAsWritten) {
 }
 
 TEST(History, AnEntryMadeNowRecordsMachineCommitAndFigures) {
-    const Json summary = Json::parse(R"json({"machine": {"backend": "osmesa", "gl_renderer": "llvmpipe (LLVM 15)"},
+    const Json summary =
+        Json::parse(R"json({"machine": {"backend": "osmesa", "gl_renderer": "llvmpipe (LLVM 15)"},
         "algorithms": [{"configuration": "vfc", "speedup_over_vfc": 1.0, "queries_per_frame": 0,
                         "objects_per_frame": 100, "error": {"pixels_per_frame_mean": 0}},
                        {"configuration": "chc", "speedup_over_vfc": 1.8, "queries_per_frame": 12.5,
@@ -315,11 +335,14 @@ TEST(History, AnotherFormatVersionIsRefusedOneLineExitTwoNothingWritten) {
                   "v2.json: /version: history format version 2; this program reads version 1", out);
     // regress --history refuses before running anything: no result folder, no new entry.
     const fs::path regress_out = dir.parent_path() / "regress-out";
-    expectRefused(std::string("regress ") + OCCSIM_SOURCE_DIR + "/scenarios/small/teapots-small.json --out " +
-                      regress_out.string() + " --history " + dir.string(),
+    expectRefused(std::string("regress ") + OCCSIM_SOURCE_DIR +
+                      "/scenarios/small/teapots-small.json --out " + regress_out.string() +
+                      " --history " + dir.string(),
                   "history format version 2", out);
     EXPECT_FALSE(fs::exists(regress_out));
-    EXPECT_EQ(static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator())), files);
+    EXPECT_EQ(
+        static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator())),
+        files);
 }
 
 TEST(HistoryReport, ThreeRunsArePlottedAndAnInjectedSlowdownIsFlagged) {
@@ -339,7 +362,8 @@ TEST(HistoryReport, ThreeRunsArePlottedAndAnInjectedSlowdownIsFlagged) {
     const auto files = writeHistoryReport(out, a, windowOf(1));
     EXPECT_EQ(files, (std::vector<std::string>{"history-s.svg", "history-t.svg", "report.md"}));
     const std::string md = readFile(out / "report.md");
-    EXPECT_NE(md.find("- **s statistical: speedup over VFC 2.050 -> 1.400"), std::string::npos) << md;
+    EXPECT_NE(md.find("- **s statistical: speedup over VFC 2.050 -> 1.400"), std::string::npos)
+        << md;
     EXPECT_NE(md.find("![s](history-s.svg)"), std::string::npos) << md;
     const std::string svg = readFile(out / "history-s.svg");
     // Four panels, two algorithms (one line each) and three runs per line; the slowdown ringed.
@@ -360,38 +384,43 @@ TEST(HistoryReport, RunsWithinTheSpreadAreNotFlagged) {
                                               entry("2025-01-03T00:00:00Z", "m", 2.02)});
     const HistoryAnalysis a = analyseHistory(readHistory(dir), windowOf(1));
     EXPECT_TRUE(a.flagged.empty()) << a.flagged.front().text();
-    EXPECT_NE(historyMarkdown(a, windowOf(1)).find("## Changes beyond the run-to-run spread\n\nNone."),
-              std::string::npos);
+    EXPECT_NE(
+        historyMarkdown(a, windowOf(1)).find("## Changes beyond the run-to-run spread\n\nNone."),
+        std::string::npos);
     // Too few runs for the window: said, not flagged.
     const HistoryAnalysis b = analyseHistory(readHistory(dir), windowOf(3));
     EXPECT_TRUE(b.flagged.empty());
     ASSERT_EQ(b.not_compared.size(), 1u);
-    EXPECT_NE(b.not_compared[0].find("3 runs, 6 needed for a window of 3"), std::string::npos) << b.not_compared[0];
+    EXPECT_NE(b.not_compared[0].find("3 runs, 6 needed for a window of 3"), std::string::npos)
+        << b.not_compared[0];
 }
 
 TEST(HistoryReport, MachinesAreSeparateSeriesNeverMixed) {
     // Machine m is steady at 2.0; a slower machine n joins with 1.0. Mixed into one series that
     // would read as a slowdown.
-    const fs::path dir = historyOf("machines", {entry("2025-01-01T00:00:00Z", "m", 2.0),
-                                                entry("2025-01-02T00:00:00Z", "m", 2.0),
-                                                entry("2025-01-03T00:00:00Z", "m", 2.0),
-                                                entry("2025-01-04T00:00:00Z", "n", 1.0)});
+    const fs::path dir = historyOf(
+        "machines",
+        {entry("2025-01-01T00:00:00Z", "m", 2.0), entry("2025-01-02T00:00:00Z", "m", 2.0),
+         entry("2025-01-03T00:00:00Z", "m", 2.0), entry("2025-01-04T00:00:00Z", "n", 1.0)});
     const HistoryAnalysis a = analyseHistory(readHistory(dir), windowOf(1));
     EXPECT_EQ(a.series.size(), 2u);
     EXPECT_TRUE(a.flagged.empty()) << a.flagged.front().text();
     const std::string svg = historySvg(a, "s");
     EXPECT_NE(svg.find("data-algorithm=\"statistical\" data-series=\"2\""), std::string::npos);
     // Through the command: the same report, exit 0, and a flagged slowdown with --fail-on-change.
-    const Command c = runOccsim("history " + dir.string() + " --out " + (dir.parent_path() / "r").string() +
-                                " --window 1");
+    const Command c = runOccsim("history " + dir.string() + " --out " +
+                                (dir.parent_path() / "r").string() + " --window 1");
     EXPECT_EQ(c.status, 0) << c.output;
-    EXPECT_NE(c.output.find("history: 4 runs, 2 series, 2 scenarios, 0 changes flagged"), std::string::npos)
+    EXPECT_NE(c.output.find("history: 4 runs, 2 series, 2 scenarios, 0 changes flagged"),
+              std::string::npos)
         << c.output;
     appendHistory(dir, entry("2025-01-05T00:00:00Z", "m", 1.5));
-    const Command d = runOccsim("history " + dir.string() + " --out " + (dir.parent_path() / "r").string() +
-                                " --window 1 --fail-on-change");
+    const Command d =
+        runOccsim("history " + dir.string() + " --out " + (dir.parent_path() / "r").string() +
+                  " --window 1 --fail-on-change");
     EXPECT_EQ(d.status, 1) << d.output;
-    EXPECT_NE(d.output.find("changed: s statistical: speedup over VFC 2.000 -> 1.500"), std::string::npos)
+    EXPECT_NE(d.output.find("changed: s statistical: speedup over VFC 2.000 -> 1.500"),
+              std::string::npos)
         << d.output;
 }
 

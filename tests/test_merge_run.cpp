@@ -1,21 +1,22 @@
 // The merge end to end on real runs: the small scenarios (a few frames each) run as four shards
 // and on one machine give the same report check for check, and a run's summaries make a history
 // entry with every algorithm's figures.
-#include "sim/regress/history.h"
-#include "sim/regress/merge.h"
-#include "sim/regress/shard_result.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
+
+#include "sim/regress/history.h"
+#include "sim/regress/merge.h"
+#include "sim/regress/shard_result.h"
 
 namespace occsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-RegressOptions shortRun(const fs::path& scenarios, const fs::path& out, Shard shard, bool update = false) {
+RegressOptions shortRun(const fs::path& scenarios, const fs::path& out, Shard shard,
+                        bool update = false) {
     RegressOptions o;
     o.inputs = {scenarios};
     o.shard = shard;
@@ -31,11 +32,13 @@ RegressOptions shortRun(const fs::path& scenarios, const fs::path& out, Shard sh
 }
 
 TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
-    const fs::path root = fs::temp_directory_path() / ("occsim-merge-run-" + std::to_string(::getpid()));
+    const fs::path root =
+        fs::temp_directory_path() / ("occsim-merge-run-" + std::to_string(::getpid()));
     fs::remove_all(root);
     fs::create_directories(root);
     for (const char* folder : {"small", "assets"}) {  // the small ones read glTF files from assets/
-        fs::copy(fs::path(OCCSIM_SOURCE_DIR) / "scenarios" / folder, root / folder, fs::copy_options::recursive);
+        fs::copy(fs::path(OCCSIM_SOURCE_DIR) / "scenarios" / folder, root / folder,
+                 fs::copy_options::recursive);
     }
     // Baselines of the short run, so the count checks compare against something that holds.
     runRegression(shortRun(root / "small", root / "update", {}, true));
@@ -44,7 +47,8 @@ TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
     ASSERT_EQ(set.scenarios.size(), 6u);
     std::vector<fs::path> dirs;
     for (uint32_t i = 0; i < 4; ++i) {
-        const RegressOptions o = shortRun(root / "small", root / ("shard-" + std::to_string(i)), {i, 4});
+        const RegressOptions o =
+            shortRun(root / "small", root / ("shard-" + std::to_string(i)), {i, 4});
         writeShardResult(o.out_dir, {o.out_dir, set, o.shard, runRegression(o)});
         dirs.push_back(o.out_dir);
     }

@@ -2,13 +2,11 @@
 // seconds), its files, and what `occsim --culling` makes of its tuned.json; bad input ends with
 // one line and exit code 2 before any run; a fit that does not converge writes no tuned.json;
 // Ctrl-C leaves the sample log whole and --resume finishes the session.
-#include "sim/output/plots.h"
-#include "tune/sample_log.h"
-
-#include "shell_command.h"
-
+#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -16,15 +14,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "shell_command.h"
+#include "sim/output/plots.h"
+#include "tune/sample_log.h"
 
 extern char** environ;
 
@@ -44,7 +42,8 @@ Outcome occtune(const std::string& args) { return run(OCCTUNE_EXE, args); }
 
 // Per process: other checkouts run the same suites on this machine.
 fs::path tempDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("occtune-test-" + std::to_string(::getpid()) + "-" + name);
+    const fs::path p =
+        fs::temp_directory_path() / ("occtune-test-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(p);
     return p;
 }
@@ -89,7 +88,8 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     const double base_time = tuned["culling"]["statistical"]["base_time"].get<double>();
     EXPECT_GE(base_time, 0.05);
     EXPECT_LE(base_time, 2.0);
-    EXPECT_EQ(tuned["culling"]["statistical"]["decay_a"].get<double>(), 2.0);  // not tuned: the paper's
+    EXPECT_EQ(tuned["culling"]["statistical"]["decay_a"].get<double>(),
+              2.0);  // not tuned: the paper's
 
     // The sample log: settings, then two batches (two references and 3, then 2 samples).
     const std::vector<std::string> log = lines(dir / "samples.jsonl");
@@ -105,15 +105,17 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     EXPECT_EQ(references, 4u);
 
     const nlohmann::json cost = nlohmann::json::parse(text(dir / "cost_model.json"));
-    for (const char* key : {"query_ms", "triangle_ms", "draw_ms", "constant_ms", "residual_rms_ms"}) {
+    for (const char* key :
+         {"query_ms", "triangle_ms", "draw_ms", "constant_ms", "residual_rms_ms"}) {
         EXPECT_TRUE(cost[key].is_number()) << key;
         EXPECT_GE(cost[key].get<double>(), 0.0) << key;
     }
 
     const std::string report = text(dir / "report.md");
-    for (const char* part : {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)", "held out (seed 8)", "Residual RMS",
-                             "Leave-one-out prediction error", "Prediction error on runs left out", "Ceres Solver Report",
-                             "| 0 / 0 |"}) {
+    for (const char* part :
+         {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)",
+          "held out (seed 8)", "Residual RMS", "Leave-one-out prediction error",
+          "Prediction error on runs left out", "Ceres Solver Report", "| 0 / 0 |"}) {
         EXPECT_NE(report.find(part), std::string::npos) << part;
     }
     if (findOnPath("gnuplot")) {
@@ -125,8 +127,9 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     }
 
     // occsim runs the scenario with the tuned values.
-    const Outcome r = run(OCCSIM_EXE, "run " + kSmall + " --frames 6 --culling " + (dir / "tuned.json").string() +
-                                          " --out " + (dir / "run").string());
+    const Outcome r =
+        run(OCCSIM_EXE, "run " + kSmall + " --frames 6 --culling " + (dir / "tuned.json").string() +
+                            " --out " + (dir / "run").string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("statistical"), std::string::npos) << r.output;
 
@@ -150,11 +153,14 @@ TEST(Occtune, BadInputIsOneLineWithExitCode2BeforeAnyRun) {
     const std::vector<Case> cases = {
         {kSmall + " --bounds base_time=1:1", "empty range"},
         {kSmall + " --bounds base_time=2:0.5", "inverted range"},
-        {kSmall + " --bounds decay_b=0:2", "decay_b=2 is not a valid setting: expected a value in [0, 1]"},
+        {kSmall + " --bounds decay_b=0:2",
+         "decay_b=2 is not a valid setting: expected a value in [0, 1]"},
         {kSmall + " --algo fastest", "--algo: unknown algorithm 'fastest'"},
         {kSmall + " --algo vfc", "--algo vfc: its options descriptor marks no option tunable"},
-        {kSmall + " --algo statistical+ --params base_time", "unknown parameter 'base_time' of statistical+"},
-        {kSmall + " --plugin /no/such/libplugin.so", "--plugin /no/such/libplugin.so: no such file"},
+        {kSmall + " --algo statistical+ --params base_time",
+         "unknown parameter 'base_time' of statistical+"},
+        {kSmall + " --plugin /no/such/libplugin.so",
+         "--plugin /no/such/libplugin.so: no such file"},
         {kSmall + " --params speed", "unknown parameter 'speed'"},
         {kSmall + " --params base_time --bounds decay_a=1:3", "not tuned"},
         {kSmall + " --budget 11", "--budget 11: too small for the model"},
@@ -195,7 +201,8 @@ void writeSyntheticLog(const fs::path& dir) {
     std::vector<LoggedRun> batch = {{0, true, {2.0 / 3.0}, 30.0, 40.0, 0, {}}};
     for (int i = 0; i < 5; ++i) {
         LoggedRun r{0, false, {0.1 + 0.4 * i}, 30.0 + i, 40.0 + i, 0, {}};
-        for (int f = 0; f < 7; ++f) r.frames.push_back({20.0 + f + i, 10.0 * f, 1e5 + 1e4 * i, 100.0 + f, 1.0 * i});
+        for (int f = 0; f < 7; ++f)
+            r.frames.push_back({20.0 + f + i, 10.0 * f, 1e5 + 1e4 * i, 100.0 + f, 1.0 * i});
         batch.push_back(r);
     }
     batch[0].frames = batch[1].frames;
@@ -205,7 +212,8 @@ void writeSyntheticLog(const fs::path& dir) {
 TEST(Occtune, AFitThatDoesNotConvergeIsReportedWithCeresSummaryAndWritesNoTunedJson) {
     const fs::path dir = tempDir("noconv");
     writeSyntheticLog(dir);
-    const Outcome o = occtune(kSmall + kQuick + " --resume --max-fit-iterations 1 --out " + dir.string());
+    const Outcome o =
+        occtune(kSmall + kQuick + " --resume --max-fit-iterations 1 --out " + dir.string());
     EXPECT_EQ(o.exit_code, 1) << o.output;
     EXPECT_EQ(lineCount(o.output), 1u) << o.output;
     EXPECT_NE(o.output.find("did not converge"), std::string::npos) << o.output;
@@ -218,8 +226,10 @@ TEST(Occtune, AFitThatDoesNotConvergeIsReportedWithCeresSummaryAndWritesNoTunedJ
 TEST(Occtune, ResumeRefusesALogWrittenForOtherSettings) {
     const fs::path dir = tempDir("mismatch");
     writeSyntheticLog(dir);
-    const Outcome o = occtune(kSmall + " --params base_time --budget 5 --frames 12 --bounds base_time=0.1:1 --resume --out " +
-                              dir.string());
+    const Outcome o = occtune(
+        kSmall +
+        " --params base_time --budget 5 --frames 12 --bounds base_time=0.1:1 --resume --out " +
+        dir.string());
     EXPECT_EQ(o.exit_code, 2) << o.output;
     EXPECT_EQ(lineCount(o.output), 1u) << o.output;
     EXPECT_NE(o.output.find("--bounds base_time=0.05:2"), std::string::npos) << o.output;
@@ -235,7 +245,8 @@ pid_t spawnOcctune(const std::vector<std::string>& args, const fs::path& output)
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     pid_t pid = -1;
     posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
@@ -247,14 +258,26 @@ TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
     const fs::path dir = tempDir("interrupt");
     fs::create_directories(dir);
     // 40 frames per run, so that a batch lasts long enough (seconds) for the signal to land in one.
-    const std::vector<std::string> args = {kSmall, "--params", "base_time", "--budget", "6", "--batch", "2", "--frames",
-                                           "40", "--repetitions", "1", "--out", (dir / "out").string()};
+    const std::vector<std::string> args = {kSmall,
+                                           "--params",
+                                           "base_time",
+                                           "--budget",
+                                           "6",
+                                           "--batch",
+                                           "2",
+                                           "--frames",
+                                           "40",
+                                           "--repetitions",
+                                           "1",
+                                           "--out",
+                                           (dir / "out").string()};
     const pid_t pid = spawnOcctune(args, dir / "output.txt");
     ASSERT_GT(pid, 0);
     // Wait (no wall-clock assertion: only a generous limit against a hang) for the first batch
     // in the log, then interrupt the second.
     const fs::path log_file = dir / "out" / "samples.jsonl";
-    for (int i = 0; i < 6000 && lines(log_file).size() < 4; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int i = 0; i < 6000 && lines(log_file).size() < 4; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
     ASSERT_GE(lines(log_file).size(), 4u) << text(dir / "output.txt");
     ::kill(pid, SIGINT);
     int status = 0;
@@ -267,7 +290,8 @@ TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
     EXPECT_NE(said.find("--resume"), std::string::npos) << said;
     EXPECT_FALSE(fs::exists(dir / "out" / "tuned.json"));
     // Whole: every line is JSON, and it reads as a sample log.
-    for (const std::string& line : lines(log_file)) EXPECT_TRUE(nlohmann::json::accept(line)) << line;
+    for (const std::string& line : lines(log_file))
+        EXPECT_TRUE(nlohmann::json::accept(line)) << line;
     const size_t logged = SampleLog::read(log_file).samples().size();
     EXPECT_GE(logged, 2u);
     EXPECT_LT(logged, 6u);

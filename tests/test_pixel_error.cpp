@@ -1,9 +1,9 @@
 // Error against tie, pixel by pixel (sim/run/pixel_error.h): no GL, the classification alone.
-#include "sim/run/pixel_error.h"
-
 #include <gtest/gtest.h>
 
 #include <vector>
+
+#include "sim/run/pixel_error.h"
 
 namespace occsim {
 namespace {
@@ -45,14 +45,16 @@ TEST(PixelError, AFrameCountsErrorsAndTiesApartAndMarksEachPixel) {
     const std::vector<uint32_t> culled_ids = {1, 6, 7, 0, 0, 8};
     const std::vector<uint32_t> culled_depth = {900, 800, 100, 0, 0, 51};
     std::vector<uint8_t> marks;
-    const PixelCounts counts = comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, &marks);
+    const PixelCounts counts =
+        comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, &marks);
     EXPECT_EQ(counts.error, 2);
     EXPECT_EQ(counts.tie, 2);
     const std::vector<PixelDifference> expected = {PixelDifference::Same,  PixelDifference::Tie,
                                                    PixelDifference::Error, PixelDifference::Error,
                                                    PixelDifference::Same,  PixelDifference::Tie};
     ASSERT_EQ(marks.size(), expected.size());
-    for (size_t i = 0; i < marks.size(); ++i) EXPECT_EQ(static_cast<PixelDifference>(marks[i]), expected[i]) << i;
+    for (size_t i = 0; i < marks.size(); ++i)
+        EXPECT_EQ(static_cast<PixelDifference>(marks[i]), expected[i]) << i;
     const PixelCounts unmarked = comparePixels(truth_ids, truth_depth, culled_ids, culled_depth);
     EXPECT_EQ(unmarked.error, counts.error);
     EXPECT_EQ(unmarked.tie, counts.tie);

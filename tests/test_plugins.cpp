@@ -1,19 +1,18 @@
 // Plugin cullers: the loader on each kind of bad file, and a plugin's culler running wherever a
 // built-in runs (the scenario's options with the same checks, bench tables, summaries, baselines
 // and JUnit files). The plugins are built from tests/plugins/test_plugin.cpp.
-#include "occsim/culling/registry/plugin_loader.h"
-#include "occsim/culling/registry/registry.h"
-#include "shell_command.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
+#include "shell_command.h"
 
 namespace {
 
@@ -27,7 +26,8 @@ fs::path pluginFile(const std::string& kind) {
 }
 
 fs::path tempDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("occsim-plugins-" + std::to_string(::getpid()) + "-" + name);
+    const fs::path p =
+        fs::temp_directory_path() / ("occsim-plugins-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
@@ -57,10 +57,12 @@ std::string text(const fs::path& file) {
     return s.str();
 }
 
-// teapots-small with the good plugin named in its "plugins" key and `culling` as its culling section.
+// teapots-small with the good plugin named in its "plugins" key and `culling` as its culling
+// section.
 fs::path scenarioWithPlugin(const fs::path& dir, const nlohmann::json& culling,
                             const nlohmann::json& expect = nullptr) {
-    nlohmann::json s = nlohmann::json::parse(text(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
+    nlohmann::json s = nlohmann::json::parse(
+        text(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
     s["plugins"] = {pluginFile("good").string()};
     s["culling"] = culling;
     s["frames"] = 12;
@@ -82,7 +84,8 @@ TEST(PluginLoader, AGoodPluginRegistersItsCullersOnceWithItsFileAsTheSource) {
     ASSERT_EQ(a->options.size(), 2u);
     EXPECT_EQ(a->options[1].key, "margin");
     EXPECT_TRUE(a->options[1].tunable);
-    EXPECT_TRUE(loadPlugin(pluginFile("good"), registry).empty()) << "a file already loaded is not loaded again";
+    EXPECT_TRUE(loadPlugin(pluginFile("good"), registry).empty())
+        << "a file already loaded is not loaded again";
     EXPECT_EQ(registry.all().size(), 1u);
 }
 
@@ -98,8 +101,10 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
         {text_file, "not a loadable shared object"},
         {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
         {pluginFile("other_abi"), "built for plugin ABI version 3; this occsim loads version 2"},
-        {pluginFile("taken_name"), "culler 'chc': the name is already taken (by a built-in culler)"},
-        {pluginFile("bad_descriptor"), "invalid options descriptor: option 0 ('budget'): the range must be ordered"},
+        {pluginFile("taken_name"),
+         "culler 'chc': the name is already taken (by a built-in culler)"},
+        {pluginFile("bad_descriptor"),
+         "invalid options descriptor: option 0 ('budget'): the range must be ordered"},
         {pluginFile("throwing"), "its factory threw: no GPU budget configured"},
     };
     for (const auto& c : cases) {
@@ -116,14 +121,18 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
 
 TEST(PluginCli, ABadPluginStopsEveryCommandWithExitCode2AndWritesNothing) {
     const fs::path dir = tempDir("cli-bad");
-    const std::string small = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
-    for (const std::string kind : {"missing", "no_entry", "other_abi", "taken_name", "bad_descriptor", "throwing"}) {
+    const std::string small =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+    for (const std::string kind :
+         {"missing", "no_entry", "other_abi", "taken_name", "bad_descriptor", "throwing"}) {
         const fs::path plugin = kind == "missing" ? dir / "libnope.so" : pluginFile(kind);
         for (const std::string& command : {"run " + small, "bench " + small, "regress " + small}) {
-            const Outcome o = occsim(command + " --plugin " + plugin.string() + " --out " + (dir / "out").string());
+            const Outcome o = occsim(command + " --plugin " + plugin.string() + " --out " +
+                                     (dir / "out").string());
             EXPECT_EQ(o.exit_code, 2) << command << " " << kind << ": " << o.output;
             EXPECT_EQ(lineCount(o.output), 1u) << o.output;
-            EXPECT_NE(o.output.find("--plugin " + plugin.string() + ": "), std::string::npos) << o.output;
+            EXPECT_NE(o.output.find("--plugin " + plugin.string() + ": "), std::string::npos)
+                << o.output;
             EXPECT_FALSE(fs::exists(dir / "out")) << command << " " << kind;
         }
     }
@@ -136,10 +145,14 @@ TEST(PluginCli, APluginsOptionsAreCheckedLikeABuiltinsAtTheirJsonPointer) {
         nlohmann::json culling;
         std::string expected;
     } cases[] = {
-        {{{"test-frustum", {{"budget", 0}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 0"},
-        {{{"test-frustum", {{"budget", 2.5}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 2.5"},
-        {{{"test-frustum", {{"budget", "ten"}}}}, "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects)"},
-        {{{"test-frustum", {{"bugdet", 3}}}}, "/culling/test-frustum/bugdet: unknown key 'bugdet'; did you mean 'budget'?"},
+        {{{"test-frustum", {{"budget", 0}}}},
+         "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 0"},
+        {{{"test-frustum", {{"budget", 2.5}}}},
+         "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects), got 2.5"},
+        {{{"test-frustum", {{"budget", "ten"}}}},
+         "/culling/test-frustum/budget: expected an integer in [1, 1000] (objects)"},
+        {{{"test-frustum", {{"bugdet", 3}}}},
+         "/culling/test-frustum/bugdet: unknown key 'bugdet'; did you mean 'budget'?"},
         {{{"algorithm", "test-frustrum"}}, "/culling/algorithm"},
     };
     for (const auto& c : cases) {
@@ -147,7 +160,8 @@ TEST(PluginCli, APluginsOptionsAreCheckedLikeABuiltinsAtTheirJsonPointer) {
         const Outcome o = occsim("bench " + scenario.string() + " --out " + (dir / "out").string());
         EXPECT_EQ(o.exit_code, 2) << o.output;
         EXPECT_EQ(lineCount(o.output), 1u) << o.output;
-        EXPECT_NE(o.output.find(scenario.string() + ": " + c.expected), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find(scenario.string() + ": " + c.expected), std::string::npos)
+            << o.output;
         EXPECT_FALSE(fs::exists(dir / "out"));
     }
     fs::remove_all(dir);
@@ -157,8 +171,9 @@ TEST(PluginCli, APluginsCullerRunsBesideTheBuiltinsInBenchRegressAndJunit) {
     const fs::path dir = tempDir("cli-run");
     // bench without --algos runs the plugin's culler beside every built-in, error measured.
     const fs::path scenario = scenarioWithPlugin(dir, {{"test-frustum", {{"budget", 20}}}});
-    const Outcome bench = occsim("bench " + scenario.string() + " --error --deterministic-latency 4 --out " +
-                                 (dir / "bench").string());
+    const Outcome bench =
+        occsim("bench " + scenario.string() + " --error --deterministic-latency 4 --out " +
+               (dir / "bench").string());
     ASSERT_EQ(bench.exit_code, 0) << bench.output;
     EXPECT_NE(bench.output.find("\ntest-frustum "), std::string::npos) << bench.output;
     const nlohmann::json summary = nlohmann::json::parse(text(dir / "bench/summary.json"));
@@ -172,16 +187,18 @@ TEST(PluginCli, APluginsCullerRunsBesideTheBuiltinsInBenchRegressAndJunit) {
     EXPECT_NE(text(dir / "bench/report.md").find("test-frustum"), std::string::npos);
 
     // A regression baseline and a JUnit file with the plugin's culler in them.
-    const fs::path expecting = scenarioWithPlugin(
-        dir, {{"algorithm", "test-frustum"}},
-        {{"algorithms", {"vfc", "test-frustum"}}, {"deterministic_latency", 4}});
-    const Outcome update = occsim("regress " + expecting.string() + " --update --out " + (dir / "regress").string());
+    const fs::path expecting =
+        scenarioWithPlugin(dir, {{"algorithm", "test-frustum"}},
+                           {{"algorithms", {"vfc", "test-frustum"}}, {"deterministic_latency", 4}});
+    const Outcome update =
+        occsim("regress " + expecting.string() + " --update --out " + (dir / "regress").string());
     ASSERT_EQ(update.exit_code, 0) << update.output;
     const fs::path baseline = dir / "with-plugin.baseline.json";
     ASSERT_TRUE(fs::exists(baseline)) << update.output;
     EXPECT_NE(text(baseline).find("\"test-frustum\""), std::string::npos);
-    const Outcome check = occsim("regress " + expecting.string() + " --junit " + (dir / "junit.xml").string() +
-                                 " --out " + (dir / "regress").string());
+    const Outcome check =
+        occsim("regress " + expecting.string() + " --junit " + (dir / "junit.xml").string() +
+               " --out " + (dir / "regress").string());
     ASSERT_EQ(check.exit_code, 0) << check.output;
     EXPECT_NE(text(dir / "junit.xml").find("test-frustum"), std::string::npos);
     fs::remove_all(dir);
@@ -190,10 +207,12 @@ TEST(PluginCli, APluginsCullerRunsBesideTheBuiltinsInBenchRegressAndJunit) {
 TEST(PluginCli, OccsimCullersListsAPluginsCullerAndItsOptions) {
     const Outcome o = occsim("cullers --plugin " + pluginFile("good").string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
-    EXPECT_NE(o.output.find("test-frustum: frustum culling, from a plugin (tests) (conservative, plugin "),
+    EXPECT_NE(o.output.find(
+                  "test-frustum: frustum culling, from a plugin (tests) (conservative, plugin "),
               std::string::npos)
         << o.output;
-    EXPECT_NE(o.output.find("  margin = 1  number [0, 5] m (tunable 0 to 2)"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("  margin = 1  number [0, 5] m (tunable 0 to 2)"), std::string::npos)
+        << o.output;
 }
 
 }  // namespace

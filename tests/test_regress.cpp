@@ -1,17 +1,17 @@
 // Regression runs catch what they exist to catch: dropped pixels, slower culling, changed
 // decisions; and they are reproducible, shardable and strict about their inputs.
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "sim/regress/regress.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
-#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <thread>
+
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "sim/regress/regress.h"
 
 namespace occsim {
 namespace {
@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 // A copy of the small teapot scenario in a fresh folder, with a shorter run and the given expect.
 fs::path makeScenario(const std::string& name, const nlohmann::json& expect, uint32_t frames = 16) {
-    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-" + std::to_string(::getpid()) + "-" + name);
+    const fs::path dir =
+        fs::temp_directory_path() / ("occsim-regress-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::ifstream in(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
@@ -41,7 +42,7 @@ fs::path makeScenario(const std::string& name, const nlohmann::json& expect, uin
 // Forwards to another device, dropping every n-th object draw: a culler that loses visible
 // objects now and then.
 class DroppingDevice final : public RenderDevice {
-public:
+  public:
     DroppingDevice(RenderDevice& inner, uint32_t every) : inner_(inner), every_(every) {}
     void drawObject(uint32_t object) override {
         if (++draws_ % every_ != 0) inner_.drawObject(object);
@@ -53,7 +54,7 @@ public:
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
 
-private:
+  private:
     RenderDevice& inner_;
     uint32_t every_;
     uint64_t draws_ = 0;
@@ -63,7 +64,7 @@ enum class Sabotage { DropDraws, Slow, ExtraQuery };
 
 // The statistical culler, deliberately broken in one way.
 class SabotagedCuller final : public Culler {
-public:
+  public:
     explicit SabotagedCuller(Sabotage how) : how_(how) {}
     std::string_view name() const override { return "statistical"; }
     void reset(const BspTree& tree) override { inner_.reset(tree); }
@@ -87,19 +88,21 @@ public:
         inner_.cullAndRender(tree, frame, device);
     }
 
-private:
+  private:
     Sabotage how_;
     StatisticalCuller inner_;
 };
 
-RegressOptions optionsFor(const fs::path& scenario, std::optional<Sabotage> sabotage = std::nullopt) {
+RegressOptions optionsFor(const fs::path& scenario,
+                          std::optional<Sabotage> sabotage = std::nullopt) {
     RegressOptions o;
     o.inputs = {scenario};
     o.out_dir = scenario.parent_path() / "out";
     if (sabotage) {
         o.make_culler = [how = *sabotage](const AlgorithmTraits& algorithm,
                                           const CullerOptions& options) {
-            if (algorithm.name == "statistical") return std::unique_ptr<Culler>(new SabotagedCuller(how));
+            if (algorithm.name == "statistical")
+                return std::unique_ptr<Culler>(new SabotagedCuller(how));
             return makeCuller(algorithm, options);
         };
     }
@@ -113,7 +116,8 @@ const CheckResult* findCheck(const RegressReport& report, const std::string& pre
     return nullptr;
 }
 
-const nlohmann::json kExpect = {{"algorithms", {"vfc", "statistical"}}, {"deterministic_latency", 6}};
+const nlohmann::json kExpect = {{"algorithms", {"vfc", "statistical"}},
+                                {"deterministic_latency", 6}};
 
 TEST(Regress, PassesAfterUpdateAndBaselineIsRewrittenAtomically) {
     const fs::path file = makeScenario("passes", kExpect);
@@ -151,7 +155,8 @@ TEST(Regress, ABaselineFromAnotherBackendOrRendererIsNamed) {
     std::ofstream(baseline) << b.dump();
     const RegressReport same_counts = runRegression(o);
     EXPECT_TRUE(same_counts.passed()) << same_counts.table();
-    EXPECT_NE(same_counts.scenarios[0].note.find("baseline made on osmesa (Some GPU), this run on egl (llvmpipe"),
+    EXPECT_NE(same_counts.scenarios[0].note.find(
+                  "baseline made on osmesa (Some GPU), this run on egl (llvmpipe"),
               std::string::npos)
         << same_counts.scenarios[0].note;
 
@@ -161,7 +166,8 @@ TEST(Regress, ABaselineFromAnotherBackendOrRendererIsNamed) {
     const CheckResult* queries = findCheck(failed, "queries per frame = baseline: statistical");
     ASSERT_NE(queries, nullptr);
     EXPECT_FALSE(queries->passed);
-    EXPECT_NE(queries->got.find("[baseline made on osmesa (Some GPU), this run on egl"), std::string::npos)
+    EXPECT_NE(queries->got.find("[baseline made on osmesa (Some GPU), this run on egl"),
+              std::string::npos)
         << queries->got;
 }
 
@@ -189,7 +195,8 @@ TEST(Regress, ACullerThatDropsVisibleObjectsFailsWithErrorPixelsAndAPicture) {
 
 TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
     nlohmann::json expect = kExpect;
-    expect["ratios"] = {{{"algorithm", "statistical"}, {"reference", "vfc"}, {"max", 1.0}, {"tolerance", 0.5}}};
+    expect["ratios"] = {
+        {{"algorithm", "statistical"}, {"reference", "vfc"}, {"max", 1.0}, {"tolerance", 0.5}}};
     const fs::path file = makeScenario("slow", expect);
     const RegressReport fair = runRegression(optionsFor(file));
     const CheckResult* fair_ratio = findCheck(fair, "frame time statistical / vfc");
@@ -223,13 +230,15 @@ TEST(Regress, TheScenarioReportHasTheRerunCommandAndTheChecks) {
     const RegressReport report = runRegression(o);
     std::ifstream in(o.out_dir / "report" / "report.md");
     const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    EXPECT_NE(md.find("```sh\noccsim regress " + file.string() + " --culling 'my tuned.json' --out " +
-                      o.out_dir.string() + "\n```"),
+    EXPECT_NE(md.find("```sh\noccsim regress " + file.string() +
+                      " --culling 'my tuned.json' --out " + o.out_dir.string() + "\n```"),
               std::string::npos)
         << md;
     EXPECT_NE(md.find("## Checks"), std::string::npos) << md;
-    EXPECT_NE(md.find("| zero error pixels: vfc | 0 on every frame | 0 ("), std::string::npos) << md;
-    EXPECT_NE(md.find("| baseline | a readable baseline of this format |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| zero error pixels: vfc | 0 on every frame | 0 ("), std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| baseline | a readable baseline of this format |"), std::string::npos)
+        << md;
     EXPECT_NE(md.find("**FAIL**"), std::string::npos) << "no baseline yet: " << md;
     ASSERT_FALSE(report.scenarios[0].checks.empty());
 }
@@ -257,7 +266,8 @@ TEST(Regress, DeterministicModeGivesIdenticalCountsOverThreeRuns) {
         o.update = true;
         runRegression(o);
         std::ifstream in(file.parent_path() / "determinism.baseline.json");
-        baselines.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        baselines.emplace_back(std::istreambuf_iterator<char>(in),
+                               std::istreambuf_iterator<char>());
     }
     EXPECT_EQ(baselines[0], baselines[1]);
     EXPECT_EQ(baselines[0], baselines[2]);
@@ -301,7 +311,8 @@ TEST(Regress, MalformedBaselineFailsNamingFileAndKey) {
     const CheckResult* check = findCheck(report, "baseline");
     ASSERT_NE(check, nullptr);
     EXPECT_FALSE(check->passed);
-    EXPECT_NE(check->got.find("bad-baseline.baseline.json: /algorithms/vfc/queries"), std::string::npos)
+    EXPECT_NE(check->got.find("bad-baseline.baseline.json: /algorithms/vfc/queries"),
+              std::string::npos)
         << check->got;
 }
 
@@ -316,7 +327,8 @@ TEST(Regress, BaselineOfAnotherFormatVersionSaysSoInsteadOfComparing) {
     std::ofstream(baseline) << b.dump();
     const RegressReport report = runRegression(optionsFor(file));
     ASSERT_EQ(report.scenarios[0].checks.back().check, "baseline");
-    EXPECT_NE(report.scenarios[0].checks.back().got.find("baseline format version 1; this program reads version 2"),
+    EXPECT_NE(report.scenarios[0].checks.back().got.find(
+                  "baseline format version 1; this program reads version 2"),
               std::string::npos);
     // --update replaces it and says that the old file was not compared.
     const RegressReport rewritten = runRegression(o);
@@ -330,9 +342,12 @@ TEST(Regress, JunitXmlHasOneTestcasePerCheckAndFailuresWithMessages) {
     const RegressReport report = runRegression(optionsFor(file, Sabotage::DropDraws));
     const std::string xml = junitXml(report);
     EXPECT_NE(xml.find("<testsuites name=\"occsim regress\""), std::string::npos);
-    EXPECT_NE(xml.find("<testcase classname=\"junit\" name=\"zero error pixels: statistical\"><failure"),
-              std::string::npos) << xml;
-    EXPECT_NE(xml.find("<testcase classname=\"junit\" name=\"zero error pixels: vfc\"/>"), std::string::npos);
+    EXPECT_NE(
+        xml.find("<testcase classname=\"junit\" name=\"zero error pixels: statistical\"><failure"),
+        std::string::npos)
+        << xml;
+    EXPECT_NE(xml.find("<testcase classname=\"junit\" name=\"zero error pixels: vfc\"/>"),
+              std::string::npos);
 }
 
 TEST(Shard, ParsesIndexOverCountAndRejectsNonsense) {
@@ -350,7 +365,9 @@ TEST(Shard, ReadsSlurmArraysAndKubernetesIndexedJobs) {
         return it == env.end() ? nullptr : it->second.c_str();
     };
     EXPECT_EQ(shardFromEnvironment(get).count, 1u);
-    env = {{"SLURM_ARRAY_TASK_ID", "4"}, {"SLURM_ARRAY_TASK_COUNT", "4"}, {"SLURM_ARRAY_TASK_MIN", "1"}};
+    env = {{"SLURM_ARRAY_TASK_ID", "4"},
+           {"SLURM_ARRAY_TASK_COUNT", "4"},
+           {"SLURM_ARRAY_TASK_MIN", "1"}};
     EXPECT_EQ(shardFromEnvironment(get).index, 3u);
     EXPECT_EQ(shardFromEnvironment(get).count, 4u);
     env = {{"JOB_COMPLETION_INDEX", "0"}, {"OCCSIM_SHARD_COUNT", "3"}};
@@ -361,7 +378,8 @@ TEST(Shard, ReadsSlurmArraysAndKubernetesIndexedJobs) {
 }
 
 TEST(Shard, ShardsPartitionTheScenariosDeterministically) {
-    const fs::path dir = fs::temp_directory_path() / ("occsim-regress-shards-" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("occsim-regress-shards-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir / "nested");
     for (int i = 0; i < 7; ++i) {

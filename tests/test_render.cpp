@@ -2,20 +2,20 @@
 // OSMesa where configured): object IDs, reverse-Z depth, and occlusion queries that are
 // conservative and asynchronous. Then the backend choice itself: what a context must offer, and
 // the one-line reasons when a backend or device cannot serve.
-#include "headless_backends.h"
-#include "render/headless_context.h"
-#include "render/gl_checked_call.h"
-#include "render/gl_frame_timer.h"
-#include "render/gl_query_device.h"
-#include "render/gl_renderer.h"
-#include "render/png_writer.h"
-
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+
+#include "headless_backends.h"
+#include "render/gl_checked_call.h"
+#include "render/gl_frame_timer.h"
+#include "render/gl_query_device.h"
+#include "render/gl_renderer.h"
+#include "render/headless_context.h"
+#include "render/png_writer.h"
 
 namespace occsim {
 namespace {
@@ -23,7 +23,8 @@ namespace {
 // A unit cube [-0.5, 0.5]^3 with per-face normals.
 MeshData cubeMesh() {
     MeshData m;
-    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const glm::vec3 normals[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                  {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     for (const glm::vec3& n : normals) {
         const glm::vec3 u = glm::abs(n.x) > 0 ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::vec3 v = glm::cross(n, u);
@@ -39,7 +40,7 @@ MeshData cubeMesh() {
 }
 
 class RenderTest : public ::testing::TestWithParam<Backend> {
-protected:
+  protected:
     static constexpr uint32_t kW = 128, kH = 96;
     void SetUp() override {
         context_ = createHeadlessContext({GetParam(), {}}, kW, kH);
@@ -49,10 +50,12 @@ protected:
         // Object 0: a wall 4 x 4 at z = -5; object 1: a small cube behind it at z = -20;
         // object 2: a small cube off to the side at z = -20, not hidden.
         renderer_->setObjectMeshes(std::vector<uint32_t>{0, 0, 0});
-        world_ = {glm::translate(glm::dmat4(1.0), {0, 0, -5}) * glm::scale(glm::dmat4(1.0), {4, 4, 0.2}),
-                  glm::translate(glm::dmat4(1.0), {0, 0, -20}),
-                  glm::translate(glm::dmat4(1.0), {12, 0, -20})};
-        boxes_ = {{{-2, -2, -5.1f}, {2, 2, -4.9f}}, {{-0.5f, -0.5f, -20.5f}, {0.5f, 0.5f, -19.5f}},
+        world_ = {
+            glm::translate(glm::dmat4(1.0), {0, 0, -5}) * glm::scale(glm::dmat4(1.0), {4, 4, 0.2}),
+            glm::translate(glm::dmat4(1.0), {0, 0, -20}),
+            glm::translate(glm::dmat4(1.0), {12, 0, -20})};
+        boxes_ = {{{-2, -2, -5.1f}, {2, 2, -4.9f}},
+                  {{-0.5f, -0.5f, -20.5f}, {0.5f, 0.5f, -19.5f}},
                   {{11.5f, -0.5f, -20.5f}, {12.5f, 0.5f, -19.5f}}};
         setEye({0, 0, 0});
     }
@@ -209,10 +212,10 @@ TEST_P(RenderTest, AnswerLatencyCountsTheCommandsAfterAQueryUntilItsAnswerWasRea
     const QueryId polled = device.issueQuery(boxes_[2]);
     const QueryId waited = device.issueQuery(boxes_[1]);  // one command after `polled`
     for (int i = 0; i < 3; ++i) device.drawObject(0);
-    EXPECT_TRUE(device.isQueryReady(polled));   // 4 commands after it
-    EXPECT_TRUE(device.isQueryReady(polled));   // asked again: the same answer, counted once
+    EXPECT_TRUE(device.isQueryReady(polled));  // 4 commands after it
+    EXPECT_TRUE(device.isQueryReady(polled));  // asked again: the same answer, counted once
     device.takeAnswer(polled);
-    device.takeAnswer(waited);                 // 3 after it: not ready, waited for
+    device.takeAnswer(waited);  // 3 after it: not ready, waited for
     std::vector<uint32_t> latencies;
     device.takeAnswerLatencies(latencies);
     EXPECT_EQ(latencies, (std::vector<uint32_t>{4, 3}));
@@ -339,10 +342,11 @@ TEST(RenderDepthFormats, ConventionalDepthRanksAreTheFixedPointStepsNearerLarger
     renderer.uploadMeshes(std::span<const MeshData>(&cube, 1));
     renderer.setObjectMeshes(std::vector<uint32_t>{0, 0});
     ViewSetup view;
-    view.projection = perspectiveFor(DepthConvention::Conventional24, glm::radians(90.0f), 64.0f / 48, 0.1f, 1000.0f);
-    const std::vector<glm::mat4> model_view = {
-        glm::translate(glm::mat4(1.0f), {-1, 0, -3}),
-        glm::translate(glm::mat4(1.0f), {4, 0, -30}) * glm::scale(glm::mat4(1.0f), glm::vec3(6.0f))};
+    view.projection = perspectiveFor(DepthConvention::Conventional24, glm::radians(90.0f),
+                                     64.0f / 48, 0.1f, 1000.0f);
+    const std::vector<glm::mat4> model_view = {glm::translate(glm::mat4(1.0f), {-1, 0, -3}),
+                                               glm::translate(glm::mat4(1.0f), {4, 0, -30}) *
+                                                   glm::scale(glm::mat4(1.0f), glm::vec3(6.0f))};
     renderer.setView(view, model_view);
     renderer.beginFrame();
     renderer.drawObject(0);
@@ -379,7 +383,6 @@ TEST_P(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     EXPECT_TRUE(device.drew(2));
 }
 
-
 TEST_P(RenderTest, PngEncodingProducesAValidPngSignature) {
     renderer_->beginFrame();
     renderer_->drawObject(0);
@@ -407,7 +410,8 @@ TEST(HeadlessBackends, EveryBackendRendersTheSameObjectIds) {
         renderer.setObjectMeshes(std::vector<uint32_t>{0});
         ViewSetup view;
         view.projection = reverseZPerspective(glm::radians(60.0f), 64.0f / 48.0f, 0.1f, 100.0f);
-        const std::vector<glm::mat4> model_view = {glm::translate(glm::mat4(1.0f), {0.3f, 0.1f, -3.0f})};
+        const std::vector<glm::mat4> model_view = {
+            glm::translate(glm::mat4(1.0f), {0.3f, 0.1f, -3.0f})};
         renderer.setView(view, model_view);
         renderer.beginFrame();
         renderer.drawObject(0);
@@ -454,25 +458,39 @@ void expectUnavailable(F&& make, std::initializer_list<const char*> parts) {
 
 TEST(HeadlessBackends, ADeviceOutOfRangeNamesTheIndexAndWhatEglLists) {
     const auto count = static_cast<uint32_t>(listEglDevices().size());
-    expectUnavailable([&] { createHeadlessContext({Backend::Egl, count}, 16, 16); },
-                      {"--device", "out of range", "software"});
-    expectUnavailable([&] { createHeadlessContext({Backend::Auto, count + 5}, 16, 16); },
-                      {"--device", "out of range"});
+    expectUnavailable(
+        [&] {
+            createHeadlessContext({Backend::Egl, count}, 16, 16);
+        },
+        {"--device", "out of range", "software"});
+    expectUnavailable(
+        [&] {
+            createHeadlessContext({Backend::Auto, count + 5}, 16, 16);
+        },
+        {"--device", "out of range"});
 }
 
 TEST(HeadlessBackends, OsmesaHasNoDevices) {
-    expectUnavailable([] { createHeadlessContext({Backend::OsMesa, 0u}, 16, 16); },
-                      {"--device 0", "only the EGL backend"});
+    expectUnavailable(
+        [] {
+            createHeadlessContext({Backend::OsMesa, 0u}, 16, 16);
+        },
+        {"--device 0", "only the EGL backend"});
 }
 
 TEST(HeadlessBackends, OsmesaInABuildWithoutItSaysSo) {
-    if (osmesaAvailable()) GTEST_SKIP() << "this build has OSMesa (the no-osmesa preset checks this)";
-    expectUnavailable([] { createHeadlessContext({Backend::OsMesa, {}}, 16, 16); },
-                      {"--backend osmesa", "no OSMesa", "OCCSIM_WITH_OSMESA=OFF"});
+    if (osmesaAvailable())
+        GTEST_SKIP() << "this build has OSMesa (the no-osmesa preset checks this)";
+    expectUnavailable(
+        [] {
+            createHeadlessContext({Backend::OsMesa, {}}, 16, 16);
+        },
+        {"--backend osmesa", "no OSMesa", "OCCSIM_WITH_OSMESA=OFF"});
 }
 
 TEST(HeadlessBackends, BackendNamesRoundTrip) {
-    for (Backend b : {Backend::Auto, Backend::Egl, Backend::OsMesa}) EXPECT_EQ(parseBackend(backendName(b)), b);
+    for (Backend b : {Backend::Auto, Backend::Egl, Backend::OsMesa})
+        EXPECT_EQ(parseBackend(backendName(b)), b);
     EXPECT_FALSE(parseBackend("vulkan"));
     EXPECT_FALSE(parseBackend("EGL"));
 }
@@ -519,7 +537,8 @@ TEST(GlRequirements, AMissingExtensionIsNamed) {
 TEST(GlRequirements, TheDriverIsTheVersionStringWithoutTheApiVersion) {
     EXPECT_EQ(driverOfVersion("4.5 (Core Profile) Mesa 22.3.6"), "Mesa 22.3.6");
     EXPECT_EQ(driverOfVersion("4.6.0 NVIDIA 535.54.03"), "NVIDIA 535.54.03");
-    EXPECT_EQ(driverOfVersion("4.6 (Core Profile) Mesa 23.2.1 (LLVM 15.0.7)"), "Mesa 23.2.1 (LLVM 15.0.7)");
+    EXPECT_EQ(driverOfVersion("4.6 (Core Profile) Mesa 23.2.1 (LLVM 15.0.7)"),
+              "Mesa 23.2.1 (LLVM 15.0.7)");
     EXPECT_EQ(driverOfVersion("4.5"), "4.5");
 }
 
@@ -528,7 +547,8 @@ TEST(GlRequirements, SoftwareRenderersAreRecognised) {
     EXPECT_TRUE(isSoftwareRenderer("softpipe"));
     EXPECT_TRUE(isSoftwareRenderer("Google SwiftShader"));
     EXPECT_FALSE(isSoftwareRenderer("NVIDIA GeForce RTX 3080/PCIe/SSE2"));
-    EXPECT_FALSE(isSoftwareRenderer("AMD Radeon RX 6800 (radeonsi, navi21, LLVM 15.0.6, DRM 3.49)"));
+    EXPECT_FALSE(
+        isSoftwareRenderer("AMD Radeon RX 6800 (radeonsi, navi21, LLVM 15.0.6, DRM 3.49)"));
 }
 
 }  // namespace

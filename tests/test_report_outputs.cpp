@@ -1,17 +1,8 @@
 // What a person looks at after a benchmark: the trace of one frame's culling decisions, the
 // bird's-eye picture drawn from it, report.md and the gnuplot charts. No OpenGL: the culler runs
 // on the scripted query device.
-#include "occsim/culling/cullers/basic_cullers.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/devices/tracing_device.h"
-#include "culling_fixtures.h"
-#include "sim/output/birds_eye.h"
-#include "sim/output/error_picture.h"
-#include "sim/output/markdown_report.h"
-#include "sim/output/plots.h"
-#include "sim/output/report.h"
-
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -22,7 +13,15 @@
 #include <string>
 #include <vector>
 
-#include <sys/stat.h>
+#include "culling_fixtures.h"
+#include "occsim/culling/cullers/basic_cullers.h"
+#include "occsim/culling/devices/tracing_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "sim/output/birds_eye.h"
+#include "sim/output/error_picture.h"
+#include "sim/output/markdown_report.h"
+#include "sim/output/plots.h"
+#include "sim/output/report.h"
 
 namespace occsim {
 namespace {
@@ -65,7 +64,8 @@ CullView sceneView() {
 
 std::vector<uint32_t> objectsOf(const BspTree& tree, uint32_t node) {
     std::vector<uint32_t> out;
-    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) out.push_back(o);
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o))
+        out.push_back(o);
     std::sort(out.begin(), out.end());
     return out;
 }
@@ -390,26 +390,29 @@ TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
 // ---- writePlots ---------------------------------------------------------------------------
 
 fs::path freshDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("occsim-report-outputs-" + std::to_string(::getpid()) + "-" + name);
+    const fs::path p = fs::temp_directory_path() /
+                       ("occsim-report-outputs-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(p);
     return p;
 }
 
 // Sets PATH for the scope of a test and puts the old value back.
 class ScopedPath {
-public:
+  public:
     explicit ScopedPath(const std::string& value) {
         if (const char* old = std::getenv("PATH")) old_ = old;
         ::setenv("PATH", value.c_str(), 1);
     }
     ~ScopedPath() {
-        if (old_) ::setenv("PATH", old_->c_str(), 1);
-        else ::unsetenv("PATH");
+        if (old_)
+            ::setenv("PATH", old_->c_str(), 1);
+        else
+            ::unsetenv("PATH");
     }
     ScopedPath(const ScopedPath&) = delete;
     ScopedPath& operator=(const ScopedPath&) = delete;
 
-private:
+  private:
     std::optional<std::string> old_;
 };
 
@@ -437,7 +440,8 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
     m.hardware_threads = 2;
     m.load_before = {0.5, 0.4, 0.3};
     m.load_after = {1.25, 0.6, 0.4};
-    EXPECT_NE(runHeadline(result).find("machine: 2 hardware threads, load average 0.50 before the run, 1.25 after"),
+    EXPECT_NE(runHeadline(result).find(
+                  "machine: 2 hardware threads, load average 0.50 before the run, 1.25 after"),
               std::string::npos)
         << runHeadline(result);
     EXPECT_EQ(runHeadline(result).find("busy machine"), std::string::npos);
@@ -450,8 +454,10 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
     m.load_before = {2.5, 1.0, 1.0};
     EXPECT_TRUE(m.busyMachine()) << "other work when the run began";
     m.load_after = {5.5, 3.0, 1.0};
-    EXPECT_NE(runHeadline(result).find("busy machine: other work ran beside this run"), std::string::npos);
-    EXPECT_NE(markdownReport(result, {}).find("**busy: other work ran beside this run"), std::string::npos);
+    EXPECT_NE(runHeadline(result).find("busy machine: other work ran beside this run"),
+              std::string::npos);
+    EXPECT_NE(markdownReport(result, {}).find("**busy: other work ran beside this run"),
+              std::string::npos);
     const nlohmann::json summary = summaryJson(result);
     EXPECT_EQ(summary["machine"]["busy"], true);
     EXPECT_EQ(summary["machine"]["load_average_after"][0], 5.5);
@@ -468,7 +474,8 @@ TEST(Plots, WithoutGnuplotOnPathSaysSoAndWritesNothing) {
         r = writePlots(sampleRuns(), out);
     }
     EXPECT_FALSE(r.ok);
-    EXPECT_EQ(r.message, "plots skipped: gnuplot not found; install the Debian package gnuplot-nox");
+    EXPECT_EQ(r.message,
+              "plots skipped: gnuplot not found; install the Debian package gnuplot-nox");
     EXPECT_TRUE(r.files.empty());
     EXPECT_FALSE(fs::exists(out)) << "nothing written, not even the folder";
 }
@@ -500,13 +507,14 @@ TEST(Plots, AFailingGnuplotLeavesNoPictureNotEvenAHalfWrittenOne) {
 }
 
 TEST(Plots, WithGnuplotWritesNonEmptyPngAndSvgOfEveryChart) {
-    if (!findOnPath("gnuplot")) GTEST_SKIP() << "gnuplot not installed (Debian package gnuplot-nox)";
+    if (!findOnPath("gnuplot"))
+        GTEST_SKIP() << "gnuplot not installed (Debian package gnuplot-nox)";
     const fs::path out = freshDir("real");
     const PlotResult r = writePlots(sampleRuns(), out);
     ASSERT_TRUE(r.ok) << r.message;
     const std::vector<std::string> want = {
-        "plot-frame-time.png",        "plot-frame-time.svg",        "plot-time-vs-error.png",
-        "plot-time-vs-error.svg",     "plot-queries-triangles.png", "plot-queries-triangles.svg"};
+        "plot-frame-time.png",    "plot-frame-time.svg",        "plot-time-vs-error.png",
+        "plot-time-vs-error.svg", "plot-queries-triangles.png", "plot-queries-triangles.svg"};
     EXPECT_EQ(r.files, want);
     for (const std::string& f : want) {
         ASSERT_TRUE(fs::exists(out / f)) << f;
@@ -514,8 +522,10 @@ TEST(Plots, WithGnuplotWritesNonEmptyPngAndSvgOfEveryChart) {
         std::ifstream in(out / f, std::ios::binary);
         std::string head(8, '\0');
         in.read(head.data(), 8);
-        if (f.ends_with(".png")) EXPECT_EQ(head.substr(1, 3), "PNG") << f;
-        else EXPECT_TRUE(head.starts_with("<?xml") || head.starts_with("<svg")) << f;
+        if (f.ends_with(".png"))
+            EXPECT_EQ(head.substr(1, 3), "PNG") << f;
+        else
+            EXPECT_TRUE(head.starts_with("<?xml") || head.starts_with("<svg")) << f;
     }
     for (const std::string& f : filesIn(out)) EXPECT_EQ(f.find(".tmp-"), std::string::npos) << f;
 }
@@ -529,14 +539,17 @@ TEST(ErrorPicture, MarksErrorsAndTiesInTheirOwnColours) {
     frame.truth_rgba.assign(w * h * 4, 90);
     frame.culled_ids = {1, 2, 0};
     frame.truth_ids = {1, 3, 4};
-    frame.differences = {static_cast<uint8_t>(PixelDifference::Same), static_cast<uint8_t>(PixelDifference::Tie),
+    frame.differences = {static_cast<uint8_t>(PixelDifference::Same),
+                         static_cast<uint8_t>(PixelDifference::Tie),
                          static_cast<uint8_t>(PixelDifference::Error)};
     const std::vector<uint8_t> picture = composeErrorPicture(frame, w, h);
     ASSERT_EQ(picture.size(), size_t{3 * w} * h * 4);
     const uint8_t* marks = picture.data() + 2 * w * 4;
     EXPECT_EQ(marks[0], 30) << "an unchanged pixel is ground truth dimmed";
-    EXPECT_EQ(std::vector<uint8_t>(marks + 4, marks + 7), std::vector<uint8_t>(kTieColour, kTieColour + 3));
-    EXPECT_EQ(std::vector<uint8_t>(marks + 8, marks + 11), std::vector<uint8_t>(kErrorColour, kErrorColour + 3));
+    EXPECT_EQ(std::vector<uint8_t>(marks + 4, marks + 7),
+              std::vector<uint8_t>(kTieColour, kTieColour + 3));
+    EXPECT_EQ(std::vector<uint8_t>(marks + 8, marks + 11),
+              std::vector<uint8_t>(kErrorColour, kErrorColour + 3));
     frame.differences.pop_back();
     EXPECT_THROW(composeErrorPicture(frame, w, h), std::invalid_argument);
 }

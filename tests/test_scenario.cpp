@@ -1,11 +1,6 @@
 // The strict scenario parser: every class of bad input fails with the file name and the exact JSON
 // pointer of the offending value; a minimal file gets the documented defaults; the examples in
 // docs/scenario-format.md parse.
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "occsim/culling/registry/registry.h"
-#include "sim/scenario/json_reader.h"
-#include "sim/scenario/scenario.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,6 +9,11 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "occsim/culling/registry/registry.h"
+#include "sim/scenario/json_reader.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 namespace {
@@ -58,8 +58,8 @@ StatisticalOptions statisticalOf(const Scenario& s, const char* culler = "statis
 void expectError(const std::string& message, const std::string& pointer,
                  const std::string& fragment) {
     const std::string prefix = std::string(kFile) + ": " + (pointer.empty() ? "" : pointer + ": ");
-    EXPECT_EQ(message.rfind(prefix, 0), 0u) << "message: " << message << "\nexpected prefix: "
-                                            << prefix;
+    EXPECT_EQ(message.rfind(prefix, 0), 0u)
+        << "message: " << message << "\nexpected prefix: " << prefix;
     EXPECT_NE(message.find(fragment), std::string::npos)
         << "message: " << message << "\nexpected to contain: " << fragment;
 }
@@ -111,8 +111,8 @@ TEST(ScenarioFile, MissingFileSaysItCannotBeOpened) {
 }
 
 TEST(ScenarioFile, ReadsAFileFromDiskAndNamesItAfterTheStem) {
-    const auto dir =
-        std::filesystem::temp_directory_path() / ("occsim-test-scenario-" + std::to_string(::getpid()));
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("occsim-test-scenario-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto path = dir / "occsim-test-scenario-stem.json";
     std::ofstream(path) << minimalScenario().dump();
@@ -165,11 +165,13 @@ TEST(ScenarioSyntax, CoordinatesBeyondFloatRangeAreRefusedAtTheElement) {
     expectError(errorFor(camera), "/camera/keyframes/0/position/1",
                 "expected a coordinate that fits a 32-bit float (|x| < 3.4e38), got 1e");
     json orbit = minimalScenario();
-    orbit["camera"] = json::parse(R"({"orbit": {"center": [-1e39, 0, 0], "radius": 5, "height": 2}})");
+    orbit["camera"] =
+        json::parse(R"({"orbit": {"center": [-1e39, 0, 0], "radius": 5, "height": 2}})");
     expectError(errorFor(orbit), "/camera/orbit/center/0", "fits a 32-bit float");
     json gltf = minimalScenario();
-    gltf["scene"]["sources"] = json::parse(R"([{"type": "gltf", "path": ")" + std::string(OCCSIM_SOURCE_DIR) +
-                                           R"(/scenarios/assets/Box/box.gltf", "offset": [0, 0, 1e39]}])");
+    gltf["scene"]["sources"] =
+        json::parse(R"([{"type": "gltf", "path": ")" + std::string(OCCSIM_SOURCE_DIR) +
+                    R"(/scenarios/assets/Box/box.gltf", "offset": [0, 0, 1e39]}])");
     expectError(errorFor(gltf), "/scene/sources/0/offset/2", "fits a 32-bit float");
 }
 
@@ -200,7 +202,8 @@ TEST(ScenarioKeys, MissingRequiredKeyIsReportedAtItsPointer) {
 TEST(ScenarioCamera, NeedsExactlyOneOfKeyframesOrbitOrFly) {
     json scenario = minimalScenario();
     scenario["camera"].erase("keyframes");
-    expectError(scenario, "/camera", "expected exactly one of 'keyframes', 'orbit' or 'fly', got 0");
+    expectError(scenario, "/camera",
+                "expected exactly one of 'keyframes', 'orbit' or 'fly', got 0");
     scenario = minimalScenario();
     scenario["camera"]["fly"] = {{"from", {0, 0, 0}}, {"to", {0, 0, -10}}, {"duration", 2}};
     expectError(scenario, "/camera", "got 2");
@@ -209,7 +212,8 @@ TEST(ScenarioCamera, NeedsExactlyOneOfKeyframesOrbitOrFly) {
 TEST(ScenarioCamera, OrbitHelperMakesALoopedCircleOfKeyframes) {
     json scenario = minimalScenario();
     scenario["camera"].erase("keyframes");
-    scenario["camera"]["orbit"] = {{"center", {0, 0, 0}}, {"radius", 10}, {"height", 5}, {"period", 8}};
+    scenario["camera"]["orbit"] = {
+        {"center", {0, 0, 0}}, {"radius", 10}, {"height", 5}, {"period", 8}};
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_TRUE(s.camera.loop);
     ASSERT_GE(s.camera.keyframes.size(), 8u);
@@ -380,14 +384,18 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
 
     scenario["culling"] = {
         {"algorithm", "statistical+"},
-        {"statistical+", {{"fallback", false}, {"requery_distance", 4.0}, {"requery_parallax", 0},
-                          {"base_time", 0.5}}},
+        {"statistical+",
+         {{"fallback", false},
+          {"requery_distance", 4.0},
+          {"requery_parallax", 0},
+          {"base_time", 0.5}}},
         {"statistical", {{"virtual_leaves", true}, {"object_queries", true}}},
         {"cost_model", {{"query_box_ms", 0.02}, {"triangle_ms", 6e-5}, {"draw_call_ms", 0.001}}}};
     const Scenario s = parseScenarioText(scenario.dump(), "x.json");
     EXPECT_EQ(s.algorithm, "statistical+");
     EXPECT_FALSE(statisticalOf(s, "statistical+").fallback);
-    EXPECT_TRUE(statisticalOf(s, "statistical+").ready_answers) << "keys not given keep the plus defaults";
+    EXPECT_TRUE(statisticalOf(s, "statistical+").ready_answers)
+        << "keys not given keep the plus defaults";
     EXPECT_DOUBLE_EQ(statisticalOf(s, "statistical+").requery_distance_m, 4.0);
     EXPECT_DOUBLE_EQ(statisticalOf(s, "statistical+").base_time_s, 0.5);
     EXPECT_TRUE(statisticalOf(s).virtual_leaves);
@@ -399,9 +407,11 @@ TEST(ScenarioCulling, StatisticalPlusHasItsOwnOptionsWithEveryImprovementOn) {
 TEST(ScenarioRanges, InvalidStatisticalPlusAndCostModelReportTheirObjects) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"statistical+", {{"requery_distance", 3.0}}}};
-    expectError(scenario, "/culling/statistical+", "requery_distance and requery_parallax are alternatives");
+    expectError(scenario, "/culling/statistical+",
+                "requery_distance and requery_parallax are alternatives");
     scenario["culling"] = {{"statistical+", {{"fallback_visible_share", 1.5}}}};
-    expectError(scenario, "/culling/statistical+/fallback_visible_share", "expected a number in [0, 1], got 1.5");
+    expectError(scenario, "/culling/statistical+/fallback_visible_share",
+                "expected a number in [0, 1], got 1.5");
     scenario["culling"] = {{"cost_model", {{"query_box_ms", -1.0}}}};
     expectError(scenario, "/culling/cost_model", "finite numbers >= 0");
     scenario["culling"] = {{"cost_model", {{"query_box_ms", 0.0}}}};
@@ -413,30 +423,36 @@ TEST(ScenarioRanges, InvalidStatisticalPlusAndCostModelReportTheirObjects) {
 TEST(ScenarioRanges, InvalidPeerCullerOptionsReportTheDescriptorsRangeAtTheirKey) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"chc", {{"visible_frames_skip", 2000000}}}};
-    expectError(scenario, "/culling/chc/visible_frames_skip", "expected an integer in [0, 1000000] (frames), got 2000000");
+    expectError(scenario, "/culling/chc/visible_frames_skip",
+                "expected an integer in [0, 1000000] (frames), got 2000000");
     scenario["culling"] = {{"chc++", {{"batch_size", 0}}}};
-    expectError(scenario, "/culling/chc++/batch_size", "expected an integer in [1, 4294967295] (nodes), got 0");
+    expectError(scenario, "/culling/chc++/batch_size",
+                "expected an integer in [1, 4294967295] (nodes), got 0");
     scenario["culling"] = {{"chc++", {{"tight_bounds_depth", 9}}}};
-    expectError(scenario, "/culling/chc++/tight_bounds_depth", "expected an integer in [0, 6] (tree levels), got 9");
+    expectError(scenario, "/culling/chc++/tight_bounds_depth",
+                "expected an integer in [0, 6] (tree levels), got 9");
     scenario["culling"] = {{"chc++", {{"multiqueries", 1}}}};
     expectError(scenario, "/culling/chc++/multiqueries", "expected true or false");
     scenario["culling"] = {{"async", {{"retest_interval_frames", 0}}}};
-    expectError(scenario, "/culling/async/retest_interval_frames", "expected an integer in [1, 1000000] (frames), got 0");
+    expectError(scenario, "/culling/async/retest_interval_frames",
+                "expected an integer in [1, 1000000] (frames), got 0");
     scenario["culling"] = {{"async", {{"retest_interval", 3}}}};
     expectError(scenario, "/culling/async/retest_interval", "unknown key 'retest_interval'");
 }
 
 TEST(ScenarioCulling, PeerCullerOptionsAreRead) {
     json scenario = minimalScenario();
-    scenario["culling"] = {
-        {"algorithm", "chc++"},
-        {"threshold_pixels", 25},
-        {"stale_results", true},
-        {"chc", {{"visible_frames_skip", 2}}},
-        {"chc++",
-         {{"visible_frames_skip", 7}, {"batch_size", 20},
-          {"multiqueries", false}, {"tight_bounds_depth", 2}, {"seed", 99}}},
-        {"async", {{"retest_interval_frames", 9}}}};
+    scenario["culling"] = {{"algorithm", "chc++"},
+                           {"threshold_pixels", 25},
+                           {"stale_results", true},
+                           {"chc", {{"visible_frames_skip", 2}}},
+                           {"chc++",
+                            {{"visible_frames_skip", 7},
+                             {"batch_size", 20},
+                             {"multiqueries", false},
+                             {"tight_bounds_depth", 2},
+                             {"seed", 99}}},
+                           {"async", {{"retest_interval_frames", 9}}}};
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_EQ(s.algorithm, "chc++");
     EXPECT_EQ(optionsOf(s, "chc").number("visible_frames_skip"), 2.0);
@@ -479,7 +495,8 @@ TEST(ScenarioEnums, UnknownSourceTypeListsValidTypes) {
 
 TEST(ScenarioMovers, OrbitWithRegionIsRejected) {
     json scenario = minimalScenario();
-    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "orbit"},
+    scenario["movers"] = {{{"fraction", 0.1},
+                           {"motion", "orbit"},
                            {"region", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}}};
     expectError(scenario, "/movers/0/region", "'region' is not allowed with motion \"orbit\"");
 }
@@ -501,8 +518,10 @@ TEST(ScenarioMovers, NeedExactlyOneSelection) {
 TEST(ScenarioMovers, EveryMotionTypeParsesWithItsOwnKeys) {
     json scenario = minimalScenario();
     scenario["movers"] = {
-        {{"spawn", {{"count", 5}, {"shape", "box"}, {"size", {1, 2}}}}, {"motion", "path"},
-         {"waypoints", {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}}}, {"speed", {3, 5}}},
+        {{"spawn", {{"count", 5}, {"shape", "box"}, {"size", {1, 2}}}},
+         {"motion", "path"},
+         {"waypoints", {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}}},
+         {"speed", {3, 5}}},
         {{"objects", {0}}, {"motion", "spin"}, {"spin", {10, 20}}},
         {{"fraction", 0.2}, {"motion", "random_walk"}, {"turn_rate", 45}, {"speed", {1, 1}}},
     };
@@ -521,7 +540,8 @@ TEST(ScenarioMovers, KeysOfAnotherMotionAreRejected) {
     json scenario = minimalScenario();
     scenario["movers"] = {{{"fraction", 0.1}, {"motion", "spin"}, {"speed", {1, 2}}}};
     expectError(scenario, "/movers/0/speed", "'speed' is not allowed with motion \"spin\"");
-    scenario["movers"] = {{{"fraction", 0.1}, {"motion", "bounce"}, {"waypoints", {{0, 0, 0}, {1, 0, 0}}}}};
+    scenario["movers"] = {
+        {{"fraction", 0.1}, {"motion", "bounce"}, {"waypoints", {{0, 0, 0}, {1, 0, 0}}}}};
     expectError(scenario, "/movers/0/waypoints", "applies to path only");
 }
 
@@ -611,15 +631,17 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
                                        {"size", {0.5, 0.5}},
                                        {"tessellation", 2}};
     scenario["movers"] = {
-        {{"motion", "bounce"}, {"fraction", 0.5}, {"speed", {0, 2}},
+        {{"motion", "bounce"},
+         {"fraction", 0.5},
+         {"speed", {0, 2}},
          {"region", {{"min", {0, 0, 0}}, {"max", {4, 4, 4}}}}},
         {{"source", 0}, {"motion", "orbit"}, {"fraction", 1}, {"radius", {1, 1}}}};
     scenario["culling"] = {{"algorithm", "vfc"},
                            {"statistical", {{"base_time", 1}, {"history_length", 4}}}};
-    scenario["bsp"] = {{"split", "sah"},     {"max_depth", 12}, {"root_margin", 0},
-                       {"looseness", 0.25},  {"adapt", false},  {"max_root_growth", 4}};
-    scenario["expect"] = {{"algorithms", {"vfc", "async"}}, {"frames", 20},
-                          {"max_error_pixels", {{"async", 50}}}};
+    scenario["bsp"] = {{"split", "sah"},    {"max_depth", 12}, {"root_margin", 0},
+                       {"looseness", 0.25}, {"adapt", false},  {"max_root_growth", 4}};
+    scenario["expect"] = {
+        {"algorithms", {"vfc", "async"}}, {"frames", 20}, {"max_error_pixels", {{"async", 50}}}};
 
     const Scenario s = parseScenarioText(scenario.dump(), kFile);
     EXPECT_EQ(s.name, "everything");

@@ -1,32 +1,34 @@
 // End to end headless (EGL by default): the small teapot scenario, every algorithm, ground truth
 // and error; and the same bench on every backend the build has.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
+
 #include "culling_fixtures.h"
 #include "headless_backends.h"
 #include "occsim/culling/registry/registry.h"
+#include "render/gl_renderer.h"
 #include "sim/output/pictures.h"
 #include "sim/output/run_outputs.h"
-#include "render/gl_renderer.h"
 #include "sim/run/runner.h"
 #include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/scene_info.h"
 
-#include <gtest/gtest.h>
-#include <unistd.h>
-#include <nlohmann/json.hpp>
-
-#include <filesystem>
-#include <fstream>
-#include <set>
-#include <tuple>
-
 namespace occsim {
 namespace {
 
-const std::filesystem::path kSmall = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
+const std::filesystem::path kSmall =
+    std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
 
 std::filesystem::path freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("occsim-test-" + std::to_string(::getpid()) + "-" + name);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("occsim-test-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     return dir;
 }
@@ -108,7 +110,8 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
     for (int run = 0; run < 3; ++run) {
         const BenchResult r = benchSmall(false, LatencyMode{true, 6}, {"statistical"});
         counts.emplace_back();
-        for (const FrameStats& f : r.runs[0].frames) counts.back().push_back({f.queries, f.objects_drawn});
+        for (const FrameStats& f : r.runs[0].frames)
+            counts.back().push_back({f.queries, f.objects_drawn});
     }
     EXPECT_EQ(counts[0], counts[1]);
     EXPECT_EQ(counts[0], counts[2]);
@@ -120,7 +123,8 @@ TEST(Simulation, DeterministicLatencyGivesIdenticalDecisionsOverThreeRuns) {
 TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
     const std::vector<Backend> backends = testing::testedBackends();
     if (backends.size() < 2) GTEST_SKIP() << "this build has one headless backend (no OSMesa)";
-    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>> counts;  // [backend][config][frame]
+    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>>
+        counts;  // [backend][config][frame]
     for (Backend backend : backends) {
         BenchOptions options;
         options.algorithms = traitsOf(algorithmNames());
@@ -132,7 +136,8 @@ TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
         counts.emplace_back();
         for (const RunRecord& run : r.runs) {
             counts.back().emplace_back();
-            for (const FrameStats& f : run.frames) counts.back().back().push_back({f.queries, f.objects_drawn});
+            for (const FrameStats& f : run.frames)
+                counts.back().back().push_back({f.queries, f.objects_drawn});
         }
     }
     uint64_t queries = 0;
@@ -140,7 +145,8 @@ TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
         for (const auto& frame : config) queries += frame.first;
     }
     EXPECT_GT(queries, 0u);
-    for (size_t b = 1; b < counts.size(); ++b) EXPECT_EQ(counts[b], counts[0]) << backendName(backends[b]);
+    for (size_t b = 1; b < counts.size(); ++b)
+        EXPECT_EQ(counts[b], counts[0]) << backendName(backends[b]);
 }
 
 // GPU time is measured only where it means something: on llvmpipe every frame's gpu_ms and the
@@ -159,7 +165,8 @@ TEST(Simulation, GpuTimeIsMeasuredOnlyWhereMeaningful) {
     SimulationOptions options;
     options.measure_gpu_time = true;
     const AlgorithmTraits& chc = *findAlgorithm("chc");
-    Simulation sim(scene, scenario, chc, makeCuller(chc, scenario.culler), scenario.culler, renderer, options);
+    Simulation sim(scene, scenario, chc, makeCuller(chc, scenario.culler), scenario.culler,
+                   renderer, options);
     for (int f = 0; f < 3; ++f) EXPECT_GE(sim.renderFrame().gpu_ms, 0.0);
 }
 
@@ -198,7 +205,8 @@ TEST(FrameStats, AnswerLatencyRanksAreNearestRankOverTheHistogram) {
 // rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its
 // own figures, the same as without rotation (decisions made reproducible).
 TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures) {
-    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>> counts;  // [rotated][config][frame]
+    std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>>
+        counts;  // [rotated][config][frame]
     for (bool rotate : {false, true}) {
         BenchOptions options;
         options.algorithms = traitsOf({"vfc", "statistical", "chc"});
@@ -209,14 +217,16 @@ TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures)
         options.on_frame = [&order](const FrameEvent& e) { order.push_back(e.config.label); };
         const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
         if (rotate) {
-            const std::vector<std::string> expected = {"vfc", "statistical", "chc", "statistical", "chc", "vfc",
-                                                       "chc", "vfc", "statistical", "vfc", "statistical", "chc"};
+            const std::vector<std::string> expected = {
+                "vfc", "statistical", "chc",         "statistical", "chc",         "vfc",
+                "chc", "vfc",         "statistical", "vfc",         "statistical", "chc"};
             EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 12), expected);
         }
         counts.emplace_back();
         for (const RunRecord& run : r.runs) {
             counts.back().emplace_back();
-            for (const FrameStats& f : run.frames) counts.back().back().push_back({f.queries, f.objects_drawn});
+            for (const FrameStats& f : run.frames)
+                counts.back().back().push_back({f.queries, f.objects_drawn});
         }
     }
     EXPECT_EQ(counts[0], counts[1]);
@@ -226,7 +236,8 @@ TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures)
 // once per frame, whatever the number of configurations, and once more per repetition.
 TEST(Simulation, ConfigurationsOfOneBenchShareOneWorldSteppedOncePerFrame) {
     for (const std::vector<std::string>& algorithms :
-         {std::vector<std::string>{"vfc"}, std::vector<std::string>{"vfc", "statistical", "chc", "chc++", "async"}}) {
+         {std::vector<std::string>{"vfc"},
+          std::vector<std::string>{"vfc", "statistical", "chc", "chc++", "async"}}) {
         BenchOptions options;
         options.algorithms = traitsOf(algorithms);
         options.frames = 7;
@@ -249,11 +260,12 @@ TEST(Simulation, ConfigurationsOfOneBenchShareOneWorldSteppedOncePerFrame) {
 // bench draws and queries exactly what it does when it runs alone.
 TEST(Simulation, EveryConfigurationDecidesAsItDoesAlone) {
     const std::vector<std::string> names = {"stop-and-wait", "statistical", "statistical+", "chc",
-                                            "chc++", "async", "ideal"};
+                                            "chc++",         "async",       "ideal"};
     using Counts = std::vector<std::tuple<uint64_t, uint64_t, uint64_t>>;
     auto countsOf = [](const RunRecord& run) {
         Counts out;
-        for (const FrameStats& f : run.frames) out.emplace_back(f.queries, f.objects_drawn, f.triangles);
+        for (const FrameStats& f : run.frames)
+            out.emplace_back(f.queries, f.objects_drawn, f.triangles);
         return out;
     };
     BenchOptions options;
@@ -331,8 +343,11 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     int lines = 0;
     while (std::getline(csv, line)) {
         if (lines == 0) {
-            EXPECT_NE(line.find(",error_pixels,tie_pixels,missed_objects,drawn_unseen_objects,visible_objects"),
-                      std::string::npos) << line;
+            EXPECT_NE(
+                line.find(
+                    ",error_pixels,tie_pixels,missed_objects,drawn_unseen_objects,visible_objects"),
+                std::string::npos)
+                << line;
         }
         ++lines;
     }
@@ -354,7 +369,8 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     EXPECT_EQ(costs["world_advances"], 6);
     EXPECT_EQ(costs["ground_truth_renders"], 6);
     EXPECT_EQ(costs["error_read_backs"], 12);
-    for (const char* key : {"wall_ms_after_setup", "frame_ms_total", "world_update_ms_total", "ground_truth_ms_total"}) {
+    for (const char* key : {"wall_ms_after_setup", "frame_ms_total", "world_update_ms_total",
+                            "ground_truth_ms_total"}) {
         EXPECT_TRUE(costs[key].is_number()) << key;
     }
     EXPECT_TRUE(std::filesystem::exists(out_dir / "frame-00003-statistical.png"));

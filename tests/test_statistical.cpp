@@ -1,29 +1,28 @@
 // The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
 // drawn before them (culling/depth_raster_device.h): no OpenGL.
-#include "occsim/culling/testing/depth_raster_device.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "culling_fixtures.h"
-
 #include <gtest/gtest.h>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <random>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "culling_fixtures.h"
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "occsim/culling/testing/depth_raster_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+
 namespace occsim {
 namespace {
 
 using testing::buildTree;
+using testing::gridBoxes;
 using testing::inFrustum;
 using testing::makeFrame;
-using testing::gridBoxes;
 using testing::makeView;
 using testing::overview;
 using testing::randomBoxes;
@@ -92,7 +91,8 @@ struct DepthFrame {
 DepthFrame runDepthFrame(Culler& culler, const BspTree& tree, DepthRasterDevice& device,
                          const std::vector<Aabb>& boxes, const Camera& cam, uint64_t frame) {
     device.beginFrame(cam.view_projection, cam.view.eye, boxes);
-    culler.cullAndRender(tree, makeFrame(cam.view, frame, static_cast<double>(frame) / 30.0), device);
+    culler.cullAndRender(tree, makeFrame(cam.view, frame, static_cast<double>(frame) / 30.0),
+                         device);
     const std::vector<uint8_t> truth = device.groundTruth();
     DepthFrame out;
     std::vector<uint8_t> drawn(boxes.size(), 0);
@@ -121,8 +121,7 @@ TEST(StatisticalPaperOrder, AWallDrawnFirstHidesTheFieldBehindIt) {
     DepthRasterDevice device(64, 48, 8);
     DepthFrame total;
     for (uint64_t f = 0; f < 60; ++f) {
-        const Camera cam =
-            makeCamera({0.2f * static_cast<float>(f) - 6.0f, 3, 12}, {0, 2, -40});
+        const Camera cam = makeCamera({0.2f * static_cast<float>(f) - 6.0f, 3, 12}, {0, 2, -40});
         const DepthFrame d = runDepthFrame(culler, tree, device, scene.boxes, cam, f);
         EXPECT_EQ(d.missed, 0u) << "frame " << f;
         ASSERT_GT(d.hidden_in_frustum, 100u) << "the field behind the wall is in view";
@@ -175,7 +174,6 @@ TEST(StatisticalPaperOrder, EachPassQueriesTheNextLevelFrontToBack) {
     for (const QueryTag& t : device.queryTags()) queried.push_back(t.index);
     EXPECT_EQ(queried, expected);
 }
-
 
 // --- The improvements of statistical+, one at a time ------------------------------------------
 
@@ -302,7 +300,8 @@ TEST(StatisticalDescendVisibleInnerNodes, AVisibleInnerNodeDueForAQueryIsNotQuer
         ScriptedQueryDevice device(4);
         runScripted(culler, tree, device, boxes, visible, makeFrame(view, 0, 0.0));
         // 0.5 s later every re-query is due (0.1 s * (2 - 0.5)).
-        const ScriptedFrame f = runScripted(culler, tree, device, boxes, visible, makeFrame(view, 1, 0.5));
+        const ScriptedFrame f =
+            runScripted(culler, tree, device, boxes, visible, makeFrame(view, 1, 0.5));
         expectConservative(f, boxes, visible, view, descend ? "descend" : "paper");
         uint32_t inner = 0, leaves = 0;
         for (const QueryTag& q : f.queries) {
@@ -339,7 +338,8 @@ TEST(StatisticalDrawWhileRequerying, AVisibleNodeDueForAQueryIsDrawnWithoutWaiti
         culler.reset(tree);
         ScriptedQueryDevice device(1000);  // no answer is ready within a frame
         // Frame 0: no statistics, so the query is awaited either way.
-        ScriptedFrame f = runScripted(culler, tree, device, boxes, visible, makeFrame(view, 0, 0.0));
+        ScriptedFrame f =
+            runScripted(culler, tree, device, boxes, visible, makeFrame(view, 0, 0.0));
         EXPECT_EQ(f.drawn, std::vector<uint32_t>{0});
         EXPECT_EQ(f.waited, 1u);
         // Frame 1, 0.5 s later: the re-query is due (0.1 s * (2 - 0.5)).
@@ -407,7 +407,8 @@ TEST(StatisticalVirtualLeaves, HiddenObjectsOfAVisibleInnerNodeAreQueriedNotDraw
         uint32_t bars_paper = 0, bars_leaves = 0, own_queries = 0;
         for (uint32_t o : p.drawn) bars_paper += o >= scene.first_bar;
         for (uint32_t o : v.drawn) bars_leaves += o >= scene.first_bar;
-        for (const QueryTag& t : v.queries) own_queries += t.subject == QueryTag::Subject::NodeObjects;
+        for (const QueryTag& t : v.queries)
+            own_queries += t.subject == QueryTag::Subject::NodeObjects;
         EXPECT_EQ(bars_paper, 6u) << "frame " << f;
         EXPECT_EQ(bars_leaves, 0u) << "frame " << f;
         if (f == 0) {
@@ -445,7 +446,8 @@ TEST(StatisticalObjectQueries, OnlyTheVisibleObjectsOfAVisibleLeafAreDrawn) {
         const ScriptedFrame q = runScripted(objects, tree, device, boxes, visible, frame);
         expectConservative(q, boxes, visible, view, "frame " + std::to_string(f));
         uint32_t object_queries = 0;
-        for (const QueryTag& t : q.queries) object_queries += t.subject == QueryTag::Subject::Object;
+        for (const QueryTag& t : q.queries)
+            object_queries += t.subject == QueryTag::Subject::Object;
         EXPECT_GT(object_queries, 0u);
         if (f >= 2) {
             EXPECT_EQ(std::set<uint32_t>(q.drawn.begin(), q.drawn.end()), visible_set) << f;

@@ -2,28 +2,27 @@
 // nothing. For every registered algorithm on every device in culling/, a moving scene (movers
 // reinserted into the BSP tree each frame, the camera circling) runs a warm-up, and then the
 // frames' cull and reinsert must make no heap allocation at all.
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/devices/approximate_device.h"
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/testing/depth_raster_device.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/devices/tracing_device.h"
-#include "culling_fixtures.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/world.h"
-
 #include <gtest/gtest.h>
-
-#include <glm/gtc/matrix_transform.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <unistd.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <new>
 #include <string>
 #include <vector>
+
+#include "culling_fixtures.h"
+#include "occsim/culling/devices/approximate_device.h"
+#include "occsim/culling/devices/tracing_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/testing/depth_raster_device.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 // Counts calls of the replaceable operator new while g_counting is set. The other forms (arrays,
 // nothrow) call this one in libstdc++, so every container allocation passes here. GCC takes
@@ -66,11 +65,16 @@ enum class DeviceKind {
 
 const char* nameOf(DeviceKind kind) {
     switch (kind) {
-        case DeviceKind::Scripted: return "scripted";
-        case DeviceKind::ScriptedLatency: return "scripted_latency";
-        case DeviceKind::Approximate: return "approximate";
-        case DeviceKind::Tracing: return "tracing";
-        case DeviceKind::DepthRaster: return "depth_raster";
+        case DeviceKind::Scripted:
+            return "scripted";
+        case DeviceKind::ScriptedLatency:
+            return "scripted_latency";
+        case DeviceKind::Approximate:
+            return "approximate";
+        case DeviceKind::Tracing:
+            return "tracing";
+        case DeviceKind::DepthRaster:
+            return "depth_raster";
     }
     return "?";
 }
@@ -102,8 +106,7 @@ Camera cameraAt(uint64_t f) {
     return c;
 }
 
-class SteadyStateAllocation
-    : public ::testing::TestWithParam<std::tuple<size_t, DeviceKind>> {};
+class SteadyStateAllocation : public ::testing::TestWithParam<std::tuple<size_t, DeviceKind>> {};
 
 TEST_P(SteadyStateAllocation, CullAndReinsertAllocateNothing) {
     const AlgorithmTraits& algorithm = *algorithms()[std::get<0>(GetParam())];
@@ -181,14 +184,16 @@ TEST_P(SteadyStateAllocation, CullAndReinsertAllocateNothing) {
 // world's step (movers, every copy posed through its hierarchy, boxes) and the tree's reinsert
 // and refit allocate nothing, and neither does a culler on that tree.
 TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("occsim-alloc-" + std::to_string(::getpid()));
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("occsim-alloc-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    const std::string box = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
+    const std::string box =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
     std::ofstream(dir / "animated.json") << R"({"format_version": 1, "name": "animated", "seed": 3,
       "camera": {"keyframes": [{"time": 0, "position": [0, 3, 30], "target": [0, 0, 0]}]},
       "scene": {"sources": [
-        {"type": "gltf", "path": ")" << box << R"(", "offset": [-10, 0, -10],
+        {"type": "gltf", "path": ")" << box
+                                         << R"(", "offset": [-10, 0, -10],
          "replicate": {"mode": "grid", "count_x": 6, "count_z": 6, "spacing": 4},
          "animation": {"random_phase": true}},
         {"type": "teapots", "count": 40, "region": {"min": [-12, 0, -12], "max": [12, 2, 12]}}]},
@@ -217,7 +222,8 @@ TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing
         tree.refitDirtyBounds();
         device.updateVisibility(visible, state.boxes);
         device.clearLog();
-        culler->cullAndRender(tree, testing::makeFrame(view, f, static_cast<double>(f) / 30.0), device);
+        culler->cullAndRender(tree, testing::makeFrame(view, f, static_cast<double>(f) / 30.0),
+                              device);
         g_counting = false;
         if (f >= kWarmUp) measured += g_allocations;
     }
@@ -226,10 +232,11 @@ TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing
     const WorldState copy = state;
     g_counting = false;
     EXPECT_GT(g_allocations, 0u) << "the counter sees a world's buffers being allocated";
-    EXPECT_GT(state.moved.size(), 36u) << "every copy's inner box, the spinning copies, the teapots";
+    EXPECT_GT(state.moved.size(), 36u)
+        << "every copy's inner box, the spinning copies, the teapots";
     EXPECT_GT(tree.stats().reinserts_moved, 0u);
-    EXPECT_EQ(measured, 0u) << "an animated world allocated " << measured << " times in " << kMeasured
-                            << " steady frames";
+    EXPECT_EQ(measured, 0u) << "an animated world allocated " << measured << " times in "
+                            << kMeasured << " steady frames";
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -1,17 +1,17 @@
 // Numerical traps, end to end through OSMesa (ctest label `stress`; the fast ones also run in the
 // normal suite): a scene far from the world origin must cull exactly as it does at the origin,
 // with zero error for every conservative algorithm.
-#include "occsim/culling/registry/registry.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/scenario.h"
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/registry/registry.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 namespace {
@@ -64,8 +64,10 @@ TEST(FarFromTheOrigin, AScenarioMovedByAMillionMetresMakesTheSameDecisionsWithZe
         ASSERT_EQ(a.frames.size(), b.frames.size());
         for (size_t f = 0; f < a.frames.size(); ++f) {
             EXPECT_EQ(a.frames[f].queries, b.frames[f].queries) << name << " frame " << f;
-            EXPECT_EQ(a.frames[f].objects_drawn, b.frames[f].objects_drawn) << name << " frame " << f;
-            EXPECT_EQ(a.frames[f].visible_objects, b.frames[f].visible_objects) << name << " frame " << f;
+            EXPECT_EQ(a.frames[f].objects_drawn, b.frames[f].objects_drawn)
+                << name << " frame " << f;
+            EXPECT_EQ(a.frames[f].visible_objects, b.frames[f].visible_objects)
+                << name << " frame " << f;
             if (a.algorithm->conservative) {
                 EXPECT_EQ(b.frames[f].error_pixels, 0) << name << " frame " << f;
             }
@@ -87,7 +89,8 @@ TEST(LongTime, AScenarioStartedAtABillionSecondsMakesTheSameDecisionsAsFromZero)
         const std::string name(a.algorithm->name);
         for (size_t f = 0; f < a.frames.size(); ++f) {
             EXPECT_EQ(a.frames[f].queries, b.frames[f].queries) << name << " frame " << f;
-            EXPECT_EQ(a.frames[f].objects_drawn, b.frames[f].objects_drawn) << name << " frame " << f;
+            EXPECT_EQ(a.frames[f].objects_drawn, b.frames[f].objects_drawn)
+                << name << " frame " << f;
         }
         EXPECT_DOUBLE_EQ(b.frames.back().time_s, 1e9 + a.frames.back().time_s);
     }
@@ -109,7 +112,8 @@ Scenario withCamera(const fs::path& file, double near_m, double far_m, bool conv
 int64_t errorPixelsOfConservative(const BenchResult& result) {
     int64_t total = 0;
     for (const RunRecord& r : result.runs) {
-        if (r.algorithm->conservative) total += r.summary.error_pixels_total + r.summary.missed_objects_total;
+        if (r.algorithm->conservative)
+            total += r.summary.error_pixels_total + r.summary.missed_objects_total;
     }
     return total;
 }

@@ -1,13 +1,12 @@
-#include "sim/scene/teapot.h"
-
 #include <gtest/gtest.h>
-
-#include <glm/glm.hpp>
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <stdexcept>
+
+#include "sim/scene/teapot.h"
 
 namespace occsim {
 namespace {

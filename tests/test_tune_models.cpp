@@ -2,19 +2,6 @@
 // from known parameters plus noise (and a few outliers) must give those parameters back within
 // the stated tolerances; the choice, the design, the parameter flags, the sample log and
 // tuned.json each do what their headers say.
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/geometry/random.h"
-#include "sim/scenario/culling_file.h"
-#include "tune/cost_model.h"
-#include "tune/design.h"
-#include "tune/errors.h"
-#include "tune/parameters.h"
-#include "tune/report.h"
-#include "tune/result.h"
-#include "tune/response_model.h"
-#include "tune/sample_log.h"
-#include "tune/tuned_file.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +10,19 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/geometry/random.h"
+#include "occsim/culling/registry/registry.h"
+#include "sim/scenario/culling_file.h"
+#include "tune/cost_model.h"
+#include "tune/design.h"
+#include "tune/errors.h"
+#include "tune/parameters.h"
+#include "tune/report.h"
+#include "tune/response_model.h"
+#include "tune/result.h"
+#include "tune/sample_log.h"
+#include "tune/tuned_file.h"
 
 namespace occsim::tune {
 namespace {
@@ -37,8 +37,8 @@ double gaussian(Rng& rng) {
 
 const CostModel kTrueCost{6.0, 0.03, 0.09, 0.012, 1.0};
 
-std::vector<std::vector<FrameCounts>> syntheticFrames(const CostModel& truth, double noise_ms, double outlier_share,
-                                                      uint64_t seed) {
+std::vector<std::vector<FrameCounts>> syntheticFrames(const CostModel& truth, double noise_ms,
+                                                      double outlier_share, uint64_t seed) {
     Rng rng(seed);
     std::vector<std::vector<FrameCounts>> runs(16);
     for (auto& run : runs) {
@@ -65,12 +65,14 @@ TEST(CostModel, FitRecoversKnownCostsFromNoisyFramesWithOutliers) {
     ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
     EXPECT_NEAR(fit.model.constant_ms, kTrueCost.constant_ms, 0.10 * kTrueCost.constant_ms);
     EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.10 * kTrueCost.query_ms);
-    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms, 0.10 * kTrueCost.kilotriangle_ms);
+    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms,
+                0.10 * kTrueCost.kilotriangle_ms);
     EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.10 * kTrueCost.draw_ms);
     EXPECT_NEAR(fit.model.wait_factor, kTrueCost.wait_factor, 0.10 * kTrueCost.wait_factor);
     EXPECT_EQ(fit.frames, 960u);
     EXPECT_EQ(fit.groups, 16u);
-    EXPECT_NEAR(fit.model.triangleMs(), kTrueCost.kilotriangle_ms / 1000.0, 0.10 * kTrueCost.kilotriangle_ms / 1000.0);
+    EXPECT_NEAR(fit.model.triangleMs(), kTrueCost.kilotriangle_ms / 1000.0,
+                0.10 * kTrueCost.kilotriangle_ms / 1000.0);
     // The held-out error is the noise plus the outliers' share, far below the frames' spread.
     EXPECT_TRUE(std::isfinite(fit.heldout_rms_ms));
     EXPECT_LT(fit.heldout_rms_ms, 25.0);
@@ -80,7 +82,8 @@ TEST(CostModel, WithoutOutliersTheFitIsTight) {
     const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 12));
     ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
     EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.03 * kTrueCost.query_ms);
-    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms, 0.03 * kTrueCost.kilotriangle_ms);
+    EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms,
+                0.03 * kTrueCost.kilotriangle_ms);
     EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.03 * kTrueCost.draw_ms);
     // Residual and held-out error are the noise (1 ms) within 20 %.
     EXPECT_NEAR(fit.residual_rms_ms, 1.0, 0.2);
@@ -111,8 +114,10 @@ TEST(CostModel, CoefficientsStayNonNegative) {
 TEST(CostModel, AnIterationLimitTooSmallIsReportedAsNotConverged) {
     const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 13), 1);
     EXPECT_FALSE(fit.fit.converged);
-    EXPECT_NE(fit.fit.ceres_summary.find("Ceres Solver Report"), std::string::npos) << fit.fit.ceres_summary;
-    EXPECT_NE(fit.fit.ceres_summary.find("NO_CONVERGENCE"), std::string::npos) << fit.fit.ceres_summary;
+    EXPECT_NE(fit.fit.ceres_summary.find("Ceres Solver Report"), std::string::npos)
+        << fit.fit.ceres_summary;
+    EXPECT_NE(fit.fit.ceres_summary.find("NO_CONVERGENCE"), std::string::npos)
+        << fit.fit.ceres_summary;
 }
 
 // ---- response model ------------------------------------------------------------------------
@@ -159,7 +164,9 @@ TEST(ResponseModel, FitRecoversAKnownQuadraticAndItsMinimum) {
     EXPECT_LT(fit.loo_rms, 0.1);
 }
 
-double dependsOnFirstTwo(const Point& x) { return 1.0 + 0.3 * (x[0] - 0.6) * (x[0] - 0.6) - 0.08 * x[1]; }
+double dependsOnFirstTwo(const Point& x) {
+    return 1.0 + 0.3 * (x[0] - 0.6) * (x[0] - 0.6) - 0.08 * x[1];
+}
 
 TEST(ResponseModel, AParameterWithNoEffectIsDropped) {
     const Data d = responseData(24, 0.004, 31, dependsOnFirstTwo);
@@ -169,8 +176,8 @@ TEST(ResponseModel, AParameterWithNoEffectIsDropped) {
     EXPECT_EQ(fit.model.active, (std::vector<size_t>{0, 1}));
     const Point best = minimiseOverBox(fit.model, {0.5, 0.5, 0.25});
     EXPECT_NEAR(best[0], 0.6, 0.1);
-    EXPECT_NEAR(best[1], 1.0, 1e-9);   // on the face: the response falls along x1
-    EXPECT_EQ(best[2], 0.25);          // not active: where it was asked to stay
+    EXPECT_NEAR(best[1], 1.0, 1e-9);  // on the face: the response falls along x1
+    EXPECT_EQ(best[2], 0.25);         // not active: where it was asked to stay
 }
 
 TEST(ResponseModel, PureNoiseKeepsNoParameter) {
@@ -263,19 +270,25 @@ std::string inputError(const std::string& params, const std::vector<std::string>
 }
 
 TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
-    EXPECT_NE(inputError("speed", {}).find("unknown parameter 'speed' of statistical; expected one of: base_time, decay_a, decay_b"),
+    EXPECT_NE(inputError("speed", {})
+                  .find("unknown parameter 'speed' of statistical; expected one of: base_time, "
+                        "decay_a, decay_b"),
               std::string::npos);
     EXPECT_NE(inputError("base_time,base_time", {}).find("twice"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=1:1"}).find("empty range"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"base_time=2:1"}).find("inverted range"), std::string::npos);
     EXPECT_NE(inputError("base_time", {"decay_a=1:2"}).find("not tuned"), std::string::npos);
-    EXPECT_NE(inputError("decay_b", {"decay_b=0:2"}).find("decay_b=2 is not a valid setting: expected a value in [0, 1]"),
+    EXPECT_NE(inputError("decay_b", {"decay_b=0:2"})
+                  .find("decay_b=2 is not a valid setting: expected a value in [0, 1]"),
               std::string::npos);
-    EXPECT_NE(inputError("base_time", {"base_time=0.1"}).find("expected name=lo:hi"), std::string::npos);
-    EXPECT_NE(inputError("base_time", {"base_time=a:1"}).find("two finite numbers"), std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=0.1"}).find("expected name=lo:hi"),
+              std::string::npos);
+    EXPECT_NE(inputError("base_time", {"base_time=a:1"}).find("two finite numbers"),
+              std::string::npos);
     EXPECT_NE(inputError("base_time,", {}).find("empty parameter name"), std::string::npos);
     EXPECT_NE(inputError("", {}, "vfc").find("marks no option tunable"), std::string::npos);
-    for (const std::string& e : {inputError("speed", {}), inputError("base_time", {"base_time=2:1"})}) {
+    for (const std::string& e :
+         {inputError("speed", {}), inputError("base_time", {"base_time=2:1"})}) {
         EXPECT_EQ(e.find('\n'), std::string::npos);
     }
 
@@ -290,11 +303,13 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     EXPECT_EQ(plus.parameters[2].name, "queries_before_restart");
     EXPECT_TRUE(plus.parameters[2].integer);
     EXPECT_EQ(plus.parameters[3].name, "requery_parallax");
-    EXPECT_EQ(plus.apply(OptionValues(findAlgorithm("statistical+")->options), {2.0, 0.5, 7.6, 0.05})
-                  .number("queries_before_restart"),
-              8.0);
+    EXPECT_EQ(
+        plus.apply(OptionValues(findAlgorithm("statistical+")->options), {2.0, 0.5, 7.6, 0.05})
+            .number("queries_before_restart"),
+        8.0);
 
-    const ParameterSpace s = parseParameterSpace(statistical(), "decay_a,base_time", {"base_time=0.2:1.2"});
+    const ParameterSpace s =
+        parseParameterSpace(statistical(), "decay_a,base_time", {"base_time=0.2:1.2"});
     ASSERT_EQ(s.size(), 2u);
     EXPECT_EQ(s.parameters[0].name, "decay_a");
     EXPECT_EQ(s.bounds[1].lo, 0.2);
@@ -322,10 +337,14 @@ TEST(Parameters, AChosenValueOnABoundIsReportedWithTheBoundsThatWidenIt) {
     r.bounds_hit = r.space.boundsHit(r.tuned_values);
     const std::vector<std::string> lines = boundWarnings(r);
     ASSERT_EQ(lines.size(), 2u);
-    EXPECT_NE(lines[0].find("base_time = 0.05 s sits on the lower bound of its search range [0.05, 2]"), std::string::npos)
+    EXPECT_NE(
+        lines[0].find("base_time = 0.05 s sits on the lower bound of its search range [0.05, 2]"),
+        std::string::npos)
         << lines[0];
-    EXPECT_NE(lines[0].find("widen it, e.g. --bounds base_time=0:2"), std::string::npos) << lines[0];
-    EXPECT_NE(lines[1].find("(the end of the option's valid range)"), std::string::npos) << lines[1];
+    EXPECT_NE(lines[0].find("widen it, e.g. --bounds base_time=0:2"), std::string::npos)
+        << lines[0];
+    EXPECT_NE(lines[1].find("(the end of the option's valid range)"), std::string::npos)
+        << lines[1];
     r.tuned_values = {0.7, 0.5};
     r.bounds_hit = r.space.boundsHit(r.tuned_values);
     EXPECT_TRUE(boundWarnings(r).empty());
@@ -348,7 +367,8 @@ LogSettings settings() {
 }
 
 TEST(SampleLog, BatchesAreWrittenWholeAndReadBackAsRatios) {
-    const auto file = std::filesystem::temp_directory_path() / ("occtune-log-" + std::to_string(::getpid()) + ".jsonl");
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("occtune-log-" + std::to_string(::getpid()) + ".jsonl");
     {
         SampleLog log(file, settings());
         LoggedRun ref{0, true, {2.0 / 3.0}, 20.0, 40.0, 0, {{20.0, 1, 2, 3, 4}}};
@@ -383,13 +403,16 @@ TEST(SampleLog, BatchesAreWrittenWholeAndReadBackAsRatios) {
 }
 
 TEST(SampleLog, ALogThatIsNotOneIsBadInputNamingTheLine) {
-    const auto file = std::filesystem::temp_directory_path() / ("occtune-bad-" + std::to_string(::getpid()) + ".jsonl");
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("occtune-bad-" + std::to_string(::getpid()) + ".jsonl");
     std::ofstream(file) << "{\"occtune_sample_log\": 1}\n";
     try {
         SampleLog::read(file);
         FAIL() << "accepted";
     } catch (const TuneInputError& e) {
-        EXPECT_NE(std::string(e.what()).find(":1: not an occtune sample log line"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(":1: not an occtune sample log line"),
+                  std::string::npos)
+            << e.what();
     }
     std::filesystem::remove(file);
 }
@@ -416,7 +439,8 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     // statistical+ weighs costs: its file carries the fitted model for statistical+ alone, read
     // back as that culler's cost model; the shared one, which other cullers read, stays unknown.
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
-    const TunedFile plus_file = tunedFile(plus, OptionValues(plus.options), CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    const TunedFile plus_file =
+        tunedFile(plus, OptionValues(plus.options), CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
     Scenario p;
     applyCullingFile(CullingFile{"tuned.json", nlohmann::json::parse(plus_file.text)}, p);
     EXPECT_TRUE(plus_file.has_cost_option);
@@ -449,7 +473,9 @@ TEST(Confirmation, TheVerdictRejectsWhatItsOwnConfirmationShowsWorseAndCallsSame
     const Verdict rejected = judgeConfirmation({slower, held}, false);
     EXPECT_EQ(rejected.kind, Verdict::Kind::Rejected);
     EXPECT_STREQ(rejected.fileName(), "tuned.rejected.json");
-    EXPECT_NE(rejected.reason.find("fitted (seed 7): slower in every repetition"), std::string::npos) << rejected.reason;
+    EXPECT_NE(rejected.reason.find("fitted (seed 7): slower in every repetition"),
+              std::string::npos)
+        << rejected.reason;
     slower.repetitions = 1;  // one repetition shows no "every"
     EXPECT_EQ(judgeConfirmation({slower, held}, false).kind, Verdict::Kind::Accepted);
 

@@ -1,22 +1,21 @@
 // The viewer's parts that need no window: scripted input, the flying camera, the key table, the
 // text panel and recorded flights as scenario files.
-#include "occsim/culling/registry/registry.h"
-#include "render/window_events.h"
-#include "sim/view/fly_camera.h"
-#include "sim/view/hud.h"
-#include "sim/view/node_boxes.h"
-#include "sim/view/key_bindings.h"
-#include "sim/view/recorded_scenario.h"
-#include "sim/view/view_script.h"
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
+#include "occsim/culling/registry/registry.h"
+#include "render/window_events.h"
+#include "sim/view/fly_camera.h"
+#include "sim/view/hud.h"
+#include "sim/view/key_bindings.h"
+#include "sim/view/node_boxes.h"
+#include "sim/view/recorded_scenario.h"
+#include "sim/view/view_script.h"
 
 namespace occsim {
 namespace {
@@ -54,11 +53,16 @@ TEST(ViewScript, MistakesNameTheFileTheLineAndWhatWasExpected) {
               "drive.txt:3: unknown command 'prss'; expected one of: wait, press, down, up, hold, "
               "drag, wheel, resize, quit");
     const std::string bad_key = scriptError("press shift+tabb");
-    EXPECT_EQ(bad_key.rfind("drive.txt:1: unknown key 'tabb'; expected a letter, a digit", 0), 0u) << bad_key;
-    EXPECT_EQ(scriptError("# set-up\nwait 0"), "drive.txt:2: wait FRAMES: expected an integer in [1, 1000000], got '0'");
-    EXPECT_EQ(scriptError("hold w"), "drive.txt:1: 'hold' takes 2 arguments (hold KEY FRAMES), got 1");
-    EXPECT_EQ(scriptError("resize 800 x"), "drive.txt:1: resize HEIGHT: expected an integer in [16, 8192], got 'x'");
-    EXPECT_EQ(scriptError("wheel 2.5"), "drive.txt:1: wheel NOTCHES: expected an integer in [-100, 100], got '2.5'");
+    EXPECT_EQ(bad_key.rfind("drive.txt:1: unknown key 'tabb'; expected a letter, a digit", 0), 0u)
+        << bad_key;
+    EXPECT_EQ(scriptError("# set-up\nwait 0"),
+              "drive.txt:2: wait FRAMES: expected an integer in [1, 1000000], got '0'");
+    EXPECT_EQ(scriptError("hold w"),
+              "drive.txt:1: 'hold' takes 2 arguments (hold KEY FRAMES), got 1");
+    EXPECT_EQ(scriptError("resize 800 x"),
+              "drive.txt:1: resize HEIGHT: expected an integer in [16, 8192], got 'x'");
+    EXPECT_EQ(scriptError("wheel 2.5"),
+              "drive.txt:1: wheel NOTCHES: expected an integer in [-100, 100], got '2.5'");
     EXPECT_EQ(scriptError("quit now"), "drive.txt:1: 'quit' takes 0 arguments (quit), got 1");
 }
 
@@ -80,18 +84,32 @@ std::vector<std::string> playAll(const std::string& text) {
         std::string f;
         for (const WindowEvent& e : in.events) {
             switch (e.type) {
-                case WindowEvent::Type::KeyDown: f += "+" + std::string(e.key) + " "; break;
-                case WindowEvent::Type::KeyUp: f += "-" + std::string(e.key) + " "; break;
-                case WindowEvent::Type::MouseDown: f += "mouse+ "; break;
-                case WindowEvent::Type::MouseUp: f += "mouse- "; break;
+                case WindowEvent::Type::KeyDown:
+                    f += "+" + std::string(e.key) + " ";
+                    break;
+                case WindowEvent::Type::KeyUp:
+                    f += "-" + std::string(e.key) + " ";
+                    break;
+                case WindowEvent::Type::MouseDown:
+                    f += "mouse+ ";
+                    break;
+                case WindowEvent::Type::MouseUp:
+                    f += "mouse- ";
+                    break;
                 case WindowEvent::Type::CursorMove:
                     f += "at(" + std::to_string(int(e.x)) + "," + std::to_string(int(e.y)) + ") ";
                     break;
-                case WindowEvent::Type::Scroll: f += "wheel(" + std::to_string(int(e.y)) + ") "; break;
-                default: f += "? "; break;
+                case WindowEvent::Type::Scroll:
+                    f += "wheel(" + std::to_string(int(e.y)) + ") ";
+                    break;
+                default:
+                    f += "? ";
+                    break;
             }
         }
-        if (in.resize) f += "resize(" + std::to_string(in.resize->first) + "x" + std::to_string(in.resize->second) + ") ";
+        if (in.resize)
+            f += "resize(" + std::to_string(in.resize->first) + "x" +
+                 std::to_string(in.resize->second) + ") ";
         if (in.quit) f += "quit";
         frames.push_back(f);
         if (in.quit) break;
@@ -100,15 +118,17 @@ std::vector<std::string> playAll(const std::string& text) {
 }
 
 TEST(ViewScript, InputAppliesBeforeTheNextFrameAndWaitsAndHoldsCountFrames) {
-    const std::vector<std::string> frames =
-        playAll("press b   # boxes\nwait 2\nhold w 3\npress shift+tab\ndrag 10 -5\nwheel -2\nresize 320 200\n");
+    const std::vector<std::string> frames = playAll(
+        "press b   # boxes\nwait 2\nhold w 3\npress shift+tab\ndrag 10 -5\nwheel -2\nresize 320 "
+        "200\n");
     const std::vector<std::string> expected = {
         "+b -b ",  // press, then the first of the two waited frames
         "",
-        "+w ",     // held for three frames
+        "+w ",  // held for three frames
         "",
         "",
-        "-w +shift +tab -tab -shift at(100,100) mouse+ at(110,95) mouse- wheel(-2) resize(320x200) quit",
+        "-w +shift +tab -tab -shift at(100,100) mouse+ at(110,95) mouse- wheel(-2) resize(320x200) "
+        "quit",
     };
     EXPECT_EQ(frames, expected);
 }
@@ -145,7 +165,8 @@ TEST(FlyCamera, TakesOverAPoseAndFliesAlongItsDirectionAtItsSpeed) {
     FlyCamera camera(2.0);
     camera.setPose({{1, 2, 3}, {1, 2, -7}});  // looking down -z
     const CameraPose pose = camera.pose();
-    EXPECT_NEAR(glm::length(glm::normalize(pose.target - pose.position) - glm::dvec3(0, 0, -1)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(glm::normalize(pose.target - pose.position) - glm::dvec3(0, 0, -1)),
+                0.0, 1e-12);
 
     FlyInput forward;
     forward.forward = 1;
@@ -206,7 +227,9 @@ TEST(ViewHud, ShowsTheAlgorithmAndTheFrameFiguresAndErrorOnlyWhenOn) {
     s.recorded_frames = 9;
     lines = hudLines(s);
     EXPECT_EQ(lines[0], "chc++ (5/7)   frame 12  0.40 s   flying 3.0 m/s   rec 9 frames");
-    EXPECT_EQ(lines[1], "frame time 12.35 ms   queries 175   triangles 1,054,541   error px 1,234   ties 56   missed 2");
+    EXPECT_EQ(lines[1],
+              "frame time 12.35 ms   queries 175   triangles 1,054,541   error px 1,234   ties 56  "
+              " missed 2");
 }
 
 // Every row of the panel, keys and legend included, lies inside the picture and apart from the
@@ -219,8 +242,8 @@ TEST(ViewHud, EveryRowFitsA400PixelTallWindow) {
     s.help = true;
     s.legend = true;
     const size_t rows = hudLines(s).size() + shownNodeBoxClasses().size();
-    for (const auto& [w, h] : {std::pair{1200u, 400u}, std::pair{1000u, 400u}, std::pair{800u, 400u},
-                               std::pair{1600u, 300u}}) {
+    for (const auto& [w, h] : {std::pair{1200u, 400u}, std::pair{1000u, 400u},
+                               std::pair{800u, 400u}, std::pair{1600u, 300u}}) {
         const HudLayout layout = layoutHud(w, h, s);
         ASSERT_EQ(layout.rows.size(), rows);
         const int text_h = RasterCanvas::textHeight(layout.scale);
@@ -232,8 +255,8 @@ TEST(ViewHud, EveryRowFitsA400PixelTallWindow) {
             EXPECT_LE(r.x + r.width, static_cast<int>(w)) << w << "x" << h << " row " << i;
             for (size_t j = 0; j < i; ++j) {
                 const HudRow& o = layout.rows[j];
-                const bool apart = r.x >= o.x + o.width || o.x >= r.x + r.width || r.y >= o.y + text_h ||
-                                   o.y >= r.y + text_h;
+                const bool apart = r.x >= o.x + o.width || o.x >= r.x + r.width ||
+                                   r.y >= o.y + text_h || o.y >= r.y + text_h;
                 EXPECT_TRUE(apart) << w << "x" << h << " rows " << j << " and " << i;
             }
         }
@@ -252,7 +275,8 @@ TEST(ViewDocs, TheKeysAndAlgorithmsOfViewerMdAreTheProgramsOwn) {
     ASSERT_NE(keys_at, std::string::npos);
     const std::string keys = doc.substr(keys_at, doc.find("Flying", keys_at) - keys_at);
     size_t rows = 0;
-    for (size_t at = keys.find("\n| `"); at != std::string::npos; at = keys.find("\n| `", at + 1)) ++rows;
+    for (size_t at = keys.find("\n| `"); at != std::string::npos; at = keys.find("\n| `", at + 1))
+        ++rows;
     EXPECT_EQ(rows, actionKeys().size()) << keys;
     for (const KeyBinding& k : actionKeys()) {
         EXPECT_NE(keys.find("\n| `" + std::string(k.keys) + "` |"), std::string::npos) << k.keys;
@@ -269,7 +293,8 @@ TEST(ViewDocs, TheKeysAndAlgorithmsOfViewerMdAreTheProgramsOwn) {
     while (std::getline(lines, line)) {
         unsigned digit = 0;
         char name[64] = {};
-        if (std::sscanf(line.c_str(), "press %u # %63[^: ]", &digit, name) == 2 && digit >= 1 && digit <= all.size()) {
+        if (std::sscanf(line.c_str(), "press %u # %63[^: ]", &digit, name) == 2 && digit >= 1 &&
+            digit <= all.size()) {
             EXPECT_EQ(std::string(name), all[digit - 1]->name) << line;
             ++presses;
         }
@@ -289,7 +314,8 @@ std::vector<CameraKeyframe> flight(size_t frames, double dt) {
     std::vector<CameraKeyframe> keys;
     for (size_t i = 0; i < frames; ++i) {
         const double t = static_cast<double>(i) * dt;
-        keys.push_back({t, {0.1 * double(i), 2.0, 5.0 - 0.3 * double(i)}, {0.1 * double(i), 1.5, -5.0}});
+        keys.push_back(
+            {t, {0.1 * double(i), 2.0, 5.0 - 0.3 * double(i)}, {0.1 * double(i), 1.5, -5.0}});
     }
     return keys;
 }
@@ -363,7 +389,8 @@ TEST(RecordedScenario, ExpectedFramesAreClampedToTheFlight) {
 })";
     const auto dir = freshDir("recorded-expect");
     const Scenario original = parseScenarioText(text, dir / "orbit.json");
-    const std::string written = recordedScenarioText(text, original, flight(4, original.dt_s), dir / "flight.json");
+    const std::string written =
+        recordedScenarioText(text, original, flight(4, original.dt_s), dir / "flight.json");
     const Scenario recorded = parseScenarioText(written, dir / "flight.json");
     ASSERT_TRUE(recorded.expect.has_value());
     EXPECT_EQ(recorded.expect->frames, 4u);

@@ -2,13 +2,19 @@
 // the build has): the live
 // camera, held worlds and algorithm switches on a SharedWorld, a resizable framebuffer, CPU images
 // shown in a default framebuffer, and the composed picture with the node boxes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "headless_backends.h"
+#include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/registry/registry.h"
 #include "render/gl_api.h"
-#include "headless_backends.h"
-#include "render/headless_context.h"
 #include "render/gl_image_presenter.h"
 #include "render/gl_renderer.h"
-#include "occsim/culling/cullers/statistical_culler.h"
+#include "render/headless_context.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
@@ -16,19 +22,14 @@
 #include "sim/view/view_picture.h"
 #include "sim/world/camera_path.h"
 
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <memory>
-#include <stdexcept>
-
 namespace occsim {
 namespace {
 
-const std::filesystem::path kSmall = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
+const std::filesystem::path kSmall =
+    std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
 
 class ViewGl : public ::testing::TestWithParam<Backend> {
-protected:
+  protected:
     void SetUp() override {
         scenario_ = parseScenarioFile(kSmall);
         context_ = createHeadlessContext({GetParam(), {}}, scenario_.width, scenario_.height);
@@ -59,8 +60,9 @@ protected:
 // (sim/run/culler_setup.h): a culler that weighs costs gets a cost model measured on this
 // renderer, the others are left alone, and a cost model the scenario gives is kept.
 TEST_P(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
-    std::vector<RunConfig> configs{RunConfig{"vfc", findAlgorithm("vfc"), scenario_.culler},
-                                   RunConfig{"statistical+", findAlgorithm("statistical+"), scenario_.culler}};
+    std::vector<RunConfig> configs{
+        RunConfig{"vfc", findAlgorithm("vfc"), scenario_.culler},
+        RunConfig{"statistical+", findAlgorithm("statistical+"), scenario_.culler}};
     const auto choice = chooseCostModel(configs, *scene_, scenario_, *renderer_, LatencyMode{});
     ASSERT_TRUE(choice);
     EXPECT_EQ(choice->source, "calibrated");
@@ -73,7 +75,8 @@ TEST_P(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
 
     Scenario given = scenario_;
     given.culler.cost_model = CostModel{0.5, 0.001, 0.0};
-    std::vector<RunConfig> kept{RunConfig{"statistical+", findAlgorithm("statistical+"), given.culler}};
+    std::vector<RunConfig> kept{
+        RunConfig{"statistical+", findAlgorithm("statistical+"), given.culler}};
     EXPECT_EQ(chooseCostModel(kept, *scene_, given, *renderer_, LatencyMode{})->source, "scenario");
     EXPECT_EQ(kept[0].culler.cost_model, (CostModel{0.5, 0.001, 0.0}));
 }
@@ -158,14 +161,16 @@ TEST_P(ViewGl, TheFramebufferFollowsANewSize) {
     sim->renderFrame();
     const std::vector<uint32_t> small = ids();
     ASSERT_EQ(small.size(), 96u * 64u);
-    EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }), 96 * 64 / 4);
+    EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }),
+              96 * 64 / 4);
 }
 
 TEST_P(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
     // The presenter draws into a window's default framebuffer; an EGL context made current
     // without a surface has none (headless runs render into framebuffer objects). OSMesa's client
     // buffer stands in for a window here, and test_view_window runs the presenter in a real one.
-    if (GetParam() == Backend::Egl) GTEST_SKIP() << "a surfaceless EGL context has no default framebuffer";
+    if (GetParam() == Backend::Egl)
+        GTEST_SKIP() << "a surfaceless EGL context has no default framebuffer";
     // Four quadrants of different colours, rows bottom-up.
     const uint32_t w = scenario_.width, h = scenario_.height;
     std::vector<uint8_t> image(size_t{w} * h * 4);
@@ -183,7 +188,8 @@ TEST_P(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
     glFinish();
     std::vector<uint8_t> shown(image.size());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadPixels(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), GL_RGBA, GL_UNSIGNED_BYTE, shown.data());
+    glReadPixels(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), GL_RGBA, GL_UNSIGNED_BYTE,
+                 shown.data());
     EXPECT_EQ(shown, image);
 }
 
@@ -205,17 +211,19 @@ TEST_P(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
 
     sim->renderFrame();  // not traced: nothing to draw boxes from
     renderer_->readColor(rgba);
-    const RasterCanvas plain =
-        composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});
-    EXPECT_EQ(countColour(plain, visible), countColour(canvasFromBottomUp(rgba, renderer_->width(), renderer_->height()), visible));
+    const RasterCanvas plain = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
+                                                  *sim, scenario_.camera, layers, {});
+    EXPECT_EQ(
+        countColour(plain, visible),
+        countColour(canvasFromBottomUp(rgba, renderer_->width(), renderer_->height()), visible));
 
     LiveControls controls;
     controls.trace_every_frame = true;
     sim->world().setLiveControls(controls);
     for (int f = 0; f < 3; ++f) sim->renderFrame();  // CHC settles into querying
     renderer_->readColor(rgba);
-    const RasterCanvas boxed =
-        composeViewPicture(rgba, renderer_->width(), renderer_->height(), *sim, scenario_.camera, layers, {});
+    const RasterCanvas boxed = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
+                                                  *sim, scenario_.camera, layers, {});
     EXPECT_GT(countColour(boxed, visible), 100u);
     EXPECT_GT(countColour(boxed, nodeClassColour(NodeClass::OcclusionCulled)), 20u);
 }

@@ -3,15 +3,16 @@
 // switches algorithms, shows node boxes and the bird's-eye view, records a flight, takes
 // screenshots, resizes and closes with exit code 0, and the recorded flight replays headless to
 // the very pixels the window showed.
+#include <gtest/gtest.h>
+
+#include "shell_command.h"
 #include "sim/output/birds_eye.h"
 #include "sim/scenario/scenario.h"
 
-#include "shell_command.h"
-
-#include <gtest/gtest.h>
-
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -19,8 +20,6 @@
 #include <fstream>
 #include <set>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace occsim {
 namespace {
@@ -40,20 +39,27 @@ std::filesystem::path freshDir(const std::string& name) {
     return dir;
 }
 
-size_t lineCount(const std::string& s) { return static_cast<size_t>(std::count(s.begin(), s.end(), '\n')); }
+size_t lineCount(const std::string& s) {
+    return static_cast<size_t>(std::count(s.begin(), s.end(), '\n'));
+}
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 struct Image {
     int width = 0, height = 0;
     std::vector<Rgb> pixels;
-    size_t count(Rgb c) const { return static_cast<size_t>(std::count(pixels.begin(), pixels.end(), c)); }
+    size_t count(Rgb c) const {
+        return static_cast<size_t>(std::count(pixels.begin(), pixels.end(), c));
+    }
 };
 
 Image readPng(const std::filesystem::path& file) {
     Image image;
     int channels = 0;
-    unsigned char* data = stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
+    unsigned char* data =
+        stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
     if (!data) return image;
     for (int i = 0; i < image.width * image.height; ++i) {
         image.pixels.push_back({data[3 * i], data[3 * i + 1], data[3 * i + 2]});
@@ -67,7 +73,8 @@ TEST(ViewWindow, OccsimDoesNotLinkGlfw) {
     ASSERT_EQ(o.exit_code, 0) << o.output;
     ASSERT_TRUE(contains(o.output, "libc.so")) << o.output;  // ldd really listed the libraries
     std::string lower = o.output;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     EXPECT_FALSE(contains(lower, "glfw")) << o.output;
 }
 
@@ -146,13 +153,15 @@ constexpr uint32_t kRecordedFrames = 12;  // hold w 6 + hold d 4 + wait 2
 bool haveXvfbRun() { return shell("command -v xvfb-run").exit_code == 0; }
 
 TEST(ViewWindow, AScriptedSessionUnderXvfbSavesScreenshotsAndAFlightThatReplaysHeadless) {
-    if (!haveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb xauth); the window test needs it";
+    if (!haveXvfbRun())
+        GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb xauth); the window test needs it";
     const auto dir = freshDir("session");
     const auto script = dir / "session.txt";
     std::ofstream(script) << kSession;
     const auto out = dir / "out";
-    const Outcome o = shell("xvfb-run -a -s '-screen 0 1280x1024x24' " + kOccsim + " view " + kSmall +
-                            " --size 640x480 --script " + script.string() + " --out " + out.string());
+    const Outcome o =
+        shell("xvfb-run -a -s '-screen 0 1280x1024x24' " + kOccsim + " view " + kSmall +
+              " --size 640x480 --script " + script.string() + " --out " + out.string());
     ASSERT_EQ(o.exit_code, 0) << o.output;
     EXPECT_TRUE(contains(o.output, "recorded: ")) << o.output;
 
@@ -189,7 +198,8 @@ TEST(ViewWindow, AScriptedSessionUnderXvfbSavesScreenshotsAndAFlightThatReplaysH
     ASSERT_EQ(window.width, replay.width);
     ASSERT_EQ(window.height, replay.height);
     size_t differing = 0;
-    for (size_t i = 0; i < window.pixels.size(); ++i) differing += !(window.pixels[i] == replay.pixels[i]);
+    for (size_t i = 0; i < window.pixels.size(); ++i)
+        differing += !(window.pixels[i] == replay.pixels[i]);
     EXPECT_LE(differing, window.pixels.size() / 1000) << "of " << window.pixels.size() << " pixels";
 
     // The window was resized.

@@ -1,14 +1,13 @@
 // Scene building, movers and the camera path: deterministic, bounded, smooth.
-#include "sim/world/camera_path.h"
-#include "sim/run/frame_stats.h"
-#include "sim/scenario/scenario.h"
-#include "sim/world/world.h"
-
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
-#include <cmath>
+#include "sim/run/frame_stats.h"
+#include "sim/scenario/scenario.h"
+#include "sim/world/camera_path.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -98,10 +97,12 @@ TEST(Movers, OrbitersKeepTheirRadiusAndSpeedAndBoxesFollowThem) {
         const auto* orbit = std::get_if<OrbitMotion>(&m.motion);
         if (!orbit) continue;
         const glm::dvec3 p = state.poses[m.object].position;
-        EXPECT_NEAR(glm::length(glm::dvec2(p.x - orbit->center.x, p.z - orbit->center.z)), orbit->radius_m, 1e-9);
+        EXPECT_NEAR(glm::length(glm::dvec2(p.x - orbit->center.x, p.z - orbit->center.z)),
+                    orbit->radius_m, 1e-9);
         const double travelled = glm::length(p - before.poses[m.object].position);
         EXPECT_NEAR(travelled, std::abs(orbit->angular_speed) * orbit->radius_m * 0.1, 1e-3);
-        const Aabb expected = worldBox(scene.mesh_bounds[0], state.poses[m.object], scene.culling_origin);
+        const Aabb expected =
+            worldBox(scene.mesh_bounds[0], state.poses[m.object], scene.culling_origin);
         EXPECT_EQ(state.boxes[m.object].min, expected.min);
     }
 }
@@ -144,9 +145,11 @@ TEST(Movers, ListedObjectsMoveAndBadIndicesAreErrorsNamingTheMover) {
         buildScene(s);
         FAIL() << "expected an error";
     } catch (const ScenarioError& e) {
-        EXPECT_NE(std::string(e.what()).find("x.json: /movers/0/objects/1"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("x.json: /movers/0/objects/1"), std::string::npos)
+            << e.what();
     }
-    s.movers = {moverOf(MotionType::Spin, MoverSelection::Objects), moverOf(MotionType::Spin, MoverSelection::Objects)};
+    s.movers = {moverOf(MotionType::Spin, MoverSelection::Objects),
+                moverOf(MotionType::Spin, MoverSelection::Objects)};
     EXPECT_THROW(buildScene(s), ScenarioError) << "an object cannot get two motions";
 }
 
@@ -215,13 +218,17 @@ TEST(Movers, SpinnersTurnInPlace) {
     stepMovers(scene, state, 0.25);
     for (const Mover& m : state.movers) {
         EXPECT_EQ(state.poses[m.object].position, before.poses[m.object].position);
-        EXPECT_GT(std::abs(glm::dot(state.poses[m.object].rotation, before.poses[m.object].rotation) - 1.0f), 1e-4f);
+        EXPECT_GT(
+            std::abs(glm::dot(state.poses[m.object].rotation, before.poses[m.object].rotation) -
+                     1.0f),
+            1e-4f);
     }
 }
 
 TEST(CameraPath, PassesThroughKeyframesAndHoldsAtTheEnds) {
     CameraSpec camera;
-    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
+    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}},
+                        {1.0, {10, 0, 0}, {10, 0, -1}},
                         {3.0, {10, 0, -20}, {0, 0, -20}}};
     EXPECT_EQ(sampleCameraPath(camera, -1.0).position, glm::dvec3(0, 0, 0));
     EXPECT_EQ(sampleCameraPath(camera, 1.0).position, glm::dvec3(10, 0, 0));
@@ -234,11 +241,13 @@ TEST(CameraPath, PassesThroughKeyframesAndHoldsAtTheEnds) {
 
 TEST(CameraPath, IsContinuousAcrossKeyframes) {
     CameraSpec camera;
-    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
-                        {2.0, {10, 5, -10}, {0, 0, -20}}, {4.0, {0, 0, -30}, {0, 0, -40}}};
+    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}},
+                        {1.0, {10, 0, 0}, {10, 0, -1}},
+                        {2.0, {10, 5, -10}, {0, 0, -20}},
+                        {4.0, {0, 0, -30}, {0, 0, -40}}};
     for (double t = 0.0; t < 4.0; t += 0.001) {
         const double step = glm::length(sampleCameraPath(camera, t + 0.001).position -
-                                         sampleCameraPath(camera, t).position);
+                                        sampleCameraPath(camera, t).position);
         EXPECT_LT(step, 0.05) << "jump at t = " << t;
     }
 }
@@ -246,8 +255,8 @@ TEST(CameraPath, IsContinuousAcrossKeyframes) {
 TEST(CameraPath, LoopsWhenAsked) {
     CameraSpec camera;
     camera.loop = true;
-    camera.keyframes = {{0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}},
-                        {2.0, {0, 0, 0}, {0, 0, -1}}};
+    camera.keyframes = {
+        {0.0, {0, 0, 0}, {0, 0, -1}}, {1.0, {10, 0, 0}, {10, 0, -1}}, {2.0, {0, 0, 0}, {0, 0, -1}}};
     const glm::dvec3 a = sampleCameraPath(camera, 0.7).position;
     const glm::dvec3 b = sampleCameraPath(camera, 2.7).position;
     EXPECT_NEAR(glm::length(a - b), 0.0, 1e-9);
@@ -278,8 +287,8 @@ TEST(Pareto, KeepsExactlyThePointsNoOtherPointBeatsInTimeAndError) {
 TEST(Popping, CountsConsecutiveMissingFramesPerObject) {
     PoppingCounter counter;
     // Object 0 misses frames 1-3, object 1 misses frame 0 and frames 2, object 2 misses 4-5 (open).
-    const std::vector<std::vector<uint8_t>> frames = {
-        {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+    const std::vector<std::vector<uint8_t>> frames = {{0, 1, 0}, {1, 0, 0}, {1, 1, 0},
+                                                      {1, 0, 0}, {0, 0, 1}, {0, 0, 1}};
     for (const auto& f : frames) counter.addFrame(f);
     std::vector<uint32_t> runs = counter.runs();
     std::sort(runs.begin(), runs.end());

@@ -1,9 +1,9 @@
 #include "tune/charts.h"
 
-#include "sim/output/atomic_file.h"
-
 #include <cstdio>
 #include <sstream>
+
+#include "sim/output/atomic_file.h"
 
 namespace occsim::tune {
 namespace {
@@ -17,10 +17,12 @@ std::string num(double v) {
 }
 
 std::string axisLabel(const TunableParameter& p) {
-    return std::string(p.name) + (!p.unit.empty() ? std::string(" (") + p.unit + ")" : std::string());
+    return std::string(p.name) +
+           (!p.unit.empty() ? std::string(" (") + p.unit + ")" : std::string());
 }
 
-std::string runsData(const ChartInput& in, const std::vector<Sample>& runs, const std::vector<double>& objective) {
+std::string runsData(const ChartInput& in, const std::vector<Sample>& runs,
+                     const std::vector<double>& objective) {
     std::ostringstream out;
     out << "# run";
     for (const TunableParameter& p : in.space.parameters) out << ' ' << p.name;
@@ -41,8 +43,8 @@ std::string curveData(const ChartInput& in, size_t j) {
     for (int k = 0; k < kCurvePoints; ++k) {
         x[j] = static_cast<double>(k) / (kCurvePoints - 1);
         const Prediction p = in.response.predict(x);
-        out << num(in.space.value(j, x[j])) << ' ' << num(p.mean) << ' ' << num(p.mean - p.stddev) << ' '
-            << num(p.mean + p.stddev) << '\n';
+        out << num(in.space.value(j, x[j])) << ' ' << num(p.mean) << ' ' << num(p.mean - p.stddev)
+            << ' ' << num(p.mean + p.stddev) << '\n';
     }
     return out.str();
 }
@@ -51,7 +53,8 @@ std::string costData(const ChartInput& in) {
     std::ostringstream out;
     out << "# measured_ms predicted_ms\n";
     for (const LoggedRun& r : in.runs) {
-        for (const FrameCounts& f : r.frames) out << num(f.frame_ms) << ' ' << num(in.cost.predict(f)) << '\n';
+        for (const FrameCounts& f : r.frames)
+            out << num(f.frame_ms) << ' ' << num(in.cost.predict(f)) << '\n';
     }
     return out.str();
 }
@@ -63,9 +66,11 @@ GnuplotChart parameterChart(const ChartInput& in, size_t j) {
     const double tuned = in.space.value(j, in.tuned[j]);
     std::ostringstream b;
     b << "set title \"" << p.name << ": " << in.objective_name
-      << " frame time of each sample / that of the paper values in the same run\\nthe fitted response along "
+      << " frame time of each sample / that of the paper values in the same run\\nthe fitted "
+         "response along "
       << p.name << ", the other parameters at their tuned values"
-      << (in.kept_at_paper[j] ? "\\n(no effect beyond noise: kept at the paper value)" : "") << "\"\n"
+      << (in.kept_at_paper[j] ? "\\n(no effect beyond noise: kept at the paper value)" : "")
+      << "\"\n"
       << "set xlabel '" << axisLabel(p) << "'\nset ylabel '" << in.objective_name
       << " frame time / paper (same run)'\nset grid\nset key outside right top Left reverse\n"
       << "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
@@ -74,14 +79,17 @@ GnuplotChart parameterChart(const ChartInput& in, size_t j) {
       << ", graph 1 nohead dt 2 lw 1.5 lc rgb '#7f7f7f'\n"
       << "set arrow 2 from " << num(tuned) << ", graph 0 to " << num(tuned)
       << ", graph 1 nohead lw 2 lc rgb '#d62728'\n"
-      << "plot '" << data << "' using 1:3:4 with filledcurves fc rgb '#c6dbef' fs solid 0.6 title 'fit +/- 1 sd', \\\n"
-      << "     '" << data << "' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'fitted response', \\\n"
+      << "plot '" << data
+      << "' using 1:3:4 with filledcurves fc rgb '#c6dbef' fs solid 0.6 title 'fit +/- 1 sd', \\\n"
+      << "     '" << data
+      << "' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'fitted response', \\\n"
       << "     'tune-samples.dat' using " << (j + 2) << ":" << (in.space.size() + 2)
       << " with points pt 7 ps 1.2 lc rgb '#ff7f0e' title 'samples', \\\n"
       << "     'tune-references.dat' using " << (j + 2) << ":" << (in.space.size() + 2)
       << " with points pt 6 ps 1.2 lc rgb '#555555' title 'reference runs', \\\n"
       << "     1 with lines dt 3 lc rgb '#000000' title 'paper values (= 1)', \\\n"
-      << "     NaN with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'paper: " << num(paper) << "', \\\n"
+      << "     NaN with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'paper: " << num(paper)
+      << "', \\\n"
       << "     NaN with lines lw 2 lc rgb '#d62728' title 'tuned: " << num(tuned) << "'\n";
     return {"tune-" + std::string(p.name), 1100, 600, b.str()};
 }
@@ -91,7 +99,8 @@ GnuplotChart costChart() {
     b << "set title 'Cost model: every fitted frame, measured against predicted'\n"
       << "set xlabel 'predicted frame time (ms)'\nset ylabel 'measured frame time (ms)'\nset grid\n"
       << "set key top left\nset size ratio -1\n"
-      << "plot 'tune-cost-model.dat' using 2:1 with points pt 7 ps 0.5 lc rgb '#1f77b4' title 'frames', \\\n"
+      << "plot 'tune-cost-model.dat' using 2:1 with points pt 7 ps 0.5 lc rgb '#1f77b4' title "
+         "'frames', \\\n"
       << "     x with lines lc rgb '#d62728' title 'measured = predicted'\n";
     return {"tune-cost-model", 800, 800, b.str()};
 }
@@ -101,12 +110,14 @@ GnuplotChart costChart() {
 PlotResult writeTuneCharts(const ChartInput& in, const std::filesystem::path& out_dir) {
     std::filesystem::create_directories(out_dir);
     writeFileAtomically(out_dir / "tune-samples.dat", runsData(in, in.samples, in.objective));
-    writeFileAtomically(out_dir / "tune-references.dat", runsData(in, in.references, in.reference_objective));
+    writeFileAtomically(out_dir / "tune-references.dat",
+                        runsData(in, in.references, in.reference_objective));
     writeFileAtomically(out_dir / "tune-cost-model.dat", costData(in));
     std::vector<GnuplotChart> charts;
     for (size_t j = 0; j < in.space.size(); ++j) {
-        writeFileAtomically(out_dir / ("tune-curve-" + std::string(in.space.parameters[j].name) + ".dat"),
-                            curveData(in, j));
+        writeFileAtomically(
+            out_dir / ("tune-curve-" + std::string(in.space.parameters[j].name) + ".dat"),
+            curveData(in, j));
         charts.push_back(parameterChart(in, j));
     }
     charts.push_back(costChart());

@@ -5,29 +5,29 @@
 //   tune-cost-model    every fitted frame's measured time against the cost model's prediction.
 #pragma once
 
+#include <filesystem>
+#include <vector>
+
 #include "sim/output/plots.h"
 #include "tune/cost_model.h"
 #include "tune/parameters.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
 
-#include <filesystem>
-#include <vector>
-
 namespace occsim::tune {
 
 struct ChartInput {
     const ParameterSpace& space;
     const std::vector<Sample>& samples;
-    const std::vector<double>& objective;  // per sample: the ratio that was fitted
-    const std::vector<Sample>& references;             // reference runs (the paper's values)
-    const std::vector<double>& reference_objective;    // per reference run
-    const char* objective_name;            // "mean" or "p95"
+    const std::vector<double>& objective;            // per sample: the ratio that was fitted
+    const std::vector<Sample>& references;           // reference runs (the paper's values)
+    const std::vector<double>& reference_objective;  // per reference run
+    const char* objective_name;                      // "mean" or "p95"
     const ResponseFit& response;
-    const Point& tuned;                    // in the unit cube
+    const Point& tuned;                      // in the unit cube
     const std::vector<bool>& kept_at_paper;  // per parameter
     const CostModel& cost;
-    const std::vector<LoggedRun>& runs;    // every run whose frames the cost model fitted
+    const std::vector<LoggedRun>& runs;  // every run whose frames the cost model fitted
 };
 
 PlotResult writeTuneCharts(const ChartInput& input, const std::filesystem::path& out_dir);

@@ -1,8 +1,8 @@
 #include "tune/confirm.h"
 
-#include "tune/measure.h"
-
 #include <algorithm>
+
+#include "tune/measure.h"
 
 namespace occsim::tune {
 
@@ -16,9 +16,12 @@ Spread spreadOf(std::vector<double> v) {
 
 const char* Verdict::name() const {
     switch (kind) {
-        case Kind::Accepted: return "accepted";
-        case Kind::NoChange: return "no change";
-        case Kind::Rejected: return "REJECTED";
+        case Kind::Accepted:
+            return "accepted";
+        case Kind::NoChange:
+            return "no change";
+        case Kind::Rejected:
+            return "REJECTED";
     }
     return "";
 }
@@ -26,36 +29,45 @@ const char* Verdict::name() const {
 Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing_tuned) {
     for (const ConfirmationRow& r : rows) {
         if (r.tuned_error_pixels > r.paper_error_pixels) {
-            return {Verdict::Kind::Rejected, r.variant + ": the tuned values showed more error pixels than the paper's"};
+            return {Verdict::Kind::Rejected,
+                    r.variant + ": the tuned values showed more error pixels than the paper's"};
         }
         if (r.tuned_missed_objects > r.paper_missed_objects) {
-            return {Verdict::Kind::Rejected, r.variant + ": the tuned values missed more objects than the paper's"};
+            return {Verdict::Kind::Rejected,
+                    r.variant + ": the tuned values missed more objects than the paper's"};
         }
     }
-    const bool same = !rows.empty() && std::all_of(rows.begin(), rows.end(), [](const ConfirmationRow& r) { return r.same_decisions; });
-    if (nothing_tuned) return {Verdict::Kind::NoChange, "every parameter kept at the paper's value"};
+    const bool same =
+        !rows.empty() && std::all_of(rows.begin(), rows.end(),
+                                     [](const ConfirmationRow& r) { return r.same_decisions; });
+    if (nothing_tuned)
+        return {Verdict::Kind::NoChange, "every parameter kept at the paper's value"};
     if (same) {
-        return {Verdict::Kind::NoChange,
-                "the tuned values made the same decisions as the paper's on every confirmation frame: "
-                "their difference in time is noise"};
+        return {
+            Verdict::Kind::NoChange,
+            "the tuned values made the same decisions as the paper's on every confirmation frame: "
+            "their difference in time is noise"};
     }
     for (const ConfirmationRow& r : rows) {
         if (r.repetitions >= 2 && r.mean_ratio.min > 1.0) {
             return {Verdict::Kind::Rejected, r.variant + ": slower in every repetition"};
         }
     }
-    const bool one = std::any_of(rows.begin(), rows.end(), [](const ConfirmationRow& r) { return r.repetitions < 2; });
-    return {Verdict::Kind::Accepted, one ? "not slower nor worse (one repetition: too few to tell time apart)"
-                                         : "not slower in every repetition, no more error"};
+    const bool one = std::any_of(rows.begin(), rows.end(),
+                                 [](const ConfirmationRow& r) { return r.repetitions < 2; });
+    return {Verdict::Kind::Accepted,
+            one ? "not slower nor worse (one repetition: too few to tell time apart)"
+                : "not slower in every repetition, no more error"};
 }
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions, const BackendChoice& backend,
+                        const OptionValues& paper, uint32_t repetitions,
+                        const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame) {
     // The paper's values first: the same order as every sampling batch.
-    const BenchResult result = runInterleaved(scenario, algorithm, {{"paper", paper}, {"tuned", tuned}},
-                                              repetitions, backend, on_frame);
+    const BenchResult result = runInterleaved(
+        scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, backend, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 
@@ -65,8 +77,9 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
     row.frames = result.metadata.frames;
     // Where it rendered, as occsim's console names it: tuned values carry over only to the same
     // kind of renderer (docs/headless-gpu.md).
-    row.renderer = result.metadata.renderer + " through " + backendLabel(result.metadata) + " (vendor " +
-                   result.metadata.gl_vendor + ", driver " + result.metadata.driver + ")";
+    row.renderer = result.metadata.renderer + " through " + backendLabel(result.metadata) +
+                   " (vendor " + result.metadata.gl_vendor + ", driver " + result.metadata.driver +
+                   ")";
     row.repetitions = static_cast<uint32_t>(t.repetitions.size());
     std::vector<double> mean_ratios, p95_ratios;
     for (size_t r = 0; r < t.repetitions.size(); ++r) {
@@ -82,11 +95,13 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
     auto sameDecisions = [](const std::vector<FrameStats>& a, const std::vector<FrameStats>& b) {
         if (a.size() != b.size()) return false;
         for (size_t f = 0; f < a.size(); ++f) {
-            if (a[f].queries != b[f].queries || a[f].objects_drawn != b[f].objects_drawn) return false;
+            if (a[f].queries != b[f].queries || a[f].objects_drawn != b[f].objects_drawn)
+                return false;
         }
         return true;
     };
-    row.same_decisions = sameDecisions(t.frames, p.frames) && t.later_repetitions.size() == p.later_repetitions.size();
+    row.same_decisions = sameDecisions(t.frames, p.frames) &&
+                         t.later_repetitions.size() == p.later_repetitions.size();
     for (size_t r = 0; row.same_decisions && r < t.later_repetitions.size(); ++r) {
         row.same_decisions = sameDecisions(t.later_repetitions[r], p.later_repetitions[r]);
     }

@@ -2,13 +2,13 @@
 // run, repeated, on the frames they were fitted on and on a variant the fit never saw.
 #pragma once
 
-#include "occsim/culling/registry/culler_options.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/scenario.h"
-
 #include <cstdint>
 #include <functional>
 #include <string>
+
+#include "occsim/culling/registry/culler_options.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim::tune {
 
@@ -46,7 +46,9 @@ struct Verdict {
     // "accepted", "no change", "REJECTED"
     const char* name() const;
     // tuned.json, or tuned.rejected.json for a result its own confirmation rejects.
-    const char* fileName() const { return kind == Kind::Rejected ? "tuned.rejected.json" : "tuned.json"; }
+    const char* fileName() const {
+        return kind == Kind::Rejected ? "tuned.rejected.json" : "tuned.json";
+    }
 };
 
 // Rejected when any variant shows more error pixels or missed objects with the tuned values, or
@@ -57,7 +59,8 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions, const BackendChoice& backend,
+                        const OptionValues& paper, uint32_t repetitions,
+                        const BackendChoice& backend,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

@@ -29,8 +29,10 @@ struct Data {
 
 Data dataOf(const std::vector<std::vector<FrameCounts>>& groups, size_t skip_fold, size_t folds) {
     size_t rows = 0;
-    for (size_t g = 0; g < groups.size(); ++g) rows += (g % folds == skip_fold) ? 0 : groups[g].size();
-    Data d{Eigen::MatrixXd(static_cast<Eigen::Index>(rows), CostModel::kTerms), Eigen::VectorXd(static_cast<Eigen::Index>(rows))};
+    for (size_t g = 0; g < groups.size(); ++g)
+        rows += (g % folds == skip_fold) ? 0 : groups[g].size();
+    Data d{Eigen::MatrixXd(static_cast<Eigen::Index>(rows), CostModel::kTerms),
+           Eigen::VectorXd(static_cast<Eigen::Index>(rows))};
     Eigen::Index r = 0;
     for (size_t g = 0; g < groups.size(); ++g) {
         if (g % folds == skip_fold) continue;
@@ -60,8 +62,8 @@ double median(std::vector<double> v) {
 }  // namespace
 
 double CostModel::predict(const FrameCounts& f) const {
-    return constant_ms + query_ms * f.queries + kilotriangle_ms * f.triangles / 1000.0 + draw_ms * f.objects_drawn +
-           wait_factor * f.wait_ms;
+    return constant_ms + query_ms * f.queries + kilotriangle_ms * f.triangles / 1000.0 +
+           draw_ms * f.objects_drawn + wait_factor * f.wait_ms;
 }
 
 CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups, int max_iterations) {

@@ -9,11 +9,11 @@
 // with costs measured at start-up ("Near Optimal Hierarchical Culling", EGSR 2006).
 #pragma once
 
-#include "tune/robust_fit.h"
-
 #include <array>
 #include <cstddef>
 #include <vector>
+
+#include "tune/robust_fit.h"
 
 namespace occsim::tune {
 
@@ -40,9 +40,9 @@ struct CostModel {
 
 struct CostModelFit {
     CostModel model;
-    RobustFit fit;                 // converged, Ceres' summary line
+    RobustFit fit;  // converged, Ceres' summary line
     size_t frames = 0;
-    size_t groups = 0;             // runs the frames came from
+    size_t groups = 0;  // runs the frames came from
     double mean_frame_ms = 0.0;
     double residual_rms_ms = 0.0;  // over the frames fitted
     // Prediction error on frames left out of the fit: each run's frames are predicted by a fit
@@ -53,6 +53,7 @@ struct CostModelFit {
 };
 
 // groups: the frames of each run (sample or reference). Needs at least kTerms frames.
-CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups, int max_iterations = 200);
+CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups,
+                          int max_iterations = 200);
 
 }  // namespace occsim::tune

@@ -1,11 +1,11 @@
 #include "tune/design.h"
 
-#include "occsim/culling/geometry/random.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
+
+#include "occsim/culling/geometry/random.h"
 
 namespace occsim::tune {
 namespace {
@@ -15,7 +15,8 @@ constexpr uint32_t kCandidatesPerDimension = 400;
 double closestPair(const std::vector<Point>& points) {
     double closest = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < points.size(); ++i) {
-        for (size_t j = i + 1; j < points.size(); ++j) closest = std::min(closest, distance(points[i], points[j]));
+        for (size_t j = i + 1; j < points.size(); ++j)
+            closest = std::min(closest, distance(points[i], points[j]));
     }
     return closest;
 }
@@ -44,8 +45,10 @@ std::vector<Point> latinHypercube(size_t n, size_t d, uint64_t seed, uint32_t tr
         std::vector<uint32_t> strata(n);
         for (size_t j = 0; j < d; ++j) {
             std::iota(strata.begin(), strata.end(), 0u);
-            for (size_t i = n; i > 1; --i) std::swap(strata[i - 1], strata[rng.below(static_cast<uint32_t>(i))]);
-            for (size_t i = 0; i < n; ++i) points[i][j] = (strata[i] + rng.uniform()) / static_cast<double>(n);
+            for (size_t i = n; i > 1; --i)
+                std::swap(strata[i - 1], strata[rng.below(static_cast<uint32_t>(i))]);
+            for (size_t i = 0; i < n; ++i)
+                points[i][j] = (strata[i] + rng.uniform()) / static_cast<double>(n);
         }
         const double spread = n > 1 ? closestPair(points) : 0.0;
         if (spread > best_spread) {
@@ -56,8 +59,9 @@ std::vector<Point> latinHypercube(size_t n, size_t d, uint64_t seed, uint32_t tr
     return best;
 }
 
-std::vector<Point> nextBatch(Surrogate& model, const std::vector<Point>& sampled, const Point& optimum,
-                             size_t k, uint64_t seed, double kappa, double min_distance) {
+std::vector<Point> nextBatch(Surrogate& model, const std::vector<Point>& sampled,
+                             const Point& optimum, size_t k, uint64_t seed, double kappa,
+                             double min_distance) {
     std::vector<Point> chosen;
     if (k == 0) return chosen;
     const size_t d = optimum.size();

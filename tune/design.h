@@ -24,7 +24,7 @@ struct Prediction {
 };
 
 class Surrogate {
-public:
+  public:
     virtual ~Surrogate() = default;
     virtual Prediction predict(const Point& x) const = 0;
     // Counts x as sampled before its value is known: the uncertainty of a linear model depends
@@ -38,8 +38,9 @@ public:
 // linear model here), so that a point is worth measuring when it may be good or when little is
 // known about it. Each chosen point counts as sampled for the next choice (its stddev there
 // shrinks), and no point comes closer than `min_distance` to a sampled or chosen one.
-std::vector<Point> nextBatch(Surrogate& model, const std::vector<Point>& sampled, const Point& optimum,
-                             size_t k, uint64_t seed, double kappa = 2.0, double min_distance = 0.02);
+std::vector<Point> nextBatch(Surrogate& model, const std::vector<Point>& sampled,
+                             const Point& optimum, size_t k, uint64_t seed, double kappa = 2.0,
+                             double min_distance = 0.02);
 
 double distance(const Point& a, const Point& b);
 

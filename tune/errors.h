@@ -9,13 +9,13 @@
 namespace occsim::tune {
 
 class TuneInputError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 // Thrown between frames (outside every timing) when SIGINT arrived.
 class Interrupted : public std::runtime_error {
-public:
+  public:
     Interrupted() : std::runtime_error("interrupted") {}
 };
 

@@ -1,15 +1,15 @@
 #include "tune/input.h"
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
 #include "occsim/culling/registry/plugin_loader.h"
 #include "sim/output/atomic_file.h"
 #include "sim/world/world.h"
 #include "tune/errors.h"
 #include "tune/response_model.h"
-
-#include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace occsim::tune {
 namespace {
@@ -44,23 +44,26 @@ CheckedInput checkInput(const TuneOptions& o) {
     c.scenario = parseScenarioFile(o.scenario);
     const AlgorithmTraits* algorithm = findAlgorithm(o.algorithm);
     if (!algorithm) {
-        throw TuneInputError("--algo: unknown algorithm '" + o.algorithm + "'; expected one of: " +
-                             algorithmNameList());
+        throw TuneInputError("--algo: unknown algorithm '" + o.algorithm +
+                             "'; expected one of: " + algorithmNameList());
     }
     c.space = parseParameterSpace(*algorithm, o.params, o.bounds);
     const size_t needed = minimumSamples(c.space.size());
     if (o.budget < needed) {
-        throw TuneInputError("--budget " + std::to_string(o.budget) + ": too small for the model: a quadratic in " +
+        throw TuneInputError("--budget " + std::to_string(o.budget) +
+                             ": too small for the model: a quadratic in " +
                              std::to_string(c.space.size()) + " parameters has " +
-                             std::to_string(ResponseModel::termCount(c.space.size())) + " terms and needs at least " +
-                             std::to_string(needed) + " samples (or tune fewer --params)");
+                             std::to_string(ResponseModel::termCount(c.space.size())) +
+                             " terms and needs at least " + std::to_string(needed) +
+                             " samples (or tune fewer --params)");
     }
     if (o.batch < 1) throw TuneInputError("--batch: expected at least 1 sample per run");
     if (o.repetitions < 1) throw TuneInputError("--repetitions: expected at least 1");
     if (o.frames) c.scenario.frames = *o.frames;
     if (c.scenario.frames <= c.scenario.warmup_frames) {
-        throw TuneInputError("--frames " + std::to_string(c.scenario.frames) + ": the scenario has " +
-                             std::to_string(c.scenario.warmup_frames) + " warm-up frames; expected more frames than that");
+        throw TuneInputError("--frames " + std::to_string(c.scenario.frames) +
+                             ": the scenario has " + std::to_string(c.scenario.warmup_frames) +
+                             " warm-up frames; expected more frames than that");
     }
     // Builds the scene once so that a scene that cannot be built (a glTF file, a mover's object)
     // fails here, before any run, rather than in the first batch.
@@ -91,14 +94,16 @@ SampleLog openLog(const TuneOptions& o, const CheckedInput& c) {
     const bool exists = fs::exists(c.log_file, ec);
     if (!o.resume) {
         if (exists) {
-            throw TuneInputError(c.log_file.string() +
-                                 " exists: continue that session with --resume, or choose another --out");
+            throw TuneInputError(
+                c.log_file.string() +
+                " exists: continue that session with --resume, or choose another --out");
         }
         return SampleLog(c.log_file, c.settings);
     }
     if (!exists) throw TuneInputError("--resume: no sample log at " + c.log_file.string());
     SampleLog log = SampleLog::read(c.log_file);
-    if (const std::string why = log.mismatch(c.settings); !why.empty()) throw TuneInputError("--resume: " + why);
+    if (const std::string why = log.mismatch(c.settings); !why.empty())
+        throw TuneInputError("--resume: " + why);
     return log;
 }
 

@@ -4,13 +4,13 @@
 // settings). Each problem is a TuneInputError (or the scenario layer's own errors): one line.
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
+
 #include "sim/scenario/scenario.h"
 #include "tune/parameters.h"
 #include "tune/sample_log.h"
 #include "tune/tuner.h"
-
-#include <cstdint>
-#include <filesystem>
 
 namespace occsim::tune {
 

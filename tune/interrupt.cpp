@@ -1,8 +1,8 @@
 #include "tune/interrupt.h"
 
-#include "tune/errors.h"
-
 #include <csignal>
+
+#include "tune/errors.h"
 
 namespace occsim::tune {
 namespace {

@@ -1,11 +1,12 @@
 #include "tune/measure.h"
 
-#include "occsim/culling/registry/registry.h"
-
 #include <stdexcept>
 
+#include "occsim/culling/registry/registry.h"
+
 namespace occsim::tune {
-RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, const Setting& setting) {
+RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                   const Setting& setting) {
     RunConfig config;
     config.label = setting.label;
     config.algorithm = &algorithm;
@@ -16,7 +17,8 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, c
 
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const BackendChoice& backend, const std::function<void(const FrameEvent&)>& on_frame) {
+                           const BackendChoice& backend,
+                           const std::function<void(const FrameEvent&)>& on_frame) {
     BenchOptions options;
     options.backend = backend;
     for (const Setting& s : settings) options.configs.push_back(configOf(scenario, algorithm, s));
@@ -40,8 +42,9 @@ LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {
     r.error_pixels = s.error_pixels_total;
     for (const FrameStats& f : run.frames) {
         if (f.frame < warmup_frames) continue;
-        r.frames.push_back({f.frame_ms, static_cast<double>(f.queries), static_cast<double>(f.triangles),
-                            static_cast<double>(f.objects_drawn), f.wait_ms});
+        r.frames.push_back({f.frame_ms, static_cast<double>(f.queries),
+                            static_cast<double>(f.triangles), static_cast<double>(f.objects_drawn),
+                            f.wait_ms});
     }
     return r;
 }

@@ -1,18 +1,18 @@
 // Real runs of the tuned culler: several settings interleaved frame by frame in one
 // runBenchmark() call (BenchOptions::configs), headless through the chosen backend (EGL by
-// default), in measured mode (query results ready when the GPU says so), with error measured against ground truth. The first
-// setting is the reference the others are divided by, so that a machine slowed by other work
-// slows both alike and the ratio stays.
+// default), in measured mode (query results ready when the GPU says so), with error measured
+// against ground truth. The first setting is the reference the others are divided by, so that a
+// machine slowed by other work slows both alike and the ratio stays.
 #pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "occsim/culling/registry/culler_options.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 #include "tune/sample_log.h"
-
-#include <functional>
-#include <string>
-#include <vector>
 
 namespace occsim::tune {
 
@@ -22,13 +22,15 @@ struct Setting {
 };
 
 // The scenario's own culling options with the setting's values for `algorithm` swapped in.
-RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm, const Setting& setting);
+RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
+                   const Setting& setting);
 
 // Runs every setting interleaved (`repetitions` times) with error measured. `on_frame` is called
 // after every configuration's frame, outside the timing (progress, interruption).
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const BackendChoice& backend, const std::function<void(const FrameEvent&)>& on_frame);
+                           const BackendChoice& backend,
+                           const std::function<void(const FrameEvent&)>& on_frame);
 
 // One configuration's first repetition as a log line's figures (timed frames only).
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames);

@@ -1,10 +1,10 @@
 #include "tune/parameters.h"
 
-#include "tune/errors.h"
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+
+#include "tune/errors.h"
 
 namespace occsim::tune {
 namespace {
@@ -67,13 +67,18 @@ std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm
 
 std::string tunableParameterNames(const AlgorithmTraits& algorithm) {
     std::string names;
-    for (const TunableParameter& p : tunableParameters(algorithm)) names += (names.empty() ? "" : ", ") + p.name;
+    for (const TunableParameter& p : tunableParameters(algorithm))
+        names += (names.empty() ? "" : ", ") + p.name;
     return names;
 }
 
-double ParameterSpace::value(size_t j, double u) const { return bounds[j].lo + u * (bounds[j].hi - bounds[j].lo); }
+double ParameterSpace::value(size_t j, double u) const {
+    return bounds[j].lo + u * (bounds[j].hi - bounds[j].lo);
+}
 
-double ParameterSpace::unit(size_t j, double v) const { return (v - bounds[j].lo) / (bounds[j].hi - bounds[j].lo); }
+double ParameterSpace::unit(size_t j, double v) const {
+    return (v - bounds[j].lo) / (bounds[j].hi - bounds[j].lo);
+}
 
 std::vector<double> ParameterSpace::values(const std::vector<double>& unit_point) const {
     std::vector<double> v(size());
@@ -151,7 +156,8 @@ ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::
         }()
                        : split(params, ',');
     for (const std::string& name : listed) {
-        if (name.empty()) throw TuneInputError("--params: empty parameter name in '" + params + "'");
+        if (name.empty())
+            throw TuneInputError("--params: empty parameter name in '" + params + "'");
         const TunableParameter& p = known("--params", name);
         for (const TunableParameter& q : space.parameters) {
             if (q.name == p.name) throw TuneInputError("--params: '" + name + "' is listed twice");
@@ -165,7 +171,8 @@ ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::
         const size_t eq = text.find('=');
         const size_t colon = text.find(':', eq == std::string::npos ? 0 : eq);
         if (eq == std::string::npos || colon == std::string::npos) {
-            throw TuneInputError(flag + ": expected name=lo:hi, e.g. " + all.parameters.front().name + "=" +
+            throw TuneInputError(flag + ": expected name=lo:hi, e.g. " +
+                                 all.parameters.front().name + "=" +
                                  number(all.parameters.front().default_lo) + ":" +
                                  number(all.parameters.front().default_hi));
         }
@@ -177,11 +184,13 @@ ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::
             throw TuneInputError(flag + ": '" + name + "' is not tuned (--params " + params + ")");
         }
         Bounds b;
-        if (!parseDouble(text.substr(eq + 1, colon - eq - 1), b.lo) || !parseDouble(text.substr(colon + 1), b.hi)) {
+        if (!parseDouble(text.substr(eq + 1, colon - eq - 1), b.lo) ||
+            !parseDouble(text.substr(colon + 1), b.hi)) {
             throw TuneInputError(flag + ": expected two finite numbers lo:hi");
         }
         if (b.lo == b.hi) throw TuneInputError(flag + ": empty range (lo = hi); expected lo < hi");
-        if (b.lo > b.hi) throw TuneInputError(flag + ": inverted range (lo > hi); expected lo < hi");
+        if (b.lo > b.hi)
+            throw TuneInputError(flag + ": inverted range (lo > hi); expected lo < hi");
         checkEndsValid(flag, p, b);
         space.bounds[j] = b;
     }

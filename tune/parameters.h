@@ -4,16 +4,16 @@
 // scenario, and the box of values a session searches.
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-
 #include <string>
 #include <vector>
+
+#include "occsim/culling/registry/registry.h"
 
 namespace occsim::tune {
 
 struct TunableParameter {
-    std::string name;   // key in culling.<algorithm>, and in --params / --bounds
-    std::string unit;   // for tables and charts ("s", or "" for a plain number)
+    std::string name;  // key in culling.<algorithm>, and in --params / --bounds
+    std::string unit;  // for tables and charts ("s", or "" for a plain number)
     // The reference every sample is measured against: the culler's default (for `statistical`,
     // the paper's choice).
     double paper_value = 0.0;

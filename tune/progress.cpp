@@ -7,9 +7,12 @@ namespace {
 
 std::string duration(double seconds) {
     char buf[32];
-    if (seconds < 90) std::snprintf(buf, sizeof buf, "%.0f s", seconds);
-    else if (seconds < 5400) std::snprintf(buf, sizeof buf, "%.0f min", seconds / 60);
-    else std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600);
+    if (seconds < 90)
+        std::snprintf(buf, sizeof buf, "%.0f s", seconds);
+    else if (seconds < 5400)
+        std::snprintf(buf, sizeof buf, "%.0f min", seconds / 60);
+    else
+        std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600);
     return buf;
 }
 
@@ -26,9 +29,11 @@ void Progress::frameDone() {
 }
 
 void Progress::draw() {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = done_ > 0 ? elapsed / static_cast<double>(done_) : 0.0;
-    std::string line = "\r" + stage_ + "  ~" + duration(rate * static_cast<double>(left_)) + " left";
+    std::string line =
+        "\r" + stage_ + "  ~" + duration(rate * static_cast<double>(left_)) + " left";
     if (!best_.empty()) line += "  best " + best_;
     // Blank out what is left of a longer previous line.
     const size_t length = line.size();

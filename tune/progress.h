@@ -11,7 +11,7 @@
 namespace occsim::tune {
 
 class Progress {
-public:
+  public:
     explicit Progress(bool enabled) : enabled_(enabled) {}
 
     // Rendered frames (one configuration's frame each) still to come in this session.
@@ -23,7 +23,7 @@ public:
     // Ends the line (before other output).
     void finish();
 
-private:
+  private:
     void draw();
 
     bool enabled_;

@@ -21,9 +21,13 @@ std::string general(double v) {
     return buf;
 }
 
-std::string percent(double part, double whole) { return whole > 0 ? fixed(100.0 * part / whole, 1) + " %" : "n/a"; }
+std::string percent(double part, double whole) {
+    return whole > 0 ? fixed(100.0 * part / whole, 1) + " %" : "n/a";
+}
 
-std::string withUnit(const TunableParameter& p, double v) { return general(v) + (!p.unit.empty() ? std::string(" ") + p.unit : ""); }
+std::string withUnit(const TunableParameter& p, double v) {
+    return general(v) + (!p.unit.empty() ? std::string(" ") + p.unit : "");
+}
 
 // A verdict that does not claim more than the repetitions show.
 std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
@@ -34,11 +38,11 @@ std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
         return "**the tuned values missed more objects than the paper's**";
     }
     if (nothing_tuned) return "the same setting twice: the spread is the measurement noise";
-    if (row.same_decisions) return "no change: the same decisions as the paper's on every frame (the spread is noise)";
+    if (row.same_decisions)
+        return "no change: the same decisions as the paper's on every frame (the spread is noise)";
     // Error pixels in both, no more with the tuned values: say so beside the timing verdict.
-    const std::string both = row.tuned_error_pixels != 0
-                                 ? "; error pixels in both, no more with the tuned values"
-                                 : "";
+    const std::string both =
+        row.tuned_error_pixels != 0 ? "; error pixels in both, no more with the tuned values" : "";
     if (row.mean_ratio.max < 1.0) return "faster in every repetition" + both;
     if (row.mean_ratio.min > 1.0) return "**slower in every repetition**" + both;
     if (row.mean_ratio.median <= 1.0) {
@@ -55,9 +59,11 @@ void samplesTable(std::ostringstream& out, const TuneResult& r) {
     out << "---|---|---|\n";
     for (size_t i = 0; i < r.samples.size(); ++i) {
         const Sample& s = r.samples[i];
-        out << "| " << i << " | " << s.run->batch << " | " << (i < r.initial_samples ? "design" : "adaptive") << " | ";
+        out << "| " << i << " | " << s.run->batch << " | "
+            << (i < r.initial_samples ? "design" : "adaptive") << " | ";
         for (double v : s.run->values) out << general(v) << " | ";
-        out << fixed(s.ratio_mean, 3) << " | " << fixed(s.ratio_p95, 3) << " | " << s.run->error_pixels << " |\n";
+        out << fixed(s.ratio_mean, 3) << " | " << fixed(s.ratio_p95, 3) << " | "
+            << s.run->error_pixels << " |\n";
     }
 }
 
@@ -87,7 +93,9 @@ std::vector<std::string> boundWarnings(const TuneResult& r) {
     return lines;
 }
 
-const char* objectiveName(Objective objective) { return objective == Objective::Mean ? "mean" : "p95"; }
+const char* objectiveName(Objective objective) {
+    return objective == Objective::Mean ? "mean" : "p95";
+}
 
 std::string formatSpread(const Spread& s) {
     return fixed(s.median, 3) + " [" + fixed(s.min, 3) + "-" + fixed(s.max, 3) + "]";
@@ -96,17 +104,22 @@ std::string formatSpread(const Spread& s) {
 std::string confirmationTable(const TuneResult& r) {
     std::ostringstream out;
     char line[256];
-    std::snprintf(line, sizeof line, "%-28s %6s %5s  %-22s %-22s %9s %9s %9s %9s %9s %9s %9s %9s\n", "variant",
-                  "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]", "tuned ms", "paper ms",
-                  "err tuned", "err paper", "tie tuned", "tie paper", "mis tuned", "mis paper");
+    std::snprintf(line, sizeof line, "%-28s %6s %5s  %-22s %-22s %9s %9s %9s %9s %9s %9s %9s %9s\n",
+                  "variant", "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]",
+                  "tuned ms", "paper ms", "err tuned", "err paper", "tie tuned", "tie paper",
+                  "mis tuned", "mis paper");
     out << line;
     for (const ConfirmationRow& c : r.confirmation) {
-        std::snprintf(line, sizeof line, "%-28s %6u %5u  %-22s %-22s %9.2f %9.2f %9lld %9lld %9lld %9lld %9lld %9lld\n",
-                      c.variant.c_str(), c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(),
-                      formatSpread(c.p95_ratio).c_str(), c.tuned_mean_ms, c.paper_mean_ms,
-                      static_cast<long long>(c.tuned_error_pixels), static_cast<long long>(c.paper_error_pixels),
-                      static_cast<long long>(c.tuned_tie_pixels), static_cast<long long>(c.paper_tie_pixels),
-                      static_cast<long long>(c.tuned_missed_objects), static_cast<long long>(c.paper_missed_objects));
+        std::snprintf(
+            line, sizeof line,
+            "%-28s %6u %5u  %-22s %-22s %9.2f %9.2f %9lld %9lld %9lld %9lld %9lld %9lld\n",
+            c.variant.c_str(), c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(),
+            formatSpread(c.p95_ratio).c_str(), c.tuned_mean_ms, c.paper_mean_ms,
+            static_cast<long long>(c.tuned_error_pixels),
+            static_cast<long long>(c.paper_error_pixels),
+            static_cast<long long>(c.tuned_tie_pixels), static_cast<long long>(c.paper_tie_pixels),
+            static_cast<long long>(c.tuned_missed_objects),
+            static_cast<long long>(c.paper_missed_objects));
         out << line;
     }
     return out.str();
@@ -118,59 +131,80 @@ std::string reportMarkdown(const TuneResult& r) {
     std::ostringstream out;
     out << "# Tuning the statistical culler on " << r.scenario_name << "\n\n"
         << "Command: `" << o.command_line << "`\n\n"
-        << "- Scenario: `" << r.scenario_file << "` (seed " << r.scenario_seed << "), " << r.frames << " frames ("
-        << (r.frames - r.warmup_frames) << " timed after " << r.warmup_frames << " warm-up), " << r.objects
-        << " objects, " << r.triangles << " triangles\n"
-        << "- Machine: " << r.renderer << ", " << r.hardware_threads << " hardware threads; measured mode (query "
+        << "- Scenario: `" << r.scenario_file << "` (seed " << r.scenario_seed << "), " << r.frames
+        << " frames (" << (r.frames - r.warmup_frames) << " timed after " << r.warmup_frames
+        << " warm-up), " << r.objects << " objects, " << r.triangles << " triangles\n"
+        << "- Machine: " << r.renderer << ", " << r.hardware_threads
+        << " hardware threads; measured mode (query "
         << "results ready when the GPU says so), error measured against ground truth\n"
         << "- Objective: the " << objective << " frame time of a sample over the " << objective
-        << " frame time of the paper's values, both from the same run (interleaved frame by frame)\n"
-        << "- Samples: " << r.samples.size() << " (" << r.initial_samples << " from a seeded Latin hypercube, seed "
-        << o.seed << "; the rest where the fitted response was uncertain or promising), in " << r.log->batches()
-        << " runs, each beside two reference runs of the paper's values\n"
-        << "- Measurement noise: one run's mean frame time varies by " << fixed(100.0 * r.reference_noise, 1)
-        << " % (standard deviation, from the two reference runs of every batch, which differ in nothing but "
+        << " frame time of the paper's values, both from the same run (interleaved frame by "
+           "frame)\n"
+        << "- Samples: " << r.samples.size() << " (" << r.initial_samples
+        << " from a seeded Latin hypercube, seed " << o.seed
+        << "; the rest where the fitted response was uncertain or promising), in "
+        << r.log->batches() << " runs, each beside two reference runs of the paper's values\n"
+        << "- Measurement noise: one run's mean frame time varies by "
+        << fixed(100.0 * r.reference_noise, 1)
+        << " % (standard deviation, from the two reference runs of every batch, which differ in "
+           "nothing but "
            "noise); a sample's ratio carries that noise and a share of its batch's references'\n"
-        << "- Error pixels over every frame of every sample and reference: " << r.sample_error_pixels
-        << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)" : " (**zero expected**)")
+        << "- Error pixels over every frame of every sample and reference: "
+        << r.sample_error_pixels
+        << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)"
+                                       : " (**zero expected**)")
         << "\n\n";
 
     out << "## Choice\n\n| parameter | paper | tuned | bounds | |\n|---|---|---|---|---|\n";
     for (size_t j = 0; j < r.space.size(); ++j) {
         const TunableParameter& p = r.space.parameters[j];
-        out << "| " << p.name << " | " << withUnit(p, p.paper_value) << " | " << withUnit(p, r.tuned_values[j])
-            << " | " << general(r.space.bounds[j].lo) << " to " << general(r.space.bounds[j].hi) << " | "
-            << (r.kept_at_paper[j] ? "no effect beyond noise: left at the paper's value" : "tuned") << " |\n";
+        out << "| " << p.name << " | " << withUnit(p, p.paper_value) << " | "
+            << withUnit(p, r.tuned_values[j]) << " | " << general(r.space.bounds[j].lo) << " to "
+            << general(r.space.bounds[j].hi) << " | "
+            << (r.kept_at_paper[j] ? "no effect beyond noise: left at the paper's value" : "tuned")
+            << " |\n";
     }
     for (const std::string& line : boundWarnings(r)) out << "\n**" << line << "**\n";
-    out << "\nPredicted " << objective << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3) << " +/- "
-        << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives " << fixed(r.predicted_paper, 3)
-        << " at the paper's own).\n";
+    out << "\nPredicted " << objective
+        << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3) << " +/- "
+        << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives "
+        << fixed(r.predicted_paper, 3) << " at the paper's own).\n";
     if (!r.dropped.empty()) {
         out << "\nParameters this scene does not exercise: ";
-        for (size_t k = 0; k < r.dropped.size(); ++k) out << (k ? ", " : "") << r.space.parameters[r.dropped[k]].name;
-        out << ". Without their terms the leave-one-out prediction error stays within one standard error of the "
-               "lowest seen (" << fixed(r.full_model_loo_rms, 4) << " with every parameter, " << fixed(r.response.loo_rms, 4)
-            << " without them): the samples show no effect of them beyond their noise, so they stay at the paper's "
+        for (size_t k = 0; k < r.dropped.size(); ++k)
+            out << (k ? ", " : "") << r.space.parameters[r.dropped[k]].name;
+        out << ". Without their terms the leave-one-out prediction error stays within one standard "
+               "error of the "
+               "lowest seen ("
+            << fixed(r.full_model_loo_rms, 4) << " with every parameter, "
+            << fixed(r.response.loo_rms, 4)
+            << " without them): the samples show no effect of them beyond their noise, so they "
+               "stay at the paper's "
                "values.\n";
     }
 
-    out << "\n## Confirmation\n\nThe tuned values against the paper's, interleaved frame by frame in one run, "
-        << o.repetitions << " repetitions; a ratio below 1 means the tuned values are faster. The held-out variant "
-        << "is the same scenario with another seed (another layout of the scene and other movers, the same camera "
+    out << "\n## Confirmation\n\nThe tuned values against the paper's, interleaved frame by frame "
+           "in one run, "
+        << o.repetitions
+        << " repetitions; a ratio below 1 means the tuned values are faster. The held-out variant "
+        << "is the same scenario with another seed (another layout of the scene and other movers, "
+           "the same camera "
            "path): the fit never saw it.\n\n"
-        << "| variant | seed | frames | mean ratio, median [min-max] | p95 ratio, median [min-max] | tuned ms | paper ms "
+        << "| variant | seed | frames | mean ratio, median [min-max] | p95 ratio, median [min-max] "
+           "| tuned ms | paper ms "
            "| queries/frame tuned / paper | objects/frame tuned / paper | error px tuned / paper "
            "| tie px tuned / paper | missed objects tuned / paper | verdict |\n"
         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConfirmationRow& c : r.confirmation) {
-        out << "| " << c.variant << " | " << c.seed << " | " << c.frames << " | " << formatSpread(c.mean_ratio) << " | "
-            << formatSpread(c.p95_ratio) << " | " << fixed(c.tuned_mean_ms, 2) << " | " << fixed(c.paper_mean_ms, 2)
-            << " | " << fixed(c.tuned_queries, 1) << " / " << fixed(c.paper_queries, 1) << " | "
-            << fixed(c.tuned_objects, 1) << " / " << fixed(c.paper_objects, 1) << " | " << c.tuned_error_pixels
-            << " / " << c.paper_error_pixels << " | " << c.tuned_tie_pixels << " / " << c.paper_tie_pixels << " | "
-            << c.tuned_missed_objects << " / " << c.paper_missed_objects << " | "
-            << verdict(c, r.dropped.size() == r.space.size()) << " |\n";
+        out << "| " << c.variant << " | " << c.seed << " | " << c.frames << " | "
+            << formatSpread(c.mean_ratio) << " | " << formatSpread(c.p95_ratio) << " | "
+            << fixed(c.tuned_mean_ms, 2) << " | " << fixed(c.paper_mean_ms, 2) << " | "
+            << fixed(c.tuned_queries, 1) << " / " << fixed(c.paper_queries, 1) << " | "
+            << fixed(c.tuned_objects, 1) << " / " << fixed(c.paper_objects, 1) << " | "
+            << c.tuned_error_pixels << " / " << c.paper_error_pixels << " | " << c.tuned_tie_pixels
+            << " / " << c.paper_tie_pixels << " | " << c.tuned_missed_objects << " / "
+            << c.paper_missed_objects << " | " << verdict(c, r.dropped.size() == r.space.size())
+            << " |\n";
     }
 
     out << "\n**Verdict: " << r.verdict.name() << "**: " << r.verdict.reason << " (written as `"
@@ -178,20 +212,28 @@ std::string reportMarkdown(const TuneResult& r) {
 
     const CostModel& m = r.cost.model;
     out << "\n## Fit quality\n\n### Cost model (per frame)\n\n"
-        << "frame_ms = constant + query_ms * queries + kilotriangle_ms * triangles/1000 + draw_ms * objects drawn + "
-           "wait_factor * wait_ms, fitted with Ceres (every coefficient >= 0; loss: " << r.cost.fit.loss << ") over "
-        << r.cost.frames << " timed frames of " << r.cost.groups << " runs.\n\n"
+        << "frame_ms = constant + query_ms * queries + kilotriangle_ms * triangles/1000 + draw_ms "
+           "* objects drawn + "
+           "wait_factor * wait_ms, fitted with Ceres (every coefficient >= 0; loss: "
+        << r.cost.fit.loss << ") over " << r.cost.frames << " timed frames of " << r.cost.groups
+        << " runs.\n\n"
         << "| term | coefficient | approx. standard error |\n|---|---|---|\n"
-        << "| constant (ms) | " << general(m.constant_ms) << " | " << general(r.cost.standard_error[0]) << " |\n"
-        << "| per query (ms) | " << general(m.query_ms) << " | " << general(r.cost.standard_error[1]) << " |\n"
-        << "| per 1000 triangles (ms) | " << general(m.kilotriangle_ms) << " | " << general(r.cost.standard_error[2])
-        << " |\n"
-        << "| per draw call (ms) | " << general(m.draw_ms) << " | " << general(r.cost.standard_error[3]) << " |\n"
-        << "| per waited ms | " << general(m.wait_factor) << " | " << general(r.cost.standard_error[4]) << " |\n\n"
-        << "- Residual RMS: " << fixed(r.cost.residual_rms_ms, 2) << " ms (" << percent(r.cost.residual_rms_ms, r.cost.mean_frame_ms)
-        << " of the mean frame, " << fixed(r.cost.mean_frame_ms, 2) << " ms)\n"
-        << "- Prediction error on runs left out of the fit (5 folds of whole runs): " << fixed(r.cost.heldout_rms_ms, 2)
-        << " ms (" << percent(r.cost.heldout_rms_ms, r.cost.mean_frame_ms) << ")\n"
+        << "| constant (ms) | " << general(m.constant_ms) << " | "
+        << general(r.cost.standard_error[0]) << " |\n"
+        << "| per query (ms) | " << general(m.query_ms) << " | "
+        << general(r.cost.standard_error[1]) << " |\n"
+        << "| per 1000 triangles (ms) | " << general(m.kilotriangle_ms) << " | "
+        << general(r.cost.standard_error[2]) << " |\n"
+        << "| per draw call (ms) | " << general(m.draw_ms) << " | "
+        << general(r.cost.standard_error[3]) << " |\n"
+        << "| per waited ms | " << general(m.wait_factor) << " | "
+        << general(r.cost.standard_error[4]) << " |\n\n"
+        << "- Residual RMS: " << fixed(r.cost.residual_rms_ms, 2) << " ms ("
+        << percent(r.cost.residual_rms_ms, r.cost.mean_frame_ms) << " of the mean frame, "
+        << fixed(r.cost.mean_frame_ms, 2) << " ms)\n"
+        << "- Prediction error on runs left out of the fit (5 folds of whole runs): "
+        << fixed(r.cost.heldout_rms_ms, 2) << " ms ("
+        << percent(r.cost.heldout_rms_ms, r.cost.mean_frame_ms) << ")\n"
         << "- Ceres: " << r.cost.fit.ceres_summary << "\n\n";
 
     out << "### Response model (" << objective << " ratio against the tuned parameters)\n\n"
@@ -207,7 +249,8 @@ std::string reportMarkdown(const TuneResult& r) {
         << "- Residual RMS: " << fixed(r.response.residual_rms, 4) << "\n"
         << "- Leave-one-out prediction error (each sample predicted by a fit without it): " << fixed(r.response.loo_rms, 4)
         << "\n- Coefficients:";
-    for (Eigen::Index k = 0; k < r.response.model.coefficients.size(); ++k) out << " " << general(r.response.model.coefficients[k]);
+    for (Eigen::Index k = 0; k < r.response.model.coefficients.size(); ++k)
+        out << " " << general(r.response.model.coefficients[k]);
     out << "\n- Ceres: " << r.response.fit.ceres_summary << "\n\n## Samples\n\n";
     samplesTable(out, r);
 

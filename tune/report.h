@@ -2,10 +2,10 @@
 // models, every sample, and the charts. Formatting only.
 #pragma once
 
-#include "tune/result.h"
-
 #include <string>
 #include <vector>
+
+#include "tune/result.h"
 
 namespace occsim::tune {
 

@@ -25,8 +25,10 @@ RobustFit fitTerms(const Eigen::MatrixXd& T, const Eigen::VectorXd& y, int max_i
 }
 
 Eigen::MatrixXd termMatrix(const ResponseModel& m, const std::vector<Point>& xs) {
-    Eigen::MatrixXd T(static_cast<Eigen::Index>(xs.size()), static_cast<Eigen::Index>(ResponseModel::termCount(m.active.size())));
-    for (size_t i = 0; i < xs.size(); ++i) T.row(static_cast<Eigen::Index>(i)) = m.terms(xs[i]).transpose();
+    Eigen::MatrixXd T(static_cast<Eigen::Index>(xs.size()),
+                      static_cast<Eigen::Index>(ResponseModel::termCount(m.active.size())));
+    for (size_t i = 0; i < xs.size(); ++i)
+        T.row(static_cast<Eigen::Index>(i)) = m.terms(xs[i]).transpose();
     return T;
 }
 
@@ -35,8 +37,8 @@ struct LeaveOneOut {
     double mse_se = 0.0;
 };
 
-LeaveOneOut leaveOneOut(const ResponseModel& shape, const std::vector<Point>& xs, const std::vector<double>& ys,
-                        int max_iterations) {
+LeaveOneOut leaveOneOut(const ResponseModel& shape, const std::vector<Point>& xs,
+                        const std::vector<double>& ys, int max_iterations) {
     const Eigen::MatrixXd T = termMatrix(shape, xs);
     const Eigen::Index n = T.rows();
     std::vector<double> squared_errors;
@@ -89,7 +91,9 @@ Quadratic quadraticOf(const ResponseModel& m) {
     return q;
 }
 
-double valueAt(const Quadratic& q, const Eigen::VectorXd& z) { return q.c + q.g.dot(z) + 0.5 * z.dot(q.H * z); }
+double valueAt(const Quadratic& q, const Eigen::VectorXd& z) {
+    return q.c + q.g.dot(z) + 0.5 * z.dot(q.H * z);
+}
 
 }  // namespace
 
@@ -132,11 +136,13 @@ ResponseFit fitResponse(const std::vector<Point>& xs, const std::vector<double>&
     r.model.active = active;
     const size_t terms = ResponseModel::termCount(active.size());
     if (xs.size() <= terms) {
-        throw std::invalid_argument("the response model needs more samples (" + std::to_string(xs.size()) +
-                                    ") than terms (" + std::to_string(terms) + ")");
+        throw std::invalid_argument("the response model needs more samples (" +
+                                    std::to_string(xs.size()) + ") than terms (" +
+                                    std::to_string(terms) + ")");
     }
     const Eigen::MatrixXd T = termMatrix(r.model, xs);
-    const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
+    const Eigen::VectorXd y =
+        Eigen::Map<const Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
     r.fit = fitTerms(T, y, max_iterations);
     r.model.coefficients = r.fit.coefficients;
     r.samples = xs.size();
@@ -150,8 +156,8 @@ ResponseFit fitResponse(const std::vector<Point>& xs, const std::vector<double>&
     return r;
 }
 
-ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<double>& ys, size_t dims,
-                                int max_iterations, std::vector<size_t>* dropped) {
+ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<double>& ys,
+                                size_t dims, int max_iterations, std::vector<size_t>* dropped) {
     std::vector<size_t> active(dims);
     for (size_t j = 0; j < dims; ++j) active[j] = j;
     ResponseFit current = fitResponse(xs, ys, dims, active, max_iterations);
@@ -199,8 +205,10 @@ Point minimiseOverBox(const ResponseModel& model, const Point& inactive_at) {
         size_t code = face;
         for (size_t i = 0; i < a; ++i, code /= 3) {
             const auto ii = static_cast<Eigen::Index>(i);
-            if (code % 3 == 0) free.push_back(ii);
-            else z[ii] = code % 3 == 1 ? -1.0 : 1.0;
+            if (code % 3 == 0)
+                free.push_back(ii);
+            else
+                z[ii] = code % 3 == 1 ? -1.0 : 1.0;
         }
         if (!free.empty()) {
             // Stationary point of the face: H_FF z_F = -(g_F + H_F,fixed z_fixed).
@@ -210,12 +218,15 @@ Point minimiseOverBox(const ResponseModel& model, const Point& inactive_at) {
             for (Eigen::Index r = 0; r < f; ++r) {
                 rhs[r] = -q.g[free[static_cast<size_t>(r)]];
                 for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(a); ++c) {
-                    if (std::find(free.begin(), free.end(), c) == free.end()) rhs[r] -= q.H(free[static_cast<size_t>(r)], c) * z[c];
+                    if (std::find(free.begin(), free.end(), c) == free.end())
+                        rhs[r] -= q.H(free[static_cast<size_t>(r)], c) * z[c];
                 }
-                for (Eigen::Index c = 0; c < f; ++c) Hff(r, c) = q.H(free[static_cast<size_t>(r)], free[static_cast<size_t>(c)]);
+                for (Eigen::Index c = 0; c < f; ++c)
+                    Hff(r, c) = q.H(free[static_cast<size_t>(r)], free[static_cast<size_t>(c)]);
             }
             const Eigen::FullPivLU<Eigen::MatrixXd> lu(Hff);
-            if (!lu.isInvertible()) continue;  // a singular face: its minimum lies on a smaller face
+            if (!lu.isInvertible())
+                continue;  // a singular face: its minimum lies on a smaller face
             const Eigen::VectorXd zf = lu.solve(rhs);
             bool inside = true;
             for (Eigen::Index r = 0; r < f; ++r) inside &= zf[r] >= -1.0 && zf[r] <= 1.0;
@@ -228,7 +239,8 @@ Point minimiseOverBox(const ResponseModel& model, const Point& inactive_at) {
             best_z = z;
         }
     }
-    for (size_t i = 0; i < a; ++i) best_x[model.active[i]] = 0.5 * (best_z[static_cast<Eigen::Index>(i)] + 1.0);
+    for (size_t i = 0; i < a; ++i)
+        best_x[model.active[i]] = 0.5 * (best_z[static_cast<Eigen::Index>(i)] + 1.0);
     return best_x;
 }
 

@@ -9,13 +9,12 @@
 // leave-one-out prediction error is dropped (the scene does not exercise it beyond noise).
 #pragma once
 
-#include "tune/design.h"
-#include "tune/robust_fit.h"
-
 #include <Eigen/Dense>
-
 #include <cstddef>
 #include <vector>
+
+#include "tune/design.h"
+#include "tune/robust_fit.h"
 
 namespace occsim::tune {
 
@@ -37,7 +36,8 @@ struct ResponseFit final : Surrogate {
     double loo_rms = 0.0;       // leave-one-out prediction error (each sample predicted without it)
     double loo_mse_se = 0.0;    // standard error of the leave-one-out mean squared error
     double sigma = 0.0;         // residual standard deviation, corrected for the terms fitted
-    Eigen::MatrixXd inverse_normal;  // (T^T T)^-1 over the sampled terms, for the prediction's spread
+    Eigen::MatrixXd
+        inverse_normal;  // (T^T T)^-1 over the sampled terms, for the prediction's spread
 
     Prediction predict(const Point& x) const override;
     void assumeSampled(const Point& x) override;
@@ -57,8 +57,8 @@ ResponseFit fitResponse(const std::vector<Point>& xs, const std::vector<double>&
 // from every parameter, drop the parameter whose removal gives the lowest error, as long as that
 // error stays within one standard error of the lowest seen so far. A parameter survives only when
 // the samples show its effect beyond their noise. `dropped` lists the parameters removed, in order.
-ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<double>& ys, size_t dims,
-                                int max_iterations, std::vector<size_t>* dropped);
+ResponseFit selectResponseModel(const std::vector<Point>& xs, const std::vector<double>& ys,
+                                size_t dims, int max_iterations, std::vector<size_t>* dropped);
 
 // The point of the unit cube where the model is lowest. Inactive parameters take their value from
 // `inactive_at`. Exact: a quadratic's minimum over a box lies at a stationary point of one of the

@@ -1,15 +1,15 @@
 // What a tuning session found, for the report (report.h) and the console.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "tune/confirm.h"
 #include "tune/cost_model.h"
 #include "tune/parameters.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
 #include "tune/tuner.h"
-
-#include <string>
-#include <vector>
 
 namespace occsim::tune {
 
@@ -27,21 +27,21 @@ struct TuneResult {
 
     const SampleLog* log = nullptr;
     std::vector<Sample> samples;
-    std::vector<double> objective;  // per sample: the fitted ratio
-    std::vector<Sample> references;            // the reference runs, as ratios to their batch's
+    std::vector<double> objective;   // per sample: the fitted ratio
+    std::vector<Sample> references;  // the reference runs, as ratios to their batch's
     std::vector<double> reference_objective;
     uint32_t initial_samples = 0;
-    int64_t sample_error_pixels = 0;     // over every frame of every sample and reference
-    double reference_noise = 0.0;        // SampleLog::referenceNoise()
+    int64_t sample_error_pixels = 0;  // over every frame of every sample and reference
+    double reference_noise = 0.0;     // SampleLog::referenceNoise()
 
     CostModelFit cost;
     ResponseFit response;
-    std::vector<size_t> dropped;         // parameters the fit found no effect of, in order dropped
-    double full_model_loo_rms = 0.0;     // before any was dropped
+    std::vector<size_t> dropped;      // parameters the fit found no effect of, in order dropped
+    double full_model_loo_rms = 0.0;  // before any was dropped
 
     Point tuned_unit;
     std::vector<double> tuned_values;
-    std::vector<bool> kept_at_paper;     // per parameter
+    std::vector<bool> kept_at_paper;      // per parameter
     std::vector<std::string> bounds_hit;  // per parameter: "lower", "upper" or "" (ParameterSpace)
     double predicted_tuned = 0.0, predicted_paper = 0.0;
     double predicted_tuned_sd = 0.0;  // standard deviation of that prediction

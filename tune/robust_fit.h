@@ -11,17 +11,17 @@
 #pragma once
 
 #include <Eigen/Dense>
-
 #include <string>
 #include <vector>
 
 namespace occsim::tune {
 
 struct RobustFitOptions {
-    double huber_delta = 1.0;          // in the unit of y
+    double huber_delta = 1.0;  // in the unit of y
     bool cauchy_refinement = true;
-    double cauchy_spread_factor = 2.0; // Cauchy scale = this * the robust spread of stage 1's residuals
-    double cauchy_min_scale = 1e-3;    // in the unit of y: noise-free data still gets a usable scale
+    double cauchy_spread_factor =
+        2.0;  // Cauchy scale = this * the robust spread of stage 1's residuals
+    double cauchy_min_scale = 1e-3;  // in the unit of y: noise-free data still gets a usable scale
     std::vector<double> lower, upper;  // per coefficient; empty = unbounded
     int max_iterations = 200;          // Ceres' max_num_iterations, per stage
 };
@@ -39,6 +39,7 @@ struct RobustFit {
 // X: one row per observation, one column per coefficient; rows >= columns. Stage 1 starts from
 // zero (clamped into the bounds), so an iteration limit that is too small shows as a fit that
 // did not converge.
-RobustFit fitRobustLinear(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const RobustFitOptions& options);
+RobustFit fitRobustLinear(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
+                          const RobustFitOptions& options);
 
 }  // namespace occsim::tune

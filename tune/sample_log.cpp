@@ -1,15 +1,14 @@
 #include "tune/sample_log.h"
 
-#include "sim/output/atomic_file.h"
-#include "tune/errors.h"
-
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "sim/output/atomic_file.h"
+#include "tune/errors.h"
 
 namespace occsim::tune {
 namespace {
@@ -35,31 +34,32 @@ Json settingsJson(const LogSettings& s) {
 
 LogSettings settingsOf(const Json& j) {
     LogSettings s;
-    if (j.at("occtune_sample_log").get<int>() != kLogVersion) throw std::runtime_error("unknown log version");
+    if (j.at("occtune_sample_log").get<int>() != kLogVersion)
+        throw std::runtime_error("unknown log version");
     s.scenario_file = j.at("scenario").get<std::string>();
     s.scenario_name = j.at("scenario_name").get<std::string>();
     s.scenario_hash = j.at("scenario_hash").get<uint64_t>();
     // Logs from before occtune --algo tuned the statistical culler.
     s.algorithm = j.contains("algorithm") ? j.at("algorithm").get<std::string>() : "statistical";
     s.parameters = j.at("parameters").get<std::vector<std::string>>();
-    for (const Json& b : j.at("bounds")) s.bounds.push_back({b.at(0).get<double>(), b.at(1).get<double>()});
+    for (const Json& b : j.at("bounds"))
+        s.bounds.push_back({b.at(0).get<double>(), b.at(1).get<double>()});
     s.frames = j.at("frames").get<uint32_t>();
     s.warmup_frames = j.at("warmup_frames").get<uint32_t>();
     s.seed = j.at("seed").get<uint64_t>();
     s.initial_samples = j.at("initial_samples").get<uint32_t>();
-    if (s.bounds.size() != s.parameters.size()) throw std::runtime_error("bounds and parameters differ in number");
+    if (s.bounds.size() != s.parameters.size())
+        throw std::runtime_error("bounds and parameters differ in number");
     return s;
 }
 
 Json runJson(const LoggedRun& r) {
     Json frames = Json::array();
-    for (const FrameCounts& f : r.frames) frames.push_back({f.frame_ms, f.queries, f.triangles, f.objects_drawn, f.wait_ms});
-    return {{"batch", r.batch},
-            {"kind", r.reference ? "reference" : "sample"},
-            {"values", r.values},
-            {"mean_ms", r.mean_ms},
-            {"p95_ms", r.p95_ms},
-            {"error_pixels", r.error_pixels},
+    for (const FrameCounts& f : r.frames)
+        frames.push_back({f.frame_ms, f.queries, f.triangles, f.objects_drawn, f.wait_ms});
+    return {{"batch", r.batch},   {"kind", r.reference ? "reference" : "sample"},
+            {"values", r.values}, {"mean_ms", r.mean_ms},
+            {"p95_ms", r.p95_ms}, {"error_pixels", r.error_pixels},
             {"frames", frames}};
 }
 
@@ -67,16 +67,18 @@ LoggedRun runOf(const Json& j, size_t parameters) {
     LoggedRun r;
     r.batch = j.at("batch").get<uint32_t>();
     const std::string kind = j.at("kind").get<std::string>();
-    if (kind != "reference" && kind != "sample") throw std::runtime_error("kind must be reference or sample");
+    if (kind != "reference" && kind != "sample")
+        throw std::runtime_error("kind must be reference or sample");
     r.reference = kind == "reference";
     r.values = j.at("values").get<std::vector<double>>();
-    if (r.values.size() != parameters) throw std::runtime_error("values do not match the parameters");
+    if (r.values.size() != parameters)
+        throw std::runtime_error("values do not match the parameters");
     r.mean_ms = j.at("mean_ms").get<double>();
     r.p95_ms = j.at("p95_ms").get<double>();
     r.error_pixels = j.at("error_pixels").get<int64_t>();
     for (const Json& f : j.at("frames")) {
-        r.frames.push_back({f.at(0).get<double>(), f.at(1).get<double>(), f.at(2).get<double>(), f.at(3).get<double>(),
-                            f.at(4).get<double>()});
+        r.frames.push_back({f.at(0).get<double>(), f.at(1).get<double>(), f.at(2).get<double>(),
+                            f.at(3).get<double>(), f.at(4).get<double>()});
     }
     return r;
 }
@@ -99,7 +101,9 @@ uint64_t textHash(const std::string& text) {
 }
 
 SampleLog::SampleLog(std::filesystem::path file, LogSettings settings)
-    : file_(std::move(file)), settings_(std::move(settings)), text_(settingsJson(settings_).dump() + "\n") {}
+    : file_(std::move(file)),
+      settings_(std::move(settings)),
+      text_(settingsJson(settings_).dump() + "\n") {}
 
 SampleLog SampleLog::read(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -211,19 +215,24 @@ void SampleLog::appendBatch(const std::vector<LoggedRun>& batch) {
 std::string SampleLog::mismatch(const LogSettings& o) const {
     const LogSettings& s = settings_;
     if (s.scenario_hash != o.scenario_hash || s.scenario_name != o.scenario_name) {
-        return "the log was written for another scenario (or the file changed since): " + s.scenario_file;
+        return "the log was written for another scenario (or the file changed since): " +
+               s.scenario_file;
     }
     if (s.algorithm != o.algorithm) return "the log was written with --algo " + s.algorithm;
-    if (s.parameters != o.parameters) return "the log was written with --params " + join(s.parameters);
+    if (s.parameters != o.parameters)
+        return "the log was written with --params " + join(s.parameters);
     for (size_t j = 0; j < s.bounds.size(); ++j) {
         if (s.bounds[j].lo != o.bounds[j].lo || s.bounds[j].hi != o.bounds[j].hi) {
             std::ostringstream why;
-            why << "the log was written with --bounds " << s.parameters[j] << "=" << s.bounds[j].lo << ":" << s.bounds[j].hi;
+            why << "the log was written with --bounds " << s.parameters[j] << "=" << s.bounds[j].lo
+                << ":" << s.bounds[j].hi;
             return why.str();
         }
     }
-    if (s.frames != o.frames) return "the log was written with --frames " + std::to_string(s.frames);
-    if (s.warmup_frames != o.warmup_frames) return "the log was written with " + std::to_string(s.warmup_frames) + " warm-up frames";
+    if (s.frames != o.frames)
+        return "the log was written with --frames " + std::to_string(s.frames);
+    if (s.warmup_frames != o.warmup_frames)
+        return "the log was written with " + std::to_string(s.warmup_frames) + " warm-up frames";
     if (s.seed != o.seed) return "the log was written with --seed " + std::to_string(s.seed);
     return "";
 }

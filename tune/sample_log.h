@@ -9,13 +9,13 @@
 // every timed frame (for the cost model).
 #pragma once
 
-#include "tune/cost_model.h"
-#include "tune/parameters.h"
-
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "tune/cost_model.h"
+#include "tune/parameters.h"
 
 namespace occsim::tune {
 
@@ -38,7 +38,7 @@ struct LoggedRun {
     std::vector<double> values;  // the tuned parameters' values (the reference: the paper's)
     double mean_ms = 0.0;        // over the timed frames
     double p95_ms = 0.0;
-    int64_t error_pixels = 0;    // over all frames
+    int64_t error_pixels = 0;         // over all frames
     std::vector<FrameCounts> frames;  // the timed frames
 };
 
@@ -50,7 +50,7 @@ struct Sample {
 };
 
 class SampleLog {
-public:
+  public:
     // A new log (nothing written until the first batch).
     SampleLog(std::filesystem::path file, LogSettings settings);
     // Reads an existing log. Throws TuneInputError naming the file and line when it is not one.
@@ -76,7 +76,7 @@ public:
     // An empty string when `other` may continue this log, else what differs (one line).
     std::string mismatch(const LogSettings& other) const;
 
-private:
+  private:
     std::filesystem::path file_;
     LogSettings settings_;
     std::vector<LoggedRun> runs_;

@@ -1,13 +1,13 @@
 #include "tune/sampling.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
 #include "occsim/culling/geometry/random.h"
 #include "tune/interrupt.h"
 #include "tune/measure.h"
 #include "tune/response_model.h"
-
-#include <algorithm>
-#include <cstdio>
-#include <stdexcept>
 
 namespace occsim::tune {
 namespace {
@@ -15,7 +15,8 @@ namespace {
 constexpr size_t kReferences = 2;  // runs of the paper's values per batch
 
 // The next batch: the rest of the space-filling design first, then adaptive points.
-std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, const TuneOptions& o) {
+std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space,
+                             const TuneOptions& o) {
     const LogSettings& s = log.settings();
     const Observations obs = observationsOf(log, space, o.objective);
     const size_t done = log.samples().size();
@@ -23,20 +24,25 @@ std::vector<Point> planBatch(const SampleLog& log, const ParameterSpace& space, 
     if (done < s.initial_samples) {
         const std::vector<Point> design = latinHypercube(s.initial_samples, space.size(), s.seed);
         const size_t end = std::min<size_t>(s.initial_samples, done + k);
-        return {design.begin() + static_cast<std::ptrdiff_t>(done), design.begin() + static_cast<std::ptrdiff_t>(end)};
+        return {design.begin() + static_cast<std::ptrdiff_t>(done),
+                design.begin() + static_cast<std::ptrdiff_t>(end)};
     }
     // The model the session will choose with (parameters without an effect dropped): a full
     // quadratic fitted to barely more samples than it has terms runs off at the corners.
-    ResponseFit fit = selectResponseModel(obs.xs, obs.ys, space.size(), o.max_fit_iterations, nullptr);
+    ResponseFit fit =
+        selectResponseModel(obs.xs, obs.ys, space.size(), o.max_fit_iterations, nullptr);
     const Point optimum = minimiseOverBox(fit.model, space.paperUnitPoint());
     return nextBatch(fit, obs.xs, optimum, k, deriveSeed(s.seed, log.batches(), 0x5A3D));
 }
 
 }  // namespace
 
-double objectiveOf(const Sample& s, Objective o) { return o == Objective::Mean ? s.ratio_mean : s.ratio_p95; }
+double objectiveOf(const Sample& s, Objective o) {
+    return o == Objective::Mean ? s.ratio_mean : s.ratio_p95;
+}
 
-Observations observationsOf(const SampleLog& log, const ParameterSpace& space, Objective objective) {
+Observations observationsOf(const SampleLog& log, const ParameterSpace& space,
+                            Objective objective) {
     Observations obs;
     std::vector<Sample> all = log.samples();
     const std::vector<Sample> references = log.referenceSamples();
@@ -71,7 +77,8 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
     const OptionValues paper = space.paper(base);
     while (log.samples().size() < o.budget) {
         const std::vector<Point> points = planBatch(log, space, o);
-        if (points.empty()) throw std::runtime_error("no new sample point could be found in the bounds");
+        if (points.empty())
+            throw std::runtime_error("no new sample point could be found in the bounds");
         const uint32_t batch = log.batches();
         // The paper's values twice: the ratio of every sample shares the reference's noise, which
         // two runs halve (in variance), and their difference measures that noise.
@@ -81,19 +88,23 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
                                     space.describe(space.values(points[i])),
                                 space.apply(base, space.values(points[i]))});
         }
-        const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" + std::to_string(o.budget) +
-                                  ", running " + std::to_string(points.size()) + " more";
-        const BenchResult result = runInterleaved(c.scenario, *space.algorithm, settings, 1, o.backend, [&](const FrameEvent& e) {
-            progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" + std::to_string(c.scenario.frames) + ")");
-            progress.frameDone();
-            throwIfInterrupted();
-        });
+        const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" +
+                                  std::to_string(o.budget) + ", running " +
+                                  std::to_string(points.size()) + " more";
+        const BenchResult result = runInterleaved(
+            c.scenario, *space.algorithm, settings, 1, o.backend, [&](const FrameEvent& e) {
+                progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" +
+                                  std::to_string(c.scenario.frames) + ")");
+                progress.frameDone();
+                throwIfInterrupted();
+            });
         std::vector<LoggedRun> runs;
         for (size_t i = 0; i < result.runs.size(); ++i) {
             LoggedRun r = loggedRunOf(result.runs[i], c.scenario.warmup_frames);
             r.batch = batch;
             r.reference = i < kReferences;
-            r.values = r.reference ? space.values(space.paperUnitPoint()) : space.values(points[i - kReferences]);
+            r.values = r.reference ? space.values(space.paperUnitPoint())
+                                   : space.values(points[i - kReferences]);
             runs.push_back(std::move(r));
         }
         log.appendBatch(runs);

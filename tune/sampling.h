@@ -3,14 +3,14 @@
 // until the budget is reached, each batch appended to the log as it finishes.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "tune/design.h"
 #include "tune/input.h"
 #include "tune/progress.h"
 #include "tune/sample_log.h"
 #include "tune/tuner.h"
-
-#include <string>
-#include <vector>
 
 namespace occsim::tune {
 
@@ -32,6 +32,7 @@ uint64_t workLeft(size_t samples_left, const TuneOptions& options, uint32_t fram
 
 // Measures batches until the log holds options.budget samples. Throws Interrupted on SIGINT (the
 // batch in progress is dropped; the log keeps every finished one).
-void sample(SampleLog& log, const CheckedInput& input, const TuneOptions& options, Progress& progress);
+void sample(SampleLog& log, const CheckedInput& input, const TuneOptions& options,
+            Progress& progress);
 
 }  // namespace occsim::tune

@@ -1,8 +1,8 @@
 #include "tune/tuned_file.h"
 
-#include "sim/scenario/culling_file.h"
-
 #include <stdexcept>
+
+#include "sim/scenario/culling_file.h"
 
 namespace occsim::tune {
 
@@ -16,7 +16,8 @@ bool addCostOption(nlohmann::json& culling, const CostModel& model, const std::s
     return true;
 }
 
-TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned, const CostModel& cost) {
+TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
+                    const CostModel& cost) {
     // Ordered, so that the file reads in the order of the culler's descriptor.
     nlohmann::ordered_json options = nlohmann::ordered_json::object();
     for (const OptionSpec& spec : tuned.descriptor()) {
@@ -38,7 +39,8 @@ TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
         for (const auto& [key, value] : cost_option.items()) culling[key] = value;
         if (file.has_cost_option) {
             file.note = "tuned.json carries the fitted culling.cost_model for " + algorithm.name +
-                        " only (\"cullers\": [\"" + algorithm.name + "\"]): no other culler reads it";
+                        " only (\"cullers\": [\"" + algorithm.name +
+                        "\"]): no other culler reads it";
         }
     }
     const nlohmann::ordered_json top = {{"format_version", 1}, {"culling", culling}};
@@ -48,9 +50,11 @@ TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
     // written.
     Scenario probe;
     try {
-        applyCullingFile(CullingFile{"tuned.json", parseStrictJson(file.text, "tuned.json")}, probe);
+        applyCullingFile(CullingFile{"tuned.json", parseStrictJson(file.text, "tuned.json")},
+                         probe);
     } catch (const ScenarioError& e) {
-        throw std::runtime_error(std::string("tuned.json would be refused by occsim --culling: ") + e.what());
+        throw std::runtime_error(std::string("tuned.json would be refused by occsim --culling: ") +
+                                 e.what());
     }
     if (probe.algorithm != algorithm.name || !(probe.culler.of(algorithm) == tuned)) {
         throw std::runtime_error("tuned.json does not read back as the tuned values");

@@ -3,12 +3,11 @@
 // own strict readers (sim/scenario/culling_file.h).
 #pragma once
 
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "occsim/culling/registry/registry.h"
 #include "tune/cost_model.h"
-
-#include <nlohmann/json.hpp>
-
-#include <string>
 
 namespace occsim::tune {
 
@@ -21,17 +20,19 @@ namespace occsim::tune {
 bool addCostOption(nlohmann::json& culling, const CostModel& model, const std::string& culler);
 
 struct TunedFile {
-    std::string text;            // the file's contents
+    std::string text;  // the file's contents
     bool has_cost_option = false;
-    bool weighs_costs = false;   // the tuned culler reads culling.cost_model
-    std::string note;            // what else the file changes, when it carries a cost model
+    bool weighs_costs = false;  // the tuned culler reads culling.cost_model
+    std::string note;           // what else the file changes, when it carries a cost model
 };
 
 // Every option of the tuned culler is written, so that the file says the whole setting it was
 // tuned and confirmed with. The cost model is written only when the culler, so configured, weighs
-// costs (AlgorithmTraits::cost_model_use), scoped to that culler (addCostOption); `note` says so. Checked by reading it back through the
-// scenario layer (as --culling does); throws std::runtime_error with that reader's one line when it
-// would be refused, or when it does not read back as the tuned values.
-TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned, const CostModel& cost);
+// costs (AlgorithmTraits::cost_model_use), scoped to that culler (addCostOption); `note` says so.
+// Checked by reading it back through the scenario layer (as --culling does); throws
+// std::runtime_error with that reader's one line when it would be refused, or when it does not read
+// back as the tuned values.
+TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
+                    const CostModel& cost);
 
 }  // namespace occsim::tune

@@ -8,8 +8,9 @@ bool CostModel::isValid(std::string* error) const {
     for (double v : {query_box_ms, triangle_ms, draw_call_ms}) {
         if (!(std::isfinite(v) && v >= 0.0)) {
             if (error) {
-                *error = "query_box_ms, triangle_ms and draw_call_ms must be finite numbers >= 0 "
-                         "(milliseconds)";
+                *error =
+                    "query_box_ms, triangle_ms and draw_call_ms must be finite numbers >= 0 "
+                    "(milliseconds)";
             }
             return false;
         }

@@ -1,13 +1,9 @@
 // The culler interface: one frame's visibility decisions over a BspTree, carried out through a
 // RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
-// registration in culling/algorithms.h. Implementations keep their own per-node state (sized by reset()), use simulation
-// time (never wall-clock time) for every decision, and are deterministic given the device's
-// answers.
+// registration in culling/algorithms.h. Implementations keep their own per-node state (sized by
+// reset()), use simulation time (never wall-clock time) for every decision, and are deterministic
+// given the device's answers.
 #pragma once
-
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/geometry/frustum.h"
-#include "occsim/culling/contract/render_device.h"
 
 #include <cstdint>
 #include <memory>
@@ -15,6 +11,10 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
 
@@ -53,12 +53,13 @@ struct CullFrame {
 };
 
 class Culler {
-public:
+  public:
     virtual ~Culler() = default;
     virtual std::string_view name() const = 0;
     // Called once the tree is built, before the first frame; clears all per-node state.
     virtual void reset(const BspTree& tree) = 0;
-    virtual void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) = 0;
+    virtual void cullAndRender(const BspTree& tree, const CullFrame& frame,
+                               RenderDevice& device) = 0;
 };
 
 }  // namespace occsim

@@ -4,11 +4,11 @@
 //
 // Query semantics (GL_SAMPLES_PASSED on bounding boxes):
 // - issueQuery() rasterises the given boxes with colour and depth writes off against the depth
-//   buffer as it is now, without waiting, and returns an id. Several boxes make one multiquery whose
-//   result is the sum over its boxes. The subjects say what the query decides (a node, the objects
-//   stored in a node itself, one object; a multiquery over several nodes names each): devices
-//   that draw ignore them, devices that record (TracingDevice) keep them, so a picture of the
-//   frame knows what every query was for without guessing from its boxes.
+//   buffer as it is now, without waiting, and returns an id. Several boxes make one multiquery
+//   whose result is the sum over its boxes. The subjects say what the query decides (a node, the
+//   objects stored in a node itself, one object; a multiquery over several nodes names each):
+//   devices that draw ignore them, devices that record (TracingDevice) keep them, so a picture of
+//   the frame knows what every query was for without guessing from its boxes.
 // - isQueryReady() never blocks. Results become ready in issue order. Once it said yes for an id
 //   it says yes without asking the driver again: a device remembers what its poll learned, so an
 //   answer is polled at most until it is known to be ready, and never again by takeAnswer().
@@ -23,10 +23,10 @@
 //   (which does the work), so no caller ever needs to reach past a decorator.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-
 #include <cstdint>
 #include <span>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 
@@ -52,7 +52,7 @@ struct QueryTag {
 
 // The answer to one query, as takeAnswer() hands it over.
 struct QueryAnswer {
-    bool visible = true;   // the subject counts as visible (decided by the device, never the culler)
+    bool visible = true;  // the subject counts as visible (decided by the device, never the culler)
     uint64_t samples = 0;  // the samples the answer rests on (the query's, or a stale one's)
     bool waited = false;   // it was not ready when taken: the caller blocked for it
 };
@@ -60,19 +60,19 @@ struct QueryAnswer {
 struct DeviceCounters {
     uint64_t objects_drawn = 0;
     uint64_t triangles_drawn = 0;
-    uint64_t queries_issued = 0;     // query objects (a multiquery counts once)
-    uint64_t query_boxes = 0;        // boxes rasterised for queries
+    uint64_t queries_issued = 0;  // query objects (a multiquery counts once)
+    uint64_t query_boxes = 0;     // boxes rasterised for queries
     uint64_t results_fetched = 0;
-    uint64_t results_waited = 0;     // results fetched before they were ready (the caller blocked)
-    double wait_seconds = 0.0;       // wall-clock time blocked in takeAnswer()
-    double submit_seconds = 0.0;     // wall-clock time spent in draw and query submission
+    uint64_t results_waited = 0;  // results fetched before they were ready (the caller blocked)
+    double wait_seconds = 0.0;    // wall-clock time blocked in takeAnswer()
+    double submit_seconds = 0.0;  // wall-clock time spent in draw and query submission
     // Wall-clock time asking whether answers are ready and fetching answers that were: on
     // llvmpipe a poll can flush the command stream, so it is the driver's time, not the culler's.
     double poll_seconds = 0.0;
 };
 
 class RenderDevice {
-public:
+  public:
     virtual ~RenderDevice() = default;
 
     virtual void drawObject(uint32_t object) = 0;
@@ -87,7 +87,7 @@ public:
     virtual const DeviceCounters& counters() const { return counters_; }
     virtual void resetCounters() { counters_ = {}; }
 
-protected:
+  protected:
     DeviceCounters counters_;
 };
 

@@ -16,8 +16,7 @@ void AsyncCuller::reset(const BspTree& tree) {
     pass_ = 0;
 }
 
-void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
-                                RenderDevice& device) {
+void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     if (state_.size() != tree.objectCount()) reset(tree);
     frame_ = frame.frame_index;
     view_ = prepareView(frame.view);

@@ -27,12 +27,12 @@
 //     collected eventually, so the number of pending queries never exceeds the object count.
 #pragma once
 
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/tree/traversal.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/tree/traversal.h"
 
 namespace occsim {
 
@@ -41,11 +41,10 @@ namespace occsim {
 struct AsyncOptions {
     // N: a visible object is queried again this many frames after its last query. 1 = every frame.
     uint32_t retest_interval_frames = 5;
-
 };
 
 class AsyncCuller final : public Culler {
-public:
+  public:
     explicit AsyncCuller(const AsyncOptions& options = {});
     std::string_view name() const override { return "async"; }
     void reset(const BspTree& tree) override;
@@ -54,7 +53,7 @@ public:
     const AsyncOptions& options() const { return options_; }
     uint32_t pendingQueries() const { return pending_count_; }
 
-private:
+  private:
     enum class Status : uint8_t { Untested, Visible, Occluded };
     // Stamps count calls of cullAndRender (0 = never), so "the previous frame" is the previous
     // call even if a caller repeats a frame index; query scheduling uses the frame index.

@@ -28,7 +28,8 @@ void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
 void IdealCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     view_ = prepareView(frame.view);
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
-        for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone;
+             o = tree.nextObject(o)) {
             if (o < frame.ground_truth_visible.size() && frame.ground_truth_visible[o]) {
                 device.drawObject(o);
             }

@@ -41,7 +41,8 @@ void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
 void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit,
                           RenderDevice& device) {
     switch (nodes_.visit(tree, view_, visit)) {
-        case CoherentClassification::Visit::Culled: return;
+        case CoherentClassification::Visit::Culled:
+            return;
         case CoherentClassification::Visit::NearPlane:
             traverseNode(tree, frame, visit, device);
             return;
@@ -49,7 +50,8 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
             issue(device, std::span<const Aabb>(&tree.bounds(visit.node), 1), visit,
                   QueryPurpose::Invisible);
             return;
-        case CoherentClassification::Visit::PreviouslyVisible: break;
+        case CoherentClassification::Visit::PreviouslyVisible:
+            break;
     }
     const bool inside = visit.inside_frustum;
     const Aabb& box = tree.bounds(visit.node);
@@ -76,9 +78,8 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
     traverseNode(tree, frame, visit, device);
 }
 
-void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame,
-                             const PendingQuery& query, const QueryAnswer& answer,
-                             RenderDevice& device) {
+void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
+                             const QueryAnswer& answer, RenderDevice& device) {
     if (!answer.visible) return;  // stays invisible
     // Found visible: assumed visible (no query on its geometry) for the next t_av frames.
     nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
@@ -98,7 +99,7 @@ void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const 
 void ChcCuller::issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
                       QueryPurpose purpose) {
     const QueryTag subject = purpose == QueryPurpose::Own ? QueryTag::nodeObjects(visit.node)
-                                                    : QueryTag::node(visit.node);
+                                                          : QueryTag::node(visit.node);
     const QueryId id = device.issueQuery(boxes, std::span<const QueryTag>(&subject, 1));
     query_queue_.push_back({id, visit.node, visit.inside_frustum, purpose});
 }

@@ -33,12 +33,12 @@
 //     rendered when it was visited), so no object is drawn twice in a frame.
 #pragma once
 
-#include "occsim/culling/cullers/coherent_traversal.h"
-#include "occsim/culling/contract/culler.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/cullers/coherent_traversal.h"
 
 namespace occsim {
 
@@ -49,11 +49,10 @@ struct ChcOptions {
     // t_av: frames a leaf found visible is assumed visible without a query. 0 = every previously
     // visible leaf is queried every frame (the basic algorithm).
     uint32_t visible_frames_skip = 0;
-
 };
 
 class ChcCuller final : public Culler {
-public:
+  public:
     explicit ChcCuller(const ChcOptions& options = {});
     std::string_view name() const override { return "chc"; }
     void reset(const BspTree& tree) override;
@@ -66,7 +65,7 @@ public:
     // Whether the last frame's traversal reached the node (it passed the frustum test).
     bool visitedLastFrame(uint32_t node) const { return nodes_.visitedThisFrame(node); }
 
-private:
+  private:
     struct PendingQuery {
         QueryId id;
         uint32_t node;

@@ -4,11 +4,11 @@
 // chcpp_culler.h for the rules.
 #include "occsim/culling/cullers/chcpp_culler.h"
 
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/geometry/random.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "occsim/culling/geometry/random.h"
+#include "occsim/culling/registry/registry.h"
 
 namespace occsim {
 
@@ -41,8 +41,7 @@ void ChcppCuller::reset(const BspTree& tree) {
     clearQueues();
 }
 
-void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
-                                RenderDevice& device) {
+void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     frame_ = frame.frame_index;
     view_ = prepareView(frame.view);
     nodes_.beginFrame(tree);
@@ -96,14 +95,16 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
 
 void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit) {
     switch (nodes_.visit(tree, view_, visit)) {
-        case CoherentClassification::Visit::Culled: return;
+        case CoherentClassification::Visit::Culled:
+            return;
         case CoherentClassification::Visit::NearPlane:
             traverseNode(tree, frame, visit);
             return;
         case CoherentClassification::Visit::PreviouslyInvisible:
             i_queue_.push_back({visit.node, visit.inside_frustum, false, QueryPurpose::Invisible});
             return;
-        case CoherentClassification::Visit::PreviouslyVisible: break;
+        case CoherentClassification::Visit::PreviouslyVisible:
+            break;
     }
     const bool inside = visit.inside_frustum;
     CoherentClassification::NodeState& s = nodes_[visit.node];
@@ -113,8 +114,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
     QueryPurpose purpose = QueryPurpose::Visible;
     if (!tree.node(visit.node).isLeaf()) {
         boxes_.clear();
-        has_geometry =
-            appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0;
+        has_geometry = appendOwnObjectBoxes(tree, visit.node, view_.frustum, inside, boxes_) > 0;
         purpose = QueryPurpose::Own;
     }
     if (has_geometry) {
@@ -179,7 +179,8 @@ void ChcppCuller::traverseNode(const BspTree& tree, const CullFrame& frame,
 uint64_t ChcppCuller::firstRetestFrame(uint32_t node) const {
     const uint32_t n_av = options_.visible_frames_skip;
     if (n_av == 0) return frame_ + 1;
-    const uint64_t r = splitMix64(options_.seed ^ splitMix64(uint64_t{node} ^ splitMix64(frame_))) % n_av;
+    const uint64_t r =
+        splitMix64(options_.seed ^ splitMix64(uint64_t{node} ^ splitMix64(frame_))) % n_av;
     return frame_ + 1 + r;
 }
 

@@ -26,12 +26,12 @@
 // Objects in inner nodes, the near plane and double rendering are handled as in chc_culler.h.
 #pragma once
 
-#include "occsim/culling/cullers/coherent_traversal.h"
-#include "occsim/culling/contract/culler.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/cullers/coherent_traversal.h"
 
 namespace occsim {
 
@@ -51,7 +51,6 @@ struct ChcppOptions {
     uint32_t tight_bounds_depth = 2;
     // Seeds the randomised first re-test of nodes that turned visible.
     uint64_t seed = 1;
-
 };
 
 // What the last frame did, beyond the device's counters.
@@ -66,7 +65,7 @@ struct ChcppFrameStats {
 };
 
 class ChcppCuller final : public Culler {
-public:
+  public:
     explicit ChcppCuller(const ChcppOptions& options = {});
     std::string_view name() const override { return "chc++"; }
     void reset(const BspTree& tree) override;
@@ -80,7 +79,7 @@ public:
     // The first frame in which the geometry of a visible node is queried again.
     uint64_t nextQueryFrame(uint32_t node) const { return nodes_[node].next_query; }
 
-private:
+  private:
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
     struct PendingQuery {
         QueryId id;
@@ -92,7 +91,7 @@ private:
     struct QueuedNode {
         uint32_t node;
         bool inside_frustum;
-        bool single;     // i-queue: its multiquery failed, query it alone
+        bool single;           // i-queue: its multiquery failed, query it alone
         QueryPurpose purpose;  // v-queue: Visible or Own
     };
     enum class DeviceState : uint8_t { None, Render, Query };
@@ -118,13 +117,13 @@ private:
     std::vector<PendingQuery> query_queue_;  // FIFO: [query_head_, size) are in flight
     size_t query_head_ = 0;
     std::vector<QueuedNode> i_queue_;
-    std::vector<QueuedNode> v_queue_;        // FIFO: [v_head_, size) wait for their query
+    std::vector<QueuedNode> v_queue_;  // FIFO: [v_head_, size) wait for their query
     size_t v_head_ = 0;
     std::vector<NodeVisit> render_queue_;
-    std::vector<QueuedNode> multi_nodes_;    // the nodes of this frame's multiqueries
-    std::vector<uint32_t> order_;            // scratch: i-queue entries in grouping order
-    std::vector<Aabb> boxes_;                // scratch: the boxes of the query being issued
-    std::vector<QueryTag> tags_;             // scratch: the nodes a multiquery decides
+    std::vector<QueuedNode> multi_nodes_;  // the nodes of this frame's multiqueries
+    std::vector<uint32_t> order_;          // scratch: i-queue entries in grouping order
+    std::vector<Aabb> boxes_;              // scratch: the boxes of the query being issued
+    std::vector<QueryTag> tags_;           // scratch: the nodes a multiquery decides
     DeviceState device_state_ = DeviceState::None;
     uint64_t frame_ = 0;  // the frame index being rendered
 };

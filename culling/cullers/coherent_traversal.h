@@ -8,15 +8,15 @@
 // scene traversal"), and CHC++ is written against it.
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/geometry/frustum.h"
-#include "occsim/culling/tree/node_state.h"
-#include "occsim/culling/tree/traversal.h"
-
 #include <algorithm>
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/node_state.h"
+#include "occsim/culling/tree/traversal.h"
 
 namespace occsim {
 
@@ -32,7 +32,7 @@ enum class QueryPurpose : uint8_t {
 // A min-heap of nodes keyed by the distance from the eye to their bounds. The storage is reused
 // from frame to frame, so a steady state allocates nothing.
 class DistanceQueue {
-public:
+  public:
     void clear() { heap_.clear(); }
     bool empty() const { return heap_.empty(); }
 
@@ -55,7 +55,7 @@ public:
         return visit;
     }
 
-private:
+  private:
     struct Entry {
         float distance_squared;
         NodeVisit visit;
@@ -78,8 +78,8 @@ private:
 // the node's own bounds cover its whole subtree, so a query on them would say nothing about the
 // straddlers alone; the boxes of exactly the drawn objects do.
 inline uint32_t appendOwnObjectBoxes(const BspTree& tree, uint32_t node,
-                                     const FrustumPlanes& frustum,
-                                     bool inside_frustum, std::vector<Aabb>& out) {
+                                     const FrustumPlanes& frustum, bool inside_frustum,
+                                     std::vector<Aabb>& out) {
     uint32_t count = 0;
     forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
         out.push_back(tree.objectBox(o));
@@ -96,7 +96,7 @@ inline uint32_t appendOwnObjectBoxes(const BspTree& tree, uint32_t node,
 // Frames are stamped by calls to beginFrame() (0 = never visited), so "the previous frame" is
 // the previous call even if a caller repeats a frame index; query scheduling uses the index.
 class CoherentClassification {
-public:
+  public:
     struct NodeState {
         uint64_t visited = 0;           // stamp of the last frame that visited the node
         uint64_t next_query = 0;        // first frame index its geometry is queried again
@@ -160,7 +160,7 @@ public:
     const NodeState& operator[](uint32_t node) const { return state_[node]; }
     bool visitedThisFrame(uint32_t node) const { return state_[node].visited == stamp_; }
 
-private:
+  private:
     NodeStateArray<NodeState> state_;
     uint64_t stamp_ = 0;
 };

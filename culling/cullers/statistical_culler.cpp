@@ -3,12 +3,12 @@
 // with the improvements of StatisticalOptions (docs/statistical.md), each off by default.
 #include "occsim/culling/cullers/statistical_culler.h"
 
-#include "occsim/culling/registry/registry.h"
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
+
+#include "occsim/culling/registry/registry.h"
 
 namespace occsim {
 namespace {
@@ -39,7 +39,8 @@ NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatist
     if (stats.results == 0) return NodeAction::Query;
     if (now_s - stats.last_query_time_s > options.max_statistics_age_s) return NodeAction::Query;
     if ((stats.history & 1u) == 0) return NodeAction::Query;  // last result: occluded
-    const uint32_t mask = options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
+    const uint32_t mask =
+        options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
     const int occ_num = std::popcount(stats.history & mask);
     const double decay = options.decay_a - std::pow(options.decay_b, occ_num);
     // The interval runs from the last query, or from the last time the cost model put the query
@@ -83,7 +84,8 @@ void OcclusionEstimate::add(bool was_occluded) {
     occluded += kRateWeight * ((was_occluded ? 1.0 : 0.0) - occluded);
 }
 
-bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes, double occlusion_rate) {
+bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes,
+               double occlusion_rate) {
     return occlusion_rate * draw_ms > static_cast<double>(query_boxes) * costs.query_box_ms;
 }
 
@@ -167,7 +169,8 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
                 ms += costs_.drawMs(frame.object_triangles[o]);
             }
             const BspNode& node = tree.node(n);
-            if (!node.isLeaf()) ms += subtree_draw_ms_[node.child[0]] + subtree_draw_ms_[node.child[1]];
+            if (!node.isLeaf())
+                ms += subtree_draw_ms_[node.child[0]] + subtree_draw_ms_[node.child[1]];
             subtree_draw_ms_[n] = ms;
         }
     }
@@ -179,7 +182,8 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
         const bool first = !have_last_frame_ || last_center_.size() != tree.objectCount();
         if (first) {
             last_center_.resize(tree.objectCount());
-            for (uint32_t o = 0; o < tree.objectCount(); ++o) last_center_[o] = center(tree.objectBox(o));
+            for (uint32_t o = 0; o < tree.objectCount(); ++o)
+                last_center_[o] = center(tree.objectBox(o));
         } else {
             camera_path_m_ += glm::length(frame.view.eye - last_eye_);
         }
@@ -199,7 +203,8 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
             }
             float subtree = own;
             const BspNode& node = tree.node(n);
-            if (!node.isLeaf()) subtree = std::max({subtree, step_m_[node.child[0]], step_m_[node.child[1]]});
+            if (!node.isLeaf())
+                subtree = std::max({subtree, step_m_[node.child[0]], step_m_[node.child[1]]});
             step_m_[n] = subtree;
             motion_[n].own_m += own;
             motion_[n].subtree_m += subtree;
@@ -209,18 +214,24 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
 
 double StatisticalCuller::travelOf(const Entry& e) const {
     switch (e.subject) {
-        case Subject::Node: return camera_path_m_ + motion_[e.index].subtree_m;
-        case Subject::NodeObjects: return camera_path_m_ + motion_[e.index].own_m;
-        case Subject::Object: return camera_path_m_ + object_motion_m_[e.index];
+        case Subject::Node:
+            return camera_path_m_ + motion_[e.index].subtree_m;
+        case Subject::NodeObjects:
+            return camera_path_m_ + motion_[e.index].own_m;
+        case Subject::Object:
+            return camera_path_m_ + object_motion_m_[e.index];
     }
     return camera_path_m_;
 }
 
 NodeStatistics& StatisticalCuller::statsOf(const Entry& e) {
     switch (e.subject) {
-        case Subject::Node: return stats_[e.index];
-        case Subject::NodeObjects: return own_stats_[e.index];
-        case Subject::Object: return object_stats_[e.index];
+        case Subject::Node:
+            return stats_[e.index];
+        case Subject::NodeObjects:
+            return own_stats_[e.index];
+        case Subject::Object:
+            return object_stats_[e.index];
     }
     return stats_[e.index];
 }
@@ -267,9 +278,9 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
     }
 }
 
-NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats,
-                                     const Aabb& box, double travel_m, double draw_ms,
-                                     uint32_t query_boxes, bool object_query, Decision* decision) {
+NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
+                                     double travel_m, double draw_ms, uint32_t query_boxes,
+                                     bool object_query, Decision* decision) {
     const CullView& view = frame.view;
     const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
     const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
@@ -305,7 +316,8 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
 }
 
 uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,
-                                          uint32_t node, bool inside_frustum, RenderDevice& device) {
+                                          uint32_t node, bool inside_frustum,
+                                          RenderDevice& device) {
     const FrustumPlanes& frustum = view_.frustum;
     if (!options_.object_queries) {
         drawNodeObjects(tree, node, frustum, inside_frustum, device);
@@ -354,8 +366,8 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
         const Aabb& box = tree.bounds(entry.index);
         const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
         Decision decision;
-        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &decision) ==
-            NodeAction::Render) {
+        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false,
+                   &decision) == NodeAction::Render) {
             renderNode(tree, frame, entry, device);
             return false;
         }
@@ -370,8 +382,8 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
             return false;
         }
         if (drawsWhileRequerying(decision)) {
-            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), QueryTag::node(entry.index),
-                        decision, device);
+            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1),
+                        QueryTag::node(entry.index), decision, device);
             renderNode(tree, frame, entry, device);
             return false;
         }
@@ -421,7 +433,8 @@ void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& 
     double weight = 1.0;
     if (options_.weigh_in_flight) {
         const double visible =
-            1.0 - estimates_[estimateIndex(decision.prior, entry.subject == Subject::Object)].occluded;
+            1.0 -
+            estimates_[estimateIndex(decision.prior, entry.subject == Subject::Object)].occluded;
         weight = std::max(visible, 1.0 / StatisticalOptions::kMaxRunAhead);
     }
     pending_.push_back({id, entry, decision, weight});
@@ -436,11 +449,15 @@ bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
     record(e, pending.decision, a.visible, frame.time_s, travelOf(e));
     if (!a.visible) return a.waited;
     switch (e.subject) {
-        case Subject::Node: renderNode(tree, frame, e, device); break;
+        case Subject::Node:
+            renderNode(tree, frame, e, device);
+            break;
         case Subject::NodeObjects:
             drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
             break;
-        case Subject::Object: device.drawObject(e.index); break;
+        case Subject::Object:
+            device.drawObject(e.index);
+            break;
     }
     return a.waited;
 }
@@ -448,9 +465,10 @@ bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
 void StatisticalCuller::issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                                     std::span<const Aabb> boxes, const QueryTag& tag,
                                     const Decision& decision, RenderDevice& device) {
-    const uint32_t generation = entry.subject == Subject::Object ? 0 : tree.node(entry.index).generation;
-    updates_.push_back({device.issueQuery(boxes, std::span<const QueryTag>(&tag, 1)), entry, decision,
-                        frame.time_s, travelOf(entry), generation, frame.frame_index});
+    const uint32_t generation =
+        entry.subject == Subject::Object ? 0 : tree.node(entry.index).generation;
+    updates_.push_back({device.issueQuery(boxes, std::span<const QueryTag>(&tag, 1)), entry,
+                        decision, frame.time_s, travelOf(entry), generation, frame.frame_index});
     ++counters_.queries;
     ++counters_.update_queries;
 }
@@ -498,7 +516,8 @@ void StatisticalCuller::endFrame(double now_s) {
         visible += window_visible_[i];
     }
     if (answers >= uint64_t{kFallbackMinAnswersPerFrame} * w &&
-        static_cast<double>(visible) >= options_.fallback_visible_share * static_cast<double>(answers)) {
+        static_cast<double>(visible) >=
+            options_.fallback_visible_share * static_cast<double>(answers)) {
         frustum_only_ = true;
         frustum_only_until_s_ = now_s + options_.fallback_recheck_s;
         window_frames_ = 0;  // the next look starts from a fresh window
@@ -563,7 +582,8 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
         // bound on how far the traversal may run ahead of its answers (farther nodes queried
         // before nearer ones are drawn come back visible more often).
         while (true) {
-            while (pending_head_ < pending_.size() && device.isQueryReady(pending_[pending_head_].id)) {
+            while (pending_head_ < pending_.size() &&
+                   device.isQueryReady(pending_[pending_head_].id)) {
                 take_oldest(!heap_.empty());
             }
             // With weigh_in_flight the weights stand for the count (each weight is 1 without).
@@ -700,8 +720,8 @@ AlgorithmTraits statisticalRow(std::string name, std::string summary, bool plus)
     t.summary = std::move(summary);
     t.conservative = true;
     t.issues_queries = true;
-    t.options = statisticalDescriptor(plus ? StatisticalOptions::plus() : StatisticalOptions::paper(),
-                                      plus);
+    t.options = statisticalDescriptor(
+        plus ? StatisticalOptions::plus() : StatisticalOptions::paper(), plus);
     t.factory = makeStatistical;
     t.validate = validateStatistical;
     t.cost_model_use = statisticalCostModelUse;

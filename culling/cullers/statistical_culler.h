@@ -27,18 +27,18 @@
 // when little is occluded. docs/statistical.md describes them and why.
 #pragma once
 
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/contract/cost_model.h"
-#include "occsim/culling/cullers/statistical_options.h"
-#include "occsim/culling/registry/options.h"
-#include "occsim/culling/tree/node_state.h"
-#include "occsim/culling/tree/traversal.h"
-
 #include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "occsim/culling/contract/cost_model.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/cullers/statistical_options.h"
+#include "occsim/culling/registry/options.h"
+#include "occsim/culling/tree/node_state.h"
+#include "occsim/culling/tree/traversal.h"
 
 namespace occsim {
 
@@ -118,13 +118,13 @@ struct StatisticalFrameCounters {
     // ... while the culler could have gone on instead: the main queue held entries and (with
     // ready_answers) fewer than queries_before_restart queries were in flight.
     uint32_t blocked_with_work_left = 0;
-    uint32_t update_queries = 0;         // draw_while_requerying: queries whose answer only updates
-    uint32_t inner_descents = 0;         // descend_visible_inner_nodes: re-queries not issued
-    bool frustum_only = false;           // a fallback frame (improvement 5)
+    uint32_t update_queries = 0;  // draw_while_requerying: queries whose answer only updates
+    uint32_t inner_descents = 0;  // descend_visible_inner_nodes: re-queries not issued
+    bool frustum_only = false;    // a fallback frame (improvement 5)
 };
 
 class StatisticalCuller final : public Culler {
-public:
+  public:
     explicit StatisticalCuller(const StatisticalOptions& options = {}, const CostModel& costs = {},
                                std::string_view name = "statistical");
     std::string_view name() const override { return name_; }
@@ -145,7 +145,7 @@ public:
         return estimates_[estimateIndex(prior, object_query)];
     }
 
-private:
+  private:
     // What an entry decides is what a query on it decides (QueryTag::Subject): a node's subtree,
     // the objects stored in an inner node itself (its virtual leaf), or one object
     // (object_queries; only ever a pending query, never queued).
@@ -264,7 +264,7 @@ private:
     size_t updates_head_ = 0;
     size_t pending_head_ = 0;
     double in_flight_weight_ = 0.0;  // the weights of [pending_head_, size)
-    std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
+    std::vector<Aabb> boxes_;        // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;
 
     std::array<OcclusionEstimate, 6> estimates_{};  // per PriorResult, node then object queries

@@ -26,7 +26,8 @@ StatisticalOptions StatisticalOptions::plus() {
 
 bool StatisticalOptions::isValid(std::string* error) const {
     if (requery_distance_m > 0.0 && requery_parallax > 0.0) {
-        if (error) *error = "requery_distance and requery_parallax are alternatives: set at most one";
+        if (error)
+            *error = "requery_distance and requery_parallax are alternatives: set at most one";
         return false;
     }
     return true;

@@ -13,11 +13,11 @@ namespace occsim {
 // that StatisticalOptions{} is the paper as published) and all on in plus() (the "statistical+"
 // algorithm). docs/statistical.md says what each does and why.
 struct StatisticalOptions {
-    double base_time_s = 2.0 / 3.0;      // BASE_TIME
-    double decay_a = 2.0;                // a in BASE_TIME * (a - b^occ_num)
-    double decay_b = 0.5;                // b in BASE_TIME * (a - b^occ_num)
-    uint32_t history_length = 8;         // query results remembered per node (1..32)
-    double max_statistics_age_s = 2.0;   // older statistics are ignored: query again
+    double base_time_s = 2.0 / 3.0;        // BASE_TIME
+    double decay_a = 2.0;                  // a in BASE_TIME * (a - b^occ_num)
+    double decay_b = 0.5;                  // b in BASE_TIME * (a - b^occ_num)
+    uint32_t history_length = 8;           // query results remembered per node (1..32)
+    double max_statistics_age_s = 2.0;     // older statistics are ignored: query again
     uint32_t queries_before_restart = 20;  // return to the queue start after this many queries
 
     // (1) Take each answer as soon as it is ready and keep traversing; block on the oldest

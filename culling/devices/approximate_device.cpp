@@ -1,9 +1,9 @@
 #include "occsim/culling/devices/approximate_device.h"
 
-#include "occsim/culling/contract/query_id_check.h"
-
 #include <algorithm>
 #include <cstring>
+
+#include "occsim/culling/contract/query_id_check.h"
 
 namespace occsim {
 

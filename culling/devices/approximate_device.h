@@ -19,16 +19,16 @@
 // cache: a subject whose entry was overwritten is simply waited for).
 #pragma once
 
-#include "occsim/culling/devices/approximation_options.h"
-#include "occsim/culling/contract/render_device.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/devices/approximation_options.h"
 
 namespace occsim {
 
 class ApproximateDevice final : public RenderDevice {
-public:
+  public:
     ApproximateDevice(RenderDevice& inner, ApproximationOptions options);
 
     using RenderDevice::issueQuery;
@@ -45,7 +45,7 @@ public:
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 
-private:
+  private:
     static constexpr size_t kLastResultSlots = size_t{1} << 16;
 
     struct LastResult {

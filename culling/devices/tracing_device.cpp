@@ -35,8 +35,7 @@ void TracingDevice::makeRoom(TracedQuery& q) const {
     q.subjects.reserve(room_subjects_);
 }
 
-QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes,
-                                  std::span<const QueryTag> subjects) {
+QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) {
     const QueryId id = inner_.issueQuery(boxes, subjects);
     if (tracing_) {
         // The inner device may reuse an id once its result was fetched, so the map holds only

@@ -12,33 +12,33 @@
 // - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
 #pragma once
 
-#include "occsim/culling/contract/render_device.h"
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/render_device.h"
 
 namespace occsim {
 
 struct TracedQuery {
     std::vector<Aabb> boxes;         // one for a plain query, several for a multiquery
     std::vector<QueryTag> subjects;  // what the query decides, as the culler tagged it
-    bool fetched = false;     // false: pending at the end of the trace
-    bool visible = false;     // the answer, when fetched
-    uint64_t samples = 0;     // the samples it rests on, when fetched
+    bool fetched = false;            // false: pending at the end of the trace
+    bool visible = false;            // the answer, when fetched
+    uint64_t samples = 0;            // the samples it rests on, when fetched
 };
 
 struct FrameTrace {
     uint64_t frame = 0;
-    std::vector<uint32_t> drawn_objects;  // in draw order
-    std::vector<TracedQuery> queries;     // in issue order
-    uint32_t earlier_results_fetched = 0; // results of queries issued before the trace began
+    std::vector<uint32_t> drawn_objects;   // in draw order
+    std::vector<TracedQuery> queries;      // in issue order
+    uint32_t earlier_results_fetched = 0;  // results of queries issued before the trace began
 
     uint32_t pendingQueries() const;
 };
 
 class TracingDevice final : public RenderDevice {
-public:
+  public:
     explicit TracingDevice(RenderDevice& inner) : inner_(inner) {}
 
     // Starts recording a fresh trace for `frame` (any previous one is discarded).
@@ -56,7 +56,7 @@ public:
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 
-private:
+  private:
     static constexpr size_t kClosed = SIZE_MAX;
 
     void makeRoom(TracedQuery& q) const;

@@ -2,9 +2,8 @@
 // An "empty" box has min = +inf and max = -inf so that extending it by any box yields that box.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cmath>
+#include <glm/glm.hpp>
 #include <limits>
 
 namespace occsim {
@@ -19,7 +18,8 @@ inline Aabb makeAabb(glm::vec3 min, glm::vec3 max) { return Aabb{min, max}; }
 // True when every coordinate is finite and min <= max on every axis (zero extent allowed).
 inline bool isFiniteAndOrdered(const Aabb& b) {
     for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(b.min[i]) || !std::isfinite(b.max[i]) || b.min[i] > b.max[i]) return false;
+        if (!std::isfinite(b.min[i]) || !std::isfinite(b.max[i]) || b.min[i] > b.max[i])
+            return false;
     }
     return true;
 }

@@ -1,6 +1,6 @@
 // View-frustum tests. A Frustum is six inward-facing planes extracted from an OpenGL-convention
-// view-projection matrix (clip z in [-w, w]); the renderer may use another depth mapping (reverse-Z)
-// but culling always works on this one.
+// view-projection matrix (clip z in [-w, w]); the renderer may use another depth mapping
+// (reverse-Z) but culling always works on this one.
 //
 // Every box test runs one kernel (classifyBox below) over a FrustumPlanes table: the planes'
 // coefficients and the absolute values of their normals, which a culler builds once when it begins
@@ -8,11 +8,11 @@
 // the single-box calls are thin wrappers over it, so no path can drift from another.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 

@@ -21,7 +21,7 @@ inline uint64_t splitMix64(uint64_t x) {
 
 // SplitMix64 as a stream: 64-bit state, passes BigCrush, trivially seedable.
 class Rng {
-public:
+  public:
     explicit Rng(uint64_t seed) : state_(seed) {}
 
     uint64_t next() {
@@ -37,7 +37,7 @@ public:
         return static_cast<uint32_t>(((next() >> 32) * static_cast<uint64_t>(n)) >> 32);
     }
 
-private:
+  private:
     uint64_t state_;
 };
 

@@ -4,20 +4,20 @@
 
 namespace occsim {
 
-AlgorithmTraits vfcRegistration();             // cullers/basic_cullers.cpp
-AlgorithmTraits stopAndWaitRegistration();     // cullers/basic_cullers.cpp
-AlgorithmTraits statisticalRegistration();     // cullers/statistical_culler.cpp
-AlgorithmTraits statisticalPlusRegistration(); // cullers/statistical_culler.cpp
-AlgorithmTraits chcRegistration();             // cullers/chc_culler.cpp
-AlgorithmTraits chcppRegistration();           // cullers/chcpp_culler.cpp
-AlgorithmTraits asyncRegistration();           // cullers/async_culler.cpp
-AlgorithmTraits idealRegistration();           // cullers/basic_cullers.cpp
+AlgorithmTraits vfcRegistration();              // cullers/basic_cullers.cpp
+AlgorithmTraits stopAndWaitRegistration();      // cullers/basic_cullers.cpp
+AlgorithmTraits statisticalRegistration();      // cullers/statistical_culler.cpp
+AlgorithmTraits statisticalPlusRegistration();  // cullers/statistical_culler.cpp
+AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
+AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
+AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
+AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
-    for (AlgorithmTraits (*row)() : {vfcRegistration, stopAndWaitRegistration,
-                                     statisticalRegistration, statisticalPlusRegistration,
-                                     chcRegistration, chcppRegistration, asyncRegistration,
-                                     idealRegistration}) {
+    for (AlgorithmTraits (*row)() :
+         {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
+          statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
+          idealRegistration}) {
         registry.add(row());
     }
 }

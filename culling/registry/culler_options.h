@@ -3,13 +3,13 @@
 // and the approximation knobs every culler that issues queries shares.
 #pragma once
 
-#include "occsim/culling/contract/cost_model.h"
-#include "occsim/culling/devices/approximation_options.h"
-#include "occsim/culling/registry/options.h"
-
 #include <map>
 #include <string>
 #include <string_view>
+
+#include "occsim/culling/contract/cost_model.h"
+#include "occsim/culling/devices/approximation_options.h"
+#include "occsim/culling/registry/options.h"
 
 namespace occsim {
 

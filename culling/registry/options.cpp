@@ -21,8 +21,8 @@ std::string number(double v) {
 bool validKey(const std::string& key) {
     if (key.empty()) return false;
     for (char c : key) {
-        const bool ok = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-                        c == '+';
+        const bool ok =
+            (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '+';
         if (!ok) return false;
     }
     return true;
@@ -79,9 +79,12 @@ OptionSpec alternativeTo(OptionSpec spec, std::string other_key) {
 
 const char* optionTypeName(OptionType type) {
     switch (type) {
-        case OptionType::Boolean: return "boolean";
-        case OptionType::Integer: return "integer";
-        case OptionType::Number: return "number";
+        case OptionType::Boolean:
+            return "boolean";
+        case OptionType::Integer:
+            return "integer";
+        case OptionType::Number:
+            return "number";
     }
     return "number";
 }
@@ -132,8 +135,8 @@ std::string checkDescriptor(const OptionsDescriptor& descriptor) {
         }
         if (s.tunable) {
             if (s.type == OptionType::Boolean) return where + ": a boolean cannot be tuned";
-            if (!(std::isfinite(s.tune_min) && std::isfinite(s.tune_max) && s.tune_min < s.tune_max &&
-                  s.tune_min >= s.min && s.tune_max <= s.max)) {
+            if (!(std::isfinite(s.tune_min) && std::isfinite(s.tune_max) &&
+                  s.tune_min < s.tune_max && s.tune_min >= s.min && s.tune_max <= s.max)) {
                 return where + ": the tuning bounds must be finite, lo < hi, inside the range";
             }
         }
@@ -148,8 +151,9 @@ std::string checkDescriptor(const OptionsDescriptor& descriptor) {
                 found |= other.key == s.alternative_to && other.key != s.key && other.off_value;
             }
             if (!found) {
-                return where + ": alternative_to must name another option of this culler that has an "
-                               "off value";
+                return where +
+                       ": alternative_to must name another option of this culler that has an "
+                       "off value";
             }
         }
     }

@@ -22,13 +22,13 @@ enum class OptionType : uint8_t { Boolean, Integer, Number };
 inline constexpr double kMaxExactInteger = 9007199254740992.0;  // 2^53
 
 struct OptionSpec {
-    std::string key;   // JSON key in the culler's options object, sweep and tuner name
+    std::string key;  // JSON key in the culler's options object, sweep and tuner name
     OptionType type = OptionType::Number;
     std::string unit;  // "s", "m", "frames", ... ("" for a plain number or a boolean)
     double min = 0.0;  // valid range, closed at both ends (booleans: [0, 1])
     double max = 0.0;
     double default_value = 0.0;
-    std::string doc;   // one line: what the option does
+    std::string doc;  // one line: what the option does
     // The tuner may tune it, by default within [tune_min, tune_max] (inside [min, max]).
     bool tunable = false;
     double tune_min = 0.0;
@@ -70,7 +70,7 @@ std::string checkDescriptor(const OptionsDescriptor& descriptor);
 
 // One culler's option values, in its descriptor's order.
 class OptionValues {
-public:
+  public:
     OptionValues() = default;
     // Every option at its default. The descriptor must outlive the values (registrations live
     // as long as the program).
@@ -96,7 +96,7 @@ public:
 
     bool operator==(const OptionValues& other) const { return values_ == other.values_; }
 
-private:
+  private:
     size_t indexOf(std::string_view key) const;
 
     const OptionsDescriptor* descriptor_ = nullptr;

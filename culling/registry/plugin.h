@@ -18,9 +18,9 @@
 // same compiler and standard library as occsim (its types cross the boundary as C++ types).
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-
 #include <cstdint>
+
+#include "occsim/culling/registry/registry.h"
 
 #define OCCSIM_PLUGIN_ABI_VERSION 2u
 
@@ -28,7 +28,7 @@ namespace occsim {
 
 // Hands a plugin's rows to the registry; add() throws RegistryError for a row it refuses.
 class PluginRegistrar {
-public:
+  public:
     virtual ~PluginRegistrar() = default;
     virtual void add(AlgorithmTraits traits) = 0;
 };
@@ -49,10 +49,9 @@ struct OccsimPlugin {
 }  // extern "C"
 
 // Defines the entry point: `OCCSIM_PLUGIN("name", function)` at namespace scope, once per plugin.
-#define OCCSIM_PLUGIN(plugin_name, register_function)                              \
-    extern "C" __attribute__((visibility("default"))) const OccsimPlugin*          \
-    occsim_plugin() {                                                              \
-        static const OccsimPlugin plugin{OCCSIM_PLUGIN_ABI_VERSION, plugin_name,   \
-                                         register_function};                       \
-        return &plugin;                                                            \
+#define OCCSIM_PLUGIN(plugin_name, register_function)                                       \
+    extern "C" __attribute__((visibility("default"))) const OccsimPlugin* occsim_plugin() { \
+        static const OccsimPlugin plugin{OCCSIM_PLUGIN_ABI_VERSION, plugin_name,            \
+                                         register_function};                                \
+        return &plugin;                                                                     \
     }

@@ -1,19 +1,19 @@
 #include "occsim/culling/registry/plugin_loader.h"
 
-#include "occsim/culling/registry/plugin.h"
-
 #include <dlfcn.h>
 
 #include <map>
 #include <set>
 #include <system_error>
 
+#include "occsim/culling/registry/plugin.h"
+
 namespace occsim {
 namespace {
 
 // Collects a plugin's rows, so that they are checked together before any is registered.
 class CollectingRegistrar final : public PluginRegistrar {
-public:
+  public:
     void add(AlgorithmTraits traits) override { rows.push_back(std::move(traits)); }
     std::vector<AlgorithmTraits> rows;
 };
@@ -23,7 +23,6 @@ std::set<std::string>& loadedFiles(const CullerRegistry& registry) {
     static std::map<const CullerRegistry*, std::set<std::string>> files;
     return files[&registry];
 }
-
 
 }  // namespace
 
@@ -41,8 +40,8 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
     void* handle = ::dlopen(canonical.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
         const char* why = ::dlerror();
-        throw PluginError(name + ": not a loadable shared object (" + (why ? why : "dlopen failed") +
-                          ")");
+        throw PluginError(name + ": not a loadable shared object (" +
+                          (why ? why : "dlopen failed") + ")");
     }
     using Entry = const OccsimPlugin* (*)();
     auto entry = reinterpret_cast<Entry>(::dlsym(handle, OCCSIM_PLUGIN_ENTRY_POINT));

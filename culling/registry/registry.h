@@ -5,17 +5,17 @@
 // the docs' tables) reads this registry and nothing else.
 #pragma once
 
-#include "occsim/culling/contract/cost_model.h"
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/registry/culler_options.h"
-#include "occsim/culling/registry/options.h"
-
 #include <deque>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "occsim/culling/contract/cost_model.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/registry/culler_options.h"
+#include "occsim/culling/registry/options.h"
 
 namespace occsim {
 
@@ -28,7 +28,8 @@ struct CullerContext {
 };
 
 // Whether a culler configured with these options weighs costs, and how many queries it keeps in
-// flight (the run layer then measures the cost model with as many in flight before the first frame).
+// flight (the run layer then measures the cost model with as many in flight before the first
+// frame).
 struct CostModelUse {
     bool wanted = false;
     uint32_t queries_in_flight = 0;
@@ -70,7 +71,7 @@ struct RegistryError : std::runtime_error {
 std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues& values);
 
 class CullerRegistry {
-public:
+  public:
     // Checks the row (name, traits, descriptor, factory) and adds it after the others. Throws
     // RegistryError: a name already taken, an invalid name or descriptor, no factory, a second
     // speedup reference, an oracle that claims to issue queries.
@@ -82,7 +83,7 @@ public:
     const std::vector<const AlgorithmTraits*>& all() const { return order_; }
     const AlgorithmTraits* find(std::string_view name) const;
 
-private:
+  private:
     std::deque<AlgorithmTraits> rows_;  // a deque: pointers stay valid as rows are added
     std::vector<const AlgorithmTraits*> order_;
 };

@@ -1,9 +1,9 @@
 #include "occsim/culling/registry/registry_text.h"
 
-#include "occsim/culling/registry/registry.h"
-
 #include <cmath>
 #include <sstream>
+
+#include "occsim/culling/registry/registry.h"
 
 namespace occsim {
 namespace {
@@ -26,8 +26,11 @@ std::string rangeOf(const OptionSpec& s) {
 
 std::string tuningOf(const OptionSpec& s) {
     std::string t;
-    if (s.tunable) t = "tunable " + formatOptionValue(s, s.tune_min) + " to " + formatOptionValue(s, s.tune_max);
-    if (s.off_value) t += std::string(t.empty() ? "" : "; ") + "off: " + formatOptionValue(s, *s.off_value);
+    if (s.tunable)
+        t = "tunable " + formatOptionValue(s, s.tune_min) + " to " +
+            formatOptionValue(s, s.tune_max);
+    if (s.off_value)
+        t += std::string(t.empty() ? "" : "; ") + "off: " + formatOptionValue(s, *s.off_value);
     return t;
 }
 
@@ -39,7 +42,8 @@ std::string cullersText() {
         out << a->name << ": " << a->summary << " (" << traitsOf(*a) << ")\n";
         for (const OptionSpec& s : a->options) {
             out << "  " << s.key << " = " << formatOptionValue(s, s.default_value) << "  "
-                << optionTypeName(s.type) << " " << rangeOf(s) << (s.unit.empty() ? "" : " " + s.unit);
+                << optionTypeName(s.type) << " " << rangeOf(s)
+                << (s.unit.empty() ? "" : " " + s.unit);
             if (const std::string t = tuningOf(s); !t.empty()) out << " (" << t << ")";
             out << ": " << s.doc << "\n";
         }
@@ -52,8 +56,9 @@ std::string cullersMarkdown() {
     out << "| `algorithm` | what | conservative | issues queries | oracle | options |\n"
         << "|---|---|---|---|---|---|\n";
     for (const AlgorithmTraits* a : algorithms()) {
-        out << "| `" << a->name << "` | " << a->summary << " | " << (a->conservative ? "yes" : "**no**")
-            << " | " << (a->issues_queries ? "yes" : "no") << " | " << (a->oracle ? "yes" : "no") << " | "
+        out << "| `" << a->name << "` | " << a->summary << " | "
+            << (a->conservative ? "yes" : "**no**") << " | " << (a->issues_queries ? "yes" : "no")
+            << " | " << (a->oracle ? "yes" : "no") << " | "
             << (a->options.empty() ? std::string("–") : "`culling[\"" + a->name + "\"]`") << " |\n";
     }
     for (const AlgorithmTraits* a : algorithms()) {
@@ -64,8 +69,9 @@ std::string cullersMarkdown() {
         for (const OptionSpec& s : a->options) {
             const std::string t = tuningOf(s);
             out << "| `" << s.key << "` | " << optionTypeName(s.type) << " | "
-                << (s.unit.empty() ? "–" : s.unit) << " | `" << formatOptionValue(s, s.default_value)
-                << "` | " << rangeOf(s) << " | " << (t.empty() ? "–" : t) << " | " << s.doc << " |\n";
+                << (s.unit.empty() ? "–" : s.unit) << " | `"
+                << formatOptionValue(s, s.default_value) << "` | " << rangeOf(s) << " | "
+                << (t.empty() ? "–" : t) << " | " << s.doc << " |\n";
         }
     }
     return out.str();

@@ -6,16 +6,16 @@
 // issued, aborts with a message naming `device`.
 #pragma once
 
-#include "occsim/culling/contract/query_id_check.h"
-#include "occsim/culling/contract/render_device.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/query_id_check.h"
+#include "occsim/culling/contract/render_device.h"
 
 namespace occsim {
 
 class CommandLatencyQueries {
-public:
+  public:
     CommandLatencyQueries(uint32_t latency_commands, const char* device)
         : latency_(latency_commands), device_(device) {}
 
@@ -51,7 +51,7 @@ public:
         return n;
     }
 
-private:
+  private:
     struct Slot {
         uint64_t issued_at;
         uint64_t result;

@@ -23,7 +23,9 @@ uint32_t cellCeil(float ndc, uint32_t cells) {
 }  // namespace
 
 DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands)
-    : width_(width), height_(height), depth_(width * height, kFar),
+    : width_(width),
+      height_(height),
+      depth_(width * height, kFar),
       queries_(latency_commands, "DepthRasterDevice") {}
 
 void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,

@@ -18,20 +18,19 @@
 // Results become ready after a fixed number of later commands, like ScriptedQueryDevice.
 #pragma once
 
-#include "occsim/culling/testing/command_latency_queries.h"
-#include "occsim/culling/geometry/frustum.h"
-#include "occsim/culling/contract/render_device.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
+
+#include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/testing/command_latency_queries.h"
 
 namespace occsim {
 
 class DepthRasterDevice final : public RenderDevice {
-public:
+  public:
     DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
 
     // Starts a frame: the camera (OpenGL-convention view-projection and the eye) and every
@@ -55,7 +54,7 @@ public:
     const std::vector<QueryTag>& queryLog() const { return query_log_; }
     uint32_t pendingQueries() const;
 
-private:
+  private:
     struct Card {
         uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // cells [x0, x1) x [y0, y1); empty when x0 >= x1
         float depth = 0.0f;

@@ -6,7 +6,8 @@
 
 namespace occsim {
 
-void ScriptedQueryDevice::setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes) {
+void ScriptedQueryDevice::setVisibility(std::vector<uint8_t> visible,
+                                        std::vector<Aabb> object_boxes) {
     assert(visible.size() == object_boxes.size());
     visible_ = std::move(visible);
     boxes_ = std::move(object_boxes);

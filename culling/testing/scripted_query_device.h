@@ -7,18 +7,19 @@
 // above 0.
 #pragma once
 
-#include "occsim/culling/testing/command_latency_queries.h"
-#include "occsim/culling/contract/render_device.h"
-
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/testing/command_latency_queries.h"
+
 namespace occsim {
 
 class ScriptedQueryDevice final : public RenderDevice {
-public:
-    explicit ScriptedQueryDevice(uint32_t latency_commands = 0) : queries_(latency_commands, "ScriptedQueryDevice") {}
+  public:
+    explicit ScriptedQueryDevice(uint32_t latency_commands = 0)
+        : queries_(latency_commands, "ScriptedQueryDevice") {}
 
     // The current frame's truth: which objects are visible, and every object's box.
     void setVisibility(std::vector<uint8_t> visible, std::vector<Aabb> object_boxes);
@@ -42,7 +43,7 @@ public:
     // The most queries that were ever in flight at once (issued, result not yet fetched).
     uint32_t maxPendingQueries() const { return max_pending_; }
 
-private:
+  private:
     CommandLatencyQueries queries_;
     uint32_t max_pending_ = 0;
     std::vector<uint8_t> visible_;

@@ -2,14 +2,13 @@
 // as needed and down again, growing the root toward objects that leave it, lazy refits of dirty
 // bounds, and the splits and merges that keep leaves neither crowded nor empty (bsp_tree.cpp
 // explains the tree itself).
-#include "occsim/culling/tree/bsp_tree.h"
-
-#include "occsim/culling/tree/loose_cells.h"
-#include "occsim/culling/tree/tree_builder.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/loose_cells.h"
+#include "occsim/culling/tree/tree_builder.h"
 
 namespace occsim {
 namespace {
@@ -35,8 +34,8 @@ void BspTree::reinsert(uint32_t object, const Aabb& new_box) {
 uint32_t BspTree::childTaking(uint32_t n, const Aabb& box) const {
     const BspNode& node = nodes_[n];
     if (node.isLeaf()) return kNone;
-    const int side = takingSide(nodes_[node.child[0]].loose_cell,
-                                nodes_[node.child[1]].loose_cell, node.axis, node.split, box);
+    const int side = takingSide(nodes_[node.child[0]].loose_cell, nodes_[node.child[1]].loose_cell,
+                                node.axis, node.split, box);
     return side < 0 ? kNone : node.child[side];
 }
 
@@ -104,8 +103,8 @@ void BspTree::growRootToward(const Aabb& box) {
     // beyond that (a mover lost far away) makes no growth and lives in the root.
     const Aabb old_cell = nodes_[root()].cell;
     const glm::vec3 built_size = extent(built_root_cell_);
-    const float cap = options_.max_root_growth *
-                      std::max(built_size.x, std::max(built_size.y, built_size.z));
+    const float cap =
+        options_.max_root_growth * std::max(built_size.x, std::max(built_size.y, built_size.z));
     Aabb cell = old_cell;
     for (int axis = 0; axis < 3; ++axis) {
         const float low = std::min(old_cell.min[axis], box.min[axis]);

@@ -20,12 +20,12 @@
 // never skips them on the evidence of a box that means nothing.
 #include "occsim/culling/tree/bsp_tree.h"
 
-#include "occsim/culling/tree/loose_cells.h"
-#include "occsim/culling/tree/tree_builder.h"
-
 #include <cassert>
 #include <cmath>
 #include <string>
+
+#include "occsim/culling/tree/loose_cells.h"
+#include "occsim/culling/tree/tree_builder.h"
 
 namespace occsim {
 

@@ -33,11 +33,11 @@
 //     once in reinsert(), up to max_root_growth times the built root's largest extent;
 //   * refitDirtyBounds() merges an inner node whose children are both leaves once its subtree
 //     holds at most max_objects_per_leaf / 2 objects (or one child is empty and the subtree holds
-//     at most max_objects_per_leaf: the parent's bounds would repeat the other child's), and splits a leaf that movers crowded
-//     beyond max_objects_per_leaf by rebuilding the small subtree around it (from its highest
-//     ancestor holding at most 2 x max_objects_per_leaf objects) as the build would have. The gap
-//     between the two limits keeps a mover passing by from splitting and merging the same node
-//     over and over.
+//     at most max_objects_per_leaf: the parent's bounds would repeat the other child's), and splits
+//     a leaf that movers crowded beyond max_objects_per_leaf by rebuilding the small subtree around
+//     it (from its highest ancestor holding at most 2 x max_objects_per_leaf objects) as the build
+//     would have. The gap between the two limits keeps a mover passing by from splitting and
+//     merging the same node over and over.
 // - Per-node state kept elsewhere: node indices are stable while a node exists. When the
 //   topology changes (build, split, merge) structureVersion() increases and every slot that starts
 //   holding a new node gets a new BspNode::generation; a node that only changes its cell (root
@@ -47,12 +47,12 @@
 //   iterate with firstObject(node) / nextObject(object) until kNone.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 
@@ -86,10 +86,10 @@ struct BspBuildOptions {
 };
 
 struct BspNode {
-    Aabb cell;                     // the region its split planes bound (changes only by root growth)
-    Aabb loose_cell;               // cell grown by the looseness: what placement tests
-    Aabb bounds;                   // tight bounds of its subtree's objects (dynamic)
-    uint32_t parent = UINT32_MAX;  // kNone for the root
+    Aabb cell;        // the region its split planes bound (changes only by root growth)
+    Aabb loose_cell;  // cell grown by the looseness: what placement tests
+    Aabb bounds;      // tight bounds of its subtree's objects (dynamic)
+    uint32_t parent = UINT32_MAX;                  // kNone for the root
     uint32_t child[2] = {UINT32_MAX, UINT32_MAX};  // both kNone for a leaf; [0] is below the split
     uint32_t first_object = UINT32_MAX;            // head of this node's own object list
     uint32_t object_count = 0;                     // objects stored in this node itself
@@ -98,26 +98,27 @@ struct BspNode {
     float split = 0.0f;  // split position along axis (inner nodes)
     uint8_t axis = 0;    // 0 = x, 1 = y, 2 = z (inner nodes)
     bool bounds_dirty = false;
-    bool live = true;    // false: a slot freed by a merge, holding no node until reused
+    bool live = true;  // false: a slot freed by a merge, holding no node until reused
     // Changes whenever this slot starts holding a new node (a build, or a node a local split
-    // creates, in a new or a freed slot): per-node state that others keep (a culler's statistics) is stale when the
-    // generation it was recorded for differs. See NodeStateArray (culling/node_state.h).
+    // creates, in a new or a freed slot): per-node state that others keep (a culler's statistics)
+    // is stale when the generation it was recorded for differs. See NodeStateArray
+    // (culling/node_state.h).
     uint32_t generation = 0;
 
     bool isLeaf() const { return child[0] == UINT32_MAX; }
 };
 
 struct BspStats {
-    uint64_t reinserts = 0;          // reinsert() calls
-    uint64_t reinserts_moved = 0;    // ... that moved the object to another node
-    uint64_t reinserts_in_place = 0; // ... whose node still fitted the new box: no walk
-    uint64_t nodes_walked = 0;       // nodes visited by placement walks (up and down), counting
-                                     // the node a walk starts from
-    uint64_t nodes_refit = 0;        // nodes recomputed by refitDirtyBounds()
-    uint64_t splits = 0;             // crowded leaves split (the small subtree around rebuilt)
-    uint64_t nodes_created = 0;      // nodes those splits created (replacing the ones freed)
-    uint64_t merges = 0;             // inner nodes turned into leaves (two nodes freed each)
-    uint64_t root_growths = 0;       // times the root cell grew to take a box that left it
+    uint64_t reinserts = 0;           // reinsert() calls
+    uint64_t reinserts_moved = 0;     // ... that moved the object to another node
+    uint64_t reinserts_in_place = 0;  // ... whose node still fitted the new box: no walk
+    uint64_t nodes_walked = 0;        // nodes visited by placement walks (up and down), counting
+                                      // the node a walk starts from
+    uint64_t nodes_refit = 0;         // nodes recomputed by refitDirtyBounds()
+    uint64_t splits = 0;              // crowded leaves split (the small subtree around rebuilt)
+    uint64_t nodes_created = 0;       // nodes those splits created (replacing the ones freed)
+    uint64_t merges = 0;              // inner nodes turned into leaves (two nodes freed each)
+    uint64_t root_growths = 0;        // times the root cell grew to take a box that left it
 };
 
 // Scratch of the subtree builder behind build(), leaf splits and split checks. The tree keeps it,
@@ -129,7 +130,7 @@ struct BspBuildScratch {
 };
 
 class BspTree {
-public:
+  public:
     static constexpr uint32_t kNone = UINT32_MAX;
 
     // Builds the cells over the given object boxes and places every object. Replaces any previous
@@ -147,7 +148,9 @@ public:
 
     uint32_t root() const { return 0; }
     uint32_t nodeCount() const { return static_cast<uint32_t>(nodes_.size()); }
-    uint32_t liveNodeCount() const { return nodeCount() - static_cast<uint32_t>(free_slots_.size()); }
+    uint32_t liveNodeCount() const {
+        return nodeCount() - static_cast<uint32_t>(free_slots_.size());
+    }
     bool isLive(uint32_t n) const { return nodes_[n].live; }
     uint32_t objectCount() const { return static_cast<uint32_t>(object_box_.size()); }
     const BspNode& node(uint32_t n) const { return nodes_[n]; }
@@ -170,7 +173,7 @@ public:
     const BspStats& stats() const { return stats_; }
     void resetStats() { stats_ = {}; }
 
-private:
+  private:
     // Moves the object (its box already stored) to where the placement rule puts it.
     void relocate(uint32_t object, bool is_reinsert);
     void growRootToward(const Aabb& box);

@@ -3,12 +3,12 @@
 // decide alike. Internal to the tree (bsp_tree.cpp, bsp_adaptation.cpp, tree_builder.h).
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
+
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim::bsp_detail {
 
@@ -40,8 +40,8 @@ inline Aabb rootLooseCell(const Aabb& cell, float looseness) {
 inline float childMargin(const BspNode& parent, int axis, float position, float looseness) {
     const float parent_margin = std::min(parent.cell.min[axis] - parent.loose_cell.min[axis],
                                          parent.loose_cell.max[axis] - parent.cell.max[axis]);
-    const float larger = std::max(position - parent.cell.min[axis],
-                                  parent.cell.max[axis] - position);
+    const float larger =
+        std::max(position - parent.cell.min[axis], parent.cell.max[axis] - position);
     return std::max(0.0f, std::min(parent_margin, looseness * larger));
 }
 
@@ -63,7 +63,7 @@ inline glm::vec3 centreOf(const Aabb& box) { return 0.5f * box.min + 0.5f * box.
 // contains it, else it stays (-1). The centre's path from the root is fixed, so an object's node
 // is the deepest node on that path whose loose cell contains its box.
 inline int takingSide(const Aabb& loose_below, const Aabb& loose_above, int axis, float split,
-               const Aabb& box) {
+                      const Aabb& box) {
     const float centre = centreOf(box)[axis];
     if (centre <= split) return contains(loose_below, box) ? 0 : -1;
     return contains(loose_above, box) ? 1 : -1;
@@ -85,8 +85,7 @@ inline Aabb rootCellFor(std::span<const Aabb> boxes, float margin) {
         // scales with the coordinates' magnitude so that it survives float rounding far from the
         // origin.
         const float middle = 0.5f * scene.min[axis] + 0.5f * scene.max[axis];
-        const float minimum_size =
-            1e-3f * std::max(largest, std::max(1.0f, std::fabs(middle)));
+        const float minimum_size = 1e-3f * std::max(largest, std::max(1.0f, std::fabs(middle)));
         if (scene.max[axis] - scene.min[axis] < minimum_size) {
             scene.min[axis] = middle - 0.5f * minimum_size;
             scene.max[axis] = middle + 0.5f * minimum_size;

@@ -3,16 +3,16 @@
 // nodes that did not change.
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
 
 template <class State>
 class NodeStateArray {
-public:
+  public:
     // Forgets everything: every node starts from State{}.
     void reset(const BspTree& tree) {
         state_.assign(tree.nodeCount(), State{});
@@ -47,7 +47,7 @@ public:
     const State& operator[](uint32_t node) const { return state_[node]; }
     uint32_t size() const { return static_cast<uint32_t>(state_.size()); }
 
-private:
+  private:
     std::vector<State> state_;
     std::vector<uint32_t> generation_;
     uint64_t version_ = 0;

@@ -5,11 +5,11 @@
 // table per box by accident.
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/contract/culler.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
 
@@ -49,8 +49,8 @@ inline bool nodeInFrustum(const BspTree& tree, const NodeVisit& visit, const Fru
 // Front-to-back traversal of the nodes that pass the frustum: `visit(visit)` is called with the
 // node's inherited "fully inside" flag set, and returns true to descend into its children.
 template <class Visit>
-void traverseFrontToBack(const BspTree& tree, const PreparedView& view, std::vector<NodeVisit>& stack,
-                         Visit&& visit) {
+void traverseFrontToBack(const BspTree& tree, const PreparedView& view,
+                         std::vector<NodeVisit>& stack, Visit&& visit) {
     stack.clear();
     stack.push_back({tree.root(), false});
     while (!stack.empty()) {

@@ -2,12 +2,12 @@
 // split while the tree adapts. Internal to the tree (bsp_tree.cpp, bsp_adaptation.cpp).
 #pragma once
 
-#include "occsim/culling/tree/loose_cells.h"
-
 #include <algorithm>
 #include <functional>
 #include <span>
 #include <vector>
+
+#include "occsim/culling/tree/loose_cells.h"
 
 namespace occsim::bsp_detail {
 
@@ -48,7 +48,7 @@ struct SideCounts {
 // come from `allocate(parent)`, which returns an initialised slot whose index exceeds the
 // parent's; the builder fills in the cell and links it to its parent.
 class TreeBuilder {
-public:
+  public:
     using Allocate = std::function<uint32_t(uint32_t parent)>;
 
     TreeBuilder(std::vector<BspNode>& nodes, std::span<const Aabb> boxes,
@@ -122,16 +122,19 @@ public:
         for (uint32_t object : objects) {
             const int side = takingSide(children_cells.loose[0], children_cells.loose[1],
                                         plane.axis, plane.position, boxes_[object]);
-            if (side == 0) ++counts.below;
-            else if (side == 1) ++counts.above;
-            else ++counts.straddling;
+            if (side == 0)
+                ++counts.below;
+            else if (side == 1)
+                ++counts.above;
+            else
+                ++counts.straddling;
         }
         return counts.separates();
     }
 
-private:
+  private:
     struct ChildCells {
-        Aabb cell[2];   // below, above the plane
+        Aabb cell[2];  // below, above the plane
         Aabb loose[2];
     };
 

@@ -1,15 +1,14 @@
 // Unit test of the example culler on occsim's CPU test devices: no OpenGL, no window, no GPU.
 // ScriptedQueryDevice answers each query with the number of visible objects its box overlaps.
-#include "trust_visible_culler.h"
-
 #include <occsim/culling/geometry/frustum.h>
 #include <occsim/culling/testing/scripted_query_device.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
+
+#include "trust_visible_culler.h"
 
 namespace {
 
@@ -39,8 +38,9 @@ int main() {
 
     occsim::CullFrame frame;
     frame.view.eye = glm::vec3(0.0f, 0.5f, 0.0f);
-    const glm::mat4 vp = glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.1f, 500.0f) *
-                         glm::lookAt(frame.view.eye, glm::vec3(0.0f, 0.5f, -1.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 vp =
+        glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.1f, 500.0f) *
+        glm::lookAt(frame.view.eye, glm::vec3(0.0f, 0.5f, -1.0f), glm::vec3(0, 1, 0));
     frame.view.frustum = occsim::frustumFromViewProjection(vp);
     frame.view.near_radius = 0.2f;
 
@@ -70,7 +70,8 @@ int main() {
     device.clearLog();
     frame.time_s = 2.0;
     culler.cullAndRender(tree, frame, device);
-    check(device.queriedBoxes().size() == first_queries, "after `trust` seconds nodes are queried again");
+    check(device.queriedBoxes().size() == first_queries,
+          "after `trust` seconds nodes are queried again");
 
     std::printf("%d passed, %d failed\n", 6 - failures, failures);
     return failures == 0 ? 0 : 1;

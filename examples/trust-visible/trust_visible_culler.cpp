@@ -36,7 +36,8 @@ std::unique_ptr<occsim::Culler> makeTrustVisible(const occsim::CullerContext& co
 void registerCullers(occsim::PluginRegistrar& registrar) {
     occsim::AlgorithmTraits t;
     t.name = "trust-visible";
-    t.summary = "stop-and-wait queries; a node found visible is trusted for a while (example plugin)";
+    t.summary =
+        "stop-and-wait queries; a node found visible is trusted for a while (example plugin)";
     t.conservative = true;
     t.issues_queries = true;
     // culling["trust-visible"].trust in a scenario; occtune --algo trust-visible tunes it.

@@ -15,14 +15,14 @@
 namespace example {
 
 class TrustVisibleCuller final : public occsim::Culler {
-public:
+  public:
     explicit TrustVisibleCuller(double trust_s) : trust_s_(trust_s) {}
     std::string_view name() const override { return "trust-visible"; }
     void reset(const occsim::BspTree& tree) override { last_visible_s_.reset(tree); }
     void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
                        occsim::RenderDevice& device) override;
 
-private:
+  private:
     // When a query last found the node visible; -infinity: never.
     struct Seen {
         double time_s = -std::numeric_limits<double>::infinity();

@@ -1,10 +1,10 @@
 #include "sim/output/birds_eye.h"
 
-#include "occsim/culling/geometry/frustum.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+
+#include "occsim/culling/geometry/frustum.h"
 
 namespace occsim {
 namespace {
@@ -27,9 +27,12 @@ QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
         for (const QueryTag& tag : q.subjects) {
             if (tag.subject == QueryTag::Subject::Object || tag.index >= tree.nodeCount()) continue;
             const uint32_t n = tag.index;
-            if (!q.fetched) m.pending[n] = 1;
-            else if (q.visible) m.visible[n] = 1;
-            else if (tag.subject == QueryTag::Subject::Node) m.zero[n] = 1;
+            if (!q.fetched)
+                m.pending[n] = 1;
+            else if (q.visible)
+                m.visible[n] = 1;
+            else if (tag.subject == QueryTag::Subject::Node)
+                m.zero[n] = 1;
         }
     }
     return m;
@@ -39,26 +42,40 @@ QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
 
 const char* nodeClassName(NodeClass c) {
     switch (c) {
-        case NodeClass::Empty: return "empty";
-        case NodeClass::FrustumCulled: return "frustum culled";
-        case NodeClass::OcclusionCulled: return "occlusion culled";
-        case NodeClass::DrawnAfterQuery: return "drawn after query";
-        case NodeClass::DrawnWithoutQuery: return "drawn without query";
-        case NodeClass::NotReached: return "not reached";
-        case NodeClass::Passed: return "passed through";
+        case NodeClass::Empty:
+            return "empty";
+        case NodeClass::FrustumCulled:
+            return "frustum culled";
+        case NodeClass::OcclusionCulled:
+            return "occlusion culled";
+        case NodeClass::DrawnAfterQuery:
+            return "drawn after query";
+        case NodeClass::DrawnWithoutQuery:
+            return "drawn without query";
+        case NodeClass::NotReached:
+            return "not reached";
+        case NodeClass::Passed:
+            return "passed through";
     }
     return "?";
 }
 
 Rgb nodeClassColour(NodeClass c) {
     switch (c) {
-        case NodeClass::Empty: return {0, 0, 0};
-        case NodeClass::FrustumCulled: return {235, 64, 52};      // red, as in the CHC figure
-        case NodeClass::OcclusionCulled: return {66, 135, 255};   // blue, as in the CHC figure
-        case NodeClass::DrawnAfterQuery: return {64, 220, 110};   // green
-        case NodeClass::DrawnWithoutQuery: return {225, 95, 225}; // magenta
-        case NodeClass::NotReached: return {72, 84, 150};         // dim blue: behind a blue one
-        case NodeClass::Passed: return {70, 150, 150};            // dim teal
+        case NodeClass::Empty:
+            return {0, 0, 0};
+        case NodeClass::FrustumCulled:
+            return {235, 64, 52};  // red, as in the CHC figure
+        case NodeClass::OcclusionCulled:
+            return {66, 135, 255};  // blue, as in the CHC figure
+        case NodeClass::DrawnAfterQuery:
+            return {64, 220, 110};  // green
+        case NodeClass::DrawnWithoutQuery:
+            return {225, 95, 225};  // magenta
+        case NodeClass::NotReached:
+            return {72, 84, 150};  // dim blue: behind a blue one
+        case NodeClass::Passed:
+            return {70, 150, 150};  // dim teal
     }
     return {};
 }
@@ -83,15 +100,22 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
         const Aabb& b = tree.bounds(n);
         const uint32_t parent = tree.node(n).parent;
         const bool below_culled =
-            parent != BspTree::kNone && (out[parent] == NodeClass::OcclusionCulled ||
-                                         out[parent] == NodeClass::NotReached);
-        if (isEmpty(b)) out[n] = NodeClass::Empty;
-        else if (classify(view.frustum, b) == FrustumTest::Outside) out[n] = NodeClass::FrustumCulled;
-        else if (q.zero[n] && !q.visible[n]) out[n] = NodeClass::OcclusionCulled;
-        else if (q.visible[n] && subtree_drawn[n]) out[n] = NodeClass::DrawnAfterQuery;
-        else if (own_drawn[n]) out[n] = NodeClass::DrawnWithoutQuery;
-        else if (below_culled) out[n] = NodeClass::NotReached;
-        else out[n] = NodeClass::Passed;
+            parent != BspTree::kNone &&
+            (out[parent] == NodeClass::OcclusionCulled || out[parent] == NodeClass::NotReached);
+        if (isEmpty(b))
+            out[n] = NodeClass::Empty;
+        else if (classify(view.frustum, b) == FrustumTest::Outside)
+            out[n] = NodeClass::FrustumCulled;
+        else if (q.zero[n] && !q.visible[n])
+            out[n] = NodeClass::OcclusionCulled;
+        else if (q.visible[n] && subtree_drawn[n])
+            out[n] = NodeClass::DrawnAfterQuery;
+        else if (own_drawn[n])
+            out[n] = NodeClass::DrawnWithoutQuery;
+        else if (below_culled)
+            out[n] = NodeClass::NotReached;
+        else
+            out[n] = NodeClass::Passed;
     }
     return out;
 }
@@ -153,9 +177,9 @@ std::vector<LegendLine> legendLines(const BirdsEyeInput& in) {
         {kDrawnObjectColour, true, "drawn object: " + std::to_string(drawn)},
         {kHiddenObjectColour, true, "not drawn: " + std::to_string(objects - drawn)},
     };
-    for (NodeClass c : {NodeClass::FrustumCulled, NodeClass::OcclusionCulled,
-                        NodeClass::DrawnAfterQuery, NodeClass::DrawnWithoutQuery,
-                        NodeClass::NotReached, NodeClass::Passed}) {
+    for (NodeClass c :
+         {NodeClass::FrustumCulled, NodeClass::OcclusionCulled, NodeClass::DrawnAfterQuery,
+          NodeClass::DrawnWithoutQuery, NodeClass::NotReached, NodeClass::Passed}) {
         lines.push_back({nodeClassColour(c), false,
                          std::string(nodeClassName(c)) + ": " +
                              std::to_string(counts[static_cast<size_t>(c)])});
@@ -175,7 +199,8 @@ glm::ivec2 legendSize(const BirdsEyeInput& in) {
         text_w = std::max(text_w, RasterCanvas::textWidth(l.label, kFontScale));
     }
     const int swatch = RasterCanvas::textHeight(kFontScale);
-    return {8 + swatch + 8 + text_w + 8, 8 + static_cast<int>(lines.size()) * legendLineHeight() + 2};
+    return {8 + swatch + 8 + text_w + 8,
+            8 + static_cast<int>(lines.size()) * legendLineHeight() + 2};
 }
 
 // Where the scene and the legend go: the legend in a column on the right or a band at the
@@ -191,7 +216,8 @@ Layout layOut(const BirdsEyeInput& in, uint32_t width, uint32_t height) {
     const glm::ivec2 legend = legendSize(in);
     const int W = static_cast<int>(width), H = static_cast<int>(height), top = titleBand();
     auto scaleFor = [&](double area_w, double area_h) {
-        return std::min(std::max(1.0, area_w) / (hi.x - lo.x), std::max(1.0, area_h) / (hi.y - lo.y));
+        return std::min(std::max(1.0, area_w) / (hi.x - lo.x),
+                        std::max(1.0, area_h) / (hi.y - lo.y));
     };
     const double full_w = W - 2.0 * kPad, full_h = H - 2.0 * kPad - top;
     const double column_w = full_w - (legend.x ? legend.x + kPad : 0);
@@ -235,7 +261,8 @@ Wedge viewWedge(const BirdsEyeInput& in) {
     w.eye = {in.view.eye.x, in.view.eye.z};
     w.dir = f / flat;
     auto rotate = [](glm::dvec2 d, double a) {
-        return glm::dvec2(d.x * std::cos(a) - d.y * std::sin(a), d.x * std::sin(a) + d.y * std::cos(a));
+        return glm::dvec2(d.x * std::cos(a) - d.y * std::sin(a),
+                          d.x * std::sin(a) + d.y * std::cos(a));
     };
     w.left = rotate(w.dir, -half);
     w.right = rotate(w.dir, half);
@@ -272,7 +299,10 @@ void drawWedgeLines(RasterCanvas& canvas, const TopView& v, const Wedge& w) {
     canvas.line(pl.x, pl.y, pr.x, pr.y, kWedgeColour, 0.5f);  // the far plane
 }
 
-Rgb darker(Rgb c) { return {static_cast<uint8_t>(c.r / 2), static_cast<uint8_t>(c.g / 2), static_cast<uint8_t>(c.b / 2)}; }
+Rgb darker(Rgb c) {
+    return {static_cast<uint8_t>(c.r / 2), static_cast<uint8_t>(c.g / 2),
+            static_cast<uint8_t>(c.b / 2)};
+}
 
 // Footprints covering at least this share of the picture's area are ground: floors and slabs.
 constexpr double kGroundShare = 0.05;
@@ -298,25 +328,28 @@ void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in
             is_ground[o] = 1;
         }
     }
-    std::sort(ground.begin(), ground.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::sort(ground.begin(), ground.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
     auto paint = [&](size_t o) {
         const Rgb fill = drawn[o] ? kDrawnObjectColour : kHiddenObjectColour;
         const PixelRect r = rectOf(v, in.object_boxes[o]);
         canvas.fillRect(r.x0, r.y0, r.x1, r.y1, fill);
-        if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3) canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
+        if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3)
+            canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
     };
     for (const auto& g : ground) paint(g.second);
     for (int pass = 0; pass < 2; ++pass) {
         for (size_t o = 0; o < in.object_boxes.size(); ++o) {
-            if (drawn[o] != pass || is_ground[o] || !isFiniteAndOrdered(in.object_boxes[o])) continue;
+            if (drawn[o] != pass || is_ground[o] || !isFiniteAndOrdered(in.object_boxes[o]))
+                continue;
             paint(o);
         }
     }
 }
 
 // Draw order: the dim classes first, the decisions a reader looks for last (on top).
-constexpr NodeClass kOutlineOrder[] = {NodeClass::Passed, NodeClass::NotReached,
-                                       NodeClass::FrustumCulled, NodeClass::DrawnWithoutQuery,
+constexpr NodeClass kOutlineOrder[] = {NodeClass::Passed,          NodeClass::NotReached,
+                                       NodeClass::FrustumCulled,   NodeClass::DrawnWithoutQuery,
                                        NodeClass::DrawnAfterQuery, NodeClass::OcclusionCulled};
 
 void drawNodeOutlines(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {

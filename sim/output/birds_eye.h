@@ -13,17 +13,16 @@
 //   the object boxes and the eye with a margin. Pure CPU drawing; deterministic.
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/contract/culler.h"
-#include "occsim/culling/devices/tracing_device.h"
-#include "sim/output/raster_canvas.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/devices/tracing_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "sim/output/raster_canvas.h"
 
 namespace occsim {
 
@@ -44,8 +43,8 @@ Rgb nodeClassColour(NodeClass c);
 
 // The other colours of the picture, for tests and legends.
 constexpr Rgb kBirdsEyeBackground{18, 20, 28};
-constexpr Rgb kDrawnObjectColour{255, 214, 40};     // yellow, as in the CHC figure
-constexpr Rgb kHiddenObjectColour{96, 98, 104};     // grey: not drawn this frame
+constexpr Rgb kDrawnObjectColour{255, 214, 40};  // yellow, as in the CHC figure
+constexpr Rgb kHiddenObjectColour{96, 98, 104};  // grey: not drawn this frame
 constexpr Rgb kCameraColour{255, 255, 255};
 constexpr Rgb kWedgeColour{235, 235, 235};
 
@@ -54,16 +53,16 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
 
 struct BirdsEyeInput {
     const BspTree* tree = nullptr;
-    std::span<const Aabb> object_boxes;        // world boxes, one per object
-    std::span<const uint32_t> drawn_objects;   // objects drawn this frame (the trace's)
-    std::span<const NodeClass> node_classes;   // classifyNodes(), one per node
-    CullView view;                             // eye and frustum
-    glm::vec3 forward{0.0f, 0.0f, -1.0f};      // camera viewing direction
+    std::span<const Aabb> object_boxes;       // world boxes, one per object
+    std::span<const uint32_t> drawn_objects;  // objects drawn this frame (the trace's)
+    std::span<const NodeClass> node_classes;  // classifyNodes(), one per node
+    CullView view;                            // eye and frustum
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};     // camera viewing direction
     float fov_y_rad = 1.0f;
-    float aspect = 1.0f;                       // viewport width / height
+    float aspect = 1.0f;  // viewport width / height
     float near_m = 0.1f, far_m = 1000.0f;
-    std::string title;                         // printed at the top, e.g. "FRAME 20 CHC"
-    bool draw_legend = true;                   // off in tests that look for class colours
+    std::string title;        // printed at the top, e.g. "FRAME 20 CHC"
+    bool draw_legend = true;  // off in tests that look for class colours
 };
 
 // A picture size whose aspect follows the fitted region (clamped so the legend has room), with

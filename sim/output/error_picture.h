@@ -2,10 +2,10 @@
 // marked (errors apart from ties), side by side, for a person to look at when a regression fails.
 #pragma once
 
-#include "sim/run/simulation.h"
-
 #include <cstdint>
 #include <vector>
+
+#include "sim/run/simulation.h"
 
 namespace occsim {
 

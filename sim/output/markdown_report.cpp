@@ -1,10 +1,10 @@
 #include "sim/output/markdown_report.h"
 
-#include "sim/output/report.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
+
+#include "sim/output/report.h"
 
 namespace occsim {
 namespace {
@@ -20,14 +20,16 @@ std::string cell(const std::string& s) {
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // A caption for a plot file from its stem (plots.h names them).
 std::string plotCaption(const std::string& file) {
     if (file.find("frame-time") != std::string::npos) return "Frame time per frame";
     if (file.find("time-vs-error") != std::string::npos) return "Time against error";
-    if (file.find("queries-triangles") != std::string::npos) return "Queries and triangles per frame";
+    if (file.find("queries-triangles") != std::string::npos)
+        return "Queries and triangles per frame";
     return file;
 }
 
@@ -38,16 +40,20 @@ void header(std::ostringstream& out, const BenchResult& result) {
     out << "| scenario | " << cell(c.scenario_name) << " (`" << cell(c.scenario_file) << "`), "
         << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";
     char load[96];
-    std::snprintf(load, sizeof load, ", load average %.2f before the run and %.2f after", c.load_before[0],
-                  c.load_after[0]);
-    out << "| machine | " << c.hardware_threads << " hardware threads, LP_NUM_THREADS="
-        << cell(c.lp_num_threads) << ", renderer " << cell(c.renderer) << load
-        << (c.busyMachine() ? " (**busy: other work ran beside this run; timings are not results**)" : "")
+    std::snprintf(load, sizeof load, ", load average %.2f before the run and %.2f after",
+                  c.load_before[0], c.load_after[0]);
+    out << "| machine | " << c.hardware_threads
+        << " hardware threads, LP_NUM_THREADS=" << cell(c.lp_num_threads) << ", renderer "
+        << cell(c.renderer) << load
+        << (c.busyMachine() ? " (**busy: other work ran beside this run; timings are not results**)"
+                            : "")
         << " |\n";
-    out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor) << ", renderer "
-        << cell(c.gl_renderer) << ", driver " << cell(c.driver)
+    out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor)
+        << ", renderer " << cell(c.gl_renderer) << ", driver " << cell(c.driver)
         << (c.gpu_time_meaningful ? "" : " (software rasteriser: GPU time not meaningful)")
-        << (c.backend_fallback.empty() ? "" : "; auto fell back to OSMesa: " + cell(c.backend_fallback)) << " |\n";
+        << (c.backend_fallback.empty() ? ""
+                                       : "; auto fell back to OSMesa: " + cell(c.backend_fallback))
+        << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
         << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
     if (c.sweep) {
@@ -61,15 +67,16 @@ void header(std::ostringstream& out, const BenchResult& result) {
     }
     out << "| query latency | "
         << (c.deterministic_latency
-                ? "deterministic: a result is ready after " + std::to_string(*c.deterministic_latency) +
-                      " later draw calls"
+                ? "deterministic: a result is ready after " +
+                      std::to_string(*c.deterministic_latency) + " later draw calls"
                 : std::string("as the hardware reports it"))
         << " |\n";
     out << "| image error | "
-        << (c.error_measured ? "measured against a ground-truth render of every frame (object IDs and depth, " +
-                                   c.depth_format + "; a tie is within " + std::to_string(kDepthTieSteps) +
-                                   " depth step)"
-                             : std::string("not measured (run with `--error`)"))
+        << (c.error_measured
+                ? "measured against a ground-truth render of every frame (object IDs and depth, " +
+                      c.depth_format + "; a tie is within " + std::to_string(kDepthTieSteps) +
+                      " depth step)"
+                : std::string("not measured (run with `--error`)"))
         << " |\n\n";
     out << "Command:\n\n```sh\n" << c.command_line << "\n```\n\n";
     const uint32_t timed = c.frames > c.warmup_frames ? c.frames - c.warmup_frames : 0;
@@ -120,9 +127,12 @@ void pictures(std::ostringstream& out, const ReportFiles& c) {
     if (!pngs.empty() || !c.plots_note.empty()) out << "## Plots\n\n";
     for (const std::string& f : pngs) {
         std::string svg = f.substr(0, f.size() - 4) + ".svg";
-        const bool has_svg = std::find(c.plot_files.begin(), c.plot_files.end(), svg) != c.plot_files.end();
+        const bool has_svg =
+            std::find(c.plot_files.begin(), c.plot_files.end(), svg) != c.plot_files.end();
         out << "![" << plotCaption(f) << "](" << f << ")\n";
-        if (has_svg) out << "\n(" << "[SVG](" << svg << "))\n";
+        if (has_svg)
+            out << "\n("
+                << "[SVG](" << svg << "))\n";
         out << "\n";
     }
     if (!c.plots_note.empty()) out << c.plots_note << "\n\n";
@@ -150,15 +160,20 @@ void howToRead(std::ostringstream& out) {
         << "frustum culling alone); **vs ideal** is the configuration's mean frame time over the "
         << "Ideal oracle's, which draws exactly the objects ground truth sees with no queries "
         << "(1x is the bound; the nearer, the better). **err px/fr** is the mean number of error "
-        << "pixels per frame: pixels where ground truth shows a surface nearer than the culled frame "
+        << "pixels per frame: pixels where ground truth shows a surface nearer than the culled "
+           "frame "
         << "does (background counts as infinitely far), so something visible was left out (0 for "
         << "conservative culling); **p99 px** and **worst px** are its tail and **err px** its "
-        << "total. **tie px** counts pixels where another object lies at the same depth (within one "
-        << "step of the depth buffer) and the draw order decided which one the pixel shows: the same "
-        << "surface, no error. **missed** counts, over the frames, objects ground truth saw that the "
+        << "total. **tie px** counts pixels where another object lies at the same depth (within "
+           "one "
+        << "step of the depth buffer) and the draw order decided which one the pixel shows: the "
+           "same "
+        << "surface, no error. **missed** counts, over the frames, objects ground truth saw that "
+           "the "
         << "culler did not draw. **pop max** is the longest run of consecutive frames one visible "
         << "object stayed missing (not drawn): short runs flicker (popping), long ones are holes. "
-        << "In the time-against-error plot, down and to the left is better: a configuration that buys "
+        << "In the time-against-error plot, down and to the left is better: a configuration that "
+           "buys "
         << "time with error sits left of and above the conservative ones, and the Pareto line "
         << "joins those that no other configuration beats in both.\n";
 }

@@ -11,21 +11,21 @@
 //   statistics I/O are outside all timing.
 #pragma once
 
-#include "sim/run/results.h"
-
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "sim/run/results.h"
+
 namespace occsim {
 
 // Pictures that exist in the report's folder (file names).
 struct ReportFiles {
-    std::vector<std::string> plot_files;       // PNG and SVG; the PNGs are shown
+    std::vector<std::string> plot_files;  // PNG and SVG; the PNGs are shown
     std::vector<std::string> birds_eye_files;
-    std::string plots_note;                    // why plots are missing or incomplete, if so
-    std::string extra_markdown;                // a whole section, after the table (regress: the checks)
+    std::string plots_note;      // why plots are missing or incomplete, if so
+    std::string extra_markdown;  // a whole section, after the table (regress: the checks)
 };
 
 std::string markdownReport(const BenchResult& result, const ReportFiles& files);

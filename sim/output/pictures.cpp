@@ -1,12 +1,12 @@
 #include "sim/output/pictures.h"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "render/png_writer.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/birds_eye.h"
 #include "sim/world/camera_path.h"
-
-#include <algorithm>
-#include <cstdio>
 
 namespace occsim {
 namespace {
@@ -35,7 +35,8 @@ std::vector<uint8_t> birdsEyePng(const Simulation& sim, const Scenario& scenario
 
 }  // namespace
 
-PictureRecorder::PictureRecorder(std::filesystem::path out_dir, std::vector<uint32_t> capture_frames,
+PictureRecorder::PictureRecorder(std::filesystem::path out_dir,
+                                 std::vector<uint32_t> capture_frames,
                                  std::optional<uint32_t> birds_eye_frame)
     : out_dir_(std::move(out_dir)),
       capture_frames_(std::move(capture_frames)),

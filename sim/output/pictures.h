@@ -3,18 +3,18 @@
 // onFrame() into BenchOptions::on_frame; every file is written atomically.
 #pragma once
 
-#include "sim/run/runner.h"
-
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "sim/run/runner.h"
+
 namespace occsim {
 
 class PictureRecorder {
-public:
+  public:
     // capture_frames: frames whose culled colour buffer is saved (frame-NNNNN-<config>.png);
     // birds_eye_frame: the frame pictured from above (birds-eye-<config>-frame-NNNNN.png), which
     // must also be BenchOptions::trace_frame. First repetition only.
@@ -26,7 +26,7 @@ public:
     const std::vector<std::string>& captureFiles() const { return captures_; }
     const std::vector<std::string>& birdsEyeFiles() const { return birds_eye_; }
 
-private:
+  private:
     std::filesystem::path out_dir_;
     std::vector<uint32_t> capture_frames_;
     std::optional<uint32_t> birds_eye_frame_;

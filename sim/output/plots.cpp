@@ -1,6 +1,9 @@
 #include "sim/output/plots.h"
 
-#include "sim/output/atomic_file.h"
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -11,10 +14,7 @@
 #include <sstream>
 #include <system_error>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "sim/output/atomic_file.h"
 
 extern char** environ;
 
@@ -91,7 +91,8 @@ std::string framesData(const std::vector<RunRecord>& runs) {
     for (size_t i = 0; i < runs.size(); ++i) {
         out << "# " << runs[i].summary.algorithm << "\n# frame frame_ms queries triangles\n";
         for (const FrameStats& f : runs[i].frames) {
-            out << f.frame << ' ' << num(f.frame_ms) << ' ' << f.queries << ' ' << f.triangles << '\n';
+            out << f.frame << ' ' << num(f.frame_ms) << ' ' << f.queries << ' ' << f.triangles
+                << '\n';
         }
         out << "\n\n";
     }
@@ -142,7 +143,8 @@ std::string perFramePlot(const std::vector<RunRecord>& runs, const std::string& 
     out << "plot ";
     for (size_t i = 0; i < runs.size(); ++i) {
         out << (i ? ", \\\n     " : "") << "'plot-frames.dat' index " << i << " using 1:" << y
-            << " with lines " << lineStyle(styles[i]) << " title " << quoted(runs[i].summary.algorithm);
+            << " with lines " << lineStyle(styles[i]) << " title "
+            << quoted(runs[i].summary.algorithm);
     }
     out << "\n";
     return out.str();
@@ -155,7 +157,8 @@ std::string warmupBand(const std::vector<RunRecord>& runs) {
     if (warmup == 0) return "";
     return "set object 1 rect from -0.5, graph 0 to " + num(warmup - 0.5) +
            ", graph 1 fillcolor rgb '#e8e8e8' fillstyle solid 1.0 noborder behind\n"
-           "set label 1 'warm-up' at " + num(0.5 * warmup - 0.5) + ", graph 0.96 center\n";
+           "set label 1 'warm-up' at " +
+           num(0.5 * warmup - 0.5) + ", graph 0.96 center\n";
 }
 
 Chart frameTimeChart(const std::vector<RunRecord>& runs) {
@@ -172,15 +175,18 @@ Chart timeErrorChart(const std::vector<RunRecord>& runs) {
     const std::vector<Style> styles = stylesOf(runs);
     std::ostringstream b;
     b << "set title 'Time against error (one point per configuration; lower left is better)'\n"
-      << "set xlabel 'mean frame time (ms)'\nset ylabel 'mean error pixels per frame (ties are no error)'\n"
+      << "set xlabel 'mean frame time (ms)'\nset ylabel 'mean error pixels per frame (ties are no "
+         "error)'\n"
       << "set grid\nset key outside right top Left reverse samplen 1 spacing 1.1\n"
       << kMargins << "set xrange [0:*]\nset yrange [0:*]\n"
       << "set offsets graph 0, graph 0.08, graph 0.08, graph 0.02\n"
-      << "plot 'plot-pareto.dat' using 2:3 with lines lw 2 lc rgb '#d62728' title 'Pareto front', \\\n"
+      << "plot 'plot-pareto.dat' using 2:3 with lines lw 2 lc rgb '#d62728' title 'Pareto front', "
+         "\\\n"
       << "     'plot-pareto.dat' using 2:3 with points pt 6 ps 2.6 lw 1.5 lc rgb '#d62728' notitle";
     for (size_t i = 0; i < runs.size(); ++i) {
-        b << ", \\\n     'plot-configs.dat' every ::" << i << "::" << i << " using 2:3 with points pt "
-          << styles[i].point << " ps 1.4 lc rgb '" << styles[i].colour << "' title "
+        b << ", \\\n     'plot-configs.dat' every ::" << i << "::" << i
+          << " using 2:3 with points pt " << styles[i].point << " ps 1.4 lc rgb '"
+          << styles[i].colour << "' title "
           << quoted(std::to_string(i + 1) + "  " + runs[i].summary.algorithm);
     }
     b << ", \\\n     'plot-configs.dat' using 2:3:(sprintf('%d', $0 + 1)) with labels left "
@@ -191,10 +197,9 @@ Chart timeErrorChart(const std::vector<RunRecord>& runs) {
 Chart queriesTrianglesChart(const std::vector<RunRecord>& runs) {
     std::ostringstream b;
     b << "set multiplot layout 2,1 title 'Queries and triangles per frame'\n"
-      << kMargins << "set grid\nset xlabel 'frame'\n" << warmupBand(runs)
-      << "set ylabel 'occlusion queries per frame'\nset yrange [0:*]\n"
-      << perFramePlot(runs, "3", true)
-      << "set ylabel 'triangles drawn per frame (thousands)'\n"
+      << kMargins << "set grid\nset xlabel 'frame'\n"
+      << warmupBand(runs) << "set ylabel 'occlusion queries per frame'\nset yrange [0:*]\n"
+      << perFramePlot(runs, "3", true) << "set ylabel 'triangles drawn per frame (thousands)'\n"
       << perFramePlot(runs, "($4 / 1000.0)", false) << "unset multiplot\n";
     return {"plot-queries-triangles", 1100, 850, b.str()};
 }
@@ -211,14 +216,17 @@ std::string script(const std::vector<Chart>& charts, const std::string& name) {
         << "set encoding utf8\n"
         << "has_cairo = strstrt(GPVAL_TERMINALS, 'pngcairo') > 0\n";
     for (const Chart& c : charts) {
-        const std::string size = " size " + std::to_string(c.width) + "," + std::to_string(c.height);
+        const std::string size =
+            " size " + std::to_string(c.width) + "," + std::to_string(c.height);
         out << "\nreset\nif (has_cairo) {\n    set terminal pngcairo" << size
             << " noenhanced font 'sans,11' background rgb 'white'\n} else {\n    set terminal png"
             << size << " noenhanced background rgb 'white'\n}\n"
-            << "set output " << quoted(tempName(c.name + ".png")) << "\n" << c.body << "unset output\n"
+            << "set output " << quoted(tempName(c.name + ".png")) << "\n"
+            << c.body << "unset output\n"
             << "\nreset\nset terminal svg" << size
             << " dynamic noenhanced font 'sans,12' background rgb 'white'\n"
-            << "set output " << quoted(tempName(c.name + ".svg")) << "\n" << c.body << "unset output\n";
+            << "set output " << quoted(tempName(c.name + ".svg")) << "\n"
+            << c.body << "unset output\n";
     }
     return out.str();
 }
@@ -245,7 +253,8 @@ std::string readFile(const fs::path& p) {
 }
 
 // Runs `gnuplot <script>` in dir with stderr captured; returns "" on success, else why not.
-std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir, const std::string& script_name) {
+std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir,
+                       const std::string& script_name) {
     const std::string err_name = tempName("gnuplot-stderr.txt");
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -268,7 +277,8 @@ std::string runGnuplot(const fs::path& gnuplot, const fs::path& dir, const std::
     fs::remove(dir / err_name, ec);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
     return "gnuplot failed (" +
-           (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status)) : std::string("signal")) +
+           (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                              : std::string("signal")) +
            "): " + errorSummary(stderr_text);
 }
 
@@ -313,7 +323,8 @@ std::optional<fs::path> findOnPath(const std::string& program) {
         // An empty PATH entry means the current directory.
         const fs::path candidate = (dir.empty() ? fs::path(".") : fs::path(dir)) / program;
         std::error_code ec;
-        if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+        if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0)
+            return candidate;
     }
     return std::nullopt;
 }
@@ -342,7 +353,8 @@ PlotResult writePlots(const std::vector<RunRecord>& runs, const fs::path& out_di
     writeFileAtomically(out_dir / "plot-pareto.dat", paretoData(runs));
 
     result = renderCharts(charts, out_dir, "plots.gp");
-    if (result.ok && !error_measured) result.message = "no time-against-error plot: run with --error";
+    if (result.ok && !error_measured)
+        result.message = "no time-against-error plot: run with --error";
     return result;
 }
 

@@ -17,12 +17,12 @@
 //   error. The data files and the script are kept either way (they are written atomically).
 #pragma once
 
-#include "sim/output/report.h"
-
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "sim/output/report.h"
 
 namespace occsim {
 
@@ -45,8 +45,8 @@ struct GnuplotChart {
 // The machinery behind writePlots(), for other charts (the tuner's): writes `script_name` into
 // out_dir, runs gnuplot there (found on PATH) and publishes every chart as PNG and SVG, each whole
 // or absent, as above. The data files the charts read must be in out_dir already.
-PlotResult renderCharts(const std::vector<GnuplotChart>& charts, const std::filesystem::path& out_dir,
-                        const std::string& script_name);
+PlotResult renderCharts(const std::vector<GnuplotChart>& charts,
+                        const std::filesystem::path& out_dir, const std::string& script_name);
 
 // The first executable file named `program` in the directories of $PATH.
 std::optional<std::filesystem::path> findOnPath(const std::string& program);

@@ -15,7 +15,7 @@ struct Rgb {
 };
 
 class RasterCanvas {
-public:
+  public:
     RasterCanvas(uint32_t width, uint32_t height, Rgb background);
 
     uint32_t width() const { return width_; }
@@ -42,7 +42,7 @@ public:
     // RGBA8 with row 0 at the bottom, as encodePngBottomUp() expects.
     std::vector<uint8_t> rgbaBottomUp() const;
 
-private:
+  private:
     uint32_t width_, height_;
     std::vector<Rgb> pixels_;  // row 0 at the top
 };

@@ -1,10 +1,10 @@
 #include "sim/output/report.h"
 
-#include "sim/output/build_info.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
+
+#include "sim/output/build_info.h"
 
 namespace occsim {
 namespace {
@@ -44,10 +44,13 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
         repeated |= r.summary.repetitions > 1;
     }
     std::vector<std::string> header = {"configuration", repeated ? "mean ms [min-max]" : "mean ms",
-                                       "median ms", "p95 ms", "gpu ms", "queries/fr", "wait ms/fr",
-                                       "answer lat p50/p95", "tris/fr", "objs/fr"};
+                                       "median ms",     "p95 ms",
+                                       "gpu ms",        "queries/fr",
+                                       "wait ms/fr",    "answer lat p50/p95",
+                                       "tris/fr",       "objs/fr"};
     if (error) {
-        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
+        for (const char* h :
+             {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
             header.push_back(h);
         }
     }
@@ -60,16 +63,25 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
         const RunSummary& s = r.summary;
         const double speedup = speedupOverReference(runs, s), ideal = ratioToOracle(runs, s);
         std::string mean = fixed(s.frame_ms.mean, 2);
-        if (repeated) mean += " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+        if (repeated)
+            mean +=
+                " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
         // GPU time only where it was measured: never on a software rasteriser, whose timer
         // queries do not time rasterisation (see the console's backend line).
         const std::string gpu = s.gpu_ms_mean >= 0 ? fixed(s.gpu_ms_mean, 2) : "n/a";
-        const std::string latency = s.answer_latency_median >= 0
-                                        ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
-                                        : "-";
-        std::vector<std::string> row = {s.algorithm, mean, fixed(s.frame_ms.median, 2),
-                                        fixed(s.frame_ms.p95, 2), gpu, fixed(s.queries_mean, 1),
-                                        fixed(s.wait_ms_mean, 3), latency, fixed(s.triangles_mean, 0),
+        const std::string latency =
+            s.answer_latency_median >= 0
+                ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
+                : "-";
+        std::vector<std::string> row = {s.algorithm,
+                                        mean,
+                                        fixed(s.frame_ms.median, 2),
+                                        fixed(s.frame_ms.p95, 2),
+                                        gpu,
+                                        fixed(s.queries_mean, 1),
+                                        fixed(s.wait_ms_mean, 3),
+                                        latency,
+                                        fixed(s.triangles_mean, 0),
                                         fixed(s.objects_mean, 1)};
         // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
         if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
@@ -105,7 +117,8 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
     auto line = [&](const std::vector<std::string>& cells) {
         for (size_t c = 0; c < cells.size(); ++c) {
             const std::string pad(width[c] - cells[c].size(), ' ');
-            out << (c == 0 ? cells[c] + pad : pad + cells[c]) << (c + 1 < cells.size() ? "  " : "\n");
+            out << (c == 0 ? cells[c] + pad : pad + cells[c])
+                << (c + 1 < cells.size() ? "  " : "\n");
         }
     };
     line(header);
@@ -117,20 +130,24 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
-           "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_median\n";
+           "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_"
+           "median\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
             for (const FrameStats& f : frames) {
-                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ',' << fixed(f.time_s, 6)
-                    << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
-                    << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries << ','
-                    << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
-                    << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
-                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects << ','
+                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ','
+                    << fixed(f.time_s, 6) << ',' << fixed(f.frame_ms, 4) << ','
+                    << fixed(f.cull_cpu_ms, 4) << ',' << fixed(f.wait_ms, 4) << ','
+                    << fixed(f.update_ms, 4) << ',' << f.queries << ',' << f.objects_drawn << ','
+                    << f.triangles << ',' << f.moved_objects << ',' << f.node_changes << ','
+                    << f.error_pixels << ',' << f.tie_pixels << ',' << f.missed_objects << ','
+                    << f.drawn_unseen_objects << ',' << f.visible_objects
+                    << ','
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
-                    << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "") << '\n';
+                    << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
+                    << '\n';
             }
         }
     }
@@ -146,12 +163,18 @@ nlohmann::json summaryJson(const BenchResult& result) {
             {"configuration", s.algorithm},
             {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.algorithm},
             {"repetitions", s.repetitions},
-            {"frame_ms_mean_over_repetitions", {{"median", s.frame_ms.mean}, {"min", s.frame_ms_mean_min},
-                                                {"max", s.frame_ms_mean_max}}},
+            {"frame_ms_mean_over_repetitions",
+             {{"median", s.frame_ms.mean},
+              {"min", s.frame_ms_mean_min},
+              {"max", s.frame_ms_mean_max}}},
             {"frames", s.frames},
             {"timed_frames", s.timed_frames},
-            {"frame_ms", {{"mean", s.frame_ms.mean}, {"median", s.frame_ms.median},
-                          {"p95", s.frame_ms.p95}, {"min", s.frame_ms.min}, {"max", s.frame_ms.max}}},
+            {"frame_ms",
+             {{"mean", s.frame_ms.mean},
+              {"median", s.frame_ms.median},
+              {"p95", s.frame_ms.p95},
+              {"min", s.frame_ms.min},
+              {"max", s.frame_ms.max}}},
             {"cull_cpu_ms_mean", s.cull_cpu_ms_mean},
             {"wait_ms_mean", s.wait_ms_mean},
             {"update_ms_mean", s.update_ms_mean},
@@ -159,13 +182,14 @@ nlohmann::json summaryJson(const BenchResult& result) {
             {"objects_per_frame", s.objects_mean},
             {"triangles_per_frame", s.triangles_mean},
             // null where not measured: see machine.gpu_time_meaningful.
-            {"gpu_ms", s.gpu_ms_mean >= 0 ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
-                                          : nlohmann::json(nullptr)},
-            {"answer_latency_commands",
-             s.answer_latency_median >= 0
-                 ? nlohmann::json{{"answers", s.answers}, {"median", s.answer_latency_median},
-                                  {"p95", s.answer_latency_p95}}
-                 : nlohmann::json(nullptr)},
+            {"gpu_ms", s.gpu_ms_mean >= 0
+                           ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
+                           : nlohmann::json(nullptr)},
+            {"answer_latency_commands", s.answer_latency_median >= 0
+                                            ? nlohmann::json{{"answers", s.answers},
+                                                             {"median", s.answer_latency_median},
+                                                             {"p95", s.answer_latency_p95}}
+                                            : nlohmann::json(nullptr)},
         };
         if (s.error_measured) {
             j["error"] = {{"pixels_total", s.error_pixels_total},
@@ -203,23 +227,25 @@ nlohmann::json summaryJson(const BenchResult& result) {
                            {"dt_s", m.dt_s},          {"seed", m.seed},
                            {"objects", m.objects},    {"triangles", m.triangles},
                            {"movers", m.movers}};
-    summary["machine"] = {{"hardware_threads", m.hardware_threads},
-                          {"load_average_before", m.load_before},
-                          {"load_average_after", m.load_after},
-                          {"busy", m.busyMachine()},
-                          {"llvmpipe_threads", m.lp_num_threads},
-                          {"renderer", m.renderer},
-                          {"backend", m.backend},
-                          {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
-                          {"gl_vendor", m.gl_vendor},
-                          {"gl_renderer", m.gl_renderer},
-                          {"gl_version", m.gl_version},
-                          {"driver", m.driver},
-                          {"gpu_time_meaningful", m.gpu_time_meaningful},
-                          {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
+    summary["machine"] = {
+        {"hardware_threads", m.hardware_threads},
+        {"load_average_before", m.load_before},
+        {"load_average_after", m.load_after},
+        {"busy", m.busyMachine()},
+        {"llvmpipe_threads", m.lp_num_threads},
+        {"renderer", m.renderer},
+        {"backend", m.backend},
+        {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
+        {"gl_vendor", m.gl_vendor},
+        {"gl_renderer", m.gl_renderer},
+        {"gl_version", m.gl_version},
+        {"driver", m.driver},
+        {"gpu_time_meaningful", m.gpu_time_meaningful},
+        {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
     summary["command"] = m.command_line;
     summary["occsim"] = {{"version", OCCSIM_VERSION}, {"commit", OCCSIM_GIT_COMMIT}};
-    summary["nothing_in_view"] = nothingInView(runs);  // true: no speedup is given, none means anything
+    summary["nothing_in_view"] =
+        nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
     summary["error_measured"] = m.error_measured;
     if (m.error_measured) {
@@ -231,7 +257,8 @@ nlohmann::json summaryJson(const BenchResult& result) {
                                            ? nlohmann::json(*m.deterministic_latency)
                                            : nlohmann::json(nullptr);
     if (!m.backend_fallback.empty()) summary["machine"]["backend_fallback"] = m.backend_fallback;
-    if (m.sweep) summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
+    if (m.sweep)
+        summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     const RunCosts& c = result.costs;
     summary["simulator_costs"] = {
         {"wall_ms_after_setup", c.wall_ms},
@@ -265,7 +292,8 @@ std::string costsLine(const BenchResult& result) {
         line += "; no ground truth rendered";
     } else {
         line += "; ground truth " + std::to_string(c.ground_truth_renders) + " renders, " +
-                fixed(c.ground_truth_ms_total, 1) + " ms (render and read-back, outside the frame timing)";
+                fixed(c.ground_truth_ms_total, 1) +
+                " ms (render and read-back, outside the frame timing)";
     }
     return line;
 }
@@ -278,22 +306,27 @@ std::string runHeadline(const BenchResult& result) {
                   m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
     std::string headline = line;
     char load[256];
-    std::snprintf(load, sizeof load, "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
+    std::snprintf(load, sizeof load,
+                  "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
                   m.hardware_threads, m.load_before[0], m.load_after[0]);
     headline += load;
     if (m.busyMachine()) {
-        std::snprintf(load, sizeof load,
-                      "\nbusy machine: other work ran beside this run (load average above its %u hardware "
-                      "threads before it, or above twice that after it); these timings are not results",
-                      m.hardware_threads);
+        std::snprintf(
+            load, sizeof load,
+            "\nbusy machine: other work ran beside this run (load average above its %u hardware "
+            "threads before it, or above twice that after it); these timings are not results",
+            m.hardware_threads);
         headline += load;
     }
-    headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " + m.driver +
+    headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " +
+                m.driver +
                 (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
-    if (!m.backend_fallback.empty()) headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
+    if (!m.backend_fallback.empty())
+        headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
     if (nothingInView(result.runs)) {
-        headline += "\nwarning: the camera sees no object on any frame (none drawn, none visible): "
-                    "speedups are n/a; aim the camera at the scene";
+        headline +=
+            "\nwarning: the camera sees no object on any frame (none drawn, none visible): "
+            "speedups are n/a; aim the camera at the scene";
     }
     if (timed == 0) {
         headline += "\nnothing was timed: all " + std::to_string(m.frames) +

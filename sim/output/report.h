@@ -2,13 +2,12 @@
 // summary.json. Formatting only; nothing here measures anything or touches a file.
 #pragma once
 
-#include "sim/run/pixel_error.h"
-#include "sim/run/results.h"
-
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
+
+#include "sim/run/pixel_error.h"
+#include "sim/run/results.h"
 
 namespace occsim {
 

@@ -3,19 +3,19 @@
 // atomically (whole or absent).
 #pragma once
 
-#include "sim/run/results.h"
-
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "sim/run/results.h"
 
 namespace occsim {
 
 struct OutputRequest {
     std::filesystem::path out_dir;
-    bool plots = false;                         // gnuplot charts (plots.h), when gnuplot is there
-    std::vector<std::string> birds_eye_files;   // pictures already in out_dir, linked from report.md
-    std::string extra_markdown;                 // a section for report.md after the table (regress: its checks)
+    bool plots = false;                        // gnuplot charts (plots.h), when gnuplot is there
+    std::vector<std::string> birds_eye_files;  // pictures already in out_dir, linked from report.md
+    std::string extra_markdown;  // a section for report.md after the table (regress: its checks)
 };
 
 struct OutputFiles {

@@ -1,7 +1,6 @@
 #include "sim/regress/history.h"
 
-#include "sim/output/atomic_file.h"
-#include "sim/regress/result_files.h"
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -12,7 +11,8 @@
 #include <fstream>
 #include <sstream>
 
-#include <unistd.h>
+#include "sim/output/atomic_file.h"
+#include "sim/regress/result_files.h"
 
 namespace occsim {
 namespace {
@@ -119,19 +119,21 @@ std::string historyEntryJson(const HistoryEntry& e) {
     Json scenarios = Json::object();
     for (const auto& [scenario, algorithms] : e.scenarios) {
         for (const auto& [name, f] : algorithms) {
-            scenarios[scenario][name] = {{"speedup_over_vfc", f.speedup ? Json(*f.speedup) : Json(nullptr)},
-                                         {"queries_per_frame", f.queries},
-                                         {"objects_per_frame", f.objects},
-                                         {"error_pixels_per_frame", f.error}};
+            scenarios[scenario][name] = {
+                {"speedup_over_vfc", f.speedup ? Json(*f.speedup) : Json(nullptr)},
+                {"queries_per_frame", f.queries},
+                {"objects_per_frame", f.objects},
+                {"error_pixels_per_frame", f.error}};
         }
     }
-    const Json j = {{"format", kFormat},
-                    {"version", HistoryEntry::kFormatVersion},
-                    {"commit", e.commit},
-                    {"date", e.date},
-                    {"machine", {{"hostname", e.hostname}, {"cpu", e.cpu}, {"renderer", e.renderer}}},
-                    {"backend", e.backend},
-                    {"scenarios", scenarios}};
+    const Json j = {
+        {"format", kFormat},
+        {"version", HistoryEntry::kFormatVersion},
+        {"commit", e.commit},
+        {"date", e.date},
+        {"machine", {{"hostname", e.hostname}, {"cpu", e.cpu}, {"renderer", e.renderer}}},
+        {"backend", e.backend},
+        {"scenarios", scenarios}};
     return j.dump(2) + "\n";
 }
 
@@ -143,11 +145,14 @@ HistoryEntry readHistoryEntry(const std::filesystem::path& file) {
         const Json root = parseStrictJson(readAll(file), name);
         JsonObjectReader top(root, "", name);
         if (top.string("format", "") != kFormat) {
-            top.fail("format", std::string("expected \"") + kFormat + "\": not an occsim history entry");
+            top.fail("format",
+                     std::string("expected \"") + kFormat + "\": not an occsim history entry");
         }
         const JsonValueReader version = top.required("version");
-        if (!(version.json().is_number_integer() && version.json() == HistoryEntry::kFormatVersion)) {
-            version.fail("history format version " + version.json().dump() + "; this program reads version " +
+        if (!(version.json().is_number_integer() &&
+              version.json() == HistoryEntry::kFormatVersion)) {
+            version.fail("history format version " + version.json().dump() +
+                         "; this program reads version " +
                          std::to_string(HistoryEntry::kFormatVersion) +
                          " (keep each version's entries in a folder of their own)");
         }
@@ -168,7 +173,8 @@ HistoryEntry readHistoryEntry(const std::filesystem::path& file) {
                 JsonObjectReader fig = algorithms.required(a.key()).asObject();
                 AlgorithmFigures f;
                 const JsonValueReader speedup = fig.required("speedup_over_vfc");
-                if (!speedup.json().is_null()) f.speedup = speedup.asNumber(NumberRange::atLeast(0));
+                if (!speedup.json().is_null())
+                    f.speedup = speedup.asNumber(NumberRange::atLeast(0));
                 f.queries = fig.requiredNumber("queries_per_frame", NumberRange::atLeast(0));
                 f.objects = fig.requiredNumber("objects_per_frame", NumberRange::atLeast(0));
                 f.error = fig.requiredNumber("error_pixels_per_frame", NumberRange::atLeast(0));
@@ -187,11 +193,14 @@ HistoryEntry readHistoryEntry(const std::filesystem::path& file) {
 
 std::vector<HistoryEntry> readHistory(const std::filesystem::path& dir) {
     if (!std::filesystem::is_directory(dir)) {
-        throw ResultFileError(dir.string() + ": no such folder; expected a history folder (occsim regress --history)");
+        throw ResultFileError(
+            dir.string() +
+            ": no such folder; expected a history folder (occsim regress --history)");
     }
     std::vector<std::filesystem::path> files;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path());
+        if (entry.is_regular_file() && entry.path().extension() == ".json")
+            files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
     std::vector<HistoryEntry> entries;
@@ -204,7 +213,8 @@ std::vector<HistoryEntry> readHistory(const std::filesystem::path& dir) {
 void checkHistoryFolder(const std::filesystem::path& dir) {
     if (!std::filesystem::exists(dir)) return;  // created by the first entry
     if (!std::filesystem::is_directory(dir)) {
-        throw ResultFileError(dir.string() + ": is a file; expected a history folder (created when missing)");
+        throw ResultFileError(dir.string() +
+                              ": is a file; expected a history folder (created when missing)");
     }
     readHistory(dir);
 }
@@ -219,7 +229,8 @@ std::filesystem::path appendHistory(const std::filesystem::path& dir, const Hist
     stem.push_back('-');
     stem.append(safeFileName(entry.commit.substr(0, 12)));
     std::filesystem::path file = dir / (stem + ".json");
-    for (int n = 2; std::filesystem::exists(file); ++n) file = dir / (stem + "-" + std::to_string(n) + ".json");
+    for (int n = 2; std::filesystem::exists(file); ++n)
+        file = dir / (stem + "-" + std::to_string(n) + ".json");
     writeFileAtomically(file, historyEntryJson(entry));
     return file;
 }

@@ -6,14 +6,14 @@
 // series; nothing here mixes them.
 #pragma once
 
-#include "sim/scenario/json_reader.h"
-
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "sim/scenario/json_reader.h"
 
 namespace occsim {
 
@@ -26,7 +26,7 @@ struct AlgorithmFigures {
 
 struct HistoryEntry {
     static constexpr int kFormatVersion = 1;
-    std::string file;  // its name in the history folder (set when read)
+    std::string file;          // its name in the history folder (set when read)
     std::string commit, date;  // date: UTC, ISO 8601 ("2025-01-31T12:00:00Z")
     std::string hostname, cpu, renderer, backend;
     // scenario -> algorithm -> figures

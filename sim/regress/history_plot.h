@@ -5,9 +5,9 @@
 // report needs no plotting program.
 #pragma once
 
-#include "sim/regress/history_report.h"
-
 #include <string>
+
+#include "sim/regress/history_report.h"
 
 namespace occsim {
 

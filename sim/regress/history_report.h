@@ -7,12 +7,12 @@
 // not flag a rounding difference). A series needs window + 2 runs to be compared.
 #pragma once
 
-#include "sim/regress/history.h"
-
 #include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "sim/regress/history.h"
 
 namespace occsim {
 
@@ -23,8 +23,8 @@ struct HistoryOptions {
 
 // One figure the report follows; `get` reads it from an algorithm's figures (nullopt: absent).
 struct HistoryFigure {
-    const char* name;   // "speedup over VFC"
-    const char* key;    // "speedup", for file and column names
+    const char* name;  // "speedup over VFC"
+    const char* key;   // "speedup", for file and column names
     bool higher_is_better;
     std::optional<double> (*get)(const AlgorithmFigures&);
 };
@@ -48,7 +48,8 @@ struct HistoryAnalysis {
 HistoryAnalysis analyseHistory(std::vector<HistoryEntry> runs, const HistoryOptions& options);
 std::string historyMarkdown(const HistoryAnalysis& analysis, const HistoryOptions& options);
 // out/report.md and out/history-<scenario>.svg per scenario, each atomically; returns the names.
-std::vector<std::string> writeHistoryReport(const std::filesystem::path& out, const HistoryAnalysis& analysis,
+std::vector<std::string> writeHistoryReport(const std::filesystem::path& out,
+                                            const HistoryAnalysis& analysis,
                                             const HistoryOptions& options);
 
 // The median of the values (the mean of the middle two for an even count); 0 for none.

@@ -1,12 +1,12 @@
 #include "sim/regress/junit_reader.h"
 
-#include "sim/regress/result_files.h"
-
 #include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "sim/regress/result_files.h"
 
 namespace occsim {
 namespace {
@@ -20,13 +20,15 @@ struct Tag {
 
 // Walks the text tag by tag; text between tags is skipped (failure details).
 class TagReader {
-public:
+  public:
     TagReader(const std::string& text, const std::string& name) : text_(text), name_(name) {}
 
     [[noreturn]] void fail(const std::string& message) const {
-        const size_t line = 1 + std::count(text_.begin(), text_.begin() + std::min(pos_, text_.size()), '\n');
-        throw ResultFileError(name_ + ": line " + std::to_string(line) + ": " + message +
-                              " (a truncated or corrupt JUnit file; rerun the shard that wrote it)");
+        const size_t line =
+            1 + std::count(text_.begin(), text_.begin() + std::min(pos_, text_.size()), '\n');
+        throw ResultFileError(
+            name_ + ": line " + std::to_string(line) + ": " + message +
+            " (a truncated or corrupt JUnit file; rerun the shard that wrote it)");
     }
 
     // False at the end of the text.
@@ -37,7 +39,8 @@ public:
             return false;
         }
         const size_t end = text_.find('>', pos_);
-        if (end == std::string::npos) fail("expected '>' to close the tag, got the end of the file");
+        if (end == std::string::npos)
+            fail("expected '>' to close the tag, got the end of the file");
         std::string body = text_.substr(pos_ + 1, end - pos_ - 1);
         tag = Tag{};
         if (!body.empty() && (body.front() == '?' || body.front() == '!')) {
@@ -59,7 +62,7 @@ public:
         return true;
     }
 
-private:
+  private:
     void parseBody(const std::string& body, Tag& tag) {
         size_t i = 0;
         while (i < body.size() && !std::isspace(static_cast<unsigned char>(body[i]))) ++i;
@@ -86,10 +89,12 @@ private:
 
 size_t countAttribute(const Tag& tag, const char* key, TagReader& reader) {
     const auto it = tag.attributes.find(key);
-    if (it == tag.attributes.end()) reader.fail("expected attribute " + std::string(key) + " in <" + tag.name + ">");
+    if (it == tag.attributes.end())
+        reader.fail("expected attribute " + std::string(key) + " in <" + tag.name + ">");
     const std::string& v = it->second;
     if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos) {
-        reader.fail("expected a count in " + std::string(key) + "=\"...\" of <" + tag.name + ">, got '" + v + "'");
+        reader.fail("expected a count in " + std::string(key) + "=\"...\" of <" + tag.name +
+                    ">, got '" + v + "'");
     }
     return std::stoul(v);
 }
@@ -126,11 +131,13 @@ std::vector<JunitSuite> parseJunit(const std::string& text, const std::string& n
     Tag tag;
     while (reader.next(tag)) {
         if (tag.name == "?" || tag.name == "!") continue;
-        if (root_closed) reader.fail("expected nothing after </testsuites>, got <" + tag.name + ">");
+        if (root_closed)
+            reader.fail("expected nothing after </testsuites>, got <" + tag.name + ">");
         if (tag.closing) {
             if (open.empty() || open.back() != tag.name) {
-                reader.fail("expected </" + (open.empty() ? std::string("testsuites") : open.back()) +
-                            ">, got </" + tag.name + ">");
+                reader.fail("expected </" +
+                            (open.empty() ? std::string("testsuites") : open.back()) + ">, got </" +
+                            tag.name + ">");
             }
             open.pop_back();
             if (tag.name == "testsuite" && suites.back().testcases != declared_tests.back()) {
@@ -167,8 +174,8 @@ std::vector<JunitSuite> parseJunit(const std::string& text, const std::string& n
     if (!root_seen) reader.fail("expected <testsuites>, got none");
     if (!root_closed) reader.fail("expected </" + open.back() + ">, got the end of the file");
     if (total_seen != total_declared) {
-        reader.fail("<testsuites> declares tests=\"" + std::to_string(total_declared) + "\" but has " +
-                    std::to_string(total_seen) + " testcases");
+        reader.fail("<testsuites> declares tests=\"" + std::to_string(total_declared) +
+                    "\" but has " + std::to_string(total_seen) + " testcases");
     }
     return suites;
 }

@@ -1,12 +1,12 @@
 #include "sim/regress/merge.h"
 
-#include "sim/output/atomic_file.h"
-#include "sim/regress/result_files.h"
-
 #include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "sim/output/atomic_file.h"
+#include "sim/regress/result_files.h"
 
 namespace occsim {
 namespace {
@@ -24,29 +24,34 @@ void checkShardsAgree(const std::vector<ShardResult>& shards) {
     for (const ShardResult& s : shards) {
         const std::string where = (s.dir / "shard.json").string();
         if (s.set.id != first.set.id || s.set.scenarios != first.set.scenarios) {
-            throw ResultFileError(where + ": /scenario_set: from another scenario set (id " + s.set.id + ", " +
-                                  std::to_string(s.set.scenarios.size()) + " scenarios) than " +
-                                  (first.dir / "shard.json").string() + " (id " + first.set.id + ", " +
+            throw ResultFileError(where + ": /scenario_set: from another scenario set (id " +
+                                  s.set.id + ", " + std::to_string(s.set.scenarios.size()) +
+                                  " scenarios) than " + (first.dir / "shard.json").string() +
+                                  " (id " + first.set.id + ", " +
                                   std::to_string(first.set.scenarios.size()) +
                                   " scenarios); expected every shard from the same scenario files");
         }
         if (s.shard.count != first.shard.count) {
             throw ResultFileError(where + ": /shard: shard " + std::to_string(s.shard.index) + "/" +
-                                  std::to_string(s.shard.count) + ", but " + (first.dir / "shard.json").string() +
-                                  " is of " + std::to_string(first.shard.count) + " shards");
+                                  std::to_string(s.shard.count) + ", but " +
+                                  (first.dir / "shard.json").string() + " is of " +
+                                  std::to_string(first.shard.count) + " shards");
         }
         const auto [it, inserted] = by_index.emplace(s.shard.index, &s);
         if (!inserted) {
             throw ResultFileError(where + ": /shard: shard " + std::to_string(s.shard.index) + "/" +
                                   std::to_string(s.shard.count) + " ran twice (also in " +
-                                  (it->second->dir / "shard.json").string() + "); expected each shard once");
+                                  (it->second->dir / "shard.json").string() +
+                                  "); expected each shard once");
         }
     }
     if (by_index.size() != first.shard.count) {
         std::vector<uint32_t> have, missing;
-        for (uint32_t i = 0; i < first.shard.count; ++i) (by_index.count(i) ? have : missing).push_back(i);
-        throw ResultFileError("merge: shard(s) " + joinIndices(missing) + " of " + std::to_string(first.shard.count) +
-                              " missing (given " + joinIndices(have) + "); expected one folder per shard");
+        for (uint32_t i = 0; i < first.shard.count; ++i)
+            (by_index.count(i) ? have : missing).push_back(i);
+        throw ResultFileError("merge: shard(s) " + joinIndices(missing) + " of " +
+                              std::to_string(first.shard.count) + " missing (given " +
+                              joinIndices(have) + "); expected one folder per shard");
     }
 }
 
@@ -67,12 +72,15 @@ MergedRun mergeShards(const std::vector<std::filesystem::path>& dirs) {
         run.shard_dirs[s.shard.index] = s.dir;
         for (const ScenarioOutcome& o : s.report.scenarios) {
             const std::string where = (s.dir / "shard.json").string();
-            if (std::find(run.set.scenarios.begin(), run.set.scenarios.end(), o.scenario) == run.set.scenarios.end()) {
-                throw ResultFileError(where + ": /scenarios: " + o.scenario + " is not in the shard's scenario set");
+            if (std::find(run.set.scenarios.begin(), run.set.scenarios.end(), o.scenario) ==
+                run.set.scenarios.end()) {
+                throw ResultFileError(where + ": /scenarios: " + o.scenario +
+                                      " is not in the shard's scenario set");
             }
             const auto [it, inserted] = ran.emplace(o.scenario, std::make_pair(&s, &o));
             if (!inserted) {
-                throw ResultFileError(where + ": /scenarios: " + o.scenario + " is also claimed by " +
+                throw ResultFileError(where + ": /scenarios: " + o.scenario +
+                                      " is also claimed by " +
                                       (it->second.first->dir / "shard.json").string() +
                                       "; expected every scenario in exactly one shard");
             }
@@ -100,8 +108,8 @@ std::string mergedMarkdown(const MergedRun& run) {
     }
     std::ostringstream out;
     out << "# Regression report\n\n"
-        << run.report.scenarios.size() << " scenarios of set " << run.set.id << " in " << run.shard_dirs.size()
-        << " shards: " << failed << " failed, " << skipped << " skipped. "
+        << run.report.scenarios.size() << " scenarios of set " << run.set.id << " in "
+        << run.shard_dirs.size() << " shards: " << failed << " failed, " << skipped << " skipped. "
         << (run.report.passed() ? "Every check passed." : "**Some checks failed.**") << "\n\n```\n"
         << run.report.table() << "```\n";
     std::ostringstream notes;
@@ -114,10 +122,11 @@ std::string mergedMarkdown(const MergedRun& run) {
     for (size_t i = 0; i < run.shard_dirs.size(); ++i) {
         std::string names;
         for (size_t k = 0; k < run.report.scenarios.size(); ++k) {
-            if (run.shard_of[k] == i) names += (names.empty() ? "" : ", ") + run.report.scenarios[k].name;
+            if (run.shard_of[k] == i)
+                names += (names.empty() ? "" : ", ") + run.report.scenarios[k].name;
         }
-        out << "| " << i << "/" << run.shard_dirs.size() << " | `" << run.shard_dirs[i].string() << "` | "
-            << names << " |\n";
+        out << "| " << i << "/" << run.shard_dirs.size() << " | `" << run.shard_dirs[i].string()
+            << "` | " << names << " |\n";
     }
     return out.str();
 }
@@ -129,26 +138,38 @@ Json mergedSummaryJson(const MergedRun& run) {
         const ScenarioOutcome& s = run.report.scenarios[k];
         Json list = Json::array();
         for (const CheckResult& c : s.checks) {
-            list.push_back({{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
+            list.push_back({{"check", c.check},
+                            {"expected", c.expected},
+                            {"got", c.got},
+                            {"passed", c.passed}});
             failed_checks += !c.passed;
         }
         checks += s.checks.size();
         failed += !s.passed();
         skipped += s.skipped;
-        scenarios.push_back({{"file", s.scenario}, {"name", s.name}, {"shard", run.shard_of[k]},
-                             {"skipped", s.skipped}, {"passed", s.passed()}, {"note", s.note},
-                             {"checks", list}, {"summary", run.summaries[k]}});
+        scenarios.push_back({{"file", s.scenario},
+                             {"name", s.name},
+                             {"shard", run.shard_of[k]},
+                             {"skipped", s.skipped},
+                             {"passed", s.passed()},
+                             {"note", s.note},
+                             {"checks", list},
+                             {"summary", run.summaries[k]}});
     }
     Json shards = Json::array();
-    for (size_t i = 0; i < run.shard_dirs.size(); ++i) shards.push_back({{"index", i}, {"dir", run.shard_dirs[i].string()}});
+    for (size_t i = 0; i < run.shard_dirs.size(); ++i)
+        shards.push_back({{"index", i}, {"dir", run.shard_dirs[i].string()}});
     return {{"format", "occsim-regress-merged"},
             {"version", 1},
             {"scenario_set", {{"id", run.set.id}, {"scenarios", run.set.scenarios}}},
             {"shards", shards},
             {"passed", run.report.passed()},
             {"totals",
-             {{"scenarios", run.report.scenarios.size()}, {"failed", failed}, {"skipped", skipped},
-              {"checks", checks}, {"failed_checks", failed_checks}}},
+             {{"scenarios", run.report.scenarios.size()},
+              {"failed", failed},
+              {"skipped", skipped},
+              {"checks", checks},
+              {"failed_checks", failed_checks}}},
             {"scenarios", scenarios}};
 }
 
@@ -163,8 +184,8 @@ std::string checksTsv(const RegressReport& report) {
     for (const ScenarioOutcome& s : report.scenarios) {
         if (s.skipped) out += cell(s.name) + "\t-\t-\t-\tskipped: " + cell(s.note) + "\n";
         for (const CheckResult& c : s.checks) {
-            out += cell(s.name) + "\t" + cell(c.check) + "\t" + cell(c.expected) + "\t" + cell(c.got) + "\t" +
-                   (c.passed ? "pass" : "FAIL") + "\n";
+            out += cell(s.name) + "\t" + cell(c.check) + "\t" + cell(c.expected) + "\t" +
+                   cell(c.got) + "\t" + (c.passed ? "pass" : "FAIL") + "\n";
         }
     }
     return out;

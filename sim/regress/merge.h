@@ -5,12 +5,12 @@
 // exactly one shard, every junit.xml whole.
 #pragma once
 
-#include "sim/regress/shard_result.h"
-#include "sim/scenario/json_reader.h"
-
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "sim/regress/shard_result.h"
+#include "sim/scenario/json_reader.h"
 
 namespace occsim {
 

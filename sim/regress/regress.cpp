@@ -1,13 +1,5 @@
 #include "sim/regress/regress.h"
 
-#include "render/png_writer.h"
-#include "sim/output/atomic_file.h"
-#include "sim/output/error_picture.h"
-#include "sim/output/run_outputs.h"
-#include "sim/output/shell_quote.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/json_reader.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +7,14 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "render/png_writer.h"
+#include "sim/output/atomic_file.h"
+#include "sim/output/error_picture.h"
+#include "sim/output/run_outputs.h"
+#include "sim/output/shell_quote.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/json_reader.h"
 
 namespace occsim {
 namespace {
@@ -64,7 +64,8 @@ CheckResult compareSeries(const std::string& what, const std::string& algorithm,
     size_t frame = 0;
     while (frame < expected.size() && frame < got.size() && expected[frame] == got[frame]) ++frame;
     size_t differing = 0;
-    for (size_t i = 0; i < std::min(expected.size(), got.size()); ++i) differing += expected[i] != got[i];
+    for (size_t i = 0; i < std::min(expected.size(), got.size()); ++i)
+        differing += expected[i] != got[i];
     if (frame < expected.size() && frame < got.size()) {
         c.expected = "frame " + std::to_string(frame) + ": " + std::to_string(expected[frame]);
         c.got = std::to_string(got[frame]) + " (" + std::to_string(differing) + " frames differ)";
@@ -76,7 +77,8 @@ CheckResult compareSeries(const std::string& what, const std::string& algorithm,
 }
 
 template <class T>
-std::string describeChange(const char* what, const std::vector<T>& before, const std::vector<T>& after) {
+std::string describeChange(const char* what, const std::vector<T>& before,
+                           const std::vector<T>& after) {
     if (before == after) return "";
     long long sum_before = 0, sum_after = 0;
     size_t changed = 0;
@@ -101,13 +103,15 @@ std::string fixed(double v, int decimals) {
 std::string checksMarkdown(const ScenarioOutcome& outcome) {
     auto cell = [](const std::string& s) {
         std::string out;
-        for (char c : s) out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+        for (char c : s)
+            out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
         return out;
     };
     size_t failed = 0;
     for (const CheckResult& c : outcome.checks) failed += !c.passed;
     std::ostringstream out;
-    out << "## Checks\n\n" << outcome.checks.size() << " checks, " << failed << " failed.\n\n"
+    out << "## Checks\n\n"
+        << outcome.checks.size() << " checks, " << failed << " failed.\n\n"
         << "| check | expected | got | result |\n|---|---|---|---|\n";
     for (const CheckResult& c : outcome.checks) {
         out << "| " << cell(c.check) << " | " << cell(c.expected) << " | " << cell(c.got) << " | "
@@ -134,13 +138,15 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             return outcome;
         }
     } catch (const ScenarioError& e) {
-        outcome.checks.push_back({"valid scenario and expectations", "a valid file", e.what(), false});
+        outcome.checks.push_back(
+            {"valid scenario and expectations", "a valid file", e.what(), false});
         return outcome;
     }
     const Expectations& expect = *scenario.expect;
 
     BenchOptions bench;
-    for (const std::string& name : expect.algorithms) bench.algorithms.push_back(findAlgorithm(name));
+    for (const std::string& name : expect.algorithms)
+        bench.algorithms.push_back(findAlgorithm(name));
     bench.measure_error = true;
     bench.latency = {true, expect.deterministic_latency};
     bench.frames = expect.frames;
@@ -168,7 +174,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             const ErrorFrame& worst = result.worst_error_frames[a];
             if (worst.error_pixels == 0) return;
             const auto path = out_dir / ("worst-error-" + safeFileName(algorithm) + "-frame-" +
-                                               std::to_string(worst.frame) + ".png");
+                                         std::to_string(worst.frame) + ".png");
             const uint32_t width = result.metadata.width, height = result.metadata.height;
             writeFileAtomically(path, encodePngBottomUp(composeErrorPicture(worst, width, height),
                                                         3 * width, height));
@@ -179,23 +185,27 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     // Expectations.
     for (const std::string& name : expect.zero_error) {
         const RunSummary& s = runOf(name).summary;
-        CheckResult c{"zero error pixels: " + name, "0 on every frame", "", s.error_pixels_total == 0};
+        CheckResult c{"zero error pixels: " + name, "0 on every frame", "",
+                      s.error_pixels_total == 0};
         // Ties (another object at the same depth) are no error; shown so a reader sees them apart.
         const std::string ties = " (" + std::to_string(s.tie_pixels_total) + " tie px)";
-        c.got = c.passed ? "0" + ties : std::to_string(s.error_pixels_total) + " px on " +
-                                     std::to_string(s.frames_with_error) + " frames (worst frame " +
-                                     std::to_string(s.error_worst_frame) + ": " +
-                                     std::to_string(s.error_pixels_worst) + " px)" + ties;
+        c.got = c.passed ? "0" + ties
+                         : std::to_string(s.error_pixels_total) + " px on " +
+                               std::to_string(s.frames_with_error) + " frames (worst frame " +
+                               std::to_string(s.error_worst_frame) + ": " +
+                               std::to_string(s.error_pixels_worst) + " px)" + ties;
         if (!c.passed) capture(name);
         outcome.checks.push_back(c);
-        CheckResult m{"no missed objects: " + name, "0 on every frame", "", s.missed_objects_total == 0};
+        CheckResult m{"no missed objects: " + name, "0 on every frame", "",
+                      s.missed_objects_total == 0};
         m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
         outcome.checks.push_back(m);
     }
     for (const auto& [name, bound] : expect.max_error_pixels) {
         const RunSummary& s = runOf(name).summary;
         CheckResult c{"error pixels per frame: " + name, "<= " + std::to_string(bound),
-                      std::to_string(s.error_pixels_worst) + " (frame " + std::to_string(s.error_worst_frame) + ")",
+                      std::to_string(s.error_pixels_worst) + " (frame " +
+                          std::to_string(s.error_worst_frame) + ")",
                       s.error_pixels_worst <= bound};
         if (!c.passed) capture(name);
         outcome.checks.push_back(c);
@@ -206,14 +216,17 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         const double a = sa.frame_ms.mean, b = sb.frame_ms.mean;
         const double limit = r.max * (1.0 + r.tolerance);
         CheckResult c{"frame time " + r.algorithm + " / " + r.reference,
-                      "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) + "% = " + fixed(limit, 2) + ")",
+                      "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) +
+                          "% = " + fixed(limit, 2) + ")",
                       "", false};
         // A ratio of nothing (every frame warm-up, or a reference that took no time) cannot
         // judge anything: it fails rather than read 0/0 as a pass.
         if (sa.timed_frames == 0 || sb.timed_frames == 0 || !(b > 0)) {
             c.got = "nothing timed: " + std::to_string(std::min(sa.timed_frames, sb.timed_frames)) +
-                    " frames after warm-up (" + std::to_string(expect.frames.value_or(scenario.frames)) + " frames, warmup_frames " +
-                    std::to_string(scenario.warmup_frames) + "); raise expect.frames";
+                    " frames after warm-up (" +
+                    std::to_string(expect.frames.value_or(scenario.frames)) +
+                    " frames, warmup_frames " + std::to_string(scenario.warmup_frames) +
+                    "); raise expect.frames";
         } else {
             const double ratio = a / b;
             c.got = fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)";
@@ -248,7 +261,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             baseline_problem = e.what();
         }
     } else {
-        baseline_problem = expect.baseline.string() + ": no baseline file (create it with --update)";
+        baseline_problem =
+            expect.baseline.string() + ": no baseline file (create it with --update)";
     }
     if (options.update) {
         std::vector<std::string> changes;
@@ -259,10 +273,11 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
                 changes.push_back(name + ": new");
                 continue;
             }
-            for (const std::string& d : {describeChange("queries", before->queries, trace.queries),
-                                         describeChange("objects", before->objects, trace.objects),
-                                         describeChange("error pixels", before->error_pixels, trace.error_pixels),
-                                         describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
+            for (const std::string& d :
+                 {describeChange("queries", before->queries, trace.queries),
+                  describeChange("objects", before->objects, trace.objects),
+                  describeChange("error pixels", before->error_pixels, trace.error_pixels),
+                  describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
                 if (!d.empty()) changes.push_back(name + ": " + d);
             }
         }
@@ -280,11 +295,13 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         }
         for (const auto& c : changes) outcome.note += "\n    " + c;
     } else if (!baseline_problem.empty()) {
-        outcome.checks.push_back({"baseline", "a readable baseline of this format", baseline_problem, false});
+        outcome.checks.push_back(
+            {"baseline", "a readable baseline of this format", baseline_problem, false});
     }
     std::string elsewhere;
-    if (!options.update && old && ((!old->backend.empty() && old->backend != now.backend) ||
-                                   (!old->renderer.empty() && old->renderer != now.renderer))) {
+    if (!options.update && old &&
+        ((!old->backend.empty() && old->backend != now.backend) ||
+         (!old->renderer.empty() && old->renderer != now.renderer))) {
         // Deterministic counts should not depend on where they were rendered; if a check below
         // fails, this says what differed besides the code.
         elsewhere = "baseline made on " + old->backend + " (" + old->renderer + "), this run on " +
@@ -293,24 +310,31 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     }
     if (options.update || !baseline_problem.empty()) {
         // Written or reported above.
-    } else if (old->deterministic_latency != now.deterministic_latency || old->frames != now.frames) {
+    } else if (old->deterministic_latency != now.deterministic_latency ||
+               old->frames != now.frames) {
         outcome.checks.push_back({"baseline settings",
-                                  std::to_string(old->frames) + " frames, latency " + std::to_string(old->deterministic_latency),
-                                  std::to_string(now.frames) + " frames, latency " + std::to_string(now.deterministic_latency),
+                                  std::to_string(old->frames) + " frames, latency " +
+                                      std::to_string(old->deterministic_latency),
+                                  std::to_string(now.frames) + " frames, latency " +
+                                      std::to_string(now.deterministic_latency),
                                   false});
     } else {
         for (const auto& [name, trace] : now.algorithms) {
             const auto it = old->algorithms.find(name);
             if (it == old->algorithms.end()) {
-                outcome.checks.push_back({"baseline has " + name, "present", "missing (run with --update)", false});
+                outcome.checks.push_back(
+                    {"baseline has " + name, "present", "missing (run with --update)", false});
                 continue;
             }
-            outcome.checks.push_back(compareSeries("queries", name, it->second.queries, trace.queries));
-            outcome.checks.push_back(compareSeries("objects", name, it->second.objects, trace.objects));
-            outcome.checks.push_back(compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
-            if (!outcome.checks.back().passed) capture(name);
             outcome.checks.push_back(
-                compareSeries("missed objects", name, it->second.missed_objects, trace.missed_objects));
+                compareSeries("queries", name, it->second.queries, trace.queries));
+            outcome.checks.push_back(
+                compareSeries("objects", name, it->second.objects, trace.objects));
+            outcome.checks.push_back(
+                compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
+            if (!outcome.checks.back().passed) capture(name);
+            outcome.checks.push_back(compareSeries(
+                "missed objects", name, it->second.missed_objects, trace.missed_objects));
             // A count check that fails against a baseline made on another backend says so.
             if (!elsewhere.empty()) {
                 for (size_t k = outcome.checks.size() - 4; k < outcome.checks.size(); ++k) {
@@ -328,12 +352,23 @@ std::string xmlEscape(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -351,13 +386,15 @@ Baseline readBaseline(const std::filesystem::path& file) {
         }
         const JsonValueReader version = top.required("version");
         if (!(version.json().is_number_integer() && version.json() == Baseline::kFormatVersion)) {
-            throw BaselineError(name + ": /version: baseline format version " + version.json().dump() +
-                                "; this program reads version " + std::to_string(Baseline::kFormatVersion) +
+            throw BaselineError(name + ": /version: baseline format version " +
+                                version.json().dump() + "; this program reads version " +
+                                std::to_string(Baseline::kFormatVersion) +
                                 " (rewrite it with --update)");
         }
         Baseline b;
         b.scenario = top.string("scenario", "");
-        b.deterministic_latency = static_cast<uint32_t>(top.requiredUnsignedInteger("deterministic_latency"));
+        b.deterministic_latency =
+            static_cast<uint32_t>(top.requiredUnsignedInteger("deterministic_latency"));
         b.frames = static_cast<uint32_t>(top.requiredUnsignedInteger("frames", 1));
         b.backend = top.string("backend", "");
         b.renderer = top.string("renderer", "");
@@ -386,15 +423,17 @@ std::string baselineJson(const Baseline& b) {
     // One line per series keeps diffs of a baseline readable in review.
     std::ostringstream out;
     out << "{\n  \"format\": \"occsim-baseline\",\n  \"version\": " << Baseline::kFormatVersion
-        << ",\n  \"scenario\": " << Json(b.scenario).dump() << ",\n  \"deterministic_latency\": "
-        << b.deterministic_latency << ",\n  \"frames\": " << b.frames;
+        << ",\n  \"scenario\": " << Json(b.scenario).dump()
+        << ",\n  \"deterministic_latency\": " << b.deterministic_latency
+        << ",\n  \"frames\": " << b.frames;
     if (!b.backend.empty()) out << ",\n  \"backend\": " << Json(b.backend).dump();
     if (!b.renderer.empty()) out << ",\n  \"renderer\": " << Json(b.renderer).dump();
     out << ",\n  \"algorithms\": {";
     bool first = true;
     for (const auto& [name, t] : b.algorithms) {
-        out << (first ? "" : ",") << "\n    " << Json(name).dump() << ": {\n      \"queries\": "
-            << Json(t.queries).dump() << ",\n      \"objects\": " << Json(t.objects).dump()
+        out << (first ? "" : ",") << "\n    " << Json(name).dump()
+            << ": {\n      \"queries\": " << Json(t.queries).dump()
+            << ",\n      \"objects\": " << Json(t.objects).dump()
             << ",\n      \"error_pixels\": " << Json(t.error_pixels).dump()
             << ",\n      \"missed_objects\": " << Json(t.missed_objects).dump() << "\n    }";
         first = false;
@@ -410,8 +449,10 @@ bool ScenarioOutcome::passed() const {
 Shard parseShard(const std::string& text) {
     const auto slash = text.find('/');
     auto number = [&](const std::string& part) -> long {
-        if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos || part.size() > 6) {
-            throw std::invalid_argument("expected a shard as i/n with 0 <= i < n, got '" + text + "'");
+        if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos ||
+            part.size() > 6) {
+            throw std::invalid_argument("expected a shard as i/n with 0 <= i < n, got '" + text +
+                                        "'");
         }
         return std::stol(part);
     };
@@ -419,7 +460,8 @@ Shard parseShard(const std::string& text) {
         throw std::invalid_argument("expected a shard as i/n with 0 <= i < n, got '" + text + "'");
     }
     const long i = number(text.substr(0, slash)), n = number(text.substr(slash + 1));
-    if (n < 1 || i >= n) throw std::invalid_argument("expected a shard as i/n with 0 <= i < n, got '" + text + "'");
+    if (n < 1 || i >= n)
+        throw std::invalid_argument("expected a shard as i/n with 0 <= i < n, got '" + text + "'");
     return {static_cast<uint32_t>(i), static_cast<uint32_t>(n)};
 }
 
@@ -429,29 +471,33 @@ Shard shardFromEnvironment(const std::function<const char*(const char*)>& get) {
         if (v == nullptr || *v == '\0') return std::nullopt;
         const std::string s(v);
         if (s.find_first_not_of("0123456789") != std::string::npos || s.size() > 9) {
-            throw std::invalid_argument(std::string(name) + ": expected a non-negative integer, got '" + s + "'");
+            throw std::invalid_argument(std::string(name) +
+                                        ": expected a non-negative integer, got '" + s + "'");
         }
         return std::stol(s);
     };
     if (const auto id = value("SLURM_ARRAY_TASK_ID")) {
         const auto count = value("SLURM_ARRAY_TASK_COUNT");
-        if (!count) throw std::invalid_argument("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not");
+        if (!count)
+            throw std::invalid_argument(
+                "SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not");
         const long first = value("SLURM_ARRAY_TASK_MIN").value_or(0);
         return parseShard(std::to_string(*id - first) + "/" + std::to_string(*count));
     }
     if (const auto index = value("JOB_COMPLETION_INDEX")) {
         const auto count = value("OCCSIM_SHARD_COUNT");
         if (!count) {
-            throw std::invalid_argument("JOB_COMPLETION_INDEX is set but OCCSIM_SHARD_COUNT is not "
-                                        "(set it to the Job's completions)");
+            throw std::invalid_argument(
+                "JOB_COMPLETION_INDEX is set but OCCSIM_SHARD_COUNT is not "
+                "(set it to the Job's completions)");
         }
         return parseShard(std::to_string(*index) + "/" + std::to_string(*count));
     }
     return {};
 }
 
-std::vector<std::filesystem::path> collectScenarios(const std::vector<std::filesystem::path>& inputs,
-                                                    const Shard& shard) {
+std::vector<std::filesystem::path> collectScenarios(
+    const std::vector<std::filesystem::path>& inputs, const Shard& shard) {
     std::set<std::filesystem::path> found;
     auto isScenario = [](const std::filesystem::path& p) {
         const std::string name = p.filename().string();
@@ -480,7 +526,8 @@ bool RegressReport::passed() const {
 }
 
 std::string RegressReport::table() const {
-    std::vector<std::vector<std::string>> rows = {{"scenario", "check", "expected", "got", "result"}};
+    std::vector<std::vector<std::string>> rows = {
+        {"scenario", "check", "expected", "got", "result"}};
     for (const ScenarioOutcome& s : scenarios) {
         if (s.skipped) {
             rows.push_back({s.name, "-", "-", "-", "skipped: " + s.note});
@@ -525,7 +572,8 @@ std::string junitXml(const RegressReport& report) {
         seconds += s.seconds;
     }
     std::ostringstream out;
-    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"occsim regress\" tests=\""
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"occsim regress\" "
+           "tests=\""
         << tests << "\" failures=\"" << failures << "\" skipped=\"" << skipped << "\" time=\""
         << fixed(seconds, 3) << "\">\n";
     for (const ScenarioOutcome& s : report.scenarios) {
@@ -533,20 +581,23 @@ std::string junitXml(const RegressReport& report) {
         for (const CheckResult& c : s.checks) f += !c.passed;
         out << "  <testsuite name=\"" << xmlEscape(s.name) << "\" file=\"" << xmlEscape(s.scenario)
             << "\" tests=\"" << (s.skipped ? 1 : s.checks.size()) << "\" failures=\"" << f
-            << "\" skipped=\"" << (s.skipped ? 1 : 0) << "\" time=\"" << fixed(s.seconds, 3) << "\">\n";
+            << "\" skipped=\"" << (s.skipped ? 1 : 0) << "\" time=\"" << fixed(s.seconds, 3)
+            << "\">\n";
         if (s.skipped) {
             out << "    <testcase classname=\"" << xmlEscape(s.name) << "\" name=\"scenario\">"
                 << "<skipped message=\"" << xmlEscape(s.note) << "\"/></testcase>\n";
         }
         for (const CheckResult& c : s.checks) {
-            out << "    <testcase classname=\"" << xmlEscape(s.name) << "\" name=\"" << xmlEscape(c.check) << "\"";
+            out << "    <testcase classname=\"" << xmlEscape(s.name) << "\" name=\""
+                << xmlEscape(c.check) << "\"";
             if (c.passed) {
                 out << "/>\n";
             } else {
                 std::string detail = "expected " + c.expected + ", got " + c.got;
                 for (const auto& capture : s.captures) detail += "\ncapture: " + capture;
-                out << "><failure message=\"" << xmlEscape("expected " + c.expected + ", got " + c.got)
-                    << "\">" << xmlEscape(detail) << "</failure></testcase>\n";
+                out << "><failure message=\""
+                    << xmlEscape("expected " + c.expected + ", got " + c.got) << "\">"
+                    << xmlEscape(detail) << "</failure></testcase>\n";
             }
         }
         out << "  </testsuite>\n";

@@ -1,15 +1,13 @@
 // Scenario-driven regression runs (docs/regression.md). Every scenario with an `expect` block is
 // run headless in deterministic-latency mode with the algorithms it names, and checked against:
 // - its expectations: zero error pixels and no missed object on every frame for the algorithms
-//   that must be conservative (ties in depth are no error: docs/error.md), per-frame error bounds for approximate ones, and frame-time ratios between
-//   algorithms measured in the same run (never absolute milliseconds), each with a tolerance;
+//   that must be conservative (ties in depth are no error: docs/error.md), per-frame error bounds
+//   for approximate ones, and frame-time ratios between algorithms measured in the same run (never
+//   absolute milliseconds), each with a tolerance;
 // - its baseline file: per algorithm and frame, the exact query count, objects drawn and error
-//   pixels and missed objects of the last accepted run. `--update` rewrites it (atomically) and says what changed.
+//   pixels and missed objects of the last accepted run. `--update` rewrites it (atomically) and
+//   says what changed.
 #pragma once
-
-#include "occsim/culling/registry/registry.h"
-#include "sim/run/runner.h"
-#include "sim/scenario/scenario.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -20,6 +18,10 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/registry/registry.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 
@@ -47,7 +49,7 @@ struct Baseline {
 
 // A baseline file that cannot be used. Its message names the file and the key.
 class BaselineError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -55,17 +57,17 @@ Baseline readBaseline(const std::filesystem::path& file);
 std::string baselineJson(const Baseline& baseline);
 
 struct CheckResult {
-    std::string check;     // what was checked, e.g. "zero error pixels: statistical"
+    std::string check;  // what was checked, e.g. "zero error pixels: statistical"
     std::string expected;
     std::string got;
     bool passed = false;
 };
 
 struct ScenarioOutcome {
-    std::string scenario;         // path as given/found
+    std::string scenario;  // path as given/found
     std::string name;
     bool skipped = false;
-    std::string note;             // why skipped, or what an update changed
+    std::string note;  // why skipped, or what an update changed
     std::vector<CheckResult> checks;
     std::vector<std::string> captures;  // pictures written for failures
     double seconds = 0.0;
@@ -87,8 +89,8 @@ Shard shardFromEnvironment(const std::function<const char*(const char*)>& get);
 
 // The scenario files under the inputs (files as given; folders searched recursively for *.json,
 // skipping *.baseline.json), sorted, then this shard's share: every count-th from index.
-std::vector<std::filesystem::path> collectScenarios(const std::vector<std::filesystem::path>& inputs,
-                                                    const Shard& shard);
+std::vector<std::filesystem::path> collectScenarios(
+    const std::vector<std::filesystem::path>& inputs, const Shard& shard);
 
 struct RegressOptions {
     std::vector<std::filesystem::path> inputs;
@@ -98,7 +100,8 @@ struct RegressOptions {
     bool progress = false;
     BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
-    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
+    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
+        make_culler;
     // Applied to each scenario after it is parsed (occsim regress --culling FILE).
     std::function<void(Scenario&)> adjust_scenario;
     // The flags that shaped each scenario's run (--culling FILE, --backend, --plugin, ...), for

@@ -1,14 +1,14 @@
 #include "sim/regress/shard_result.h"
 
-#include "sim/output/atomic_file.h"
-#include "sim/regress/junit_reader.h"
-#include "sim/regress/result_files.h"
-#include "sim/scenario/json_reader.h"
-
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include "sim/output/atomic_file.h"
+#include "sim/regress/junit_reader.h"
+#include "sim/regress/result_files.h"
+#include "sim/scenario/json_reader.h"
 
 namespace occsim {
 namespace {
@@ -34,10 +34,12 @@ std::string fileText(const std::filesystem::path& file) {
 Json outcomeJson(const ScenarioOutcome& s) {
     Json checks = Json::array();
     for (const CheckResult& c : s.checks) {
-        checks.push_back({{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
+        checks.push_back(
+            {{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
     }
-    return {{"file", s.scenario}, {"name", s.name},       {"skipped", s.skipped},   {"note", s.note},
-            {"seconds", s.seconds}, {"captures", s.captures}, {"checks", checks}};
+    return {{"file", s.scenario}, {"name", s.name},       {"skipped", s.skipped},
+            {"note", s.note},     {"seconds", s.seconds}, {"captures", s.captures},
+            {"checks", checks}};
 }
 
 std::vector<std::string> stringList(JsonObjectReader& object, const char* key) {
@@ -72,19 +74,22 @@ ScenarioOutcome readOutcome(const JsonValueReader& value) {
 void checkJunitAgrees(const std::filesystem::path& file, const RegressReport& report) {
     const std::vector<JunitSuite> suites = readJunit(file);
     if (suites.size() != report.scenarios.size()) {
-        throw ResultFileError(file.string() + ": expected " + std::to_string(report.scenarios.size()) +
-                              " testsuites (one per scenario in shard.json), got " + std::to_string(suites.size()));
+        throw ResultFileError(
+            file.string() + ": expected " + std::to_string(report.scenarios.size()) +
+            " testsuites (one per scenario in shard.json), got " + std::to_string(suites.size()));
     }
     for (size_t i = 0; i < suites.size(); ++i) {
         const ScenarioOutcome& s = report.scenarios[i];
         size_t failed = 0;
         for (const CheckResult& c : s.checks) failed += !c.passed;
         const size_t tests = s.skipped ? 1 : s.checks.size();
-        if (suites[i].name != s.name || suites[i].testcases != tests || suites[i].failures != failed) {
-            throw ResultFileError(file.string() + ": testsuite " + std::to_string(i + 1) + " ('" + suites[i].name +
-                                  "', " + std::to_string(suites[i].testcases) + " testcases, " +
-                                  std::to_string(suites[i].failures) + " failures) differs from shard.json ('" +
-                                  s.name + "', " + std::to_string(tests) + " checks, " + std::to_string(failed) +
+        if (suites[i].name != s.name || suites[i].testcases != tests ||
+            suites[i].failures != failed) {
+            throw ResultFileError(file.string() + ": testsuite " + std::to_string(i + 1) + " ('" +
+                                  suites[i].name + "', " + std::to_string(suites[i].testcases) +
+                                  " testcases, " + std::to_string(suites[i].failures) +
+                                  " failures) differs from shard.json ('" + s.name + "', " +
+                                  std::to_string(tests) + " checks, " + std::to_string(failed) +
                                   " failed)");
         }
     }
@@ -127,7 +132,8 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
     const std::filesystem::path file = dir / "shard.json";
     const std::string name = file.string();
     if (!std::filesystem::is_regular_file(file)) {
-        throw ResultFileError(name + ": missing; expected the --out folder of an `occsim regress` run");
+        throw ResultFileError(name +
+                              ": missing; expected the --out folder of an `occsim regress` run");
     }
     ShardResult r;
     r.dir = dir;
@@ -135,12 +141,16 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
         const Json root = parseStrictJson(fileText(file), name);
         JsonObjectReader top(root, "", name);
         if (top.string("format", "") != kFormat) {
-            top.fail("format", std::string("expected \"") + kFormat + "\": not a shard result of occsim regress");
+            top.fail("format", std::string("expected \"") + kFormat +
+                                   "\": not a shard result of occsim regress");
         }
         const JsonValueReader version = top.required("version");
-        if (!(version.json().is_number_integer() && version.json() == ShardResult::kFormatVersion)) {
-            version.fail("shard result format version " + version.json().dump() + "; this program reads version " +
-                         std::to_string(ShardResult::kFormatVersion) + " (rerun the shard with this occsim)");
+        if (!(version.json().is_number_integer() &&
+              version.json() == ShardResult::kFormatVersion)) {
+            version.fail("shard result format version " + version.json().dump() +
+                         "; this program reads version " +
+                         std::to_string(ShardResult::kFormatVersion) +
+                         " (rerun the shard with this occsim)");
         }
         JsonObjectReader set = top.object("scenario_set");
         r.set.id = set.required("id").asString();
@@ -148,10 +158,12 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
         set.finish();
         JsonObjectReader shard = top.object("shard");
         r.shard.count = static_cast<uint32_t>(shard.requiredUnsignedInteger("count", 1, 1000000));
-        r.shard.index = static_cast<uint32_t>(shard.requiredUnsignedInteger("index", 0, r.shard.count - 1));
+        r.shard.index =
+            static_cast<uint32_t>(shard.requiredUnsignedInteger("index", 0, r.shard.count - 1));
         shard.finish();
         const JsonArrayReader scenarios = top.array("scenarios");
-        for (size_t i = 0; i < scenarios.size(); ++i) r.report.scenarios.push_back(readOutcome(scenarios.at(i)));
+        for (size_t i = 0; i < scenarios.size(); ++i)
+            r.report.scenarios.push_back(readOutcome(scenarios.at(i)));
         top.finish();
     } catch (const ScenarioError& e) {
         throw ResultFileError(e.what());

@@ -4,18 +4,18 @@
 // knows every scenario that should have run, not only those that did.
 #pragma once
 
-#include "sim/regress/regress.h"
-#include "sim/scenario/json_reader.h"
-
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "sim/regress/regress.h"
+#include "sim/scenario/json_reader.h"
+
 namespace occsim {
 
 struct ScenarioSet {
-    std::string id;                       // hash of the sorted paths and their files' contents
-    std::vector<std::string> scenarios;   // every scenario file of the set, sorted
+    std::string id;                      // hash of the sorted paths and their files' contents
+    std::vector<std::string> scenarios;  // every scenario file of the set, sorted
 };
 
 struct ShardResult {
@@ -23,7 +23,7 @@ struct ShardResult {
     std::filesystem::path dir;  // where it was read from
     ScenarioSet set;
     Shard shard;
-    RegressReport report;       // this shard's scenarios, in run order
+    RegressReport report;  // this shard's scenarios, in run order
 };
 
 // The set the inputs name (collectScenarios() with no sharding); the id changes when a scenario

@@ -1,15 +1,14 @@
 #include "sim/run/calibration.h"
 
-#include "occsim/culling/tree/bsp_tree.h"
-#include "render/gl_query_device.h"
-#include "sim/run/frame_view.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
+
+#include "occsim/culling/tree/bsp_tree.h"
+#include "render/gl_query_device.h"
+#include "sim/run/frame_view.h"
 
 namespace occsim {
 namespace {
@@ -75,7 +74,8 @@ CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRen
     // The objects the first view sees (all of them if it sees none), sorted by triangle count.
     std::vector<uint32_t> in_view;
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        if (classify(view.cull.frustum, state.boxes[o]) != FrustumTest::Outside) in_view.push_back(o);
+        if (classify(view.cull.frustum, state.boxes[o]) != FrustumTest::Outside)
+            in_view.push_back(o);
     }
     if (in_view.empty()) {
         for (uint32_t o = 0; o < scene.objectCount(); ++o) in_view.push_back(o);
@@ -108,7 +108,8 @@ CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRen
     // with more, and solve ms = calls * draw_call_ms + triangles * triangle_ms for both.
     const size_t half = sample.size() / 2;
     bool split = false;
-    if (half > 0 && renderer.triangleCount(sample.front()) != renderer.triangleCount(sample.back())) {
+    if (half > 0 &&
+        renderer.triangleCount(sample.front()) != renderer.triangleCount(sample.back())) {
         const Part small = timeDraws(0, half);
         const Part large = timeDraws(half, sample.size());
         const double det = small.calls * large.triangles - large.calls * small.triangles;

@@ -4,12 +4,12 @@
 // Hierarchical Culling" (EGSR 2006), section 4.
 #pragma once
 
+#include <string>
+
 #include "occsim/culling/registry/culler_options.h"
 #include "render/gl_renderer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
-
-#include <string>
 
 namespace occsim {
 

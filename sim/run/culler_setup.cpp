@@ -1,7 +1,7 @@
 #include "sim/run/culler_setup.h"
 
-#include "render/gl_renderer.h"
 #include "occsim/culling/contract/render_device.h"
+#include "render/gl_renderer.h"
 
 namespace occsim {
 
@@ -15,7 +15,8 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
         const CostModelUse use = algorithm.cost_model_use(config.culler.of(algorithm));
         if (!use.wanted) continue;
         // A cost model given for this culler alone wins over the shared one.
-        if (const auto it = config.culler.cost_model_of.find(algorithm.name); it != config.culler.cost_model_of.end()) {
+        if (const auto it = config.culler.cost_model_of.find(algorithm.name);
+            it != config.culler.cost_model_of.end()) {
             config.culler.cost_model = it->second;
         }
         if (config.culler.cost_model.known()) {
@@ -26,9 +27,9 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
             // Queries are timed with as many in flight as this culler keeps.
             choice = latency.deterministic
                          ? CostModelChoice{referenceCostModel(), "reference"}
-                         : CostModelChoice{calibrateCostModel(scene, scenario, renderer,
-                                                              use.queries_in_flight),
-                                           "calibrated"};
+                         : CostModelChoice{
+                               calibrateCostModel(scene, scenario, renderer, use.queries_in_flight),
+                               "calibrated"};
         }
         config.culler.cost_model = choice->costs;
     }

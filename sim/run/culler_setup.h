@@ -3,14 +3,14 @@
 // the culler from its registry row.
 #pragma once
 
+#include <memory>
+#include <optional>
+#include <vector>
+
 #include "occsim/culling/registry/registry.h"
 #include "sim/run/calibration.h"
 #include "sim/run/run_config.h"
 #include "sim/scenario/scenario.h"
-
-#include <memory>
-#include <optional>
-#include <vector>
 
 namespace occsim {
 

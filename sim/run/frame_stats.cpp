@@ -66,10 +66,13 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
         std::vector<double> error;
         for (const FrameStats& f : frames) error.push_back(static_cast<double>(f.error_pixels));
         std::sort(error.begin(), error.end());
-        s.error_pixels_mean = std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size());
-        const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(error.size())));
+        s.error_pixels_mean =
+            std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size());
+        const size_t rank =
+            static_cast<size_t>(std::ceil(0.99 * static_cast<double>(error.size())));
         s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
-        s.tie_pixels_mean = static_cast<double>(s.tie_pixels_total) / static_cast<double>(error.size());
+        s.tie_pixels_mean =
+            static_cast<double>(s.tie_pixels_total) / static_cast<double>(error.size());
     }
     if (s.timed_frames > 0) {
         const double n = s.timed_frames;
@@ -115,7 +118,8 @@ void addPopping(RunSummary& summary, const std::vector<uint32_t>& missing_runs) 
         total += run;
         summary.popping_max_frames = std::max(summary.popping_max_frames, run);
     }
-    summary.popping_mean_frames = missing_runs.empty() ? 0.0 : total / static_cast<double>(missing_runs.size());
+    summary.popping_mean_frames =
+        missing_runs.empty() ? 0.0 : total / static_cast<double>(missing_runs.size());
 }
 
 void addAnswerLatencies(RunSummary& summary, const std::vector<uint64_t>& histogram) {
@@ -128,7 +132,8 @@ void addAnswerLatencies(RunSummary& summary, const std::vector<uint64_t>& histog
     }
     // Nearest rank, as distributionOf() takes its p95.
     auto rankValue = [&](double fraction) {
-        const uint64_t rank = std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(fraction * static_cast<double>(total))));
+        const uint64_t rank = std::max<uint64_t>(
+            1, static_cast<uint64_t>(std::ceil(fraction * static_cast<double>(total))));
         uint64_t seen = 0;
         for (size_t k = 0; k < histogram.size(); ++k) {
             seen += histogram[k];
@@ -144,7 +149,8 @@ double medianLatency(std::vector<uint32_t>& latencies) {
     if (latencies.empty()) return -1;
     std::sort(latencies.begin(), latencies.end());
     const size_t n = latencies.size();
-    return n % 2 ? latencies[n / 2] : 0.5 * (double(latencies[n / 2 - 1]) + double(latencies[n / 2]));
+    return n % 2 ? latencies[n / 2]
+                 : 0.5 * (double(latencies[n / 2 - 1]) + double(latencies[n / 2]));
 }
 
 RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
@@ -174,12 +180,15 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.answer_latency_p95 = median([](const RunSummary& r) { return r.answer_latency_p95; });
     out.error_pixels_mean = median([](const RunSummary& r) { return r.error_pixels_mean; });
     out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
-    out.error_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
-    out.missed_objects_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
+    out.error_pixels_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
+    out.missed_objects_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
     out.tie_pixels_mean = median([](const RunSummary& r) { return r.tie_pixels_mean; });
-    out.tie_pixels_total = static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
-    out.drawn_unseen_objects_total =
-        static_cast<int64_t>(median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
+    out.tie_pixels_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
+    out.drawn_unseen_objects_total = static_cast<int64_t>(
+        median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
     for (const RunSummary& r : reps) {
         out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);

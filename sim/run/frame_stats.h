@@ -9,11 +9,11 @@ namespace occsim {
 
 struct FrameStats {
     uint32_t frame = 0;
-    double time_s = 0.0;         // simulation time
-    double frame_ms = 0.0;       // wall clock: frame start to glFinish, culled render only
-    double cull_cpu_ms = 0.0;    // culler's own CPU time (traversal minus submission and waits)
-    double wait_ms = 0.0;        // blocked on query results
-    double update_ms = 0.0;      // movers, BSP reinsertion and refit (outside frame_ms)
+    double time_s = 0.0;       // simulation time
+    double frame_ms = 0.0;     // wall clock: frame start to glFinish, culled render only
+    double cull_cpu_ms = 0.0;  // culler's own CPU time (traversal minus submission and waits)
+    double wait_ms = 0.0;      // blocked on query results
+    double update_ms = 0.0;    // movers, BSP reinsertion and refit (outside frame_ms)
     // GL_TIME_ELAPSED around the culled render; -1 when not measured (a software rasteriser,
     // whose timer queries do not time rasterisation: ContextInfo::gpu_time_meaningful).
     double gpu_ms = -1.0;
@@ -25,7 +25,7 @@ struct FrameStats {
     uint64_t objects_drawn = 0;
     uint64_t triangles = 0;
     uint64_t moved_objects = 0;
-    uint64_t node_changes = 0;   // reinsertions that moved an object to another BSP node
+    uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
     int64_t error_pixels = -1;    // ground truth shows a nearer surface than the culled frame
     int64_t tie_pixels = -1;      // another object at the same depth (draw order): no error
@@ -44,8 +44,8 @@ Distribution distributionOf(std::vector<double> values);
 
 struct RunSummary {
     std::string algorithm;
-    uint32_t frames = 0;          // all frames
-    uint32_t timed_frames = 0;    // frames after warm-up, over which timing figures are taken
+    uint32_t frames = 0;        // all frames
+    uint32_t timed_frames = 0;  // frames after warm-up, over which timing figures are taken
     Distribution frame_ms;
     double cull_cpu_ms_mean = 0, wait_ms_mean = 0, update_ms_mean = 0;
     // Over the timed frames; -1 when GPU time was not measured (see FrameStats::gpu_ms).
@@ -62,11 +62,11 @@ struct RunSummary {
     uint32_t frames_with_error = 0;
     int64_t tie_pixels_total = 0;
     uint32_t frames_with_ties = 0;
-    double tie_pixels_mean = 0;     // per frame, over all frames
+    double tie_pixels_mean = 0;  // per frame, over all frames
     int64_t missed_objects_total = 0;
     int64_t drawn_unseen_objects_total = 0;
-    double error_pixels_mean = 0;   // per frame, over all frames
-    double error_pixels_p99 = 0;    // per frame, nearest rank
+    double error_pixels_mean = 0;  // per frame, over all frames
+    double error_pixels_p99 = 0;   // per frame, nearest rank
     // Popping: runs of consecutive frames in which an object visible in ground truth was not
     // drawn (one run per object and disappearance; a tie is no disappearance).
     uint32_t popping_events = 0;
@@ -83,14 +83,14 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
 // Counts popping: per object, runs of consecutive frames in which it was visible in ground truth
 // but not drawn. Feed it one frame at a time.
 class PoppingCounter {
-public:
+  public:
     // missing[o] != 0 when object o was visible in ground truth and not drawn this frame.
     void addFrame(const std::vector<uint8_t>& missing);
     // Lengths of every run, finished or still open.
     std::vector<uint32_t> runs() const;
 
-private:
-    std::vector<uint32_t> open_;      // per object: length of its current run
+  private:
+    std::vector<uint32_t> open_;  // per object: length of its current run
     std::vector<uint32_t> finished_;
 };
 

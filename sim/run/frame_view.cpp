@@ -1,8 +1,7 @@
 #include "sim/run/frame_view.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace occsim {
 
@@ -29,17 +28,17 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     view.render.eye = pose.position;
     view.render.box_origin = culling_origin;
     view.render.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), forward, up));
-    view.render.projection = perspectiveFor(depth, static_cast<float>(fov),
-                                            static_cast<float>(aspect),
-                                            static_cast<float>(camera.near_m),
-                                            static_cast<float>(camera.far_m));
+    view.render.projection =
+        perspectiveFor(depth, static_cast<float>(fov), static_cast<float>(aspect),
+                       static_cast<float>(camera.near_m), static_cast<float>(camera.far_m));
     // Culling uses the conventional OpenGL projection, in the culling frame: the eye relative to
     // the culling origin is computed in double, so the planes are as precise as the boxes.
     const glm::dvec3 eye = pose.position - culling_origin;
     const glm::dmat4 view_projection = glm::perspective(fov, aspect, camera.near_m, camera.far_m) *
                                        glm::lookAt(eye, eye + forward, up);
     view.cull.eye = glm::vec3(eye);
-    view.cull.frustum = frustumFromViewProjection(view_projection);  // planes in double: deep ranges
+    view.cull.frustum =
+        frustumFromViewProjection(view_projection);  // planes in double: deep ranges
     view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
     return view;
 }

@@ -2,14 +2,13 @@
 // renderer (world coordinates, the scenario's depth convention) each need it.
 #pragma once
 
+#include <cstdint>
+#include <glm/glm.hpp>
+
 #include "occsim/culling/contract/culler.h"
 #include "render/gl_renderer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"
-
-#include <glm/glm.hpp>
-
-#include <cstdint>
 
 namespace occsim {
 

@@ -4,7 +4,8 @@
 
 namespace occsim {
 
-GroundTruth::GroundTruth(GlRenderer& renderer) : renderer_(renderer), device_(renderer, LatencyMode{}) {}
+GroundTruth::GroundTruth(GlRenderer& renderer)
+    : renderer_(renderer), device_(renderer, LatencyMode{}) {}
 
 const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colour) {
     if (serial_ == world.frameSerial() && (has_colour_ || !with_colour)) return frame_;
@@ -25,7 +26,8 @@ const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colo
     serial_ = world.frameSerial();
     has_colour_ = with_colour;
     ++renders_;
-    ms_total_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ms_total_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return frame_;
 }
 

@@ -4,12 +4,12 @@
 // cost, so a run can show that it rendered none when no error was asked for.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "sim/run/shared_world.h"
-
-#include <cstdint>
-#include <vector>
 
 namespace occsim {
 
@@ -21,7 +21,7 @@ struct GroundTruthFrame {
 };
 
 class GroundTruth {
-public:
+  public:
     explicit GroundTruth(GlRenderer& renderer);
 
     // The current frame of `world`, rendered on the first call for that frame and kept for the
@@ -32,7 +32,7 @@ public:
     uint32_t renders() const { return renders_; }
     double msTotal() const { return ms_total_; }  // render and read-back, wall clock
 
-private:
+  private:
     GlRenderer& renderer_;
     GlQueryDevice device_;
     GroundTruthFrame frame_;

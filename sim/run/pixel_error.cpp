@@ -10,13 +10,15 @@ PixelDifference classifyPixel(uint32_t truth_id, uint32_t truth_rank, uint32_t c
     // Background is infinitely far: an object and background never tie, whatever depth the
     // object's fragment stored (it can sit at the far plane's rank).
     if (truth_id == 0 || culled_id == 0) return PixelDifference::Error;
-    const uint32_t apart = truth_rank > culled_rank ? truth_rank - culled_rank : culled_rank - truth_rank;
+    const uint32_t apart =
+        truth_rank > culled_rank ? truth_rank - culled_rank : culled_rank - truth_rank;
     return apart <= kDepthTieSteps ? PixelDifference::Tie : PixelDifference::Error;
 }
 
-PixelCounts comparePixels(std::span<const uint32_t> truth_ids, std::span<const uint32_t> truth_ranks,
-                          std::span<const uint32_t> culled_ids, std::span<const uint32_t> culled_ranks,
-                          std::vector<uint8_t>* marks) {
+PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
+                          std::span<const uint32_t> truth_ranks,
+                          std::span<const uint32_t> culled_ids,
+                          std::span<const uint32_t> culled_ranks, std::vector<uint8_t>* marks) {
     const size_t n = truth_ids.size();
     if (truth_ranks.size() != n || culled_ids.size() != n || culled_ranks.size() != n) {
         throw std::invalid_argument("comparePixels: the ID and depth buffers differ in size");
@@ -25,7 +27,8 @@ PixelCounts comparePixels(std::span<const uint32_t> truth_ids, std::span<const u
     PixelCounts counts;
     for (size_t i = 0; i < n; ++i) {
         if (truth_ids[i] == culled_ids[i]) continue;  // the common case, decided without depth
-        const PixelDifference d = classifyPixel(truth_ids[i], truth_ranks[i], culled_ids[i], culled_ranks[i]);
+        const PixelDifference d =
+            classifyPixel(truth_ids[i], truth_ranks[i], culled_ids[i], culled_ranks[i]);
         counts.error += d == PixelDifference::Error;
         counts.tie += d == PixelDifference::Tie;
         if (marks) (*marks)[i] = static_cast<uint8_t>(d);

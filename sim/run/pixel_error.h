@@ -33,8 +33,10 @@ struct PixelCounts {
 };
 
 // Over a frame (all four spans the same size). With `marks`, also each pixel's PixelDifference.
-PixelCounts comparePixels(std::span<const uint32_t> truth_ids, std::span<const uint32_t> truth_ranks,
-                          std::span<const uint32_t> culled_ids, std::span<const uint32_t> culled_ranks,
+PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
+                          std::span<const uint32_t> truth_ranks,
+                          std::span<const uint32_t> culled_ids,
+                          std::span<const uint32_t> culled_ranks,
                           std::vector<uint8_t>* marks = nullptr);
 
 }  // namespace occsim

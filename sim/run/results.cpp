@@ -27,7 +27,8 @@ const RunSummary* findRun(const std::vector<RunRecord>& runs, Pred&& is) {
 }  // namespace
 
 std::string backendLabel(const RunMetadata& m) {
-    if (m.backend == "egl") return "EGL device " + (m.device ? std::to_string(*m.device) : std::string("?"));
+    if (m.backend == "egl")
+        return "EGL device " + (m.device ? std::to_string(*m.device) : std::string("?"));
     if (m.backend == "osmesa") return "OSMesa";
     return m.backend.empty() ? "unknown backend" : m.backend;
 }
@@ -46,7 +47,8 @@ bool nothingInView(const std::vector<RunRecord>& runs) {
 
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s) {
     if (nothingInView(runs)) return 0.0;
-    const RunSummary* ref = findRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
+    const RunSummary* ref =
+        findRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
     return ref && s.frame_ms.mean > 0 ? ref->frame_ms.mean / s.frame_ms.mean : 0.0;
 }
 

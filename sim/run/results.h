@@ -2,16 +2,16 @@
 // once, read by the console, summary.json and report.md alike), and the worst error frames.
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-#include "sim/run/frame_stats.h"
-#include "sim/run/run_config.h"
-#include "sim/run/simulation.h"
-
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/registry/registry.h"
+#include "sim/run/frame_stats.h"
+#include "sim/run/run_config.h"
+#include "sim/run/simulation.h"
 
 namespace occsim {
 
@@ -19,16 +19,16 @@ namespace occsim {
 // name, or "name knob=value" in a sweep); with repetitions, summary is the median over them.
 struct RunRecord {
     RunSummary summary;
-    std::vector<FrameStats> frames;                      // first repetition
+    std::vector<FrameStats> frames;  // first repetition
     std::vector<std::vector<FrameStats>> later_repetitions;
-    std::vector<RunSummary> repetitions;                 // one per repetition
-    const AlgorithmTraits* algorithm = nullptr;          // the culler
+    std::vector<RunSummary> repetitions;         // one per repetition
+    const AlgorithmTraits* algorithm = nullptr;  // the culler
     // What the culler was configured with: every option after defaults, sweeps and --culling
     // (summary.json records them), and the shared approximation knobs.
     OptionValues options;
     ApproximationOptions approximation;
     std::optional<CostModel> cost_model;  // the one it read, when it weighs costs
-    bool pareto = false;                                 // on the time-against-error front
+    bool pareto = false;                  // on the time-against-error front
 };
 
 // Everything about a run that is not a measurement: what ran, how, and where.
@@ -64,14 +64,14 @@ struct RunMetadata {
     // it above twice that (the run's own threads count in the figure after it).
     bool busyMachine() const;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
-    std::string renderer;  // "GL_RENDERER, OpenGL GL_VERSION"
+    std::string renderer;                    // "GL_RENDERER, OpenGL GL_VERSION"
     // The headless context (render/headless_context.h): which backend and device made it, and
     // what it says it is.
-    std::string backend;                   // "egl" or "osmesa"
-    std::optional<uint32_t> device;        // the EGL device index
+    std::string backend;             // "egl" or "osmesa"
+    std::optional<uint32_t> device;  // the EGL device index
     std::string gl_vendor, gl_renderer, gl_version, driver;
-    bool gpu_time_meaningful = false;      // false on software rasterisers (llvmpipe)
-    std::string backend_fallback;          // why --backend auto took OSMesa; empty when it did not
+    bool gpu_time_meaningful = false;  // false on software rasterisers (llvmpipe)
+    std::string backend_fallback;      // why --backend auto took OSMesa; empty when it did not
     uint32_t width = 0, height = 0;
     std::string depth_format;  // the depth buffer both renders share: what a tie's step is
 };

@@ -133,8 +133,8 @@ std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& al
                 setValue(c.culler, *algorithm, sweep->parameter, v);
                 std::string why;
                 if (!c.culler.isValid(&why)) {
-                    throw std::invalid_argument(sweep->parameter + "=" + formatOptionValue(spec, v) +
-                                                ": " + why);
+                    throw std::invalid_argument(sweep->parameter + "=" +
+                                                formatOptionValue(spec, v) + ": " + why);
                 }
                 configs.push_back(c);
             }

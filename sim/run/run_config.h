@@ -8,19 +8,19 @@
 // named before the colon.
 #pragma once
 
-#include "occsim/culling/registry/culler_options.h"
-#include "occsim/culling/registry/registry.h"
-
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "occsim/culling/registry/culler_options.h"
+#include "occsim/culling/registry/registry.h"
+
 namespace occsim {
 
 struct RunConfig {
-    std::string label;                         // "statistical", or "statistical base_time=0.3"
+    std::string label;                           // "statistical", or "statistical base_time=0.3"
     const AlgorithmTraits* algorithm = nullptr;  // a registered culler
-    CullerOptions culler;                      // with the approximation knobs
+    CullerOptions culler;                        // with the approximation knobs
 };
 
 struct Sweep {

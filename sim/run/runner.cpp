@@ -1,17 +1,17 @@
 #include "sim/run/runner.h"
 
-#include "render/headless_context.h"
-#include "sim/run/calibration.h"
-#include "sim/run/culler_setup.h"
-#include "sim/run/ground_truth.h"
-#include "sim/run/shared_world.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <thread>
+
+#include "render/headless_context.h"
+#include "sim/run/calibration.h"
+#include "sim/run/culler_setup.h"
+#include "sim/run/ground_truth.h"
+#include "sim/run/shared_world.h"
 
 namespace occsim {
 namespace {
@@ -21,8 +21,8 @@ using Clock = std::chrono::steady_clock;
 void printProgress(uint32_t done, uint32_t total, Clock::time_point start) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const double left = done > 0 ? elapsed / done * (total - done) : 0.0;
-    std::fprintf(stderr, "\rframe %u/%u  %.0f s elapsed, about %.0f s left   ", done, total, elapsed,
-                 left);
+    std::fprintf(stderr, "\rframe %u/%u  %.0f s elapsed, about %.0f s left   ", done, total,
+                 elapsed, left);
     if (done == total) std::fputc('\n', stderr);
     std::fflush(stderr);
 }
@@ -99,8 +99,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const std::optional<CostModelChoice> costs =
         chooseCostModel(configs, scene, scenario, renderer, options.latency);
     if (costs && costs->source == "calibrated") {
-        std::fprintf(stderr, "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f ms per draw call\n",
-                     costs->costs.query_box_ms, costs->costs.triangle_ms, costs->costs.draw_call_ms);
+        std::fprintf(stderr,
+                     "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f "
+                     "ms per draw call\n",
+                     costs->costs.query_box_ms, costs->costs.triangle_ms,
+                     costs->costs.draw_call_ms);
     }
 
     BenchResult result;
@@ -139,8 +142,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                 options.keep_worst_error_frame && options.measure_error && rep == 0;
             if (rep == 0) sim_options.trace_frame = options.trace_frame;
             sim_options.measure_gpu_time = context->info().gpu_time_meaningful;
-            auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
-                                              : makeConfiguredCuller(config);
+            auto culler = options.make_culler
+                              ? options.make_culler(*config.algorithm, config.culler)
+                              : makeConfiguredCuller(config);
             sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
                                                         std::move(culler), config.culler, renderer,
                                                         sim_options));
@@ -153,7 +157,8 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
         // a run in which none needs it renders none.
         bool any_needs_truth = false;
         for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
-        const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
+        const bool truth_colour =
+            options.keep_worst_error_frame && options.measure_error && rep == 0;
         const auto loop_start = Clock::now();
         for (uint32_t f = 0; f < scenario.frames; ++f) {
             world.advance();
@@ -167,13 +172,15 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
                 }
             }
             const uint32_t done = rep * scenario.frames + f + 1;
-            if (options.progress && (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
-                                     done == total_frames)) {
+            if (options.progress &&
+                (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
+                 done == total_frames)) {
                 printProgress(done, total_frames, start);
                 last_progress = Clock::now();
             }
         }
-        spent.wall_ms += std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
+        spent.wall_ms +=
+            std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
         spent.world_advances += world.advances();
         spent.world_steps += world.steps();
         spent.world_update_ms_total += world.updateMsTotal();
@@ -188,7 +195,8 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             record.repetitions.push_back(summary);
             if (rep == 0) {
                 record.frames = std::move(frames[c]);
-                if (sims[c]->keepsWorstErrorFrame()) result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
+                if (sims[c]->keepsWorstErrorFrame())
+                    result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
             } else {
                 record.later_repetitions.push_back(std::move(frames[c]));
             }

@@ -4,19 +4,19 @@
 // (sim/output/run_outputs.h).
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-#include "render/headless_context.h"
-#include "sim/run/results.h"
-#include "sim/run/run_config.h"
-#include "sim/run/simulation.h"
-#include "sim/scenario/scenario.h"
-
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/registry/registry.h"
+#include "render/headless_context.h"
+#include "sim/run/results.h"
+#include "sim/run/run_config.h"
+#include "sim/run/simulation.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 
@@ -50,14 +50,15 @@ struct BenchOptions {
     // configuration's world was advanced longest before it renders, and it renders right after
     // ground truth): without rotation that cost lands on the same configuration every frame.
     bool rotate_order = false;
-    std::optional<Sweep> sweep;           // one configuration per value (run_config.h)
-    std::string ablate;                   // an algorithm to run with each mechanism off (run_config.h)
+    std::optional<Sweep> sweep;  // one configuration per value (run_config.h)
+    std::string ablate;          // an algorithm to run with each mechanism off (run_config.h)
     // Record this frame's draws and queries for every configuration (first repetition), so that
     // on_frame can picture its culling decisions (Simulation::lastTrace()).
     std::optional<uint32_t> trace_frame;
     std::function<void(const FrameEvent&)> on_frame;
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
-    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)> make_culler;
+    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
+        make_culler;
 };
 
 // Throws BackendUnavailable when the backend or device asked for cannot serve (bad input),

@@ -1,9 +1,8 @@
 #include "sim/run/shared_world.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <atomic>
 #include <chrono>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace occsim {
 namespace {

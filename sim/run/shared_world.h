@@ -6,20 +6,19 @@
 // times. The world knows no OpenGL: ground truth of its frame is rendered by GroundTruth.
 #pragma once
 
-#include "occsim/culling/tree/bsp_tree.h"
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <optional>
+#include <span>
+#include <vector>
+
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"
 #include "sim/world/world.h"
-
-#include <glm/glm.hpp>
-
-#include <cstdint>
-#include <optional>
-#include <span>
-#include <vector>
 
 namespace occsim {
 
@@ -40,7 +39,7 @@ struct LiveControls {
 };
 
 class SharedWorld {
-public:
+  public:
     // Builds the tree over the scene's initial poses. Throws MotionError for a non-finite
     // placement.
     SharedWorld(const Scene& scene, const Scenario& scenario);
@@ -55,8 +54,8 @@ public:
     // the next advance().
     void advance();
     bool hasFrame() const { return advances_ > 0; }
-    uint32_t frame() const { return frame_; }            // the current frame, once hasFrame()
-    uint32_t nextFrame() const { return advances_; }      // frames advanced so far
+    uint32_t frame() const { return frame_; }         // the current frame, once hasFrame()
+    uint32_t nextFrame() const { return advances_; }  // frames advanced so far
     bool done() const { return advances_ >= scenario_.frames; }
     // Unique over every world of the process, new on every advance(): what a per-frame cache
     // (GroundTruth, a configuration's "rendered this frame") compares, so a new world that
@@ -86,7 +85,7 @@ public:
     uint32_t steps() const { return steps_; }
     double updateMsTotal() const { return update_ms_total_; }
 
-private:
+  private:
     void computeModelViews();
 
     const Scene& scene_;

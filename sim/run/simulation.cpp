@@ -1,9 +1,9 @@
 #include "sim/run/simulation.h"
 
-#include "occsim/culling/cullers/basic_cullers.h"
-
 #include <chrono>
 #include <stdexcept>
+
+#include "occsim/culling/cullers/basic_cullers.h"
 
 namespace occsim {
 namespace {
@@ -49,9 +49,10 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       renderer_(renderer),
       options_(sim_options),
       gl_device_(renderer, sim_options.latency),
-      approximate_device_(algorithm.issues_queries && options.approximation.active()
-                              ? std::make_unique<ApproximateDevice>(gl_device_, options.approximation)
-                              : nullptr),
+      approximate_device_(
+          algorithm.issues_queries && options.approximation.active()
+              ? std::make_unique<ApproximateDevice>(gl_device_, options.approximation)
+              : nullptr),
       device_(approximate_device_ ? static_cast<RenderDevice*>(approximate_device_.get())
                                   : &gl_device_),
       tracer_(*device_) {
@@ -59,15 +60,14 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
     culler_->reset(world_->tree());
 }
 
-bool Simulation::needsGroundTruth() const {
-    return options_.measure_error || algorithm_.oracle;
-}
+bool Simulation::needsGroundTruth() const { return options_.measure_error || algorithm_.oracle; }
 
 FrameStats Simulation::renderFrame() {
     const bool fresh = world_->hasFrame() && rendered_serial_ != world_->frameSerial();
     if (!fresh) {
         if (!own_world_) {
-            throw std::logic_error("Simulation::renderFrame: the shared world has no new frame (advance it first)");
+            throw std::logic_error(
+                "Simulation::renderFrame: the shared world has no new frame (advance it first)");
         }
         world_->advance();
     }
@@ -123,7 +123,8 @@ void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
     stats.answers = frame_latencies_.size();
     if (frame >= world_->scenario().warmup_frames) {
         for (uint32_t latency : frame_latencies_) {
-            if (latency >= answer_latencies_.size()) answer_latencies_.resize(size_t{latency} + 1, 0);
+            if (latency >= answer_latencies_.size())
+                answer_latencies_.resize(size_t{latency} + 1, 0);
             ++answer_latencies_[latency];
         }
     }

@@ -7,13 +7,17 @@
 // A Simulation built from a scene alone owns a world and ground truth of its own.
 #pragma once
 
-#include "occsim/culling/registry/registry.h"
-#include "occsim/culling/devices/approximate_device.h"
-#include "occsim/culling/tree/bsp_tree.h"
+#include <memory>
+#include <optional>
+#include <vector>
+
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/devices/tracing_device.h"
-#include "render/gl_query_device.h"
+#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/tree/bsp_tree.h"
 #include "render/gl_frame_timer.h"
+#include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
@@ -22,10 +26,6 @@
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
-
-#include <memory>
-#include <optional>
-#include <vector>
 
 namespace occsim {
 
@@ -57,7 +57,7 @@ struct ErrorFrame {
 };
 
 class Simulation {
-public:
+  public:
     // A configuration on a world it shares with others: the caller advances the world once per
     // frame and has every configuration render that frame. The world and ground truth must
     // outlive the simulation. The renderer must have the scene's meshes uploaded (uploadScene()).
@@ -103,7 +103,7 @@ public:
     const AlgorithmTraits& algorithm() const { return algorithm_; }
     const Culler& culler() const { return *culler_; }
 
-private:
+  private:
     Simulation(std::unique_ptr<SharedWorld> own_world, std::unique_ptr<GroundTruth> own_truth,
                SharedWorld* world, GroundTruth* truth, const AlgorithmTraits& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,

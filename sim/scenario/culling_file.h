@@ -10,10 +10,10 @@
 // it holds as a whole (keys an object omits take their defaults, as in a scenario).
 #pragma once
 
+#include <filesystem>
+
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
-
-#include <filesystem>
 
 namespace occsim {
 

@@ -53,7 +53,7 @@ std::string parseErrorReason(const char* what) {
 // nlohmann's SAX interface, building the DOM ourselves so that we know where we are: needed to
 // reject duplicate keys and to name the value whose number overflowed.
 class StrictDomBuilder {
-public:
+  public:
     StrictDomBuilder(const std::string& text, const std::string& file) : text_(text), file_(file) {}
 
     Json take() { return std::move(root_); }
@@ -79,8 +79,9 @@ public:
         top.key = key;
         if (top.container->contains(key)) {
             error_.emplace(file_, currentPointer(),
-                           "duplicate key '" + key + "' (the later value would silently replace "
-                           "the earlier one)");
+                           "duplicate key '" + key +
+                               "' (the later value would silently replace "
+                               "the earlier one)");
             return false;
         }
         return true;
@@ -102,7 +103,7 @@ public:
         return false;
     }
 
-private:
+  private:
     struct Frame {
         Json* container;
         std::string key;  // objects: the key whose value is being read
@@ -236,28 +237,28 @@ std::string formatNumber(double value) {
 
 std::string describeJsonValue(const Json& value) {
     switch (value.type()) {
-    case Json::value_t::null:
-        return "null";
-    case Json::value_t::boolean:
-        return value.dump() + " (boolean)";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned:
-        return value.dump();
-    case Json::value_t::number_float:
-        return formatNumber(value.get<double>());
-    case Json::value_t::string: {
-        std::string text = value.dump();
-        if (text.size() > kMaxQuotedLength) text = text.substr(0, kMaxQuotedLength) + "...\"";
-        return text + " (string)";
-    }
-    case Json::value_t::array:
-        return "an array of " + std::to_string(value.size()) + " element" +
-               (value.size() == 1 ? "" : "s");
-    case Json::value_t::object:
-        return "an object";
-    case Json::value_t::binary:
-    case Json::value_t::discarded:
-        break;
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return value.dump() + " (boolean)";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+            return value.dump();
+        case Json::value_t::number_float:
+            return formatNumber(value.get<double>());
+        case Json::value_t::string: {
+            std::string text = value.dump();
+            if (text.size() > kMaxQuotedLength) text = text.substr(0, kMaxQuotedLength) + "...\"";
+            return text + " (string)";
+        }
+        case Json::value_t::array:
+            return "an array of " + std::to_string(value.size()) + " element" +
+                   (value.size() == 1 ? "" : "s");
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::binary:
+        case Json::value_t::discarded:
+            break;
     }
     return "a value of type " + std::string(value.type_name());
 }
@@ -481,9 +482,7 @@ glm::dvec3 JsonObjectReader::vec3(std::string_view key, const glm::dvec3& fallba
     return value ? value->asVec3() : fallback;
 }
 
-glm::dvec3 JsonObjectReader::requiredVec3(std::string_view key) {
-    return required(key).asVec3();
-}
+glm::dvec3 JsonObjectReader::requiredVec3(std::string_view key) { return required(key).asVec3(); }
 
 std::pair<double, double> JsonObjectReader::range(std::string_view key,
                                                   std::pair<double, double> fallback,
@@ -492,9 +491,7 @@ std::pair<double, double> JsonObjectReader::range(std::string_view key,
     return value ? value->asRange(element) : fallback;
 }
 
-JsonObjectReader JsonObjectReader::object(std::string_view key) {
-    return required(key).asObject();
-}
+JsonObjectReader JsonObjectReader::object(std::string_view key) { return required(key).asObject(); }
 
 std::optional<JsonObjectReader> JsonObjectReader::optionalObject(std::string_view key) {
     const auto value = optional(key);
@@ -502,9 +499,7 @@ std::optional<JsonObjectReader> JsonObjectReader::optionalObject(std::string_vie
     return value->asObject();
 }
 
-JsonArrayReader JsonObjectReader::array(std::string_view key) {
-    return required(key).asArray();
-}
+JsonArrayReader JsonObjectReader::array(std::string_view key) { return required(key).asArray(); }
 
 std::optional<JsonArrayReader> JsonObjectReader::optionalArray(std::string_view key) {
     const auto value = optional(key);

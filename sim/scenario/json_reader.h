@@ -7,19 +7,18 @@
 // strictness: a typo in a regression scenario must fail loudly, never fall back to a default.
 #pragma once
 
-#include "sim/scenario/errors.h"
-
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include "sim/scenario/errors.h"
 
 namespace occsim {
 
@@ -66,7 +65,7 @@ struct NumberRange {
     // "a number > 0", "a number in (0, 180)", "a finite number", ...
     std::string describe() const;
 
-private:
+  private:
     static constexpr double kInf = std::numeric_limits<double>::infinity();
 };
 
@@ -75,7 +74,7 @@ class JsonArrayReader;
 
 // One value at a known pointer, converted to a C++ type on request.
 class JsonValueReader {
-public:
+  public:
     JsonValueReader(const Json& value, std::string pointer, std::string file);
 
     const Json& json() const { return *value_; }
@@ -101,7 +100,7 @@ public:
     // "expected <what>, got <this value>".
     [[noreturn]] void failExpected(const std::string& what) const;
 
-private:
+  private:
     const Json* value_;
     std::string pointer_;
     std::string file_;
@@ -109,7 +108,7 @@ private:
 
 // An object whose keys are read by name; call finish() after the last read.
 class JsonObjectReader {
-public:
+  public:
     // Throws unless `value` is an object.
     JsonObjectReader(const Json& value, std::string pointer, std::string file);
 
@@ -151,7 +150,7 @@ public:
     // Throws on the first key that no accessor asked for.
     void finish() const;
 
-private:
+  private:
     void allow(std::string_view key);
 
     const Json* value_;
@@ -161,7 +160,7 @@ private:
 };
 
 class JsonArrayReader {
-public:
+  public:
     // Throws unless `value` is an array.
     JsonArrayReader(const Json& value, std::string pointer, std::string file);
 
@@ -171,7 +170,7 @@ public:
     // Throws "expected an array of at least N <what>" when shorter.
     void requireAtLeast(std::size_t count, const std::string& what) const;
 
-private:
+  private:
     const Json* value_;
     std::string pointer_;
     std::string file_;

@@ -2,12 +2,11 @@
 // the cost model, and each registered culler's options object under its own name, read through
 // its descriptor (occsim/culling/registry/options.h). A plugin's culler is read exactly as a
 // built-in: the same types, ranges and one-line errors at the key's JSON pointer.
-#include "sim/scenario/parser_parts.h"
-
-#include "occsim/culling/registry/registry.h"
-
 #include <cmath>
 #include <limits>
+
+#include "occsim/culling/registry/registry.h"
+#include "sim/scenario/parser_parts.h"
 
 namespace occsim {
 namespace {
@@ -49,7 +48,8 @@ CostModel readCostModel(JsonObjectReader reader, std::vector<std::string>* culle
     c.draw_call_ms = reader.number("draw_call_ms", c.draw_call_ms);
     if (auto names = reader.optionalArray("cullers")) {
         names->requireAtLeast(1, "culler");
-        for (size_t i = 0; i < names->size(); ++i) cullers->push_back(names->at(i).asEnum(algorithmNames()));
+        for (size_t i = 0; i < names->size(); ++i)
+            cullers->push_back(names->at(i).asEnum(algorithmNames()));
     }
     reader.finish();
     std::string why;
@@ -73,7 +73,8 @@ void readCulling(JsonObjectReader& top, Scenario& s) {
         std::vector<std::string> cullers;
         const CostModel model = readCostModel(std::move(*costs), &cullers);
         if (cullers.empty()) s.culler.cost_model = model;
-        for (const std::string& name : cullers) s.culler.cost_model_of.insert_or_assign(name, model);
+        for (const std::string& name : cullers)
+            s.culler.cost_model_of.insert_or_assign(name, model);
     }
     for (const AlgorithmTraits* culler : algorithms()) {
         if (auto options = culling->optionalObject(culler->name)) {

@@ -1,9 +1,9 @@
 // The "expect" block of a scenario (docs/regression.md), read with the rest of the file so that
 // a mistake in it is reported when the scenario is parsed, whatever command reads it.
+#include <algorithm>
+
 #include "occsim/culling/registry/registry.h"
 #include "sim/scenario/parser_parts.h"
-
-#include <algorithm>
 
 namespace occsim {
 namespace {
@@ -41,7 +41,8 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
     e.deterministic_latency = static_cast<uint32_t>(
         expect.unsignedInteger("deterministic_latency", e.deterministic_latency, 0, 1'000'000));
     if (expect.has("frames")) {
-        e.frames = static_cast<uint32_t>(expect.requiredUnsignedInteger("frames", 1, scenario.frames));
+        e.frames =
+            static_cast<uint32_t>(expect.requiredUnsignedInteger("frames", 1, scenario.frames));
     }
     if (auto zero = expect.optionalArray("zero_error")) {
         for (size_t i = 0; i < zero->size(); ++i) {
@@ -79,7 +80,8 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
             e.ratios.push_back(ratio);
         }
     }
-    const std::string baseline = expect.string("baseline", scenario.file.stem().string() + ".baseline.json");
+    const std::string baseline =
+        expect.string("baseline", scenario.file.stem().string() + ".baseline.json");
     if (baseline.empty()) expect.fail("baseline", "expected a file name, got an empty string");
     e.baseline = scenario.file.parent_path() / baseline;
     expect.finish();

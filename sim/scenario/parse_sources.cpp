@@ -25,7 +25,8 @@ GltfReplication readReplication(JsonObjectReader replicate) {
         r.spacing_m = replicate.number("spacing", r.spacing_m, NumberRange::atLeast(0.0));
         for (const char* other : {"count", "region", "random_yaw"}) {
             if (replicate.has(other)) {
-                replicate.fail(other, std::string("'") + other + "' applies to mode \"random\" only");
+                replicate.fail(other,
+                               std::string("'") + other + "' applies to mode \"random\" only");
             }
         }
     } else {
@@ -90,8 +91,8 @@ TeapotFieldSpec readTeapotField(JsonObjectReader& source) {
     TeapotFieldSpec spec;
     spec.count = count(source, "count", spec.count, 1, kMaxTeapots);
     if (const auto region = source.optional("region")) spec.region = readRegion(*region);
-    const auto size = source.range("size", {spec.size_min_m, spec.size_max_m},
-                                   NumberRange::greaterThan(0.0));
+    const auto size =
+        source.range("size", {spec.size_min_m, spec.size_max_m}, NumberRange::greaterThan(0.0));
     spec.size_min_m = size.first;
     spec.size_max_m = size.second;
     spec.tessellation = count(source, "tessellation", spec.tessellation, 1, kMaxTessellation);
@@ -131,7 +132,8 @@ CitySpec readCity(JsonObjectReader& source) {
     CitySpec spec;
     spec.blocks_x = count(source, "blocks_x", spec.blocks_x, 1, 200);
     spec.blocks_z = count(source, "blocks_z", spec.blocks_z, 1, 200);
-    spec.block_size_m = source.number("block_size", spec.block_size_m, NumberRange::closed(5, 1000));
+    spec.block_size_m =
+        source.number("block_size", spec.block_size_m, NumberRange::closed(5, 1000));
     spec.street_width_m =
         source.number("street_width", spec.street_width_m, NumberRange::closed(2, 200));
     const auto height = source.range("height", {spec.height_min_m, spec.height_max_m},
@@ -149,7 +151,8 @@ LibrarySpec readLibrary(JsonObjectReader& source) {
     spec.shelves_per_row = count(source, "shelves_per_row", spec.shelves_per_row, 1, 200);
     spec.levels = count(source, "levels", spec.levels, 1, 20);
     spec.books_per_level = count(source, "books_per_level", spec.books_per_level, 1, 200);
-    spec.aisle_width_m = source.number("aisle_width", spec.aisle_width_m, NumberRange::closed(0.5, 20));
+    spec.aisle_width_m =
+        source.number("aisle_width", spec.aisle_width_m, NumberRange::closed(0.5, 20));
     return spec;
 }
 

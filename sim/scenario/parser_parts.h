@@ -3,11 +3,11 @@
 // object reader; the caller calls finish() (so unknown keys stay errors).
 #pragma once
 
-#include "sim/scenario/json_reader.h"
-#include "sim/scenario/scenario.h"
-
 #include <filesystem>
 #include <string>
+
+#include "sim/scenario/json_reader.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 

@@ -4,21 +4,20 @@
 // NaN/infinite numbers and missing files with a ScenarioError naming the file and JSON pointer.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/registry/culler_options.h"
-#include "sim/scenario/errors.h"
-#include "sim/scenario/scene_specs.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <map>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/registry/culler_options.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "sim/scenario/errors.h"
+#include "sim/scenario/scene_specs.h"
 
 namespace occsim {
 
@@ -71,42 +70,42 @@ struct MoverSpec {
     // Bounce and random walk: the box movers stay in (default: the source's region).
     bool has_region = false;
     Aabb region;
-    double radius_min_m = 2.0;       // orbit
+    double radius_min_m = 2.0;  // orbit
     double radius_max_m = 8.0;
     std::vector<glm::dvec3> waypoints;  // path: a closed loop; empty = the source's lanes
-    double turn_rate_deg_s = 90.0;   // random walk: largest heading change per second
-    double spin_min_deg_s = 30.0;    // spin: angular speed about the vertical axis
+    double turn_rate_deg_s = 90.0;      // random walk: largest heading change per second
+    double spin_min_deg_s = 30.0;       // spin: angular speed about the vertical axis
     double spin_max_deg_s = 180.0;
 };
 
 // What a regression run checks (docs/regression.md): the scenario's "expect" block.
 struct RatioExpectation {
-    std::string algorithm;   // numerator: its mean frame time
-    std::string reference;   // denominator
-    double max = 1.0;        // the ratio must be <= max * (1 + tolerance)
+    std::string algorithm;  // numerator: its mean frame time
+    std::string reference;  // denominator
+    double max = 1.0;       // the ratio must be <= max * (1 + tolerance)
     double tolerance = 0.0;
 };
 
 struct Expectations {
-    std::vector<std::string> algorithms;   // run these (default: vfc and the scenario's algorithm)
-    uint32_t deterministic_latency = 8;    // draw calls before a query result counts as ready
-    std::optional<uint32_t> frames;        // default: the scenario's
-    std::vector<std::string> zero_error;   // must show 0 error pixels on every frame
+    std::vector<std::string> algorithms;  // run these (default: vfc and the scenario's algorithm)
+    uint32_t deterministic_latency = 8;   // draw calls before a query result counts as ready
+    std::optional<uint32_t> frames;       // default: the scenario's
+    std::vector<std::string> zero_error;  // must show 0 error pixels on every frame
     std::map<std::string, int64_t> max_error_pixels;  // per-frame bound for approximate ones
     std::vector<RatioExpectation> ratios;
-    std::filesystem::path baseline;        // default: <scenario stem>.baseline.json beside it
+    std::filesystem::path baseline;  // default: <scenario stem>.baseline.json beside it
 };
 
 struct Scenario {
-    std::filesystem::path file;      // where it was read from (paths inside resolve against it)
-    std::string name;                // default: the file name without extension
+    std::filesystem::path file;  // where it was read from (paths inside resolve against it)
+    std::string name;            // default: the file name without extension
     uint64_t seed = 1;
     uint32_t frames = 300;
-    double dt_s = 1.0 / 30.0;        // simulation time step
+    double dt_s = 1.0 / 30.0;  // simulation time step
     // The simulation clock at frame 0. Camera keyframes and movers count from the start of the
     // run; only the clock that culling decisions see is offset (a long-running simulation).
     double start_time_s = 0.0;
-    uint32_t warmup_frames = 10;     // excluded from timing summaries (not from error counts)
+    uint32_t warmup_frames = 10;  // excluded from timing summaries (not from error counts)
     uint32_t width = 640;
     uint32_t height = 480;
     // Depth as most engines once stored it (near to -1, 24-bit fixed point) instead of reverse-Z
@@ -117,7 +116,8 @@ struct Scenario {
     std::vector<MoverSpec> movers;
     // Plugins the scenario loads ("plugins"), resolved against its folder; loaded by the parser.
     std::vector<std::filesystem::path> plugins;
-    std::string algorithm = "statistical";  // a registered culler (occsim/culling/registry/registry.h)
+    std::string algorithm =
+        "statistical";  // a registered culler (occsim/culling/registry/registry.h)
     CullerOptions culler;
     BspBuildOptions bsp;
     std::optional<Expectations> expect;  // present when the file has an "expect" block

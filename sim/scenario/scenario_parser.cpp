@@ -4,15 +4,6 @@
 // depend on other keys (near < far, warmup < frames, ...) and calls finish() so that unknown keys
 // are errors. Validation that the culling module already owns (BspBuildOptions,
 // StatisticalOptions) is delegated to its isValid() so there is one definition of "valid".
-#include "sim/scenario/scenario.h"
-
-#include "occsim/culling/registry/registry.h"
-
-#include "sim/scenario/json_reader.h"
-#include "sim/scenario/parser_parts.h"
-
-#include "occsim/culling/registry/plugin_loader.h"
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -20,6 +11,12 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
+#include "sim/scenario/json_reader.h"
+#include "sim/scenario/parser_parts.h"
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 
@@ -66,7 +63,8 @@ void readRunSettings(JsonObjectReader& top, Scenario& s) {
     s.seed = top.unsignedInteger("seed", s.seed);
     s.frames = static_cast<uint32_t>(top.unsignedInteger("frames", s.frames, 1, kMaxFrames));
     s.dt_s = top.number("dt", s.dt_s, NumberRange::openClosed(0.0, kMaxDt));
-    s.start_time_s = top.number("start_time", s.start_time_s, NumberRange::closed(0.0, kMaxStartTime));
+    s.start_time_s =
+        top.number("start_time", s.start_time_s, NumberRange::closed(0.0, kMaxStartTime));
     // The default warm-up shrinks for very short runs so that `frames` alone is always valid.
     const uint32_t default_warmup = std::min(kDefaultWarmupFrames, s.frames - 1);
     s.warmup_frames =
@@ -158,9 +156,8 @@ CameraSpec readCamera(JsonObjectReader camera) {
     if (!(spec.far_m > spec.near_m)) {
         // Blame the key the author wrote; when both were written, far is the one to look at.
         const bool far_given = camera.has("far");
-        const std::string message = "expected far > near, got near = " +
-                                    formatNumber(spec.near_m) + " and far = " +
-                                    formatNumber(spec.far_m);
+        const std::string message = "expected far > near, got near = " + formatNumber(spec.near_m) +
+                                    " and far = " + formatNumber(spec.far_m);
         camera.fail(far_given ? "far" : "near", message);
     }
     spec.loop = camera.boolean("loop", spec.loop);
@@ -222,7 +219,8 @@ struct MotionKey {
 };
 
 const MotionKey kMotionKeys[] = {
-    {"speed", "bounce, orbit, path, random_walk", [](MotionType m) { return m != MotionType::Spin; }},
+    {"speed", "bounce, orbit, path, random_walk",
+     [](MotionType m) { return m != MotionType::Spin; }},
     {"region", "bounce, random_walk",
      [](MotionType m) { return m == MotionType::Bounce || m == MotionType::RandomWalk; }},
     {"radius", "orbit", [](MotionType m) { return m == MotionType::Orbit; }},
@@ -242,8 +240,10 @@ MotionType motionFromName(const std::string& name) {
 void readSelection(JsonObjectReader& mover, MoverSpec& spec) {
     const int given = mover.has("fraction") + mover.has("objects") + mover.has("spawn");
     if (given != 1) {
-        mover.failHere("expected exactly one of 'fraction', 'objects' or 'spawn' (which objects "
-                       "move), got " + std::to_string(given));
+        mover.failHere(
+            "expected exactly one of 'fraction', 'objects' or 'spawn' (which objects "
+            "move), got " +
+            std::to_string(given));
     }
     if (mover.has("fraction")) {
         spec.selection = MoverSelection::Fraction;
@@ -258,7 +258,8 @@ void readSelection(JsonObjectReader& mover, MoverSpec& spec) {
     } else {
         spec.selection = MoverSelection::Spawn;
         JsonObjectReader spawn = mover.object("spawn");
-        spec.spawn.count = static_cast<uint32_t>(spawn.requiredUnsignedInteger("count", 1, kMaxSpawn));
+        spec.spawn.count =
+            static_cast<uint32_t>(spawn.requiredUnsignedInteger("count", 1, kMaxSpawn));
         const std::string shape = spawn.enumeration("shape", kSpawnShapes, "teapot");
         spec.spawn.shape = shape == "teapot" ? SpawnShape::Teapot
                            : shape == "box"  ? SpawnShape::Box
@@ -291,8 +292,9 @@ MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
     readSelection(mover, spec);
     spec.whole_copies = mover.boolean("whole_copies", false);
     if (spec.whole_copies && spec.selection == MoverSelection::Spawn) {
-        mover.fail("whole_copies", "'whole_copies' applies to 'fraction' and 'objects'; spawned "
-                                   "models always move whole");
+        mover.fail("whole_copies",
+                   "'whole_copies' applies to 'fraction' and 'objects'; spawned "
+                   "models always move whole");
     }
     spec.motion = motionFromName(mover.requiredEnumeration("motion", kMotionTypes));
     const std::string motion_name = mover.required("motion").asString();
@@ -302,8 +304,8 @@ MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
                                   motion_name + "\"; it applies to " + k.motions + " only");
         }
     }
-    const auto speed = mover.range("speed", {spec.speed_min_mps, spec.speed_max_mps},
-                                   NumberRange::atLeast(0.0));
+    const auto speed =
+        mover.range("speed", {spec.speed_min_mps, spec.speed_max_mps}, NumberRange::atLeast(0.0));
     spec.speed_min_mps = speed.first;
     spec.speed_max_mps = speed.second;
     if (const auto region = mover.optional("region")) {
@@ -320,9 +322,10 @@ MoverSpec readMover(const JsonValueReader& value, std::size_t source_count) {
             spec.waypoints.push_back(waypoints->at(i).asVec3());
         }
     }
-    spec.turn_rate_deg_s = mover.number("turn_rate", spec.turn_rate_deg_s, NumberRange::atLeast(0.0));
-    const auto spin = mover.range("spin", {spec.spin_min_deg_s, spec.spin_max_deg_s},
-                                  NumberRange::atLeast(0.0));
+    spec.turn_rate_deg_s =
+        mover.number("turn_rate", spec.turn_rate_deg_s, NumberRange::atLeast(0.0));
+    const auto spin =
+        mover.range("spin", {spec.spin_min_deg_s, spec.spin_max_deg_s}, NumberRange::atLeast(0.0));
     spec.spin_min_deg_s = spin.first;
     spec.spin_max_deg_s = spin.second;
     mover.finish();
@@ -345,8 +348,8 @@ BspBuildOptions readBsp(JsonObjectReader& top) {
     if (!bsp) return o;
     const bool sah = bsp->enumeration("split", kSplitRules, "median") == "sah";
     o.split_rule = sah ? BspSplitRule::Sah : BspSplitRule::Median;
-    o.max_depth = static_cast<uint32_t>(bsp->unsignedInteger("max_depth", o.max_depth, 0,
-                                                             kMaxUint32));
+    o.max_depth =
+        static_cast<uint32_t>(bsp->unsignedInteger("max_depth", o.max_depth, 0, kMaxUint32));
     o.max_objects_per_leaf = static_cast<uint32_t>(
         bsp->unsignedInteger("max_objects_per_leaf", o.max_objects_per_leaf, 0, kMaxUint32));
     o.root_margin = static_cast<float>(bsp->number("root_margin", o.root_margin));
@@ -439,7 +442,7 @@ void checkMoverObjectIndex(const Scenario& scenario, size_t mover, size_t item,
 // culling section is read so that it may name their cullers and give their options. Paths
 // resolve against the scenario's folder.
 static std::vector<std::filesystem::path> readPlugins(JsonObjectReader& top,
-                                               const std::filesystem::path& scenario_dir) {
+                                                      const std::filesystem::path& scenario_dir) {
     std::vector<std::filesystem::path> plugins;
     const auto list = top.optionalArray("plugins");
     if (!list) return plugins;
@@ -489,7 +492,8 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
         }
         const std::optional<uint32_t> count = knownObjectCount(s.sources[s.movers[m].source]);
         if (!count) continue;
-        for (size_t i = 0; i < s.movers[m].objects.size(); ++i) checkMoverObjectIndex(s, m, i, *count);
+        for (size_t i = 0; i < s.movers[m].objects.size(); ++i)
+            checkMoverObjectIndex(s, m, i, *count);
     }
     s.plugins = readPlugins(top, file.parent_path());
     readCulling(top, s);

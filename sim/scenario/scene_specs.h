@@ -2,15 +2,14 @@
 // the scene layer (sim/scene/) builds from them. Units: metres, degrees.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
 
@@ -27,11 +26,11 @@ struct TeapotFieldSpec {
 // A street grid of buildings of varied footprint and height: streets give long views, buildings
 // hide most of the city. Lanes: one closed loop per street ring for cars.
 struct CitySpec {
-    uint32_t blocks_x = 8;           // city blocks along x
-    uint32_t blocks_z = 8;           // city blocks along z
-    double block_size_m = 40.0;      // side of a block (buildings inside, streets around)
+    uint32_t blocks_x = 8;       // city blocks along x
+    uint32_t blocks_z = 8;       // city blocks along z
+    double block_size_m = 40.0;  // side of a block (buildings inside, streets around)
     double street_width_m = 12.0;
-    double height_min_m = 8.0;       // building heights
+    double height_min_m = 8.0;  // building heights
     double height_max_m = 60.0;
     uint32_t buildings_per_block = 4;  // per block, at most; footprints vary
 };
@@ -39,21 +38,21 @@ struct CitySpec {
 // Rows of shelves without back panels, filled with many small books: the books are the
 // occluders (the library of Kovalčík & Sochor). Lanes: the aisles between rows, for people.
 struct LibrarySpec {
-    uint32_t rows = 8;               // rows of shelves
-    uint32_t shelves_per_row = 6;    // shelf units along a row
-    uint32_t levels = 5;             // boards per shelf unit
-    uint32_t books_per_level = 30;   // books standing on one board
+    uint32_t rows = 8;              // rows of shelves
+    uint32_t shelves_per_row = 6;   // shelf units along a row
+    uint32_t levels = 5;            // boards per shelf unit
+    uint32_t books_per_level = 30;  // books standing on one board
     double aisle_width_m = 2.0;
 };
 
 // A dense industrial structure (pipes, tanks, walkways, girders) with high depth complexity, an
 // analogue of the power-plant model. Lanes: walkways, and loops through the structure for fliers.
 struct PlantSpec {
-    uint32_t units_x = 4;            // process units along x
-    uint32_t units_z = 4;            // process units along z
-    double unit_size_m = 20.0;       // footprint side of a unit
-    uint32_t floors = 3;             // storeys of girders and walkways per unit
-    double floor_height_m = 6.0;     // storey height (walkway clearance is about 3.3 m of it)
+    uint32_t units_x = 4;         // process units along x
+    uint32_t units_z = 4;         // process units along z
+    double unit_size_m = 20.0;    // footprint side of a unit
+    uint32_t floors = 3;          // storeys of girders and walkways per unit
+    double floor_height_m = 6.0;  // storey height (walkway clearance is about 3.3 m of it)
     uint32_t pipes_per_unit = 24;
     uint32_t tanks_per_unit = 3;
 };
@@ -84,17 +83,17 @@ struct GltfAnimationSpec {
     std::vector<AnimationPick> play;  // "play": [names or indices]; empty with !play_all: none
     double speed = 1.0;               // >= 0
     AnimationMode mode = AnimationMode::Loop;
-    double time_offset_s = 0.0;       // the animations' time at simulation time 0
-    bool random_phase = false;        // each copy starts at its own seeded phase
+    double time_offset_s = 0.0;  // the animations' time at simulation time 0
+    bool random_phase = false;   // each copy starts at its own seeded phase
 };
 
 struct GltfSourceSpec {
-    std::filesystem::path path;       // resolved against the scenario file's folder
-    double scale = 1.0;               // uniform scale applied to the whole model
-    glm::dvec3 offset{0.0};           // translation applied after scaling (metres)
+    std::filesystem::path path;  // resolved against the scenario file's folder
+    double scale = 1.0;          // uniform scale applied to the whole model
+    glm::dvec3 offset{0.0};      // translation applied after scaling (metres)
     GltfReplication replicate;
     GltfAnimationSpec animation;
-    bool place = true;                // false: only movers' "spawn": {"model": ...} place it
+    bool place = true;  // false: only movers' "spawn": {"model": ...} place it
 };
 
 enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };

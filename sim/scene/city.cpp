@@ -28,17 +28,16 @@
 // one round each column of blocks (along the streets x = const); rows close their ends on the
 // outer side of the boundary streets in x, columns on the outer side of those in z, so no two
 // rings share a stretch of lane.
-#include "sim/scene/generators.h"
-
-#include "sim/scene/primitives.h"
-#include "occsim/culling/geometry/random.h"
-
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+
+#include "occsim/culling/geometry/random.h"
+#include "sim/scene/generators.h"
+#include "sim/scene/primitives.h"
 
 namespace occsim {
 namespace {
@@ -188,17 +187,17 @@ void addGroundAndStreets(const CitySpec& spec, const CityGrid& g, SourceOutput& 
     for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
         const double x = i * g.pitch;
         for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-            out.objects.push_back(placeUnitBox(kUnitBox,
-                                               {x - g.half, -kSlabDepthM, j * g.pitch + g.half + kCrackM},
-                                               {x + g.half, 0.0, (j + 1) * g.pitch - g.half - kCrackM}));
+            out.objects.push_back(
+                placeUnitBox(kUnitBox, {x - g.half, -kSlabDepthM, j * g.pitch + g.half + kCrackM},
+                             {x + g.half, 0.0, (j + 1) * g.pitch - g.half - kCrackM}));
         }
     }
 }
 
 // The building on a lot's footprint `f` (setbacks applied), `height` metres tall, with the mesh
 // of its archetype (made on first use).
-PlacedObject placeBuilding(const Rect& f, double height, std::map<Archetype, uint32_t>& archetype_mesh,
-                           SourceOutput& out) {
+PlacedObject placeBuilding(const Rect& f, double height,
+                           std::map<Archetype, uint32_t>& archetype_mesh, SourceOutput& out) {
     // Archetypes are wider in x than in z; a building deeper than wide uses one turned a quarter
     // about y, so both orientations share a mesh.
     const bool turned = f.depth() > f.width();
@@ -223,10 +222,12 @@ PlacedObject placeBuilding(const Rect& f, double height, std::map<Archetype, uin
 
 // Block (i, j): its pavement slab, then its lots, most with a building.
 void addBlock(const CitySpec& spec, const CityGrid& g, uint32_t i, uint32_t j, Rng& rng,
-              std::map<Archetype, uint32_t>& archetype_mesh, uint32_t& small_lots, SourceOutput& out) {
+              std::map<Archetype, uint32_t>& archetype_mesh, uint32_t& small_lots,
+              SourceOutput& out) {
     const Rect block{i * g.pitch + g.half, j * g.pitch + g.half, (i + 1) * g.pitch - g.half,
                      (j + 1) * g.pitch - g.half};
-    out.objects.push_back(placeUnitBox(kUnitBox, {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
+    out.objects.push_back(placeUnitBox(kUnitBox,
+                                       {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
                                        {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
     std::vector<Rect> lots;
     splitLots(block, spec.buildings_per_block, rng, lots);
@@ -258,10 +259,12 @@ void addBlock(const CitySpec& spec, const CityGrid& g, uint32_t i, uint32_t j, R
 void addRingRoads(const CitySpec& spec, const CityGrid& g, SourceOutput& out) {
     const double lane = g.street / 4, y = kLaneHeightM;
     for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-        out.lanes.push_back(ring(-lane, j * g.pitch + lane, g.width + lane, (j + 1) * g.pitch - lane, y));
+        out.lanes.push_back(
+            ring(-lane, j * g.pitch + lane, g.width + lane, (j + 1) * g.pitch - lane, y));
     }
     for (uint32_t i = 0; i < spec.blocks_x; ++i) {
-        out.lanes.push_back(ring(i * g.pitch + lane, -lane, (i + 1) * g.pitch - lane, g.depth + lane, y));
+        out.lanes.push_back(
+            ring(i * g.pitch + lane, -lane, (i + 1) * g.pitch - lane, g.depth + lane, y));
     }
 }
 

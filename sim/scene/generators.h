@@ -3,10 +3,10 @@
 // objects, lanes for movers). Units: metres. See docs/scenario-generators.md for the scenario keys.
 #pragma once
 
+#include <cstdint>
+
 #include "sim/scenario/scene_specs.h"
 #include "sim/scene/scene_source.h"
-
-#include <cstdint>
 
 namespace occsim {
 

@@ -2,12 +2,12 @@
 // glTF 2.0 specification (section 3.11, "Animations"): what it forbids is an error naming the
 // JSON path; what occsim does not evaluate (morph-target weights, channels without a target
 // node, extension paths, sparse accessors) is a warning, never dropped in silence.
-#include "sim/scene/gltf_detail.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
+
+#include "sim/scene/gltf_detail.h"
 
 namespace occsim::gltf_detail {
 namespace {
@@ -57,11 +57,16 @@ double component(const AccessorView& v, size_t i, size_t k) {
 
 std::string typeName(int type) {
     switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-        case TINYGLTF_TYPE_VEC2: return "VEC2";
-        case TINYGLTF_TYPE_VEC3: return "VEC3";
-        case TINYGLTF_TYPE_VEC4: return "VEC4";
-        default: return "type " + std::to_string(type);
+        case TINYGLTF_TYPE_SCALAR:
+            return "SCALAR";
+        case TINYGLTF_TYPE_VEC2:
+            return "VEC2";
+        case TINYGLTF_TYPE_VEC3:
+            return "VEC3";
+        case TINYGLTF_TYPE_VEC4:
+            return "VEC4";
+        default:
+            return "type " + std::to_string(type);
     }
 }
 
@@ -83,8 +88,9 @@ RawSampler readSampler(const Context& c, size_t a, size_t s) {
     } else if (gs.interpolation == "CUBICSPLINE") {
         raw.sampler.interpolation = Interpolation::CubicSpline;
     } else {
-        fail(c.file, path + "/interpolation: expected \"LINEAR\", \"STEP\" or \"CUBICSPLINE\", got \"" +
-                         gs.interpolation + "\"");
+        fail(c.file,
+             path + "/interpolation: expected \"LINEAR\", \"STEP\" or \"CUBICSPLINE\", got \"" +
+                 gs.interpolation + "\"");
     }
     const ViewOrSkip input = viewAccessor(c, gs.input, path + "/input");
     const ViewOrSkip output = viewAccessor(c, gs.output, path + "/output");
@@ -95,8 +101,8 @@ RawSampler readSampler(const Context& c, size_t a, size_t s) {
     }
     const AccessorView& in = *input.view;
     if (in.type != TINYGLTF_TYPE_SCALAR || in.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-        fail(c.file, path + "/input: key times must be a SCALAR FLOAT accessor, got " +
-                         typeName(in.type));
+        fail(c.file,
+             path + "/input: key times must be a SCALAR FLOAT accessor, got " + typeName(in.type));
     }
     if (in.count == 0) fail(c.file, path + "/input: a sampler needs at least one key");
     for (size_t k = 0; k < in.count; ++k) {
@@ -126,8 +132,9 @@ void readValues(const Context& c, size_t a, size_t s, AnimatedProperty property,
     const std::string path = samplerPath(a, s) + "/output";
     const bool rotation = property == AnimatedProperty::Rotation;
     const int wanted_type = rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
-    const char* what = rotation ? "rotation" : property == AnimatedProperty::Scale ? "scale"
-                                                                                   : "translation";
+    const char* what = rotation                              ? "rotation"
+                       : property == AnimatedProperty::Scale ? "scale"
+                                                             : "translation";
     if (out.type != wanted_type) {
         fail(c.file, path + ": a " + what + " output must be " + typeName(wanted_type) + ", got " +
                          typeName(out.type));
@@ -143,17 +150,19 @@ void readValues(const Context& c, size_t a, size_t s, AnimatedProperty property,
     const size_t keys = raw.sampler.times.size();
     const size_t per_key = raw.sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
     if (out.count != keys * per_key) {
-        fail(c.file, path + ": has " + std::to_string(out.count) + " values, but " +
-                         std::to_string(keys) + " keys with " +
-                         (per_key == 3 ? "CUBICSPLINE need 3 per key (in-tangent, value, out-tangent): "
-                                       : "LINEAR or STEP need one per key: ") +
-                         std::to_string(keys * per_key));
+        fail(c.file,
+             path + ": has " + std::to_string(out.count) + " values, but " + std::to_string(keys) +
+                 " keys with " +
+                 (per_key == 3 ? "CUBICSPLINE need 3 per key (in-tangent, value, out-tangent): "
+                               : "LINEAR or STEP need one per key: ") +
+                 std::to_string(keys * per_key));
     }
     const size_t components = rotation ? 4 : 3;
     for (size_t i = 0; i < out.count; ++i) {
         glm::dvec4 v(0.0);
         for (size_t k = 0; k < components; ++k) v[static_cast<int>(k)] = component(out, i, k);
-        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w))) {
+        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
+              std::isfinite(v.w))) {
             fail(c.file, path + ": value " + std::to_string(i) + " is not finite");
         }
         raw.sampler.values.push_back(v);
@@ -219,7 +228,8 @@ std::vector<NodeAnimation> readAnimations(const Context& c) {
         }
         for (size_t s = 0; s < samplers.size(); ++s) {
             if (used[s]) {
-                animation.duration_s = std::max(animation.duration_s, samplers[s].sampler.times.back());
+                animation.duration_s =
+                    std::max(animation.duration_s, samplers[s].sampler.times.back());
             }
             animation.samplers.push_back(std::move(samplers[s].sampler));
         }

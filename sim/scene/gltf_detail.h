@@ -3,14 +3,14 @@
 // scene layer; includes tinygltf.
 #pragma once
 
-#include "sim/scenario/errors.h"
-#include "sim/scene/model_animation.h"
-
 #include <tiny_gltf.h>
 
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "sim/scenario/errors.h"
+#include "sim/scene/model_animation.h"
 
 namespace occsim::gltf_detail {
 

@@ -23,22 +23,20 @@
 // extensions that would change the geometry, and no triangles at all.
 #include "sim/scene/gltf_source.h"
 
-#include "sim/scene/gltf_detail.h"
-
-#include "occsim/culling/geometry/random.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
+
+#include "occsim/culling/geometry/random.h"
+#include "sim/scene/gltf_detail.h"
 
 namespace occsim {
 namespace {
@@ -369,14 +367,16 @@ ModelNode restOf(const Context& c, const tg::Node& node, size_t index) {
     if (!node.matrix.empty()) {
         if (node.matrix.size() != 16) fail(c.file, name + " has a matrix without 16 numbers");
         rest.has_matrix = true;
-        for (int i = 0; i < 16; ++i) rest.matrix[i / 4][i % 4] = node.matrix[static_cast<size_t>(i)];
+        for (int i = 0; i < 16; ++i)
+            rest.matrix[i / 4][i % 4] = node.matrix[static_cast<size_t>(i)];
         return rest;  // glTF matrices are column-major, as glm's
     }
     if (!node.translation.empty()) {
         if (node.translation.size() != 3) {
             fail(c.file, name + " has a translation without 3 numbers");
         }
-        rest.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+        rest.translation =
+            glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
     }
     if (!node.rotation.empty()) {
         if (node.rotation.size() != 4) fail(c.file, name + " has a rotation without 4 numbers");
@@ -387,9 +387,9 @@ ModelNode restOf(const Context& c, const tg::Node& node, size_t index) {
         if (node.scale.size() != 3) fail(c.file, name + " has a scale without 3 numbers");
         rest.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
     }
-    rest.matrix = glm::scale(glm::translate(glm::dmat4(1.0), rest.translation) *
-                                 glm::mat4_cast(rest.rotation),
-                             rest.scale);
+    rest.matrix = glm::scale(
+        glm::translate(glm::dmat4(1.0), rest.translation) * glm::mat4_cast(rest.rotation),
+        rest.scale);
     return rest;
 }
 
@@ -433,8 +433,8 @@ struct MeshInstance {
 
 struct SceneContent {
     std::vector<MeshInstance> instances;
-    std::vector<ModelNode> nodes;    // per node of the file (rest transforms of visited ones)
-    std::vector<HierarchyVisit> visits;   // the hierarchy as visited, parents first
+    std::vector<ModelNode> nodes;        // per node of the file (rest transforms of visited ones)
+    std::vector<HierarchyVisit> visits;  // the hierarchy as visited, parents first
     size_t skinned = 0;
     size_t cameras = 0;
 };

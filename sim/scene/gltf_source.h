@@ -8,11 +8,11 @@
 // docs/scenario-gltf.md for the scenario keys.
 #pragma once
 
+#include <cstdint>
+
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scene_specs.h"
 #include "sim/scene/scene_source.h"
-
-#include <cstdint>
 
 namespace occsim {
 

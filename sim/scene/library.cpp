@@ -25,13 +25,12 @@
 // Lanes: for people, 2 cm above the floor (a mover's base rests on the lane point). One loop goes
 // round each row through the aisles on both sides and the cross aisles, 3/8 of the aisle width
 // from the books, so the loops of neighbouring rows share no line.
-#include "sim/scene/generators.h"
-
-#include "sim/scene/primitives.h"
-#include "occsim/culling/geometry/random.h"
-
 #include <algorithm>
 #include <stdexcept>
+
+#include "occsim/culling/geometry/random.h"
+#include "sim/scene/generators.h"
+#include "sim/scene/primitives.h"
 
 namespace occsim {
 namespace {
@@ -94,8 +93,8 @@ struct LibraryLayout {
 // them, so the corners show no crack and no two walls touch.
 void addFloorAndWalls(const LibraryLayout& l, SourceOutput& out) {
     const double t = kWallThickness, f = kAboveFloor;
-    out.objects.push_back(
-        placeUnitBox(kUnitBox, {l.room_x0 - t, -0.2, l.room_z0 - t}, {l.room_x1 + t, 0.0, l.room_z1 + t}));
+    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - t, -0.2, l.room_z0 - t},
+                                       {l.room_x1 + t, 0.0, l.room_z1 + t}));
     out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z0 - t},
                                        {l.room_x1 + 1.5 * t, l.wall_height, l.room_z0}));
     out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z1},

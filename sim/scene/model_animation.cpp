@@ -1,9 +1,8 @@
 #include "sim/scene/model_animation.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace occsim {
 namespace {
@@ -75,7 +74,8 @@ glm::dvec4 sampleRotation(const AnimationSampler& sampler, double t) {
     if (sampler.interpolation == Interpolation::Linear && t > times.front() && t < times.back()) {
         const size_t k = keyBefore(times, t);
         const double s = (t - times[k]) / (times[k + 1] - times[k]);
-        return slerpXyzw(normalizedQuat(sampler.values[k]), normalizedQuat(sampler.values[k + 1]), s);
+        return slerpXyzw(normalizedQuat(sampler.values[k]), normalizedQuat(sampler.values[k + 1]),
+                         s);
     }
     return normalizedQuat(sampleAt(sampler, t));
 }

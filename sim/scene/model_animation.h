@@ -6,10 +6,9 @@
 // buffers are sized once (ModelPoseScratch).
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-
-#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -58,7 +57,7 @@ struct HierarchyVisit {
 
 struct AnimatedModel {
     std::vector<ModelNode> nodes;        // every node of the file
-    std::vector<HierarchyVisit> visits;       // the scene hierarchy, depth first
+    std::vector<HierarchyVisit> visits;  // the scene hierarchy, depth first
     std::vector<uint32_t> object_visit;  // per object of one copy: the visit that draws it
     std::vector<NodeAnimation> animations;
     double scale = 1.0;  // the source's uniform scale, applied to the model's world matrices

@@ -33,14 +33,13 @@
 // the floor slabs, across the bridges); fliers' loops through the same corridors 1.5 m above the
 // floor (when the storey leaves 2 m of headroom above that), round each row of units in the gaps
 // 3 m above every floor level, and one 8 m above the whole plant.
-#include "sim/scene/plant_parts.h"
-
-#include "sim/scene/primitives.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "sim/scene/plant_parts.h"
+#include "sim/scene/primitives.h"
 
 namespace occsim::plant_detail {
 
@@ -153,8 +152,8 @@ void addColumns(PlantContext& c, const Unit& u) {
                                       ? c.top + kSpliceAboveFloor
                                       : c.level(k + 1) + kSpliceAboveFloor - kCrack / 2;
                 const double w = kColumnWidth * std::pow(kColumnTaper, k);
-                c.out.objects.push_back(girder(c.meshes.ibeam, {u.x + c.line(a), y0, u.z + c.line(b)},
-                                              1, y1 - y0, w, w));
+                c.out.objects.push_back(girder(
+                    c.meshes.ibeam, {u.x + c.line(a), y0, u.z + c.line(b)}, 1, y1 - y0, w, w));
             }
         }
     }
@@ -169,11 +168,11 @@ void addBeamsAndSlabs(PlantContext& c, const Unit& u, const std::vector<double>&
             for (uint32_t b = 0; b < kBaysPerSide; ++b) {
                 const double along = c.line(b) + kColumnClear;
                 c.out.objects.push_back(girder(c.meshes.ibeam,
-                                              {u.x + along, beam_y, u.z + c.line(a)}, 0, span,
-                                              kBeamWidth, kBeamDepth));
+                                               {u.x + along, beam_y, u.z + c.line(a)}, 0, span,
+                                               kBeamWidth, kBeamDepth));
                 c.out.objects.push_back(girder(c.meshes.ibeam,
-                                              {u.x + c.line(a), beam_y, u.z + along}, 2, span,
-                                              kBeamWidth, kBeamDepth));
+                                               {u.x + c.line(a), beam_y, u.z + along}, 2, span,
+                                               kBeamWidth, kBeamDepth));
             }
         }
         // Floors: always in the corridor (the walkway), elsewhere at random, never through a
@@ -182,8 +181,7 @@ void addBeamsAndSlabs(PlantContext& c, const Unit& u, const std::vector<double>&
             for (uint32_t i = 0; i < kBaysPerSide; ++i) {
                 const double chance = c.rng.uniform();
                 const bool wanted = j == 1 || chance < (k == c.spec.floors ? 0.7 : 0.5);
-                if (!wanted || tank_top[i + kBaysPerSide * j] > c.beamBottom(k) - kCrack)
-                    continue;
+                if (!wanted || tank_top[i + kBaysPerSide * j] > c.beamBottom(k) - kCrack) continue;
                 PlacedObject slab;
                 slab.mesh = c.meshes.slab;
                 slab.position = {u.x + c.line(i), c.level(k), u.z + c.line(j)};
@@ -199,8 +197,8 @@ void addBeamsAndSlabs(PlantContext& c, const Unit& u, const std::vector<double>&
                 {x1 - kSlabGap, c.level(k) + kSlabThickness, u.z + c.line(2) - kColumnClear}));
             for (uint32_t a : {1u, 2u}) {
                 c.out.objects.push_back(girder(c.meshes.ibeam,
-                                              {x0 + kColumnClear, beam_y, u.z + c.line(a)}, 0,
-                                              c.gap - 2 * kColumnClear, kBeamWidth, kBeamDepth));
+                                               {x0 + kColumnClear, beam_y, u.z + c.line(a)}, 0,
+                                               c.gap - 2 * kColumnClear, kBeamWidth, kBeamDepth));
             }
         }
     }
@@ -247,11 +245,10 @@ void addLanes(PlantContext& c, double width, double depth) {
             const double floor = c.floorTop(k);
             c.out.lanes.push_back(ring(x0, mid - half, x1, mid + half, floor + y));
             if (c.beamBottom(k + 1) - floor >= kFlierHeight + kFlierHeadroom) {
-                c.out.lanes.push_back(
-                    ring(x0, mid - half, x1, mid + half, floor + kFlierHeight));
+                c.out.lanes.push_back(ring(x0, mid - half, x1, mid + half, floor + kFlierHeight));
             }
             c.out.lanes.push_back(ring(-ring_out, j * c.pitch - ring_out, width + ring_out,
-                                      j * c.pitch + c.s + ring_out, c.level(k) + 3.0));
+                                       j * c.pitch + c.s + ring_out, c.level(k) + 3.0));
         }
     }
     c.out.lanes.push_back(
@@ -264,12 +261,12 @@ SourceOutput buildPlant(PlantContext& c) {
     const double width = c.spec.units_x * c.pitch - c.gap, depth = c.spec.units_z * c.pitch - c.gap;
     const double m = kPadMargin;
     c.out.objects.push_back(placeUnitBox(c.meshes.box, {-c.gap, kGroundTop - 0.3, -c.gap},
-                                        {width + c.gap, kGroundTop, depth + c.gap}));
+                                         {width + c.gap, kGroundTop, depth + c.gap}));
     for (uint32_t j = 0; j < c.spec.units_z; ++j) {
         for (uint32_t i = 0; i < c.spec.units_x; ++i) {
             const Unit u{i * c.pitch, j * c.pitch};
             c.out.objects.push_back(placeUnitBox(c.meshes.box, {u.x - m, -kPadDepth, u.z - m},
-                                                {u.x + c.s + m, 0.0, u.z + c.s + m}));
+                                                 {u.x + c.s + m, 0.0, u.z + c.s + m}));
         }
     }
     for (uint32_t j = 0; j < c.spec.units_z; ++j) {
@@ -279,11 +276,11 @@ SourceOutput buildPlant(PlantContext& c) {
     }
     if (c.tanks_dropped > 0) {
         c.out.warnings.push_back("plant: " + std::to_string(c.tanks_dropped) +
-                                " tanks left out (a unit has room for 6, one per side bay)");
+                                 " tanks left out (a unit has room for 6, one per side bay)");
     }
     if (c.pipes_dropped > 0) {
         c.out.warnings.push_back("plant: " + std::to_string(c.pipes_dropped) +
-                                " pipes left out (no room clear of the other pipes and tanks)");
+                                 " pipes left out (no room clear of the other pipes and tanks)");
     }
     addLanes(c, width, depth);
     c.out.region = sourceBounds(c.out);

@@ -1,11 +1,10 @@
 // The plant's equipment: tanks in the side bays and pipes threaded clear of them and of each
 // other (plant.cpp describes the layout).
-#include "sim/scene/plant_parts.h"
-
-#include "sim/scene/primitives.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "sim/scene/plant_parts.h"
+#include "sim/scene/primitives.h"
 
 namespace occsim::plant_detail {
 namespace {
@@ -44,8 +43,7 @@ double addTank(PlantContext& c, const Unit& u, uint32_t i, uint32_t j, std::vect
     if (kind < 0.5) {
         const double r = size * inner;
         const double wanted = storeys * c.hf - 1.0;  // cylinder plus dome
-        const auto ratio =
-            static_cast<uint32_t>(std::clamp(std::lround(wanted / r - 1.0), 1L, 8L));
+        const auto ratio = static_cast<uint32_t>(std::clamp(std::lround(wanted / r - 1.0), 1L, 8L));
         auto [it, added] =
             c.meshes.domed.try_emplace(ratio, static_cast<uint32_t>(c.out.meshes.size()));
         if (added) c.out.meshes.push_back(domedTankMesh(ratio));
@@ -70,7 +68,7 @@ double addTank(PlantContext& c, const Unit& u, uint32_t i, uint32_t j, std::vect
         for (double dx : {-leg, leg}) {
             for (double dz : {-leg, leg}) {
                 c.out.objects.push_back(girder(c.meshes.ibeam, {cx + dx, kCrack, cz + dz}, 1,
-                                              leg_top - kCrack, 2 * half, 2 * half));
+                                               leg_top - kCrack, 2 * half, 2 * half));
             }
         }
         top = lift + 2 * r;

@@ -3,12 +3,11 @@
 // describes the layout. Internal to sim/scene.
 #pragma once
 
-#include "sim/scene/generators.h"
-
-#include "occsim/culling/geometry/random.h"
-
 #include <map>
 #include <vector>
+
+#include "occsim/culling/geometry/random.h"
+#include "sim/scene/generators.h"
 
 namespace occsim::plant_detail {
 
@@ -23,12 +22,14 @@ inline constexpr double kBeamDepth = 0.45;   // I-beam height under a floor
 inline constexpr double kBeamWidth = 0.25;   // its flange width
 inline constexpr double kColumnWidth = 0.4;  // ground-storey columns; 8 % thinner per storey up
 inline constexpr double kColumnTaper = 0.92;
-inline constexpr double kColumnClear = kColumnWidth / 2 + kCrack;  // beams and floors keep off columns
+inline constexpr double kColumnClear =
+    kColumnWidth / 2 + kCrack;                    // beams and floors keep off columns
 inline constexpr double kSpliceAboveFloor = 1.0;  // column segments join 1 m above each floor
 inline constexpr double kClearOfColumn = 0.45;    // pipes and tanks keep this far from column lines
-inline constexpr double kCorridorHeadroom = 3.3;  // nothing crosses a corridor lower above its floor
-inline constexpr double kFlierHeight = 1.5;       // fliers' corridor lanes above the floor
-inline constexpr double kFlierHeadroom = 2.0;     // ... when this much room is left above them
+inline constexpr double kCorridorHeadroom =
+    3.3;                                       // nothing crosses a corridor lower above its floor
+inline constexpr double kFlierHeight = 1.5;    // fliers' corridor lanes above the floor
+inline constexpr double kFlierHeadroom = 2.0;  // ... when this much room is left above them
 inline constexpr uint32_t kBaysPerSide = 3;
 inline constexpr uint32_t kPipeSegments = 16;
 inline constexpr uint32_t kTankSegments = 24;
@@ -75,15 +76,15 @@ MeshData domedTankMesh(uint32_t ratio);
 // A tank in side bay (i, j): a domed vertical cylinder, a sphere on four legs or a horizontal
 // cylinder on two saddles, 1 cm above the pad, its parts 1 cm apart. Adds its box to `taken`
 // and returns the height of its top.
-        // Legs end 1 cm below the sphere, measured at their corner nearest its axis (the
-        // tessellated sphere lies inside the true one, so it clears the mesh too).
+// Legs end 1 cm below the sphere, measured at their corner nearest its axis (the
+// tessellated sphere lies inside the true one, so it clears the mesh too).
 double addTank(PlantContext& c, const Unit& u, uint32_t i, uint32_t j, std::vector<Aabb>& taken);
 // One pipe: along x in a side band, along z high above the corridor, or a riser outside the
 // frame. Each try draws the same count of numbers, so a pipe's layout depends only on the
 // pipes and tanks before it.
-            // A riser just outside the frame, from the pad up through one or more storeys
-            // (those reaching the roof stand above it); on the sides facing the bridges, clear
-            // of the corridor.
+// A riser just outside the frame, from the pad up through one or more storeys
+// (those reaching the roof stand above it); on the sides facing the bridges, clear
+// of the corridor.
 void addPipe(PlantContext& c, const Unit& u, std::vector<Aabb>& taken);
 
 }  // namespace occsim::plant_detail

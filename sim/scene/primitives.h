@@ -3,12 +3,11 @@
 // counter-clockwise front faces.
 #pragma once
 
-#include "render/mesh_data.h"
-#include "sim/scene/scene_source.h"
-
+#include <cstdint>
 #include <glm/glm.hpp>
 
-#include <cstdint>
+#include "render/mesh_data.h"
+#include "sim/scene/scene_source.h"
 
 namespace occsim {
 

@@ -3,17 +3,16 @@
 // (sim/world/world.cpp) concatenates sources into one Scene.
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-#include "sim/scenario/scene_specs.h"
-#include "sim/scene/model_animation.h"
-#include "render/mesh_data.h"
-
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
+#include "render/mesh_data.h"
+#include "sim/scenario/scene_specs.h"
+#include "sim/scene/model_animation.h"
 
 namespace occsim {
 

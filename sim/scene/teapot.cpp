@@ -20,12 +20,11 @@
 //    are not emitted.
 #include "sim/scene/teapot.h"
 
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <limits>
 #include <stdexcept>
 #include <string>

@@ -15,9 +15,9 @@
 //                                      edge would lie on the pole)
 #pragma once
 
-#include "render/mesh_data.h"
-
 #include <cstdint>
+
+#include "render/mesh_data.h"
 
 namespace occsim {
 

@@ -3,29 +3,31 @@
 // grows to the right; pitch is kept within +-89 degrees so that "up" stays defined.
 #pragma once
 
-#include "sim/world/camera_path.h"
-
 #include <glm/glm.hpp>
+
+#include "sim/world/camera_path.h"
 
 namespace occsim {
 
 // What the held keys ask for this frame; each axis -1, 0 or 1.
 struct FlyInput {
-    int forward = 0;  // w / s
-    int right = 0;    // d / a
-    int up = 0;       // e / q
+    int forward = 0;                  // w / s
+    int right = 0;                    // d / a
+    int up = 0;                       // e / q
     int turn_right = 0, turn_up = 0;  // arrow keys
     bool fast = false;                // shift
-    bool moving() const { return forward != 0 || right != 0 || up != 0 || turn_right != 0 || turn_up != 0; }
+    bool moving() const {
+        return forward != 0 || right != 0 || up != 0 || turn_right != 0 || turn_up != 0;
+    }
 };
 
 class FlyCamera {
-public:
+  public:
     static constexpr double kMaxPitchDeg = 89.0;
     static constexpr double kFastFactor = 4.0;
-    static constexpr double kTurnRateDegS = 90.0;     // arrow keys
-    static constexpr double kLookDegPerPixel = 0.2;   // mouse drags
-    static constexpr double kSpeedStep = 1.25;        // per wheel notch
+    static constexpr double kTurnRateDegS = 90.0;    // arrow keys
+    static constexpr double kLookDegPerPixel = 0.2;  // mouse drags
+    static constexpr double kSpeedStep = 1.25;       // per wheel notch
 
     explicit FlyCamera(double speed_mps = 5.0) : speed_(speed_mps) {}
 
@@ -44,7 +46,7 @@ public:
     void changeSpeed(double notches);
     double speed() const { return speed_; }
 
-private:
+  private:
     void turn(double yaw_deg, double pitch_deg);
 
     glm::dvec3 position_{0.0};

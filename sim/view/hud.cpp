@@ -1,10 +1,10 @@
 #include "sim/view/hud.h"
 
-#include "sim/view/key_bindings.h"
-#include "sim/view/node_boxes.h"
-
 #include <algorithm>
 #include <cstdio>
+
+#include "sim/view/key_bindings.h"
+#include "sim/view/node_boxes.h"
 
 namespace occsim {
 namespace {
@@ -36,15 +36,17 @@ std::string grouped(int64_t value) {
 std::vector<std::string> hudLines(const HudState& s) {
     std::vector<std::string> lines;
     std::string state = s.algorithm + format(" (%u/%u)", s.algorithm_place, s.algorithm_count) +
-                        format("   frame %u  %.2f s", s.frame, s.time_s) + (s.paused ? "   paused" : "");
+                        format("   frame %u  %.2f s", s.frame, s.time_s) +
+                        (s.paused ? "   paused" : "");
     state += s.flying ? format("   flying %.1f m/s", s.fly_speed_mps) : std::string("   path");
     if (s.recording) state += format("   rec %u frames", s.recorded_frames);
     lines.push_back(state);
 
     if (s.has_stats) {
-        std::string figures = format("frame time %.2f ms   queries %llu   triangles ", s.stats.frame_ms,
-                                     static_cast<unsigned long long>(s.stats.queries)) +
-                              grouped(static_cast<int64_t>(s.stats.triangles));
+        std::string figures =
+            format("frame time %.2f ms   queries %llu   triangles ", s.stats.frame_ms,
+                   static_cast<unsigned long long>(s.stats.queries)) +
+            grouped(static_cast<int64_t>(s.stats.triangles));
         figures += s.error_on ? "   error px " + grouped(s.stats.error_pixels) + "   ties " +
                                     grouped(s.stats.tie_pixels) + "   missed " +
                                     grouped(s.stats.missed_objects)
@@ -53,8 +55,12 @@ std::vector<std::string> hudLines(const HudState& s) {
     }
     if (!s.message.empty()) lines.push_back(s.message);
     if (s.help) {
-        for (const KeyBinding& k : actionKeys()) lines.push_back(format("%-10s", std::string(k.keys).c_str()) + " " + std::string(k.description));
-        for (const FlyKeyHelp& k : flyKeys()) lines.push_back(format("%-10s", std::string(k.keys).c_str()) + " " + std::string(k.description));
+        for (const KeyBinding& k : actionKeys())
+            lines.push_back(format("%-10s", std::string(k.keys).c_str()) + " " +
+                            std::string(k.description));
+        for (const FlyKeyHelp& k : flyKeys())
+            lines.push_back(format("%-10s", std::string(k.keys).c_str()) + " " +
+                            std::string(k.description));
     } else {
         lines.push_back("h: keys");
     }
@@ -94,10 +100,12 @@ HudLayout layoutHud(uint32_t width, uint32_t height, const HudState& state) {
     const int large = width >= 1000 ? 2 : 1;
     for (int scale = large;; --scale) {
         std::vector<int> widths;
-        for (const std::string& l : hudLines(state)) widths.push_back(RasterCanvas::textWidth(l, scale));
+        for (const std::string& l : hudLines(state))
+            widths.push_back(RasterCanvas::textWidth(l, scale));
         if (state.legend) {
             for (const NodeBoxClass& c : shownNodeBoxClasses()) {
-                widths.push_back(RasterCanvas::textHeight(scale) + 4 * scale + RasterCanvas::textWidth(c.label, scale));
+                widths.push_back(RasterCanvas::textHeight(scale) + 4 * scale +
+                                 RasterCanvas::textWidth(c.label, scale));
             }
         }
         HudLayout layout = placeRows(widths, scale, height);
@@ -115,13 +123,17 @@ void drawHud(RasterCanvas& canvas, const HudState& state) {
     for (size_t i = 0; i < lines.size(); ++i) {
         const bool first = i == 0;
         canvas.text(layout.rows[i].x, layout.rows[i].y, lines[i],
-                    first && state.recording ? kRecording : first ? kText : kDim, scale);
+                    first && state.recording ? kRecording
+                    : first                  ? kText
+                                             : kDim,
+                    scale);
     }
     if (!state.legend) return;
     size_t i = lines.size();
     for (const NodeBoxClass& c : shownNodeBoxClasses()) {
         const HudRow& r = layout.rows[i++];
-        canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1, nodeClassColour(c.node_class));
+        canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1,
+                           nodeClassColour(c.node_class));
         canvas.text(r.x + layout.swatch + layout.pad, r.y, c.label, kText, scale);
     }
 }

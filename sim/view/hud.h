@@ -3,12 +3,12 @@
 // box legend, the last message and the keys. Redrawn every frame from a plain description.
 #pragma once
 
-#include "sim/output/raster_canvas.h"
-#include "sim/run/frame_stats.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "sim/output/raster_canvas.h"
+#include "sim/run/frame_stats.h"
 
 namespace occsim {
 
@@ -16,8 +16,8 @@ struct HudState {
     std::string scenario;
     std::string algorithm;
     uint32_t algorithm_place = 1, algorithm_count = 1;  // 1-based, for "3/7"
-    uint32_t frame = 0;   // played frames since the (re)start
-    double time_s = 0.0;  // simulation time of the frame shown
+    uint32_t frame = 0;                                 // played frames since the (re)start
+    double time_s = 0.0;                                // simulation time of the frame shown
     bool paused = false;
     bool flying = false;
     double fly_speed_mps = 0.0;
@@ -26,9 +26,9 @@ struct HudState {
     bool error_on = false;
     bool has_stats = false;  // false before the first frame
     FrameStats stats;
-    bool legend = false;     // node boxes are on: explain their colours
+    bool legend = false;  // node boxes are on: explain their colours
     bool help = false;
-    std::string message;     // e.g. the file a screenshot went to; empty: none
+    std::string message;  // e.g. the file a screenshot went to; empty: none
 };
 
 // The lines of the panel, as printed (tests read them).

@@ -12,22 +12,22 @@ enum class ViewAction : uint8_t {
     None,
     Quit,
     TogglePause,
-    Step,               // one frame while paused
-    Restart,            // the world, the path and the culler back to frame 0
-    NextAlgorithm,      // shift: the previous one
-    SelectAlgorithm,    // digits 1-9: the algorithm at that place in the list
-    ToggleBoxes,        // node bounding boxes, coloured by what the culler did
-    ToggleBirdsEye,     // the tree and the frustum from above
-    ToggleError,        // ground truth every frame, error pixels on screen
-    ToggleCameraMode,   // follow the scenario's path / fly by hand
-    ToggleRecording,    // record the hand-flown camera; on stop, write a scenario
+    Step,              // one frame while paused
+    Restart,           // the world, the path and the culler back to frame 0
+    NextAlgorithm,     // shift: the previous one
+    SelectAlgorithm,   // digits 1-9: the algorithm at that place in the list
+    ToggleBoxes,       // node bounding boxes, coloured by what the culler did
+    ToggleBirdsEye,    // the tree and the frustum from above
+    ToggleError,       // ground truth every frame, error pixels on screen
+    ToggleCameraMode,  // follow the scenario's path / fly by hand
+    ToggleRecording,   // record the hand-flown camera; on stop, write a scenario
     Screenshot,
     ToggleHelp,
-    TogglePanel,        // the text panel (for clean screenshots)
+    TogglePanel,  // the text panel (for clean screenshots)
 };
 
 struct KeyBinding {
-    std::string_view keys;         // as shown in help ("space", "1-9", "shift+tab")
+    std::string_view keys;  // as shown in help ("space", "1-9", "shift+tab")
     ViewAction action;
     std::string_view description;  // one short line
 };

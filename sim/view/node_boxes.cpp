@@ -62,7 +62,9 @@ void drawBox(RasterCanvas& canvas, const Projector& p, const Aabb& box, Rgb colo
     }
 }
 
-bool visible(NodeClass c) { return c == NodeClass::DrawnAfterQuery || c == NodeClass::DrawnWithoutQuery; }
+bool visible(NodeClass c) {
+    return c == NodeClass::DrawnAfterQuery || c == NodeClass::DrawnWithoutQuery;
+}
 
 // Whether node n's box is worth drawing: not nested in a box of the same meaning. A hierarchical
 // culler finds every ancestor of a visible node visible too; the deepest ones say where.
@@ -70,11 +72,13 @@ bool frontier(const BspTree& tree, std::span<const NodeClass> classes, uint32_t 
     const BspNode& node = tree.node(n);
     switch (classes[n]) {
         case NodeClass::FrustumCulled:
-            return node.parent == BspTree::kNone || classes[node.parent] != NodeClass::FrustumCulled;
+            return node.parent == BspTree::kNone ||
+                   classes[node.parent] != NodeClass::FrustumCulled;
         case NodeClass::DrawnAfterQuery:
             if (node.isLeaf()) return true;
             return !visible(classes[node.child[0]]) && !visible(classes[node.child[1]]);
-        default: return true;
+        default:
+            return true;
     }
 }
 

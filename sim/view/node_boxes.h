@@ -4,13 +4,13 @@
 // was measured, on the CPU image that the viewer shows: the renderer's buffers stay untouched.
 #pragma once
 
+#include <span>
+#include <string_view>
+
 #include "occsim/culling/tree/bsp_tree.h"
 #include "render/gl_renderer.h"
 #include "sim/output/birds_eye.h"
 #include "sim/output/raster_canvas.h"
-
-#include <span>
-#include <string_view>
 
 namespace occsim {
 

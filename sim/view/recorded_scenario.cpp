@@ -1,11 +1,10 @@
 #include "sim/view/recorded_scenario.h"
 
-#include "sim/output/atomic_file.h"
-
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
+
+#include "sim/output/atomic_file.h"
 
 namespace occsim {
 namespace {
@@ -17,8 +16,10 @@ using OrderedJson = nlohmann::ordered_json;
 // its assets that move together keep working), absolute otherwise. Canonical paths, because the
 // system resolves ".." after following symbolic links, not textually.
 std::string relocated(const std::filesystem::path& resolved, const std::filesystem::path& new_dir) {
-    const std::filesystem::path target = std::filesystem::weakly_canonical(std::filesystem::absolute(resolved));
-    const std::filesystem::path base = std::filesystem::weakly_canonical(std::filesystem::absolute(new_dir));
+    const std::filesystem::path target =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(resolved));
+    const std::filesystem::path base =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(new_dir));
     auto t = target.begin(), b = base.begin();
     size_t shared = 0;
     for (; t != target.end() && b != base.end() && *t == *b; ++t, ++b) ++shared;
@@ -32,7 +33,8 @@ OrderedJson vec3Json(const glm::dvec3& v) { return OrderedJson::array({v.x, v.y,
 // authors write them (nlohmann's indented dump puts every number on its own line).
 bool isFlat(const OrderedJson& value) {
     if (value.is_array()) {
-        return std::all_of(value.begin(), value.end(), [](const OrderedJson& v) { return v.is_primitive(); });
+        return std::all_of(value.begin(), value.end(),
+                           [](const OrderedJson& v) { return v.is_primitive(); });
     }
     if (value.is_object()) {
         return std::all_of(value.begin(), value.end(), [](const OrderedJson& v) {
@@ -52,7 +54,8 @@ std::string inlineText(const OrderedJson& value) {
         std::string out = "{";
         bool first = true;
         for (auto it = value.begin(); it != value.end(); ++it) {
-            out += (first ? "" : ", ") + OrderedJson(it.key()).dump() + ": " + inlineText(it.value());
+            out +=
+                (first ? "" : ", ") + OrderedJson(it.key()).dump() + ": " + inlineText(it.value());
             first = false;
         }
         return out + "}";
@@ -84,7 +87,8 @@ void writeJson(const OrderedJson& value, const std::string& indent, std::string&
 }
 
 void clampCount(OrderedJson& object, const char* key, uint64_t max) {
-    if (object.contains(key) && object[key].is_number() && object[key].get<double>() > double(max)) {
+    if (object.contains(key) && object[key].is_number() &&
+        object[key].get<double>() > double(max)) {
         object[key] = max;
     }
 }
@@ -109,7 +113,9 @@ std::string recordedScenarioText(const std::string& original_text, const Scenari
     }
     OrderedJson& keys = camera["keyframes"] = OrderedJson::array();
     for (const CameraKeyframe& k : keyframes) {
-        keys.push_back({{"time", k.time_s}, {"position", vec3Json(k.position)}, {"target", vec3Json(k.target)}});
+        keys.push_back({{"time", k.time_s},
+                        {"position", vec3Json(k.position)},
+                        {"target", vec3Json(k.target)}});
     }
     doc["camera"] = camera;
 
@@ -137,7 +143,8 @@ void writeRecordedScenario(const std::string& original_text, const Scenario& ori
                            const std::filesystem::path& new_file) {
     // The folder first: checking the text resolves its relative paths from there.
     if (new_file.has_parent_path()) std::filesystem::create_directories(new_file.parent_path());
-    writeFileAtomically(new_file, recordedScenarioText(original_text, original, keyframes, new_file));
+    writeFileAtomically(new_file,
+                        recordedScenarioText(original_text, original, keyframes, new_file));
 }
 
 }  // namespace occsim

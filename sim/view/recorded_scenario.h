@@ -10,11 +10,11 @@
 // Everything else keeps its text, keys in their original order.
 #pragma once
 
-#include "sim/scenario/scenario.h"
-
 #include <filesystem>
 #include <span>
 #include <string>
+
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 

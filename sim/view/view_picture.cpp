@@ -1,9 +1,9 @@
 #include "sim/view/view_picture.h"
 
+#include <algorithm>
+
 #include "sim/output/birds_eye.h"
 #include "sim/view/node_boxes.h"
-
-#include <algorithm>
 
 namespace occsim {
 namespace {
@@ -40,7 +40,7 @@ void drawBirdsEyeInset(RasterCanvas& canvas, const Simulation& sim, const FrameT
     in.aspect = static_cast<float>(canvas.width()) / static_cast<float>(canvas.height());
     in.near_m = static_cast<float>(camera.near_m);
     in.far_m = static_cast<float>(camera.far_m);
-    in.title.clear();  // the inset is too narrow for a title in the picture's large font
+    in.title.clear();        // the inset is too narrow for a title in the picture's large font
     in.draw_legend = false;  // the panel's legend explains the colours
     // Below about 120 pixels the picture's fixed margins leave no room for the scene.
     const uint32_t shorter = std::min(canvas.width(), canvas.height());
@@ -72,7 +72,8 @@ RasterCanvas composeViewPicture(std::span<const uint8_t> rgba, uint32_t width, u
     const FrameTrace* trace = sim.lastTrace();
     if (trace && trace->frame == sim.world().frame() && (layers.boxes || layers.birds_eye)) {
         const std::vector<NodeClass> classes = classifyNodes(sim.tree(), sim.view().cull, *trace);
-        if (layers.boxes) drawNodeBoxes(canvas, sim.tree(), classes, sim.view().render, camera.near_m);
+        if (layers.boxes)
+            drawNodeBoxes(canvas, sim.tree(), classes, sim.view().render, camera.near_m);
         if (layers.birds_eye) drawBirdsEyeInset(canvas, sim, *trace, classes, camera);
     }
     if (layers.hud) drawHud(canvas, hud);

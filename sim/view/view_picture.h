@@ -3,13 +3,13 @@
 // picture goes to the window and to screenshots, so a screenshot is exactly what was on screen.
 #pragma once
 
-#include "sim/output/raster_canvas.h"
-#include "sim/run/simulation.h"
-#include "sim/view/hud.h"
-
 #include <cstdint>
 #include <span>
 #include <vector>
+
+#include "sim/output/raster_canvas.h"
+#include "sim/run/simulation.h"
+#include "sim/view/hud.h"
 
 namespace occsim {
 

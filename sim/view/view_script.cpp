@@ -10,7 +10,7 @@ namespace {
 constexpr const char* kCommands = "wait, press, down, up, hold, drag, wheel, resize, quit";
 
 class LineParser {
-public:
+  public:
     LineParser(const std::filesystem::path& file, size_t line, std::vector<std::string> words)
         : file_(file), line_(line), words_(std::move(words)) {}
 
@@ -23,7 +23,8 @@ public:
     void expectArguments(size_t count, const char* usage) const {
         if (words_.size() != count + 1) {
             fail("'" + command() + "' takes " + std::to_string(count) + " argument" +
-                 (count == 1 ? "" : "s") + " (" + usage + "), got " + std::to_string(words_.size() - 1));
+                 (count == 1 ? "" : "s") + " (" + usage + "), got " +
+                 std::to_string(words_.size() - 1));
         }
     }
 
@@ -51,13 +52,14 @@ public:
 
     const std::string& word(size_t i) const { return words_[i]; }
 
-private:
+  private:
     const std::filesystem::path& file_;
     size_t line_;
     std::vector<std::string> words_;
 };
 
-ScriptStep eventStep(WindowEvent::Type type, std::string_view key = {}, double x = 0, double y = 0) {
+ScriptStep eventStep(WindowEvent::Type type, std::string_view key = {}, double x = 0,
+                     double y = 0) {
     ScriptStep s;
     s.kind = ScriptStep::Kind::Event;
     s.event.type = type;
@@ -79,7 +81,8 @@ std::vector<std::string_view> splitKeys(const LineParser& p, const std::string& 
     size_t start = 0;
     while (true) {
         const size_t plus = combo.find('+', start);
-        keys.push_back(p.key(combo.substr(start, plus == std::string::npos ? std::string::npos : plus - start)));
+        keys.push_back(p.key(
+            combo.substr(start, plus == std::string::npos ? std::string::npos : plus - start)));
         if (plus == std::string::npos) break;
         start = plus + 1;
     }
@@ -106,7 +109,8 @@ ViewScript parseViewScript(const std::string& text, const std::filesystem::path&
         auto& steps = script.steps;
         if (c == "wait") {
             p.expectArguments(1, "wait FRAMES");
-            steps.push_back(waitStep(static_cast<uint32_t>(p.integer(1, 1, 1000000, "wait FRAMES"))));
+            steps.push_back(
+                waitStep(static_cast<uint32_t>(p.integer(1, 1, 1000000, "wait FRAMES"))));
         } else if (c == "press") {
             p.expectArguments(1, "press KEY[+KEY...]");
             const auto keys = splitKeys(p, p.word(1));
@@ -116,8 +120,9 @@ ViewScript parseViewScript(const std::string& text, const std::filesystem::path&
             }
         } else if (c == "down" || c == "up") {
             p.expectArguments(1, (c + " KEY").c_str());
-            steps.push_back(eventStep(c == "down" ? WindowEvent::Type::KeyDown : WindowEvent::Type::KeyUp,
-                                      p.key(p.word(1))));
+            steps.push_back(
+                eventStep(c == "down" ? WindowEvent::Type::KeyDown : WindowEvent::Type::KeyUp,
+                          p.key(p.word(1))));
         } else if (c == "hold") {
             p.expectArguments(2, "hold KEY FRAMES");
             const std::string_view k = p.key(p.word(1));
@@ -175,9 +180,15 @@ ScriptPlayer::FrameInput ScriptPlayer::next() {
     while (position_ < script_.steps.size()) {
         const ScriptStep& step = script_.steps[position_++];
         switch (step.kind) {
-            case ScriptStep::Kind::Event: in.events.push_back(step.event); break;
-            case ScriptStep::Kind::Resize: in.resize = std::make_pair(step.width, step.height); break;
-            case ScriptStep::Kind::Quit: in.quit = true; return in;
+            case ScriptStep::Kind::Event:
+                in.events.push_back(step.event);
+                break;
+            case ScriptStep::Kind::Resize:
+                in.resize = std::make_pair(step.width, step.height);
+                break;
+            case ScriptStep::Kind::Quit:
+                in.quit = true;
+                return in;
             case ScriptStep::Kind::Wait:
                 waiting_ = step.frames - 1;  // this frame is the first of the wait
                 return in;

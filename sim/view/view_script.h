@@ -16,14 +16,14 @@
 // line naming the file, the line number and what was expected.
 #pragma once
 
-#include "render/window_events.h"
-
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "render/window_events.h"
 
 namespace occsim {
 
@@ -50,7 +50,7 @@ ViewScript readViewScript(const std::filesystem::path& file);
 
 // Plays a script frame by frame.
 class ScriptPlayer {
-public:
+  public:
     explicit ScriptPlayer(ViewScript script) : script_(std::move(script)) {}
 
     struct FrameInput {
@@ -61,7 +61,7 @@ public:
     // The input for the next frame.
     FrameInput next();
 
-private:
+  private:
     ViewScript script_;
     size_t position_ = 0;
     uint32_t waiting_ = 0;  // frames of the current wait still to pass

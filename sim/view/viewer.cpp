@@ -1,5 +1,11 @@
 #include "sim/view/viewer.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <set>
+#include <thread>
+
 #include "occsim/culling/registry/registry.h"
 #include "render/glfw_context.h"
 #include "render/png_writer.h"
@@ -10,12 +16,6 @@
 #include "sim/view/key_bindings.h"
 #include "sim/view/recorded_scenario.h"
 #include "sim/view/view_picture.h"
-
-#include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <set>
-#include <thread>
 
 namespace occsim {
 namespace {
@@ -67,32 +67,35 @@ double initialFlySpeed(const WorldState& state) {
 }
 
 class Viewer {
-public:
+  public:
     Viewer(const Scenario& scenario, const std::string& scenario_text, const ViewOptions& options)
         : scenario_(scenario),
           scenario_text_(scenario_text),
           options_(options),
-          window_(initialWindowSize(scenario, options).first, initialWindowSize(scenario, options).second,
-                  "occsim view: " + scenario.name),
+          window_(initialWindowSize(scenario, options).first,
+                  initialWindowSize(scenario, options).second, "occsim view: " + scenario.name),
           scene_(buildScene(scenario)),
-          renderer_(std::max(1u, window_.framebufferWidth()), std::max(1u, window_.framebufferHeight())),
-          algorithm_(algorithmIndex(options.algorithm.empty() ? scenario.algorithm : options.algorithm)),
+          renderer_(std::max(1u, window_.framebufferWidth()),
+                    std::max(1u, window_.framebufferHeight())),
+          algorithm_(
+              algorithmIndex(options.algorithm.empty() ? scenario.algorithm : options.algorithm)),
           error_(options.error) {
-        for (const std::string& w : scene_.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        for (const std::string& w : scene_.warnings)
+            std::fprintf(stderr, "warning: %s\n", w.c_str());
         uploadScene(scene_, renderer_);
         world_ = std::make_unique<SharedWorld>(scene_, scenario_);
         sim_ = makeSimulation(*world_);
         fly_ = FlyCamera(initialFlySpeed(world_->state()));
         if (options.script) script_.emplace(*options.script);
         updateTitle();
-        std::printf("occsim view: %s, %u objects, %s; press h for the keys\n", scenario.name.c_str(),
-                    scene_.objectCount(), window_.rendererName().c_str());
+        std::printf("occsim view: %s, %u objects, %s; press h for the keys\n",
+                    scenario.name.c_str(), scene_.objectCount(), window_.rendererName().c_str());
         std::fflush(stdout);
     }
 
     void run();
 
-private:
+  private:
     const AlgorithmTraits& algorithm() const { return *algorithms()[algorithm_]; }
     std::unique_ptr<Simulation> makeSimulation(SharedWorld& world);
     void replaceSimulation(bool keep_world);
@@ -220,8 +223,9 @@ void Viewer::run() {
 
         // Scripts fly in simulation time (reproducible); people in wall-clock time.
         const auto now = Clock::now();
-        const double seconds = script_ ? scenario_.dt_s
-                                       : std::min(kMaxFlySeconds, std::chrono::duration<double>(now - last).count());
+        const double seconds =
+            script_ ? scenario_.dt_s
+                    : std::min(kMaxFlySeconds, std::chrono::duration<double>(now - last).count());
         last = now;
         const FlyInput input = flyInput();
         if (input.moving()) {
@@ -236,12 +240,14 @@ void Viewer::run() {
         step_ = false;
         dirty_ = false;
         if (screenshot_) saveScreenshot();
-        if (visible && !picture_.empty()) window_.present(picture_, picture_width_, picture_height_);
+        if (visible && !picture_.empty())
+            window_.present(picture_, picture_width_, picture_height_);
         if (script_done) break;
         // Played frames keep the scenario's pace: one time step per frame, no faster.
         if (!script_ && play) {
-            std::this_thread::sleep_until(frame_start + std::chrono::duration_cast<Clock::duration>(
-                                                            std::chrono::duration<double>(scenario_.dt_s)));
+            std::this_thread::sleep_until(frame_start +
+                                          std::chrono::duration_cast<Clock::duration>(
+                                              std::chrono::duration<double>(scenario_.dt_s)));
         }
     }
     if (recording_) stopRecording();  // closing the window must not lose a flight
@@ -253,9 +259,15 @@ void Viewer::handle(const WindowEvent& e) {
             held_.insert(e.key);
             onKey(e.key);
             break;
-        case WindowEvent::Type::KeyUp: held_.erase(e.key); break;
-        case WindowEvent::Type::MouseDown: dragging_ = true; break;
-        case WindowEvent::Type::MouseUp: dragging_ = false; break;
+        case WindowEvent::Type::KeyUp:
+            held_.erase(e.key);
+            break;
+        case WindowEvent::Type::MouseDown:
+            dragging_ = true;
+            break;
+        case WindowEvent::Type::MouseUp:
+            dragging_ = false;
+            break;
         case WindowEvent::Type::CursorMove:
             if (dragging_ && have_cursor_ && (e.x != cursor_x_ || e.y != cursor_y_)) {
                 startFlying();
@@ -270,8 +282,12 @@ void Viewer::handle(const WindowEvent& e) {
             fly_.changeSpeed(e.y);
             dirty_ = true;
             break;
-        case WindowEvent::Type::Resize: dirty_ = true; break;
-        case WindowEvent::Type::Close: quit_ = true; break;
+        case WindowEvent::Type::Resize:
+            dirty_ = true;
+            break;
+        case WindowEvent::Type::Close:
+            quit_ = true;
+            break;
     }
 }
 
@@ -279,19 +295,27 @@ void Viewer::onKey(std::string_view key) {
     uint32_t index = 0;
     const size_t count = algorithms().size();
     switch (actionForKey(key, &index)) {
-        case ViewAction::None: return;
-        case ViewAction::Quit: quit_ = true; break;
-        case ViewAction::TogglePause: paused_ = !paused_; break;
+        case ViewAction::None:
+            return;
+        case ViewAction::Quit:
+            quit_ = true;
+            break;
+        case ViewAction::TogglePause:
+            paused_ = !paused_;
+            break;
         case ViewAction::Step:
-            if (paused_) step_ = true;
-            else say("n steps one frame while paused (space)");
+            if (paused_)
+                step_ = true;
+            else
+                say("n steps one frame while paused (space)");
             break;
         case ViewAction::Restart:
             restart();
             say(recording_ ? "restarted: the recording starts over" : "restarted at frame 0");
             break;
         case ViewAction::NextAlgorithm:
-            algorithm_ = held("shift") ? (algorithm_ + count - 1) % count : (algorithm_ + 1) % count;
+            algorithm_ =
+                held("shift") ? (algorithm_ + count - 1) % count : (algorithm_ + 1) % count;
             replaceSimulation(true);
             updateTitle();
             break;
@@ -304,8 +328,12 @@ void Viewer::onKey(std::string_view key) {
             replaceSimulation(true);
             updateTitle();
             break;
-        case ViewAction::ToggleBoxes: boxes_ = !boxes_; break;
-        case ViewAction::ToggleBirdsEye: birds_eye_ = !birds_eye_; break;
+        case ViewAction::ToggleBoxes:
+            boxes_ = !boxes_;
+            break;
+        case ViewAction::ToggleBirdsEye:
+            birds_eye_ = !birds_eye_;
+            break;
         case ViewAction::ToggleError:
             error_ = !error_;
             replaceSimulation(true);
@@ -319,12 +347,20 @@ void Viewer::onKey(std::string_view key) {
             }
             break;
         case ViewAction::ToggleRecording:
-            if (recording_) stopRecording();
-            else startRecording();
+            if (recording_)
+                stopRecording();
+            else
+                startRecording();
             break;
-        case ViewAction::Screenshot: screenshot_ = true; break;
-        case ViewAction::ToggleHelp: help_ = !help_; break;
-        case ViewAction::TogglePanel: panel_ = !panel_; break;
+        case ViewAction::Screenshot:
+            screenshot_ = true;
+            break;
+        case ViewAction::ToggleHelp:
+            help_ = !help_;
+            break;
+        case ViewAction::TogglePanel:
+            panel_ = !panel_;
+            break;
     }
     dirty_ = true;
 }
@@ -382,8 +418,8 @@ void Viewer::renderFrame(bool play) {
     layers.boxes = boxes_;
     layers.birds_eye = birds_eye_;
     layers.hud = panel_;
-    const RasterCanvas picture = composeViewPicture(rgba_, renderer_.width(), renderer_.height(), *sim_,
-                                                    scenario_.camera, layers, hudState());
+    const RasterCanvas picture = composeViewPicture(rgba_, renderer_.width(), renderer_.height(),
+                                                    *sim_, scenario_.camera, layers, hudState());
     picture_ = picture.rgbaBottomUp();
     picture_width_ = picture.width();
     picture_height_ = picture.height();
@@ -455,8 +491,8 @@ void Viewer::stopRecording() {
         const std::filesystem::path file =
             nextFreeFile(options_.out_dir, safeFileName(scenario_.name) + "-recorded-", ".json");
         writeRecordedScenario(scenario_text_, scenario_, recorded_, file);
-        std::printf("recorded: %s (%zu frames); replay it with: occsim run %s\n", file.string().c_str(),
-                    recorded_.size(), file.string().c_str());
+        std::printf("recorded: %s (%zu frames); replay it with: occsim run %s\n",
+                    file.string().c_str(), recorded_.size(), file.string().c_str());
         std::fflush(stdout);
         say("saved " + file.string());
     } catch (const std::exception& e) {
@@ -468,7 +504,8 @@ void Viewer::stopRecording() {
 
 }  // namespace
 
-int runViewer(const Scenario& scenario, const std::string& scenario_text, const ViewOptions& options) {
+int runViewer(const Scenario& scenario, const std::string& scenario_text,
+              const ViewOptions& options) {
     Viewer viewer(scenario, scenario_text, options);
     viewer.run();
     return 0;

@@ -4,13 +4,13 @@
 // into a new scenario. docs/viewer.md describes the keys, the flags and the script format.
 #pragma once
 
-#include "sim/scenario/scenario.h"
-#include "sim/view/view_script.h"
-
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+
+#include "sim/scenario/scenario.h"
+#include "sim/view/view_script.h"
 
 namespace occsim {
 
@@ -25,6 +25,7 @@ struct ViewOptions {
 // Opens the window and runs until it is closed (0). `scenario_text` is the file `scenario` was
 // parsed from, the base of recorded scenarios. Throws WindowUnavailable (render/glfw_context.h)
 // when no window can be opened, before building the scene.
-int runViewer(const Scenario& scenario, const std::string& scenario_text, const ViewOptions& options);
+int runViewer(const Scenario& scenario, const std::string& scenario_text,
+              const ViewOptions& options);
 
 }  // namespace occsim

@@ -29,8 +29,9 @@ CameraPose sampleCameraPath(const CameraSpec& camera, double time_s) {
     if (t >= end) return {keys.back().position, keys.back().target};
 
     // Segment i runs from keys[i] to keys[i+1].
-    const auto after = std::upper_bound(keys.begin(), keys.end(), t,
-                                        [](double v, const CameraKeyframe& k) { return v < k.time_s; });
+    const auto after =
+        std::upper_bound(keys.begin(), keys.end(), t,
+                         [](double v, const CameraKeyframe& k) { return v < k.time_s; });
     const size_t i = static_cast<size_t>(after - keys.begin()) - 1;
     const double u = (t - keys[i].time_s) / (keys[i + 1].time_s - keys[i].time_s);
     // Neighbours: wrap on a loop (whose last keyframe repeats the first), clamp otherwise.

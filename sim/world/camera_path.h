@@ -2,9 +2,9 @@
 // splines over time (seconds of simulation time), held at the ends or looped.
 #pragma once
 
-#include "sim/scenario/scenario.h"
-
 #include <glm/glm.hpp>
+
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 

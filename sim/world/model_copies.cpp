@@ -58,8 +58,8 @@ void poseCopies(const Scene& scene, double t, const std::vector<ModelCopy>& copi
             pose.rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
             pose.linear = glm::mat3(anchor * glm::dmat3(world));
             if (boxes) {
-                (*boxes)[o] = worldBox(scene.mesh_bounds[scene.object_mesh[o]], pose,
-                                       scene.culling_origin);
+                (*boxes)[o] =
+                    worldBox(scene.mesh_bounds[scene.object_mesh[o]], pose, scene.culling_origin);
             }
         }
     }

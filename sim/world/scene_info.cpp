@@ -1,11 +1,11 @@
 #include "sim/world/scene_info.h"
 
-#include "occsim/culling/tree/bsp_tree.h"
-#include "sim/world/world.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
+
+#include "occsim/culling/tree/bsp_tree.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -30,11 +30,11 @@ void describeTree(const BspTree& tree, const glm::dvec3& culling_origin, std::os
     std::snprintf(line, sizeof line, "  nodes       %u (%u leaves), depth %u\n",
                   tree.liveNodeCount(), leaves, tree.maxDepth());
     out << line;
-    std::snprintf(line, sizeof line,
-                  "  objects     %.2f per leaf (max %u); %u in inner nodes (%.1f%%), %u in the root\n",
-                  leaves ? static_cast<double>(objects_in_leaves) / leaves : 0.0, max_in_leaf,
-                  in_inner, objects ? 100.0 * in_inner / objects : 0.0,
-                  tree.node(tree.root()).object_count);
+    std::snprintf(
+        line, sizeof line,
+        "  objects     %.2f per leaf (max %u); %u in inner nodes (%.1f%%), %u in the root\n",
+        leaves ? static_cast<double>(objects_in_leaves) / leaves : 0.0, max_in_leaf, in_inner,
+        objects ? 100.0 * in_inner / objects : 0.0, tree.node(tree.root()).object_count);
     out << line;
     out << "  by depth   ";
     for (size_t d = 0; d < by_depth.size(); ++d) out << ' ' << d << ':' << by_depth[d];
@@ -50,27 +50,36 @@ void describeTree(const BspTree& tree, const glm::dvec3& culling_origin, std::os
 
 const char* propertyName(AnimatedProperty p) {
     switch (p) {
-        case AnimatedProperty::Translation: return "translation";
-        case AnimatedProperty::Rotation: return "rotation";
-        case AnimatedProperty::Scale: return "scale";
+        case AnimatedProperty::Translation:
+            return "translation";
+        case AnimatedProperty::Rotation:
+            return "rotation";
+        case AnimatedProperty::Scale:
+            return "scale";
     }
     return "?";
 }
 
 const char* interpolationName(Interpolation i) {
     switch (i) {
-        case Interpolation::Linear: return "LINEAR";
-        case Interpolation::Step: return "STEP";
-        case Interpolation::CubicSpline: return "CUBICSPLINE";
+        case Interpolation::Linear:
+            return "LINEAR";
+        case Interpolation::Step:
+            return "STEP";
+        case Interpolation::CubicSpline:
+            return "CUBICSPLINE";
     }
     return "?";
 }
 
 const char* modeName(AnimationMode m) {
     switch (m) {
-        case AnimationMode::Loop: return "loop";
-        case AnimationMode::Clamp: return "clamp";
-        case AnimationMode::PingPong: return "ping_pong";
+        case AnimationMode::Loop:
+            return "loop";
+        case AnimationMode::Clamp:
+            return "clamp";
+        case AnimationMode::PingPong:
+            return "ping_pong";
     }
     return "?";
 }
@@ -88,9 +97,9 @@ void describeAnimations(const Scene& scene, std::ostringstream& out) {
         }
         out << "animations    source " << m.source << ": " << model.animations.size()
             << (model.animations.size() == 1 ? " animation" : " animations") << ", "
-            << animated_copies << " animated copies of " << m.objectsPerCopy()
-            << " objects; " << modeName(m.mode) << ", speed " << m.speed << ", time offset "
-            << m.time_offset_s << " s\n";
+            << animated_copies << " animated copies of " << m.objectsPerCopy() << " objects; "
+            << modeName(m.mode) << ", speed " << m.speed << ", time offset " << m.time_offset_s
+            << " s\n";
         for (size_t a = 0; a < model.animations.size(); ++a) {
             const NodeAnimation& animation = model.animations[a];
             char line[256];
@@ -139,8 +148,8 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     out << "movers        " << scene.initial_movers.size() << " (" << state.moved.size()
         << " objects move each frame)\n";
     describeAnimations(scene, out);
-    out << "frames        " << scenario.frames << " x " << scenario.dt_s << " s, "
-        << scenario.width << "x" << scenario.height << " pixels\n";
+    out << "frames        " << scenario.frames << " x " << scenario.dt_s << " s, " << scenario.width
+        << "x" << scenario.height << " pixels\n";
     std::snprintf(line, sizeof line, "bsp           %s split, looseness %.2f, %s\n",
                   scenario.bsp.split_rule == BspSplitRule::Sah ? "sah" : "median",
                   static_cast<double>(scenario.bsp.looseness),

@@ -2,10 +2,10 @@
 // live) and the scene bounds. Builds the scene and the tree; renders nothing.
 #pragma once
 
-#include "sim/scenario/scenario.h"
-
 #include <string>
 #include <vector>
+
+#include "sim/scenario/scenario.h"
 
 namespace occsim {
 

@@ -1,19 +1,17 @@
 #include "sim/world/world.h"
 
-#include "sim/world/model_copies.h"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <numbers>
+#include <numeric>
 
 #include "sim/scene/primitives.h"
 #include "sim/scene/scene_source.h"
 #include "sim/scene/teapot.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <cstdio>
-#include <numbers>
-#include <numeric>
+#include "sim/world/model_copies.h"
 
 namespace occsim {
 namespace {
@@ -69,7 +67,13 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place,
         source.model_copies.clear();
         source.lanes.clear();
     }
-    SourceRange range{scene.objectCount(), static_cast<uint32_t>(source.objects.size()), source.region, {}, -1, {}, {}};
+    SourceRange range{scene.objectCount(),
+                      static_cast<uint32_t>(source.objects.size()),
+                      source.region,
+                      {},
+                      -1,
+                      {},
+                      {}};
     range.placements = std::move(source.model_copies);
     range.copy_state.assign(range.placements.size(), -1);
     for (MeshData& mesh : source.meshes) addMesh(scene, std::move(mesh));
@@ -81,7 +85,8 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place,
     }
     if (isEmpty(range.region)) {
         for (uint32_t i = range.first; i < scene.objectCount(); ++i) {
-            extend(range.region, worldBox(scene.mesh_bounds[scene.object_mesh[i]], scene.initial_poses[i]));
+            extend(range.region,
+                   worldBox(scene.mesh_bounds[scene.object_mesh[i]], scene.initial_poses[i]));
         }
     }
     for (auto& lane : source.lanes) {
@@ -117,7 +122,8 @@ SceneModel makeSceneModel(const Scenario& scenario, size_t s,
         size_t a = pick.index;
         if (!pick.name.empty()) {
             std::string names;
-            for (a = 0; a < count && model->animations[a].name != pick.name; ++a) {}
+            for (a = 0; a < count && model->animations[a].name != pick.name; ++a) {
+            }
             if (a == count) {
                 for (const NodeAnimation& animation : model->animations) {
                     if (!names.empty()) names += ", ";
@@ -125,14 +131,15 @@ SceneModel makeSceneModel(const Scenario& scenario, size_t s,
                     names += animation.name;
                     names += "'";
                 }
-                sourceError(scenario, s, key, "no animation named '" + pick.name + "' in " +
-                                                  gltf.path.string() + " (it has " +
-                                                  (count == 0 ? std::string("none") : names) + ")");
+                sourceError(scenario, s, key,
+                            "no animation named '" + pick.name + "' in " + gltf.path.string() +
+                                " (it has " + (count == 0 ? std::string("none") : names) + ")");
             }
         } else if (a >= count) {
-            sourceError(scenario, s, key, "expected an animation index < " + std::to_string(count) +
-                                              " (" + gltf.path.string() + " has " +
-                                              std::to_string(count) + "), got " + std::to_string(a));
+            sourceError(scenario, s, key,
+                        "expected an animation index < " + std::to_string(count) + " (" +
+                            gltf.path.string() + " has " + std::to_string(count) + "), got " +
+                            std::to_string(a));
         }
         m.playing[a] = 1;
     }
@@ -214,9 +221,12 @@ std::vector<uint32_t> pickFraction(const SourceRange& range, double fraction, Rn
 
 MeshData spawnMesh(SpawnShape shape) {
     switch (shape) {
-        case SpawnShape::Teapot: return tessellateTeapot(kSpawnTeapotTessellation);
-        case SpawnShape::Box: return makeBox(glm::vec3(1.0f));
-        case SpawnShape::Sphere: return makeSphere(0.5f, 16, 8);
+        case SpawnShape::Teapot:
+            return tessellateTeapot(kSpawnTeapotTessellation);
+        case SpawnShape::Box:
+            return makeBox(glm::vec3(1.0f));
+        case SpawnShape::Sphere:
+            return makeSphere(0.5f, 16, 8);
     }
     return {};
 }
@@ -252,8 +262,10 @@ glm::quat yawTowards(const glm::dvec3& direction) {
     return glm::angleAxis(static_cast<float>(yaw), glm::vec3(0, 1, 0));
 }
 
-[[noreturn]] void moverError(const Scenario& s, size_t m, const std::string& key, const std::string& message) {
-    throw ScenarioError(s.file.string(), "/movers/" + std::to_string(m) + (key.empty() ? "" : "/" + key), message);
+[[noreturn]] void moverError(const Scenario& s, size_t m, const std::string& key,
+                             const std::string& message) {
+    throw ScenarioError(s.file.string(),
+                        "/movers/" + std::to_string(m) + (key.empty() ? "" : "/" + key), message);
 }
 
 // The centre of the initial scene's bounds, rounded to whole metres (so that a scene moved by
@@ -273,8 +285,8 @@ glm::dvec3 cullingOriginOf(const Scene& scene) {
 
 // A whole-copy mover's copies: a share of the source's copies that move neither whole nor by an
 // object mover of their own, or the listed copy indices. Each is made a rigid moving copy.
-void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRange& range, Rng& pick,
-                     std::vector<uint8_t>& moving, const std::vector<uint8_t>& own_mover,
+void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRange& range,
+                     Rng& pick, std::vector<uint8_t>& moving, const std::vector<uint8_t>& own_mover,
                      std::vector<uint8_t>& rigid_copy, std::vector<uint32_t>& objects,
                      std::vector<int32_t>& object_copy) {
     const MoverSpec& spec = scenario.movers[m];
@@ -282,7 +294,8 @@ void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRan
     const uint32_t per_copy = copy_count ? range.count / copy_count : 0;
     auto rigid = [&](uint32_t k) {
         const int32_t state = range.copy_state[k];
-        return state >= 0 && static_cast<size_t>(state) < rigid_copy.size() && rigid_copy[static_cast<size_t>(state)];
+        return state >= 0 && static_cast<size_t>(state) < rigid_copy.size() &&
+               rigid_copy[static_cast<size_t>(state)];
     };
     auto hasObjectMover = [&](uint32_t k) {
         for (uint32_t j = 0; j < per_copy; ++j) {
@@ -296,8 +309,10 @@ void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRan
             if (!rigid(k) && !hasObjectMover(k)) picked.push_back(k);
         }
         const auto free_count = static_cast<uint32_t>(picked.size());
-        const auto wanted = std::min(free_count, static_cast<uint32_t>(std::lround(spec.fraction * copy_count)));
-        for (uint32_t i = 0; i < wanted; ++i) std::swap(picked[i], picked[i + pick.below(free_count - i)]);
+        const auto wanted =
+            std::min(free_count, static_cast<uint32_t>(std::lround(spec.fraction * copy_count)));
+        for (uint32_t i = 0; i < wanted; ++i)
+            std::swap(picked[i], picked[i + pick.below(free_count - i)]);
         picked.resize(wanted);
         std::sort(picked.begin(), picked.end());
     } else {
@@ -305,13 +320,17 @@ void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRan
             const uint32_t k = spec.objects[i];
             const std::string key = "objects/" + std::to_string(i);
             if (k >= copy_count) {
-                moverError(scenario, m, key, "expected a copy index < " + std::to_string(copy_count) +
-                                                 " (source " + std::to_string(spec.source) +
-                                                 "'s copies, with \"whole_copies\"), got " + std::to_string(k));
+                moverError(scenario, m, key,
+                           "expected a copy index < " + std::to_string(copy_count) + " (source " +
+                               std::to_string(spec.source) +
+                               "'s copies, with \"whole_copies\"), got " + std::to_string(k));
             }
-            if (rigid(k)) moverError(scenario, m, key, "copy " + std::to_string(k) + " already has a motion");
+            if (rigid(k))
+                moverError(scenario, m, key, "copy " + std::to_string(k) + " already has a motion");
             if (hasObjectMover(k)) {
-                moverError(scenario, m, key, "an object of copy " + std::to_string(k) + " already has a mover of its own");
+                moverError(
+                    scenario, m, key,
+                    "an object of copy " + std::to_string(k) + " already has a mover of its own");
             }
             picked.push_back(k);
         }
@@ -332,7 +351,8 @@ void pickWholeCopies(Scene& scene, const Scenario& scenario, size_t m, SourceRan
 std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
     std::vector<SourceRange> ranges;
     for (size_t s = 0; s < scenario.sources.size(); ++s) {
-        SourceOutput source = generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
+        SourceOutput source =
+            generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
         std::shared_ptr<const AnimatedModel> model = source.model;
         const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
         std::vector<uint32_t> copy_meshes;
@@ -364,7 +384,8 @@ MotionFlags animatedObjects(const Scene& scene) {
     for (const ModelCopy& copy : scene.initial_copies) {
         const SceneModel& m = scene.models[copy.model];
         for (uint32_t j = 0; j < m.objectsPerCopy(); ++j) {
-            if (m.object_animated[j]) flags.moving[copy.first_object + j] = flags.animated[copy.first_object + j] = 1;
+            if (m.object_animated[j])
+                flags.moving[copy.first_object + j] = flags.animated[copy.first_object + j] = 1;
         }
     }
     return flags;
@@ -381,8 +402,9 @@ std::vector<uint32_t> moverPaths(Scene& scene, const Scenario& scenario, size_t 
         paths = {static_cast<uint32_t>(scene.paths.size())};
         scene.paths.push_back(makePath(spec.waypoints));
     } else if (paths.empty()) {
-        moverError(scenario, m, "motion", "motion \"path\" needs 'waypoints': source " +
-                                              std::to_string(spec.source) + " has no lanes");
+        moverError(scenario, m, "motion",
+                   "motion \"path\" needs 'waypoints': source " + std::to_string(spec.source) +
+                       " has no lanes");
     }
     return paths;
 }
@@ -394,13 +416,15 @@ struct MoverObjects {
 };
 
 // A spawning mover's new copies of a glTF model, each moved whole.
-void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m, const SourceRange& model_range,
-                      const Aabb& region, MoverObjects& out, MotionFlags& flags) {
+void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
+                      const SourceRange& model_range, const Aabb& region, MoverObjects& out,
+                      MotionFlags& flags) {
     const MoverSpec& spec = scenario.movers[m];
     Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
     const auto model = static_cast<uint32_t>(model_range.model);
     const SceneModel& sm = scene.models[model];
-    const GltfAnimationSpec& play = std::get<GltfSourceSpec>(scenario.sources[sm.source].spec).animation;
+    const GltfAnimationSpec& play =
+        std::get<GltfSourceSpec>(scenario.sources[sm.source].spec).animation;
     const double longest = longestPlayingDuration(sm);
     const bool animates = animatesSomething(sm);
     for (uint32_t i = 0; i < spec.spawn.count; ++i) {
@@ -408,12 +432,13 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m, const So
         copy.model = model;
         copy.first_object = scene.objectCount();
         copy.anchor.position = randomPointIn(region, spawn);
-        copy.anchor.linear =
-            glm::mat3(static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
+        copy.anchor.linear = glm::mat3(
+            static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
         copy.animated = animates;
         copy.rigid = true;
         if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
-        for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) addObject(scene, sm.object_mesh[j], ObjectPose{});
+        for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j)
+            addObject(scene, sm.object_mesh[j], ObjectPose{});
         out.objects.push_back(copy.first_object);
         out.copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
         scene.initial_copies.push_back(copy);
@@ -422,8 +447,8 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m, const So
 }
 
 // A spawning mover's new objects of a built-in shape.
-std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t m, const Aabb& region,
-                                  MotionFlags& flags) {
+std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t m,
+                                  const Aabb& region, MotionFlags& flags) {
     const MoverSpec& spec = scenario.movers[m];
     Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
     const uint32_t mesh = addMesh(scene, spawnMesh(spec.spawn.shape));
@@ -431,7 +456,8 @@ std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t
     for (uint32_t i = 0; i < spec.spawn.count; ++i) {
         ObjectPose pose;
         pose.position = randomPointIn(region, spawn);
-        pose.linear = glm::mat3(static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
+        pose.linear = glm::mat3(
+            static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
         objects.push_back(addObject(scene, mesh, pose));
     }
     flags.grow(scene.objectCount(), 0);
@@ -461,7 +487,8 @@ std::vector<uint32_t> listedObjects(const Scenario& scenario, size_t m, const So
     return objects;
 }
 
-// The objects a mover moves: picked from the source, listed, or spawned; or whole copies of a model.
+// The objects a mover moves: picked from the source, listed, or spawned; or whole copies of a
+// model.
 MoverObjects selectMoverObjects(Scene& scene, const Scenario& scenario, size_t m,
                                 std::vector<SourceRange>& ranges, const Aabb& region, Rng& pick,
                                 MotionFlags& flags, std::vector<uint8_t>& rigid_copy) {
@@ -472,8 +499,9 @@ MoverObjects selectMoverObjects(Scene& scene, const Scenario& scenario, size_t m
         pickWholeCopies(scene, scenario, m, range, pick, flags.moving, flags.own_mover, rigid_copy,
                         out.objects, out.copy);
     } else if (spec.spawn.model_source >= 0 && spec.selection == MoverSelection::Spawn) {
-        spawnModelCopies(scene, scenario, m, ranges.at(static_cast<size_t>(spec.spawn.model_source)),
-                         region, out, flags);
+        spawnModelCopies(scene, scenario, m,
+                         ranges.at(static_cast<size_t>(spec.spawn.model_source)), region, out,
+                         flags);
     } else if (spec.selection == MoverSelection::Fraction) {
         out.objects = pickFraction(range, spec.fraction, pick, flags.moving);
     } else if (spec.selection == MoverSelection::Objects) {
@@ -501,7 +529,8 @@ Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose, 
             const double angle = motion.uniform(0.0, 2.0 * kPi);
             const double sign = motion.uniform() < 0.5 ? -1.0 : 1.0;
             // Centre chosen so that the orbit passes through the object's start position.
-            const glm::dvec3 center = pose.position - radius * glm::dvec3(std::cos(angle), 0, std::sin(angle));
+            const glm::dvec3 center =
+                pose.position - radius * glm::dvec3(std::cos(angle), 0, std::sin(angle));
             return OrbitMotion{center, radius, sign * speed / radius, angle};
         }
         case MotionType::Path: {
@@ -525,7 +554,8 @@ Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose, 
             return walk;
         }
         case MotionType::Spin: {
-            const double rate = glm::radians(motion.uniform(spec.spin_min_deg_s, spec.spin_max_deg_s));
+            const double rate =
+                glm::radians(motion.uniform(spec.spin_min_deg_s, spec.spin_max_deg_s));
             return SpinMotion{motion.uniform() < 0.5 ? -rate : rate, 0.0, pose.rotation};
         }
     }
@@ -540,7 +570,8 @@ void placeMover(Scene& scene, const Scenario& scenario, size_t m, std::vector<So
     Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
     const Aabb region = spec.has_region ? spec.region : ranges.at(spec.source).region;
     const std::vector<uint32_t> paths = moverPaths(scene, scenario, m, ranges.at(spec.source));
-    const MoverObjects chosen = selectMoverObjects(scene, scenario, m, ranges, region, pick, flags, rigid_copy);
+    const MoverObjects chosen =
+        selectMoverObjects(scene, scenario, m, ranges, region, pick, flags, rigid_copy);
     for (size_t i = 0; i < chosen.objects.size(); ++i) {
         const uint32_t object = chosen.objects[i];
         const int32_t copy = chosen.copy[i];
@@ -561,7 +592,8 @@ MotionPath makePath(std::vector<glm::dvec3> points) {
     path.lengths.push_back(0.0);
     const size_t n = path.points.size();
     for (size_t i = 0; i < n; ++i) {
-        path.lengths.push_back(path.lengths.back() + glm::length(path.points[(i + 1) % n] - path.points[i]));
+        path.lengths.push_back(path.lengths.back() +
+                               glm::length(path.points[(i + 1) % n] - path.points[i]));
     }
     return path;
 }
@@ -597,7 +629,8 @@ Scene buildScene(const Scenario& scenario) {
                             "nothing is placed: the glTF sources have \"place\": false and no "
                             "mover spawns their models");
     }
-    // Moving copies start in their pose at time 0 (animations and anchors as the movers placed them).
+    // Moving copies start in their pose at time 0 (animations and anchors as the movers placed
+    // them).
     ModelPoseBuffers buffers = makePoseBuffers(scene.models);
     poseCopies(scene, 0.0, scene.initial_copies, buffers, scene.initial_poses, nullptr);
     scene.culling_origin = cullingOriginOf(scene);
@@ -613,15 +646,15 @@ WorldState initialState(const Scene& scene) {
     state.pose_buffers = makePoseBuffers(scene.models);
     state.boxes.resize(scene.objectCount());
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        state.boxes[o] = worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o],
-                                  scene.culling_origin);
+        state.boxes[o] =
+            worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o], scene.culling_origin);
     }
     return state;
 }
 
 glm::dmat4 modelMatrix(const ObjectPose& pose) {
-    return glm::translate(glm::dmat4(1.0), pose.position) * glm::dmat4(glm::mat4_cast(pose.rotation)) *
-           glm::dmat4(glm::mat4(pose.linear));
+    return glm::translate(glm::dmat4(1.0), pose.position) *
+           glm::dmat4(glm::mat4_cast(pose.rotation)) * glm::dmat4(glm::mat4(pose.linear));
 }
 
 namespace {
@@ -702,7 +735,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
         } else if (auto* path = std::get_if<PathMotion>(&mover.motion)) {
             const MotionPath& p = scene.paths[path->path];
             // Keep the distance within one lap so it never loses precision on long runs.
-            path->distance_m = std::fmod(path->distance_m + path->speed_mps * dt_s, p.total() > 0 ? p.total() : 1.0);
+            path->distance_m = std::fmod(path->distance_m + path->speed_mps * dt_s,
+                                         p.total() > 0 ? p.total() : 1.0);
             glm::dvec3 direction;
             pose.position = pointOnPath(p, path->distance_m, &direction);
             pose.rotation = yawTowards(direction);
@@ -719,7 +753,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             pose.rotation = yawTowards({vx, 0.0, vz});
         } else if (auto* spin = std::get_if<SpinMotion>(&mover.motion)) {
             spin->angle = std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * kPi);
-            pose.rotation = glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
+            pose.rotation =
+                glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
         }
         if (mover.copy < 0) {
             state.boxes[mover.object] = worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]],
@@ -727,7 +762,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
         }
     }
     if (!state.copies.empty()) {
-        poseCopies(scene, state.time_s, state.copies, state.pose_buffers, state.poses, &state.boxes);
+        poseCopies(scene, state.time_s, state.copies, state.pose_buffers, state.poses,
+                   &state.boxes);
     }
 }
 
@@ -760,7 +796,8 @@ void requireFiniteBoxes(const WorldState& state, uint32_t frame) {
     }
     for (const uint32_t o : state.moved) {
         if (!isFiniteAndOrdered(state.boxes[o])) {
-            throwNotFinite(state, o, frame, "moved with its glTF model (animation or whole-copy mover)");
+            throwNotFinite(state, o, frame,
+                           "moved with its glTF model (animation or whole-copy mover)");
         }
     }
 }

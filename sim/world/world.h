@@ -4,21 +4,20 @@
 // configuration renders (sim/run/shared_world.h).
 #pragma once
 
-#include "occsim/culling/geometry/aabb.h"
-#include "occsim/culling/geometry/random.h"
-#include "render/mesh_data.h"
-#include "sim/scene/model_animation.h"
-#include "sim/scenario/scenario.h"
-
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-
-#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/geometry/random.h"
+#include "render/mesh_data.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scene/model_animation.h"
 
 namespace occsim {
 
@@ -56,8 +55,8 @@ struct PathMotion {
 // at the region's faces. Seeded per mover, so it is deterministic for a given dt.
 struct RandomWalkMotion {
     double speed_mps = 0.0;
-    double heading = 0.0;          // radians about y; 0 = +x
-    double turn_rate = 0.0;        // radians per second, largest change
+    double heading = 0.0;    // radians about y; 0 = +x
+    double turn_rate = 0.0;  // radians per second, largest change
     Aabb region;
     Rng rng{0};
 };
@@ -127,10 +126,10 @@ struct Scene {
     std::vector<ObjectPose> initial_poses;
     std::vector<Mover> initial_movers;
     std::vector<MotionPath> paths;
-    std::vector<SceneModel> models;      // one per glTF source (and per spawned model's source)
+    std::vector<SceneModel> models;         // one per glTF source (and per spawned model's source)
     std::vector<ModelCopy> initial_copies;  // the copies that move
-    std::vector<std::string> warnings;  // from sources (e.g. glTF parts skipped)
-    uint64_t triangle_count = 0;        // over all objects
+    std::vector<std::string> warnings;      // from sources (e.g. glTF parts skipped)
+    uint64_t triangle_count = 0;            // over all objects
     // The origin of the culling frame, in world coordinates (metres, double): the centre of the
     // initial scene, rounded to whole metres. Object boxes, the BSP tree, the frustum and the eye
     // given to cullers are all relative to it, so float keeps its precision however far from the
@@ -173,7 +172,7 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s);
 // go on, since no culling decision about such an object means anything. The message names the
 // object and the frame.
 class MotionError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

@@ -2,17 +2,17 @@
 // local adaptation, batch frustum classification, and a statistical-culler traversal on the
 // scripted query device.
 // Run: ./build/release/tests/benchmarks/bench_culling
-#include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/geometry/frustum.h"
-#include "occsim/culling/testing/scripted_query_device.h"
-#include "occsim/culling/cullers/statistical_culler.h"
-
 #include <benchmark/benchmark.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
 #include <random>
 #include <vector>
+
+#include "occsim/culling/cullers/statistical_culler.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/testing/scripted_query_device.h"
+#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
 namespace {
@@ -66,8 +66,9 @@ void BM_BspReinsertMovedObjects(benchmark::State& state) {
         tree.refitDirtyBounds();
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * movers);
-    state.counters["walked/reinsert"] = static_cast<double>(tree.stats().nodes_walked) /
-                                        static_cast<double>(std::max<uint64_t>(1, tree.stats().reinserts));
+    state.counters["walked/reinsert"] =
+        static_cast<double>(tree.stats().nodes_walked) /
+        static_cast<double>(std::max<uint64_t>(1, tree.stats().reinserts));
 }
 BENCHMARK(BM_BspReinsertMovedObjects)->Arg(3000)->Arg(30000);
 
@@ -76,16 +77,20 @@ void BM_FrustumClassifyBatch(benchmark::State& state) {
     const std::vector<Aabb> boxes = field(static_cast<uint32_t>(count), 2);
     std::vector<float> mnx, mny, mnz, mxx, mxy, mxz;
     for (const Aabb& b : boxes) {
-        mnx.push_back(b.min.x); mny.push_back(b.min.y); mnz.push_back(b.min.z);
-        mxx.push_back(b.max.x); mxy.push_back(b.max.y); mxz.push_back(b.max.z);
+        mnx.push_back(b.min.x);
+        mny.push_back(b.min.y);
+        mnz.push_back(b.min.z);
+        mxx.push_back(b.max.x);
+        mxy.push_back(b.max.y);
+        mxz.push_back(b.max.z);
     }
     const Frustum f = frustumFromViewProjection(
         glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 400.0f) *
         glm::lookAt(glm::vec3(0, 3, 8), glm::vec3(0, 2, -30), glm::vec3(0, 1, 0)));
     std::vector<FrustumTest> out(count);
     for (auto _ : state) {
-        classifyBatch(f, mnx.data(), mny.data(), mnz.data(), mxx.data(), mxy.data(), mxz.data(), count,
-                      out.data());
+        classifyBatch(f, mnx.data(), mny.data(), mnz.data(), mxx.data(), mxy.data(), mxz.data(),
+                      count, out.data());
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(count));

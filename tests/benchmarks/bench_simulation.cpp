@@ -4,21 +4,21 @@
 // per node for every culler, the mover update per object, and advancing one shared world per
 // frame against one world per configuration.
 // Run: ./build/release/tests/benchmarks/bench_simulation
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <memory>
+#include <random>
+#include <vector>
+
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/tree/bsp_tree.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
 #include "tests/culling_fixtures.h"
-
-#include <benchmark/benchmark.h>
-#include <glm/gtc/matrix_transform.hpp>
-
-#include <algorithm>
-#include <filesystem>
-#include <memory>
-#include <random>
-#include <vector>
 
 namespace occsim {
 namespace {
@@ -42,7 +42,8 @@ std::vector<Aabb> bigField(uint32_t count, uint32_t seed) {
 // Moves the first `movers` boxes one step (1 m/s at 30 frames a second, turning back every 64
 // frames so the field keeps its shape).
 void stepBoxes(std::vector<Aabb>& boxes, uint32_t movers, uint64_t frame) {
-    const glm::vec3 v = (frame / 64) % 2 == 0 ? glm::vec3(0.033f, 0, -0.021f) : glm::vec3(-0.033f, 0, 0.021f);
+    const glm::vec3 v =
+        (frame / 64) % 2 == 0 ? glm::vec3(0.033f, 0, -0.021f) : glm::vec3(-0.033f, 0, 0.021f);
     for (uint32_t o = 0; o < movers; ++o) {
         boxes[o].min += v;
         boxes[o].max += v;
@@ -125,7 +126,7 @@ BENCHMARK(BM_FrustumClassifyPerBox)->DenseRange(0, 2)->Unit(benchmark::kMicrosec
 // lets the benchmark time the culler alone (the scripted test device scans every object per
 // query).
 class InstantDevice final : public RenderDevice {
-public:
+  public:
     using RenderDevice::issueQuery;
     void drawObject(uint32_t) override {
         ++commands_;
@@ -143,7 +144,7 @@ public:
         return {slots_[id].samples > 0, slots_[id].samples, !isQueryReady(id)};
     }
 
-private:
+  private:
     static constexpr uint32_t kSlots = 1u << 16;
     struct Slot {
         uint64_t issued_at = 0;
@@ -174,7 +175,8 @@ void BM_CullerTraversal(benchmark::State& state) {
     frame.view.frustum = frustumFromViewProjection(
         glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 1000.0f) *
         glm::lookAt(frame.view.eye, glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)));
-    frame.view.near_radius = static_cast<float>(nearPlaneCornerDistance(0.2, glm::radians(60.0), 4.0 / 3.0));
+    frame.view.near_radius =
+        static_cast<float>(nearPlaneCornerDistance(0.2, glm::radians(60.0), 4.0 / 3.0));
     frame.ground_truth_visible = visible;
     uint32_t nodes_in_frustum = 0;
     for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
@@ -194,7 +196,8 @@ void BM_CullerTraversal(benchmark::State& state) {
         static_cast<double>(nodes_in_frustum) * static_cast<double>(state.iterations()),
         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_CullerTraversal)->DenseRange(0, static_cast<int64_t>(algorithms().size()) - 1)
+BENCHMARK(BM_CullerTraversal)
+    ->DenseRange(0, static_cast<int64_t>(algorithms().size()) - 1)
     ->Unit(benchmark::kMicrosecond);
 
 // The movers' own update: every kind of motion stepping one frame, per object.
@@ -208,8 +211,8 @@ void BM_MoverUpdate(benchmark::State& state) {
     SceneSourceSpec& source = s.sources.emplace_back();
     source.type = SourceType::Teapots;
     source.spec.emplace<TeapotFieldSpec>(teapots);
-    for (MotionType motion : {MotionType::Bounce, MotionType::Orbit, MotionType::RandomWalk,
-                              MotionType::Spin}) {
+    for (MotionType motion :
+         {MotionType::Bounce, MotionType::Orbit, MotionType::RandomWalk, MotionType::Spin}) {
         MoverSpec m;
         m.fraction = 0.25;
         m.motion = motion;
@@ -241,7 +244,8 @@ void BM_WorldAdvance(benchmark::State& state) {
     for (auto _ : state) {
         state.PauseTiming();
         std::vector<std::unique_ptr<SharedWorld>> all;
-        for (size_t w = 0; w < worlds; ++w) all.push_back(std::make_unique<SharedWorld>(scene, scenario));
+        for (size_t w = 0; w < worlds; ++w)
+            all.push_back(std::make_unique<SharedWorld>(scene, scenario));
         state.ResumeTiming();
         for (uint32_t f = 0; f < scenario.frames; ++f) {
             for (auto& world : all) world->advance();
@@ -254,7 +258,8 @@ void BM_WorldAdvance(benchmark::State& state) {
     }
     state.counters["frames"] = static_cast<double>(scenario.frames);
     state.counters["movers"] = static_cast<double>(scene.initial_movers.size());
-    state.counters["update_ms_per_frame"] = update_ms / static_cast<double>(std::max<uint64_t>(1, frames));
+    state.counters["update_ms_per_frame"] =
+        update_ms / static_cast<double>(std::max<uint64_t>(1, frames));
 }
 BENCHMARK(BM_WorldAdvance)->ArgName("worlds")->Arg(1)->Arg(7)->Unit(benchmark::kMillisecond);
 

@@ -1,5 +1,15 @@
 #include "fuzz_inputs.h"
 
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
 #include "occsim/culling/registry/registry.h"
 #include "sim/regress/regress.h"
 #include "sim/run/run_config.h"
@@ -9,17 +19,6 @@
 #include "sim/view/view_script.h"
 #include "tune/errors.h"
 #include "tune/sample_log.h"
-
-#include <nlohmann/json.hpp>
-
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <limits>
-#include <stdexcept>
-#include <string>
-
-#include <unistd.h>
 
 namespace occsim::fuzz {
 namespace {
@@ -45,7 +44,9 @@ fs::path inputFile(const std::string& name, const std::string& bytes) {
 }
 
 // A finding that is no crash: a reader broke a promise its header makes.
-[[noreturn]] void brokenPromise(const std::string& what) { throw std::logic_error("fuzz: " + what); }
+[[noreturn]] void brokenPromise(const std::string& what) {
+    throw std::logic_error("fuzz: " + what);
+}
 
 // The plugin culler whose options a --culling file may set (cullingFileInput): every option type,
 // an unbounded number, an alternative pair and a validate hook, registered once per process.
@@ -66,7 +67,7 @@ void registerFuzzPlugin() {
         };
         t.validate = [](const OptionValues& v) -> std::string {
             return v.number("radius") > 0.0 && v.number("angle") > 0.0 ? "radius and angle: one"
-                                                                          : "";
+                                                                       : "";
         };
         t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> { return nullptr; };
         cullerRegistry().add(std::move(t));
@@ -91,7 +92,8 @@ OptionSpec optionFrom(const nlohmann::json& row) {
         throw std::invalid_argument("type");
     }
     if (row.contains("tune")) {
-        spec = tunable(spec, row.at("tune").at(0).get<double>(), row.at("tune").at(1).get<double>());
+        spec =
+            tunable(spec, row.at("tune").at(0).get<double>(), row.at("tune").at(1).get<double>());
     }
     if (row.contains("off")) spec = switchable(spec, row.at("off").get<double>());
     if (row.contains("alternative_to")) {
@@ -150,7 +152,8 @@ bool baselineInput(const uint8_t* data, size_t size) {
 
 bool sampleLogInput(const uint8_t* data, size_t size) {
     try {
-        const tune::SampleLog log = tune::SampleLog::read(inputFile("samples.jsonl", textOf(data, size)));
+        const tune::SampleLog log =
+            tune::SampleLog::read(inputFile("samples.jsonl", textOf(data, size)));
         (void)log.samples();
         (void)log.referenceSamples();
         (void)log.referenceNoise();
@@ -178,7 +181,8 @@ bool cullingFileInput(const uint8_t* data, size_t size) {
         Scenario scenario;
         applyCullingFile(file, scenario);
         std::string why;
-        if (!scenario.culler.isValid(&why)) brokenPromise("a culling file read gives invalid options: " + why);
+        if (!scenario.culler.isValid(&why))
+            brokenPromise("a culling file read gives invalid options: " + why);
         return true;
     } catch (const ScenarioError&) {
         return false;
@@ -192,7 +196,8 @@ bool pluginDescriptorInput(const uint8_t* data, size_t size) {
     traits.factory = [](const CullerContext&) -> std::unique_ptr<Culler> { return nullptr; };
     try {
         const nlohmann::json rows = nlohmann::json::parse(textOf(data, size));
-        for (const nlohmann::json& row : rows.at("options")) traits.options.push_back(optionFrom(row));
+        for (const nlohmann::json& row : rows.at("options"))
+            traits.options.push_back(optionFrom(row));
     } catch (const std::exception&) {  // not JSON, or not the rows' shape: nothing to offer
         return false;
     }
@@ -221,14 +226,16 @@ bool pluginDescriptorInput(const uint8_t* data, size_t size) {
 
 const std::vector<FuzzTarget>& fuzzTargets() {
     static const std::vector<FuzzTarget> targets{
-        {"scenario", scenarioInput, "the scenario parser (JSON reader, every section, expectations)"},
+        {"scenario", scenarioInput,
+         "the scenario parser (JSON reader, every section, expectations)"},
         {"gltf", gltfInput, "the glTF loading path (tinygltf, accessors, hierarchy, animation)"},
         {"view_script", viewScriptInput, "the viewer's script parser (occsim view --script)"},
         {"baseline", baselineInput, "regression baselines (*.baseline.json), read and rewritten"},
         {"sample_log", sampleLogInput, "the tuner's sample log (samples.jsonl, occtune --resume)"},
         {"sweep", sweepInput, "occsim bench --sweep strings, parsed and planned"},
         {"culling_file", cullingFileInput, "--culling files, a plugin culler's options included"},
-        {"plugin_descriptor", pluginDescriptorInput, "a plugin's options descriptor, as registered"},
+        {"plugin_descriptor", pluginDescriptorInput,
+         "a plugin's options descriptor, as registered"},
     };
     return targets;
 }

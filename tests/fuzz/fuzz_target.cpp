@@ -1,9 +1,9 @@
 // libFuzzer target, built once per entry of fuzzTargets() with OCCSIM_FUZZ_TARGET set to its
 // name (tests/fuzz/CMakeLists.txt).
-#include "fuzz_inputs.h"
-
 #include <cstdio>
 #include <cstdlib>
+
+#include "fuzz_inputs.h"
 
 #ifndef OCCSIM_FUZZ_TARGET
 #error "OCCSIM_FUZZ_TARGET names the fuzz target (a name of fuzzTargets())"

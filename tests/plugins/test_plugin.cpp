@@ -5,15 +5,15 @@
 //   PLUGIN_TAKEN_NAME      registers "chc", a built-in's name
 //   PLUGIN_BAD_DESCRIPTOR  an option whose range is inverted
 //   PLUGIN_THROWING        a factory that throws
+#include <stdexcept>
+
 #include "occsim/culling/registry/plugin.h"
 #include "occsim/culling/tree/traversal.h"
-
-#include <stdexcept>
 
 namespace {
 
 class FrustumOnly final : public occsim::Culler {
-public:
+  public:
     std::string_view name() const override { return "test-frustum"; }
     void reset(const occsim::BspTree&) override {}
     void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
@@ -25,7 +25,7 @@ public:
         });
     }
 
-private:
+  private:
     std::vector<occsim::NodeVisit> stack_;
 };
 
@@ -41,10 +41,10 @@ private:
     occsim::AlgorithmTraits t;
     t.name = "test-frustum";
     t.summary = "frustum culling, from a plugin (tests)";
-    t.options = {occsim::integerOption("budget", "objects", 1, 1000, 10, "a budget nobody reads"),
-                 occsim::tunable(occsim::numberOption("margin", "m", 0.0, 5.0, 1.0,
-                                                      "a margin nobody reads"),
-                                 0.0, 2.0)};
+    t.options = {
+        occsim::integerOption("budget", "objects", 1, 1000, 10, "a budget nobody reads"),
+        occsim::tunable(occsim::numberOption("margin", "m", 0.0, 5.0, 1.0, "a margin nobody reads"),
+                        0.0, 2.0)};
     t.factory = make;
 #if defined(PLUGIN_TAKEN_NAME)
     t.name = "chc";
