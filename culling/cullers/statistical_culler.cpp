@@ -104,6 +104,12 @@ void StatisticalCuller::reset(const BspTree& tree) {
     in_flight_weight_ = 0.0;
     updates_.clear();  // ids still in flight on an earlier device are that device's to forget
     updates_head_ = 0;
+    // A frame issues at most one query per subject (a node, its virtual leaf, an object), and
+    // update answers are all taken by the start of the next frame: with this much room, a frame
+    // that re-queries more than any before it allocates nothing (the tree adapts, so with slack).
+    const size_t subjects = 2 * (2 * size_t{tree.nodeCount()} + tree.objectCount());
+    updates_.reserve(subjects);
+    pending_.reserve(subjects);
     last_center_.clear();
     have_last_frame_ = false;
     camera_path_m_ = 0.0;
