@@ -5,14 +5,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/output/fixed_text.h"
+
 namespace occsim::tune {
 namespace {
 
+// occsim::fixed, with "n/a" for a figure that could not be computed (NaN).
 std::string fixed(double v, int decimals) {
-    if (std::isnan(v)) return "n/a";
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
+    return std::isnan(v) ? "n/a" : occsim::fixed(v, decimals);
 }
 
 std::string general(double v) {

@@ -5,15 +5,10 @@
 #include <sstream>
 
 #include "sim/output/build_info.h"
+#include "sim/output/fixed_text.h"
 
 namespace occsim {
 namespace {
-
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
 
 // Every option of the culler as it ran, by key, in its descriptor's order and JSON type: what a
 // reader needs to rerun the configuration exactly.

@@ -7,16 +7,11 @@
 #include <sstream>
 
 #include "sim/output/atomic_file.h"
+#include "sim/output/fixed_text.h"
 #include "sim/regress/history_plot.h"
 
 namespace occsim {
 namespace {
-
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
 
 // The values of one figure over one series' runs, oldest first (runs without it left out).
 std::vector<double> seriesValues(const std::vector<HistoryEntry>& runs, const std::string& series,

@@ -11,6 +11,7 @@
 #include "render/png_writer.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/error_picture.h"
+#include "sim/output/fixed_text.h"
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
 #include "sim/run/runner.h"
@@ -91,12 +92,6 @@ std::string describeChange(const char* what, const std::vector<T>& before,
     }
     return std::string(what) + " changed on " + std::to_string(changed) + " frames (total " +
            std::to_string(sum_before) + " -> " + std::to_string(sum_after) + ")";
-}
-
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
 }
 
 // The checks as a section of the scenario's report.md.
