@@ -1,6 +1,8 @@
 #include "render/gl_renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
@@ -372,6 +374,24 @@ void GlRenderer::readDepthRanks(std::vector<uint32_t>& ranks) const {
     glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, ranks.data());
     checkGl("glReadPixels(depth)");
     for (uint32_t& r : ranks) r = 0xFFFFFFu - (r >> 8);
+}
+
+uint32_t GlRenderer::depthRankAt(double view_depth) const {
+    // Clip z and w of a point at view z = -view_depth (both projections put -z_view in w).
+    const bool reverse = depth_ == DepthConvention::ReverseFloat;
+    const glm::mat4& p = view_.projection;
+    const double z_clip = -double(p[2][2]) * view_depth + double(p[3][2]);
+    // At or behind the eye: nearer than the near plane, so the nearest rank.
+    const double ndc = view_depth > 0.0 ? z_clip / view_depth : (reverse ? 1.0 : -1.0);
+    if (reverse) {
+        const float stored = static_cast<float>(std::clamp(ndc, 0.0, 1.0));
+        uint32_t rank = 0;
+        std::memcpy(&rank, &stored, sizeof rank);
+        return rank;
+    }
+    constexpr double kMaxFixed = double(0xFFFFFFu);
+    const double window = std::clamp(0.5 * (ndc + 1.0), 0.0, 1.0);
+    return 0xFFFFFFu - static_cast<uint32_t>(std::floor(window * kMaxFixed));
 }
 
 }  // namespace occsim

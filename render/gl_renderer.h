@@ -80,6 +80,10 @@ class GlRenderer {
     // pattern (non-negative floats order as their bits); conventional 24-bit, 2^24 - 1 minus the
     // fixed-point value. The cleared background is rank 0. Exact: no conversion rounds.
     void readDepthRanks(std::vector<uint32_t>& ranks) const;
+    // The rank (as readDepthRanks gives it) a fragment at `view_depth` metres in front of the eye
+    // (along the view axis) stores under the current view's projection (setView); the nearest
+    // rank for a depth at or before the near plane.
+    uint32_t depthRankAt(double view_depth) const;
     DepthConvention depthConvention() const { return depth_; }
 
   private:

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sim/run/pixel_error.h"
+#include "sim/run/stray_fragments.h"
 
 namespace occsim {
 namespace {
@@ -46,7 +47,7 @@ TEST(PixelError, AFrameCountsErrorsAndTiesApartAndMarksEachPixel) {
     const std::vector<uint32_t> culled_depth = {900, 800, 100, 0, 0, 51};
     std::vector<uint8_t> marks;
     const PixelCounts counts =
-        comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, &marks);
+        comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, {}, &marks);
     EXPECT_EQ(counts.error, 2);
     EXPECT_EQ(counts.tie, 2);
     const std::vector<PixelDifference> expected = {PixelDifference::Same,  PixelDifference::Tie,
@@ -60,9 +61,40 @@ TEST(PixelError, AFrameCountsErrorsAndTiesApartAndMarksEachPixel) {
     EXPECT_EQ(unmarked.tie, counts.tie);
 }
 
+TEST(PixelError, AMissingStrayFragmentIsStrayAndEveryOtherPixelKeepsItsClass) {
+    //                                 stray  error  stray but same  tie
+    const std::vector<uint32_t> truth_ids = {1, 2, 3, 4};
+    const std::vector<uint32_t> truth_depth = {900, 700, 600, 50};
+    const std::vector<uint8_t> truth_stray = {1, 0, 1, 0};
+    const std::vector<uint32_t> culled_ids = {5, 0, 3, 8};
+    const std::vector<uint32_t> culled_depth = {100, 0, 600, 51};
+    std::vector<uint8_t> marks;
+    const PixelCounts counts =
+        comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, truth_stray, &marks);
+    EXPECT_EQ(counts.stray, 1);
+    EXPECT_EQ(counts.error, 1);
+    EXPECT_EQ(counts.tie, 1);
+    const std::vector<PixelDifference> expected = {PixelDifference::Stray, PixelDifference::Error,
+                                                   PixelDifference::Same, PixelDifference::Tie};
+    for (size_t i = 0; i < marks.size(); ++i)
+        EXPECT_EQ(static_cast<PixelDifference>(marks[i]), expected[i]) << i;
+}
+
+TEST(StrayFragments, OnlyAFragmentNearerThanItsObjectsBoundIsStray) {
+    //                                  bg  at bound  nearer  object 2 far
+    const std::vector<uint32_t> ids = {0, 1, 1, 2};
+    const std::vector<uint32_t> ranks = {99999, 500, 501, 10};
+    const std::vector<uint32_t> nearest_rank = {500, 400};
+    std::vector<uint8_t> stray;
+    EXPECT_EQ(markStrayFragments(ids, ranks, nearest_rank, stray), 1);
+    EXPECT_EQ(stray, (std::vector<uint8_t>{0, 0, 1, 0}));
+}
+
 TEST(PixelError, BuffersOfDifferentSizesAreRefused) {
     const std::vector<uint32_t> four(4, 0), three(3, 0);
     EXPECT_THROW(comparePixels(four, four, four, three), std::invalid_argument);
+    const std::vector<uint8_t> stray(3, 0);
+    EXPECT_THROW(comparePixels(four, four, four, four, stray), std::invalid_argument);
 }
 
 }  // namespace

@@ -28,6 +28,8 @@ std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width
                 p[0] = kErrorColour[0], p[1] = kErrorColour[1], p[2] = kErrorColour[2];
             } else if (difference == PixelDifference::Tie) {
                 p[0] = kTieColour[0], p[1] = kTieColour[1], p[2] = kTieColour[2];
+            } else if (difference == PixelDifference::Stray) {
+                p[0] = kStrayColour[0], p[1] = kStrayColour[1], p[2] = kStrayColour[2];
             } else {
                 for (int c = 0; c < 3; ++c) p[c] = frame.truth_rgba[i * 4 + c] / 3;
             }

@@ -9,12 +9,15 @@
 
 namespace occsim {
 
-// Error pixels in magenta; tie pixels (another object at the same depth: no error) in yellow.
+// Error pixels in magenta; tie pixels (another object at the same depth: no error) in yellow;
+// stray pixels (a fragment of ground truth's nearer than its object: no error) in cyan.
 inline constexpr uint8_t kErrorColour[3] = {255, 0, 255};
 inline constexpr uint8_t kTieColour[3] = {255, 210, 0};
+inline constexpr uint8_t kStrayColour[3] = {0, 220, 255};
 
 // RGBA8, (3 * width) x height, rows bottom-up (encode with encodePngBottomUp): culled | ground
-// truth | ground truth dimmed with every error pixel in magenta and every tie pixel in yellow.
+// truth | ground truth dimmed with every error pixel in magenta, every tie pixel in yellow, every
+// stray one in cyan.
 std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height);
 
 }  // namespace occsim

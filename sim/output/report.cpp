@@ -126,7 +126,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
            "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_"
-           "median\n";
+           "median,stray_pixels\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -142,7 +142,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
-                    << '\n';
+                    << ',' << f.stray_pixels << '\n';
             }
         }
     }
@@ -196,6 +196,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
                           {"tie_pixels_total", s.tie_pixels_total},
                           {"tie_pixels_per_frame_mean", s.tie_pixels_mean},
                           {"frames_with_ties", s.frames_with_ties},
+                          {"stray_pixels_total", s.stray_pixels_total},
                           {"missed_objects_total", s.missed_objects_total},
                           {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
                           {"popping_events", s.popping_events},

@@ -34,6 +34,7 @@ RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>
             s.error_measured = true;
             s.error_pixels_total += f.error_pixels;
             s.tie_pixels_total += f.tie_pixels;
+            s.stray_pixels_total += std::max<int64_t>(f.stray_pixels, 0);
             s.missed_objects_total += f.missed_objects;
             s.drawn_unseen_objects_total += f.drawn_unseen_objects;
             if (f.error_pixels > 0) ++s.frames_with_error;
@@ -187,6 +188,8 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.tie_pixels_mean = median([](const RunSummary& r) { return r.tie_pixels_mean; });
     out.tie_pixels_total =
         static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
+    out.stray_pixels_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.stray_pixels_total; }));
     out.drawn_unseen_objects_total = static_cast<int64_t>(
         median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;

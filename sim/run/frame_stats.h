@@ -29,6 +29,7 @@ struct FrameStats {
     // Error against ground truth (docs/error.md); -1 when error was not measured.
     int64_t error_pixels = -1;    // ground truth shows a nearer surface than the culled frame
     int64_t tie_pixels = -1;      // another object at the same depth (draw order): no error
+    int64_t stray_pixels = -1;    // ground truth's stray fragments the culled frame lacks: no error
     int64_t missed_objects = -1;  // seen by ground truth, not drawn by the culler
     // Seen by ground truth and drawn, yet without a pixel in the culled frame: every one of its
     // pixels went to a tie (what "missed" counted when it was judged by IDs alone).
@@ -63,6 +64,7 @@ struct RunSummary {
     int64_t tie_pixels_total = 0;
     uint32_t frames_with_ties = 0;
     double tie_pixels_mean = 0;  // per frame, over all frames
+    int64_t stray_pixels_total = 0;
     int64_t missed_objects_total = 0;
     int64_t drawn_unseen_objects_total = 0;
     double error_pixels_mean = 0;  // per frame, over all frames

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "sim/run/stray_fragments.h"
+
 namespace occsim {
 
 GroundTruth::GroundTruth(GlRenderer& renderer)
@@ -19,9 +21,12 @@ const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colo
     renderer_.readObjectIds(frame_.ids);
     renderer_.readDepthRanks(frame_.depth);
     if (with_colour) renderer_.readColor(frame_.rgba);
+    nearestLegitimateRanks(renderer_, world.view().render, world.state().boxes, nearest_rank_);
+    frame_.stray_fragments =
+        markStrayFragments(frame_.ids, frame_.depth, nearest_rank_, frame_.stray);
     frame_.visible.assign(objects, 0);
-    for (uint32_t id : frame_.ids) {
-        if (id != 0) frame_.visible[id - 1] = 1;
+    for (size_t i = 0; i < frame_.ids.size(); ++i) {
+        if (frame_.ids[i] != 0 && !frame_.stray[i]) frame_.visible[frame_.ids[i] - 1] = 1;
     }
     serial_ = world.frameSerial();
     has_colour_ = with_colour;

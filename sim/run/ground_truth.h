@@ -16,7 +16,9 @@ namespace occsim {
 struct GroundTruthFrame {
     std::vector<uint32_t> ids;     // width * height, object index + 1, 0 = background
     std::vector<uint32_t> depth;   // width * height, GlRenderer::readDepthRanks (nearer is larger)
-    std::vector<uint8_t> visible;  // per object
+    std::vector<uint8_t> stray;    // width * height, 1: a stray fragment (stray_fragments.h)
+    int64_t stray_fragments = 0;   // pixels marked in `stray`
+    std::vector<uint8_t> visible;  // per object: at least one pixel that is not stray
     std::vector<uint8_t> rgba;     // colour, only when asked for
 };
 
@@ -36,7 +38,8 @@ class GroundTruth {
     GlRenderer& renderer_;
     GlQueryDevice device_;
     GroundTruthFrame frame_;
-    uint64_t serial_ = 0;  // SharedWorld::frameSerial() of frame_; 0: none yet
+    std::vector<uint32_t> nearest_rank_;  // per object, this frame (nearestLegitimateRanks)
+    uint64_t serial_ = 0;                 // SharedWorld::frameSerial() of frame_; 0: none yet
     bool has_colour_ = false;
     uint32_t renders_ = 0;
     double ms_total_ = 0.0;

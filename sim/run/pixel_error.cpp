@@ -18,9 +18,11 @@ PixelDifference classifyPixel(uint32_t truth_id, uint32_t truth_rank, uint32_t c
 PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
                           std::span<const uint32_t> truth_ranks,
                           std::span<const uint32_t> culled_ids,
-                          std::span<const uint32_t> culled_ranks, std::vector<uint8_t>* marks) {
+                          std::span<const uint32_t> culled_ranks,
+                          std::span<const uint8_t> truth_stray, std::vector<uint8_t>* marks) {
     const size_t n = truth_ids.size();
-    if (truth_ranks.size() != n || culled_ids.size() != n || culled_ranks.size() != n) {
+    if (truth_ranks.size() != n || culled_ids.size() != n || culled_ranks.size() != n ||
+        (!truth_stray.empty() && truth_stray.size() != n)) {
         throw std::invalid_argument("comparePixels: the ID and depth buffers differ in size");
     }
     if (marks) marks->assign(n, static_cast<uint8_t>(PixelDifference::Same));
@@ -28,9 +30,12 @@ PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
     for (size_t i = 0; i < n; ++i) {
         if (truth_ids[i] == culled_ids[i]) continue;  // the common case, decided without depth
         const PixelDifference d =
-            classifyPixel(truth_ids[i], truth_ranks[i], culled_ids[i], culled_ranks[i]);
+            !truth_stray.empty() && truth_stray[i]
+                ? PixelDifference::Stray
+                : classifyPixel(truth_ids[i], truth_ranks[i], culled_ids[i], culled_ranks[i]);
         counts.error += d == PixelDifference::Error;
         counts.tie += d == PixelDifference::Tie;
+        counts.stray += d == PixelDifference::Stray;
         if (marks) (*marks)[i] = static_cast<uint8_t>(d);
     }
     return counts;

@@ -140,7 +140,8 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     renderer_.readObjectIds(culled_ids_);
     renderer_.readDepthRanks(culled_depth_);
     ++error_read_backs_;
-    const PixelCounts pixels = comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_);
+    const PixelCounts pixels =
+        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, truth.stray);
     culled_visible_.assign(objects, 0);
     for (uint32_t id : culled_ids_) {
         if (id != 0) culled_visible_[id - 1] = 1;
@@ -158,6 +159,7 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     popping_.addFrame(missing_);
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;
+    stats.stray_pixels = pixels.stray;
     stats.missed_objects = missed;
     stats.drawn_unseen_objects = unseen;
     stats.visible_objects = visible;
@@ -168,7 +170,8 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         worst_.culled_ids = culled_ids_;
         worst_.truth_ids = truth.ids;
         worst_.truth_rgba = truth.rgba;
-        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, &worst_.differences);
+        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, truth.stray,
+                      &worst_.differences);
         renderer_.readColor(worst_.culled_rgba);
     }
 }
