@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Reproduces the ablation table of docs/statistical.md: statistical+ with each of its improvements
-# switched off in turn, beside VFC, CHC++ and Ideal, on the default teapots and the paper library.
-# One interleaved run per scene, so ratios within a table are fair. Extra arguments are passed to
-# occsim bench (e.g. --frames 100, --deterministic-latency 8, --repetitions 3).
+# switched off in turn, beside VFC, CHC, CHC++ and Ideal, on the default teapots, the paper library
+# and the paper plant. Each scene interleaved in one run, so ratios within a run are fair, and run
+# twice, so that the spread stands beside the means (scripts/results_table.py makes the table).
+# Run it on a quiet machine. Extra arguments are passed to occsim bench (e.g. --frames 60,
+# --deterministic-latency 8).
 # Usage: scripts/ablation.sh [occsim bench options...]
 #
 # Rows "statistical+ KEY=off": statistical+ itself, then one row per mechanism its options
@@ -12,9 +14,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
-for scenario in scenarios/teapots.json scenarios/paper/library.json; do
+for scenario in scenarios/teapots.json scenarios/paper/library.json scenarios/paper/plant.json; do
   name=$(basename "$scenario" .json)
-  echo "== $scenario"
-  ./build/release/sim/occsim bench "$scenario" --algos vfc,statistical+,chc++,ideal \
-    --ablate statistical+ --out "out/ablation/$name" "$@"
+  for run in 1 2; do
+    echo "== $scenario, run $run ($(uptime))"
+    ./build/release/sim/occsim bench "$scenario" --algos vfc,statistical+,chc,chc++,ideal \
+      --ablate statistical+ --out "out/ablation/$name/run-$run" "$@"
+  done
 done
+command -v python3 >/dev/null || { echo "ablation.sh: the table needs python3 (apt-get install python3)" >&2; exit 1; }
+python3 scripts/results_table.py out/ablation
