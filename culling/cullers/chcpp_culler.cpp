@@ -136,35 +136,36 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
             if (visible) {
                 // Coherence broke somewhere in the group: query each node on its own.
                 ++stats_.failed_multiqueries;
-                for (uint32_t i = 0; i < query.count; ++i) {
-                    QueuedNode n = multi_nodes_[query.first + i];
+                for (uint32_t i = 0; i < query.group_size; ++i) {
+                    QueuedNode n = multi_nodes_[query.group_begin + i];
                     n.single = true;
                     i_queue_.push_back(n);
                 }
                 if (i_queue_.size() >= options_.batch_size) issueBatch(tree, device);
             } else {
-                for (uint32_t i = 0; i < query.count; ++i) {
-                    nodes_.markInvisible(multi_nodes_[query.first + i].node, kMaxInvisibleFrames);
+                for (uint32_t i = 0; i < query.group_size; ++i) {
+                    nodes_.markInvisible(multi_nodes_[query.group_begin + i].node,
+                                         kMaxInvisibleFrames);
                 }
             }
             break;
         case QueryPurpose::Invisible:
             if (visible) {
-                CoherentClassification::NodeState& s = nodes_[query.first];
+                CoherentClassification::NodeState& s = nodes_[query.node];
                 s.invisible_frames = 0;
-                s.next_query = firstRetestFrame(query.first);
-                nodes_.pullUp(tree, query.first);
-                traverseNode(tree, frame, {query.first, query.inside_frustum});
+                s.next_query = firstRetestFrame(query.node);
+                nodes_.pullUp(tree, query.node);
+                traverseNode(tree, frame, {query.node, query.inside_frustum});
             } else {
-                nodes_.markInvisible(query.first, kMaxInvisibleFrames);
+                nodes_.markInvisible(query.node, kMaxInvisibleFrames);
             }
             break;
         case QueryPurpose::Visible:
         case QueryPurpose::Own:
             if (visible) {
                 // Visible at its previous test too: the regular interval.
-                nodes_[query.first].next_query = frame_ + 1 + options_.visible_frames_skip;
-                nodes_.pullUp(tree, query.first);
+                nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
+                nodes_.pullUp(tree, query.node);
             }
             break;
     }
@@ -236,7 +237,7 @@ void ChcppCuller::issueBatch(const BspTree& tree, RenderDevice& device) {
                 tags_.push_back(QueryTag::node(i_queue_[order_[k]].node));
             }
             enterState(DeviceState::Query);
-            query_queue_.push_back({device.issueQuery(boxes_, tags_), start,
+            query_queue_.push_back({device.issueQuery(boxes_, tags_), BspTree::kNone, start,
                                     static_cast<uint32_t>(end - i), false, QueryPurpose::Multi});
             ++stats_.multiqueries;
             stats_.multiquery_nodes += static_cast<uint32_t>(end - i);
@@ -259,7 +260,7 @@ void ChcppCuller::issueVisibleQuery(const BspTree& tree, RenderDevice& device) {
     const QueryTag subject =
         n.purpose == QueryPurpose::Own ? QueryTag::nodeObjects(n.node) : QueryTag::node(n.node);
     const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
-    query_queue_.push_back({id, n.node, 1, n.inside_frustum, n.purpose});
+    query_queue_.push_back({id, n.node, 0, 0, n.inside_frustum, n.purpose});
 }
 
 void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const QueuedNode& n) {
@@ -268,7 +269,7 @@ void ChcppCuller::issueSingle(const BspTree& tree, RenderDevice& device, const Q
     enterState(DeviceState::Query);
     const QueryTag subject = QueryTag::node(n.node);
     const QueryId id = device.issueQuery(boxes_, std::span<const QueryTag>(&subject, 1));
-    query_queue_.push_back({id, n.node, 1, n.inside_frustum, QueryPurpose::Invisible});
+    query_queue_.push_back({id, n.node, 0, 0, n.inside_frustum, QueryPurpose::Invisible});
 }
 
 void ChcppCuller::flushRenderQueue(const BspTree& tree, RenderDevice& device) {

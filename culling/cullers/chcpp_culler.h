@@ -81,10 +81,12 @@ class ChcppCuller final : public Culler {
 
   private:
     void clearQueues();  // empties every per-frame queue (they keep their capacity)
+    // A query in flight: on one node, or (Multi) on a group of nodes kept in multi_nodes_.
     struct PendingQuery {
         QueryId id;
-        uint32_t first;  // the node, or the first entry of multi_nodes_ for a multiquery
-        uint32_t count;  // multi_nodes_[first, first + count) for Multi; 1 otherwise
+        uint32_t node;         // the queried node; BspTree::kNone for a multiquery
+        uint32_t group_begin;  // Multi: the group is multi_nodes_[group_begin, + group_size)
+        uint32_t group_size;   // Multi: nodes in the group; 0 otherwise
         bool inside_frustum;
         QueryPurpose purpose;
     };
