@@ -620,42 +620,11 @@ namespace {
 // reaches from re-querying every few frames to past the statistics' "too old" age (2 s by
 // default), where a longer wait changes nothing. The decay curve a - b^occ_num stays >= 0 (a >= 1,
 // b in [0, 1]); a up to 4 lets a long unoccluded history wait four BASE_TIMEs.
-OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) {
+// The improvements' keys, in the order `occsim cullers` lists them; `parallax` is built by the
+// caller (its tunable range depends on the variant).
+OptionsDescriptor improvementOptions(const StatisticalOptions& d, const OptionSpec& parallax) {
     const double inf = std::numeric_limits<double>::infinity();
-    OptionSpec base_time = numberOption("base_time", "s", 0.0, inf, d.base_time_s,
-                                        "BASE_TIME: a node found visible is re-queried after "
-                                        "BASE_TIME * (a - b^occ_num) seconds");
-    OptionSpec parallax = alternativeTo(
-        switchable(numberOption("requery_parallax", "", 0.0, inf, d.requery_parallax,
-                                "re-query once the travel divided by the node's distance from the "
-                                "eye exceeds this * (a - b^occ_num); 0 = BASE_TIME seconds"),
-                   0.0),
-        "requery_distance");
-    OptionSpec in_flight = integerOption(
-        "queries_before_restart", "queries", 1, 4294967295.0, d.queries_before_restart,
-        "the traversal returns to the queue start after this many queries (with ready_answers: "
-        "the most queries in flight)");
-    if (plus) {
-        parallax = tunable(parallax, 0.005, 0.2);  // BASE_TIME is unused while this is > 0
-        // The best bound on queries in flight depends on the scene (docs/statistical.md, (1)).
-        in_flight = tunable(in_flight, 2, 32);
-    } else {
-        base_time = tunable(base_time, 0.05, 2.0);
-    }
     return {
-        base_time,
-        tunable(numberOption("decay_a", "", 1.0, inf, d.decay_a,
-                             "a in BASE_TIME * (a - b^occ_num): the longest wait, in BASE_TIMEs"),
-                1.0, 4.0),
-        tunable(numberOption("decay_b", "", 0.0, 1.0, d.decay_b,
-                             "b in BASE_TIME * (a - b^occ_num): how fast a visible history "
-                             "lengthens the wait"),
-                0.0, 1.0),
-        integerOption("history_length", "results", 1, 32, d.history_length,
-                      "query results remembered per node"),
-        numberOption("max_statistics_age", "s", 1e-6, inf, d.max_statistics_age_s,
-                     "statistics older than this are ignored: the node is queried"),
-        in_flight,
         switchable(booleanOption("ready_answers", d.ready_answers,
                                  "take each answer as soon as it is ready and keep traversing"),
                    0.0),
@@ -702,6 +671,48 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
                                  "coming back visible against queries_before_restart"),
                    0.0),
     };
+}
+
+OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) {
+    const double inf = std::numeric_limits<double>::infinity();
+    OptionSpec base_time = numberOption("base_time", "s", 0.0, inf, d.base_time_s,
+                                        "BASE_TIME: a node found visible is re-queried after "
+                                        "BASE_TIME * (a - b^occ_num) seconds");
+    OptionSpec parallax = alternativeTo(
+        switchable(numberOption("requery_parallax", "", 0.0, inf, d.requery_parallax,
+                                "re-query once the travel divided by the node's distance from the "
+                                "eye exceeds this * (a - b^occ_num); 0 = BASE_TIME seconds"),
+                   0.0),
+        "requery_distance");
+    OptionSpec in_flight = integerOption(
+        "queries_before_restart", "queries", 1, 4294967295.0, d.queries_before_restart,
+        "the traversal returns to the queue start after this many queries (with ready_answers: "
+        "the most queries in flight)");
+    if (plus) {
+        parallax = tunable(parallax, 0.005, 0.2);  // BASE_TIME is unused while this is > 0
+        // The best bound on queries in flight depends on the scene (docs/statistical.md, (1)).
+        in_flight = tunable(in_flight, 2, 32);
+    } else {
+        base_time = tunable(base_time, 0.05, 2.0);
+    }
+    OptionsDescriptor options = {
+        base_time,
+        tunable(numberOption("decay_a", "", 1.0, inf, d.decay_a,
+                             "a in BASE_TIME * (a - b^occ_num): the longest wait, in BASE_TIMEs"),
+                1.0, 4.0),
+        tunable(numberOption("decay_b", "", 0.0, 1.0, d.decay_b,
+                             "b in BASE_TIME * (a - b^occ_num): how fast a visible history "
+                             "lengthens the wait"),
+                0.0, 1.0),
+        integerOption("history_length", "results", 1, 32, d.history_length,
+                      "query results remembered per node"),
+        numberOption("max_statistics_age", "s", 1e-6, inf, d.max_statistics_age_s,
+                     "statistics older than this are ignored: the node is queried"),
+        in_flight,
+    };
+    const OptionsDescriptor improvements = improvementOptions(d, parallax);
+    options.insert(options.end(), improvements.begin(), improvements.end());
+    return options;
 }
 
 std::string validateStatistical(const OptionValues& values) {
