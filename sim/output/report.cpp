@@ -68,7 +68,7 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
             s.answer_latency_median >= 0
                 ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
                 : "-";
-        std::vector<std::string> row = {s.algorithm,
+        std::vector<std::string> row = {s.label,
                                         mean,
                                         fixed(s.frame_ms.median, 2),
                                         fixed(s.frame_ms.p95, 2),
@@ -131,13 +131,12 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
             for (const FrameStats& f : frames) {
-                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ','
-                    << fixed(f.time_s, 6) << ',' << fixed(f.frame_ms, 4) << ','
-                    << fixed(f.cull_cpu_ms, 4) << ',' << fixed(f.wait_ms, 4) << ','
-                    << fixed(f.update_ms, 4) << ',' << f.queries << ',' << f.objects_drawn << ','
-                    << f.triangles << ',' << f.moved_objects << ',' << f.node_changes << ','
-                    << f.error_pixels << ',' << f.tie_pixels << ',' << f.missed_objects << ','
-                    << f.drawn_unseen_objects << ',' << f.visible_objects
+                out << r.summary.label << ',' << rep << ',' << f.frame << ',' << fixed(f.time_s, 6)
+                    << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
+                    << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries
+                    << ',' << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
+                    << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
+                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
                     << ','
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
@@ -155,8 +154,8 @@ nlohmann::json summaryJson(const BenchResult& result) {
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
         nlohmann::json j = {
-            {"configuration", s.algorithm},
-            {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.algorithm},
+            {"configuration", s.label},
+            {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.label},
             {"repetitions", s.repetitions},
             {"frame_ms_mean_over_repetitions",
              {{"median", s.frame_ms.mean},

@@ -159,13 +159,13 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
 
     auto runOf = [&](const std::string& name) -> const RunRecord& {
         for (const RunRecord& r : result.runs) {
-            if (r.summary.algorithm == name) return r;
+            if (r.summary.label == name) return r;
         }
         throw std::logic_error("no run for " + name);
     };
     auto capture = [&](const std::string& algorithm) {
         for (size_t a = 0; a < result.runs.size(); ++a) {
-            if (result.runs[a].summary.algorithm != algorithm) continue;
+            if (result.runs[a].summary.label != algorithm) continue;
             const ErrorFrame& worst = result.worst_error_frames[a];
             if (worst.error_pixels == 0) return;
             const auto path = out_dir / ("worst-error-" + safeFileName(algorithm) + "-frame-" +
@@ -238,7 +238,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     now.backend = result.metadata.backend;
     now.renderer = result.metadata.gl_renderer;
     for (const RunRecord& r : result.runs) {
-        AlgorithmTrace& t = now.algorithms[r.summary.algorithm];
+        AlgorithmTrace& t = now.algorithms[r.summary.label];
         for (const FrameStats& f : r.frames) {
             t.queries.push_back(f.queries);
             t.objects.push_back(f.objects_drawn);
