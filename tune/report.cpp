@@ -210,7 +210,7 @@ std::string reportMarkdown(const TuneResult& r) {
     out << "\n**Verdict: " << r.verdict.name() << "**: " << r.verdict.reason << " (written as `"
         << r.verdict.fileName() << "`).\n";
 
-    const CostModel& m = r.cost.model;
+    const FrameTimeModel& m = r.cost.model;
     out << "\n## Fit quality\n\n### Cost model (per frame)\n\n"
         << "frame_ms = constant + query_ms * queries + kilotriangle_ms * triangles/1000 + draw_ms "
            "* objects drawn + "
@@ -224,7 +224,7 @@ std::string reportMarkdown(const TuneResult& r) {
         << general(r.cost.standard_error[1]) << " |\n"
         << "| per 1000 triangles (ms) | " << general(m.kilotriangle_ms) << " | "
         << general(r.cost.standard_error[2]) << " |\n"
-        << "| per draw call (ms) | " << general(m.draw_ms) << " | "
+        << "| per draw call (ms) | " << general(m.draw_call_ms) << " | "
         << general(r.cost.standard_error[3]) << " |\n"
         << "| per waited ms | " << general(m.wait_factor) << " | "
         << general(r.cost.standard_error[4]) << " |\n\n"

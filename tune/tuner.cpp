@@ -29,8 +29,8 @@ std::vector<std::vector<FrameCounts>> frameGroups(const SampleLog& log) {
     return groups;
 }
 
-std::string costModelJson(const CostModelFit& f) {
-    const CostModel& m = f.model;
+std::string costModelJson(const FrameTimeModelFit& f) {
+    const FrameTimeModel& m = f.model;
     const nlohmann::json j = {
         {"model",
          "frame_ms = constant_ms + query_ms*queries + kilotriangle_ms*triangles/1000 + "
@@ -40,7 +40,7 @@ std::string costModelJson(const CostModelFit& f) {
         {"query_ms", m.query_ms},
         {"triangle_ms", m.triangleMs()},
         {"kilotriangle_ms", m.kilotriangle_ms},
-        {"draw_ms", m.draw_ms},
+        {"draw_ms", m.draw_call_ms},
         {"wait_factor", m.wait_factor},
         {"frames", f.frames},
         {"runs", f.groups},
@@ -106,7 +106,7 @@ int runTuner(const TuneOptions& o) {
     r.reference_noise = log.referenceNoise();
 
     // The models.
-    r.cost = fitCostModel(frameGroups(log), o.max_fit_iterations);
+    r.cost = fitFrameTimeModel(frameGroups(log), o.max_fit_iterations);
     const Observations obs = observationsOf(log, c.space, o.objective);
     std::vector<size_t> all(c.space.size());
     for (size_t j = 0; j < all.size(); ++j) all[j] = j;
@@ -216,7 +216,7 @@ int runTuner(const TuneOptions& o) {
     std::printf(
         "cost model: %.4g ms/query, %.4g ms/1000 triangles, %.4g ms/draw, %.4g ms constant "
         "(residual RMS %.2f ms)\n",
-        r.cost.model.query_ms, r.cost.model.kilotriangle_ms, r.cost.model.draw_ms,
+        r.cost.model.query_ms, r.cost.model.kilotriangle_ms, r.cost.model.draw_call_ms,
         r.cost.model.constant_ms, r.cost.residual_rms_ms);
     std::printf(
         "response model: predicted ratio %.3f +/- %.3f at the tuned values; leave-one-out error "
