@@ -72,12 +72,13 @@ int runTuner(const TuneOptions& o) {
     fs::remove(c.out_dir / "tuned.json", ec);
 
     installInterruptHandler();
+    SessionRuns session{o.backend, {}};
     Progress progress(o.progress);
     progress.setWorkLeft(workLeft(o.budget - std::min<size_t>(o.budget, log.samples().size()), o,
                                   c.scenario.frames));
     progress.setBest(bestSoFar(log, c.space, o.objective));
     try {
-        sample(log, c, o, progress);
+        sample(log, c, o, progress, session);
     } catch (const Interrupted&) {
         progress.finish();
         printInterrupted(log, o, false);
@@ -162,7 +163,7 @@ int runTuner(const TuneOptions& o) {
             const Scenario* scenario = run.first;
             const std::string& variant = run.second;
             r.confirmation.push_back(confirm(*scenario, algorithm, variant, tuned, paper,
-                                             o.repetitions, o.backend, [&](const FrameEvent& e) {
+                                             o.repetitions, session, [&](const FrameEvent& e) {
                                                  progress.setStage(
                                                      "confirming, " + variant + ": repetition " +
                                                      std::to_string(e.repetition + 1) + "/" +

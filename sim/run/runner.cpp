@@ -36,8 +36,11 @@ std::array<double, 3> loadAverage() {
     return load;
 }
 
-void printWarnings(const Scene& scene) {
-    for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+void printWarnings(const Scene& scene, std::set<std::string>* shown) {
+    for (const std::string& w : scene.warnings) {
+        if (shown && !shown->insert(w).second) continue;
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
 }
 
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
@@ -91,7 +94,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const uint32_t repetitions = std::max(1u, options.repetitions);
 
     const Scene scene = buildScene(scenario);
-    printWarnings(scene);
+    printWarnings(scene, options.warnings_shown);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
