@@ -6,10 +6,10 @@
 
 #include "tune/confirm.h"
 #include "tune/frame_time_model.h"
+#include "tune/options.h"
 #include "tune/parameters.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
-#include "tune/tuner.h"
 
 namespace occsim::tune {
 

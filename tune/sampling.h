@@ -9,9 +9,9 @@
 #include "tune/design.h"
 #include "tune/input.h"
 #include "tune/measure.h"
+#include "tune/options.h"
 #include "tune/progress.h"
 #include "tune/sample_log.h"
-#include "tune/tuner.h"
 
 namespace occsim::tune {
 
