@@ -39,11 +39,11 @@ PlotResult writeSessionFiles(TuneSession& session) {
     const std::filesystem::path& out_dir = session.out_dir;
     writeFileAtomically(out_dir / "cost_model.json", costModelJson(r.cost));
     r.files.push_back("cost_model.json");
-    const PlotResult charts = writeTuneCharts(
-        {r.space, r.samples, r.objective, r.references, r.reference_objective,
-         objectiveName(r.options->objective), r.response, r.tuned_unit, r.kept_at_paper,
-         r.cost.model, r.log->runs()},
-        out_dir);
+    const PlotResult charts =
+        writeTuneCharts({r.space, r.samples, r.objective, r.references, r.reference_objective,
+                         objectiveName(r.options->objective), r.response, r.tuned_unit,
+                         r.kept_at_paper, r.cost.model, r.log->runs()},
+                        out_dir);
     r.charts_message = charts.message;
     r.files.insert(r.files.end(), charts.files.begin(), charts.files.end());
     writeFileAtomically(out_dir / "report.md", reportMarkdown(r));
