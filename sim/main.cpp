@@ -693,6 +693,12 @@ int dispatch(Commands& c, const std::string& command) {
     return kExitFailure;
 }
 
+// Bad input: its one line, and exit code 2.
+int badInput(const std::exception& e) {
+    std::fprintf(stderr, "occsim: %s\n", e.what());
+    return kExitBadInput;
+}
+
 // dispatch(), with every error a command can end in turned into its one line and exit code:
 // bad input 2, a failure while running 1.
 int dispatchReportingErrors(Commands& c, const std::string& command) {
@@ -705,26 +711,19 @@ int dispatchReportingErrors(Commands& c, const std::string& command) {
                      e.what());
         return kExitBadInput;
     } catch (const occsim::BackendUnavailable& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const occsim::ScriptError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const occsim::ScenarioError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const occsim::GltfError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const occsim::ResultFileError& e) {  // a shard result, a history entry
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const BadInput& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
+        return badInput(e);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitFailure;
