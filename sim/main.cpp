@@ -455,72 +455,97 @@ int viewCommand(const ViewFlags& flags) {
     return occsim::runViewer(scenario, text, options);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{
-        "occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
-    app.require_subcommand(1);
-    app.set_help_all_flag("--help-all", "Help for every command");
-
+// Every command's flags, filled by CLI11, and the command each belongs to (set when it is added).
+struct Commands {
+    CLI::App* run = nullptr;
     CommonFlags run_flags;
     std::string run_algorithm;
-    CLI::App* run = app.add_subcommand(
-        "run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
-    addCommonFlags(run, run_flags);
-    run->add_option("--algo", run_algorithm,
-                    "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
 
+    CLI::App* bench = nullptr;
     CommonFlags bench_flags;
     std::vector<std::string> bench_algorithms;  // split here, not by CLI11: it drops empty names
-    CLI::App* bench = app.add_subcommand(
-        "bench", "Run several algorithms over the same frames, interleaved, in one table");
-    addCommonFlags(bench, bench_flags);
-    bench->add_option("--algos", bench_algorithms,
-                      "Algorithms to compare (default: every registered one, plugins' included)");
-    bench->add_option(
-        "--sweep", bench_flags.sweep,
-        "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
-        "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
-        "or a key of a culler's options; occsim cullers lists them)");
-    bench->add_option(
-        "--ablate", bench_flags.ablate,
-        "Run this algorithm also once with each mechanism its options switch on turned "
-        "off (the ablation; occsim cullers marks them)");
 
+    CLI::App* regress = nullptr;
     std::vector<std::string> regress_inputs;
     bool regress_update = false, regress_allow_empty = false;
     std::string regress_junit, regress_shard, regress_out = "out/regress", regress_culling;
-    CLI::App* regress = app.add_subcommand(
+    std::vector<std::string> regress_plugins;
+    BackendFlags regress_backend;
+    std::string regress_history, regress_commit;
+
+    CLI::App* merge = nullptr;
+    occsim_cli::MergeFlags merge_flags;
+
+    CLI::App* history = nullptr;
+    occsim_cli::HistoryFlags history_flags;
+
+    CLI::App* cullers = nullptr;
+    bool cullers_markdown = false;
+    std::vector<std::string> cullers_plugins;
+
+    CLI::App* devices = nullptr;
+
+    CLI::App* info = nullptr;
+    std::string info_scenario;
+
+    CLI::App* view = nullptr;
+    ViewFlags view_flags;
+};
+
+void addRunAndBench(CLI::App& app, Commands& c) {
+    c.run = app.add_subcommand(
+        "run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
+    addCommonFlags(c.run, c.run_flags);
+    c.run->add_option(
+        "--algo", c.run_algorithm,
+        "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
+
+    c.bench = app.add_subcommand(
+        "bench", "Run several algorithms over the same frames, interleaved, in one table");
+    addCommonFlags(c.bench, c.bench_flags);
+    c.bench->add_option("--algos", c.bench_algorithms,
+                        "Algorithms to compare (default: every registered one, plugins' included)");
+    c.bench->add_option(
+        "--sweep", c.bench_flags.sweep,
+        "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
+        "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
+        "or a key of a culler's options; occsim cullers lists them)");
+    c.bench->add_option(
+        "--ablate", c.bench_flags.ablate,
+        "Run this algorithm also once with each mechanism its options switch on turned "
+        "off (the ablation; occsim cullers marks them)");
+}
+
+void addRegress(CLI::App& app, Commands& c) {
+    CLI::App* regress = c.regress = app.add_subcommand(
         "regress",
         "Run every scenario with an expect block (files or folders, recursively) and check it");
-    regress->add_option("paths", regress_inputs, "Scenario files or folders")->required();
-    regress->add_flag("--update", regress_update,
+    regress->add_option("paths", c.regress_inputs, "Scenario files or folders")->required();
+    regress->add_flag("--update", c.regress_update,
                       "Rewrite the baselines from this run (prints what changed)");
     regress->add_flag(
-        "--allow-empty", regress_allow_empty,
+        "--allow-empty", c.regress_allow_empty,
         "Exit 0 even when no scenario found has an expect block (default: that fails)");
-    regress->add_option("--junit", regress_junit, "Write JUnit XML results to this file");
-    regress->add_option("--shard", regress_shard,
+    regress->add_option("--junit", c.regress_junit, "Write JUnit XML results to this file");
+    regress->add_option("--shard", c.regress_shard,
                         "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
-    regress->add_option("--out", regress_out, "Output folder for data and failure pictures");
+    regress->add_option("--out", c.regress_out, "Output folder for data and failure pictures");
     regress->add_option(
-        "--culling", regress_culling,
+        "--culling", c.regress_culling,
         "Culling options from this file, overriding every scenario's (see run --help)");
-    std::vector<std::string> regress_plugins;
-    addPluginFlag(regress, regress_plugins);
-    BackendFlags regress_backend;
-    addBackendFlags(regress, regress_backend);
-    std::string regress_history, regress_commit;
+    addPluginFlag(regress, c.regress_plugins);
+    addBackendFlags(regress, c.regress_backend);
     regress->add_option(
-        "--history", regress_history,
+        "--history", c.regress_history,
         "Append this run's figures to a history folder (occsim history DIR reports it)");
-    regress->add_option("--commit", regress_commit,
+    regress->add_option("--commit", c.regress_commit,
                         "Commit recorded in the history (default: $OCCSIM_COMMIT, $GITHUB_SHA, "
                         "$CI_COMMIT_SHA or git rev-parse HEAD)");
+}
 
-    occsim_cli::MergeFlags merge_flags;
-    CLI::App* merge = app.add_subcommand(
+void addMergeAndHistory(CLI::App& app, Commands& c) {
+    occsim_cli::MergeFlags& merge_flags = c.merge_flags;
+    CLI::App* merge = c.merge = app.add_subcommand(
         "merge",
         "Join the --out folders of the shards of one regress run into one report, checking that "
         "every scenario ran exactly once");
@@ -533,10 +558,11 @@ int main(int argc, char** argv) {
     merge->add_option("--commit", merge_flags.commit,
                       "Commit recorded in the history (as for regress)");
 
-    occsim_cli::HistoryFlags history_flags;
-    CLI::App* history = app.add_subcommand("history",
-                                           "Report a history folder: plots over the runs, changes "
-                                           "beyond the run-to-run spread flagged");
+    occsim_cli::HistoryFlags& history_flags = c.history_flags;
+    CLI::App* history = c.history =
+        app.add_subcommand("history",
+                           "Report a history folder: plots over the runs, changes "
+                           "beyond the run-to-run spread flagged");
     history->add_option("dir", history_flags.dir, "History folder (regress --history)")->required();
     history->add_option("--out", history_flags.out,
                         "Folder for report.md and the plots (default out/history)");
@@ -550,27 +576,31 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 10.0));
     history->add_flag("--fail-on-change", history_flags.fail_on_change,
                       "Exit with status 1 when a figure got worse beyond the spread");
+}
 
-    bool cullers_markdown = false;
-    std::vector<std::string> cullers_plugins;
-    CLI::App* cullers = app.add_subcommand(
+// cullers, devices and info: what is registered, what can render, what a scenario builds.
+void addListings(CLI::App& app, Commands& c) {
+    c.cullers = app.add_subcommand(
         "cullers", "List the registered cullers, their traits and every option (docs/cullers.md)");
-    cullers->add_flag("--markdown", cullers_markdown, "As the Markdown tables of docs/cullers.md");
-    addPluginFlag(cullers, cullers_plugins);
+    c.cullers->add_flag("--markdown", c.cullers_markdown,
+                        "As the Markdown tables of docs/cullers.md");
+    addPluginFlag(c.cullers, c.cullers_plugins);
 
-    CLI::App* devices = app.add_subcommand("devices",
-                                           "List the EGL devices headless runs can use (--device "
-                                           "N), with vendor, renderer and driver");
+    c.devices = app.add_subcommand("devices",
+                                   "List the EGL devices headless runs can use (--device "
+                                   "N), with vendor, renderer and driver");
 
-    std::string info_scenario;
-    CLI::App* info = app.add_subcommand(
+    c.info = app.add_subcommand(
         "info", "Print what a scenario builds (objects, triangles, BSP) without rendering");
-    info->add_option("scenario", info_scenario, "Scenario file (JSON)")->required();
+    c.info->add_option("scenario", c.info_scenario, "Scenario file (JSON)")->required();
+}
 
-    ViewFlags view_flags;
-    CLI::App* view = app.add_subcommand("view",
-                                        "Watch a scenario in a window: fly, switch algorithms "
-                                        "live, record a camera path (docs/viewer.md)");
+void addView(CLI::App& app, Commands& c) {
+    ViewFlags& view_flags = c.view_flags;
+    CLI::App* view = c.view = app.add_subcommand("view",
+                                                 "Watch a scenario in a window: fly, switch "
+                                                 "algorithms live, record a camera path "
+                                                 "(docs/viewer.md)");
     view->add_option("scenario", view_flags.scenario, "Scenario file (JSON)")->required();
     view->add_option("--algo", view_flags.algorithm,
                      "Culling algorithm to start with (default: the scenario's): " +
@@ -586,22 +616,135 @@ int main(int argc, char** argv) {
     view->add_option(
         "--out", view_flags.out,
         "Folder for screenshots and recorded scenarios (default: out/<scenario>/view)");
+}
 
-    // CLI11 would answer an unknown command with "A subcommand is required".
-    if (argc > 1 && argv[1][0] != '-') {
-        std::string commands;
-        bool known = false;
-        for (const CLI::App* sub : app.get_subcommands({})) {
-            commands += (commands.empty() ? "" : ", ") + sub->get_name();
-            known |= sub->get_name() == argv[1];
-        }
-        if (!known) {
-            std::fprintf(stderr,
-                         "occsim: unknown command '%s'; expected one of: %s (see occsim --help)\n",
-                         argv[1], commands.c_str());
-            return kExitBadInput;
-        }
+// CLI11 would answer an unknown command with "A subcommand is required": false, the line
+// printed, when argv[1] names none.
+bool knownCommand(CLI::App& app, int argc, char** argv) {
+    if (argc <= 1 || argv[1][0] == '-') return true;
+    std::string commands;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        commands += (commands.empty() ? "" : ", ") + sub->get_name();
+        known |= sub->get_name() == argv[1];
     }
+    if (!known) {
+        std::fprintf(stderr,
+                     "occsim: unknown command '%s'; expected one of: %s (see occsim --help)\n",
+                     argv[1], commands.c_str());
+    }
+    return known;
+}
+
+int runOrBench(Commands& c, const std::string& command) {
+    if (*c.run) {
+        loadPlugins(c.run_flags.plugins);
+        RunRequest request{
+            "run",       command,
+            c.run_flags, scenarioWithCulling(c.run_flags.scenario, c.run_flags.culling),
+            {},          ""};
+        const occsim::AlgorithmTraits& algorithm =
+            c.run_algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
+                                    : algorithmNamed("--algo", c.run_algorithm);
+        request.algorithms = {&algorithm};
+        request.default_subdir = "run-" + std::string(algorithm.name);
+        return runCommand(request);
+    }
+    loadPlugins(c.bench_flags.plugins);
+    RunRequest request{"bench",
+                       command,
+                       c.bench_flags,
+                       scenarioWithCulling(c.bench_flags.scenario, c.bench_flags.culling),
+                       {},
+                       "bench"};
+    request.algorithms =
+        c.bench->count("--algos") > 0 ? algorithmsNamed(c.bench_algorithms) : occsim::algorithms();
+    return runCommand(request);
+}
+
+int infoCommand(const std::string& scenario) {
+    std::vector<std::string> warnings;
+    const std::string text =
+        occsim::describeScenario(occsim::parseScenarioFile(scenario), warnings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::printf("%s", text.c_str());
+    return 0;
+}
+
+// The command that was given, run.
+int dispatch(Commands& c, const std::string& command) {
+    if (*c.run || *c.bench) return runOrBench(c, command);
+    if (*c.regress)
+        return regressCommand(c.regress_inputs, c.regress_update, c.regress_junit, c.regress_shard,
+                              c.regress_out, c.regress_culling, c.regress_plugins,
+                              c.regress_backend, c.regress->count("--junit") > 0, c.regress_history,
+                              c.regress_commit, c.regress_allow_empty);
+    if (*c.merge) return occsim_cli::mergeCommand(c.merge_flags);
+    if (*c.history) return occsim_cli::historyCommand(c.history_flags);
+    if (*c.cullers) {
+        loadPlugins(c.cullers_plugins);
+        std::printf(
+            "%s", (c.cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
+        return 0;
+    }
+    if (*c.devices) return devicesCommand();
+    if (*c.info) return infoCommand(c.info_scenario);
+    if (*c.view) return viewCommand(c.view_flags);
+    return kExitFailure;
+}
+
+// Bad input: its one line, and exit code 2.
+int badInput(const std::exception& e) {
+    std::fprintf(stderr, "occsim: %s\n", e.what());
+    return kExitBadInput;
+}
+
+// dispatch(), with every error a command can end in turned into its one line and exit code:
+// bad input 2, a failure while running 1.
+int dispatchReportingErrors(Commands& c, const std::string& command) {
+    try {
+        return dispatch(c, command);
+    } catch (const occsim::WindowUnavailable& e) {
+        std::fprintf(stderr,
+                     "occsim view: cannot open a window: %s; the headless commands need no display "
+                     "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
+                     e.what());
+        return kExitBadInput;
+    } catch (const occsim::BackendUnavailable& e) {
+        return badInput(e);
+    } catch (const occsim::ScriptError& e) {
+        return badInput(e);
+    } catch (const occsim::ScenarioError& e) {
+        return badInput(e);
+    } catch (const occsim::GltfError& e) {
+        return badInput(e);
+    } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
+        return badInput(e);
+    } catch (const occsim::ResultFileError& e) {  // a shard result, a history entry
+        return badInput(e);
+    } catch (const BadInput& e) {
+        return badInput(e);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
+        return kExitFailure;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Help for every command");
+    Commands c;
+    addRunAndBench(app, c);
+    addRegress(app, c);
+    addMergeAndHistory(app, c);
+    addListings(app, c);
+    addView(app, c);
+
+    if (!knownCommand(app, argc, argv)) return kExitBadInput;
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -613,88 +756,7 @@ int main(int argc, char** argv) {
                      withSuggestion(app, e.what()).c_str());
         return kExitBadInput;
     }
-    run_flags.out_given = run->count("--out") > 0;
-    bench_flags.out_given = bench->count("--out") > 0;
-
-    const std::string command = commandLine(argc, argv);
-    try {
-        if (*run) {
-            loadPlugins(run_flags.plugins);
-            RunRequest request{
-                "run",     command,
-                run_flags, scenarioWithCulling(run_flags.scenario, run_flags.culling),
-                {},        ""};
-            const occsim::AlgorithmTraits& algorithm =
-                run_algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
-                                      : algorithmNamed("--algo", run_algorithm);
-            request.algorithms = {&algorithm};
-            request.default_subdir = "run-" + std::string(algorithm.name);
-            return runCommand(request);
-        }
-        if (*bench) {
-            loadPlugins(bench_flags.plugins);
-            RunRequest request{
-                "bench",     command,
-                bench_flags, scenarioWithCulling(bench_flags.scenario, bench_flags.culling),
-                {},          "bench"};
-            request.algorithms = bench->count("--algos") > 0 ? algorithmsNamed(bench_algorithms)
-                                                             : occsim::algorithms();
-            return runCommand(request);
-        }
-        if (*regress)
-            return regressCommand(regress_inputs, regress_update, regress_junit, regress_shard,
-                                  regress_out, regress_culling, regress_plugins, regress_backend,
-                                  regress->count("--junit") > 0, regress_history, regress_commit,
-                                  regress_allow_empty);
-        if (*merge) return occsim_cli::mergeCommand(merge_flags);
-        if (*history) return occsim_cli::historyCommand(history_flags);
-        if (*cullers) {
-            loadPlugins(cullers_plugins);
-            std::printf(
-                "%s",
-                (cullers_markdown ? occsim::cullersMarkdown() : occsim::cullersText()).c_str());
-            return 0;
-        }
-        if (*devices) return devicesCommand();
-        if (*info) {
-            std::vector<std::string> warnings;
-            const std::string text =
-                occsim::describeScenario(occsim::parseScenarioFile(info_scenario), warnings);
-            for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-            std::printf("%s", text.c_str());
-            return 0;
-        }
-        if (*view) return viewCommand(view_flags);
-    } catch (const occsim::WindowUnavailable& e) {
-        std::fprintf(stderr,
-                     "occsim view: cannot open a window: %s; the headless commands need no display "
-                     "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
-                     e.what());
-        return kExitBadInput;
-    } catch (const occsim::BackendUnavailable& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::ScriptError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::ScenarioError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::GltfError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::ResultFileError& e) {  // a shard result, a history entry
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const BadInput& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitBadInput;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
-        return kExitFailure;
-    }
-    return kExitFailure;
+    c.run_flags.out_given = c.run->count("--out") > 0;
+    c.bench_flags.out_given = c.bench->count("--out") > 0;
+    return dispatchReportingErrors(c, commandLine(argc, argv));
 }

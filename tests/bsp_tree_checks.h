@@ -56,20 +56,97 @@ inline std::vector<uint32_t> ancestorsAndSelf(const BspTree& tree, uint32_t node
     return path;
 }
 
-// Every documented invariant of a tree whose bounds have been refitted, recomputed from the
-// object boxes: structure (live nodes, freed slots, index order), cells and loose cells,
-// lists, placement, bounds and subtree counts. Fatal failures keep a broken tree to one
-// readable message.
-inline void expectTreeInvariants(const BspTree& tree) {
-    const uint32_t node_count = tree.nodeCount();
-    const uint32_t object_count = tree.objectCount();
-    ASSERT_GE(node_count, 1u);
+// The checks below recompute each documented invariant of a tree whose bounds have been
+// refitted from the object boxes. Each stops at its first fatal failure, and
+// expectTreeInvariants() stops at the first checker that had one, so that a broken tree gives
+// one readable message rather than a crash in the next walk.
 
+// The root: live, without a parent, at depth 0, its loose cell around its cell.
+inline void expectRootInvariants(const BspTree& tree) {
+    ASSERT_GE(tree.nodeCount(), 1u);
     const BspNode& root = tree.node(tree.root());
     ASSERT_TRUE(root.live);
     EXPECT_EQ(root.parent, kNone);
     EXPECT_EQ(root.depth, 0u);
     ASSERT_TRUE(contains(root.loose_cell, root.cell));
+}
+
+// A freed slot holds nothing and nothing refers to it.
+inline void expectFreedSlotEmpty(const BspTree& tree, uint32_t n) {
+    const BspNode& node = tree.node(n);
+    ASSERT_NE(n, tree.root());
+    ASSERT_EQ(node.parent, kNone) << "freed slot " << n;
+    ASSERT_TRUE(node.isLeaf()) << "freed slot " << n;
+    ASSERT_EQ(node.first_object, kNone) << "freed slot " << n;
+    ASSERT_EQ(node.object_count, 0u) << "freed slot " << n;
+    ASSERT_TRUE(isEmpty(node.bounds)) << "freed slot " << n;
+}
+
+// A live node's links: refitted, both children or none, a live parent of smaller index whose
+// child it is, one level deeper, loose cells nested; children of larger index that name it as
+// their parent (each counted in `referenced`).
+inline void expectLinksOf(const BspTree& tree, uint32_t n, std::vector<int>& referenced) {
+    const BspNode& node = tree.node(n);
+    ASSERT_FALSE(node.bounds_dirty) << "node " << n << " still dirty after refit";
+    ASSERT_EQ(node.child[0] == kNone, node.child[1] == kNone) << "node " << n;
+    if (n != tree.root()) {
+        ASSERT_LT(node.parent, n) << "parent index must be smaller than the child's";
+        const BspNode& parent = tree.node(node.parent);
+        ASSERT_TRUE(parent.live) << "node " << n << " has a freed parent";
+        ASSERT_TRUE(parent.child[0] == n || parent.child[1] == n)
+            << "node " << n << " is not a child of its parent " << node.parent;
+        ASSERT_EQ(node.depth, parent.depth + 1) << "node " << n;
+        // Loose cells nest.
+        ASSERT_TRUE(contains(parent.loose_cell, node.loose_cell)) << "node " << n;
+    }
+    ASSERT_TRUE(contains(node.loose_cell, node.cell)) << "node " << n;
+    if (node.isLeaf()) return;
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t c = node.child[side];
+        ASSERT_GT(c, n) << "child index must be larger than the parent's";
+        ASSERT_LT(c, tree.nodeCount());
+        ASSERT_TRUE(tree.node(c).live) << "child " << c << " of node " << n << " is freed";
+        ASSERT_EQ(tree.node(c).parent, n) << "child " << c << " of node " << n;
+        ++referenced[c];
+    }
+}
+
+// An inner node's children split its cell at `split` along `axis`, strictly inside it, and their
+// loose cells are the parent's on the other axes, with the same margin at the plane.
+inline void expectSplitOf(const BspTree& tree, uint32_t n) {
+    const BspNode& node = tree.node(n);
+    const Aabb& cell = node.cell;
+    const int axis = node.axis;
+    ASSERT_LT(axis, 3);
+    ASSERT_GT(node.split, cell.min[axis]) << "node " << n;
+    ASSERT_LT(node.split, cell.max[axis]) << "node " << n;
+    Aabb below = cell;
+    Aabb above = cell;
+    below.max[axis] = node.split;
+    above.min[axis] = node.split;
+    const BspNode& below_child = tree.node(node.child[0]);
+    const BspNode& above_child = tree.node(node.child[1]);
+    EXPECT_TRUE(sameBox(below_child.cell, below)) << "node " << n;
+    EXPECT_TRUE(sameBox(above_child.cell, above)) << "node " << n;
+    for (int other = 0; other < 3; ++other) {
+        if (other == axis) continue;
+        for (const BspNode* child : {&below_child, &above_child}) {
+            EXPECT_EQ(child->loose_cell.min[other], node.loose_cell.min[other]) << "node " << n;
+            EXPECT_EQ(child->loose_cell.max[other], node.loose_cell.max[other]) << "node " << n;
+        }
+    }
+    // (Equal up to the rounding of split +- margin.)
+    const float below_margin = below_child.loose_cell.max[axis] - node.split;
+    const float above_margin = node.split - above_child.loose_cell.min[axis];
+    EXPECT_NEAR(below_margin, above_margin,
+                1e-6f * std::max({1.0f, std::fabs(node.split), below_margin}))
+        << "node " << n;
+}
+
+// Structure: live nodes and freed slots, links and index order, cells and loose cells, the depth
+// and live-node count the tree reports, every live node but the root referenced once.
+inline void expectStructureInvariants(const BspTree& tree) {
+    const uint32_t node_count = tree.nodeCount();
     uint32_t deepest = 0;
     uint32_t live = 0;
     std::vector<int> referenced(node_count, 0);
@@ -77,68 +154,17 @@ inline void expectTreeInvariants(const BspTree& tree) {
         const BspNode& node = tree.node(n);
         ASSERT_EQ(tree.isLive(n), node.live);
         if (!node.live) {
-            // A freed slot holds nothing and nothing refers to it.
-            ASSERT_NE(n, tree.root());
-            ASSERT_EQ(node.parent, kNone) << "freed slot " << n;
-            ASSERT_TRUE(node.isLeaf()) << "freed slot " << n;
-            ASSERT_EQ(node.first_object, kNone) << "freed slot " << n;
-            ASSERT_EQ(node.object_count, 0u) << "freed slot " << n;
-            ASSERT_TRUE(isEmpty(node.bounds)) << "freed slot " << n;
+            expectFreedSlotEmpty(tree, n);
+            if (::testing::Test::HasFatalFailure()) return;
             continue;
         }
         ++live;
         deepest = std::max(deepest, node.depth);
-        ASSERT_FALSE(node.bounds_dirty) << "node " << n << " still dirty after refit";
-        ASSERT_EQ(node.child[0] == kNone, node.child[1] == kNone) << "node " << n;
-        if (n != tree.root()) {
-            ASSERT_LT(node.parent, n) << "parent index must be smaller than the child's";
-            const BspNode& parent = tree.node(node.parent);
-            ASSERT_TRUE(parent.live) << "node " << n << " has a freed parent";
-            ASSERT_TRUE(parent.child[0] == n || parent.child[1] == n)
-                << "node " << n << " is not a child of its parent " << node.parent;
-            ASSERT_EQ(node.depth, parent.depth + 1) << "node " << n;
-            // Loose cells nest.
-            ASSERT_TRUE(contains(parent.loose_cell, node.loose_cell)) << "node " << n;
-        }
-        ASSERT_TRUE(contains(node.loose_cell, node.cell)) << "node " << n;
+        expectLinksOf(tree, n, referenced);
+        if (::testing::Test::HasFatalFailure()) return;
         if (node.isLeaf()) continue;
-        for (int side = 0; side < 2; ++side) {
-            const uint32_t c = node.child[side];
-            ASSERT_GT(c, n) << "child index must be larger than the parent's";
-            ASSERT_LT(c, node_count);
-            ASSERT_TRUE(tree.node(c).live) << "child " << c << " of node " << n << " is freed";
-            ASSERT_EQ(tree.node(c).parent, n) << "child " << c << " of node " << n;
-            ++referenced[c];
-        }
-        // Children split the cell at `split` along `axis`, strictly inside it.
-        const Aabb& cell = node.cell;
-        const int axis = node.axis;
-        ASSERT_LT(axis, 3);
-        ASSERT_GT(node.split, cell.min[axis]) << "node " << n;
-        ASSERT_LT(node.split, cell.max[axis]) << "node " << n;
-        Aabb below = cell;
-        Aabb above = cell;
-        below.max[axis] = node.split;
-        above.min[axis] = node.split;
-        const BspNode& below_child = tree.node(node.child[0]);
-        const BspNode& above_child = tree.node(node.child[1]);
-        EXPECT_TRUE(sameBox(below_child.cell, below)) << "node " << n;
-        EXPECT_TRUE(sameBox(above_child.cell, above)) << "node " << n;
-        // The siblings' loose cells: the parent's on the other axes, the same margin at the
-        // plane along the split axis.
-        for (int other = 0; other < 3; ++other) {
-            if (other == axis) continue;
-            for (const BspNode* child : {&below_child, &above_child}) {
-                EXPECT_EQ(child->loose_cell.min[other], node.loose_cell.min[other]) << "node " << n;
-                EXPECT_EQ(child->loose_cell.max[other], node.loose_cell.max[other]) << "node " << n;
-            }
-        }
-        // (Equal up to the rounding of split +- margin.)
-        const float below_margin = below_child.loose_cell.max[axis] - node.split;
-        const float above_margin = node.split - above_child.loose_cell.min[axis];
-        EXPECT_NEAR(below_margin, above_margin,
-                    1e-6f * std::max({1.0f, std::fabs(node.split), below_margin}))
-            << "node " << n;
+        expectSplitOf(tree, n);
+        if (::testing::Test::HasFatalFailure()) return;
     }
     EXPECT_EQ(tree.maxDepth(), deepest);
     EXPECT_EQ(tree.liveNodeCount(), live);
@@ -147,10 +173,13 @@ inline void expectTreeInvariants(const BspTree& tree) {
             ASSERT_EQ(referenced[n], 1) << "node " << n;
         }
     }
+}
 
-    // Lists: every object in exactly one list, nodeOf() and object_count agree.
+// Lists: every object in exactly one list, nodeOf() and object_count agree.
+inline void expectListInvariants(const BspTree& tree) {
+    const uint32_t object_count = tree.objectCount();
     std::vector<int> times_listed(object_count, 0);
-    for (uint32_t n = 0; n < node_count; ++n) {
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
         uint32_t listed = 0;
         for (uint32_t o = tree.firstObject(n); o != kNone; o = tree.nextObject(o)) {
             ASSERT_LT(o, object_count) << "node " << n << " lists a bad object index";
@@ -164,10 +193,13 @@ inline void expectTreeInvariants(const BspTree& tree) {
         ASSERT_EQ(times_listed[o], 1)
             << "object " << o << " listed " << times_listed[o] << " times";
     }
+}
 
-    // Placement: where the rule puts the box, whatever the history; and the local form of the
-    // rule (the node's loose cell contains the box, no child's loose cell does).
-    for (uint32_t o = 0; o < object_count; ++o) {
+// Placement: where the rule puts the box, whatever the history; and the local form of the rule
+// (the node's loose cell contains the box, no child's loose cell does).
+inline void expectPlacementInvariants(const BspTree& tree) {
+    const BspNode& root = tree.node(tree.root());
+    for (uint32_t o = 0; o < tree.objectCount(); ++o) {
         const Aabb& box = tree.objectBox(o);
         const uint32_t n = tree.nodeOf(o);
         ASSERT_EQ(n, placementByRule(tree, box)) << "object " << o << " " << describe(box);
@@ -186,9 +218,12 @@ inline void expectTreeInvariants(const BspTree& tree) {
             }
         }
     }
+}
 
-    // Bounds: tight union of own boxes and children's bounds, infinite over non-finite boxes;
-    // subtree object counts.
+// Bounds: tight union of own boxes and children's bounds, infinite over non-finite boxes;
+// subtree object counts.
+inline void expectBoundsInvariants(const BspTree& tree) {
+    const uint32_t node_count = tree.nodeCount();
     std::vector<Aabb> expected(node_count);
     std::vector<uint32_t> expected_count(node_count, 0);
     for (uint32_t n = node_count; n-- > 0;) {
@@ -221,7 +256,18 @@ inline void expectTreeInvariants(const BspTree& tree) {
                                                   << ", recomputed " << describe(expected[n]);
         ASSERT_EQ(tree.node(n).subtree_object_count, expected_count[n]) << "node " << n;
     }
-    EXPECT_EQ(tree.node(tree.root()).subtree_object_count, object_count);
+    EXPECT_EQ(tree.node(tree.root()).subtree_object_count, tree.objectCount());
+}
+
+// Every documented invariant: structure (live nodes, freed slots, index order), cells and loose
+// cells, lists, placement, bounds and subtree counts.
+inline void expectTreeInvariants(const BspTree& tree) {
+    for (void (*check)(const BspTree&) :
+         {expectRootInvariants, expectStructureInvariants, expectListInvariants,
+          expectPlacementInvariants, expectBoundsInvariants}) {
+        check(tree);
+        if (::testing::Test::HasFatalFailure()) return;
+    }
 }
 
 // A random scene: boxes of widely varying size, some with zero extent on every axis (points) and

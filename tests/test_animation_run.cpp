@@ -75,15 +75,15 @@ void expectNoConservativeMisses(const BenchResult& result, const std::string& mo
                 break;
             }
         }
-        ASSERT_GT(emerges, 0u) << run.summary.algorithm << ": the box must start hidden and emerge";
+        ASSERT_GT(emerges, 0u) << run.summary.label << ": the box must start hidden and emerge";
         EXPECT_EQ(run.frames[emerges - 1].visible_objects, 1);
         EXPECT_GE(run.frames[emerges].moved_objects, 1u) << "the animated box is a mover";
         for (const FrameStats& f : run.frames) {
             EXPECT_EQ(f.missed_objects, 0)
-                << run.summary.algorithm << " (" << mode << ") frame " << f.frame
+                << run.summary.label << " (" << mode << ") frame " << f.frame
                 << (f.frame == emerges ? ", the first the box is seen" : "");
             EXPECT_EQ(f.error_pixels, 0)
-                << run.summary.algorithm << " (" << mode << ") frame " << f.frame;
+                << run.summary.label << " (" << mode << ") frame " << f.frame;
         }
     }
 }
@@ -111,8 +111,8 @@ TEST(AnimationRun, TheAnimatedScenarioShowsNoErrorForConservativeCullers) {
     for (const RunRecord& run : result.runs) {
         uint64_t moved = 0;
         for (const FrameStats& f : run.frames) {
-            EXPECT_EQ(f.error_pixels, 0) << run.summary.algorithm << " frame " << f.frame;
-            EXPECT_EQ(f.missed_objects, 0) << run.summary.algorithm << " frame " << f.frame;
+            EXPECT_EQ(f.error_pixels, 0) << run.summary.label << " frame " << f.frame;
+            EXPECT_EQ(f.missed_objects, 0) << run.summary.label << " frame " << f.frame;
             moved += f.moved_objects;
         }
         EXPECT_EQ(moved, 77u * 89u) << "every animated and moving object counts on every step";

@@ -36,7 +36,7 @@ BenchResult bench(const std::filesystem::path& file, const std::vector<std::stri
 
 const RunSummary& summaryOf(const BenchResult& result, const std::string& name) {
     for (const RunRecord& r : result.runs) {
-        if (r.summary.algorithm == name) return r.summary;
+        if (r.summary.label == name) return r.summary;
     }
     throw std::runtime_error("no run " + name);
 }
@@ -52,8 +52,8 @@ std::vector<std::string> conservativeAlgorithms() {
 void expectNoErrorAndNoMiss(const BenchResult& result) {
     for (const RunRecord& run : result.runs) {
         for (const FrameStats& f : run.frames) {
-            EXPECT_EQ(f.error_pixels, 0) << run.summary.algorithm << " frame " << f.frame;
-            EXPECT_EQ(f.missed_objects, 0) << run.summary.algorithm << " frame " << f.frame;
+            EXPECT_EQ(f.error_pixels, 0) << run.summary.label << " frame " << f.frame;
+            EXPECT_EQ(f.missed_objects, 0) << run.summary.label << " frame " << f.frame;
             EXPECT_GE(f.tie_pixels, 0);
             EXPECT_GT(f.visible_objects, 0);
         }

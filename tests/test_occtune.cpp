@@ -141,6 +141,39 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     fs::remove_all(dir);
 }
 
+// A scene warning is said once a session, not once for every batch and confirmation run that
+// builds the scene again: here a city whose one small block has more lots than fit a building
+// (the held-out variant's other seed may give another count, said once too).
+TEST(Occtune, ASessionPrintsEachSceneWarningOnce) {
+    const fs::path dir = tempDir("warnings");
+    fs::create_directories(dir);
+    nlohmann::json city = nlohmann::json::parse(
+        text(std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/city-small.json"));
+    city["name"] = "city-warning";
+    city["scene"]["sources"][0].update(
+        {{"blocks_x", 1}, {"blocks_z", 1}, {"block_size", 10}, {"buildings_per_block", 64}});
+    city.erase("expect");
+    const fs::path scenario = dir / "city-warning.json";
+    std::ofstream(scenario) << city.dump(1);
+
+    const Outcome o = occtune(scenario.string() + kQuick + " --out " + (dir / "out").string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::istringstream out(o.output);
+    std::vector<std::string> warnings;
+    for (std::string line; std::getline(out, line);) {
+        if (line.rfind("warning: ", 0) == 0) warnings.push_back(line);
+    }
+    ASSERT_FALSE(warnings.empty()) << "the scene must warn of its small lots:\n" << o.output;
+    EXPECT_NE(warnings.front().find("lots were too small for a building"), std::string::npos)
+        << warnings.front();
+    for (size_t i = 0; i < warnings.size(); ++i) {
+        for (size_t k = i + 1; k < warnings.size(); ++k) {
+            EXPECT_NE(warnings[i], warnings[k]) << "said twice in one session:\n" << o.output;
+        }
+    }
+    fs::remove_all(dir);
+}
+
 TEST(Occtune, BadInputIsOneLineWithExitCode2BeforeAnyRun) {
     const fs::path dir = tempDir("bad");
     fs::create_directories(dir);

@@ -312,7 +312,7 @@ RunRecord record(const std::string& label, const std::string& algorithm, double 
     r.algorithm = findAlgorithm(algorithm);
     r.pareto = pareto;
     RunSummary& s = r.summary;
-    s.algorithm = label;
+    s.label = label;
     s.frames = 30;
     s.timed_frames = 25;
     s.frame_ms = {mean_ms, mean_ms, mean_ms * 1.2, mean_ms * 0.8, mean_ms * 1.5};

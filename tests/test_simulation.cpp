@@ -58,8 +58,8 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
     for (const RunRecord& run : result.runs) {
         ASSERT_EQ(run.frames.size(), 40u);
         for (const FrameStats& f : run.frames) {
-            EXPECT_EQ(f.error_pixels, 0) << run.summary.algorithm << " frame " << f.frame;
-            EXPECT_EQ(f.missed_objects, 0) << run.summary.algorithm << " frame " << f.frame;
+            EXPECT_EQ(f.error_pixels, 0) << run.summary.label << " frame " << f.frame;
+            EXPECT_EQ(f.missed_objects, 0) << run.summary.label << " frame " << f.frame;
             EXPECT_GT(f.visible_objects, 0);
         }
     }
@@ -83,7 +83,7 @@ TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries)
     const auto& runs = result.runs;
     auto by = [&](const std::string& name) -> const RunSummary& {
         for (const RunRecord& r : runs) {
-            if (r.summary.algorithm == name) return r.summary;
+            if (r.summary.label == name) return r.summary;
         }
         throw std::runtime_error("no run " + name);
     };

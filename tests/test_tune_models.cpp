@@ -14,9 +14,9 @@
 #include "occsim/culling/geometry/random.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/scenario/culling_file.h"
-#include "tune/cost_model.h"
 #include "tune/design.h"
 #include "tune/errors.h"
+#include "tune/frame_time_model.h"
 #include "tune/parameters.h"
 #include "tune/report.h"
 #include "tune/response_model.h"
@@ -35,9 +35,9 @@ double gaussian(Rng& rng) {
 
 // ---- cost model ----------------------------------------------------------------------------
 
-const CostModel kTrueCost{6.0, 0.03, 0.09, 0.012, 1.0};
+const FrameTimeModel kTrueCost{6.0, 0.03, 0.09, 0.012, 1.0};
 
-std::vector<std::vector<FrameCounts>> syntheticFrames(const CostModel& truth, double noise_ms,
+std::vector<std::vector<FrameCounts>> syntheticFrames(const FrameTimeModel& truth, double noise_ms,
                                                       double outlier_share, uint64_t seed) {
     Rng rng(seed);
     std::vector<std::vector<FrameCounts>> runs(16);
@@ -57,17 +57,17 @@ std::vector<std::vector<FrameCounts>> syntheticFrames(const CostModel& truth, do
     return runs;
 }
 
-TEST(CostModel, FitRecoversKnownCostsFromNoisyFramesWithOutliers) {
+TEST(FrameTimeModel, FitRecoversKnownCostsFromNoisyFramesWithOutliers) {
     // 960 frames, 2 ms of noise, 3 % of frames slowed by 50-150 ms. Tolerance: 10 % of each
     // coefficient (5 % would still pass on this seed; the outliers bias a plain least-squares
     // fit by far more, see the next test).
-    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 2.0, 0.03, 11));
+    const FrameTimeModelFit fit = fitFrameTimeModel(syntheticFrames(kTrueCost, 2.0, 0.03, 11));
     ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
     EXPECT_NEAR(fit.model.constant_ms, kTrueCost.constant_ms, 0.10 * kTrueCost.constant_ms);
     EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.10 * kTrueCost.query_ms);
     EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms,
                 0.10 * kTrueCost.kilotriangle_ms);
-    EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.10 * kTrueCost.draw_ms);
+    EXPECT_NEAR(fit.model.draw_call_ms, kTrueCost.draw_call_ms, 0.10 * kTrueCost.draw_call_ms);
     EXPECT_NEAR(fit.model.wait_factor, kTrueCost.wait_factor, 0.10 * kTrueCost.wait_factor);
     EXPECT_EQ(fit.frames, 960u);
     EXPECT_EQ(fit.groups, 16u);
@@ -78,13 +78,13 @@ TEST(CostModel, FitRecoversKnownCostsFromNoisyFramesWithOutliers) {
     EXPECT_LT(fit.heldout_rms_ms, 25.0);
 }
 
-TEST(CostModel, WithoutOutliersTheFitIsTight) {
-    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 12));
+TEST(FrameTimeModel, WithoutOutliersTheFitIsTight) {
+    const FrameTimeModelFit fit = fitFrameTimeModel(syntheticFrames(kTrueCost, 1.0, 0.0, 12));
     ASSERT_TRUE(fit.fit.converged) << fit.fit.ceres_summary;
     EXPECT_NEAR(fit.model.query_ms, kTrueCost.query_ms, 0.03 * kTrueCost.query_ms);
     EXPECT_NEAR(fit.model.kilotriangle_ms, kTrueCost.kilotriangle_ms,
                 0.03 * kTrueCost.kilotriangle_ms);
-    EXPECT_NEAR(fit.model.draw_ms, kTrueCost.draw_ms, 0.03 * kTrueCost.draw_ms);
+    EXPECT_NEAR(fit.model.draw_call_ms, kTrueCost.draw_call_ms, 0.03 * kTrueCost.draw_call_ms);
     // Residual and held-out error are the noise (1 ms) within 20 %.
     EXPECT_NEAR(fit.residual_rms_ms, 1.0, 0.2);
     EXPECT_NEAR(fit.heldout_rms_ms, 1.0, 0.2);
@@ -92,7 +92,7 @@ TEST(CostModel, WithoutOutliersTheFitIsTight) {
     EXPECT_LT(std::abs(fit.model.query_ms - kTrueCost.query_ms), 4 * fit.standard_error[1]);
 }
 
-TEST(CostModel, CoefficientsStayNonNegative) {
+TEST(FrameTimeModel, CoefficientsStayNonNegative) {
     // Frames whose time falls as queries rise: the bound keeps the query cost at 0.
     std::vector<std::vector<FrameCounts>> runs(2);
     Rng rng(3);
@@ -106,13 +106,13 @@ TEST(CostModel, CoefficientsStayNonNegative) {
             run.push_back(f);
         }
     }
-    const CostModelFit fit = fitCostModel(runs);
+    const FrameTimeModelFit fit = fitFrameTimeModel(runs);
     EXPECT_GE(fit.model.query_ms, 0.0);
     EXPECT_GE(fit.model.wait_factor, 0.0);
 }
 
-TEST(CostModel, AnIterationLimitTooSmallIsReportedAsNotConverged) {
-    const CostModelFit fit = fitCostModel(syntheticFrames(kTrueCost, 1.0, 0.0, 13), 1);
+TEST(FrameTimeModel, AnIterationLimitTooSmallIsReportedAsNotConverged) {
+    const FrameTimeModelFit fit = fitFrameTimeModel(syntheticFrames(kTrueCost, 1.0, 0.0, 13), 1);
     EXPECT_FALSE(fit.fit.converged);
     EXPECT_NE(fit.fit.ceres_summary.find("Ceres Solver Report"), std::string::npos)
         << fit.fit.ceres_summary;
@@ -423,7 +423,8 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     OptionValues tuned(statistical().options);
     tuned.set("base_time", 0.123456789012345);
     tuned.set("decay_a", 2.75);
-    const TunedFile file = tunedFile(statistical(), tuned, CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    const TunedFile file =
+        tunedFile(statistical(), tuned, FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
     const nlohmann::json json = nlohmann::json::parse(file.text);
     Scenario s;
     s.algorithm = "vfc";
@@ -440,7 +441,7 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     // back as that culler's cost model; the shared one, which other cullers read, stays unknown.
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
     const TunedFile plus_file =
-        tunedFile(plus, OptionValues(plus.options), CostModel{1.0, 0.02, 0.1, 0.01, 1.0});
+        tunedFile(plus, OptionValues(plus.options), FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
     Scenario p;
     applyCullingFile(CullingFile{"tuned.json", nlohmann::json::parse(plus_file.text)}, p);
     EXPECT_TRUE(plus_file.has_cost_option);
@@ -452,7 +453,7 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     EXPECT_DOUBLE_EQ(scoped.triangle_ms, 0.1 / 1000.0);
     EXPECT_DOUBLE_EQ(scoped.draw_call_ms, 0.01);
     nlohmann::json culling = nlohmann::json::object();
-    EXPECT_FALSE(addCostOption(culling, CostModel{1.0, 0.0, 0.0, 0.0, 1.0}, "statistical+"));
+    EXPECT_FALSE(addCostOption(culling, FrameTimeModel{1.0, 0.0, 0.0, 0.0, 1.0}, "statistical+"));
     EXPECT_TRUE(culling.empty());
 }
 

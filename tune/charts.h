@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sim/output/plots.h"
-#include "tune/cost_model.h"
+#include "tune/frame_time_model.h"
 #include "tune/parameters.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
@@ -26,7 +26,7 @@ struct ChartInput {
     const ResponseFit& response;
     const Point& tuned;                      // in the unit cube
     const std::vector<bool>& kept_at_paper;  // per parameter
-    const CostModel& cost;
+    const FrameTimeModel& cost;
     const std::vector<LoggedRun>& runs;  // every run whose frames the cost model fitted
 };
 

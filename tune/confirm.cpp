@@ -62,12 +62,11 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions,
-                        const BackendChoice& backend,
+                        const OptionValues& paper, uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame) {
     // The paper's values first: the same order as every sampling batch.
     const BenchResult result = runInterleaved(
-        scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, backend, on_frame);
+        scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, session, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 

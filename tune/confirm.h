@@ -9,6 +9,7 @@
 #include "occsim/culling/registry/culler_options.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
+#include "tune/measure.h"
 
 namespace occsim::tune {
 
@@ -59,8 +60,7 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
                         const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions,
-                        const BackendChoice& backend,
+                        const OptionValues& paper, uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

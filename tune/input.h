@@ -8,9 +8,9 @@
 #include <filesystem>
 
 #include "sim/scenario/scenario.h"
+#include "tune/options.h"
 #include "tune/parameters.h"
 #include "tune/sample_log.h"
-#include "tune/tuner.h"
 
 namespace occsim::tune {
 

@@ -12,11 +12,17 @@
 
 #include "render/headless_context.h"
 #include "sim/scenario/errors.h"
+#include "tune/console.h"
 #include "tune/errors.h"
 #include "tune/parameters.h"
+#include "tune/session_files.h"
 #include "tune/tuner.h"
 
 namespace {
+
+using occsim::tune::Objective;
+using occsim::tune::TuneOptions;
+using occsim::tune::TuneSession;
 
 constexpr int kExitBadInput = 2;
 
@@ -26,19 +32,18 @@ std::string commandLine(int argc, char** argv) {
     return out.str();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    using occsim::tune::Objective;
-    occsim::tune::TuneOptions o;
-    CLI::App app{
-        "occtune: tune a culler's options (default: the statistical culler's BASE_TIME and decay "
-        "curve) to a "
-        "scenario (docs/tuning.md)"};
+// The flags read as text or kept apart from TuneOptions until they are checked.
+struct RawFlags {
     std::string scenario, objective = "mean", out;
     uint32_t frames = 0;
     uint64_t holdout_seed = 0;
-    app.add_option("scenario", scenario, "Scenario file (JSON)")->required();
+    std::vector<std::string> plugins;
+    std::string backend = "auto";
+    int device = -1;
+};
+
+void addOptions(CLI::App& app, TuneOptions& o, RawFlags& raw) {
+    app.add_option("scenario", raw.scenario, "Scenario file (JSON)")->required();
     app.add_option("--budget", o.budget,
                    "Samples to measure (besides the reference runs); default 20")
         ->check(CLI::Range(1u, 100000u));
@@ -46,69 +51,84 @@ int main(int argc, char** argv) {
         "--algo", o.algorithm,
         "The culler to tune (default statistical): any registered culler whose options "
         "descriptor marks options tunable (occsim cullers lists them), a plugin's included");
-    std::vector<std::string> plugins;
-    app.add_option("--plugin", plugins, "Load cullers from this shared object first (repeatable)");
+    app.add_option("--plugin", raw.plugins,
+                   "Load cullers from this shared object first (repeatable)");
     app.add_option("--params", o.params,
                    "Parameters to tune, comma-separated (default: every tunable option of --algo; "
                    "statistical: base_time, decay_a, decay_b)");
     app.add_option("--bounds", o.bounds, "Search range of a parameter, NAME=LO:HI (repeatable)")
         ->delimiter(',');
     app.add_option(
-           "--objective", objective,
+           "--objective", raw.objective,
            "What a sample is judged by: its mean or p95 frame time (ratio to the paper's values)")
         ->check(CLI::IsMember({"mean", "p95"}));
     app.add_option("--repetitions", o.repetitions, "Repetitions of the confirmation run; default 3")
         ->check(CLI::Range(1u, 1000u));
-    app.add_option("--out", out, "Output folder (default out/<scenario>/tune)");
+    app.add_option("--out", raw.out, "Output folder (default out/<scenario>/tune)");
     app.add_flag("--resume", o.resume,
                  "Continue the session whose sample log is in the output folder");
-    app.add_option("--frames", frames, "Run this many frames instead of the scenario's")
+    app.add_option("--frames", raw.frames, "Run this many frames instead of the scenario's")
         ->check(CLI::Range(1u, 10000000u));
     app.add_option("--seed", o.seed, "Seed of the sampling design; default 1");
     app.add_option("--batch", o.batch,
                    "Samples per interleaved run (beside one reference); default 4")
         ->check(CLI::Range(1u, 64u));
-    app.add_option("--holdout-seed", holdout_seed,
+    app.add_option("--holdout-seed", raw.holdout_seed,
                    "Scenario seed of the held-out confirmation (default: the scenario's + 1)");
     app.add_option("--max-fit-iterations", o.max_fit_iterations,
                    "Ceres iteration limit of each fit; default 200")
         ->check(CLI::Range(1, 100000));
-    std::string backend = "auto";
-    int device = -1;
-    app.add_option("--backend", backend,
+    app.add_option("--backend", raw.backend,
                    "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa "
                    "(docs/headless-gpu.md)");
-    app.add_option("--device", device, "EGL device index (occsim devices lists them; default 0)")
+    app.add_option("--device", raw.device,
+                   "EGL device index (occsim devices lists them; default 0)")
         ->check(CLI::Range(0, 1023));
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());
-        return kExitBadInput;
-    }
-    if (const auto b = occsim::parseBackend(backend)) {
+}
+
+// The parsed flags into `o`; false (the line printed) when --backend names no backend.
+bool applyFlags(const CLI::App& app, const RawFlags& raw, TuneOptions& o) {
+    if (const auto b = occsim::parseBackend(raw.backend)) {
         o.backend.backend = *b;
     } else {
         std::fprintf(stderr, "occtune: --backend: expected auto, egl or osmesa, got '%s'\n",
-                     backend.c_str());
-        return kExitBadInput;
+                     raw.backend.c_str());
+        return false;
     }
-    if (device >= 0) o.backend.device = static_cast<uint32_t>(device);
-    o.scenario = scenario;
-    for (const std::string& p : plugins) o.plugins.emplace_back(p);
-    o.out = out;
-    o.objective = objective == "p95" ? Objective::P95 : Objective::Mean;
-    if (app.count("--frames")) o.frames = frames;
-    if (app.count("--holdout-seed")) o.holdout_seed = holdout_seed;
+    if (raw.device >= 0) o.backend.device = static_cast<uint32_t>(raw.device);
+    o.scenario = raw.scenario;
+    for (const std::string& p : raw.plugins) o.plugins.emplace_back(p);
+    o.out = raw.out;
+    o.objective = raw.objective == "p95" ? Objective::P95 : Objective::Mean;
+    if (app.count("--frames")) o.frames = raw.frames;
+    if (app.count("--holdout-seed")) o.holdout_seed = raw.holdout_seed;
     o.progress = ::isatty(STDERR_FILENO) != 0;
-    o.command_line = commandLine(argc, argv);
+    return true;
+}
 
+// What the session ended with, said on the console and, when it finished, written to its folder.
+int report(TuneSession& session, const TuneOptions& o) {
+    switch (session.end) {
+        case TuneSession::End::Interrupted:
+            occsim::tune::printInterrupted(session, o);
+            break;
+        case TuneSession::End::FitFailed:
+            occsim::tune::printFitFailed(session);
+            break;
+        case TuneSession::End::Finished:
+            occsim::tune::printFinished(session, occsim::tune::writeSessionFiles(session));
+            break;
+    }
+    return session.exitCode();
+}
+
+// Bad input is one line and exit code 2; a failure while running one line and exit code 1.
+int runSession(const TuneOptions& o) {
     try {
         // The backend and device are input too: checked before the first run writes anything.
         occsim::createHeadlessContext(o.backend, 16, 16);
-        return occsim::tune::runTuner(o);
+        TuneSession session = occsim::tune::runTuner(o);
+        return report(session, o);
     } catch (const occsim::BackendUnavailable& e) {
         std::fprintf(stderr, "occtune: %s\n", e.what());
     } catch (const occsim::tune::TuneInputError& e) {
@@ -122,4 +142,27 @@ int main(int argc, char** argv) {
         return 1;
     }
     return kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    TuneOptions o;
+    RawFlags raw;
+    CLI::App app{
+        "occtune: tune a culler's options (default: the statistical culler's BASE_TIME and decay "
+        "curve) to a "
+        "scenario (docs/tuning.md)"};
+    addOptions(app, o, raw);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());
+        return kExitBadInput;
+    }
+    if (!applyFlags(app, raw, o)) return kExitBadInput;
+    o.command_line = commandLine(argc, argv);
+    return runSession(o);
 }

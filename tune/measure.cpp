@@ -17,10 +17,11 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
 
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const BackendChoice& backend,
+                           SessionRuns& session,
                            const std::function<void(const FrameEvent&)>& on_frame) {
     BenchOptions options;
-    options.backend = backend;
+    options.backend = session.backend;
+    options.warnings_shown = &session.warnings_shown;
     for (const Setting& s : settings) options.configs.push_back(configOf(scenario, algorithm, s));
     options.algorithms = {options.configs.front().algorithm};
     options.measure_error = true;  // zero expected of a conservative culler: measured, not assumed

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,13 @@ struct Setting {
     OptionValues options;  // the tuned culler's (ParameterSpace::algorithm)
 };
 
+// What every run of one tuning session shares: where it renders (--backend, --device), and the
+// scene warnings it has printed, so that each is printed once a session rather than once a batch.
+struct SessionRuns {
+    BackendChoice backend;
+    std::set<std::string> warnings_shown;
+};
+
 // The scenario's own culling options with the setting's values for `algorithm` swapped in.
 RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
                    const Setting& setting);
@@ -29,7 +37,7 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
 // after every configuration's frame, outside the timing (progress, interruption).
 BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
-                           const BackendChoice& backend,
+                           SessionRuns& session,
                            const std::function<void(const FrameEvent&)>& on_frame);
 
 // One configuration's first repetition as a log line's figures (timed frames only).

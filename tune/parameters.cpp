@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/scenario/number_text.h"
 #include "tune/errors.h"
 
 namespace occsim::tune {
@@ -29,17 +30,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
     while (std::getline(in, part, separator)) parts.push_back(part);
     if (!text.empty() && text.back() == separator) parts.emplace_back();
     return parts;
-}
-
-bool parseDouble(const std::string& text, double& out) {
-    if (text.empty()) return false;
-    size_t used = 0;
-    try {
-        out = std::stod(text, &used);
-    } catch (const std::exception&) {
-        return false;
-    }
-    return used == text.size() && std::isfinite(out);
 }
 
 // The search box must hold only valid values: inside the option's own range.
@@ -184,8 +174,8 @@ ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::
             throw TuneInputError(flag + ": '" + name + "' is not tuned (--params " + params + ")");
         }
         Bounds b;
-        if (!parseDouble(text.substr(eq + 1, colon - eq - 1), b.lo) ||
-            !parseDouble(text.substr(colon + 1), b.hi)) {
+        if (!parseFiniteNumber(text.substr(eq + 1, colon - eq - 1), b.lo) ||
+            !parseFiniteNumber(text.substr(colon + 1), b.hi)) {
             throw TuneInputError(flag + ": expected two finite numbers lo:hi");
         }
         if (b.lo == b.hi) throw TuneInputError(flag + ": empty range (lo = hi); expected lo < hi");

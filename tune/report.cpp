@@ -125,10 +125,12 @@ std::string confirmationTable(const TuneResult& r) {
     return out.str();
 }
 
-std::string reportMarkdown(const TuneResult& r) {
+namespace {
+
+// What was tuned on what, how it was measured, and how noisy the measurements were.
+void headerSection(std::ostringstream& out, const TuneResult& r) {
     const TuneOptions& o = *r.options;
-    const char* objective = objectiveName(o.objective);
-    std::ostringstream out;
+    const char* objective = objectiveName(r.options->objective);
     out << "# Tuning the statistical culler on " << r.scenario_name << "\n\n"
         << "Command: `" << o.command_line << "`\n\n"
         << "- Scenario: `" << r.scenario_file << "` (seed " << r.scenario_seed << "), " << r.frames
@@ -154,7 +156,11 @@ std::string reportMarkdown(const TuneResult& r) {
         << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)"
                                        : " (**zero expected**)")
         << "\n\n";
+}
 
+// The tuned values beside the paper's, what the model predicts of them, and what it dropped.
+void choiceSection(std::ostringstream& out, const TuneResult& r) {
+    const char* objective = objectiveName(r.options->objective);
     out << "## Choice\n\n| parameter | paper | tuned | bounds | |\n|---|---|---|---|---|\n";
     for (size_t j = 0; j < r.space.size(); ++j) {
         const TunableParameter& p = r.space.parameters[j];
@@ -182,7 +188,11 @@ std::string reportMarkdown(const TuneResult& r) {
                "stay at the paper's "
                "values.\n";
     }
+}
 
+// The confirmation table and the verdict.
+void confirmationSection(std::ostringstream& out, const TuneResult& r) {
+    const TuneOptions& o = *r.options;
     out << "\n## Confirmation\n\nThe tuned values against the paper's, interleaved frame by frame "
            "in one run, "
         << o.repetitions
@@ -209,8 +219,11 @@ std::string reportMarkdown(const TuneResult& r) {
 
     out << "\n**Verdict: " << r.verdict.name() << "**: " << r.verdict.reason << " (written as `"
         << r.verdict.fileName() << "`).\n";
+}
 
-    const CostModel& m = r.cost.model;
+// The frame-time model's coefficients and how well it fits.
+void costModelSection(std::ostringstream& out, const TuneResult& r) {
+    const FrameTimeModel& m = r.cost.model;
     out << "\n## Fit quality\n\n### Cost model (per frame)\n\n"
         << "frame_ms = constant + query_ms * queries + kilotriangle_ms * triangles/1000 + draw_ms "
            "* objects drawn + "
@@ -224,7 +237,7 @@ std::string reportMarkdown(const TuneResult& r) {
         << general(r.cost.standard_error[1]) << " |\n"
         << "| per 1000 triangles (ms) | " << general(m.kilotriangle_ms) << " | "
         << general(r.cost.standard_error[2]) << " |\n"
-        << "| per draw call (ms) | " << general(m.draw_ms) << " | "
+        << "| per draw call (ms) | " << general(m.draw_call_ms) << " | "
         << general(r.cost.standard_error[3]) << " |\n"
         << "| per waited ms | " << general(m.wait_factor) << " | "
         << general(r.cost.standard_error[4]) << " |\n\n"
@@ -235,7 +248,11 @@ std::string reportMarkdown(const TuneResult& r) {
         << fixed(r.cost.heldout_rms_ms, 2) << " ms ("
         << percent(r.cost.heldout_rms_ms, r.cost.mean_frame_ms) << ")\n"
         << "- Ceres: " << r.cost.fit.ceres_summary << "\n\n";
+}
 
+// The response model's terms and how well it predicts.
+void responseModelSection(std::ostringstream& out, const TuneResult& r) {
+    const char* objective = objectiveName(r.options->objective);
     out << "### Response model (" << objective << " ratio against the tuned parameters)\n\n"
         << "A quadratic in the normalised parameters (z = 2x - 1 over the bounds) of the parameters kept ("
         << (r.response.model.active.empty() ? std::string("none: a constant") : [&] {
@@ -253,7 +270,10 @@ std::string reportMarkdown(const TuneResult& r) {
         out << " " << general(r.response.model.coefficients[k]);
     out << "\n- Ceres: " << r.response.fit.ceres_summary << "\n\n## Samples\n\n";
     samplesTable(out, r);
+}
 
+// The pictures written, or why there are none.
+void chartsSection(std::ostringstream& out, const TuneResult& r) {
     out << "\n## Charts\n\n";
     bool any = false;
     for (const std::string& f : r.files) {
@@ -263,6 +283,18 @@ std::string reportMarkdown(const TuneResult& r) {
         }
     }
     if (!any) out << (r.charts_message.empty() ? "none" : r.charts_message) << "\n";
+}
+
+}  // namespace
+
+std::string reportMarkdown(const TuneResult& r) {
+    std::ostringstream out;
+    headerSection(out, r);
+    choiceSection(out, r);
+    confirmationSection(out, r);
+    costModelSection(out, r);
+    responseModelSection(out, r);
+    chartsSection(out, r);
     return out.str();
 }
 

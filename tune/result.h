@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "tune/confirm.h"
-#include "tune/cost_model.h"
+#include "tune/frame_time_model.h"
+#include "tune/options.h"
 #include "tune/parameters.h"
 #include "tune/response_model.h"
 #include "tune/sample_log.h"
-#include "tune/tuner.h"
 
 namespace occsim::tune {
 
@@ -34,7 +34,7 @@ struct TuneResult {
     int64_t sample_error_pixels = 0;  // over every frame of every sample and reference
     double reference_noise = 0.0;     // SampleLog::referenceNoise()
 
-    CostModelFit cost;
+    FrameTimeModelFit cost;
     ResponseFit response;
     std::vector<size_t> dropped;      // parameters the fit found no effect of, in order dropped
     double full_model_loo_rms = 0.0;  // before any was dropped

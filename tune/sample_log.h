@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "tune/cost_model.h"
+#include "tune/frame_time_model.h"
 #include "tune/parameters.h"
 
 namespace occsim::tune {

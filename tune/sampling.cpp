@@ -71,7 +71,8 @@ uint64_t workLeft(size_t samples_left, const TuneOptions& o, uint32_t frames) {
     return (samples_left + kReferences * batches) * frames + 2ull * 2ull * o.repetitions * frames;
 }
 
-void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progress& progress) {
+void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progress& progress,
+            SessionRuns& session) {
     const ParameterSpace& space = c.space;
     const OptionValues base = c.scenario.culler.of(*space.algorithm);
     const OptionValues paper = space.paper(base);
@@ -92,7 +93,7 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
                                   std::to_string(o.budget) + ", running " +
                                   std::to_string(points.size()) + " more";
         const BenchResult result = runInterleaved(
-            c.scenario, *space.algorithm, settings, 1, o.backend, [&](const FrameEvent& e) {
+            c.scenario, *space.algorithm, settings, 1, session, [&](const FrameEvent& e) {
                 progress.setStage(stage + " (frame " + std::to_string(e.frame + 1) + "/" +
                                   std::to_string(c.scenario.frames) + ")");
                 progress.frameDone();

@@ -8,9 +8,10 @@
 
 #include "tune/design.h"
 #include "tune/input.h"
+#include "tune/measure.h"
+#include "tune/options.h"
 #include "tune/progress.h"
 #include "tune/sample_log.h"
-#include "tune/tuner.h"
 
 namespace occsim::tune {
 
@@ -33,6 +34,6 @@ uint64_t workLeft(size_t samples_left, const TuneOptions& options, uint32_t fram
 // Measures batches until the log holds options.budget samples. Throws Interrupted on SIGINT (the
 // batch in progress is dropped; the log keeps every finished one).
 void sample(SampleLog& log, const CheckedInput& input, const TuneOptions& options,
-            Progress& progress);
+            Progress& progress, SessionRuns& session);
 
 }  // namespace occsim::tune

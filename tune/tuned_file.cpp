@@ -6,18 +6,20 @@
 
 namespace occsim::tune {
 
-bool addCostOption(nlohmann::json& culling, const CostModel& model, const std::string& culler) {
+bool addCostOption(nlohmann::json& culling, const FrameTimeModel& model,
+                   const std::string& culler) {
     // The culler refuses a cost model whose three figures are all 0 (nothing would cost anything).
-    if (model.query_ms <= 0.0 && model.triangleMs() <= 0.0 && model.draw_ms <= 0.0) return false;
+    if (model.query_ms <= 0.0 && model.triangleMs() <= 0.0 && model.draw_call_ms <= 0.0)
+        return false;
     culling["cost_model"] = {{"query_box_ms", model.query_ms},
                              {"triangle_ms", model.triangleMs()},
-                             {"draw_call_ms", model.draw_ms},
+                             {"draw_call_ms", model.draw_call_ms},
                              {"cullers", {culler}}};
     return true;
 }
 
 TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
-                    const CostModel& cost) {
+                    const FrameTimeModel& cost) {
     // Ordered, so that the file reads in the order of the culler's descriptor.
     nlohmann::ordered_json options = nlohmann::ordered_json::object();
     for (const OptionSpec& spec : tuned.descriptor()) {

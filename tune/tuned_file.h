@@ -7,7 +7,7 @@
 #include <string>
 
 #include "occsim/culling/registry/registry.h"
-#include "tune/cost_model.h"
+#include "tune/frame_time_model.h"
 
 namespace occsim::tune {
 
@@ -17,7 +17,7 @@ namespace occsim::tune {
 // most queries), per drawn triangle and per draw call, with "cullers": [culler]: the model is for
 // the tuned culler alone, so that applying the file changes no other culler that weighs costs.
 // Adds nothing, and returns false, when all three are 0 (the culler would refuse it).
-bool addCostOption(nlohmann::json& culling, const CostModel& model, const std::string& culler);
+bool addCostOption(nlohmann::json& culling, const FrameTimeModel& model, const std::string& culler);
 
 struct TunedFile {
     std::string text;  // the file's contents
@@ -33,6 +33,6 @@ struct TunedFile {
 // std::runtime_error with that reader's one line when it would be refused, or when it does not read
 // back as the tuned values.
 TunedFile tunedFile(const AlgorithmTraits& algorithm, const OptionValues& tuned,
-                    const CostModel& cost);
+                    const FrameTimeModel& cost);
 
 }  // namespace occsim::tune

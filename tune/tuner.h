@@ -1,53 +1,53 @@
 // occtune's whole session: check the input (before any run), sample (a space-filling design,
 // then where the fitted response is uncertain or promising; every batch interleaved with the
-// paper's values in one run), fit the cost and response models (Ceres), choose, confirm on the
-// fitted frames and on a variant the fit never saw, and write tuned.json, the report and charts.
-// docs/tuning.md explains the method.
+// paper's values in one run), fit the cost and response models (Ceres), choose, and confirm on the
+// fitted frames and on a variant the fit never saw. docs/tuning.md explains the method.
+// The session keeps its sample log (samples.jsonl, so that it can resume) and prints its progress
+// line; what it found is returned, and the command line (tune/main.cpp) prints it and writes
+// tuned.json, the report and charts (tune/session_files.h).
 #pragma once
 
-#include <cstdint>
+#include <cstddef>
 #include <filesystem>
-#include <optional>
+#include <memory>
 #include <string>
-#include <vector>
 
-#include "render/headless_context.h"
+#include "tune/options.h"
+#include "tune/result.h"
+#include "tune/tuned_file.h"
 
 namespace occsim::tune {
 
-enum class Objective { Mean, P95 };
+// How a session ended, and what the command line needs to say so and to write its files.
+struct TuneSession {
+    enum class End { Finished, FitFailed, Interrupted };
+    End end = End::Finished;
 
-struct TuneOptions {
-    std::filesystem::path scenario;
-    uint32_t budget = 20;                        // samples, besides the references
-    std::string algorithm = "statistical";       // a registered culler with tunable options
-    std::vector<std::filesystem::path> plugins;  // loaded first (--plugin), like occsim's
-    std::string params;                          // empty: every tunable option of the algorithm
-    std::vector<std::string> bounds;             // "name=lo:hi"
-    Objective objective = Objective::Mean;
-    uint32_t repetitions = 3;   // of the confirmation
-    std::filesystem::path out;  // default out/<scenario name>/tune
-    bool resume = false;
-    std::optional<uint32_t> frames;        // instead of the scenario's
-    uint64_t seed = 1;                     // of the sampling design
-    uint32_t batch = 4;                    // samples per interleaved run
-    std::optional<uint64_t> holdout_seed;  // default: the scenario's seed + 1
-    int max_fit_iterations = 200;
-    bool progress = false;  // the progress line (stderr)
-    BackendChoice backend;  // --backend, --device
-    std::string command_line;
+    // Interrupted (Ctrl-C): while sampling or during the confirmation; the log is whole.
+    bool interrupted_confirming = false;
+    size_t samples_logged = 0;
+    std::filesystem::path log_file;
+
+    // FitFailed: which model ("cost" or "response") did not converge, and Ceres' summary.
+    std::string failed_model;
+    std::string ceres_summary;
+
+    // Finished: the result, the folder its files go to, and tuned.json's text (its verdict in
+    // result.verdict). The result's samples point into the log, which the session keeps.
+    std::filesystem::path out_dir;
+    std::unique_ptr<const SampleLog> log;
+    TuneResult result;
+    TunedFile tuned_file;
+
+    // kExitDone (tuned.json; its verdict accepted or "no change"), kExitRejected (the
+    // confirmation rejected the values: tuned.rejected.json, no tuned.json), kExitFitFailed (a
+    // fit did not converge: no tuned.json) or kExitInterrupted (the sample log is whole; no
+    // tuned.json).
+    int exitCode() const;
 };
 
-inline constexpr int kExitDone = 0;
-inline constexpr int kExitFitFailed = 1;
-inline constexpr int kExitRejected = 3;       // the confirmation rejected the tuned values
-inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
-
-// Returns kExitDone (tuned.json; its verdict accepted or "no change"), kExitRejected (the
-// confirmation rejected the values: tuned.rejected.json, no tuned.json), kExitFitFailed (a fit
-// did not converge: no tuned.json) or kExitInterrupted
-// (the sample log is whole; no tuned.json). Throws TuneInputError, ScenarioError or GltfError for
-// bad input, before any run; std::runtime_error for failures while running.
-int runTuner(const TuneOptions& options);
+// Runs a session. Throws TuneInputError, ScenarioError or GltfError for bad input, before any
+// run; std::runtime_error for failures while running.
+TuneSession runTuner(const TuneOptions& options);
 
 }  // namespace occsim::tune

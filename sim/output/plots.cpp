@@ -89,7 +89,7 @@ std::string lineStyle(const Style& s) {
 std::string framesData(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     for (size_t i = 0; i < runs.size(); ++i) {
-        out << "# " << runs[i].summary.algorithm << "\n# frame frame_ms queries triangles\n";
+        out << "# " << runs[i].summary.label << "\n# frame frame_ms queries triangles\n";
         for (const FrameStats& f : runs[i].frames) {
             out << f.frame << ' ' << num(f.frame_ms) << ' ' << f.queries << ' ' << f.triangles
                 << '\n';
@@ -105,7 +105,7 @@ std::string configsData(const std::vector<RunRecord>& runs) {
     out << "# configuration mean_frame_ms mean_error_pixels_per_frame pareto "
            "mean_tie_pixels_per_frame missed_objects\n";
     for (const RunRecord& r : runs) {
-        out << quoted(r.summary.algorithm) << ' ' << num(r.summary.frame_ms.mean) << ' '
+        out << quoted(r.summary.label) << ' ' << num(r.summary.frame_ms.mean) << ' '
             << num(r.summary.error_pixels_mean) << ' ' << (r.pareto ? 1 : 0) << ' '
             << num(r.summary.tie_pixels_mean) << ' ' << r.summary.missed_objects_total << '\n';
     }
@@ -125,7 +125,7 @@ std::string paretoData(const std::vector<RunRecord>& runs) {
     out << "# pareto front: configuration mean_frame_ms mean_error_pixels_per_frame "
            "mean_tie_pixels_per_frame missed_objects\n";
     for (const RunRecord* r : front) {
-        out << quoted(r->summary.algorithm) << ' ' << num(r->summary.frame_ms.mean) << ' '
+        out << quoted(r->summary.label) << ' ' << num(r->summary.frame_ms.mean) << ' '
             << num(r->summary.error_pixels_mean) << ' ' << num(r->summary.tie_pixels_mean) << ' '
             << r->summary.missed_objects_total << '\n';
     }
@@ -143,8 +143,7 @@ std::string perFramePlot(const std::vector<RunRecord>& runs, const std::string& 
     out << "plot ";
     for (size_t i = 0; i < runs.size(); ++i) {
         out << (i ? ", \\\n     " : "") << "'plot-frames.dat' index " << i << " using 1:" << y
-            << " with lines " << lineStyle(styles[i]) << " title "
-            << quoted(runs[i].summary.algorithm);
+            << " with lines " << lineStyle(styles[i]) << " title " << quoted(runs[i].summary.label);
     }
     out << "\n";
     return out.str();
@@ -187,7 +186,7 @@ Chart timeErrorChart(const std::vector<RunRecord>& runs) {
         b << ", \\\n     'plot-configs.dat' every ::" << i << "::" << i
           << " using 2:3 with points pt " << styles[i].point << " ps 1.4 lc rgb '"
           << styles[i].colour << "' title "
-          << quoted(std::to_string(i + 1) + "  " + runs[i].summary.algorithm);
+          << quoted(std::to_string(i + 1) + "  " + runs[i].summary.label);
     }
     b << ", \\\n     'plot-configs.dat' using 2:3:(sprintf('%d', $0 + 1)) with labels left "
          "offset char 0.7,0.7 font ',10' notitle\n";

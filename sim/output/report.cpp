@@ -68,7 +68,7 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
             s.answer_latency_median >= 0
                 ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
                 : "-";
-        std::vector<std::string> row = {s.algorithm,
+        std::vector<std::string> row = {s.label,
                                         mean,
                                         fixed(s.frame_ms.median, 2),
                                         fixed(s.frame_ms.p95, 2),
@@ -131,13 +131,12 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
             for (const FrameStats& f : frames) {
-                out << r.summary.algorithm << ',' << rep << ',' << f.frame << ','
-                    << fixed(f.time_s, 6) << ',' << fixed(f.frame_ms, 4) << ','
-                    << fixed(f.cull_cpu_ms, 4) << ',' << fixed(f.wait_ms, 4) << ','
-                    << fixed(f.update_ms, 4) << ',' << f.queries << ',' << f.objects_drawn << ','
-                    << f.triangles << ',' << f.moved_objects << ',' << f.node_changes << ','
-                    << f.error_pixels << ',' << f.tie_pixels << ',' << f.missed_objects << ','
-                    << f.drawn_unseen_objects << ',' << f.visible_objects
+                out << r.summary.label << ',' << rep << ',' << f.frame << ',' << fixed(f.time_s, 6)
+                    << ',' << fixed(f.frame_ms, 4) << ',' << fixed(f.cull_cpu_ms, 4) << ','
+                    << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries
+                    << ',' << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
+                    << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
+                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
                     << ','
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
@@ -149,95 +148,128 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     return out.str();
 }
 
+namespace {
+
+// Milliseconds per query box, per triangle and per draw call, as culling.cost_model names them.
+nlohmann::json costModelJson(const CostModel& cost) {
+    return {{"query_box_ms", cost.query_box_ms},
+            {"triangle_ms", cost.triangle_ms},
+            {"draw_call_ms", cost.draw_call_ms}};
+}
+
+// Error against ground truth over a configuration's frames (docs/error.md).
+nlohmann::json errorJson(const RunSummary& s) {
+    return {{"pixels_total", s.error_pixels_total},
+            {"pixels_worst_frame", s.error_pixels_worst},
+            {"worst_frame", s.error_worst_frame},
+            {"frames_with_error", s.frames_with_error},
+            {"pixels_per_frame_mean", s.error_pixels_mean},
+            {"pixels_per_frame_p99", s.error_pixels_p99},
+            {"tie_pixels_total", s.tie_pixels_total},
+            {"tie_pixels_per_frame_mean", s.tie_pixels_mean},
+            {"frames_with_ties", s.frames_with_ties},
+            {"stray_pixels_total", s.stray_pixels_total},
+            {"missed_objects_total", s.missed_objects_total},
+            {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
+            {"popping_events", s.popping_events},
+            {"popping_mean_frames", s.popping_mean_frames},
+            {"popping_max_frames", s.popping_max_frames}};
+}
+
+// One configuration: its figures, options and, where they mean something, its speed-ups.
+nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord>& runs) {
+    const RunSummary& s = r.summary;
+    nlohmann::json j = {
+        {"configuration", s.label},
+        {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.label},
+        {"repetitions", s.repetitions},
+        {"frame_ms_mean_over_repetitions",
+         {{"median", s.frame_ms.mean}, {"min", s.frame_ms_mean_min}, {"max", s.frame_ms_mean_max}}},
+        {"frames", s.frames},
+        {"timed_frames", s.timed_frames},
+        {"frame_ms",
+         {{"mean", s.frame_ms.mean},
+          {"median", s.frame_ms.median},
+          {"p95", s.frame_ms.p95},
+          {"min", s.frame_ms.min},
+          {"max", s.frame_ms.max}}},
+        {"cull_cpu_ms_mean", s.cull_cpu_ms_mean},
+        {"wait_ms_mean", s.wait_ms_mean},
+        {"update_ms_mean", s.update_ms_mean},
+        {"queries_per_frame", s.queries_mean},
+        {"objects_per_frame", s.objects_mean},
+        {"triangles_per_frame", s.triangles_mean},
+        // null where not measured: see machine.gpu_time_meaningful.
+        {"gpu_ms", s.gpu_ms_mean >= 0
+                       ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
+                       : nlohmann::json(nullptr)},
+        {"answer_latency_commands", s.answer_latency_median >= 0
+                                        ? nlohmann::json{{"answers", s.answers},
+                                                         {"median", s.answer_latency_median},
+                                                         {"p95", s.answer_latency_p95}}
+                                        : nlohmann::json(nullptr)},
+    };
+    if (s.error_measured) {
+        j["error"] = errorJson(s);
+        j["pareto"] = r.pareto;
+    }
+    j["options"] = optionsJson(r.options);
+    j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
+                          {"stale_results", r.approximation.stale_results}};
+    if (r.cost_model) j["cost_model"] = costModelJson(*r.cost_model);
+    if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
+    if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
+    return j;
+}
+
+nlohmann::json scenarioJson(const RunMetadata& m) {
+    return {{"name", m.scenario_name}, {"file", m.scenario_file},
+            {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
+            {"dt_s", m.dt_s},          {"seed", m.seed},
+            {"objects", m.objects},    {"triangles", m.triangles},
+            {"movers", m.movers}};
+}
+
+nlohmann::json machineJson(const RunMetadata& m) {
+    return {{"hardware_threads", m.hardware_threads},
+            {"load_average_before", m.load_before},
+            {"load_average_after", m.load_after},
+            {"busy", m.busyMachine()},
+            {"llvmpipe_threads", m.lp_num_threads},
+            {"renderer", m.renderer},
+            {"backend", m.backend},
+            {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
+            {"gl_vendor", m.gl_vendor},
+            {"gl_renderer", m.gl_renderer},
+            {"gl_version", m.gl_version},
+            {"driver", m.driver},
+            {"gpu_time_meaningful", m.gpu_time_meaningful},
+            {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
+}
+
+// What the simulator itself spent, beside the frame time it measured.
+nlohmann::json simulatorCostsJson(const RunCosts& c) {
+    return {{"wall_ms_after_setup", c.wall_ms},
+            {"frame_ms_total", c.frame_ms_total},
+            {"wall_over_frame_time", c.frame_ms_total > 0 ? c.wall_ms / c.frame_ms_total : 0.0},
+            {"world_advances", c.world_advances},
+            {"world_steps", c.world_steps},
+            {"world_update_ms_total", c.world_update_ms_total},
+            {"ground_truth_renders", c.ground_truth_renders},
+            {"ground_truth_ms_total", c.ground_truth_ms_total},
+            {"error_read_backs", c.error_read_backs}};
+}
+
+}  // namespace
+
 nlohmann::json summaryJson(const BenchResult& result) {
     const std::vector<RunRecord>& runs = result.runs;
     nlohmann::json algorithms = nlohmann::json::array();
-    for (const RunRecord& r : runs) {
-        const RunSummary& s = r.summary;
-        nlohmann::json j = {
-            {"configuration", s.algorithm},
-            {"algorithm", r.algorithm ? std::string(r.algorithm->name) : s.algorithm},
-            {"repetitions", s.repetitions},
-            {"frame_ms_mean_over_repetitions",
-             {{"median", s.frame_ms.mean},
-              {"min", s.frame_ms_mean_min},
-              {"max", s.frame_ms_mean_max}}},
-            {"frames", s.frames},
-            {"timed_frames", s.timed_frames},
-            {"frame_ms",
-             {{"mean", s.frame_ms.mean},
-              {"median", s.frame_ms.median},
-              {"p95", s.frame_ms.p95},
-              {"min", s.frame_ms.min},
-              {"max", s.frame_ms.max}}},
-            {"cull_cpu_ms_mean", s.cull_cpu_ms_mean},
-            {"wait_ms_mean", s.wait_ms_mean},
-            {"update_ms_mean", s.update_ms_mean},
-            {"queries_per_frame", s.queries_mean},
-            {"objects_per_frame", s.objects_mean},
-            {"triangles_per_frame", s.triangles_mean},
-            // null where not measured: see machine.gpu_time_meaningful.
-            {"gpu_ms", s.gpu_ms_mean >= 0
-                           ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
-                           : nlohmann::json(nullptr)},
-            {"answer_latency_commands", s.answer_latency_median >= 0
-                                            ? nlohmann::json{{"answers", s.answers},
-                                                             {"median", s.answer_latency_median},
-                                                             {"p95", s.answer_latency_p95}}
-                                            : nlohmann::json(nullptr)},
-        };
-        if (s.error_measured) {
-            j["error"] = {{"pixels_total", s.error_pixels_total},
-                          {"pixels_worst_frame", s.error_pixels_worst},
-                          {"worst_frame", s.error_worst_frame},
-                          {"frames_with_error", s.frames_with_error},
-                          {"pixels_per_frame_mean", s.error_pixels_mean},
-                          {"pixels_per_frame_p99", s.error_pixels_p99},
-                          {"tie_pixels_total", s.tie_pixels_total},
-                          {"tie_pixels_per_frame_mean", s.tie_pixels_mean},
-                          {"frames_with_ties", s.frames_with_ties},
-                          {"stray_pixels_total", s.stray_pixels_total},
-                          {"missed_objects_total", s.missed_objects_total},
-                          {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
-                          {"popping_events", s.popping_events},
-                          {"popping_mean_frames", s.popping_mean_frames},
-                          {"popping_max_frames", s.popping_max_frames}};
-            j["pareto"] = r.pareto;
-        }
-        j["options"] = optionsJson(r.options);
-        j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
-                              {"stale_results", r.approximation.stale_results}};
-        if (r.cost_model) {
-            j["cost_model"] = {{"query_box_ms", r.cost_model->query_box_ms},
-                               {"triangle_ms", r.cost_model->triangle_ms},
-                               {"draw_call_ms", r.cost_model->draw_call_ms}};
-        }
-        if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
-        if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
-        algorithms.push_back(j);
-    }
+    for (const RunRecord& r : runs) algorithms.push_back(configurationJson(r, runs));
     const RunMetadata& m = result.metadata;
     nlohmann::json summary = {{"algorithms", algorithms}};
-    summary["scenario"] = {{"name", m.scenario_name}, {"file", m.scenario_file},
-                           {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
-                           {"dt_s", m.dt_s},          {"seed", m.seed},
-                           {"objects", m.objects},    {"triangles", m.triangles},
-                           {"movers", m.movers}};
-    summary["machine"] = {
-        {"hardware_threads", m.hardware_threads},
-        {"load_average_before", m.load_before},
-        {"load_average_after", m.load_after},
-        {"busy", m.busyMachine()},
-        {"llvmpipe_threads", m.lp_num_threads},
-        {"renderer", m.renderer},
-        {"backend", m.backend},
-        {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},
-        {"gl_vendor", m.gl_vendor},
-        {"gl_renderer", m.gl_renderer},
-        {"gl_version", m.gl_version},
-        {"driver", m.driver},
-        {"gpu_time_meaningful", m.gpu_time_meaningful},
-        {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
+    summary["scenario"] = scenarioJson(m);
+    summary["machine"] = machineJson(m);
     summary["command"] = m.command_line;
     summary["occsim"] = {{"version", OCCSIM_VERSION}, {"commit", OCCSIM_GIT_COMMIT}};
     summary["nothing_in_view"] =
@@ -255,22 +287,10 @@ nlohmann::json summaryJson(const BenchResult& result) {
     if (!m.backend_fallback.empty()) summary["machine"]["backend_fallback"] = m.backend_fallback;
     if (m.sweep)
         summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
-    const RunCosts& c = result.costs;
-    summary["simulator_costs"] = {
-        {"wall_ms_after_setup", c.wall_ms},
-        {"frame_ms_total", c.frame_ms_total},
-        {"wall_over_frame_time", c.frame_ms_total > 0 ? c.wall_ms / c.frame_ms_total : 0.0},
-        {"world_advances", c.world_advances},
-        {"world_steps", c.world_steps},
-        {"world_update_ms_total", c.world_update_ms_total},
-        {"ground_truth_renders", c.ground_truth_renders},
-        {"ground_truth_ms_total", c.ground_truth_ms_total},
-        {"error_read_backs", c.error_read_backs}};
+    summary["simulator_costs"] = simulatorCostsJson(result.costs);
     if (m.cost_model) {
-        summary["cost_model"] = {{"source", m.cost_model_source},
-                                 {"query_box_ms", m.cost_model->query_box_ms},
-                                 {"triangle_ms", m.cost_model->triangle_ms},
-                                 {"draw_call_ms", m.cost_model->draw_call_ms}};
+        summary["cost_model"] = costModelJson(*m.cost_model);
+        summary["cost_model"]["source"] = m.cost_model_source;
     }
     return summary;
 }

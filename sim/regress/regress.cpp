@@ -117,11 +117,11 @@ std::string checksMarkdown(const ScenarioOutcome& outcome) {
     return out.str();
 }
 
-ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& options) {
-    ScenarioOutcome outcome;
-    outcome.scenario = file.string();
-    outcome.name = file.stem().string();
-    const auto start = Clock::now();
+// The scenario of a regression run (options.adjust_scenario applied), or nothing when the
+// outcome already says all: skipped (no expect block) or failed (not a valid file).
+std::optional<Scenario> readRegressScenario(const std::filesystem::path& file,
+                                            const RegressOptions& options,
+                                            ScenarioOutcome& outcome) {
     Scenario scenario;
     try {
         scenario = parseScenarioFile(file);
@@ -130,15 +130,19 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
         if (!scenario.expect) {
             outcome.skipped = true;
             outcome.note = "no expect block";
-            return outcome;
+            return std::nullopt;
         }
     } catch (const ScenarioError& e) {
         outcome.checks.push_back(
             {"valid scenario and expectations", "a valid file", e.what(), false});
-        return outcome;
+        return std::nullopt;
     }
-    const Expectations& expect = *scenario.expect;
+    return scenario;
+}
 
+// The run the expectations ask for: their algorithms, deterministic latency, error measured.
+BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expectations& expect,
+                                 const RegressOptions& options) {
     BenchOptions bench;
     for (const std::string& name : expect.algorithms)
         bench.algorithms.push_back(findAlgorithm(name));
@@ -153,19 +157,26 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
     bench.backend = options.backend;
-    const std::filesystem::path out_dir = options.out_dir / safeFileName(outcome.name);
-    const BenchResult result = runBenchmark(scenario, bench);
-    std::filesystem::create_directories(out_dir);  // pictures of failures go there first
+    return bench;
+}
 
-    auto runOf = [&](const std::string& name) -> const RunRecord& {
+// The checks of one run: they go into the outcome, and a failed error check takes a picture of
+// the worst error frame into the scenario's output folder.
+struct ResultChecks {
+    const BenchResult& result;
+    const std::filesystem::path& out_dir;
+    ScenarioOutcome& outcome;
+
+    const RunRecord& runOf(const std::string& name) const {
         for (const RunRecord& r : result.runs) {
-            if (r.summary.algorithm == name) return r;
+            if (r.summary.label == name) return r;
         }
         throw std::logic_error("no run for " + name);
-    };
-    auto capture = [&](const std::string& algorithm) {
+    }
+
+    void capture(const std::string& algorithm) {
         for (size_t a = 0; a < result.runs.size(); ++a) {
-            if (result.runs[a].summary.algorithm != algorithm) continue;
+            if (result.runs[a].summary.label != algorithm) continue;
             const ErrorFrame& worst = result.worst_error_frames[a];
             if (worst.error_pixels == 0) return;
             const auto path = out_dir / ("worst-error-" + safeFileName(algorithm) + "-frame-" +
@@ -175,11 +186,12 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
                                                         3 * width, height));
             outcome.captures.push_back(path.string());
         }
-    };
+    }
+};
 
-    // Expectations.
+void checkZeroError(ResultChecks& checks, const Expectations& expect) {
     for (const std::string& name : expect.zero_error) {
-        const RunSummary& s = runOf(name).summary;
+        const RunSummary& s = checks.runOf(name).summary;
         CheckResult c{"zero error pixels: " + name, "0 on every frame", "",
                       s.error_pixels_total == 0};
         // Ties (another object at the same depth) are no error; shown so a reader sees them apart.
@@ -189,25 +201,31 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
                                std::to_string(s.frames_with_error) + " frames (worst frame " +
                                std::to_string(s.error_worst_frame) + ": " +
                                std::to_string(s.error_pixels_worst) + " px)" + ties;
-        if (!c.passed) capture(name);
-        outcome.checks.push_back(c);
+        if (!c.passed) checks.capture(name);
+        checks.outcome.checks.push_back(c);
         CheckResult m{"no missed objects: " + name, "0 on every frame", "",
                       s.missed_objects_total == 0};
         m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
-        outcome.checks.push_back(m);
+        checks.outcome.checks.push_back(m);
     }
+}
+
+void checkMaxErrorPixels(ResultChecks& checks, const Expectations& expect) {
     for (const auto& [name, bound] : expect.max_error_pixels) {
-        const RunSummary& s = runOf(name).summary;
+        const RunSummary& s = checks.runOf(name).summary;
         CheckResult c{"error pixels per frame: " + name, "<= " + std::to_string(bound),
                       std::to_string(s.error_pixels_worst) + " (frame " +
                           std::to_string(s.error_worst_frame) + ")",
                       s.error_pixels_worst <= bound};
-        if (!c.passed) capture(name);
-        outcome.checks.push_back(c);
+        if (!c.passed) checks.capture(name);
+        checks.outcome.checks.push_back(c);
     }
+}
+
+void checkRatios(ResultChecks& checks, const Expectations& expect, const Scenario& scenario) {
     for (const RatioExpectation& r : expect.ratios) {
-        const RunSummary& sa = runOf(r.algorithm).summary;
-        const RunSummary& sb = runOf(r.reference).summary;
+        const RunSummary& sa = checks.runOf(r.algorithm).summary;
+        const RunSummary& sb = checks.runOf(r.reference).summary;
         const double a = sa.frame_ms.mean, b = sb.frame_ms.mean;
         const double limit = r.max * (1.0 + r.tolerance);
         CheckResult c{"frame time " + r.algorithm + " / " + r.reference,
@@ -227,10 +245,13 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             c.got = fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)";
             c.passed = ratio <= limit;
         }
-        outcome.checks.push_back(c);
+        checks.outcome.checks.push_back(c);
     }
+}
 
-    // Baseline.
+// This run's counts, frame by frame, as a baseline file holds them.
+Baseline baselineOf(const Scenario& scenario, const Expectations& expect,
+                    const BenchResult& result) {
     Baseline now;
     now.scenario = scenario.name;
     now.deterministic_latency = expect.deterministic_latency;
@@ -238,7 +259,7 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     now.backend = result.metadata.backend;
     now.renderer = result.metadata.gl_renderer;
     for (const RunRecord& r : result.runs) {
-        AlgorithmTrace& t = now.algorithms[r.summary.algorithm];
+        AlgorithmTrace& t = now.algorithms[r.summary.label];
         for (const FrameStats& f : r.frames) {
             t.queries.push_back(f.queries);
             t.objects.push_back(f.objects_drawn);
@@ -246,98 +267,156 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             t.missed_objects.push_back(f.missed_objects);
         }
     }
-    std::optional<Baseline> old;
-    std::string baseline_problem;
-    const bool had_baseline = std::filesystem::exists(expect.baseline);
-    if (had_baseline) {
+    return now;
+}
+
+// The baseline file as found: read, or what is wrong with it (missing, unreadable).
+struct OldBaseline {
+    std::optional<Baseline> baseline;
+    std::string problem;
+    bool existed = false;
+};
+
+OldBaseline readOldBaseline(const std::filesystem::path& file) {
+    OldBaseline old;
+    old.existed = std::filesystem::exists(file);
+    if (old.existed) {
         try {
-            old = readBaseline(expect.baseline);
+            old.baseline = readBaseline(file);
         } catch (const BaselineError& e) {
-            baseline_problem = e.what();
+            old.problem = e.what();
         }
     } else {
-        baseline_problem =
-            expect.baseline.string() + ": no baseline file (create it with --update)";
+        old.problem = file.string() + ": no baseline file (create it with --update)";
     }
-    if (options.update) {
-        std::vector<std::string> changes;
-        for (const auto& [name, trace] : now.algorithms) {
-            const AlgorithmTrace* before = nullptr;
-            if (old && old->algorithms.count(name)) before = &old->algorithms.at(name);
-            if (!before) {
-                changes.push_back(name + ": new");
-                continue;
-            }
-            for (const std::string& d :
-                 {describeChange("queries", before->queries, trace.queries),
-                  describeChange("objects", before->objects, trace.objects),
-                  describeChange("error pixels", before->error_pixels, trace.error_pixels),
-                  describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
-                if (!d.empty()) changes.push_back(name + ": " + d);
+    return old;
+}
+
+// What --update changes, one line per algorithm and series that differs.
+std::vector<std::string> baselineChanges(const Baseline& now, const std::optional<Baseline>& old) {
+    std::vector<std::string> changes;
+    for (const auto& [name, trace] : now.algorithms) {
+        const AlgorithmTrace* before = nullptr;
+        if (old && old->algorithms.count(name)) before = &old->algorithms.at(name);
+        if (!before) {
+            changes.push_back(name + ": new");
+            continue;
+        }
+        for (const std::string& d :
+             {describeChange("queries", before->queries, trace.queries),
+              describeChange("objects", before->objects, trace.objects),
+              describeChange("error pixels", before->error_pixels, trace.error_pixels),
+              describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
+            if (!d.empty()) changes.push_back(name + ": " + d);
+        }
+    }
+    if (old) {
+        for (const auto& [name, trace] : old->algorithms) {
+            if (!now.algorithms.count(name)) changes.push_back(name + ": removed");
+        }
+    }
+    return changes;
+}
+
+void updateBaseline(ScenarioOutcome& outcome, const std::filesystem::path& file,
+                    const Baseline& now, const OldBaseline& old) {
+    const std::vector<std::string> changes = baselineChanges(now, old.baseline);
+    writeFileAtomically(file, baselineJson(now));
+    outcome.note = file.string() + (changes.empty() ? ": unchanged" : ": updated");
+    // An unreadable old file (another format version) is replaced, not compared: say so, or
+    // every algorithm would read as new.
+    if (old.existed && !old.baseline) {
+        outcome.note += " (the old file was not compared: " + old.problem + ")";
+    }
+    for (const auto& c : changes) outcome.note += "\n    " + c;
+}
+
+// Deterministic counts should not depend on where they were rendered; if a check fails, this
+// says what differed besides the code. Empty when the baseline was made on this backend.
+std::string renderedElsewhere(const Baseline& old, const Baseline& now) {
+    if ((!old.backend.empty() && old.backend != now.backend) ||
+        (!old.renderer.empty() && old.renderer != now.renderer)) {
+        return "baseline made on " + old.backend + " (" + old.renderer + "), this run on " +
+               now.backend + " (" + now.renderer + ")";
+    }
+    return "";
+}
+
+// Every series of every algorithm against the baseline's, frame by frame.
+void compareWithBaseline(ResultChecks& checks, const Baseline& old, const Baseline& now,
+                         const std::string& elsewhere) {
+    std::vector<CheckResult>& out = checks.outcome.checks;
+    if (old.deterministic_latency != now.deterministic_latency || old.frames != now.frames) {
+        out.push_back({"baseline settings",
+                       std::to_string(old.frames) + " frames, latency " +
+                           std::to_string(old.deterministic_latency),
+                       std::to_string(now.frames) + " frames, latency " +
+                           std::to_string(now.deterministic_latency),
+                       false});
+        return;
+    }
+    for (const auto& [name, trace] : now.algorithms) {
+        const auto it = old.algorithms.find(name);
+        if (it == old.algorithms.end()) {
+            out.push_back(
+                {"baseline has " + name, "present", "missing (run with --update)", false});
+            continue;
+        }
+        out.push_back(compareSeries("queries", name, it->second.queries, trace.queries));
+        out.push_back(compareSeries("objects", name, it->second.objects, trace.objects));
+        out.push_back(
+            compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
+        if (!out.back().passed) checks.capture(name);
+        out.push_back(
+            compareSeries("missed objects", name, it->second.missed_objects, trace.missed_objects));
+        // A count check that fails against a baseline made on another backend says so.
+        if (!elsewhere.empty()) {
+            for (size_t k = out.size() - 4; k < out.size(); ++k) {
+                if (!out[k].passed) out[k].got += " [" + elsewhere + "]";
             }
         }
-        if (old) {
-            for (const auto& [name, trace] : old->algorithms) {
-                if (!now.algorithms.count(name)) changes.push_back(name + ": removed");
-            }
-        }
-        writeFileAtomically(expect.baseline, baselineJson(now));
-        outcome.note = expect.baseline.string() + (changes.empty() ? ": unchanged" : ": updated");
-        // An unreadable old file (another format version) is replaced, not compared: say so, or
-        // every algorithm would read as new.
-        if (had_baseline && !old) {
-            outcome.note += " (the old file was not compared: " + baseline_problem + ")";
-        }
-        for (const auto& c : changes) outcome.note += "\n    " + c;
-    } else if (!baseline_problem.empty()) {
+    }
+}
+
+// The baseline: written (--update), or compared with this run's counts.
+void checkBaseline(ResultChecks& checks, const Expectations& expect, const Baseline& now,
+                   bool update) {
+    ScenarioOutcome& outcome = checks.outcome;
+    const OldBaseline old = readOldBaseline(expect.baseline);
+    if (update) {
+        updateBaseline(outcome, expect.baseline, now, old);
+        return;
+    }
+    if (!old.problem.empty()) {
         outcome.checks.push_back(
-            {"baseline", "a readable baseline of this format", baseline_problem, false});
+            {"baseline", "a readable baseline of this format", old.problem, false});
+        return;
     }
-    std::string elsewhere;
-    if (!options.update && old &&
-        ((!old->backend.empty() && old->backend != now.backend) ||
-         (!old->renderer.empty() && old->renderer != now.renderer))) {
-        // Deterministic counts should not depend on where they were rendered; if a check below
-        // fails, this says what differed besides the code.
-        elsewhere = "baseline made on " + old->backend + " (" + old->renderer + "), this run on " +
-                    now.backend + " (" + now.renderer + ")";
-        outcome.note = expect.baseline.string() + ": " + elsewhere;
-    }
-    if (options.update || !baseline_problem.empty()) {
-        // Written or reported above.
-    } else if (old->deterministic_latency != now.deterministic_latency ||
-               old->frames != now.frames) {
-        outcome.checks.push_back({"baseline settings",
-                                  std::to_string(old->frames) + " frames, latency " +
-                                      std::to_string(old->deterministic_latency),
-                                  std::to_string(now.frames) + " frames, latency " +
-                                      std::to_string(now.deterministic_latency),
-                                  false});
-    } else {
-        for (const auto& [name, trace] : now.algorithms) {
-            const auto it = old->algorithms.find(name);
-            if (it == old->algorithms.end()) {
-                outcome.checks.push_back(
-                    {"baseline has " + name, "present", "missing (run with --update)", false});
-                continue;
-            }
-            outcome.checks.push_back(
-                compareSeries("queries", name, it->second.queries, trace.queries));
-            outcome.checks.push_back(
-                compareSeries("objects", name, it->second.objects, trace.objects));
-            outcome.checks.push_back(
-                compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
-            if (!outcome.checks.back().passed) capture(name);
-            outcome.checks.push_back(compareSeries(
-                "missed objects", name, it->second.missed_objects, trace.missed_objects));
-            // A count check that fails against a baseline made on another backend says so.
-            if (!elsewhere.empty()) {
-                for (size_t k = outcome.checks.size() - 4; k < outcome.checks.size(); ++k) {
-                    if (!outcome.checks[k].passed) outcome.checks[k].got += " [" + elsewhere + "]";
-                }
-            }
-        }
-    }
+    const std::string elsewhere = renderedElsewhere(*old.baseline, now);
+    if (!elsewhere.empty()) outcome.note = expect.baseline.string() + ": " + elsewhere;
+    compareWithBaseline(checks, *old.baseline, now, elsewhere);
+}
+
+ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& options) {
+    ScenarioOutcome outcome;
+    outcome.scenario = file.string();
+    outcome.name = file.stem().string();
+    const auto start = Clock::now();
+    const std::optional<Scenario> read = readRegressScenario(file, options, outcome);
+    if (!read) return outcome;
+    const Scenario& scenario = *read;
+    const Expectations& expect = *scenario.expect;
+
+    const std::filesystem::path out_dir = options.out_dir / safeFileName(outcome.name);
+    const BenchResult result = runBenchmark(scenario, regressBenchOptions(file, expect, options));
+    std::filesystem::create_directories(out_dir);  // pictures of failures go there first
+
+    ResultChecks checks{result, out_dir, outcome};
+    checkZeroError(checks, expect);
+    checkMaxErrorPixels(checks, expect);
+    checkRatios(checks, expect, scenario);
+    checkBaseline(checks, expect, baselineOf(scenario, expect, result), options.update);
+
     writeRunOutputs(result, OutputRequest{out_dir, false, {}, checksMarkdown(outcome)});
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return outcome;

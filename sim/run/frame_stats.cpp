@@ -21,10 +21,10 @@ Distribution distributionOf(std::vector<double> values) {
     return d;
 }
 
-RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
+RunSummary summarize(const std::string& label, const std::vector<FrameStats>& frames,
                      uint32_t warmup_frames) {
     RunSummary s;
-    s.algorithm = algorithm;
+    s.label = label;
     s.frames = static_cast<uint32_t>(frames.size());
     std::vector<double> frame_ms, gpu_ms;
     bool gpu_measured = true;

@@ -44,7 +44,8 @@ struct Distribution {
 Distribution distributionOf(std::vector<double> values);
 
 struct RunSummary {
-    std::string algorithm;
+    // The configuration's label: the algorithm name, or "name knob=value" in a sweep.
+    std::string label;
     uint32_t frames = 0;        // all frames
     uint32_t timed_frames = 0;  // frames after warm-up, over which timing figures are taken
     Distribution frame_ms;
@@ -79,7 +80,7 @@ struct RunSummary {
     double frame_ms_mean_min = 0, frame_ms_mean_max = 0;
 };
 
-RunSummary summarize(const std::string& algorithm, const std::vector<FrameStats>& frames,
+RunSummary summarize(const std::string& label, const std::vector<FrameStats>& frames,
                      uint32_t warmup_frames);
 
 // Counts popping: per object, runs of consecutive frames in which it was visible in ground truth

@@ -18,7 +18,7 @@ const RunSummary* findRun(const std::vector<RunRecord>& runs, Pred&& is) {
     const RunSummary* swept = nullptr;
     for (const RunRecord& r : runs) {
         if (!r.algorithm || !is(*r.algorithm)) continue;
-        if (r.summary.algorithm == r.algorithm->name) return &r.summary;
+        if (r.summary.label == r.algorithm->name) return &r.summary;
         if (!swept) swept = &r.summary;
     }
     return swept;

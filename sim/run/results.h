@@ -15,7 +15,7 @@
 
 namespace occsim {
 
-// One configuration's runs. summary.algorithm holds the configuration's label (the algorithm
+// One configuration's runs. summary.label holds the configuration's label (the algorithm
 // name, or "name knob=value" in a sweep); with repetitions, summary is the median over them.
 struct RunRecord {
     RunSummary summary;

@@ -1,21 +1,17 @@
 #include "sim/run/run_config.h"
 
-#include <cmath>
 #include <stdexcept>
+
+#include "sim/scenario/number_text.h"
 
 namespace occsim {
 namespace {
 
+// A sweep value: a finite number, or true/false for a switch.
 bool parseNumber(const std::string& item, double& v) {
     if (item == "true") return v = 1.0, true;
     if (item == "false") return v = 0.0, true;
-    size_t used = 0;
-    try {
-        v = std::stod(item, &used);
-    } catch (const std::exception&) {
-        return false;
-    }
-    return used == item.size() && std::isfinite(v);
+    return parseFiniteNumber(item, v);
 }
 
 const OptionSpec* sharedOption(const std::string& key) {

@@ -36,8 +36,11 @@ std::array<double, 3> loadAverage() {
     return load;
 }
 
-void printWarnings(const Scene& scene) {
-    for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+void printWarnings(const Scene& scene, std::set<std::string>* shown) {
+    for (const std::string& w : scene.warnings) {
+        if (shown && !shown->insert(w).second) continue;
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
 }
 
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
@@ -78,6 +81,156 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     return m;
 }
 
+// The start-up measurement of drawing and querying, when one was made.
+void printCalibratedCosts(const std::optional<CostModelChoice>& costs) {
+    if (costs && costs->source == "calibrated") {
+        std::fprintf(stderr,
+                     "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f "
+                     "ms per draw call\n",
+                     costs->costs.query_box_ms, costs->costs.triangle_ms,
+                     costs->costs.draw_call_ms);
+    }
+}
+
+// One record per configuration, with what it ran with, before any frame.
+void prepareRecords(BenchResult& result, const std::vector<RunConfig>& configs) {
+    result.runs.resize(configs.size());
+    for (size_t c = 0; c < configs.size(); ++c) {
+        result.runs[c].algorithm = configs[c].algorithm;
+        result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
+        result.runs[c].approximation = configs[c].culler.approximation;
+        const AlgorithmTraits& a = *configs[c].algorithm;
+        if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
+            result.runs[c].cost_model = configs[c].culler.cost_model;
+        }
+    }
+}
+
+// What one repetition runs on: the world, ground truth and the renderer all configurations share.
+struct Stage {
+    const Scenario& scenario;
+    const std::vector<RunConfig>& configs;
+    const BenchOptions& options;
+    const HeadlessContext& context;
+    GlRenderer& renderer;
+};
+
+std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, SharedWorld& world,
+                                                         GroundTruth& truth, uint32_t rep) {
+    const BenchOptions& options = stage.options;
+    std::vector<std::unique_ptr<Simulation>> sims;
+    for (const RunConfig& config : stage.configs) {
+        SimulationOptions sim_options;
+        sim_options.measure_error = options.measure_error;
+        sim_options.latency = options.latency;
+        sim_options.keep_worst_error_frame =
+            options.keep_worst_error_frame && options.measure_error && rep == 0;
+        if (rep == 0) sim_options.trace_frame = options.trace_frame;
+        sim_options.measure_gpu_time = stage.context.info().gpu_time_meaningful;
+        auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
+                                          : makeConfiguredCuller(config);
+        sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
+                                                    std::move(culler), config.culler,
+                                                    stage.renderer, sim_options));
+    }
+    return sims;
+}
+
+// The progress line, at most four times a second and on the last frame.
+struct ProgressClock {
+    Clock::time_point start = Clock::now();
+    Clock::time_point last = start;
+    uint32_t total_frames = 0;
+
+    void frameDone(bool enabled, uint32_t done) {
+        if (enabled &&
+            (Clock::now() - last > std::chrono::milliseconds(250) || done == total_frames)) {
+            printProgress(done, total_frames, start);
+            last = Clock::now();
+        }
+    }
+};
+
+// Every frame of one repetition. Interleaved: frame f of every configuration before frame f + 1
+// of any, so that drift on a shared machine hits all alike. Ground truth, when some configuration
+// needs it, is rendered once per frame before the first configuration renders (outside every
+// timing); a run in which none needs it renders none.
+std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& world,
+                                               GroundTruth& truth,
+                                               std::vector<std::unique_ptr<Simulation>>& sims,
+                                               uint32_t rep, ProgressClock& progress,
+                                               RunCosts& spent) {
+    const Scenario& scenario = stage.scenario;
+    const BenchOptions& options = stage.options;
+    std::vector<std::vector<FrameStats>> frames(sims.size());
+    for (auto& f : frames) f.reserve(scenario.frames);
+    bool any_needs_truth = false;
+    for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
+    const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
+    for (uint32_t f = 0; f < scenario.frames; ++f) {
+        world.advance();
+        if (any_needs_truth) truth.of(world, truth_colour);
+        for (size_t k = 0; k < sims.size(); ++k) {
+            const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
+            frames[c].push_back(sims[c]->renderFrame());
+            spent.frame_ms_total += frames[c].back().frame_ms;
+            if (options.on_frame) {
+                options.on_frame(
+                    FrameEvent{rep, f, stage.configs[c], *sims[c], scenario, stage.renderer});
+            }
+        }
+        progress.frameDone(options.progress, rep * scenario.frames + f + 1);
+    }
+    return frames;
+}
+
+void addWorldCosts(RunCosts& spent, const SharedWorld& world, const GroundTruth& truth) {
+    spent.world_advances += world.advances();
+    spent.world_steps += world.steps();
+    spent.world_update_ms_total += world.updateMsTotal();
+    spent.ground_truth_renders += truth.renders();
+    spent.ground_truth_ms_total += truth.msTotal();
+}
+
+// Each configuration's summary of the repetition; the first repetition keeps its frames whole.
+void recordRepetition(BenchResult& result, const Stage& stage,
+                      const std::vector<std::unique_ptr<Simulation>>& sims,
+                      std::vector<std::vector<FrameStats>>& frames, uint32_t rep) {
+    for (size_t c = 0; c < sims.size(); ++c) {
+        result.costs.error_read_backs += sims[c]->errorReadBacks();
+        RunRecord& record = result.runs[c];
+        RunSummary summary =
+            summarize(stage.configs[c].label, frames[c], stage.scenario.warmup_frames);
+        if (stage.options.measure_error) addPopping(summary, sims[c]->poppingRuns());
+        addAnswerLatencies(summary, sims[c]->answerLatencies());
+        record.repetitions.push_back(summary);
+        if (rep == 0) {
+            record.frames = std::move(frames[c]);
+            if (sims[c]->keepsWorstErrorFrame())
+                result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
+        } else {
+            record.later_repetitions.push_back(std::move(frames[c]));
+        }
+    }
+}
+
+// A fresh world for every repetition: each one replays the same frames. One world for all
+// configurations: the movers step and the tree is refit once per frame, and each culler keeps its
+// own per-node state beside the shared tree.
+void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, uint32_t rep,
+                   ProgressClock& progress) {
+    SharedWorld world(scene, stage.scenario);
+    GroundTruth truth(stage.renderer);
+    std::vector<std::unique_ptr<Simulation>> sims = makeSimulations(stage, world, truth, rep);
+    const auto loop_start = Clock::now();
+    std::vector<std::vector<FrameStats>> frames =
+        runFrames(stage, world, truth, sims, rep, progress, result.costs);
+    result.costs.wall_ms +=
+        std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
+    addWorldCosts(result.costs, world, truth);
+    recordRepetition(result, stage, sims, frames, rep);
+}
+
 }  // namespace
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
@@ -91,20 +244,14 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const uint32_t repetitions = std::max(1u, options.repetitions);
 
     const Scene scene = buildScene(scenario);
-    printWarnings(scene);
+    printWarnings(scene, options.warnings_shown);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
     const std::optional<CostModelChoice> costs =
         chooseCostModel(configs, scene, scenario, renderer, options.latency);
-    if (costs && costs->source == "calibrated") {
-        std::fprintf(stderr,
-                     "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f "
-                     "ms per draw call\n",
-                     costs->costs.query_box_ms, costs->costs.triangle_ms,
-                     costs->costs.draw_call_ms);
-    }
+    printCalibratedCosts(costs);
 
     BenchResult result;
     result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
@@ -112,96 +259,13 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
         result.metadata.cost_model = costs->costs;
         result.metadata.cost_model_source = costs->source;
     }
-    result.runs.resize(configs.size());
-    for (size_t c = 0; c < configs.size(); ++c) {
-        result.runs[c].algorithm = configs[c].algorithm;
-        result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
-        result.runs[c].approximation = configs[c].culler.approximation;
-        const AlgorithmTraits& a = *configs[c].algorithm;
-        if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
-            result.runs[c].cost_model = configs[c].culler.cost_model;
-        }
-    }
+    prepareRecords(result, configs);
 
-    const auto start = Clock::now();
-    auto last_progress = start;
-    const uint32_t total_frames = repetitions * scenario.frames;
-    RunCosts& spent = result.costs;
-    for (uint32_t rep = 0; rep < repetitions; ++rep) {
-        // A fresh world for every repetition: each one replays the same frames. One world for
-        // all configurations: the movers step and the tree is refit once per frame, and each
-        // culler keeps its own per-node state beside the shared tree.
-        SharedWorld world(scene, scenario);
-        GroundTruth truth(renderer);
-        std::vector<std::unique_ptr<Simulation>> sims;
-        for (const RunConfig& config : configs) {
-            SimulationOptions sim_options;
-            sim_options.measure_error = options.measure_error;
-            sim_options.latency = options.latency;
-            sim_options.keep_worst_error_frame =
-                options.keep_worst_error_frame && options.measure_error && rep == 0;
-            if (rep == 0) sim_options.trace_frame = options.trace_frame;
-            sim_options.measure_gpu_time = context->info().gpu_time_meaningful;
-            auto culler = options.make_culler
-                              ? options.make_culler(*config.algorithm, config.culler)
-                              : makeConfiguredCuller(config);
-            sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
-                                                        std::move(culler), config.culler, renderer,
-                                                        sim_options));
-        }
-        std::vector<std::vector<FrameStats>> frames(sims.size());
-        for (auto& f : frames) f.reserve(scenario.frames);
-        // Interleaved: frame f of every configuration before frame f + 1 of any, so that drift
-        // on a shared machine hits all alike. Ground truth, when some configuration needs it, is
-        // rendered once per frame before the first configuration renders (outside every timing);
-        // a run in which none needs it renders none.
-        bool any_needs_truth = false;
-        for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
-        const bool truth_colour =
-            options.keep_worst_error_frame && options.measure_error && rep == 0;
-        const auto loop_start = Clock::now();
-        for (uint32_t f = 0; f < scenario.frames; ++f) {
-            world.advance();
-            if (any_needs_truth) truth.of(world, truth_colour);
-            for (size_t k = 0; k < sims.size(); ++k) {
-                const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
-                frames[c].push_back(sims[c]->renderFrame());
-                spent.frame_ms_total += frames[c].back().frame_ms;
-                if (options.on_frame) {
-                    options.on_frame(FrameEvent{rep, f, configs[c], *sims[c], scenario, renderer});
-                }
-            }
-            const uint32_t done = rep * scenario.frames + f + 1;
-            if (options.progress &&
-                (Clock::now() - last_progress > std::chrono::milliseconds(250) ||
-                 done == total_frames)) {
-                printProgress(done, total_frames, start);
-                last_progress = Clock::now();
-            }
-        }
-        spent.wall_ms +=
-            std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
-        spent.world_advances += world.advances();
-        spent.world_steps += world.steps();
-        spent.world_update_ms_total += world.updateMsTotal();
-        spent.ground_truth_renders += truth.renders();
-        spent.ground_truth_ms_total += truth.msTotal();
-        for (size_t c = 0; c < sims.size(); ++c) {
-            spent.error_read_backs += sims[c]->errorReadBacks();
-            RunRecord& record = result.runs[c];
-            RunSummary summary = summarize(configs[c].label, frames[c], scenario.warmup_frames);
-            if (options.measure_error) addPopping(summary, sims[c]->poppingRuns());
-            addAnswerLatencies(summary, sims[c]->answerLatencies());
-            record.repetitions.push_back(summary);
-            if (rep == 0) {
-                record.frames = std::move(frames[c]);
-                if (sims[c]->keepsWorstErrorFrame())
-                    result.worst_error_frames.push_back(sims[c]->worstErrorFrame());
-            } else {
-                record.later_repetitions.push_back(std::move(frames[c]));
-            }
-        }
-    }
+    const Stage stage{scenario, configs, options, *context, renderer};
+    ProgressClock progress;
+    progress.total_frames = repetitions * scenario.frames;
+    for (uint32_t rep = 0; rep < repetitions; ++rep)
+        runRepetition(result, stage, scene, rep, progress);
 
     result.metadata.load_before = load_before;
     result.metadata.load_after = loadAverage();

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,10 @@ struct BenchOptions {
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
         make_culler;
+    // The scene warnings a session of several runs (the tuner's batches) has printed: a warning
+    // already in it is not printed again, and each one printed is added. Without it (nullptr)
+    // every run prints its scene's warnings.
+    std::set<std::string>* warnings_shown = nullptr;
 };
 
 // Throws BackendUnavailable when the backend or device asked for cannot serve (bad input),

@@ -1,8 +1,9 @@
 #include "sim/view/view_script.h"
 
-#include <charconv>
 #include <fstream>
 #include <sstream>
+
+#include "sim/scenario/number_text.h"
 
 namespace occsim {
 namespace {
@@ -31,8 +32,7 @@ class LineParser {
     int64_t integer(size_t argument, int64_t lo, int64_t hi, const char* what) const {
         const std::string& word = words_[argument];
         int64_t value = 0;
-        const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-        if (error != std::errc{} || end != word.data() + word.size() || value < lo || value > hi) {
+        if (!parseInteger(word, value) || value < lo || value > hi) {
             fail(std::string(what) + ": expected an integer in [" + std::to_string(lo) + ", " +
                  std::to_string(hi) + "], got '" + word + "'");
         }

@@ -1,4 +1,4 @@
-#include "tune/cost_model.h"
+#include "tune/frame_time_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +15,12 @@ constexpr size_t kFolds = 5;
 constexpr double kHuberShareOfMedianFrame = 0.1;
 
 Eigen::RowVectorXd termsOf(const FrameCounts& f) {
-    Eigen::RowVectorXd row(CostModel::kTerms);
+    Eigen::RowVectorXd row(FrameTimeModel::kTerms);
     row << 1.0, f.queries, f.triangles / 1000.0, f.objects_drawn, f.wait_ms;
     return row;
 }
 
-CostModel modelOf(const Eigen::VectorXd& c) { return {c[0], c[1], c[2], c[3], c[4]}; }
+FrameTimeModel modelOf(const Eigen::VectorXd& c) { return {c[0], c[1], c[2], c[3], c[4]}; }
 
 struct Data {
     Eigen::MatrixXd X;
@@ -31,7 +31,7 @@ Data dataOf(const std::vector<std::vector<FrameCounts>>& groups, size_t skip_fol
     size_t rows = 0;
     for (size_t g = 0; g < groups.size(); ++g)
         rows += (g % folds == skip_fold) ? 0 : groups[g].size();
-    Data d{Eigen::MatrixXd(static_cast<Eigen::Index>(rows), CostModel::kTerms),
+    Data d{Eigen::MatrixXd(static_cast<Eigen::Index>(rows), FrameTimeModel::kTerms),
            Eigen::VectorXd(static_cast<Eigen::Index>(rows))};
     Eigen::Index r = 0;
     for (size_t g = 0; g < groups.size(); ++g) {
@@ -48,7 +48,7 @@ RobustFit fit(const Data& d, double delta, int max_iterations) {
     RobustFitOptions o;
     o.huber_delta = delta;
     o.cauchy_min_scale = 0.1 * delta;
-    o.lower.assign(CostModel::kTerms, 0.0);
+    o.lower.assign(FrameTimeModel::kTerms, 0.0);
     o.max_iterations = max_iterations;
     return fitRobustLinear(d.X, d.y, o);
 }
@@ -61,19 +61,20 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-double CostModel::predict(const FrameCounts& f) const {
+double FrameTimeModel::predict(const FrameCounts& f) const {
     return constant_ms + query_ms * f.queries + kilotriangle_ms * f.triangles / 1000.0 +
-           draw_ms * f.objects_drawn + wait_factor * f.wait_ms;
+           draw_call_ms * f.objects_drawn + wait_factor * f.wait_ms;
 }
 
-CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups, int max_iterations) {
+FrameTimeModelFit fitFrameTimeModel(const std::vector<std::vector<FrameCounts>>& groups,
+                                    int max_iterations) {
     constexpr size_t kNone = std::numeric_limits<size_t>::max();
     const Data all = dataOf(groups, kNone, 1);
-    if (static_cast<size_t>(all.X.rows()) < CostModel::kTerms) {
+    if (static_cast<size_t>(all.X.rows()) < FrameTimeModel::kTerms) {
         throw std::invalid_argument("the cost model needs at least 5 frames");
     }
     std::vector<double> times(all.y.data(), all.y.data() + all.y.size());
-    CostModelFit result;
+    FrameTimeModelFit result;
     result.frames = times.size();
     result.groups = groups.size();
     result.mean_frame_ms = all.y.mean();
@@ -85,11 +86,11 @@ CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups, i
 
     // Coefficient uncertainty: s^2 (X^T X)^-1, with the pseudo-inverse when a count never varied.
     const double n = static_cast<double>(all.X.rows());
-    const double dof = std::max(1.0, n - static_cast<double>(CostModel::kTerms));
+    const double dof = std::max(1.0, n - static_cast<double>(FrameTimeModel::kTerms));
     const double s2 = result.residual_rms_ms * result.residual_rms_ms * n / dof;
     const Eigen::MatrixXd normal = all.X.transpose() * all.X;
     const Eigen::MatrixXd inverse = normal.completeOrthogonalDecomposition().pseudoInverse();
-    for (size_t i = 0; i < CostModel::kTerms; ++i) {
+    for (size_t i = 0; i < FrameTimeModel::kTerms; ++i) {
         const Eigen::Index k = static_cast<Eigen::Index>(i);
         result.standard_error[i] = std::sqrt(std::max(0.0, s2 * inverse(k, k)));
     }
@@ -104,8 +105,8 @@ CostModelFit fitCostModel(const std::vector<std::vector<FrameCounts>>& groups, i
     size_t count = 0;
     for (size_t fold = 0; fold < folds; ++fold) {
         const Data train = dataOf(groups, fold, folds);
-        if (static_cast<size_t>(train.X.rows()) < CostModel::kTerms) continue;
-        const CostModel m = modelOf(fit(train, delta, max_iterations).coefficients);
+        if (static_cast<size_t>(train.X.rows()) < FrameTimeModel::kTerms) continue;
+        const FrameTimeModel m = modelOf(fit(train, delta, max_iterations).coefficients);
         for (size_t g = fold; g < groups.size(); g += folds) {
             for (const FrameCounts& f : groups[g]) {
                 const double e = m.predict(f) - f.frame_ms;
