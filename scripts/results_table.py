@@ -51,10 +51,10 @@ def scene_row(scene, runs):
     conservative = [c for c in speed if c not in NOT_CONSERVATIVE]
     fastest = max(conservative, key=lambda c: speed[c][0]) if conservative else None
     best_mean, best_spread = speed[fastest] if fastest else (0.0, 0.0)
-    cells = []
+    cells = {}
     for c in configs:
         if c not in speed:
-            cells.append("n/a")
+            cells[c] = "n/a"
             continue
         mean, spread = speed[c]
         text = f"{mean:.2f}× ±{spread:.2f}"
@@ -62,7 +62,7 @@ def scene_row(scene, runs):
             text = f"**{text}**"
         elif c in conservative and mean + spread >= best_mean - best_spread:
             text = f"_{text}_"  # within the spread of the fastest
-        cells.append(text)
+        cells[c] = text
     vfc_ms = [t["vfc"]["frame_ms"]["mean"] for t in tables if "vfc" in t]
     error_px = sum(t[c].get("error", {}).get("pixels_total", 0) for t in tables for c in configs
                    if c not in NOT_CONSERVATIVE)
@@ -75,11 +75,11 @@ def scene_row(scene, runs):
     loads = ", ".join(fmt_load(r["machine"]) + (" BUSY" if r["machine"].get("busy") else "")
                       for r in runs)
     vfc = f"{sum(vfc_ms) / len(vfc_ms):.1f}" if vfc_ms else "n/a"
-    return configs, [scene, vfc] + cells + [ideal_ratio, f"{error_px} / {missed}", loads], fastest
+    return cells, [scene, vfc], [ideal_ratio, f"{error_px} / {missed}", loads], fastest
 
 
 def table(set_dir):
-    rows, header, leads, scenes = [], None, 0, 0
+    rows, columns, leads, scenes = [], [], 0, 0
     for scene in sorted(os.listdir(set_dir)):
         scene_dir = os.path.join(set_dir, scene)
         if not os.path.isdir(scene_dir):
@@ -89,18 +89,21 @@ def table(set_dir):
             print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need two",
                   file=sys.stderr)
             continue
-        configs, row, fastest = scene_row(scene, runs)
-        if header is None:
-            header = ["scene", "VFC ms"] + configs + ["statistical+ / Ideal",
-                                                      "error px / missed (conservative)",
-                                                      "load before/after per run"]
-        rows.append(row)
+        cells, head, tail, fastest = scene_row(scene, runs)
+        # Scenes may have run different configurations (a sweep over other values): one column
+        # per configuration any scene has, a dash where a scene lacks it.
+        columns += [c for c in cells if c not in columns]
+        rows.append((cells, head, tail))
         scenes += 1
         leads += fastest == "statistical+"
-    if header is None:
+    if not rows:
         return f"(no scene of {set_dir} has two runs)\n"
+    header = ["scene", "VFC ms"] + columns + ["statistical+ / Ideal",
+                                              "error px / missed (conservative)",
+                                              "load before/after per run"]
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    out += ["| " + " | ".join(r) + " |" for r in rows]
+    for cells, head, tail in rows:
+        out.append("| " + " | ".join(head + [cells.get(c, "–") for c in columns] + tail) + " |")
     out.append("")
     out.append(f"statistical+ fastest conservative culler on {leads} of {scenes} scenes "
                f"(bold: fastest; italic: within the spread of the fastest).")
