@@ -5,13 +5,10 @@ namespace occsim {
 StatisticalOptions StatisticalOptions::plus() {
     StatisticalOptions o;
     o.ready_answers = true;
-    // With ready answers this is the most queries in flight (weighed by weigh_in_flight). On
-    // llvmpipe an answer arrives only once everything before it is rasterised: too few in flight
-    // and the culler blocks on answers, too many and farther nodes are queried before the nearer
-    // ones that hide them are drawn. 16 against 4, quiet machine, two runs each: library 2.14-2.18x
-    // against 2.02-2.04x, plant 1.21-1.25x against 1.10-1.19x, teapots 3.64-3.83x against
-    // 3.26-3.53x, city 5.27-5.55x against 4.85-5.26x (docs/statistical.md, (1)).
-    o.queries_before_restart = 16;
+    // With ready answers this is the most queries in flight. On llvmpipe an answer arrives only
+    // once everything before it is rasterised, so the fewer queries run ahead of their answers
+    // the more depth each one sees (docs/statistical.md has the sweep).
+    o.queries_before_restart = 4;
     o.virtual_leaves = true;
     o.object_queries = true;
     o.cost_model = true;
