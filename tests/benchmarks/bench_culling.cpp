@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "culling_fixtures.h"
 #include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/scripted_query_device.h"
@@ -75,22 +76,13 @@ BENCHMARK(BM_BspReinsertMovedObjects)->Arg(3000)->Arg(30000);
 void BM_FrustumClassifyBatch(benchmark::State& state) {
     const auto count = static_cast<size_t>(state.range(0));
     const std::vector<Aabb> boxes = field(static_cast<uint32_t>(count), 2);
-    std::vector<float> mnx, mny, mnz, mxx, mxy, mxz;
-    for (const Aabb& b : boxes) {
-        mnx.push_back(b.min.x);
-        mny.push_back(b.min.y);
-        mnz.push_back(b.min.z);
-        mxx.push_back(b.max.x);
-        mxy.push_back(b.max.y);
-        mxz.push_back(b.max.z);
-    }
+    const testing::BoxColumns columns(boxes);
     const Frustum f = frustumFromViewProjection(
         glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.2f, 400.0f) *
         glm::lookAt(glm::vec3(0, 3, 8), glm::vec3(0, 2, -30), glm::vec3(0, 1, 0)));
     std::vector<FrustumTest> out(count);
     for (auto _ : state) {
-        classifyBatch(f, mnx.data(), mny.data(), mnz.data(), mxx.data(), mxy.data(), mxz.data(),
-                      count, out.data());
+        columns.classify(f, count, out.data());
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(count));
