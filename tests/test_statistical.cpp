@@ -283,6 +283,43 @@ TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound)
     EXPECT_LE(most_in_flight[1], 4u * static_cast<uint32_t>(StatisticalOptions::kMaxRunAhead));
 }
 
+// (9) Waits per frame: with ready answers, the bound on queries in flight is the larger of
+// queries_before_restart and the last frame's waited queries over waits_per_frame, so a frame of
+// many queries lets more of them run ahead (on llvmpipe, where one wait makes every earlier
+// answer ready, it blocks less often; the scripted device makes each answer wait on its own, so
+// the test checks the bound and what is in flight); 0 keeps the fixed bound.
+TEST(StatisticalWaitsPerFrame, TheBoundGrowsWithTheQueriesTheLastFrameWaitedFor) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
+    const BspTree tree = buildTree(boxes);
+    std::mt19937 rng(11);
+    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.05, rng);
+    uint32_t most_in_flight[2] = {0, 0};
+    for (const uint32_t waits : {0u, 4u}) {
+        StatisticalOptions o;
+        o.ready_answers = true;
+        o.queries_before_restart = 4;
+        o.waits_per_frame = waits;
+        StatisticalCuller culler(o);
+        culler.reset(tree);
+        ScriptedQueryDevice device(200);  // answers arrive late: the bound is what stops issuing
+        uint32_t last_waited = 0;         // every query is waited for (no draw_while_requerying)
+        for (uint32_t f = 0; f < 20; ++f) {
+            const float a = 0.05f * static_cast<float>(f);
+            const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
+            const CullFrame frame = makeFrame(view, f, f / 30.0);
+            const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
+            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            const StatisticalFrameCounters& c = culler.lastFrame();
+            const double expected = waits == 0 ? 4.0 : std::max(4.0, last_waited / 4.0);
+            EXPECT_DOUBLE_EQ(c.in_flight_bound, expected) << "frame " << f;
+            last_waited = c.queries;
+        }
+        most_in_flight[waits ? 1 : 0] = device.maxPendingQueries();
+    }
+    EXPECT_LE(most_in_flight[0], 4u) << "the fixed bound";
+    EXPECT_GT(most_in_flight[1], 16u) << "a frame of many queries lets more run ahead";
+}
+
 // (8) Descend visible inner nodes: an inner node last found visible whose re-query is due is not
 // queried; its children decide. Leaves are still re-queried, and the paper queries both.
 TEST(StatisticalDescendVisibleInnerNodes, AVisibleInnerNodeDueForAQueryIsNotQueried) {
@@ -697,6 +734,11 @@ StatisticalOptions optionsNamed(const std::string& name) {
         o.descend_visible_inner_nodes = true;
         o.draw_while_requerying = true;
     }
+    if (name == "waits") {
+        o.ready_answers = true;
+        o.weigh_in_flight = true;
+        o.waits_per_frame = 2;
+    }
     return o;
 }
 
@@ -759,7 +801,7 @@ TEST_P(StatisticalConservative, DrawsEverythingGroundTruthSeesAndDecidesTheSameT
 INSTANTIATE_TEST_SUITE_P(Options, StatisticalConservative,
                          ::testing::Values("paper", "ready", "leaves", "objects", "costs",
                                            "distance", "parallax", "fallback", "draw", "weigh",
-                                           "descend", "plus"));
+                                           "descend", "waits", "plus"));
 
 }  // namespace
 }  // namespace occsim

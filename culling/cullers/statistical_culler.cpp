@@ -102,6 +102,8 @@ void StatisticalCuller::reset(const BspTree& tree) {
     pending_.clear();
     pending_head_ = 0;
     in_flight_weight_ = 0.0;
+    waited_weight_ = 0.0;
+    last_waited_weight_ = 0.0;
     updates_.clear();  // ids still in flight on an earlier device are that device's to forget
     updates_head_ = 0;
     // A frame issues at most one query per subject (a node, its virtual leaf, an object), and
@@ -445,6 +447,7 @@ void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& 
     }
     pending_.push_back({id, entry, decision, weight});
     in_flight_weight_ += weight;
+    waited_weight_ += weight;
     ++counters_.queries;
 }
 
@@ -530,6 +533,14 @@ void StatisticalCuller::endFrame(double now_s) {
     }
 }
 
+// With ready_answers: queries_before_restart, or with waits_per_frame the last frame's waited
+// queries (weighed as the bound counts them) spread over that many waits, whichever is more.
+double StatisticalCuller::inFlightBound() const {
+    const double fixed = static_cast<double>(options_.queries_before_restart);
+    if (options_.waits_per_frame == 0) return fixed;
+    return std::max(fixed, last_waited_weight_ / static_cast<double>(options_.waits_per_frame));
+}
+
 void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
     counters_ = {};
@@ -547,6 +558,8 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     pending_.clear();
     pending_head_ = 0;
     in_flight_weight_ = 0.0;
+    last_waited_weight_ = waited_weight_;
+    waited_weight_ = 0.0;
     // Update answers from earlier frames first: the statistics they bring decide this frame. On
     // a GPU they are ready by now (the last frame was finished); those still in flight are
     // waited for, so that no answer lags more than a frame.
@@ -587,6 +600,8 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
         // the paper lets one pass issue (queries_before_restart) are in flight: the paper's own
         // bound on how far the traversal may run ahead of its answers (farther nodes queried
         // before nearer ones are drawn come back visible more often).
+        const double bound = inFlightBound();
+        counters_.in_flight_bound = bound;
         while (true) {
             while (pending_head_ < pending_.size() &&
                    device.isQueryReady(pending_[pending_head_].id)) {
@@ -594,10 +609,9 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
             }
             // With weigh_in_flight the weights stand for the count (each weight is 1 without).
             const size_t in_flight = pending_.size() - pending_head_;
-            const double bound = static_cast<double>(options_.queries_before_restart);
             const bool room = options_.weigh_in_flight
                                   ? in_flight_weight_ < bound - 1e-9
-                                  : in_flight < options_.queries_before_restart;
+                                  : static_cast<double>(in_flight) < bound - 1e-9;
             if (!heap_.empty() && room) {
                 process(tree, frame, pop(), device);
             } else if (in_flight > 0) {
@@ -670,6 +684,10 @@ OptionsDescriptor improvementOptions(const StatisticalOptions& d, const OptionSp
                                  "with ready_answers, each query in flight counts by its chance of "
                                  "coming back visible against queries_before_restart"),
                    0.0),
+        switchable(integerOption("waits_per_frame", "waits", 0, 1000000, d.waits_per_frame,
+                                 "with ready_answers, the bound on queries in flight is at least "
+                                 "the last frame's waited queries over this many waits; 0 = off"),
+                   0.0),
     };
 }
 
@@ -722,8 +740,19 @@ std::string validateStatistical(const OptionValues& values) {
 }
 
 CostModelUse statisticalCostModelUse(const OptionValues& values) {
+    // The most queries the culler keeps in flight: the paper's passes and a fixed bound keep
+    // queries_before_restart (each weighed at least 1 / kMaxRunAhead with weigh_in_flight), a
+    // bound that grows with the frame (waits_per_frame) keeps no fixed number (0: measured with
+    // every query issued before the first answer is fetched).
     const StatisticalOptions o = statisticalOptionsFrom(values);
-    return {o.cost_model, o.ready_answers ? o.queries_before_restart : 0u};
+    uint32_t in_flight = o.queries_before_restart;
+    if (o.ready_answers && o.waits_per_frame > 0) {
+        in_flight = 0;
+    } else if (o.ready_answers && o.weigh_in_flight) {
+        in_flight = static_cast<uint32_t>(
+            std::min(4294967295.0, o.queries_before_restart * StatisticalOptions::kMaxRunAhead));
+    }
+    return {o.cost_model, in_flight};
 }
 
 std::unique_ptr<Culler> makeStatistical(const CullerContext& c) {
@@ -768,6 +797,7 @@ StatisticalOptions statisticalOptionsFrom(const OptionValues& v) {
     o.draw_while_requerying = v.flag("draw_while_requerying");
     o.weigh_in_flight = v.flag("weigh_in_flight");
     o.descend_visible_inner_nodes = v.flag("descend_visible_inner_nodes");
+    o.waits_per_frame = v.count("waits_per_frame");
     return o;
 }
 

@@ -23,8 +23,10 @@
 // StatisticalOptions holds improvements beyond the paper, each off by default (the paper as
 // published) and all on in "statistical+": answers taken as they become ready (with a bound on
 // the queries in flight), virtual leaves for the objects stored in inner nodes, decisions per
-// object, a cost model, re-query after a distance travelled, and a fallback to frustum culling
-// when little is occluded. docs/statistical.md describes them and why.
+// object, a cost model, re-query after a distance travelled, a fallback to frustum culling when
+// little is occluded, CHC's treatment of what was visible, and a bound on queries in flight that
+// weighs each by its chance of coming back visible and grows with the frame's queries.
+// docs/statistical.md describes them and why.
 #pragma once
 
 #include <array>
@@ -118,9 +120,10 @@ struct StatisticalFrameCounters {
     // ... while the culler could have gone on instead: the main queue held entries and (with
     // ready_answers) fewer than queries_before_restart queries were in flight.
     uint32_t blocked_with_work_left = 0;
-    uint32_t update_queries = 0;  // draw_while_requerying: queries whose answer only updates
-    uint32_t inner_descents = 0;  // descend_visible_inner_nodes: re-queries not issued
-    bool frustum_only = false;    // a fallback frame (improvement 5)
+    double in_flight_bound = 0.0;  // with ready_answers: the bound on queries in flight used
+    uint32_t update_queries = 0;   // draw_while_requerying: queries whose answer only updates
+    uint32_t inner_descents = 0;   // descend_visible_inner_nodes: re-queries not issued
+    bool frustum_only = false;     // a fallback frame (improvement 5)
 };
 
 class StatisticalCuller final : public Culler {
@@ -208,6 +211,7 @@ class StatisticalCuller final : public Culler {
     // Takes the pending query's answer and acts on it; returns whether the device waited for it.
     bool answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
+    double inFlightBound() const;
     // Puts an issued query into the query queue with its weight against the in-flight bound.
     void enqueue(QueryId id, const Entry& entry, const Decision& decision);
     // Draw-while-requerying: issues the query whose answer only updates statistics.
@@ -264,7 +268,10 @@ class StatisticalCuller final : public Culler {
     size_t updates_head_ = 0;
     size_t pending_head_ = 0;
     double in_flight_weight_ = 0.0;  // the weights of [pending_head_, size)
-    std::vector<Aabb> boxes_;        // scratch: a virtual leaf's boxes
+    // waits_per_frame: the weights of this frame's waited queries so far, and the last frame's.
+    double waited_weight_ = 0.0;
+    double last_waited_weight_ = 0.0;
+    std::vector<Aabb> boxes_;  // scratch: a virtual leaf's boxes
     std::vector<NodeVisit> vfc_stack_;
 
     std::array<OcclusionEstimate, 6> estimates_{};  // per PriorResult, node then object queries

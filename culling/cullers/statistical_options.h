@@ -76,6 +76,13 @@ struct StatisticalOptions {
     // and queried in the same pass). Off: the paper re-queries inner nodes like leaves.
     bool descend_visible_inner_nodes = false;
     static constexpr double kMaxRunAhead = 8.0;
+    // (9) With ready_answers, the bound on queries in flight grows with the frame's work: it is
+    // at least the queries the last frame waited for (weighed as the bound counts them) divided
+    // by waits_per_frame, so that a frame of thousands of such queries blocks about that many
+    // times instead of once every queries_before_restart of them, while a frame of few keeps
+    // queries_before_restart. A count, not a time: decisions stay deterministic. 0 = off: the
+    // bound is queries_before_restart.
+    uint32_t waits_per_frame = 0;
 
     // The paper as published (the default).
     static StatisticalOptions paper() { return {}; }

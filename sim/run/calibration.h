@@ -27,14 +27,14 @@ CostModel referenceCostModel();
 
 // Times drawing a sample of the objects in the scenario's first view and querying the boxes of
 // the BSP tree's nodes in that view, each measured a few times after a run that is thrown away,
-// median kept. Queries are timed the way the culler issues them: with at most
+// the fastest kept. Queries are timed the way the culler issues them: with at most
 // `queries_in_flight` unanswered (each answer fetched before the next query past that), 0 = all
 // issued before the first answer is fetched. On llvmpipe an answer costs a flush and a wait for
 // the rasteriser, so a query costs the culler more than the throughput of queries alone. Needs
 // the scene's meshes uploaded to the renderer. Drawing is split into a per-call and a
 // per-triangle part by timing the meshes with fewer and more triangles
 // separately; a scene whose meshes all have one triangle count charges everything to triangles.
-// Costs some 100 ms of rendering, outside every timing. Leaves the renderer's framebuffer dirty.
+// Costs some 150 ms of rendering, outside every timing. Leaves the renderer's framebuffer dirty.
 CostModel calibrateCostModel(const Scene& scene, const Scenario& scenario, GlRenderer& renderer,
                              uint32_t queries_in_flight = 0);
 
