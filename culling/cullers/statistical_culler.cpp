@@ -705,7 +705,7 @@ OptionsDescriptor statisticalDescriptor(const StatisticalOptions& d, bool plus) 
     OptionSpec in_flight = integerOption(
         "queries_before_restart", "queries", 1, 4294967295.0, d.queries_before_restart,
         "the traversal returns to the queue start after this many queries (with ready_answers: "
-        "the most queries in flight)");
+        "the most queries in flight; with waits_per_frame, the least bound)");
     if (plus) {
         parallax = tunable(parallax, 0.005, 0.2);  // BASE_TIME is unused while this is > 0
         // The best bound on queries in flight depends on the scene (docs/statistical.md, (1)).
