@@ -248,32 +248,43 @@ TEST(StatisticalReadyAnswers, BlocksOnlyWhenTheQueueHoldsNothingElse) {
     EXPECT_LT(ready_waited, paper_waited / 2);
 }
 
+// 1,500 random boxes, 5 % of them visible, and a camera turning on the spot: the scene of the
+// tests of the bound on queries in flight. Answers on a ScriptedQueryDevice(200) arrive late, so
+// the bound is what stops the culler issuing.
+struct TurnOverSparseField {
+    std::vector<Aabb> boxes = randomBoxes(1500, 7);
+    BspTree tree = buildTree(boxes);
+    std::vector<uint8_t> visible;
+    TurnOverSparseField() {
+        std::mt19937 rng(11);
+        visible = randomVisibility(boxes.size(), 0.05, rng);
+    }
+    // Culls frame f of the turn and checks that everything visible was drawn.
+    void runFrame(StatisticalCuller& culler, ScriptedQueryDevice& device, uint32_t f) const {
+        const float a = 0.05f * static_cast<float>(f);
+        const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
+        const ScriptedFrame r =
+            runScripted(culler, tree, device, boxes, visible, makeFrame(view, f, f / 30.0));
+        expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+    }
+};
+
 // (7) Weighed in-flight bound: with ready answers, queries whose kind mostly comes back occluded
 // count for less than one against queries_before_restart, so more of them run ahead at once (at
 // most kMaxRunAhead times the bound), while each query still counts as one without the option.
 TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound) {
-    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
-    const BspTree tree = buildTree(boxes);
-    std::mt19937 rng(11);
-    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.05, rng);
-    const auto options = [](bool weigh) {
+    const TurnOverSparseField scene;
+    uint32_t most_in_flight[2] = {0, 0};
+    for (const bool weigh : {false, true}) {
         StatisticalOptions o;
         o.ready_answers = true;
         o.queries_before_restart = 4;
         o.weigh_in_flight = weigh;
-        return o;
-    };
-    uint32_t most_in_flight[2] = {0, 0};
-    for (const bool weigh : {false, true}) {
-        StatisticalCuller culler(options(weigh));
-        culler.reset(tree);
-        ScriptedQueryDevice device(200);  // answers arrive late: the bound is what stops issuing
+        StatisticalCuller culler(o);
+        culler.reset(scene.tree);
+        ScriptedQueryDevice device(200);
         for (uint32_t f = 0; f < 20; ++f) {
-            const float a = 0.05f * static_cast<float>(f);
-            const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
-            const CullFrame frame = makeFrame(view, f, f / 30.0);
-            const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
-            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            scene.runFrame(culler, device, f);
             EXPECT_EQ(device.pendingQueries(), 0u) << "every answer taken within its frame";
         }
         most_in_flight[weigh ? 1 : 0] = device.maxPendingQueries();
@@ -289,10 +300,7 @@ TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound)
 // answer ready, it blocks less often; the scripted device makes each answer wait on its own, so
 // the test checks the bound and what is in flight); 0 keeps the fixed bound.
 TEST(StatisticalWaitsPerFrame, TheBoundGrowsWithTheQueriesTheLastFrameWaitedFor) {
-    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
-    const BspTree tree = buildTree(boxes);
-    std::mt19937 rng(11);
-    const std::vector<uint8_t> visible = randomVisibility(boxes.size(), 0.05, rng);
+    const TurnOverSparseField scene;
     uint32_t most_in_flight[2] = {0, 0};
     for (const uint32_t waits : {0u, 4u}) {
         StatisticalOptions o;
@@ -300,15 +308,11 @@ TEST(StatisticalWaitsPerFrame, TheBoundGrowsWithTheQueriesTheLastFrameWaitedFor)
         o.queries_before_restart = 4;
         o.waits_per_frame = waits;
         StatisticalCuller culler(o);
-        culler.reset(tree);
-        ScriptedQueryDevice device(200);  // answers arrive late: the bound is what stops issuing
-        uint32_t last_waited = 0;         // every query is waited for (no draw_while_requerying)
+        culler.reset(scene.tree);
+        ScriptedQueryDevice device(200);
+        uint32_t last_waited = 0;  // every query is waited for (no draw_while_requerying)
         for (uint32_t f = 0; f < 20; ++f) {
-            const float a = 0.05f * static_cast<float>(f);
-            const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
-            const CullFrame frame = makeFrame(view, f, f / 30.0);
-            const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
-            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            scene.runFrame(culler, device, f);
             const StatisticalFrameCounters& c = culler.lastFrame();
             const double expected = waits == 0 ? 4.0 : std::max(4.0, last_waited / 4.0);
             EXPECT_DOUBLE_EQ(c.in_flight_bound, expected) << "frame " << f;
