@@ -259,6 +259,13 @@ struct TurnOverSparseField {
         std::mt19937 rng(11);
         visible = randomVisibility(boxes.size(), 0.05, rng);
     }
+    // Ready answers with a bound of 4 in flight: the tests' starting point.
+    static StatisticalOptions boundedAt4() {
+        StatisticalOptions o;
+        o.ready_answers = true;
+        o.queries_before_restart = 4;
+        return o;
+    }
     // Culls frame f of the turn and checks that everything visible was drawn.
     void runFrame(StatisticalCuller& culler, ScriptedQueryDevice& device, uint32_t f) const {
         const float a = 0.05f * static_cast<float>(f);
@@ -276,9 +283,7 @@ TEST(StatisticalWeighInFlight, QueriesLikelyOccludedRunFurtherAheadThanTheBound)
     const TurnOverSparseField scene;
     uint32_t most_in_flight[2] = {0, 0};
     for (const bool weigh : {false, true}) {
-        StatisticalOptions o;
-        o.ready_answers = true;
-        o.queries_before_restart = 4;
+        StatisticalOptions o = TurnOverSparseField::boundedAt4();
         o.weigh_in_flight = weigh;
         StatisticalCuller culler(o);
         culler.reset(scene.tree);
@@ -303,9 +308,7 @@ TEST(StatisticalWaitsPerFrame, TheBoundGrowsWithTheQueriesTheLastFrameWaitedFor)
     const TurnOverSparseField scene;
     uint32_t most_in_flight[2] = {0, 0};
     for (const uint32_t waits : {0u, 4u}) {
-        StatisticalOptions o;
-        o.ready_answers = true;
-        o.queries_before_restart = 4;
+        StatisticalOptions o = TurnOverSparseField::boundedAt4();
         o.waits_per_frame = waits;
         StatisticalCuller culler(o);
         culler.reset(scene.tree);

@@ -607,11 +607,9 @@ void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
                    device.isQueryReady(pending_[pending_head_].id)) {
                 take_oldest(!heap_.empty());
             }
-            // With weigh_in_flight the weights stand for the count (each weight is 1 without).
+            // Each weight is 1 without weigh_in_flight, so the sum is then the count.
             const size_t in_flight = pending_.size() - pending_head_;
-            const bool room = options_.weigh_in_flight
-                                  ? in_flight_weight_ < bound - 1e-9
-                                  : static_cast<double>(in_flight) < bound - 1e-9;
+            const bool room = in_flight_weight_ < bound - 1e-9;
             if (!heap_.empty() && room) {
                 process(tree, frame, pop(), device);
             } else if (in_flight > 0) {
