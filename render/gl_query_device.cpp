@@ -66,7 +66,10 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
         issued_at_.push_back(0);
         answered_.push_back(0);
         live_.push_back(0);
+        near_eye_.push_back(0);
     }
+    near_eye_[id] = 0;
+    for (const Aabb& box : boxes) near_eye_[id] |= renderer_.queryBoxNearEye(box) ? 1 : 0;
     OCCSIM_GL_CHECKED(glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]));
     for (const Aabb& box : boxes) renderer_.drawQueryBox(box);
     OCCSIM_GL_CHECKED(glEndQuery(GL_SAMPLES_PASSED));
@@ -140,7 +143,7 @@ QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {
     ++counters_.results_fetched;
     live_[id] = 0;
     free_ids_.push_back(id);
-    return {samples > 0, samples, !ready};
+    return {samples > 0 || near_eye_[id] != 0, samples, !ready};
 }
 
 }  // namespace occsim

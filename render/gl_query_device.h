@@ -58,7 +58,11 @@ class GlQueryDevice final : public RenderDevice {
     // QueryId -> known to be ready (its latency is recorded): the cache that keeps an answer
     // from being polled again.
     std::vector<uint8_t> answered_;
-    std::vector<uint8_t> live_;        // QueryId -> issued, answer not yet taken
+    std::vector<uint8_t> live_;  // QueryId -> issued, answer not yet taken
+    // QueryId -> a box of it reaches the near plane as drawn (nearPlaneTouchesBox): the samples
+    // cannot be trusted, so the answer is "visible" whatever they say. Cullers never issue such
+    // a query (they draw instead); this is the device's own guard for any that does.
+    std::vector<uint8_t> near_eye_;
     std::vector<uint32_t> latencies_;  // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;  // object -> drawn_set_ when drawn in the current set

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "occsim/culling/geometry/query_box.h"
 #include "render/gl_api.h"
 
 namespace occsim {
@@ -318,20 +319,25 @@ void GlRenderer::drawObject(uint32_t object) {
 
 void GlRenderer::drawQueryBox(const Aabb& box) {
     useState(State::Query);
-    // Dilate a little so that zero-extent boxes still rasterise and edges shared with occluders
-    // count as visible; a larger box only makes the query more conservative.
+    // Dilated by queryBoxPad (culling/geometry/query_box.h), the pad the cullers' near-plane rule
+    // assumes, so that zero-extent boxes still rasterise and edges shared with occluders count as
+    // visible; a larger box only makes the query more conservative.
     // The box arrives in the culling frame; relative to the eye it is small again, so the float
     // model-view matrix keeps its precision far from the world origin.
     const glm::dvec3 lo = glm::dvec3(box.min) + view_.box_origin;
     const glm::dvec3 hi = glm::dvec3(box.max) + view_.box_origin;
-    const double pad = 1e-4 * glm::max(1.0, glm::length(hi - lo)) +
-                       1e-6 * glm::length(0.5 * (lo + hi) - view_.eye);
+    const double pad = queryBoxPad(lo, hi, view_.eye);
     const glm::vec3 offset(lo - pad - view_.eye);
     const glm::vec3 size(hi - lo + 2.0 * pad);
     glm::mat4 model_view = view_.view_rotation * glm::translate(glm::mat4(1.0f), offset) *
                            glm::scale(glm::mat4(1.0f), size);
     glUniformMatrix4fv(query_model_view_loc_, 1, GL_FALSE, &model_view[0][0]);
     glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr);
+}
+
+bool GlRenderer::queryBoxNearEye(const Aabb& box) const {
+    if (!(view_.near_radius > 0.0f)) return false;
+    return nearPlaneTouchesBox(box, glm::vec3(view_.eye - view_.box_origin), view_.near_radius);
 }
 
 void GlRenderer::finish() { glFinish(); }

@@ -24,6 +24,9 @@ struct ViewSetup {
     glm::dvec3 box_origin{0.0};  // query boxes are given relative to this point (the culling frame)
     glm::mat4 view_rotation{1.0f};  // world to view without translation
     glm::mat4 projection{1.0f};     // reverse-Z, see reverseZPerspective()
+    // Eye to a near-plane corner (nearPlaneCornerDistance): the query boxes within it of the eye,
+    // as drawn, are answered visible (queryBoxNearEye). 0: no guard (pictures, tests).
+    float near_radius = 0.0f;
 };
 
 // Perspective projection with reverse-Z for clip control GL_ZERO_TO_ONE: near maps to depth 1,
@@ -70,7 +73,10 @@ class GlRenderer {
     void beginFrame();  // binds the framebuffer, clears colour, IDs and depth
     void drawObject(uint32_t object);
     void drawQueryBox(const Aabb& box);  // inside glBeginQuery/glEndQuery, writes nothing
-    void finish();                       // glFinish
+    // The near-plane rule (nearPlaneTouchesBox, culling/geometry/query_box.h) on a query box in
+    // the culling frame, as this renderer draws it: a query on it cannot be trusted.
+    bool queryBoxNearEye(const Aabb& box) const;
+    void finish();  // glFinish
 
     // Read back the last frame (row 0 at the bottom, as GL returns it).
     void readObjectIds(std::vector<uint32_t>& ids) const;

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "headless_backends.h"
+#include "occsim/culling/geometry/frustum.h"
 #include "render/gl_checked_call.h"
 #include "render/gl_frame_timer.h"
 #include "render/gl_query_device.h"
@@ -59,9 +60,10 @@ class RenderTest : public ::testing::TestWithParam<Backend> {
                   {{11.5f, -0.5f, -20.5f}, {12.5f, 0.5f, -19.5f}}};
         setEye({0, 0, 0});
     }
-    void setEye(glm::dvec3 eye) {
+    void setEye(glm::dvec3 eye, float near_radius = 0.0f) {
         ViewSetup view;
         view.eye = eye;
+        view.near_radius = near_radius;
         view.view_rotation = glm::mat4(1.0f);  // looking down -z
         view.projection = reverseZPerspective(glm::radians(90.0f), float(kW) / kH, 0.1f, 1000.0f);
         model_view_.clear();
@@ -143,6 +145,41 @@ TEST_P(RenderTest, QueryOnABoxCoplanarWithTheOccluderFaceCountsAsVisible) {
     device.drawObject(0);
     const Aabb coplanar{{-1, -1, -6}, {1, 1, -4.9f}};
     EXPECT_TRUE(device.takeAnswer(device.issueQuery(coplanar)).visible);
+}
+
+// A wall that fills the view 5 m ahead, and a box 10 km across whose near face is 0.5 m ahead of
+// the eye, in front of the wall: the box is visible. Its query box used to be drawn grown by 10^-4
+// of its size (1.4 m), which put the eye inside it: only the far faces, behind the wall,
+// rasterised, and the query said "hidden". The pad is bounded now (query_box.h).
+TEST_P(RenderTest, QueryOnALargeBoxJustAheadOfTheEyeCountsAsVisible) {
+    world_[0] =
+        glm::translate(glm::dmat4(1.0), {0, 0, -5}) * glm::scale(glm::dmat4(1.0), {1e3, 1e3, 0.2});
+    setEye({0, 0, 0});
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    device.drawObject(0);
+    const Aabb large{{-5e3f, -5e3f, -1e4f}, {5e3f, 5e3f, -0.5f}};
+    EXPECT_FALSE(renderer_->queryBoxNearEye(large));
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(large)).visible);
+}
+
+// The device's own guard: a query whose box, as drawn, reaches the near plane (here it holds the
+// eye, and every face it shows lies behind the wall) is answered "visible" whatever its samples,
+// so a culler that skipped the rule (a plugin) still cannot lose what the box holds.
+TEST_P(RenderTest, AQueryOnABoxAroundTheEyeIsAnsweredVisibleByTheDevice) {
+    world_[0] =
+        glm::translate(glm::dmat4(1.0), {0, 0, -5}) * glm::scale(glm::dmat4(1.0), {1e3, 1e3, 0.2});
+    const float near_radius =
+        static_cast<float>(nearPlaneCornerDistance(0.1, glm::radians(90.0), double(kW) / kH));
+    setEye({0, 0, 0}, near_radius);
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    device.drawObject(0);
+    const Aabb around{{-10, -10, -10}, {10, 10, 10}};
+    ASSERT_TRUE(renderer_->queryBoxNearEye(around));
+    const QueryAnswer answer = device.takeAnswer(device.issueQuery(around));
+    EXPECT_EQ(answer.samples, 0u) << "every face it shows is behind the wall";
+    EXPECT_TRUE(answer.visible);
 }
 
 TEST_P(RenderTest, DeterministicLatencyMakesResultsReadyOnlyAfterNLaterCommands) {

@@ -12,6 +12,7 @@
 #include "occsim/culling/registry/registry.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -93,6 +94,70 @@ TEST(LongTime, AScenarioStartedAtABillionSecondsMakesTheSameDecisionsAsFromZero)
                 << name << " frame " << f;
         }
         EXPECT_DOUBLE_EQ(b.frames.back().time_s, 1e9 + a.frames.back().time_s);
+    }
+}
+
+// ---- Far geometry: nodes that reach far past the camera --------------------------------------
+
+// Every conservative configuration drew every visible pixel and object on every frame, and drew
+// something (a scene culled whole would have nothing to miss only if nothing were visible).
+void expectConservativeExact(const BenchResult& result, const std::string& what) {
+    for (const RunRecord& r : result.runs) {
+        if (!r.algorithm->conservative) continue;
+        const std::string name(r.algorithm->name);
+        EXPECT_EQ(r.summary.error_pixels_total, 0) << what << ": " << name;
+        EXPECT_EQ(r.summary.missed_objects_total, 0) << what << ": " << name;
+        EXPECT_GT(r.summary.objects_mean, 0.0) << what << ": " << name;
+    }
+}
+
+json smallWithout(const char* key) {
+    json s = readJson(kSmall);
+    s.erase("expect");
+    s.erase(key);
+    s["frames"] = 8;
+    s["warmup_frames"] = 0;
+    return s;
+}
+
+json teapotAt(const glm::dvec3& p) {
+    return {{"type", "teapots"},
+            {"count", 1},
+            {"region", {{"min", {p.x, p.y, p.z}}, {"max", {p.x + 1, p.y + 1, p.z + 1}}}}};
+}
+
+// One teapot `distance` metres away along x, far beyond the far plane, beside the small teapot
+// field: the root of the tree, and every node on the way to that teapot, is `distance` wide.
+// Queries on those nodes used to be drawn grown by 10^-4 of their size (100 m at 10^6) while the
+// near-plane rule looked at the box as given, so the eye, a few metres outside the field, sat
+// inside the drawn root box, its query saw only far faces, and every query culler dropped the
+// whole scene (a 130x "speedup" over frustum culling that was all error).
+TEST(FarGeometry, ANodeReachingFarAwayNeverHidesWhatItContains) {
+    for (const double distance : {1e6, 1e9, 1e12}) {
+        json s = smallWithout("movers");
+        s["camera"]["far"] = 100;  // the drawn root box's far faces all lie beyond it
+        s["scene"]["sources"].push_back(teapotAt({distance, 0, -30}));
+        const BenchResult result = benchAll(parseScenarioText(s.dump(), kSmall));
+        expectConservativeExact(result, "a teapot at x = " + std::to_string(distance));
+    }
+}
+
+// Objects spawned along a path that reaches 10^9 m (and 3 * 10^38, near the largest float): with
+// the culling origin at the centre of the objects' start positions, the eye and frustum the
+// cullers saw were floats metres apart; the origin follows the camera now.
+TEST(FarGeometry, MoversSpawnedAlongAPathToTheEdgeOfFloatKeepZeroError) {
+    for (const double reach : {1e9, 3e38}) {
+        json s = smallWithout("movers");
+        s["movers"] = json::array(
+            {{{"source", 0},
+              {"spawn", {{"count", 40}, {"shape", "box"}}},
+              {"motion", "path"},
+              {"speed", {1e3, 1e4}},
+              {"waypoints", {{-5, 1, -10}, {reach, 1, -10}, {reach, 1, -14}, {-5, 1, -14}}}}});
+        const Scenario scenario = parseScenarioText(s.dump(), kSmall);
+        const Scene scene = buildScene(scenario);
+        EXPECT_LT(glm::length(scene.culling_origin), 100.0) << "the origin stays at the camera";
+        expectConservativeExact(benchAll(scenario), "a path reaching " + std::to_string(reach));
     }
 }
 

@@ -414,9 +414,26 @@ TEST(WorldBoxes, AreRelativeToTheCullingOriginAndRoundedOutward) {
     Scenario s = smallScenario();
     auto& teapots = std::get<TeapotFieldSpec>(s.sources[0].spec);
     teapots.region = {glm::vec3(999980, 0, 4950), glm::vec3(1000020, 5, 5000)};
+    s.camera.keyframes = {{0.0, {999990.2, 2, 5010}, {1e6, 1, 4975}},
+                          {2.0, {1000010.4, 2, 5040}, {1e6, 1, 4975}}};
     const Scene scene = buildScene(s);
+    // The centre of the camera's keyframes, in whole metres: precision where the camera is.
     EXPECT_EQ(scene.culling_origin.x, 1000000.0);
-    EXPECT_EQ(scene.culling_origin.z, 4975.0);
+    EXPECT_EQ(scene.culling_origin.z, 5025.0);
+}
+
+// A far object does not pull the origin: one teapot 10^9 m away beside a field at the origin.
+TEST(WorldBoxes, TheCullingOriginStaysWithTheCameraWhateverTheObjectsReach) {
+    Scenario s = smallScenario();
+    TeapotFieldSpec far;
+    far.count = 1;
+    far.region = {glm::vec3(1e9f, 0, 0), glm::vec3(1e9f + 1, 1, 1)};
+    SceneSourceSpec& source = s.sources.emplace_back();
+    source.type = SourceType::Teapots;
+    source.spec.emplace<TeapotFieldSpec>(far);
+    s.camera.keyframes = {{0.0, {3.4, 2, 6}, {0, 1, -20}}};
+    const Scene scene = buildScene(s);
+    EXPECT_EQ(scene.culling_origin, glm::dvec3(3, 2, 6));
 }
 
 }  // namespace

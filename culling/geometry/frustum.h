@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/geometry/query_box.h"  // nearPlaneTouchesBox, which every culler uses
 
 namespace occsim {
 
@@ -126,22 +127,12 @@ void classifyBatch(const Frustum& f, const float* min_x, const float* min_y, con
                    const float* max_x, const float* max_y, const float* max_z, size_t count,
                    FrustumTest* out);
 
-// The eye is so close to the box that the near plane may cut it (or the eye is inside it): an
-// occlusion query on such a box would be clipped and could report zero samples while the box is
-// visible, so callers must render instead of querying. near_radius is the distance from the eye to
-// a corner of the near-plane rectangle.
 // The distance from the eye to a corner of the near-plane rectangle of a symmetric perspective
 // projection (vertical field of view fov_y, width / height = aspect), with 1% to spare: the
-// near_radius of nearPlaneTouchesBox().
+// near_radius of nearPlaneTouchesBox() (query_box.h, the rule on the box as a device draws it).
 inline double nearPlaneCornerDistance(double near_plane, double fov_y_radians, double aspect) {
     const double tan_half = std::tan(0.5 * fov_y_radians);
     return 1.01 * near_plane * std::sqrt(1.0 + tan_half * tan_half * (1.0 + aspect * aspect));
-}
-
-// A box whose distance is not a number (a NaN coordinate) counts as touching: nothing is known
-// about where it is, so it must be drawn, never queried.
-inline bool nearPlaneTouchesBox(const Aabb& box, glm::vec3 eye, float near_radius) {
-    return !(distanceSquared(box, eye) > near_radius * near_radius);
 }
 
 }  // namespace occsim

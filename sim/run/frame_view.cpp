@@ -40,6 +40,7 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     view.cull.frustum =
         frustumFromViewProjection(view_projection);  // planes in double: deep ranges
     view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
+    view.render.near_radius = view.cull.near_radius;
     return view;
 }
 

@@ -271,10 +271,15 @@ glm::quat yawTowards(const glm::dvec3& direction) {
 // The centre of the initial scene's bounds, rounded to whole metres (so that a scene moved by
 // whole metres gets an origin moved by exactly as much). Non-finite placements are left out;
 // they are reported when the run starts.
-glm::dvec3 cullingOriginOf(const Scene& scene) {
+// The centre of the camera path's keyframe positions, rounded to whole metres: float precision
+// in the culling frame is finest where the camera looks from, whatever else the scene holds. The
+// centre of the objects' initial positions (the rule before) let a far-away object, a mover
+// spawned along a path that reaches 10^9 m, or a node 10^6 m away pull the origin, and with it
+// the eye and frustum the cullers see, into coordinates where a float steps by metres.
+glm::dvec3 cullingOriginOf(const CameraSpec& camera) {
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        const glm::dvec3& p = scene.initial_poses[o].position;
+    for (const CameraKeyframe& key : camera.keyframes) {
+        const glm::dvec3& p = key.position;
         if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) continue;
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
@@ -633,7 +638,7 @@ Scene buildScene(const Scenario& scenario) {
     // them).
     ModelPoseBuffers buffers = makePoseBuffers(scene.models);
     poseCopies(scene, 0.0, scene.initial_copies, buffers, scene.initial_poses, nullptr);
-    scene.culling_origin = cullingOriginOf(scene);
+    scene.culling_origin = cullingOriginOf(scenario.camera);
     return scene;
 }
 

@@ -131,9 +131,10 @@ struct Scene {
     std::vector<std::string> warnings;      // from sources (e.g. glTF parts skipped)
     uint64_t triangle_count = 0;            // over all objects
     // The origin of the culling frame, in world coordinates (metres, double): the centre of the
-    // initial scene, rounded to whole metres. Object boxes, the BSP tree, the frustum and the eye
-    // given to cullers are all relative to it, so float keeps its precision however far from the
-    // world origin a scene lies, and a scene moved by whole metres culls exactly alike.
+    // camera path's keyframe positions, rounded to whole metres. Object boxes, the BSP tree, the
+    // frustum and the eye given to cullers are all relative to it, so float keeps its precision
+    // where the camera is, however far from the world origin the scene lies or its objects go,
+    // and a scene moved by whole metres culls exactly alike.
     glm::dvec3 culling_origin{0.0};
 
     uint32_t objectCount() const { return static_cast<uint32_t>(object_mesh.size()); }
