@@ -139,23 +139,25 @@ TEST(CliOutputFolder, ASecondRunIntoALockedFolderSaysSoOrWaits) {
 }
 
 // The disk fills during a rerun: the old run stays whole (no new frames.csv beside the old
-// summary), and the error says why.
+// summary.json, as when each file was replaced on its own), and the error says why. The new run
+// is a bench of three algorithms: its frames.csv fits where the old one was, its summary.json
+// (two pages of tmpfs) does not.
 TEST(CliOutputFolder, AFullDiskLeavesTheOldRunWholeAndNamesTheReason) {
     SmallFileSystem disk("full-disk", "2m");
     if (!disk.mounted) GTEST_SKIP() << "no tmpfs mount here (needs root)";
     const fs::path out = disk.dir / "out";
-    const std::string run = "run " + kSmall + " --algo vfc --out " + out.string();
-    const Outcome old = runOccsim(run + " --frames 6");
+    const std::string args = kSmall + " --frames 6 --out " + out.string();
+    const Outcome old = runOccsim("run " + args + " --algo vfc");
     ASSERT_EQ(old.exit_code, 0) << old.output;
     const std::string old_frames = read(out / "frames.csv"),
                       old_summary = read(out / "summary.json");
 
-    // Leave room for the staging folder and its marker, not for the new run's files.
+    // One free page: room for the staging folder's marker, not for the new run's files.
     const auto left = fs::space(disk.dir).available;
     ASSERT_GT(left, 16384u);
     std::ofstream(disk.dir / "filler", std::ios::binary)
-        << std::string(static_cast<size_t>(left - 8192), 'x');
-    const Outcome full = runOccsim(run + " --frames 40");
+        << std::string(static_cast<size_t>(left - 4096), 'x');
+    const Outcome full = runOccsim("bench " + args + " --algos vfc,chc,statistical");
     EXPECT_EQ(full.exit_code, 1) << full.output;
     EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
     EXPECT_EQ(read(out / "frames.csv"), old_frames);
