@@ -127,6 +127,13 @@ TEST(CliOutputFolder, ASecondRunIntoALockedFolderSaysSoOrWaits) {
         std::string::npos)
         << busy.output;
     EXPECT_FALSE(fs::exists(out));
+    const Outcome regress = runOccsim("regress " + kSmall + " --out " + out.string());
+    EXPECT_EQ(regress.exit_code, 1) << regress.output;
+    EXPECT_NE(
+        regress.output.find("occsim: --out " + out.string() + ": another occsim run is writing it"),
+        std::string::npos)
+        << regress.output;
+    EXPECT_FALSE(fs::exists(out));
 
     Outcome waited;
     std::thread waiting([&] { waited = runOccsim(run + " --wait-lock"); });
