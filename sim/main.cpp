@@ -22,6 +22,7 @@
 #include "sim/output/atomic_file.h"
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
+#include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
 #include "sim/regress/regress.h"
@@ -116,6 +117,7 @@ struct CommonFlags {
     int64_t birds_eye = -1;
     std::string culling;
     bool out_given = false;  // --out on the command line (an empty one is refused)
+    bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
 };
@@ -143,7 +145,11 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_flag(
         "--error", flags.error,
         "Measure image error against a ground-truth render of every frame (outside the timing)");
-    cmd->add_option("--out", flags.out, "Output folder (default: out/<scenario>/<command>)");
+    cmd->add_option("--out", flags.out,
+                    "Output folder (default: out/<scenario>/<command>), replaced as a whole by "
+                    "the run");
+    cmd->add_flag("--wait-lock", flags.wait_lock,
+                  "Wait for another run writing the same --out to finish (default: exit)");
     cmd->add_option("--frames", flags.frames, "Run this many frames instead of the scenario's")
         ->check(integerIn(1, 10000000));
     cmd->add_option("--capture", flags.capture, "Save these frames' colour buffers as PNG")
@@ -309,14 +315,20 @@ int runCommand(const RunRequest& request) {
     occsim::BenchOptions options = benchOptions(request);
     const std::filesystem::path out_dir =
         flags.out.empty()
-            ? std::filesystem::path("out") / request.scenario.name / request.default_subdir
+            ? occsim::defaultOutputFolder(request.scenario.name, request.default_subdir)
             : std::filesystem::path(flags.out);
-    occsim::PictureRecorder pictures(out_dir, flags.capture, options.trace_frame);
+    // A run is one unit: its folder is locked, checked and staged before the first frame, every
+    // file (pictures taken during the run included) goes into the staging folder, and the whole
+    // set replaces the old folder at the end, or nothing does.
+    const occsim::FolderLock lock(out_dir, flags.wait_lock);
+    occsim::StagedRunFolder folder(out_dir);
+    occsim::PictureRecorder pictures(folder.staging(), flags.capture, options.trace_frame);
     options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
 
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
-    const occsim::OutputFiles files =
-        occsim::writeRunOutputs(result, {out_dir, flags.plots, pictures.birdsEyeFiles(), {}});
+    const occsim::OutputFiles files = occsim::writeRunOutputs(
+        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}});
+    folder.publish();
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
@@ -337,10 +349,12 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
                    const std::string& shard, const std::string& out,
                    const std::string& culling_file, const std::vector<std::string>& plugins,
                    const BackendFlags& backend, bool junit_given, const std::string& history,
-                   const std::string& commit, bool allow_empty) {
+                   const std::string& commit, bool allow_empty, bool wait_lock) {
     checkOutputFile("--junit", junit, junit_given);
     checkOutputFolder("--out", out, true);
     occsim_cli::checkHistoryFlag(history);
+    // Each scenario's folder under --out is one unit (runRegression); the lock covers them all.
+    const occsim::FolderLock lock(out, wait_lock);
     loadPlugins(plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(backend);
@@ -447,7 +461,7 @@ int viewCommand(const ViewFlags& flags) {
         options.height = h;
     }
     if (!flags.script.empty()) options.script = occsim::readViewScript(flags.script);
-    options.out_dir = flags.out.empty() ? std::filesystem::path("out") / scenario.name / "view"
+    options.out_dir = flags.out.empty() ? occsim::defaultOutputFolder(scenario.name, "view")
                                         : std::filesystem::path(flags.out);
     // Recorded flights are the loaded scenario with a new camera path: keep its text.
     std::ifstream in(flags.scenario, std::ios::binary);
@@ -467,7 +481,7 @@ struct Commands {
 
     CLI::App* regress = nullptr;
     std::vector<std::string> regress_inputs;
-    bool regress_update = false, regress_allow_empty = false;
+    bool regress_update = false, regress_allow_empty = false, regress_wait_lock = false;
     std::string regress_junit, regress_shard, regress_out = "out/regress", regress_culling;
     std::vector<std::string> regress_plugins;
     BackendFlags regress_backend;
@@ -529,7 +543,11 @@ void addRegress(CLI::App& app, Commands& c) {
     regress->add_option("--junit", c.regress_junit, "Write JUnit XML results to this file");
     regress->add_option("--shard", c.regress_shard,
                         "Run shard i of n (i/n); default from Slurm or Kubernetes job variables");
-    regress->add_option("--out", c.regress_out, "Output folder for data and failure pictures");
+    regress->add_option("--out", c.regress_out,
+                        "Output folder for data and failure pictures (each scenario's folder "
+                        "in it replaced as a whole)");
+    regress->add_flag("--wait-lock", c.regress_wait_lock,
+                      "Wait for another regress writing the same --out to finish (default: exit)");
     regress->add_option(
         "--culling", c.regress_culling,
         "Culling options from this file, overriding every scenario's (see run --help)");
@@ -678,7 +696,7 @@ int dispatch(Commands& c, const std::string& command) {
         return regressCommand(c.regress_inputs, c.regress_update, c.regress_junit, c.regress_shard,
                               c.regress_out, c.regress_culling, c.regress_plugins,
                               c.regress_backend, c.regress->count("--junit") > 0, c.regress_history,
-                              c.regress_commit, c.regress_allow_empty);
+                              c.regress_commit, c.regress_allow_empty, c.regress_wait_lock);
     if (*c.merge) return occsim_cli::mergeCommand(c.merge_flags);
     if (*c.history) return occsim_cli::historyCommand(c.history_flags);
     if (*c.cullers) {
@@ -724,6 +742,12 @@ int dispatchReportingErrors(Commands& c, const std::string& command) {
         return badInput(e);
     } catch (const BadInput& e) {
         return badInput(e);
+    } catch (const occsim::RunFolderError& e) {  // not an occsim run, or not writable
+        std::fprintf(stderr, "occsim: --out %s\n", e.what());
+        return kExitBadInput;
+    } catch (const occsim::RunFolderBusy& e) {  // another run writes there: try again later
+        std::fprintf(stderr, "occsim: --out %s\n", e.what());
+        return kExitFailure;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitFailure;

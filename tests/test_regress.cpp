@@ -193,6 +193,20 @@ TEST(Regress, ACullerThatDropsVisibleObjectsFailsWithErrorPixelsAndAPicture) {
     EXPECT_TRUE(vfc_missed->passed) << vfc_missed->got;
 }
 
+// Each scenario's folder is one unit: a rerun that takes no picture leaves none of the last
+// run's beside its report.
+TEST(Regress, ARerunReplacesTheScenarioFolderWithNoStalePicture) {
+    const fs::path file = makeScenario("stale", kExpect);
+    const RegressReport dropped = runRegression(optionsFor(file, Sabotage::DropDraws));
+    ASSERT_FALSE(dropped.scenarios[0].captures.empty());
+    const fs::path picture = dropped.scenarios[0].captures[0];
+    ASSERT_TRUE(fs::exists(picture)) << "the picture is named where it is once published";
+    const RegressReport clean = runRegression(optionsFor(file));
+    EXPECT_TRUE(clean.scenarios[0].captures.empty()) << clean.table();
+    EXPECT_FALSE(fs::exists(picture)) << "the last run's picture is still there";
+    EXPECT_TRUE(fs::exists(picture.parent_path() / "report.md"));
+}
+
 TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
     nlohmann::json expect = kExpect;
     expect["ratios"] = {

@@ -11,24 +11,34 @@
 #include <system_error>
 
 namespace occsim {
+namespace {
+
+// "cannot write <path>: <the OS reason>", as every write error says it.
+std::string cannotWrite(const std::filesystem::path& path, const std::string& reason) {
+    return "cannot write " + path.string() + ": " + reason;
+}
+
+}  // namespace
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view contents) {
     std::filesystem::path temp = path;
     temp += ".tmp." + std::to_string(::getpid());
     std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (f == nullptr)
-        throw std::runtime_error(path.string() + ": cannot write (" + std::strerror(errno) + ")");
-    const bool written = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
-    const bool closed = std::fclose(f) == 0;
+    if (f == nullptr) throw std::runtime_error(cannotWrite(path, std::strerror(errno)));
+    // errno is read at once: the cleanup below may change it.
+    int error = 0;
+    if (std::fwrite(contents.data(), 1, contents.size(), f) != contents.size()) error = errno;
+    if (std::fclose(f) != 0 && error == 0) error = errno;
     std::error_code ec;
-    if (!written || !closed) {
+    if (error != 0) {
         std::filesystem::remove(temp, ec);
-        throw std::runtime_error(path.string() + ": write failed");
+        throw std::runtime_error(cannotWrite(path, std::strerror(error)));
     }
     std::filesystem::rename(temp, path, ec);
     if (ec) {
+        const std::string reason = ec.message();
         std::filesystem::remove(temp, ec);
-        throw std::runtime_error(path.string() + ": cannot rename the temporary file into place");
+        throw std::runtime_error(cannotWrite(path, reason));
     }
 }
 
@@ -44,7 +54,7 @@ std::string safeFileName(std::string_view label) {
             c = '_';
     }
     if (!out.empty() && out.front() == '.') out.front() = '_';
-    return out;
+    return out.empty() ? "_" : out;
 }
 
 }  // namespace occsim

@@ -10,12 +10,14 @@
 
 namespace occsim {
 
-// Throws std::runtime_error naming the file on any failure; never leaves a partial target.
+// Throws std::runtime_error "cannot write <path>: <the OS reason>" on any failure; never leaves a
+// partial target.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view contents);
 void writeFileAtomically(const std::filesystem::path& path, const std::vector<uint8_t>& contents);
 
 // A label made safe as one file-name component: letters, digits, '-', '_' and '.' are kept,
-// anything else becomes '_', and a leading '.' too (no hidden files, no "..").
+// anything else becomes '_', and a leading '.' too (no hidden files, no ".."); an empty label is
+// "_", so that the result is always one path component.
 std::string safeFileName(std::string_view label);
 
 }  // namespace occsim

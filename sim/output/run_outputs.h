@@ -1,6 +1,7 @@
 // The files a `run` or `bench` leaves behind, written from its result after it finished:
 // frames.csv, summary.json, report.md and, when asked, the gnuplot charts. Each file is written
-// atomically (whole or absent).
+// atomically (whole or absent), into the folder given: the run's staging folder
+// (run_folder.h), which then replaces the old run as a whole.
 #pragma once
 
 #include <filesystem>
@@ -12,7 +13,7 @@
 namespace occsim {
 
 struct OutputRequest {
-    std::filesystem::path out_dir;
+    std::filesystem::path out_dir;             // the staging folder: written now, published later
     bool plots = false;                        // gnuplot charts (plots.h), when gnuplot is there
     std::vector<std::string> birds_eye_files;  // pictures already in out_dir, linked from report.md
     std::string extra_markdown;  // a section for report.md after the table (regress: its checks)

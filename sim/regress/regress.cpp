@@ -12,6 +12,7 @@
 #include "sim/output/atomic_file.h"
 #include "sim/output/error_picture.h"
 #include "sim/output/fixed_text.h"
+#include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
 #include "sim/run/runner.h"
@@ -164,7 +165,8 @@ BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expect
 // the worst error frame into the scenario's output folder.
 struct ResultChecks {
     const BenchResult& result;
-    const std::filesystem::path& out_dir;
+    const std::filesystem::path& out_dir;        // written now: the staging folder
+    const std::filesystem::path& published_dir;  // where the pictures will be once published
     ScenarioOutcome& outcome;
 
     const RunRecord& runOf(const std::string& name) const {
@@ -179,12 +181,13 @@ struct ResultChecks {
             if (result.runs[a].summary.label != algorithm) continue;
             const ErrorFrame& worst = result.worst_error_frames[a];
             if (worst.error_pixels == 0) return;
-            const auto path = out_dir / ("worst-error-" + safeFileName(algorithm) + "-frame-" +
-                                         std::to_string(worst.frame) + ".png");
+            const std::string name = "worst-error-" + safeFileName(algorithm) + "-frame-" +
+                                     std::to_string(worst.frame) + ".png";
             const uint32_t width = result.metadata.width, height = result.metadata.height;
-            writeFileAtomically(path, encodePngBottomUp(composeErrorPicture(worst, width, height),
-                                                        3 * width, height));
-            outcome.captures.push_back(path.string());
+            writeFileAtomically(
+                out_dir / name,
+                encodePngBottomUp(composeErrorPicture(worst, width, height), 3 * width, height));
+            outcome.captures.push_back((published_dir / name).string());
         }
     }
 };
@@ -397,6 +400,11 @@ void checkBaseline(ResultChecks& checks, const Expectations& expect, const Basel
     compareWithBaseline(checks, *old.baseline, now, elsewhere);
 }
 
+std::filesystem::path scenarioFolder(const RegressOptions& options,
+                                     const std::filesystem::path& file) {
+    return options.out_dir / safeFileName(file.stem().string());
+}
+
 ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& options) {
     ScenarioOutcome outcome;
     outcome.scenario = file.string();
@@ -407,17 +415,18 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     const Scenario& scenario = *read;
     const Expectations& expect = *scenario.expect;
 
-    const std::filesystem::path out_dir = options.out_dir / safeFileName(outcome.name);
+    // The scenario's folder is one unit, staged before the run and replaced as a whole after.
+    StagedRunFolder folder(scenarioFolder(options, file));
     const BenchResult result = runBenchmark(scenario, regressBenchOptions(file, expect, options));
-    std::filesystem::create_directories(out_dir);  // pictures of failures go there first
 
-    ResultChecks checks{result, out_dir, outcome};
+    ResultChecks checks{result, folder.staging(), folder.target(), outcome};
     checkZeroError(checks, expect);
     checkMaxErrorPixels(checks, expect);
     checkRatios(checks, expect, scenario);
     checkBaseline(checks, expect, baselineOf(scenario, expect, result), options.update);
 
-    writeRunOutputs(result, OutputRequest{out_dir, false, {}, checksMarkdown(outcome)});
+    writeRunOutputs(result, OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+    folder.publish();
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return outcome;
 }
@@ -627,6 +636,8 @@ std::string RegressReport::table() const {
 RegressReport runRegression(const RegressOptions& options) {
     RegressReport report;
     const auto files = collectScenarios(options.inputs, options.shard);
+    // A folder that is not an occsim run is refused before any scenario runs.
+    for (const auto& file : files) checkRunFolder(scenarioFolder(options, file));
     for (size_t i = 0; i < files.size(); ++i) {
         if (options.progress) {
             std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, files.size(), files[i].string().c_str());

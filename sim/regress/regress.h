@@ -96,6 +96,8 @@ struct RegressOptions {
     std::vector<std::filesystem::path> inputs;
     Shard shard;
     bool update = false;
+    // Each scenario's folder in it (its file name, made one path component) is replaced as a
+    // whole (run_folder.h); the caller holds the lock on out_dir.
     std::filesystem::path out_dir = "out/regress";
     bool progress = false;
     BackendChoice backend;  // --backend, --device

@@ -1,0 +1,202 @@
+#include "sim/output/run_folder.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "sim/output/atomic_file.h"
+
+namespace occsim {
+namespace fs = std::filesystem;
+namespace {
+
+// "out/run/" and "out/run" are one folder; "." and ".." are made absolute so that they have a
+// name to put a suffix on.
+fs::path normalFolder(const fs::path& folder) {
+    fs::path p = folder.lexically_normal();
+    if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();
+    if (p.empty() || p.filename() == "." || p.filename() == "..") {
+        p = fs::absolute(p).lexically_normal();
+        if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();
+    }
+    return p;
+}
+
+// A sibling of the folder: <folder><suffix>.
+fs::path beside(const fs::path& folder, const std::string& suffix) {
+    fs::path p = folder;
+    p += suffix;
+    return p;
+}
+
+fs::path parentOf(const fs::path& folder) {
+    return folder.has_parent_path() ? folder.parent_path() : fs::path(".");
+}
+
+// Runs written before the marker existed: their summary.json names occsim.
+bool holdsOlderOccsimSummary(const fs::path& folder) {
+    std::ifstream in(folder / "summary.json", std::ios::binary);
+    if (!in) return false;
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const nlohmann::json summary = nlohmann::json::parse(text, nullptr, false);
+    return summary.is_object() && summary.contains("occsim") && summary["occsim"].is_object();
+}
+
+bool holdsMarker(const fs::path& folder) {
+    std::error_code ec;
+    return fs::is_regular_file(folder / kRunMarker, ec);
+}
+
+bool isEmptyFolder(const fs::path& folder) {
+    std::error_code ec;
+    return fs::is_empty(folder, ec) && !ec;
+}
+
+// Leftovers of an interrupted run into `target` (the caller holds its lock, so no other run is
+// using them): a staging folder of a run that died, and an old folder set aside by a publication
+// that died between its two renames, put back when the target is missing.
+void recoverInterrupted(const fs::path& target) {
+    std::error_code ec;
+    const fs::path old = beside(target, ".old");
+    if (fs::is_directory(old, ec) && holdsMarker(old)) {
+        if (!fs::exists(target, ec)) {
+            fs::rename(old, target, ec);
+        } else {
+            fs::remove_all(old, ec);
+        }
+        if (ec) {
+            throw RunFolderError(target.string() + ": cannot recover " + old.string() +
+                                 " left by an interrupted run: " + ec.message());
+        }
+    }
+    const std::string staging_prefix = target.filename().string() + ".tmp-";
+    for (const fs::directory_entry& e : fs::directory_iterator(parentOf(target), ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(staging_prefix, 0) == 0 && e.is_directory(ec) &&
+            (holdsMarker(e.path()) || isEmptyFolder(e.path()))) {
+            fs::remove_all(e.path(), ec);
+        }
+    }
+}
+
+}  // namespace
+
+fs::path defaultOutputFolder(const std::string& scenario_name, const std::string& command_folder) {
+    return fs::path("out") / safeFileName(scenario_name) / safeFileName(command_folder);
+}
+
+bool isReplaceableRunFolder(const fs::path& folder) {
+    std::error_code ec;
+    if (!fs::exists(folder, ec)) return true;
+    if (!fs::is_directory(folder, ec)) return false;
+    return isEmptyFolder(folder) || holdsMarker(folder) || holdsOlderOccsimSummary(folder);
+}
+
+void checkRunFolder(const fs::path& folder) {
+    std::error_code ec;
+    const bool exists = fs::exists(folder, ec);
+    if (exists && !fs::is_directory(folder, ec))
+        throw RunFolderError(folder.string() + ": is a file; expected a folder");
+    if (!isReplaceableRunFolder(folder)) {
+        throw RunFolderError(folder.string() + ": holds files that are not an occsim run (no " +
+                             kRunMarker +
+                             " marker); expected an earlier run's folder, an empty one or a new "
+                             "name (a run replaces its folder as a whole)");
+    }
+    // The old run is deleted when the new one is published: that needs its folder writable.
+    if (exists && ::access(folder.c_str(), W_OK) != 0)
+        throw RunFolderError("cannot write " + folder.string() + ": " + std::strerror(errno));
+}
+
+FolderLock::FolderLock(const fs::path& folder, bool wait) {
+    const fs::path target = normalFolder(folder);
+    const fs::path lock = beside(target, ".lock");
+    std::error_code ec;
+    fs::create_directories(parentOf(target), ec);
+    if (ec) {
+        throw RunFolderError(target.string() + ": cannot create " + parentOf(target).string() +
+                             ": " + ec.message());
+    }
+    fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+        throw RunFolderError(target.string() + ": cannot write its lock " + lock.string() + ": " +
+                             std::strerror(errno));
+    }
+    int locked = 0;
+    while ((locked = ::flock(fd_, LOCK_EX | (wait ? 0 : LOCK_NB))) != 0 && errno == EINTR) {
+    }
+    if (locked != 0) {
+        const int err = errno;
+        ::close(fd_);
+        fd_ = -1;
+        if (err == EWOULDBLOCK) {
+            throw RunFolderBusy(target.string() + ": another occsim run is writing it (" +
+                                lock.string() + " is locked); wait for it, or pass --wait-lock");
+        }
+        throw RunFolderError(target.string() + ": cannot lock " + lock.string() + ": " +
+                             std::strerror(err));
+    }
+}
+
+FolderLock::~FolderLock() {
+    // The lock file stays: deleting it would let a waiting run and a new one lock two files.
+    if (fd_ >= 0) ::close(fd_);
+}
+
+StagedRunFolder::StagedRunFolder(fs::path target) : target_(normalFolder(target)) {
+    checkRunFolder(target_);
+    recoverInterrupted(target_);
+    staging_ = beside(target_, ".tmp-" + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::create_directories(parentOf(target_), ec);
+    if (!ec) fs::remove_all(staging_, ec);
+    if (!ec) fs::create_directory(staging_, ec);
+    if (ec) {
+        throw RunFolderError(target_.string() + ": cannot write " + staging_.string() + ": " +
+                             ec.message());
+    }
+    try {
+        writeFileAtomically(staging_ / kRunMarker,
+                            "An occsim run folder: the next run into it replaces it as a whole.\n");
+    } catch (const std::runtime_error& e) {
+        fs::remove_all(staging_, ec);
+        throw RunFolderError(target_.string() + ": " + e.what());
+    }
+}
+
+StagedRunFolder::~StagedRunFolder() {
+    if (published_) return;
+    std::error_code ec;
+    fs::remove_all(staging_, ec);
+}
+
+void StagedRunFolder::publish() {
+    const fs::path old = beside(target_, ".old");
+    std::error_code ec;
+    const bool had_old = fs::exists(target_, ec);
+    if (had_old) {
+        fs::rename(target_, old, ec);
+        if (ec) {
+            throw std::runtime_error("cannot move " + target_.string() + " aside to " +
+                                     old.string() + ": " + ec.message());
+        }
+    }
+    fs::rename(staging_, target_, ec);
+    if (ec) {
+        const std::string reason = ec.message();
+        if (had_old) fs::rename(old, target_, ec);
+        throw std::runtime_error("cannot move " + staging_.string() + " to " + target_.string() +
+                                 ": " + reason);
+    }
+    published_ = true;
+    // The new run is in place; an old folder that will not go is removed by the next run.
+    if (had_old) fs::remove_all(old, ec);
+}
+
+}  // namespace occsim

@@ -1,0 +1,81 @@
+// A run's output folder as one unit: the folder holds the previous run or the new one, never a
+// mix. A run writes into a fresh staging folder beside its target (<target>.tmp-<pid>) and
+// publishes it as a whole at the end (the old folder renamed aside to <target>.old, the new one
+// renamed in, the old one deleted); whatever fails before, the old folder stays as it was. A lock
+// file beside the target (<target>.lock, flock(2), so a dead process never holds it) keeps two
+// runs out of one folder. Only folders that hold an occsim run (the .occsim-run marker every run
+// folder gets, or an older occsim summary.json), empty folders and absent ones are replaced:
+// anything else is not ours to delete.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace occsim {
+
+// The target cannot be used: it holds something other than an occsim run, or it (or its parent)
+// cannot be written. Found before any work; the message starts with the target's path.
+struct RunFolderError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Another run holds the target's lock (and the caller asked not to wait).
+struct RunFolderBusy : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// The marker file a published run folder holds.
+inline constexpr const char* kRunMarker = ".occsim-run";
+
+// out/<scenario name>/<command folder>, each name made one safe path component, so that a
+// scenario named "/abs" or "../.." still writes under out/.
+std::filesystem::path defaultOutputFolder(const std::string& scenario_name,
+                                          const std::string& command_folder);
+
+// True when `folder` is absent, empty, or holds an occsim run (see above).
+bool isReplaceableRunFolder(const std::filesystem::path& folder);
+
+// Throws RunFolderError when `folder` exists and is not replaceable, or cannot be written.
+void checkRunFolder(const std::filesystem::path& folder);
+
+// An exclusive lock on <folder>.lock, held until destroyed. With wait, blocks until the holder
+// lets go; without, throws RunFolderBusy. Throws RunFolderError when the lock file cannot be
+// created (the parent folder is created when missing).
+class FolderLock {
+  public:
+    FolderLock(const std::filesystem::path& folder, bool wait);
+    ~FolderLock();
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+  private:
+    int fd_ = -1;
+};
+
+// The staging folder of one run into `target`. The caller holds the target's lock (FolderLock,
+// or one around a set of targets). The constructor checks the target (checkRunFolder), finishes
+// a publication a crash interrupted, and creates the staging folder with its marker, so that an
+// unwritable place is found before any work. Destroyed unpublished, the staging folder is
+// removed and the target left as it was.
+class StagedRunFolder {
+  public:
+    explicit StagedRunFolder(std::filesystem::path target);
+    ~StagedRunFolder();
+    StagedRunFolder(const StagedRunFolder&) = delete;
+    StagedRunFolder& operator=(const StagedRunFolder&) = delete;
+
+    const std::filesystem::path& staging() const { return staging_; }  // write here
+    const std::filesystem::path& target() const { return target_; }
+
+    // Swaps the staging folder in place of the target. Throws std::runtime_error naming the
+    // path and the OS reason; the target then holds the old run (or, after a crash between the
+    // two renames, <target>.old does, and the next run puts it back).
+    void publish();
+
+  private:
+    std::filesystem::path target_, staging_;
+    bool published_ = false;
+};
+
+}  // namespace occsim
