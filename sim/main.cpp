@@ -401,7 +401,8 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     // A shard under a scheduler that retries failed tasks (a Kubernetes Indexed Job) must finish
     // so that the merge runs; the failed checks are in its results and the merge exits 1.
     if (!report.passed() && exit_zero_on_failed_checks) {
-        std::printf("regress: failed checks exit 0 (--exit-zero-on-failed-checks): merge reports them\n");
+        std::printf(
+            "regress: failed checks exit 0 (--exit-zero-on-failed-checks): merge reports them\n");
         return 0;
     }
     return report.passed() ? 0 : kExitFailure;

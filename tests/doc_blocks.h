@@ -48,11 +48,16 @@ inline bool applyMarkerOption(const std::string& option, DocBlock& block) {
     if (value.empty()) return false;
     if (key == "exit") return std::sscanf(value.c_str(), "%d", &block.expect) == 1;
     if (key == "completions") return std::sscanf(value.c_str(), "%d", &block.completions) == 1;
-    if (key == "shell") block.shell = value;
-    else if (key == "file") block.file = value;
-    else if (key == "volume") block.volume = value;
-    else if (key == "id") block.id = value;
-    else return false;
+    if (key == "shell")
+        block.shell = value;
+    else if (key == "file")
+        block.file = value;
+    else if (key == "volume")
+        block.volume = value;
+    else if (key == "id")
+        block.id = value;
+    else
+        return false;
     return true;
 }
 
@@ -180,10 +185,11 @@ inline Outcome runBlock(const DocBlock& block, const std::filesystem::path& dir)
         for (const std::string& word : argv) command += singleQuoted(word) + " ";
         Outcome all{block.expect, ""};
         for (int index = 0; index < block.completions; ++index) {
-            const Outcome pod = runScript(
-                "sh", exports + "export JOB_COMPLETION_INDEX=" + std::to_string(index) + "\n" +
-                          "exec " + command + "\n",
-                dir, "pod.sh");
+            const Outcome pod =
+                runScript("sh",
+                          exports + "export JOB_COMPLETION_INDEX=" + std::to_string(index) + "\n" +
+                              "exec " + command + "\n",
+                          dir, "pod.sh");
             all.output += "pod " + std::to_string(index) + ": exit " +
                           std::to_string(pod.exit_code) + "\n" + pod.output;
             if (pod.exit_code != block.expect) all.exit_code = pod.exit_code;

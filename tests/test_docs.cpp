@@ -19,8 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempPath(const std::string& name) {
-    const auto p = fs::temp_directory_path() /
-                   ("occsim-docs-" + std::to_string(::getpid()) + "-" + name);
+    const auto p =
+        fs::temp_directory_path() / ("occsim-docs-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(p);
     return p;
 }
@@ -47,7 +47,8 @@ fs::path regressionFolder(const std::string& name) {
     const fs::path dir = tempPath(name);
     const fs::path source = fs::path(OCCSIM_SOURCE_DIR) / "scenarios";
     fs::create_directories(dir / "scenarios" / "small");
-    for (const char* scenario : {"city-small", "shared-faces-small", "plant-small", "library-small"}) {
+    for (const char* scenario :
+         {"city-small", "shared-faces-small", "plant-small", "library-small"}) {
         for (const std::string suffix : {".json", ".baseline.json"}) {
             fs::copy_file(source / "small" / (scenario + suffix),
                           dir / "scenarios" / "small" / (scenario + suffix));
