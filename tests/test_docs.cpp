@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,32 @@ TEST(Docs, TheKubernetesRecipeMergesAShardWhoseCheckFailed) {
     replaceAll(pods.script, "regress ", "regress --shard 9/4 ");
     EXPECT_EQ(runBlock(pods, dir).exit_code, 2) << "bad input must fail the pod";
     fs::remove_all(dir);
+}
+
+// The benchmark scripts keep core dumps on (docs/stability.md): the next crash in a long run
+// leaves a core, and the script says where it goes.
+TEST(Scripts, BenchmarkScriptsTurnCoreDumpsOnAndSayWhereTheCoreGoes) {
+    const fs::path scripts = fs::path(OCCSIM_SOURCE_DIR) / "scripts";
+    for (const char* script : {"bench.sh", "results.sh", "ablation.sh", "valgrind.sh"}) {
+        const std::string text = readFile(scripts / script);
+        const size_t sourced = text.find("\nsource scripts/core_dumps.sh");
+        const size_t runs = text.find("/sim/occsim");
+        EXPECT_NE(sourced, std::string::npos) << script;
+        EXPECT_LT(sourced, runs) << script << ": core dumps on before occsim runs";
+    }
+    const Outcome o = shell("bash -c 'ulimit -S -c 0; cd " + singleQuoted(OCCSIM_SOURCE_DIR) +
+                            "; source scripts/core_dumps.sh; echo \"soft $(ulimit -S -c) hard "
+                            "$(ulimit -H -c)\"'");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    if (shell("bash -c 'ulimit -H -c'").output != "0\n") {
+        EXPECT_NE(o.output.find("core dumps: on"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("a crash leaves its core at "), std::string::npos) << o.output;
+        const size_t at = o.output.find("soft ");
+        ASSERT_NE(at, std::string::npos) << o.output;
+        std::string soft, word, hard;
+        std::istringstream(o.output.substr(at)) >> word >> soft >> word >> hard;
+        EXPECT_EQ(soft, hard) << "the limit raised to the hard limit";
+    }
 }
 
 }  // namespace
