@@ -1,21 +1,25 @@
 // Headless GL through OSMesa (Mesa's llvmpipe), only in builds configured with it
 // (OCCSIM_WITH_OSMESA; Mesa removed OSMesa in 25.1). OSMesa needs a client buffer to make a
 // context current; occsim renders into its own framebuffer object, so that buffer only exists
-// to satisfy the API.
+// to satisfy the API. Mesa keeps a pointer to it beyond the context's life and copies frames
+// into it: it comes from osmesaColourBuffer(), which never frees it (osmesa_colour_buffer.h says
+// why), and the context is unbound before it is destroyed. There is no resize: a context keeps
+// the size it was made with (the renderer resizes its framebuffer object instead); a resize would
+// have to call OSMesaMakeCurrent with a buffer of the new size before rendering again.
 #include <GL/osmesa.h>
 
 #include <stdexcept>
-#include <vector>
 
 #include "render/gl_loader.h"
 #include "render/headless_backends.h"
+#include "render/osmesa_colour_buffer.h"
 
 namespace occsim {
 namespace {
 
 class OsMesaContext final : public HeadlessContext {
   public:
-    OsMesaContext(uint32_t width, uint32_t height) : buffer_(size_t{width} * height * 4) {
+    OsMesaContext(uint32_t width, uint32_t height) : buffer_(osmesaColourBuffer(width, height)) {
         const int attribs[] = {OSMESA_FORMAT,
                                OSMESA_RGBA,
                                OSMESA_DEPTH_BITS,
@@ -33,8 +37,8 @@ class OsMesaContext final : public HeadlessContext {
         if (context_ == nullptr) {
             throw BackendUnavailable("OSMesa: cannot create an OpenGL 4.5 core context");
         }
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE,
-                               static_cast<GLsizei>(width), static_cast<GLsizei>(height))) {
+        if (!OSMesaMakeCurrent(context_, buffer_, GL_UNSIGNED_BYTE, static_cast<GLsizei>(width),
+                               static_cast<GLsizei>(height))) {
             OSMesaDestroyContext(context_);
             throw std::runtime_error("OSMesa: cannot make the context current");
         }
@@ -44,18 +48,25 @@ class OsMesaContext final : public HeadlessContext {
                     return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
                 },
                 &error)) {
-            OSMesaDestroyContext(context_);
+            release();
             throw BackendUnavailable("OSMesa: " + error);
         }
     }
-    ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+    ~OsMesaContext() override { release(); }
     OsMesaContext(const OsMesaContext&) = delete;
     OsMesaContext& operator=(const OsMesaContext&) = delete;
 
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
   private:
-    std::vector<unsigned char> buffer_;
+    // Unbound first, so that the flush that goes with unbinding happens while the context still
+    // has its buffer; then destroyed.
+    void release() {
+        if (OSMesaGetCurrentContext() == context_) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+        OSMesaDestroyContext(context_);
+    }
+
+    unsigned char* buffer_;  // never freed: Mesa keeps it (osmesa_colour_buffer.h)
     OSMesaContext context_ = nullptr;
 };
 

@@ -14,6 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
+source scripts/core_dumps.sh  # a crash leaves a core (and says where)
 for scenario in scenarios/teapots.json scenarios/paper/library.json scenarios/paper/plant.json; do
   name=$(basename "$scenario" .json)
   for run in 1 2; do

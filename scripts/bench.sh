@@ -5,4 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
+source scripts/core_dumps.sh  # a crash leaves a core (and says where)
 exec ./build/release/sim/occsim bench scenarios/teapots.json --error "$@"

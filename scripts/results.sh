@@ -23,6 +23,7 @@ case "$set_name" in
 esac
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
+source scripts/core_dumps.sh  # a crash leaves a core (and says where)
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .json)
   for run in 1 2; do

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "occsim/culling/cullers/statistical_culler.h"
+#include "sim/output/error_picture.h"
 #include "sim/regress/regress.h"
 
 namespace occsim {
@@ -205,6 +206,52 @@ TEST(Regress, ARerunReplacesTheScenarioFolderWithNoStalePicture) {
     EXPECT_TRUE(clean.scenarios[0].captures.empty()) << clean.table();
     EXPECT_FALSE(fs::exists(picture)) << "the last run's picture is still there";
     EXPECT_TRUE(fs::exists(picture.parent_path() / "report.md"));
+}
+
+// The width and height a PNG's header gives (IHDR: bytes 16-23, big-endian).
+std::pair<uint32_t, uint32_t> pngSize(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char header[24] = {};
+    in.read(reinterpret_cast<char*>(header), sizeof header);
+    auto word = [&](int at) {
+        return uint32_t{header[at]} << 24 | uint32_t{header[at + 1]} << 16 |
+               uint32_t{header[at + 2]} << 8 | header[at + 3];
+    };
+    return {word(16), word(20)};
+}
+
+// A culler that fails two error checks (zero error, and error pixels against its baseline) gets
+// one picture, named once; report.md shows it, and it is large enough to see single pixels: each
+// panel of the 200 x 150 frame scaled 4 times, the three one above the other under their labels.
+TEST(Regress, AFailingCullersWorstFrameIsOneLargePictureThatReportMdShows) {
+    const fs::path file = makeScenario("pictured", kExpect);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    runRegression(o);  // the baseline of the intact culler
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::DropDraws));
+    const CheckResult* zero = findCheck(report, "zero error pixels: statistical");
+    const CheckResult* baseline =
+        findCheck(report, "error pixels per frame = baseline: statistical");
+    ASSERT_NE(zero, nullptr);
+    ASSERT_NE(baseline, nullptr);
+    EXPECT_FALSE(zero->passed);
+    EXPECT_FALSE(baseline->passed) << baseline->got;
+    const std::vector<std::string>& captures = report.scenarios[0].captures;
+    ASSERT_EQ(captures.size(), 1u) << "one worst frame, one picture";
+    const fs::path picture = captures[0];
+    EXPECT_EQ(picture.parent_path(), file.parent_path() / "out" / "pictured");
+
+    const auto [width, height] = pngSize(picture);
+    EXPECT_EQ(errorPictureScale(200), 4u);
+    EXPECT_GE(width, 4u * 200) << "each frame pixel a 4 x 4 square";
+    EXPECT_GE(height, 3u * 4 * 150) << "three panels one above the other";
+    EXPECT_LT(height, 3u * (4 * 150 + 40)) << "and a label strip each";
+
+    std::ifstream in(picture.parent_path() / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string name = picture.filename().string();
+    EXPECT_NE(md.find("![" + name + "](" + name + ")"), std::string::npos) << md;
+    EXPECT_NE(md.find("## Worst frames"), std::string::npos) << md;
 }
 
 TEST(Regress, ASlowedCullerFailsTheRatioCheck) {

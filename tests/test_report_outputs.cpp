@@ -554,5 +554,50 @@ TEST(ErrorPicture, MarksErrorsAndTiesInTheirOwnColours) {
     EXPECT_THROW(composeErrorPicture(frame, w, h), std::invalid_argument);
 }
 
+// The picture report.md shows: the panels one above the other, each frame pixel a square of
+// errorPictureScale() pixels, each panel under a label in black on white.
+TEST(ErrorPicture, TheLabelledPictureShowsEachErrorPixelAsASquareUnderALabel) {
+    const uint32_t w = 100, h = 2;  // scale 8: the most
+    ErrorFrame frame;
+    frame.culled_rgba.assign(w * h * 4, 30);
+    frame.truth_rgba.assign(w * h * 4, 90);
+    frame.culled_ids.assign(w * h, 1);
+    frame.truth_ids.assign(w * h, 1);
+    frame.differences.assign(w * h, static_cast<uint8_t>(PixelDifference::Same));
+    frame.differences[w + 7] = static_cast<uint8_t>(PixelDifference::Error);  // x 7, row 1
+    frame.error_pixels = 1;
+    const uint32_t scale = errorPictureScale(w);
+    ASSERT_EQ(scale, 8u);
+    EXPECT_EQ(errorPictureScale(200), 4u);
+    EXPECT_EQ(errorPictureScale(4000), 1u);
+    const LabelledPicture picture = labelledErrorPicture(frame, w, h, "statistical");
+    ASSERT_EQ(picture.rgba.size(), size_t{picture.width} * picture.height * 4);
+    const uint32_t panel = (picture.height) / 3;  // label strip + scaled frame
+    const uint32_t band = panel - h * scale;
+    EXPECT_GT(band, 14u) << "a label strip above every panel";
+    EXPECT_GE(picture.width, w * scale);
+    // Rows are bottom-up: the last panel (the difference) is at the bottom; its frame row 1
+    // (bottom-up, as the frame's) is the upper one of its two scaled rows.
+    auto at = [&](uint32_t x, uint32_t y_from_bottom) {
+        const uint8_t* p = picture.rgba.data() + (size_t{y_from_bottom} * picture.width + x) * 4;
+        return std::vector<uint8_t>(p, p + 3);
+    };
+    const std::vector<uint8_t> magenta(kErrorColour, kErrorColour + 3);
+    int marked = 0;
+    for (uint32_t y = 0; y < 2 * scale; ++y) {
+        for (uint32_t x = 0; x < w * scale; ++x) marked += at(x, y) == magenta;
+    }
+    EXPECT_EQ(marked, static_cast<int>(scale * scale)) << "one error pixel, one square";
+    for (uint32_t d = 0; d < scale; ++d) {
+        EXPECT_EQ(at(7 * scale + d, scale + d), magenta) << d;
+    }
+    int ink = 0;  // the difference panel's label, in black above it
+    for (uint32_t y = 2 * scale; y < 2 * scale + band; ++y) {
+        for (uint32_t x = 0; x < picture.width; ++x)
+            ink += at(x, y) == std::vector<uint8_t>{0, 0, 0};
+    }
+    EXPECT_GT(ink, 100) << "a label";
+}
+
 }  // namespace
 }  // namespace occsim

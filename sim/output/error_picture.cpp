@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sim/output/raster_canvas.h"
+
 namespace occsim {
 
 std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height) {
@@ -37,6 +39,44 @@ std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width
         }
     }
     return out;
+}
+
+uint32_t errorPictureScale(uint32_t frame_width) {
+    return std::clamp<uint32_t>(800 / std::max<uint32_t>(frame_width, 1), 1, 8);
+}
+
+LabelledPicture labelledErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height,
+                                     const std::string& algorithm) {
+    const std::vector<uint8_t> panels = composeErrorPicture(frame, width, height);
+    const uint32_t scale = errorPictureScale(width);
+    const int text_scale = 2, margin = 6;
+    const int band = RasterCanvas::textHeight(text_scale) + 2 * margin;  // a label's strip
+    const int panel_w = static_cast<int>(width * scale), panel_h = static_cast<int>(height * scale);
+    const std::string labels[3] = {
+        "culled: " + algorithm + ", frame " + std::to_string(frame.frame), "ground truth",
+        "difference: " + std::to_string(frame.error_pixels) + " error px (magenta), " +
+            std::to_string(frame.tie_pixels) + " tie px (yellow), stray (cyan)"};
+    const int label_w = RasterCanvas::textWidth(labels[2], text_scale) + 2 * margin;
+    RasterCanvas canvas(static_cast<uint32_t>(std::max(panel_w, label_w)),
+                        static_cast<uint32_t>(3 * (band + panel_h)), Rgb{255, 255, 255});
+    const size_t row_in = size_t{width} * 3 * 4;
+    for (int p = 0; p < 3; ++p) {
+        const int top = p * (band + panel_h);
+        canvas.text(margin, top + margin, labels[p], Rgb{0, 0, 0}, text_scale);
+        // The panels' rows are bottom-up; the canvas's top-down.
+        for (uint32_t y = 0; y < height; ++y) {
+            const uint8_t* row =
+                panels.data() + (height - 1 - y) * row_in + static_cast<size_t>(p) * width * 4;
+            for (uint32_t x = 0; x < width; ++x) {
+                const uint8_t* c = row + x * 4;
+                const int x0 = static_cast<int>(x * scale),
+                          y0 = top + band + static_cast<int>(y * scale);
+                canvas.fillRect(x0, y0, x0 + static_cast<int>(scale) - 1,
+                                y0 + static_cast<int>(scale) - 1, Rgb{c[0], c[1], c[2]});
+            }
+        }
+    }
+    return {canvas.width(), canvas.height(), canvas.rgbaBottomUp()};
 }
 
 }  // namespace occsim

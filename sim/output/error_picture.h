@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "sim/run/simulation.h"
@@ -19,5 +20,20 @@ inline constexpr uint8_t kStrayColour[3] = {0, 220, 255};
 // truth | ground truth dimmed with every error pixel in magenta, every tie pixel in yellow, every
 // stray one in cyan.
 std::vector<uint8_t> composeErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height);
+
+// How many picture pixels per frame pixel: a whole factor that brings a panel to about 800
+// pixels wide (a 200 x 150 frame: 4), so that a single error pixel is a square one can see; 1 to
+// 8.
+uint32_t errorPictureScale(uint32_t frame_width);
+
+// The worst-frame picture report.md shows: the three panels of composeErrorPicture() one above
+// the other, each scaled up by errorPictureScale() and under its label (the culled frame with the
+// algorithm and frame, ground truth, the difference with its counts and colours).
+struct LabelledPicture {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // RGBA8, rows bottom-up (encodePngBottomUp)
+};
+LabelledPicture labelledErrorPicture(const ErrorFrame& frame, uint32_t width, uint32_t height,
+                                     const std::string& algorithm);
 
 }  // namespace occsim

@@ -114,6 +114,15 @@ std::string checksMarkdown(const ScenarioOutcome& outcome) {
             << (c.passed ? "pass" : "**FAIL**") << " |\n";
     }
     if (!outcome.note.empty()) out << "\n" << outcome.note << "\n";
+    // The pictures lie beside report.md: linked by file name, so the folder can move.
+    if (!outcome.captures.empty()) out << "\n## Worst frames\n";
+    for (const std::string& capture : outcome.captures) {
+        const std::string file = std::filesystem::path(capture).filename().string();
+        out << "\n`" << file << "`: the culled frame, ground truth, and ground truth dimmed with "
+            << "every error pixel in magenta, every tie pixel in yellow, every stray one in cyan "
+            << "(occsim's docs/error.md), one above the other, each frame pixel a square.\n\n!["
+            << file << "](" << file << ")\n";
+    }
     out << "\n";
     return out.str();
 }
@@ -183,11 +192,16 @@ struct ResultChecks {
             if (worst.error_pixels == 0) return;
             const std::string name = "worst-error-" + safeFileName(algorithm) + "-frame-" +
                                      std::to_string(worst.frame) + ".png";
-            const uint32_t width = result.metadata.width, height = result.metadata.height;
-            writeFileAtomically(
-                out_dir / name,
-                encodePngBottomUp(composeErrorPicture(worst, width, height), 3 * width, height));
-            outcome.captures.push_back((published_dir / name).string());
+            const std::string published = (published_dir / name).string();
+            // An algorithm that fails several error checks (zero error and its baseline) has
+            // one worst frame: one picture, named once.
+            const auto& taken = outcome.captures;
+            if (std::find(taken.begin(), taken.end(), published) != taken.end()) return;
+            const LabelledPicture picture = labelledErrorPicture(worst, result.metadata.width,
+                                                                 result.metadata.height, algorithm);
+            writeFileAtomically(out_dir / name,
+                                encodePngBottomUp(picture.rgba, picture.width, picture.height));
+            outcome.captures.push_back(published);
         }
     }
 };

@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
 # The regression suite on a real scheduler: a single-node Slurm cluster started on this machine
 # (munged with its own key, slurmctld and slurmd on loopback, every file in a temporary folder,
-# no systemd), the suite submitted as one job array of four tasks, each task running
-# `occsim regress --shard` from SLURM_ARRAY_TASK_ID, then the four results merged and compared
-# check for check with a one-machine run of the same scenarios.
+# no systemd), then docs/regression.md's Slurm recipe submitted as written there (its blocks
+# `id slurm-job`, saved as regress.sh, and `id slurm-submit`, run by bash): a job array of four
+# tasks, each running `occsim regress` on its shard from SLURM_ARRAY_TASK_ID, and the merge as a
+# --wrap job after it, which Slurm runs under /bin/sh (dash on Debian). The merged report is
+# compared check for check with a one-machine run of the same scenarios.
 #
-# Usage: slurm_regress.sh OCCSIM_EXE SOURCE_DIR [SCENARIOS]   (SCENARIOS default scenarios/small)
+# Usage: slurm_regress.sh OCCSIM_EXE SOURCE_DIR
 # Installs slurm-wlm and munge when missing (scripts/setup.sh cluster: apt-get, as root). Every
 # wait has a deadline, and the daemons are stopped on every exit path. ctest: label `cluster`.
 set -euo pipefail
 
 occsim=$(readlink -f "$1")
 source_dir=$(readlink -f "$2")
-scenarios=${3:-scenarios/small}
+scenarios=scenarios/small  # what the documented job runs
 tasks=4
 deadline_start=60     # seconds for the daemons to come up
 deadline_job=900      # seconds for the whole job array
@@ -128,45 +130,54 @@ for i in $(seq "$deadline_start"); do
 done
 say "slurm up: node $node idle, controller on 127.0.0.1:$ctld_port"
 
-# The job array: each task runs its own shard, found from SLURM_ARRAY_TASK_ID/COUNT.
-cat > "$work/task.sh" <<EOF
-#!/usr/bin/env bash
-cd "$source_dir"
-"$occsim" regress "$scenarios" --out "$work/results/shard-\$SLURM_ARRAY_TASK_ID"
-echo \$? > "$work/results/rc-\$SLURM_ARRAY_TASK_ID"
-EOF
-chmod +x "$work/task.sh"
-job=$(timeout 30 sbatch --parsable --array=0-$((tasks - 1)) --cpus-per-task=1 --time=30 \
-        --output="$work/log/task-%a.log" --chdir="$source_dir" "$work/task.sh")
-job=${job%%;*}
-say "submitted job array $job (tasks 0-$((tasks - 1)))"
+# The block of docs/regression.md under the marker naming `id NAME`, as written there.
+doc_block() {
+  awk -v id="id $1" '
+    index($0, "<!-- runnable") == 1 && index($0, id) > 0 { found = 1; next }
+    found && /^```/ { if (inside) exit; inside = 1; next }
+    inside { print }' "$source_dir/docs/regression.md"
+}
+# The folder the recipe runs in, as a checkout would look to it: the built occsim at
+# ./build/release/sim/occsim and the scenarios.
+run="$work/run"
+mkdir -p "$run/build/release/sim"
+ln -s "$occsim" "$run/build/release/sim/occsim"
+ln -s "$source_dir/scenarios" "$run/scenarios"
+doc_block slurm-job > "$run/regress.sh"
+doc_block slurm-submit > "$work/submit.sh"
+grep -q "^#SBATCH --array=0-$((tasks - 1))" "$run/regress.sh" ||
+  fail "docs/regression.md: no job script with #SBATCH --array=0-$((tasks - 1)) under id slurm-job"
+grep -q -- "--wrap" "$work/submit.sh" || fail "docs/regression.md: no sbatch --wrap under id slurm-submit"
+say "submitting docs/regression.md's recipe as written:"
+cat "$work/submit.sh"
+(cd "$run" && timeout 60 bash "$work/submit.sh") || fail "the documented submit commands failed"
 start=$SECONDS
-while [ -n "$(timeout 10 squeue -h -j "$job" -o %i 2>/dev/null || echo unknown)" ]; do
+while [ -n "$(timeout 10 squeue -h -o %i 2>/dev/null || echo unknown)" ]; do
   if [ $((SECONDS - start)) -gt "$deadline_job" ]; then
-    timeout 10 scancel "$job" || true
-    fail "job $job did not finish within ${deadline_job}s"
+    timeout 10 scancel --user="$user" || true
+    fail "the jobs did not finish within ${deadline_job}s"
   fi
   sleep 2
 done
-say "job $job finished after $((SECONDS - start))s"
-for i in $(seq 0 $((tasks - 1))); do
-  [ -f "$work/results/rc-$i" ] || { cat "$work/log/task-$i.log" 2>/dev/null || true; fail "task $i left no exit status"; }
-  rc=$(cat "$work/results/rc-$i")
-  [ "$rc" = 0 ] || { cat "$work/log/task-$i.log"; fail "task $i: occsim regress exited $rc"; }
-  grep "^regress:" "$work/log/task-$i.log"
+say "jobs finished after $((SECONDS - start))s"
+for out in "$run"/slurm-*.out; do
+  [ -f "$out" ] || fail "the jobs left no output (slurm-*.out)"
+  grep "^regress:" "$out" || true
 done
+if [ ! -f "$run/results/merged/checks.tsv" ]; then
+  for out in "$run"/slurm-*.out; do echo "== $out"; tail -n 20 "$out"; done
+  fail "the documented --wrap merge left no results/merged/checks.tsv (output above)"
+fi
+[ -n "$(ls "$run/history")" ] || fail "the documented merge wrote no history entry"
 
-# Merge, and the same scenarios on one machine, outside Slurm.
-shards=()
-for i in $(seq 0 $((tasks - 1))); do shards+=("$work/results/shard-$i"); done
-(cd "$source_dir" && env -u SLURM_ARRAY_TASK_ID "$occsim" merge "${shards[@]}" --out "$work/merged")
-(cd "$source_dir" && "$occsim" regress "$scenarios" --out "$work/single" >/dev/null)
-(cd "$source_dir" && "$occsim" merge "$work/single" --out "$work/single-merged" >/dev/null)
+# The same scenarios on one machine, outside Slurm.
+(cd "$run" && "$occsim" regress "$scenarios" --out "$work/single" >/dev/null)
+(cd "$run" && "$occsim" merge "$work/single" --out "$work/single-merged" >/dev/null)
 
 # Check for check: every row the same, except what a timing check measured (its name and
 # verdict are compared, its milliseconds cannot be).
 rows() { awk -F'\t' 'BEGIN { OFS = "\t" } $2 ~ /^frame time / { $3 = "-"; $4 = "-"; $5 = "-" } { print }' "$1"; }
-if ! diff <(rows "$work/single-merged/checks.tsv") <(rows "$work/merged/checks.tsv"); then
+if ! diff <(rows "$work/single-merged/checks.tsv") <(rows "$run/results/merged/checks.tsv"); then
   fail "the merged report of the job array differs from the one-machine run (diff above)"
 fi
-say "merged report of $tasks shards = one-machine run: $(($(wc -l < "$work/merged/checks.tsv") - 1)) checks"
+say "merged report of $tasks shards = one-machine run: $(($(wc -l < "$run/results/merged/checks.tsv") - 1)) checks"
