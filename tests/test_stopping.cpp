@@ -73,8 +73,12 @@ TEST(Stopping, ASignalEndsRunAndBenchAfterTheFrameInHandWithTheFramesWrittenMark
                  {"run", {"--algo", "chc"}, SIGTERM, "SIGTERM"}};
     for (const auto& c : cases) {
         const fs::path dir = tempDir(c.command);
-        std::vector<std::string> argv = {OCCSIM_EXE, c.command, kSmall,
-                                         "--frames", kManyFrames, "--out",
+        std::vector<std::string> argv = {OCCSIM_EXE,
+                                         c.command,
+                                         kSmall,
+                                         "--frames",
+                                         kManyFrames,
+                                         "--out",
                                          (dir / "out").string()};
         argv.insert(argv.end(), c.algos.begin(), c.algos.end());
         const SignalledRun r =
@@ -82,8 +86,8 @@ TEST(Stopping, ASignalEndsRunAndBenchAfterTheFrameInHandWithTheFramesWrittenMark
         ASSERT_TRUE(r.signal_sent) << r.terminal;
         ASSERT_TRUE(r.exited) << "ended by signal " << r.ended_by << ": " << r.terminal;
         EXPECT_EQ(r.exit_code, 128 + c.signal) << r.terminal;  // as a shell reports it
-        const std::string line = "occsim " + c.command + ": partial: interrupted by " + c.name +
-                                 " after ";
+        const std::string line =
+            "occsim " + c.command + ": partial: interrupted by " + c.name + " after ";
         EXPECT_NE(r.terminal.find(line), std::string::npos) << r.terminal;
         EXPECT_NE(r.terminal.find("(marked partial); run the same command again"),
                   std::string::npos)
@@ -145,10 +149,10 @@ TEST(Stopping, ASignalEndsRegressWithThePartialScenarioFailedAndNoHistory) {
     scenario["expect"] = {{"algorithms", {"vfc"}}, {"deterministic_latency", 8}};
     std::ofstream(dir / "long-teapots.json") << scenario.dump(2);
     const fs::path out = dir / "out";
-    const SignalledRun r = runAndSignal({OCCSIM_EXE, "regress", (dir / "long-teapots.json").string(),
-                                         "--out", out.string(), "--history",
-                                         (dir / "history").string()},
-                                        "[1/1]", SIGINT, (dir / "stdout.txt").string());
+    const SignalledRun r =
+        runAndSignal({OCCSIM_EXE, "regress", (dir / "long-teapots.json").string(), "--out",
+                      out.string(), "--history", (dir / "history").string()},
+                     "[1/1]", SIGINT, (dir / "stdout.txt").string());
     ASSERT_TRUE(r.signal_sent) << r.terminal;
     ASSERT_TRUE(r.exited) << r.terminal;
     EXPECT_EQ(r.exit_code, 130) << r.terminal;
