@@ -32,7 +32,11 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.rotate_order = true;
     options.command = "tune";
     options.on_frame = on_frame;
-    return runBenchmark(scenario, options);
+    BenchResult result = runBenchmark(scenario, options);
+    // A run cut short (a culler that threw) is no sample: its frames would weigh unlike the
+    // others'. The session ends on it as on any failure while running.
+    if (result.partial) throw std::runtime_error(result.partial->reason);
+    return result;
 }
 
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {
