@@ -330,9 +330,13 @@ std::string costsLine(const BenchResult& result) {
 std::string runHeadline(const BenchResult& result) {
     const RunMetadata& m = result.metadata;
     const uint32_t timed = result.runs.empty() ? 0 : result.runs.front().summary.timed_frames;
+    // A stopped run counts the frames it reports (those of its first repetition).
+    const uint32_t frames = result.partial && result.partial->repetition == 0
+                                ? result.partial->frames_reached
+                                : m.frames;
     char line[512];
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
-                  m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
+                  m.scenario_name.c_str(), frames, timed, frames - timed, m.renderer.c_str());
     std::string headline = line;
     if (result.partial) headline += "\n" + partialLine(result);
     char load[256];
