@@ -28,8 +28,10 @@
 #include "sim/regress/regress.h"
 #include "sim/regress/result_files.h"
 #include "sim/regress_commands.h"
+#include "sim/run/crash_note.h"
 #include "sim/run/run_config.h"
 #include "sim/run/runner.h"
+#include "sim/run/stop_request.h"
 #include "sim/scenario/culling_file.h"
 #include "sim/scenario/errors.h"
 #include "sim/scenario/json_reader.h"
@@ -212,12 +214,14 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
             throw BadInput(std::string("--sweep: ") + e.what());
         }
     }
-    if (!flags.ablate.empty()) {
-        o.ablate = flags.ablate;
+    o.ablate = flags.ablate;
+    // The configurations are planned once here, before any work, so that a swept value that makes
+    // options invalid or repeats an ablation row is bad input, named by its flag.
+    if (o.sweep || !o.ablate.empty()) {
         try {
             occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
         } catch (const std::invalid_argument& e) {
-            throw BadInput(std::string("--ablate: ") + e.what());
+            throw BadInput(std::string(o.ablate.empty() ? "--sweep: " : "--ablate: ") + e.what());
         }
     }
     if (flags.deterministic_latency >= 0) {
@@ -309,6 +313,25 @@ std::string withSuggestion(const CLI::App& app, const std::string& message) {
     return message;
 }
 
+// Before a command's first frame: SIGINT and SIGTERM stop it after the frame in hand with what
+// it has written (marked partial), and a crash names the configuration and frame in hand.
+void watchFrames() {
+    occsim::installStopHandlers();
+    occsim::installCrashHandler();
+}
+
+// A run that ended early: its one line on stderr, after the partial outputs were written, and
+// its exit code (128 + the signal, as a shell reports a process the signal ended; 1 when a
+// configuration failed).
+int partialRunEnded(const std::string& command, const occsim::BenchResult& result,
+                    const std::filesystem::path& out_dir) {
+    const occsim::PartialRun& p = *result.partial;
+    std::fprintf(stderr, "occsim %s: %s; written to %s (marked partial)%s\n", command.c_str(),
+                 occsim::partialLine(result).c_str(), out_dir.string().c_str(),
+                 p.signal != 0 ? "; run the same command again for a whole run" : "");
+    return p.signal != 0 ? 128 + p.signal : kExitFailure;
+}
+
 int runCommand(const RunRequest& request) {
     const CommonFlags& flags = request.flags;
     checkOutputFolder("--out", flags.out, flags.out_given);
@@ -325,6 +348,7 @@ int runCommand(const RunRequest& request) {
     occsim::PictureRecorder pictures(folder.staging(), flags.capture, options.trace_frame);
     options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
 
+    watchFrames();
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
     const occsim::OutputFiles files = occsim::writeRunOutputs(
         result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}});
@@ -342,6 +366,10 @@ int runCommand(const RunRequest& request) {
     for (const std::string& f : files.files) plots += f.rfind("plot-", 0) == 0;
     if (plots > 0) std::printf("plots: %zu files (plot-*.png, plot-*.svg)\n", plots);
     if (!files.plots_message.empty()) std::printf("%s\n", files.plots_message.c_str());
+    if (result.partial) {
+        std::fflush(stdout);  // the table before the line that says it is partial
+        return partialRunEnded(request.command, result, out_dir);
+    }
     return 0;
 }
 
@@ -385,6 +413,7 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
     options.update = update;
     options.out_dir = out;
     options.progress = ::isatty(STDERR_FILENO) != 0;
+    watchFrames();
     const occsim::RegressReport report = occsim::runRegression(options);
     std::printf("%s", report.table().c_str());
     size_t failed = 0, skipped = 0;
@@ -401,9 +430,22 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
             std::filesystem::create_directories(junit_path.parent_path());
         occsim::writeFileAtomically(junit_path, occsim::junitXml(report));
     }
-    if (!update) occsim_cli::writeRegressResults(options, report, history, commit);
+    // A stopped run's figures are no history: only its shard result is written (which merge
+    // refuses, a scenario of the set being missing).
+    if (!update) {
+        occsim_cli::writeRegressResults(options, report, report.stop_signal ? "" : history, commit);
+    }
     std::printf("regress: %zu scenarios (shard %u/%u), %zu failed, %zu skipped\n",
                 report.scenarios.size(), options.shard.index, options.shard.count, failed, skipped);
+    if (report.stop_signal) {
+        std::fflush(stdout);
+        std::fprintf(stderr,
+                     "occsim regress: %s; written to %s%s; run the same command again for a "
+                     "whole run\n",
+                     report.stopped.c_str(), out.c_str(),
+                     history.empty() ? "" : ", nothing appended to the history");
+        return 128 + report.stop_signal;
+    }
     // Green with nothing checked would let a CI job pass on a wrong path or a lost expect block.
     if (report.scenarios.size() == skipped && !allow_empty) {
         std::fprintf(

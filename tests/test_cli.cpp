@@ -339,6 +339,14 @@ TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
          "--ablate: 'chc' has no mechanism switched on to switch off"},
         {"--algos vfc --ablate statistical+",
          "--ablate: 'statistical+' is not among the algorithms run"},
+        // Two configurations with the same options would be two rows under one label.
+        {"--algos statistical --sweep threshold_pixels=1,1",
+         "--sweep: threshold_pixels: 1 is listed twice (as '1' too); expected each value once"},
+        {"--algos statistical+ --sweep ready_answers=true,1",
+         "--sweep: ready_answers: true is listed twice (as '1' too)"},
+        {"--algos statistical+ --sweep ready_answers=false,true --ablate statistical+",
+         "--ablate: 'statistical+ ready_answers=false' would run the same options as "
+         "'statistical+ ready_answers=false'"},
     };
     for (const auto& c : refused) {
         const Outcome o = runOccsim("bench " + kSmall + " " + c.args + " --out " + out.string());

@@ -79,6 +79,12 @@ fs::path writeShard(const fs::path& root, uint32_t i, uint32_t n,
         r.report.scenarios.push_back(outcomeOf(set.scenarios[k]));
     const fs::path dir = root / ("shard-" + std::to_string(i));
     writeShardResult(dir, r);
+    // Every scenario that ran leaves its summary.json (runRegression's writeRunOutputs).
+    for (const ScenarioOutcome& o : r.report.scenarios) {
+        if (!o.ran()) continue;
+        fs::create_directories(dir / o.name);
+        writeFile(dir / o.name / "summary.json", "{\"scenario\": \"" + o.name + "\"}\n");
+    }
     return dir;
 }
 
@@ -216,6 +222,21 @@ TEST(Merge, RefusesTwoShardsClaimingTheSameScenario) {
         << e;
 }
 
+// A scenario that ran and whose summary.json is gone would leave the merged summary unseen.
+TEST(Merge, RefusesAScenarioThatRanWithoutItsSummary) {
+    const fs::path root = freshDir("nosummary");
+    const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
+    EXPECT_EQ(mergeError({s0, s1}), "");
+    EXPECT_EQ(mergeShards({s0, s1}).summaries[3]["scenario"], "d");
+    fs::remove(s1 / "d" / "summary.json");
+    const std::string e = mergeError({s0, s1});
+    EXPECT_NE(e.find("shard-1/d/summary.json: missing; scenarios/d.json ran in this shard"),
+              std::string::npos)
+        << e;
+    // A skipped scenario (e) has none to miss.
+    EXPECT_FALSE(fs::exists(s0 / "e"));
+}
+
 TEST(Merge, RefusesATruncatedOrDisagreeingJunitFile) {
     const fs::path root = freshDir("junit");
     const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
@@ -258,6 +279,9 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
     expectRefused(
         "merge " + s0.string() + " " + (root / "claimed").string() + " --out " + out.string(),
         "is also claimed by", out);
+    fs::remove(s0 / "a" / "summary.json");
+    expectRefused("merge " + shards + " --out " + out.string(), "a/summary.json: missing", out);
+    writeFile(s0 / "a" / "summary.json", "{}\n");
     const std::string xml = readFile(s1 / "junit.xml");
     writeFile(s1 / "junit.xml", xml.substr(0, xml.size() - 20));
     expectRefused("merge " + shards + " --out " + out.string(), "junit.xml: line ", out);

@@ -338,5 +338,30 @@ TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
     fs::remove_all(dir);
 }
 
+// SIGTERM (a batch system's stop) is the same request as Ctrl-C, with its own exit status.
+TEST(Occtune, SigtermKeepsTheLogWholeAndSaysHowToResume) {
+    const fs::path dir = tempDir("sigterm");
+    fs::create_directories(dir);
+    const pid_t pid =
+        spawnOcctune({kSmall, "--params", "base_time", "--budget", "6", "--batch", "2", "--frames",
+                      "40", "--repetitions", "1", "--out", (dir / "out").string()},
+                     dir / "output.txt");
+    ASSERT_GT(pid, 0);
+    const fs::path log_file = dir / "out" / "samples.jsonl";
+    for (int i = 0; i < 6000 && lines(log_file).size() < 4; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_GE(lines(log_file).size(), 4u) << text(dir / "output.txt");
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << text(dir / "output.txt");
+    EXPECT_EQ(WEXITSTATUS(status), 143);
+    const std::string said = text(dir / "output.txt");
+    EXPECT_NE(said.find("interrupted"), std::string::npos) << said;
+    EXPECT_NE(said.find("--resume"), std::string::npos) << said;
+    EXPECT_FALSE(fs::exists(dir / "out" / "tuned.json"));
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace occsim::tune

@@ -78,6 +78,54 @@ TEST(Simulation, GroundTruthIsIndependentOfTheCullersFrustumTest) {
     EXPECT_GT(result.runs[0].summary.missed_objects_total, 0);
 }
 
+// A culler that throws in its frame `fail_at`, culling like `inner` before it.
+class FailingCuller final : public Culler {
+  public:
+    FailingCuller(std::unique_ptr<Culler> inner, uint32_t fail_at)
+        : inner_(std::move(inner)), fail_at_(fail_at) {}
+    std::string_view name() const override { return inner_->name(); }
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        if (frames_++ == fail_at_) throw std::runtime_error("out of budget");
+        inner_->cullAndRender(tree, frame, device);
+    }
+
+  private:
+    std::unique_ptr<Culler> inner_;
+    uint32_t fail_at_;
+    uint32_t frames_ = 0;
+};
+
+// The failure is named, not thrown: every configuration keeps the whole frames before it (those
+// that rendered the failed frame first, in the rotated order too, drop it), and no repetition
+// after it runs.
+TEST(Simulation, AConfigurationThatThrowsEndsTheRunWithTheWholeFramesBeforeItNamed) {
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc", "chc", "statistical"});
+    options.frames = 12;
+    options.repetitions = 2;
+    options.rotate_order = true;
+    options.make_culler = [](const AlgorithmTraits& algorithm, const CullerOptions& culler) {
+        std::unique_ptr<Culler> made = makeCuller(algorithm, culler);
+        if (algorithm.name == "chc")
+            return std::unique_ptr<Culler>(new FailingCuller(std::move(made), 5));
+        return made;
+    };
+    const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
+    ASSERT_TRUE(result.partial.has_value());
+    EXPECT_EQ(result.partial->reason, "configuration 'chc' failed at frame 5: out of budget");
+    EXPECT_EQ(result.partial->signal, 0);
+    EXPECT_EQ(result.partial->frames_reached, 5u);
+    for (const RunRecord& run : result.runs) {
+        EXPECT_EQ(run.frames.size(), 5u) << run.summary.label;
+        EXPECT_EQ(run.repetitions.size(), 1u) << run.summary.label;
+        EXPECT_EQ(run.summary.frames, 5u) << run.summary.label;
+    }
+    EXPECT_NE(partialLine(result).find("after 5 of 12 frames; the 5 whole frames are reported"),
+              std::string::npos)
+        << partialLine(result);
+}
+
 TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries) {
     const BenchResult result = benchSmall(true, LatencyMode{true, 8});
     const auto& runs = result.runs;

@@ -1,24 +1,16 @@
 #include "tune/interrupt.h"
 
-#include <csignal>
-
+#include "sim/run/stop_request.h"
 #include "tune/errors.h"
 
 namespace occsim::tune {
-namespace {
 
-volatile std::sig_atomic_t g_interrupted = 0;
+// The simulator's stop request (sim/run/stop_request.h): one flag for SIGINT and SIGTERM, which
+// runBenchmark() reads too, so a signal between a frame's hook and the loop's own check still
+// ends the session as an interruption (measure.cpp).
+void installInterruptHandler() { installStopHandlers(); }
 
-extern "C" void onInterrupt(int) {
-    g_interrupted = 1;
-    std::signal(SIGINT, SIG_DFL);  // the next Ctrl-C is not a request
-}
-
-}  // namespace
-
-void installInterruptHandler() { std::signal(SIGINT, onInterrupt); }
-
-bool interruptRequested() { return g_interrupted != 0; }
+bool interruptRequested() { return stopSignal() != 0; }
 
 void throwIfInterrupted() {
     if (interruptRequested()) throw Interrupted();

@@ -1,6 +1,7 @@
-// Ctrl-C (SIGINT) as a request, honoured between frames: the handler only sets a flag, and the
-// tuner stops at the next frame boundary (outside every timing) with its sample log whole. A
-// second Ctrl-C ends the process at once, as usual.
+// Ctrl-C (SIGINT) or SIGTERM as a request, honoured between frames: the handler only sets a flag
+// (the simulator's, sim/run/stop_request.h), and the tuner stops at the next frame boundary
+// (outside every timing) with its sample log whole. A second one ends the process at once, as
+// usual.
 #pragma once
 
 namespace occsim::tune {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "occsim/culling/registry/registry.h"
+#include "tune/errors.h"
 
 namespace occsim::tune {
 RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
@@ -32,7 +33,12 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.rotate_order = true;
     options.command = "tune";
     options.on_frame = on_frame;
-    return runBenchmark(scenario, options);
+    BenchResult result = runBenchmark(scenario, options);
+    // A run cut short is no sample: its frames would weigh unlike the others'. A signal ends the
+    // session as an interruption (the log whole), a culler that threw as a failure while running.
+    if (result.partial && result.partial->signal != 0) throw Interrupted();
+    if (result.partial) throw std::runtime_error(result.partial->reason);
+    return result;
 }
 
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <thread>
 
+#include "sim/run/stop_request.h"
 #include "tune/confirm.h"
 #include "tune/errors.h"
 #include "tune/input.h"
@@ -139,7 +140,7 @@ void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o,
 int TuneSession::exitCode() const {
     switch (end) {
         case End::Interrupted:
-            return kExitInterrupted;
+            return stopSignal() != 0 ? 128 + stopSignal() : kExitInterrupted;
         case End::FitFailed:
             return kExitFitFailed;
         case End::Finished:

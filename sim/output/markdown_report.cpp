@@ -36,6 +36,7 @@ std::string plotCaption(const std::string& file) {
 void header(std::ostringstream& out, const BenchResult& result) {
     const RunMetadata& c = result.metadata;
     out << "# occsim " << c.command << ": " << c.scenario_name << "\n\n";
+    if (result.partial) out << "**" << partialLine(result) << ".**\n\n";
     out << "| | |\n|---|---|\n";
     out << "| scenario | " << cell(c.scenario_name) << " (`" << cell(c.scenario_file) << "`), "
         << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";

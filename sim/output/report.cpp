@@ -6,6 +6,7 @@
 
 #include "sim/output/build_info.h"
 #include "sim/output/fixed_text.h"
+#include "sim/run/stop_request.h"
 
 namespace occsim {
 namespace {
@@ -260,6 +261,17 @@ nlohmann::json simulatorCostsJson(const RunCosts& c) {
             {"error_read_backs", c.error_read_backs}};
 }
 
+// null for a complete run; else why it ended early, how far it got, and the console's line.
+nlohmann::json partialJson(const BenchResult& result) {
+    if (!result.partial) return nullptr;
+    const PartialRun& p = *result.partial;
+    return {{"reason", p.reason},
+            {"signal", p.signal != 0 ? nlohmann::json(signalName(p.signal)) : nullptr},
+            {"repetition", p.repetition},
+            {"frames_reached", p.frames_reached},
+            {"message", partialLine(result)}};
+}
+
 }  // namespace
 
 nlohmann::json summaryJson(const BenchResult& result) {
@@ -288,6 +300,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     if (m.sweep)
         summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     summary["simulator_costs"] = simulatorCostsJson(result.costs);
+    summary["partial"] = partialJson(result);
     if (m.cost_model) {
         summary["cost_model"] = costModelJson(*m.cost_model);
         summary["cost_model"]["source"] = m.cost_model_source;
@@ -317,10 +330,15 @@ std::string costsLine(const BenchResult& result) {
 std::string runHeadline(const BenchResult& result) {
     const RunMetadata& m = result.metadata;
     const uint32_t timed = result.runs.empty() ? 0 : result.runs.front().summary.timed_frames;
+    // A stopped run counts the frames it reports (those of its first repetition).
+    const uint32_t frames = result.partial && result.partial->repetition == 0
+                                ? result.partial->frames_reached
+                                : m.frames;
     char line[512];
     std::snprintf(line, sizeof line, "%s: %u frames (%u timed after %u warm-up), %s",
-                  m.scenario_name.c_str(), m.frames, timed, m.frames - timed, m.renderer.c_str());
+                  m.scenario_name.c_str(), frames, timed, frames - timed, m.renderer.c_str());
     std::string headline = line;
+    if (result.partial) headline += "\n" + partialLine(result);
     char load[256];
     std::snprintf(load, sizeof load,
                   "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",

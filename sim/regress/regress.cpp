@@ -16,6 +16,7 @@
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
 #include "sim/run/runner.h"
+#include "sim/run/stop_request.h"
 #include "sim/scenario/json_reader.h"
 
 namespace occsim {
@@ -143,8 +144,7 @@ std::optional<Scenario> readRegressScenario(const std::filesystem::path& file,
             return std::nullopt;
         }
     } catch (const ScenarioError& e) {
-        outcome.checks.push_back(
-            {"valid scenario and expectations", "a valid file", e.what(), false});
+        outcome.checks.push_back({kValidScenarioCheck, "a valid file", e.what(), false});
         return std::nullopt;
     }
     return scenario;
@@ -433,6 +433,19 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     StagedRunFolder folder(scenarioFolder(options, file));
     const BenchResult result = runBenchmark(scenario, regressBenchOptions(file, expect, options));
 
+    if (result.partial) {
+        // Checks of frames that were never run would pass or fail by accident, and an update
+        // would write a baseline of half a run: the partial frames are written, and fail.
+        outcome.checks.push_back(
+            {kEveryFrameCheck,
+             std::to_string(result.metadata.frames) + " frames of every configuration",
+             partialLine(result), false});
+        writeRunOutputs(result,
+                        OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+        folder.publish();
+        outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return outcome;
+    }
     ResultChecks checks{result, folder.staging(), folder.target(), outcome};
     checkZeroError(checks, expect);
     checkMaxErrorPixels(checks, expect);
@@ -541,6 +554,10 @@ std::string baselineJson(const Baseline& b) {
 
 bool ScenarioOutcome::passed() const {
     return std::all_of(checks.begin(), checks.end(), [](const CheckResult& c) { return c.passed; });
+}
+
+bool ScenarioOutcome::ran() const {
+    return !skipped && !(checks.size() == 1 && checks.front().check == kValidScenarioCheck);
 }
 
 Shard parseShard(const std::string& text) {
@@ -657,6 +674,16 @@ RegressReport runRegression(const RegressOptions& options) {
             std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, files.size(), files[i].string().c_str());
         }
         report.scenarios.push_back(runOne(files[i], options));
+        if (const int signal = stopSignal()) {
+            report.stop_signal = signal;
+            report.stopped = std::string("interrupted by ") + signalName(signal) + " in " +
+                             files[i].string() + "; " + std::to_string(i + 1) + " of " +
+                             std::to_string(files.size()) + " scenarios ran";
+            const std::vector<CheckResult>& last = report.scenarios.back().checks;
+            if (!last.empty() && last.back().check == kEveryFrameCheck)
+                report.stopped += ", the last one partly";
+            break;
+        }
     }
     return report;
 }

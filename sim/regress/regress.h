@@ -73,7 +73,14 @@ struct ScenarioOutcome {
     double seconds = 0.0;
 
     bool passed() const;
+    // It was run (not skipped, a valid file), so its folder holds its summary.json.
+    bool ran() const;
 };
+
+// The check a scenario file that does not parse fails (it runs nothing).
+inline constexpr const char* kValidScenarioCheck = "valid scenario and expectations";
+// The check a run that ended early fails (BenchResult::partial), instead of every other check.
+inline constexpr const char* kEveryFrameCheck = "every frame run";
 
 struct Shard {
     uint32_t index = 0;
@@ -113,6 +120,11 @@ struct RegressOptions {
 
 struct RegressReport {
     std::vector<ScenarioOutcome> scenarios;
+    // Set when SIGINT or SIGTERM stopped the run (sim/run/stop_request.h): the signal, and one
+    // line saying where; the scenario in hand fails its "every frame run" check and those after
+    // it are not in `scenarios`.
+    int stop_signal = 0;
+    std::string stopped;
     bool passed() const;
     std::string table() const;  // scenario, check, expected, got, pass/fail
 };

@@ -174,7 +174,13 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
 
 Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& outcome) {
     const std::filesystem::path file = dir / safeFileName(outcome.name) / "summary.json";
-    if (outcome.skipped || !std::filesystem::is_regular_file(file)) return nullptr;
+    if (!outcome.ran()) return nullptr;
+    // A scenario that ran and left no summary would drop out of the merged summary unseen.
+    if (!std::filesystem::is_regular_file(file)) {
+        throw ResultFileError(file.string() + ": missing; " + outcome.scenario +
+                              " ran in this shard (shard.json lists its checks); expected its "
+                              "summary.json beside every scenario that ran");
+    }
     try {
         return parseStrictJson(fileText(file), file.string());
     } catch (const ScenarioError& e) {

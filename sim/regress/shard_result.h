@@ -38,8 +38,8 @@ void writeShardResult(const std::filesystem::path& dir, const ShardResult& resul
 ShardResult readShardResult(const std::filesystem::path& dir);
 
 // The scenario's summary.json in a regress --out folder (dir/<name>/summary.json, as
-// runRegression writes it), or null when there is none (skipped, or the scenario did not parse).
-// Throws ResultFileError when it is there but unreadable.
+// runRegression writes it), or null when the scenario did not run (skipped, or its file did not
+// parse). Throws ResultFileError when it ran and its summary is missing or unreadable.
 Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& outcome);
 
 }  // namespace occsim

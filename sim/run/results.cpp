@@ -33,6 +33,26 @@ std::string backendLabel(const RunMetadata& m) {
     return m.backend.empty() ? "unknown backend" : m.backend;
 }
 
+std::string partialLine(const BenchResult& result) {
+    if (!result.partial) return {};
+    const PartialRun& p = *result.partial;
+    const RunMetadata& m = result.metadata;
+    std::string line = "partial: " + p.reason;
+    if (m.repetitions > 1) {
+        line += " in repetition " + std::to_string(p.repetition + 1) + " of " +
+                std::to_string(m.repetitions);
+    }
+    line += " after " + std::to_string(p.frames_reached) + " of " + std::to_string(m.frames) +
+            " frames; ";
+    if (p.repetition == 0) {
+        return line + "the " + std::to_string(p.frames_reached) +
+               " whole frames are reported, nothing after them";
+    }
+    // A later repetition's share would mix frames of unequal counts into the medians.
+    return line + "the " + std::to_string(p.repetition) +
+           " whole repetitions before it are reported, its own frames are not";
+}
+
 bool nothingInView(const std::vector<RunRecord>& runs) {
     bool any_frame = false;  // without frames (a summary alone) there is nothing to tell
     for (const RunRecord& r : runs) {

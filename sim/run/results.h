@@ -95,12 +95,27 @@ struct RunCosts {
     uint64_t error_read_backs = 0;  // culled object-ID buffers read to count error
 };
 
+// A run that ended before its last frame: stopped by a signal (SIGINT, SIGTERM), or by a
+// configuration whose frame failed (a culler that threw). The whole frames before it are kept and
+// reported; the writers mark every output partial with partialLine().
+struct PartialRun {
+    std::string reason;           // "interrupted by SIGINT", "configuration 'x' failed: ..."
+    int signal = 0;               // the signal that asked to stop; 0 when a configuration failed
+    uint32_t repetition = 0;      // the repetition it ended in, from 0
+    uint32_t frames_reached = 0;  // whole frames of that repetition, done by every configuration
+};
+
 struct BenchResult {
     RunMetadata metadata;
     RunCosts costs;
     std::vector<RunRecord> runs;
     std::vector<ErrorFrame> worst_error_frames;  // per run, when keep_worst_error_frame
+    std::optional<PartialRun> partial;           // set when the run ended early
 };
+
+// "partial: interrupted by SIGINT after 12 of 40 frames; the 12 whole frames are reported", or
+// with repetitions, which whole repetitions are; empty for a complete run.
+std::string partialLine(const BenchResult& result);
 
 // "EGL device 0" or "OSMesa": where the run rendered, for the console and reports.
 std::string backendLabel(const RunMetadata& m);

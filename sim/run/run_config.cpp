@@ -1,5 +1,6 @@
 #include "sim/run/run_config.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "sim/scenario/number_text.h"
@@ -43,6 +44,28 @@ void setValue(CullerOptions& options, const AlgorithmTraits& algorithm, const st
         options.approximation.stale_results = v != 0.0;
     } else {
         options.edit(algorithm).setWithAlternatives(key, v);
+    }
+}
+
+// The same culler with the same resolved values (a boolean given as true or as 1 alike) and the
+// same shared knobs: two such configurations would measure one thing under two rows.
+bool sameConfiguration(const RunConfig& a, const RunConfig& b) {
+    if (a.algorithm != b.algorithm) return false;
+    const ApproximationOptions& x = a.culler.approximation;
+    const ApproximationOptions& y = b.culler.approximation;
+    return a.culler.of(*a.algorithm) == b.culler.of(*b.algorithm) &&
+           x.threshold_pixels == y.threshold_pixels && x.stale_results == y.stale_results;
+}
+
+void refuseRepeats(const std::vector<RunConfig>& configs) {
+    for (size_t j = 0; j < configs.size(); ++j) {
+        for (size_t i = 0; i < j; ++i) {
+            if (!sameConfiguration(configs[i], configs[j])) continue;
+            throw std::invalid_argument(
+                "'" + configs[j].label + "' would run the same options as '" + configs[i].label +
+                "' (a swept value the ablation also switches off?); expected each configuration "
+                "once");
+        }
     }
 }
 
@@ -106,6 +129,12 @@ Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTrait
         if (const std::string why = checkOptionValue(*spec, v); !why.empty()) {
             throw std::invalid_argument(name + ": " + why);
         }
+        // Two equal values (1,1 or true,1) would be two configurations under one label.
+        if (std::find(sweep.values.begin(), sweep.values.end(), v) != sweep.values.end()) {
+            throw std::invalid_argument(name + ": " + formatOptionValue(*spec, v) +
+                                        " is listed twice (as '" + item +
+                                        "' too); expected each value once");
+        }
         sweep.values.push_back(v);
         start = comma + 1;
     }
@@ -155,6 +184,7 @@ std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& al
         }
     }
     if (!ablated) throw std::invalid_argument("'" + ablate + "' is not among the algorithms run");
+    refuseRepeats(configs);
     return configs;
 }
 

@@ -34,11 +34,14 @@ struct Sweep {
 const std::vector<OptionSpec>& sharedQueryOptions();
 
 // Throws std::invalid_argument with a one-line reason: malformed text, an unknown algorithm, a key
-// no listed algorithm has, a value of the wrong type or out of its range.
+// no listed algorithm has, a value of the wrong type or out of its range, a value listed twice
+// (booleans compare as values: true and 1 are the same value).
 Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTraits*>& algorithms);
 
 // Throws std::invalid_argument when a swept value makes an algorithm's options invalid, or when
-// `ablate` names an algorithm not listed or one with no mechanism to switch off.
+// `ablate` names an algorithm not listed or one with no mechanism to switch off, or when two
+// configurations would be the same culler with the same option values (a sweep value that the
+// ablation also switches off): every configuration is unique.
 std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& algorithms,
                                    const CullerOptions& base, const std::optional<Sweep>& sweep,
                                    const std::string& ablate = {});

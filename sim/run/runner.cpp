@@ -9,9 +9,11 @@
 
 #include "render/headless_context.h"
 #include "sim/run/calibration.h"
+#include "sim/run/crash_note.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
 #include "sim/run/shared_world.h"
+#include "sim/run/stop_request.h"
 
 namespace occsim {
 namespace {
@@ -155,11 +157,33 @@ struct ProgressClock {
 // of any, so that drift on a shared machine hits all alike. Ground truth, when some configuration
 // needs it, is rendered once per frame before the first configuration renders (outside every
 // timing); a run in which none needs it renders none.
+// A configuration's frame that failed (its culler threw): what the partial result says.
+PartialRun failedFrame(const RunConfig& config, uint32_t rep, uint32_t frame,
+                       const std::string& what) {
+    return PartialRun{"configuration '" + config.label + "' failed at frame " +
+                          std::to_string(frame) + ": " + what,
+                      0, rep, frame};
+}
+
+// Frame `frame` rendered by some configurations only: dropped, so that every configuration
+// reports the same frames.
+void dropUnevenFrame(std::vector<std::vector<FrameStats>>& frames, uint32_t frame,
+                     RunCosts& spent) {
+    for (auto& f : frames) {
+        if (f.size() > frame) {
+            spent.frame_ms_total -= f.back().frame_ms;
+            f.pop_back();
+        }
+    }
+}
+
+// Every frame of one repetition, or those before a stop (`stop` set): after a signal the frame
+// in hand is finished, after a failed frame the frames before it are kept.
 std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& world,
                                                GroundTruth& truth,
                                                std::vector<std::unique_ptr<Simulation>>& sims,
                                                uint32_t rep, ProgressClock& progress,
-                                               RunCosts& spent) {
+                                               RunCosts& spent, std::optional<PartialRun>& stop) {
     const Scenario& scenario = stage.scenario;
     const BenchOptions& options = stage.options;
     std::vector<std::vector<FrameStats>> frames(sims.size());
@@ -172,7 +196,19 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
         if (any_needs_truth) truth.of(world, truth_colour);
         for (size_t k = 0; k < sims.size(); ++k) {
             const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
-            frames[c].push_back(sims[c]->renderFrame());
+            noteRendering(stage.configs[c].label.c_str(), f);
+            try {
+                frames[c].push_back(sims[c]->renderFrame());
+            } catch (const std::exception& e) {
+                stop = failedFrame(stage.configs[c], rep, f, e.what());
+            } catch (...) {
+                stop = failedFrame(stage.configs[c], rep, f, "threw a non-standard exception");
+            }
+            clearCrashNote();
+            if (stop) {
+                dropUnevenFrame(frames, f, spent);
+                return frames;
+            }
             spent.frame_ms_total += frames[c].back().frame_ms;
             if (options.on_frame) {
                 options.on_frame(
@@ -180,6 +216,11 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
             }
         }
         progress.frameDone(options.progress, rep * scenario.frames + f + 1);
+        if (const int signal = stopSignal()) {
+            stop =
+                PartialRun{std::string("interrupted by ") + signalName(signal), signal, rep, f + 1};
+            break;
+        }
     }
     return frames;
 }
@@ -217,6 +258,8 @@ void recordRepetition(BenchResult& result, const Stage& stage,
 // A fresh world for every repetition: each one replays the same frames. One world for all
 // configurations: the movers step and the tree is refit once per frame, and each culler keeps its
 // own per-node state beside the shared tree.
+// A repetition stopped early is recorded only when it is the first: a later one's share would
+// mix unequal frame counts into the medians, and the whole repetitions before it stand.
 void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, uint32_t rep,
                    ProgressClock& progress) {
     SharedWorld world(scene, stage.scenario);
@@ -224,11 +267,11 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
     std::vector<std::unique_ptr<Simulation>> sims = makeSimulations(stage, world, truth, rep);
     const auto loop_start = Clock::now();
     std::vector<std::vector<FrameStats>> frames =
-        runFrames(stage, world, truth, sims, rep, progress, result.costs);
+        runFrames(stage, world, truth, sims, rep, progress, result.costs, result.partial);
     result.costs.wall_ms +=
         std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
     addWorldCosts(result.costs, world, truth);
-    recordRepetition(result, stage, sims, frames, rep);
+    if (!result.partial || rep == 0) recordRepetition(result, stage, sims, frames, rep);
 }
 
 }  // namespace
@@ -264,8 +307,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const Stage stage{scenario, configs, options, *context, renderer};
     ProgressClock progress;
     progress.total_frames = repetitions * scenario.frames;
-    for (uint32_t rep = 0; rep < repetitions; ++rep)
+    for (uint32_t rep = 0; rep < repetitions && !result.partial; ++rep)
         runRepetition(result, stage, scene, rep, progress);
+    if (result.partial && options.progress) std::fputc('\n', stderr);  // ends the progress line
 
     result.metadata.load_before = load_before;
     result.metadata.load_after = loadAverage();

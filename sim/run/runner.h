@@ -66,6 +66,10 @@ struct BenchOptions {
     std::set<std::string>* warnings_shown = nullptr;
 };
 
+// A run ends early, with the whole frames before it and BenchResult::partial set, when a stop
+// was requested (sim/run/stop_request.h: after the frame in hand) or a configuration's frame
+// threw (the frames before it; the error is named in partial, not thrown). The frame loop notes
+// the configuration in hand for the crash handler (sim/run/crash_note.h).
 // Throws BackendUnavailable when the backend or device asked for cannot serve (bad input),
 // std::runtime_error on rendering failures, std::invalid_argument for a sweep value that
 // makes an algorithm's options invalid, and the scene builder's errors (ScenarioError, GltfError).

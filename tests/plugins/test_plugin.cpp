@@ -5,6 +5,9 @@
 //   PLUGIN_TAKEN_NAME      registers "chc", a built-in's name
 //   PLUGIN_BAD_DESCRIPTOR  an option whose range is inverted
 //   PLUGIN_THROWING        a factory that throws
+//   PLUGIN_FAILING         "test-frustum" throws in its frame 3 (the stopping tests)
+//   PLUGIN_CRASHING        "test-frustum" raises SIGSEGV in its frame 3 (the stopping tests)
+#include <csignal>
 #include <stdexcept>
 
 #include "occsim/culling/registry/plugin.h"
@@ -18,6 +21,11 @@ class FrustumOnly final : public occsim::Culler {
     void reset(const occsim::BspTree&) override {}
     void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
                        occsim::RenderDevice& device) override {
+#if defined(PLUGIN_FAILING)
+        if (frames_++ == 3) throw std::runtime_error("out of budget");
+#elif defined(PLUGIN_CRASHING)
+        if (frames_++ == 3) std::raise(SIGSEGV);
+#endif
         const occsim::PreparedView view = occsim::prepareView(frame.view);
         occsim::traverseFrontToBack(tree, view, stack_, [&](const occsim::NodeVisit& v) {
             occsim::drawNodeObjects(tree, v.node, view.frustum, v.inside_frustum, device);
@@ -27,6 +35,7 @@ class FrustumOnly final : public occsim::Culler {
 
   private:
     std::vector<occsim::NodeVisit> stack_;
+    [[maybe_unused]] unsigned frames_ = 0;
 };
 
 [[maybe_unused]] std::unique_ptr<occsim::Culler> make(const occsim::CullerContext&) {
