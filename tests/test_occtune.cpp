@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -20,9 +21,13 @@
 #include <thread>
 #include <vector>
 
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
 #include "shell_command.h"
 #include "sim/output/plots.h"
+#include "tune/parameters.h"
 #include "tune/sample_log.h"
+#include "tune/tuned_file.h"
 
 extern char** environ;
 
@@ -335,6 +340,88 @@ TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
     EXPECT_EQ(o.exit_code, 0) << o.output;
     EXPECT_EQ(SampleLog::read(log_file).samples().size(), 6u);
     EXPECT_TRUE(fs::exists(dir / "out" / "tuned.json"));
+    fs::remove_all(dir);
+}
+
+// ---- a "no change" tuned.json changes no decision ------------------------------------------
+
+// Per frame of `algorithm`'s configuration in `occsim bench`'s frames.csv: "queries objects_drawn".
+std::vector<std::string> decisionsPerFrame(const fs::path& frames_csv) {
+    const std::vector<std::string> rows = lines(frames_csv);
+    if (rows.empty()) return {};
+    std::vector<std::string> header;
+    std::istringstream head(rows[0]);
+    for (std::string cell; std::getline(head, cell, ',');) header.push_back(cell);
+    const auto column = [&](const std::string& name) {
+        return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    const size_t frame = column("frame"), queries = column("queries"),
+                 objects = column("objects_drawn");
+    std::vector<std::string> out;
+    for (size_t i = 1; i < rows.size(); ++i) {
+        std::vector<std::string> cells;
+        std::istringstream row(rows[i]);
+        for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+        if (cells.size() < header.size()) continue;
+        out.push_back(cells[frame] + ": " + cells[queries] + " queries, " + cells[objects] +
+                      " drawn");
+    }
+    return out;
+}
+
+// occsim bench in deterministic-latency mode (counts reproducible), with a culling file or none.
+std::vector<std::string> benchDecisions(const std::string& algorithm, const std::string& plugin,
+                                        const fs::path& culling, const fs::path& out) {
+    std::string args = "bench " + kSmall + " --algos " + algorithm +
+                       " --deterministic-latency 8 --frames 10 --out " + out.string();
+    if (!plugin.empty()) args += " --plugin " + plugin;
+    if (!culling.empty()) args += " --culling " + culling.string();
+    const Outcome o = run(OCCSIM_EXE, args);
+    EXPECT_EQ(o.exit_code, 0) << args << "\n" << o.output;
+    return decisionsPerFrame(out / "frames.csv");
+}
+
+// The case: a session ended "no change" but its tuned.json carried the fitted cost model,
+// which changed statistical+'s queries and draws on every run. A "no change" file holds the
+// reference setting and no cost model: the same per-frame counts as no file at all, for the
+// paper's culler, statistical+ and a plugin's culler.
+TEST(Occtune, ANoChangeTunedJsonChangesNoDecision) {
+    const std::string plugin = TEST_PLUGIN_GOOD;
+    loadPlugin(plugin);  // test-frustum, for the file's read-back through the scenario readers
+    const fs::path dir = tempDir("no-change");
+    fs::create_directories(dir);
+    // A well-fitting cost model (residual 10 % of the mean frame): tunedSetting() confirms with it.
+    FrameTimeModelFit cost;
+    cost.model = FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0};
+    cost.fit.converged = true;
+    cost.mean_frame_ms = 10.0;
+    cost.residual_rms_ms = 1.0;
+    for (const std::string name : {"statistical", "statistical+", "test-frustum"}) {
+        const AlgorithmTraits& algorithm = *findAlgorithm(name);
+        const ParameterSpace space = parseParameterSpace(algorithm, "", {});
+        const OptionValues defaults(algorithm.options);
+        const Setting reference{"paper", space.paper(defaults), std::nullopt};
+        std::string why;
+        const Setting tuned = tunedSetting(algorithm, defaults, cost, &why);
+        const Verdict no_change{Verdict::Kind::NoChange, "the same decisions"};
+        const fs::path file = dir / (name + "-tuned.json");
+        std::ofstream(file)
+            << tunedFile(algorithm, writtenSetting(no_change, tuned, reference)).text;
+
+        const std::string with_plugin = name == "test-frustum" ? plugin : "";
+        const std::vector<std::string> without =
+            benchDecisions(name, with_plugin, {}, dir / (name + "-without"));
+        ASSERT_EQ(without.size(), 10u) << name;
+        EXPECT_EQ(benchDecisions(name, with_plugin, file, dir / (name + "-with")), without)
+            << name << ": " << text(file);
+        if (tuned.cost_model) {
+            // The file with the cost model (what "no change" wrote before) does change them.
+            const fs::path costly = dir / (name + "-costly.json");
+            std::ofstream(costly) << tunedFile(algorithm, tuned).text;
+            EXPECT_NE(benchDecisions(name, with_plugin, costly, dir / (name + "-costly")), without)
+                << name;
+        }
+    }
     fs::remove_all(dir);
 }
 
