@@ -425,5 +425,26 @@ TEST(Occtune, ANoChangeTunedJsonChangesNoDecision) {
     fs::remove_all(dir);
 }
 
+// docs/tuning.md holds the descriptors' tunable parameters between two markers: regenerate them
+// with `occtune --list-parameters --markdown` when a descriptor changes.
+TEST(Occtune, TheParameterTableIsTheDescriptorsOwnOutput) {
+    const std::string page = text(std::string(OCCSIM_SOURCE_DIR) + "/docs/tuning.md");
+    const std::string begin = "<!-- BEGIN occtune --list-parameters --markdown -->\n";
+    const std::string end = "<!-- END occtune --list-parameters --markdown -->";
+    const size_t b = page.find(begin), e = page.find(end);
+    ASSERT_NE(b, std::string::npos);
+    ASSERT_NE(e, std::string::npos);
+    const Outcome o = occtune("--list-parameters --markdown");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(page.substr(b + begin.size(), e - b - begin.size()), o.output)
+        << "docs/tuning.md is out of date: paste the output of occtune --list-parameters "
+           "--markdown";
+    // statistical+'s four, which the page once listed as three.
+    for (const char* key : {"decay_a", "decay_b", "queries_before_restart", "requery_parallax"})
+        EXPECT_NE(o.output.find("| `statistical+` | `" + std::string(key) + "` |"),
+                  std::string::npos)
+            << key;
+}
+
 }  // namespace
 }  // namespace occsim::tune
