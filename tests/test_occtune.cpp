@@ -446,5 +446,48 @@ TEST(Occtune, TheParameterTableIsTheDescriptorsOwnOutput) {
             << key;
 }
 
+// A tuned.json is one culler's confirmed setting ("tuned_for"): occsim refuses one that names a
+// culler not loaded, sets another culler's algorithm or options, holds an option out of its range
+// or a cost model not scoped to the culler tuned, in one line naming the file and the JSON
+// pointer, with exit code 2 and nothing written.
+TEST(Occtune, ATunedJsonThatIsNotOneCullersSettingIsRefusedInOneLine) {
+    const fs::path dir = tempDir("bad-tuned");
+    fs::create_directories(dir);
+    struct Case {
+        std::string name, json, expected;
+    };
+    const std::vector<Case> cases = {
+        {"other-algorithm",
+         R"({"format_version": 1, "tuned_for": "statistical+", "culling": {"algorithm": "statistical"}})",
+         R"(/culling/algorithm: expected "statistical+" (the culler this file was tuned for))"},
+        {"not-loaded",
+         R"({"format_version": 1, "tuned_for": "gpu-magic", "culling": {"algorithm": "statistical"}})",
+         "/tuned_for: expected a loaded culler"},
+        {"out-of-range",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "statistical": {"decay_b": 2}}})",
+         "/culling/statistical/decay_b"},
+        {"unscoped-cost",
+         R"({"format_version": 1, "tuned_for": "statistical+", "culling": {"algorithm": "statistical+", "cost_model": {"query_box_ms": 0.02}}})",
+         R"(/culling/cost_model: expected "cullers": ["statistical+"])"},
+        {"other-options",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "chc": {}}})",
+         R"(/culling/chc: expected the options of "statistical")"},
+    };
+    for (const Case& c : cases) {
+        const fs::path file = dir / (c.name + ".json");
+        std::ofstream(file) << c.json << "\n";
+        const fs::path out = dir / ("out-" + c.name);
+        const Outcome o =
+            run(OCCSIM_EXE, "bench " + kSmall + " --algos statistical --frames 6 --culling " +
+                                file.string() + " --out " + out.string());
+        EXPECT_EQ(o.exit_code, 2) << c.name << "\n" << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << c.name << "\n" << o.output;
+        EXPECT_NE(o.output.find(file.string()), std::string::npos) << c.name << "\n" << o.output;
+        EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.name << "\n" << o.output;
+        EXPECT_FALSE(fs::exists(out)) << c.name;
+    }
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace occsim::tune

@@ -45,10 +45,10 @@ std::string tunableParametersText() {
     for (const AlgorithmTraits* a : algorithms()) {
         for (const OptionSpec& s : a->options) {
             if (!s.tunable) continue;
-            out << a->name << " " << s.key << ": default "
-                << formatOptionValue(s, s.default_value) << (s.unit.empty() ? "" : " " + s.unit)
-                << ", searched " << range(s, s.tune_min, s.tune_max) << ", valid "
-                << range(s, s.min, s.max) << ": " << s.doc << "\n";
+            out << a->name << " " << s.key << ": default " << formatOptionValue(s, s.default_value)
+                << (s.unit.empty() ? "" : " " + s.unit) << ", searched "
+                << range(s, s.tune_min, s.tune_max) << ", valid " << range(s, s.min, s.max) << ": "
+                << s.doc << "\n";
         }
     }
     return out.str();

@@ -77,7 +77,10 @@ TunedFile tunedFile(const AlgorithmTraits& algorithm, const Setting& setting) {
         file.note = "tuned.json carries the fitted culling.cost_model for " + algorithm.name +
                     " only (\"cullers\": [\"" + algorithm.name + "\"]): no other culler reads it";
     }
-    const nlohmann::ordered_json top = {{"format_version", 1}, {"culling", culling}};
+    // "tuned_for" makes occsim check the file as one culler's setting
+    // (sim/scenario/culling_file.h).
+    const nlohmann::ordered_json top = {
+        {"format_version", 1}, {"tuned_for", algorithm.name}, {"culling", culling}};
     file.text = top.dump(2) + "\n";
 
     // Read back from the text as `occsim --culling` will: a file this build refuses is never
