@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -20,9 +21,13 @@
 #include <thread>
 #include <vector>
 
+#include "occsim/culling/registry/plugin_loader.h"
+#include "occsim/culling/registry/registry.h"
 #include "shell_command.h"
 #include "sim/output/plots.h"
+#include "tune/parameters.h"
 #include "tune/sample_log.h"
+#include "tune/tuned_file.h"
 
 extern char** environ;
 
@@ -360,6 +365,152 @@ TEST(Occtune, SigtermKeepsTheLogWholeAndSaysHowToResume) {
     EXPECT_NE(said.find("interrupted"), std::string::npos) << said;
     EXPECT_NE(said.find("--resume"), std::string::npos) << said;
     EXPECT_FALSE(fs::exists(dir / "out" / "tuned.json"));
+    fs::remove_all(dir);
+}
+
+// ---- a "no change" tuned.json changes no decision ------------------------------------------
+
+// Per frame of `algorithm`'s configuration in `occsim bench`'s frames.csv: "queries objects_drawn".
+std::vector<std::string> decisionsPerFrame(const fs::path& frames_csv) {
+    const std::vector<std::string> rows = lines(frames_csv);
+    if (rows.empty()) return {};
+    std::vector<std::string> header;
+    std::istringstream head(rows[0]);
+    for (std::string cell; std::getline(head, cell, ',');) header.push_back(cell);
+    const auto column = [&](const std::string& name) {
+        return static_cast<size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    const size_t frame = column("frame"), queries = column("queries"),
+                 objects = column("objects_drawn");
+    std::vector<std::string> out;
+    for (size_t i = 1; i < rows.size(); ++i) {
+        std::vector<std::string> cells;
+        std::istringstream row(rows[i]);
+        for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+        if (cells.size() < header.size()) continue;
+        out.push_back(cells[frame] + ": " + cells[queries] + " queries, " + cells[objects] +
+                      " drawn");
+    }
+    return out;
+}
+
+// occsim bench in deterministic-latency mode (counts reproducible), with a culling file or none.
+std::vector<std::string> benchDecisions(const std::string& algorithm, const std::string& plugin,
+                                        const fs::path& culling, const fs::path& out) {
+    std::string args = "bench " + kSmall + " --algos " + algorithm +
+                       " --deterministic-latency 8 --frames 10 --out " + out.string();
+    if (!plugin.empty()) args += " --plugin " + plugin;
+    if (!culling.empty()) args += " --culling " + culling.string();
+    const Outcome o = run(OCCSIM_EXE, args);
+    EXPECT_EQ(o.exit_code, 0) << args << "\n" << o.output;
+    return decisionsPerFrame(out / "frames.csv");
+}
+
+// The issue's case: a session ended "no change" but its tuned.json carried the fitted cost model,
+// which changed statistical+'s queries and draws on every run. A "no change" file holds the
+// reference setting and no cost model: the same per-frame counts as no file at all, for the
+// paper's culler, statistical+ and a plugin's culler.
+TEST(Occtune, ANoChangeTunedJsonChangesNoDecision) {
+    const std::string plugin = TEST_PLUGIN_GOOD;
+    loadPlugin(plugin);  // test-frustum, for the file's read-back through the scenario readers
+    const fs::path dir = tempDir("no-change");
+    fs::create_directories(dir);
+    // A well-fitting cost model (residual 10 % of the mean frame): tunedSetting() confirms with it.
+    FrameTimeModelFit cost;
+    cost.model = FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0};
+    cost.fit.converged = true;
+    cost.mean_frame_ms = 10.0;
+    cost.residual_rms_ms = 1.0;
+    for (const std::string name : {"statistical", "statistical+", "test-frustum"}) {
+        const AlgorithmTraits& algorithm = *findAlgorithm(name);
+        const ParameterSpace space = parseParameterSpace(algorithm, "", {});
+        const OptionValues defaults(algorithm.options);
+        const Setting reference{"paper", space.paper(defaults), std::nullopt};
+        std::string why;
+        const Setting tuned = tunedSetting(algorithm, defaults, cost, &why);
+        const Verdict no_change{Verdict::Kind::NoChange, "the same decisions"};
+        const fs::path file = dir / (name + "-tuned.json");
+        std::ofstream(file)
+            << tunedFile(algorithm, writtenSetting(no_change, tuned, reference)).text;
+
+        const std::string with_plugin = name == "test-frustum" ? plugin : "";
+        const std::vector<std::string> without =
+            benchDecisions(name, with_plugin, {}, dir / (name + "-without"));
+        ASSERT_EQ(without.size(), 10u) << name;
+        EXPECT_EQ(benchDecisions(name, with_plugin, file, dir / (name + "-with")), without)
+            << name << ": " << text(file);
+        if (tuned.cost_model) {
+            // The file with the cost model (what "no change" wrote before) does change them.
+            const fs::path costly = dir / (name + "-costly.json");
+            std::ofstream(costly) << tunedFile(algorithm, tuned).text;
+            EXPECT_NE(benchDecisions(name, with_plugin, costly, dir / (name + "-costly")), without)
+                << name;
+        }
+    }
+    fs::remove_all(dir);
+}
+
+// docs/tuning.md holds the descriptors' tunable parameters between two markers: regenerate them
+// with `occtune --list-parameters --markdown` when a descriptor changes.
+TEST(Occtune, TheParameterTableIsTheDescriptorsOwnOutput) {
+    const std::string page = text(std::string(OCCSIM_SOURCE_DIR) + "/docs/tuning.md");
+    const std::string begin = "<!-- BEGIN occtune --list-parameters --markdown -->\n";
+    const std::string end = "<!-- END occtune --list-parameters --markdown -->";
+    const size_t b = page.find(begin), e = page.find(end);
+    ASSERT_NE(b, std::string::npos);
+    ASSERT_NE(e, std::string::npos);
+    const Outcome o = occtune("--list-parameters --markdown");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(page.substr(b + begin.size(), e - b - begin.size()), o.output)
+        << "docs/tuning.md is out of date: paste the output of occtune --list-parameters "
+           "--markdown";
+    // statistical+'s four, which the page once listed as three.
+    for (const char* key : {"decay_a", "decay_b", "queries_before_restart", "requery_parallax"})
+        EXPECT_NE(o.output.find("| `statistical+` | `" + std::string(key) + "` |"),
+                  std::string::npos)
+            << key;
+}
+
+// A tuned.json is one culler's confirmed setting ("tuned_for"): occsim refuses one that names a
+// culler not loaded, sets another culler's algorithm or options, holds an option out of its range
+// or a cost model not scoped to the culler tuned, in one line naming the file and the JSON
+// pointer, with exit code 2 and nothing written.
+TEST(Occtune, ATunedJsonThatIsNotOneCullersSettingIsRefusedInOneLine) {
+    const fs::path dir = tempDir("bad-tuned");
+    fs::create_directories(dir);
+    struct Case {
+        std::string name, json, expected;
+    };
+    const std::vector<Case> cases = {
+        {"other-algorithm",
+         R"({"format_version": 1, "tuned_for": "statistical+", "culling": {"algorithm": "statistical"}})",
+         R"(/culling/algorithm: expected "statistical+" (the culler this file was tuned for))"},
+        {"not-loaded",
+         R"({"format_version": 1, "tuned_for": "gpu-magic", "culling": {"algorithm": "statistical"}})",
+         "/tuned_for: expected a loaded culler"},
+        {"out-of-range",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "statistical": {"decay_b": 2}}})",
+         "/culling/statistical/decay_b"},
+        {"unscoped-cost",
+         R"({"format_version": 1, "tuned_for": "statistical+", "culling": {"algorithm": "statistical+", "cost_model": {"query_box_ms": 0.02}}})",
+         R"(/culling/cost_model: expected "cullers": ["statistical+"])"},
+        {"other-options",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "chc": {}}})",
+         R"(/culling/chc: expected the options of "statistical")"},
+    };
+    for (const Case& c : cases) {
+        const fs::path file = dir / (c.name + ".json");
+        std::ofstream(file) << c.json << "\n";
+        const fs::path out = dir / ("out-" + c.name);
+        const Outcome o =
+            run(OCCSIM_EXE, "bench " + kSmall + " --algos statistical --frames 6 --culling " +
+                                file.string() + " --out " + out.string());
+        EXPECT_EQ(o.exit_code, 2) << c.name << "\n" << o.output;
+        EXPECT_EQ(lineCount(o.output), 1u) << c.name << "\n" << o.output;
+        EXPECT_NE(o.output.find(file.string()), std::string::npos) << c.name << "\n" << o.output;
+        EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.name << "\n" << o.output;
+        EXPECT_FALSE(fs::exists(out)) << c.name;
+    }
     fs::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -14,9 +15,11 @@
 #include "occsim/culling/geometry/random.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/scenario/culling_file.h"
+#include "tune/choice.h"
 #include "tune/design.h"
 #include "tune/errors.h"
 #include "tune/frame_time_model.h"
+#include "tune/measure.h"
 #include "tune/parameters.h"
 #include "tune/report.h"
 #include "tune/response_model.h"
@@ -423,8 +426,7 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     OptionValues tuned(statistical().options);
     tuned.set("base_time", 0.123456789012345);
     tuned.set("decay_a", 2.75);
-    const TunedFile file =
-        tunedFile(statistical(), tuned, FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    const TunedFile file = tunedFile(statistical(), Setting{"tuned", tuned, std::nullopt});
     const nlohmann::json json = nlohmann::json::parse(file.text);
     Scenario s;
     s.algorithm = "vfc";
@@ -432,16 +434,16 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     EXPECT_EQ(s.algorithm, "statistical");
     EXPECT_EQ(s.culler.of(statistical()).number("base_time"), 0.123456789012345);
     EXPECT_EQ(s.culler.of(statistical()).number("decay_a"), 2.75);
-    // The paper's culler weighs no costs: the fitted cost model stays out of the file, so that
-    // applying it changes nothing else (statistical+ reads culling.cost_model too).
     EXPECT_FALSE(file.has_cost_option);
     EXPECT_FALSE(s.culler.cost_model.known());
 
-    // statistical+ weighs costs: its file carries the fitted model for statistical+ alone, read
-    // back as that culler's cost model; the shared one, which other cullers read, stays unknown.
+    // A setting with a cost model: the file carries it for statistical+ alone, read back as that
+    // culler's cost model; the shared one, which other cullers read, stays unknown.
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const std::optional<CostModel> model = costModelOf(FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
+    ASSERT_TRUE(model);
     const TunedFile plus_file =
-        tunedFile(plus, OptionValues(plus.options), FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
+        tunedFile(plus, Setting{"tuned", OptionValues(plus.options), model});
     Scenario p;
     applyCullingFile(CullingFile{"tuned.json", nlohmann::json::parse(plus_file.text)}, p);
     EXPECT_TRUE(plus_file.has_cost_option);
@@ -452,9 +454,71 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
     EXPECT_DOUBLE_EQ(scoped.query_box_ms, 0.02);
     EXPECT_DOUBLE_EQ(scoped.triangle_ms, 0.1 / 1000.0);
     EXPECT_DOUBLE_EQ(scoped.draw_call_ms, 0.01);
-    nlohmann::json culling = nlohmann::json::object();
-    EXPECT_FALSE(addCostOption(culling, FrameTimeModel{1.0, 0.0, 0.0, 0.0, 1.0}, "statistical+"));
-    EXPECT_TRUE(culling.empty());
+    EXPECT_FALSE(costModelOf(FrameTimeModel{1.0, 0.0, 0.0, 0.0, 1.0}));
+}
+
+// A fitted model with these figures, converged, explaining frames of `mean_ms` with a residual
+// RMS of `residual_ms`.
+FrameTimeModelFit fittedCosts(double mean_ms, double residual_ms) {
+    FrameTimeModelFit f;
+    f.model = FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0};
+    f.fit.converged = true;
+    f.mean_frame_ms = mean_ms;
+    f.residual_rms_ms = residual_ms;
+    return f;
+}
+
+// The cost model goes into the confirmed (and written) setting only for a culler that weighs
+// costs and only when it fits well enough: a residual RMS at most 25 % of the mean frame. The
+// issue's session had 123 %: its file carried a model that changed every decision.
+TEST(TunedFile, TheCostModelIsConfirmedAndWrittenOnlyWhenItFitsWell) {
+    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const OptionValues options(plus.options);
+    std::string why;
+    const Setting poor = tunedSetting(plus, options, fittedCosts(10.0, 12.3), &why);
+    EXPECT_FALSE(poor.cost_model) << "a residual of 123 % of the mean frame steers by noise";
+    EXPECT_NE(why.find("residual RMS 123 % of the mean frame, above the 25 % allowed"),
+              std::string::npos)
+        << why;
+    EXPECT_FALSE(tunedFile(plus, poor).has_cost_option);
+
+    const Setting good = tunedSetting(plus, options, fittedCosts(10.0, 2.5), &why);
+    ASSERT_TRUE(good.cost_model) << why;
+    EXPECT_TRUE(why.empty()) << why;
+    EXPECT_DOUBLE_EQ(good.cost_model->query_box_ms, 0.02);
+    EXPECT_FALSE(good.sameSettingAs(Setting{"paper", options, std::nullopt}))
+        << "the same options with a cost model are another setting";
+
+    FrameTimeModelFit zero = fittedCosts(10.0, 1.0);
+    zero.model = FrameTimeModel{1.0, 0.0, 0.0, 0.0, 1.0};
+    EXPECT_FALSE(tunedSetting(plus, options, zero, &why).cost_model);
+    EXPECT_NE(why.find("cost_model.json only"), std::string::npos) << why;
+    FrameTimeModelFit unconverged = fittedCosts(10.0, 1.0);
+    unconverged.fit.converged = false;
+    EXPECT_FALSE(tunedSetting(plus, options, unconverged, &why).cost_model);
+
+    // The paper's culler weighs no costs: never a cost model, and nothing to explain.
+    EXPECT_FALSE(tunedSetting(statistical(), OptionValues(statistical().options),
+                              fittedCosts(10.0, 1.0), &why)
+                     .cost_model);
+    EXPECT_TRUE(why.empty()) << why;
+}
+
+// "no change" writes the reference setting (no cost model), so that the file changes no
+// decision; the other verdicts write what was confirmed.
+TEST(TunedFile, NoChangeWritesTheReferenceSettingAndTheOthersTheConfirmedOne) {
+    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const Setting reference{"paper", OptionValues(plus.options), std::nullopt};
+    std::string why;
+    const Setting tuned =
+        tunedSetting(plus, OptionValues(plus.options), fittedCosts(10.0, 1.0), &why);
+    ASSERT_TRUE(tuned.cost_model);
+    const Verdict no_change{Verdict::Kind::NoChange, "same decisions"};
+    EXPECT_EQ(&writtenSetting(no_change, tuned, reference), &reference);
+    EXPECT_FALSE(tunedFile(plus, writtenSetting(no_change, tuned, reference)).has_cost_option);
+    const Verdict accepted{Verdict::Kind::Accepted, "faster"};
+    EXPECT_EQ(&writtenSetting(accepted, tuned, reference), &tuned);
+    EXPECT_TRUE(tunedFile(plus, writtenSetting(accepted, tuned, reference)).has_cost_option);
 }
 
 // The verdict of the whole confirmation: rejected for more error or missed objects, or for being
@@ -466,42 +530,48 @@ TEST(Confirmation, TheVerdictRejectsWhatItsOwnConfirmationShowsWorseAndCallsSame
     fitted.mean_ratio = {0.97, 0.95, 0.99};
     ConfirmationRow held = fitted;
     held.variant = "held out (seed 8)";
-    EXPECT_EQ(judgeConfirmation({fitted, held}, false).kind, Verdict::Kind::Accepted);
-    EXPECT_STREQ(judgeConfirmation({fitted, held}, false).fileName(), "tuned.json");
+    EXPECT_EQ(judgeConfirmation({fitted, held}).kind, Verdict::Kind::Accepted);
+    EXPECT_STREQ(judgeConfirmation({fitted, held}).fileName(), "tuned.json");
 
     ConfirmationRow slower = fitted;
     slower.mean_ratio = {1.04, 1.01, 1.08};
-    const Verdict rejected = judgeConfirmation({slower, held}, false);
+    const Verdict rejected = judgeConfirmation({slower, held});
     EXPECT_EQ(rejected.kind, Verdict::Kind::Rejected);
     EXPECT_STREQ(rejected.fileName(), "tuned.rejected.json");
     EXPECT_NE(rejected.reason.find("fitted (seed 7): slower in every repetition"),
               std::string::npos)
         << rejected.reason;
     slower.repetitions = 1;  // one repetition shows no "every"
-    EXPECT_EQ(judgeConfirmation({slower, held}, false).kind, Verdict::Kind::Accepted);
+    EXPECT_EQ(judgeConfirmation({slower, held}).kind, Verdict::Kind::Accepted);
 
     ConfirmationRow worse = fitted;
     worse.tuned_missed_objects = 3;
-    EXPECT_EQ(judgeConfirmation({fitted, worse}, false).kind, Verdict::Kind::Rejected);
+    EXPECT_EQ(judgeConfirmation({fitted, worse}).kind, Verdict::Kind::Rejected);
     worse = fitted;
     worse.tuned_error_pixels = 10;
-    EXPECT_EQ(judgeConfirmation({worse, held}, false).kind, Verdict::Kind::Rejected);
+    EXPECT_EQ(judgeConfirmation({worse, held}).kind, Verdict::Kind::Rejected);
 
     ConfirmationRow same = slower;
     same.repetitions = 3;
     same.same_decisions = true;
     ConfirmationRow same_held = held;
     same_held.same_decisions = true;
-    const Verdict noise = judgeConfirmation({same, same_held}, false);
+    const Verdict noise = judgeConfirmation({same, same_held});
     EXPECT_EQ(noise.kind, Verdict::Kind::NoChange) << "same decisions: slower is noise";
     EXPECT_STREQ(noise.name(), "no change");
-    EXPECT_EQ(judgeConfirmation({fitted, same_held}, false).kind, Verdict::Kind::Accepted);
-    EXPECT_EQ(judgeConfirmation({fitted, held}, true).kind, Verdict::Kind::NoChange);
+    EXPECT_EQ(judgeConfirmation({fitted, same_held}).kind, Verdict::Kind::Accepted);
+    // The same setting twice (the same options and no cost model) is "no change" whatever the
+    // times say; the same options with a cost model applied are not the same setting.
+    ConfirmationRow same_setting = fitted, same_setting_held = held;
+    same_setting.same_setting = same_setting_held.same_setting = true;
+    EXPECT_EQ(judgeConfirmation({same_setting, same_setting_held}).kind, Verdict::Kind::NoChange);
+    EXPECT_EQ(judgeConfirmation({same_setting, held}).kind, Verdict::Kind::Accepted);
 }
 
 // The confirmation shows error pixels, tie pixels and missed objects of both settings apart.
 TEST(Confirmation, TheConsoleTableShowsErrorTiesAndMissedObjectsOfBoth) {
     TuneResult r;
+    r.space.algorithm = &statistical();
     ConfirmationRow row;
     row.variant = "fitted (seed 7)";
     row.tuned_error_pixels = 0;
@@ -516,6 +586,99 @@ TEST(Confirmation, TheConsoleTableShowsErrorTiesAndMissedObjectsOfBoth) {
     EXPECT_NE(table.find("mis paper"), std::string::npos) << table;
     EXPECT_NE(table.find("1234"), std::string::npos) << table;
     EXPECT_NE(table.find("987"), std::string::npos) << table;
+}
+
+// ---- words and bounds ----------------------------------------------------------------------
+
+// A finished session's result with every parameter kept at the reference, enough to format.
+TuneResult keptResult(const AlgorithmTraits& algorithm, const TuneOptions& o,
+                      const SampleLog& log) {
+    TuneResult r;
+    r.options = &o;
+    r.log = &log;
+    r.scenario_name = "teapots-small";
+    r.space = parseParameterSpace(algorithm, "", {});
+    for (const TunableParameter& p : r.space.parameters) r.tuned_values.push_back(p.paper_value);
+    r.kept_at_paper.assign(r.space.size(), true);
+    r.bounds_hit.assign(r.space.size(), "");
+    ConfirmationRow row;
+    row.variant = "fitted (seed 7)";
+    row.same_setting = true;
+    r.confirmation = {row};
+    r.verdict = judgeConfirmation(r.confirmation, referenceName(algorithm));
+    return r;
+}
+
+// The report names the culler tuned; "paper" is said of the statistical culler's values alone,
+// any other culler's are its defaults.
+TEST(Report, NamesTheCullerTunedAndCallsOnlyTheStatisticalCullersValuesThePapers) {
+    const TuneOptions o;
+    const SampleLog log(std::filesystem::temp_directory_path() / "unused-samples.jsonl",
+                        settings());
+    const std::string plus = reportMarkdown(keptResult(*findAlgorithm("statistical+"), o, log));
+    EXPECT_NE(plus.find("# Tuning the statistical+ culler on teapots-small"), std::string::npos)
+        << plus;
+    EXPECT_EQ(plus.find("paper"), std::string::npos) << plus;
+    EXPECT_NE(plus.find("kept at the defaults"), std::string::npos) << plus;
+    EXPECT_NE(plus.find("| parameter | default | tuned |"), std::string::npos) << plus;
+    const std::string plus_table =
+        confirmationTable(keptResult(*findAlgorithm("statistical+"), o, log));
+    EXPECT_NE(plus_table.find("mis default"), std::string::npos) << plus_table;
+
+    const std::string paper = reportMarkdown(keptResult(statistical(), o, log));
+    EXPECT_NE(paper.find("# Tuning the statistical culler on teapots-small"), std::string::npos)
+        << paper;
+    EXPECT_NE(paper.find("kept at the paper's values"), std::string::npos) << paper;
+    EXPECT_NE(paper.find("| parameter | paper | tuned |"), std::string::npos) << paper;
+}
+
+// One parameter's response in unit coordinates, falling towards 1.8: beyond the box's upper end.
+std::vector<double> bowlBeyondTheUpperEnd(const std::vector<Point>& xs) {
+    std::vector<double> ys;
+    for (const Point& x : xs) ys.push_back(1.0 + 0.2 * (x[0] - 1.8) * (x[0] - 1.8));
+    return ys;
+}
+
+// An optimum beyond the searched range ends on its bound, and the console and report say so with
+// the --bounds that widens the range.
+TEST(Choice, AnOptimumBeyondTheRangeEndsOnItsBoundAndIsReportedWithTheWiderRange) {
+    TuneResult r;
+    r.space = parseParameterSpace(statistical(), "base_time", {"base_time=0.2:0.6"});
+    const std::vector<Point> xs = latinHypercube(8, 1, 3);
+    r.response = selectResponseModel(xs, bowlBeyondTheUpperEnd(xs), 1, 200, &r.dropped);
+    chooseTunedValues(r, r.space);
+    ASSERT_FALSE(r.kept_at_paper[0]) << "the samples show the effect";
+    EXPECT_DOUBLE_EQ(r.tuned_values[0], 0.6);
+    EXPECT_EQ(r.bounds_hit[0], "upper");
+    const std::vector<std::string> lines = boundWarnings(r);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("base_time = 0.6 s sits on the upper bound of its search range [0.2, "
+                            "0.6]: the best value may lie beyond it; widen it, e.g. --bounds "
+                            "base_time=0.2:1"),
+              std::string::npos)
+        << lines[0];
+}
+
+// A parameter the samples show no effect of stays at its reference value, even where --bounds
+// excluded it: a result outside the searched range, said in one line.
+TEST(Choice, AValueKeptOutsideTheSearchedRangeIsSaidWithWhy) {
+    TuneResult r;
+    r.space = parseParameterSpace(statistical(), "base_time", {"base_time=0.05:0.1"});
+    const std::vector<Point> xs = latinHypercube(12, 1, 5);
+    Rng rng(9);
+    std::vector<double> ys;
+    for (size_t i = 0; i < xs.size(); ++i) ys.push_back(1.0 + 0.02 * gaussian(rng));
+    r.response = selectResponseModel(xs, ys, 1, 200, &r.dropped);
+    chooseTunedValues(r, r.space);
+    ASSERT_TRUE(r.kept_at_paper[0]) << "pure noise: no effect";
+    EXPECT_NEAR(r.tuned_values[0], 2.0 / 3.0, 1e-12);
+    const std::vector<std::string> lines = boundWarnings(r);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("base_time = 0.6667 s (the paper's values) lies outside its search "
+                            "range [0.05, 0.1]: kept there because the samples showed no effect "
+                            "of it beyond noise"),
+              std::string::npos)
+        << lines[0];
 }
 
 }  // namespace

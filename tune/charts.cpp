@@ -64,15 +64,19 @@ GnuplotChart parameterChart(const ChartInput& in, size_t j) {
     const std::string data = "tune-curve-" + std::string(p.name) + ".dat";
     const double paper = p.paper_value;
     const double tuned = in.space.value(j, in.tuned[j]);
+    // "paper" for the statistical culler, "default" for any other (referenceLabel()).
+    const std::string ref = referenceLabel(*in.space.algorithm);
     std::ostringstream b;
     b << "set title \"" << p.name << ": " << in.objective_name
-      << " frame time of each sample / that of the paper values in the same run\\nthe fitted "
+      << " frame time of each sample / that of the " << ref
+      << " values in the same run\\nthe fitted "
          "response along "
       << p.name << ", the other parameters at their tuned values"
-      << (in.kept_at_paper[j] ? "\\n(no effect beyond noise: kept at the paper value)" : "")
+      << (in.kept_at_paper[j] ? "\\n(no effect beyond noise: kept at the " + ref + " value)" : "")
       << "\"\n"
       << "set xlabel '" << axisLabel(p) << "'\nset ylabel '" << in.objective_name
-      << " frame time / paper (same run)'\nset grid\nset key outside right top Left reverse\n"
+      << " frame time / " << ref
+      << " (same run)'\nset grid\nset key outside right top Left reverse\n"
       << "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
       << "set offsets graph 0, graph 0, graph 0.08, graph 0.08\n"
       << "set arrow 1 from " << num(paper) << ", graph 0 to " << num(paper)
@@ -87,8 +91,8 @@ GnuplotChart parameterChart(const ChartInput& in, size_t j) {
       << " with points pt 7 ps 1.2 lc rgb '#ff7f0e' title 'samples', \\\n"
       << "     'tune-references.dat' using " << (j + 2) << ":" << (in.space.size() + 2)
       << " with points pt 6 ps 1.2 lc rgb '#555555' title 'reference runs', \\\n"
-      << "     1 with lines dt 3 lc rgb '#000000' title 'paper values (= 1)', \\\n"
-      << "     NaN with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'paper: " << num(paper)
+      << "     1 with lines dt 3 lc rgb '#000000' title '" << ref << " values (= 1)', \\\n"
+      << "     NaN with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title '" << ref << ": " << num(paper)
       << "', \\\n"
       << "     NaN with lines lw 2 lc rgb '#d62728' title 'tuned: " << num(tuned) << "'\n";
     return {"tune-" + std::string(p.name), 1100, 600, b.str()};

@@ -1,7 +1,8 @@
 // The tuner's gnuplot charts (sim/output/plots.h runs gnuplot and publishes them whole):
 //   tune-<parameter>   every sample's objective against that parameter, the fitted response
 //                      along it (the other parameters at their tuned values) with a band of one
-//                      standard deviation, the paper's value and the tuned value;
+//                      standard deviation, the reference value (the paper's for `statistical`, the
+//                      culler's default for any other) and the tuned value;
 //   tune-cost-model    every fitted frame's measured time against the cost model's prediction.
 #pragma once
 
@@ -20,7 +21,7 @@ struct ChartInput {
     const ParameterSpace& space;
     const std::vector<Sample>& samples;
     const std::vector<double>& objective;            // per sample: the ratio that was fitted
-    const std::vector<Sample>& references;           // reference runs (the paper's values)
+    const std::vector<Sample>& references;           // reference runs (referenceName())
     const std::vector<double>& reference_objective;  // per reference run
     const char* objective_name;                      // "mean" or "p95"
     const ResponseFit& response;

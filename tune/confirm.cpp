@@ -26,27 +26,34 @@ const char* Verdict::name() const {
     return "";
 }
 
-Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing_tuned) {
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, const std::string& reference) {
     for (const ConfirmationRow& r : rows) {
         if (r.tuned_error_pixels > r.paper_error_pixels) {
-            return {Verdict::Kind::Rejected,
-                    r.variant + ": the tuned values showed more error pixels than the paper's"};
+            return {Verdict::Kind::Rejected, r.variant +
+                                                 ": the tuned setting showed more error pixels "
+                                                 "than " +
+                                                 reference};
         }
         if (r.tuned_missed_objects > r.paper_missed_objects) {
             return {Verdict::Kind::Rejected,
-                    r.variant + ": the tuned values missed more objects than the paper's"};
+                    r.variant + ": the tuned setting missed more objects than " + reference};
         }
     }
-    const bool same =
-        !rows.empty() && std::all_of(rows.begin(), rows.end(),
-                                     [](const ConfirmationRow& r) { return r.same_decisions; });
-    if (nothing_tuned)
-        return {Verdict::Kind::NoChange, "every parameter kept at the paper's value"};
-    if (same) {
-        return {
-            Verdict::Kind::NoChange,
-            "the tuned values made the same decisions as the paper's on every confirmation frame: "
-            "their difference in time is noise"};
+    auto all = [&](bool ConfirmationRow::*flag) {
+        return !rows.empty() && std::all_of(rows.begin(), rows.end(),
+                                            [&](const ConfirmationRow& r) { return r.*flag; });
+    };
+    if (all(&ConfirmationRow::same_setting)) {
+        return {Verdict::Kind::NoChange, "every parameter kept at " + reference +
+                                             " and no cost model applied: tuned.json holds " +
+                                             reference};
+    }
+    if (all(&ConfirmationRow::same_decisions)) {
+        return {Verdict::Kind::NoChange,
+                "the tuned setting made the same decisions as " + reference +
+                    " on every confirmation frame (their difference in time is noise): "
+                    "tuned.json holds " +
+                    reference};
     }
     for (const ConfirmationRow& r : rows) {
         if (r.repetitions >= 2 && r.mean_ratio.min > 1.0) {
@@ -61,12 +68,12 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing
 }
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
-                        const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions, SessionRuns& session,
+                        const std::string& variant, const Setting& tuned, const Setting& reference,
+                        uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame) {
-    // The paper's values first: the same order as every sampling batch.
-    const BenchResult result = runInterleaved(
-        scenario, algorithm, {{"paper", paper}, {"tuned", tuned}}, repetitions, session, on_frame);
+    // The reference first: the same order as every sampling batch.
+    const BenchResult result =
+        runInterleaved(scenario, algorithm, {reference, tuned}, repetitions, session, on_frame);
     const occsim::RunRecord& p = result.runs[0];
     const occsim::RunRecord& t = result.runs[1];
 
@@ -104,6 +111,7 @@ ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorit
     for (size_t r = 0; row.same_decisions && r < t.later_repetitions.size(); ++r) {
         row.same_decisions = sameDecisions(t.later_repetitions[r], p.later_repetitions[r]);
     }
+    row.same_setting = tuned.sameSettingAs(reference);
     row.mean_ratio = spreadOf(mean_ratios);
     row.p95_ratio = spreadOf(p95_ratios);
     row.tuned_mean_ms = t.summary.frame_ms.mean;

@@ -1,5 +1,7 @@
-// The confirmation: the tuned values against the paper's, interleaved frame by frame in the same
-// run, repeated, on the frames they were fitted on and on a variant the fit never saw.
+// The confirmation: the tuned setting against the reference (the culler's defaults; for
+// `statistical`, the paper's values), interleaved frame by frame in the same run, repeated, on the
+// frames they were fitted on and on a variant the fit never saw. A setting is its options and the
+// cost model it runs with (Setting): what tuned.json will carry is what is confirmed.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +39,8 @@ struct ConfirmationRow {
     // The tuned and the paper's values issued as many queries and drew as many objects on every
     // frame of every repetition: the same decisions, so any difference in time is noise.
     bool same_decisions = false;
+    // The two settings were the same: the same options and the same cost model (Setting).
+    bool same_setting = false;
 };
 
 // What the confirmation says of the tuned values as a whole, for the console and the exit status.
@@ -52,15 +56,18 @@ struct Verdict {
     }
 };
 
-// Rejected when any variant shows more error pixels or missed objects with the tuned values, or
+// Rejected when any variant shows more error pixels or missed objects with the tuned setting, or
 // is slower in every one of at least two repetitions (one repetition cannot show that); "no
-// change" when nothing was tuned or the two settings made the same decisions on every variant;
-// accepted otherwise.
-Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, bool nothing_tuned);
+// change" when the two settings were the same (ConfirmationRow::same_setting) or made the same
+// decisions on every variant; accepted otherwise. `reference` names the reference in the reason:
+// "the paper's values" or "the defaults" (referenceName()).
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows,
+                          const std::string& reference = "the paper's values");
 
+// `reference` first, then `tuned`: the same order as every sampling batch.
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
-                        const std::string& variant, const OptionValues& tuned,
-                        const OptionValues& paper, uint32_t repetitions, SessionRuns& session,
+                        const std::string& variant, const Setting& tuned, const Setting& reference,
+                        uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame);
 
 Spread spreadOf(std::vector<double> values);

@@ -8,16 +8,17 @@ namespace occsim::tune {
 namespace {
 
 // The tuned values beside the reference's, one parameter a line, and any on a bound.
-void printChoice(const TuneResult& r, const std::string& algorithm) {
-    std::printf("%s, %s: %zu samples, %s frame-time ratio to the reference values\n",
-                r.scenario_name.c_str(), algorithm.c_str(), r.samples.size(),
-                objectiveName(r.options->objective));
+void printChoice(const TuneResult& r, const AlgorithmTraits& algorithm) {
+    const std::string ref = referenceName(algorithm);  // "the paper's values", "the defaults"
+    std::printf("%s, %s: %zu samples, %s frame-time ratio to %s\n", r.scenario_name.c_str(),
+                algorithm.name.c_str(), r.samples.size(), objectiveName(r.options->objective),
+                ref.c_str());
+    const std::string kept = "  (no effect beyond noise: kept at " + ref + ")";
     for (size_t j = 0; j < r.space.size(); ++j) {
         const TunableParameter& p = r.space.parameters[j];
-        std::printf(
-            "  %-22s reference %-8.4g tuned %-8.4g%s\n", p.name.c_str(), p.paper_value,
-            r.tuned_values[j],
-            r.kept_at_paper[j] ? "  (no effect beyond noise: kept at the reference value)" : "");
+        std::printf("  %-22s %-9s %-8.4g tuned %-8.4g%s\n", p.name.c_str(),
+                    referenceLabel(algorithm).c_str(), p.paper_value, r.tuned_values[j],
+                    r.kept_at_paper[j] ? kept.c_str() : "");
     }
     for (const std::string& line : boundWarnings(r)) std::printf("%s\n", line.c_str());
 }
@@ -54,15 +55,11 @@ void printFitFailed(const TuneSession& s) {
 
 void printFinished(const TuneSession& s, const PlotResult& charts) {
     const TuneResult& r = s.result;
-    printChoice(r, r.space.algorithm->name);
-    if (!s.tuned_file.note.empty()) std::printf("%s\n", s.tuned_file.note.c_str());
+    printChoice(r, *r.space.algorithm);
     printModels(r);
+    std::printf("%s\n", costModelLine(r).c_str());
     std::printf("%s", confirmationTable(r).c_str());
-    if (s.tuned_file.weighs_costs && !s.tuned_file.has_cost_option) {
-        std::printf(
-            "the fitted cost model is 0 for queries, triangles and draw calls: it is in "
-            "cost_model.json only, not in tuned.json\n");
-    }
+    if (!s.tuned_file.note.empty()) std::printf("%s\n", s.tuned_file.note.c_str());
     if (!charts.ok && !charts.message.empty()) std::printf("%s\n", charts.message.c_str());
     std::printf("verdict: %s: %s\n", r.verdict.name(), r.verdict.reason.c_str());
     std::printf("written: %s/{%s,report.md,cost_model.json,samples.jsonl}\n",

@@ -10,10 +10,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include "occsim/culling/registry/plugin_loader.h"
 #include "render/headless_context.h"
 #include "sim/scenario/errors.h"
 #include "tune/console.h"
 #include "tune/errors.h"
+#include "tune/parameter_table.h"
 #include "tune/parameters.h"
 #include "tune/session_files.h"
 #include "tune/tuner.h"
@@ -38,12 +40,20 @@ struct RawFlags {
     uint32_t frames = 0;
     uint64_t holdout_seed = 0;
     std::vector<std::string> plugins;
+    bool list_parameters = false;
+    bool markdown = false;
     std::string backend = "auto";
     int device = -1;
 };
 
 void addOptions(CLI::App& app, TuneOptions& o, RawFlags& raw) {
-    app.add_option("scenario", raw.scenario, "Scenario file (JSON)")->required();
+    // Required, except with --list-parameters (checked after parsing).
+    app.add_option("scenario", raw.scenario, "Scenario file (JSON)");
+    app.add_flag("--list-parameters", raw.list_parameters,
+                 "Print every registered culler's tunable parameters (a plugin's with --plugin) "
+                 "and exit");
+    app.add_flag("--markdown", raw.markdown,
+                 "With --list-parameters: as the Markdown table of docs/tuning.md");
     app.add_option("--budget", o.budget,
                    "Samples to measure (besides the reference runs); default 20")
         ->check(CLI::Range(1u, 100000u));
@@ -84,6 +94,22 @@ void addOptions(CLI::App& app, TuneOptions& o, RawFlags& raw) {
     app.add_option("--device", raw.device,
                    "EGL device index (occsim devices lists them; default 0)")
         ->check(CLI::Range(0, 1023));
+}
+
+// --list-parameters: the tunable parameters of every culler, a plugin's loaded first.
+int listParameters(const RawFlags& raw) {
+    for (const std::string& plugin : raw.plugins) {
+        try {
+            occsim::loadPlugin(plugin);
+        } catch (const occsim::PluginError& e) {
+            std::fprintf(stderr, "occtune: --plugin %s\n", e.what());
+            return kExitBadInput;
+        }
+    }
+    std::printf("%s", (raw.markdown ? occsim::tune::tunableParametersMarkdown()
+                                    : occsim::tune::tunableParametersText())
+                          .c_str());
+    return 0;
 }
 
 // The parsed flags into `o`; false (the line printed) when --backend names no backend.
@@ -160,6 +186,12 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());
+        return kExitBadInput;
+    }
+    if (raw.list_parameters) return listParameters(raw);
+    if (raw.scenario.empty()) {
+        std::fprintf(stderr,
+                     "occtune: scenario: a scenario file is required (see occtune --help)\n");
         return kExitBadInput;
     }
     if (!applyFlags(app, raw, o)) return kExitBadInput;

@@ -13,6 +13,8 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
     config.algorithm = &algorithm;
     config.culler = scenario.culler;
     config.culler.edit(algorithm) = setting.options;
+    if (setting.cost_model)
+        config.culler.cost_model_of.insert_or_assign(algorithm.name, *setting.cost_model);
     return config;
 }
 

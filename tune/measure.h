@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -20,6 +21,14 @@ namespace occsim::tune {
 struct Setting {
     std::string label;
     OptionValues options;  // the tuned culler's (ParameterSpace::algorithm)
+    // A cost model for the tuned culler alone (CullerOptions::cost_model_of), as tuned.json
+    // carries it; none: the scenario's own (usually none, calibrated at start-up).
+    std::optional<CostModel> cost_model;
+
+    // The same options and the same cost model: the same setting, whatever the label.
+    bool sameSettingAs(const Setting& other) const {
+        return options == other.options && cost_model == other.cost_model;
+    }
 };
 
 // What every run of one tuning session shares: where it renders (--backend, --device), and the
@@ -29,7 +38,8 @@ struct SessionRuns {
     std::set<std::string> warnings_shown;
 };
 
-// The scenario's own culling options with the setting's values for `algorithm` swapped in.
+// The scenario's own culling options with the setting's values (and cost model, if any) for
+// `algorithm` swapped in.
 RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
                    const Setting& setting);
 

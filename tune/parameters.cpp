@@ -62,6 +62,14 @@ std::string tunableParameterNames(const AlgorithmTraits& algorithm) {
     return names;
 }
 
+std::string referenceName(const AlgorithmTraits& algorithm) {
+    return algorithm.name == "statistical" ? "the paper's values" : "the defaults";
+}
+
+std::string referenceLabel(const AlgorithmTraits& algorithm) {
+    return algorithm.name == "statistical" ? "paper" : "default";
+}
+
 double ParameterSpace::value(size_t j, double u) const {
     return bounds[j].lo + u * (bounds[j].hi - bounds[j].lo);
 }

@@ -26,6 +26,13 @@ struct TunableParameter {
 std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm);
 std::string tunableParameterNames(const AlgorithmTraits& algorithm);  // "base_time, decay_a, ..."
 
+// What the reference values are called in reports and on the console: "the paper's values" for
+// `statistical` (Kovalčík & Sochor's BASE_TIME and decay curve), "the defaults" (its descriptor's)
+// for any other culler; referenceLabel() is the short form for table columns ("paper",
+// "default").
+std::string referenceName(const AlgorithmTraits& algorithm);
+std::string referenceLabel(const AlgorithmTraits& algorithm);
+
 struct Bounds {
     double lo = 0.0, hi = 1.0;
 };

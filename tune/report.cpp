@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sim/output/fixed_text.h"
+#include "tune/tuned_file.h"
 
 namespace occsim::tune {
 namespace {
@@ -29,17 +30,28 @@ std::string withUnit(const TunableParameter& p, double v) {
     return general(v) + (!p.unit.empty() ? std::string(" ") + p.unit : "");
 }
 
+// "the paper's values" for `statistical`, "the defaults" for any other culler; a result without
+// a culler (tests of the formatting) says "the reference".
+std::string reference(const TuneResult& r) {
+    return r.space.algorithm ? referenceName(*r.space.algorithm) : "the reference";
+}
+std::string referenceShort(const TuneResult& r) {
+    return r.space.algorithm ? referenceLabel(*r.space.algorithm) : "ref";
+}
+
 // A verdict that does not claim more than the repetitions show.
-std::string verdict(const ConfirmationRow& row, bool nothing_tuned) {
+std::string verdict(const ConfirmationRow& row, const std::string& ref) {
     if (row.tuned_error_pixels > row.paper_error_pixels) {
-        return "**the tuned values showed more error pixels than the paper's**";
+        return "**the tuned setting showed more error pixels than " + ref + "**";
     }
     if (row.tuned_missed_objects > row.paper_missed_objects) {
-        return "**the tuned values missed more objects than the paper's**";
+        return "**the tuned setting missed more objects than " + ref + "**";
     }
-    if (nothing_tuned) return "the same setting twice: the spread is the measurement noise";
+    // The same options and the same cost model (Setting::sameSettingAs), not merely the same
+    // option values: a cost model alone changes decisions.
+    if (row.same_setting) return "the same setting twice: the spread is the measurement noise";
     if (row.same_decisions)
-        return "no change: the same decisions as the paper's on every frame (the spread is noise)";
+        return "no change: the same decisions as " + ref + " on every frame (the spread is noise)";
     // Error pixels in both, no more with the tuned values: say so beside the timing verdict.
     const std::string both =
         row.tuned_error_pixels != 0 ? "; error pixels in both, no more with the tuned values" : "";
@@ -71,6 +83,20 @@ void samplesTable(std::ostringstream& out, const TuneResult& r) {
 
 std::vector<std::string> boundWarnings(const TuneResult& r) {
     std::vector<std::string> lines;
+    for (size_t j = 0; j < r.space.size() && j < r.tuned_values.size(); ++j) {
+        // A value kept at the reference that --bounds excluded: the result lies outside the range
+        // the user asked to search, which needs saying.
+        const TunableParameter& p = r.space.parameters[j];
+        const Bounds& b = r.space.bounds[j];
+        const double v = r.tuned_values[j];
+        if (j < r.kept_at_paper.size() && r.kept_at_paper[j] && (v < b.lo || v > b.hi)) {
+            lines.push_back(p.name + " = " + withUnit(p, v) + " (" + reference(r) +
+                            ") lies outside its search range [" + general(b.lo) + ", " +
+                            general(b.hi) +
+                            "]: kept there because the samples showed no effect of it beyond "
+                            "noise, so no value in the range was shown to be better");
+        }
+    }
     for (size_t j = 0; j < r.space.size() && j < r.bounds_hit.size(); ++j) {
         if (r.bounds_hit[j].empty()) continue;
         const TunableParameter& p = r.space.parameters[j];
@@ -101,18 +127,36 @@ std::string formatSpread(const Spread& s) {
     return fixed(s.median, 3) + " [" + fixed(s.min, 3) + "-" + fixed(s.max, 3) + "]";
 }
 
+std::string costModelLine(const TuneResult& r) {
+    const std::string name = r.space.algorithm ? r.space.algorithm->name : "the culler";
+    if (r.cost_model_applied) {
+        return "The tuned setting includes the fitted cost model, for " + name +
+               " alone (residual RMS " + percent(r.cost.residual_rms_ms, r.cost.mean_frame_ms) +
+               " of the mean frame, at most " +
+               std::to_string(static_cast<int>(100 * kMaxCostModelResidualShare)) +
+               " % allowed): the confirmation ran with it, and tuned.json carries it unless the "
+               "verdict is \"no change\".";
+    }
+    if (!r.cost_model_note.empty()) return r.cost_model_note + ".";
+    return name +
+           " weighs no costs with these options: the fitted cost model is in "
+           "cost_model.json only.";
+}
+
 std::string confirmationTable(const TuneResult& r) {
     std::ostringstream out;
-    char line[256];
-    std::snprintf(line, sizeof line, "%-28s %6s %5s  %-22s %-22s %9s %9s %9s %9s %9s %9s %9s %9s\n",
-                  "variant", "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]",
-                  "tuned ms", "paper ms", "err tuned", "err paper", "tie tuned", "tie paper",
-                  "mis tuned", "mis paper");
+    char line[320];
+    const std::string ref = referenceShort(r);  // "paper", "default" ("ref" without a culler)
+    std::snprintf(line, sizeof line,
+                  "%-28s %6s %5s  %-22s %-22s %11s %11s %11s %11s %11s %11s %11s %11s\n", "variant",
+                  "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]", "tuned ms",
+                  (ref + " ms").c_str(), "err tuned", ("err " + ref).c_str(), "tie tuned",
+                  ("tie " + ref).c_str(), "mis tuned", ("mis " + ref).c_str());
     out << line;
     for (const ConfirmationRow& c : r.confirmation) {
         std::snprintf(
             line, sizeof line,
-            "%-28s %6u %5u  %-22s %-22s %9.2f %9.2f %9lld %9lld %9lld %9lld %9lld %9lld\n",
+            "%-28s %6u %5u  %-22s %-22s %11.2f %11.2f %11lld %11lld %11lld %11lld %11lld %11lld\n",
             c.variant.c_str(), c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(),
             formatSpread(c.p95_ratio).c_str(), c.tuned_mean_ms, c.paper_mean_ms,
             static_cast<long long>(c.tuned_error_pixels),
@@ -131,7 +175,8 @@ namespace {
 void headerSection(std::ostringstream& out, const TuneResult& r) {
     const TuneOptions& o = *r.options;
     const char* objective = objectiveName(r.options->objective);
-    out << "# Tuning the statistical culler on " << r.scenario_name << "\n\n"
+    const std::string ref = reference(r);
+    out << "# Tuning the " << r.space.algorithm->name << " culler on " << r.scenario_name << "\n\n"
         << "Command: `" << o.command_line << "`\n\n"
         << "- Scenario: `" << r.scenario_file << "` (seed " << r.scenario_seed << "), " << r.frames
         << " frames (" << (r.frames - r.warmup_frames) << " timed after " << r.warmup_frames
@@ -140,12 +185,13 @@ void headerSection(std::ostringstream& out, const TuneResult& r) {
         << " hardware threads; measured mode (query "
         << "results ready when the GPU says so), error measured against ground truth\n"
         << "- Objective: the " << objective << " frame time of a sample over the " << objective
-        << " frame time of the paper's values, both from the same run (interleaved frame by "
+        << " frame time of " << ref
+        << ", both from the same run (interleaved frame by "
            "frame)\n"
         << "- Samples: " << r.samples.size() << " (" << r.initial_samples
         << " from a seeded Latin hypercube, seed " << o.seed
         << "; the rest where the fitted response was uncertain or promising), in "
-        << r.log->batches() << " runs, each beside two reference runs of the paper's values\n"
+        << r.log->batches() << " runs, each beside two reference runs of " << ref << "\n"
         << "- Measurement noise: one run's mean frame time varies by "
         << fixed(100.0 * r.reference_noise, 1)
         << " % (standard deviation, from the two reference runs of every batch, which differ in "
@@ -158,23 +204,26 @@ void headerSection(std::ostringstream& out, const TuneResult& r) {
         << "\n\n";
 }
 
-// The tuned values beside the paper's, what the model predicts of them, and what it dropped.
+// The tuned values beside the reference values, what the model predicts of them, and what it
+// dropped.
 void choiceSection(std::ostringstream& out, const TuneResult& r) {
     const char* objective = objectiveName(r.options->objective);
-    out << "## Choice\n\n| parameter | paper | tuned | bounds | |\n|---|---|---|---|---|\n";
+    const std::string ref = reference(r);
+    out << "## Choice\n\n| parameter | " << referenceShort(r)
+        << " | tuned | bounds | |\n|---|---|---|---|---|\n";
     for (size_t j = 0; j < r.space.size(); ++j) {
         const TunableParameter& p = r.space.parameters[j];
         out << "| " << p.name << " | " << withUnit(p, p.paper_value) << " | "
             << withUnit(p, r.tuned_values[j]) << " | " << general(r.space.bounds[j].lo) << " to "
             << general(r.space.bounds[j].hi) << " | "
-            << (r.kept_at_paper[j] ? "no effect beyond noise: left at the paper's value" : "tuned")
+            << (r.kept_at_paper[j] ? "no effect beyond noise: kept at " + ref
+                                   : std::string("tuned"))
             << " |\n";
     }
     for (const std::string& line : boundWarnings(r)) out << "\n**" << line << "**\n";
-    out << "\nPredicted " << objective
-        << " ratio to the paper's values: " << fixed(r.predicted_tuned, 3) << " +/- "
-        << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives "
-        << fixed(r.predicted_paper, 3) << " at the paper's own).\n";
+    out << "\nPredicted " << objective << " ratio to " << ref << ": " << fixed(r.predicted_tuned, 3)
+        << " +/- " << fixed(r.predicted_tuned_sd, 3) << " at the tuned values (the model gives "
+        << fixed(r.predicted_paper, 3) << " at " << ref << " themselves).\n";
     if (!r.dropped.empty()) {
         out << "\nParameters this scene does not exercise: ";
         for (size_t k = 0; k < r.dropped.size(); ++k)
@@ -185,25 +234,27 @@ void choiceSection(std::ostringstream& out, const TuneResult& r) {
             << fixed(r.full_model_loo_rms, 4) << " with every parameter, "
             << fixed(r.response.loo_rms, 4)
             << " without them): the samples show no effect of them beyond their noise, so they "
-               "stay at the paper's "
-               "values.\n";
+               "stay at "
+            << ref << ".\n";
     }
 }
 
 // The confirmation table and the verdict.
 void confirmationSection(std::ostringstream& out, const TuneResult& r) {
     const TuneOptions& o = *r.options;
-    out << "\n## Confirmation\n\nThe tuned values against the paper's, interleaved frame by frame "
-           "in one run, "
-        << o.repetitions
+    const std::string ref = reference(r);
+    const std::string ref_short = referenceShort(r);
+    out << "\n## Confirmation\n\nThe tuned setting against " << ref
+        << ", interleaved frame by frame in one run, " << o.repetitions
         << " repetitions; a ratio below 1 means the tuned values are faster. The held-out variant "
         << "is the same scenario with another seed (another layout of the scene and other movers, "
            "the same camera "
            "path): the fit never saw it.\n\n"
         << "| variant | seed | frames | mean ratio, median [min-max] | p95 ratio, median [min-max] "
-           "| tuned ms | paper ms "
-           "| queries/frame tuned / paper | objects/frame tuned / paper | error px tuned / paper "
-           "| tie px tuned / paper | missed objects tuned / paper | verdict |\n"
+           "| tuned ms | "
+        << ref_short << " ms | queries/frame tuned / " << ref_short << " | objects/frame tuned / "
+        << ref_short << " | error px tuned / " << ref_short << " | tie px tuned / " << ref_short
+        << " | missed objects tuned / " << ref_short << " | verdict |\n"
         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ConfirmationRow& c : r.confirmation) {
         out << "| " << c.variant << " | " << c.seed << " | " << c.frames << " | "
@@ -213,10 +264,10 @@ void confirmationSection(std::ostringstream& out, const TuneResult& r) {
             << fixed(c.tuned_objects, 1) << " / " << fixed(c.paper_objects, 1) << " | "
             << c.tuned_error_pixels << " / " << c.paper_error_pixels << " | " << c.tuned_tie_pixels
             << " / " << c.paper_tie_pixels << " | " << c.tuned_missed_objects << " / "
-            << c.paper_missed_objects << " | " << verdict(c, r.dropped.size() == r.space.size())
-            << " |\n";
+            << c.paper_missed_objects << " | " << verdict(c, ref) << " |\n";
     }
 
+    out << "\n" << costModelLine(r) << "\n";
     out << "\n**Verdict: " << r.verdict.name() << "**: " << r.verdict.reason << " (written as `"
         << r.verdict.fileName() << "`).\n";
 }
@@ -261,7 +312,7 @@ void responseModelSection(std::ostringstream& out, const TuneResult& r) {
                return s;
            }())
         << "), fitted with Ceres (" << r.response.fit.loss << ") over " << r.response.samples
-        << " runs: the samples, and the reference runs at the paper's values (each as a ratio to its batch's "
+        << " runs: the samples, and the reference runs at " << reference(r) << " (each as a ratio to its batch's "
            "references), which anchor the model there.\n\n"
         << "- Residual RMS: " << fixed(r.response.residual_rms, 4) << "\n"
         << "- Leave-one-out prediction error (each sample predicted by a fit without it): " << fixed(r.response.loo_rms, 4)

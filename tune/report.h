@@ -19,6 +19,10 @@ std::string confirmationTable(const TuneResult& result);
 // bound).
 std::vector<std::string> boundWarnings(const TuneResult& result);
 
+// Whether the confirmation ran with the fitted cost model, and why not when the culler weighs
+// costs (TuneResult::cost_model_applied, cost_model_note); one line.
+std::string costModelLine(const TuneResult& result);
+
 // "1.03 [0.98-1.07]"
 std::string formatSpread(const Spread& s);
 

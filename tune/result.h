@@ -46,6 +46,11 @@ struct TuneResult {
     double predicted_tuned = 0.0, predicted_paper = 0.0;
     double predicted_tuned_sd = 0.0;  // standard deviation of that prediction
 
+    // The fitted cost model was applied in the confirmation runs (tune/tuned_file.h:
+    // tunedSetting()); when the culler weighs costs and it was not, the one line that says why.
+    bool cost_model_applied = false;
+    std::string cost_model_note;
+
     std::vector<ConfirmationRow> confirmation;  // fitted, then held out
     Verdict verdict;                            // judgeConfirmation() of them
     std::vector<std::string> files;             // written, in out_dir

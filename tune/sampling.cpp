@@ -81,13 +81,15 @@ void sample(SampleLog& log, const CheckedInput& c, const TuneOptions& o, Progres
         if (points.empty())
             throw std::runtime_error("no new sample point could be found in the bounds");
         const uint32_t batch = log.batches();
-        // The paper's values twice: the ratio of every sample shares the reference's noise, which
-        // two runs halve (in variance), and their difference measures that noise.
-        std::vector<Setting> settings = {{"paper", paper}, {"paper (second run)", paper}};
+        // The reference values twice: the ratio of every sample shares the reference's noise,
+        // which two runs halve (in variance), and their difference measures that noise. Samples
+        // run without a fitted cost model (there is none yet): the scenario's own.
+        std::vector<Setting> settings = {{"paper", paper, std::nullopt},
+                                         {"paper (second run)", paper, std::nullopt}};
         for (size_t i = 0; i < points.size(); ++i) {
             settings.push_back({"sample " + std::to_string(log.samples().size() + i) + ": " +
                                     space.describe(space.values(points[i])),
-                                space.apply(base, space.values(points[i]))});
+                                space.apply(base, space.values(points[i])), std::nullopt});
         }
         const std::string stage = "samples " + std::to_string(log.samples().size()) + "/" +
                                   std::to_string(o.budget) + ", running " +

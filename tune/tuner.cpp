@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "sim/run/stop_request.h"
+#include "tune/choice.h"
 #include "tune/confirm.h"
 #include "tune/errors.h"
 #include "tune/input.h"
@@ -86,32 +87,11 @@ std::pair<const char*, const RobustFit*> unconvergedFit(const TuneResult& r) {
     return {nullptr, nullptr};
 }
 
-// The choice: the model's minimum within the bounds; parameters it does not depend on stay at
-// the paper's values.
-void choose(TuneResult& r, const ParameterSpace& space) {
-    const Point paper_unit = space.paperUnitPoint();
-    r.tuned_unit = minimiseOverBox(r.response.model, paper_unit);
-    r.tuned_values = space.values(r.tuned_unit);
-    r.kept_at_paper.assign(space.size(), true);
-    for (size_t j : r.response.model.active) r.kept_at_paper[j] = false;
-    for (size_t j = 0; j < space.size(); ++j) {
-        if (r.kept_at_paper[j]) r.tuned_values[j] = space.parameters[j].paper_value;
-    }
-    r.bounds_hit = space.boundsHit(r.tuned_values);
-    for (size_t j = 0; j < space.size(); ++j) {
-        if (r.kept_at_paper[j]) r.bounds_hit[j].clear();
-    }
-    r.predicted_tuned = r.response.model.predict(r.tuned_unit);
-    r.predicted_tuned_sd = r.response.predict(r.tuned_unit).stddev;
-    r.predicted_paper = r.response.model.predict(paper_unit);
-}
-
-// The confirmation: on the fitted frames, and on a variant the fit never saw (another seed).
-// Throws Interrupted on Ctrl-C.
-void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o,
-                   const OptionValues& tuned, SessionRuns& session, Progress& progress) {
+// The confirmation of `tuned` against `reference`: on the fitted frames, and on a variant the fit
+// never saw (another seed). Throws Interrupted on Ctrl-C.
+void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o, const Setting& tuned,
+                   const Setting& reference, SessionRuns& session, Progress& progress) {
     const AlgorithmTraits& algorithm = *c.space.algorithm;
-    const OptionValues paper = c.space.paper(c.scenario.culler.of(algorithm));
     Scenario held_out = c.scenario;
     held_out.seed = o.holdout_seed.value_or(c.scenario.seed + 1);
     for (const auto& run :
@@ -123,7 +103,7 @@ void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o,
         const Scenario* scenario = run.first;
         const std::string& variant = run.second;
         r.confirmation.push_back(confirm(
-            *scenario, algorithm, variant, tuned, paper, o.repetitions, session,
+            *scenario, algorithm, variant, tuned, reference, o.repetitions, session,
             [&](const FrameEvent& e) {
                 progress.setStage(
                     "confirming, " + variant + ": repetition " + std::to_string(e.repetition + 1) +
@@ -181,20 +161,26 @@ TuneSession runTuner(const TuneOptions& o) {
         s.ceres_summary = fit->ceres_summary;
         return s;
     }
-    choose(r, c.space);
+    chooseTunedValues(r, c.space);
 
+    // What is confirmed is what tuned.json will carry: the tuned options, and the fitted cost
+    // model when the culler weighs costs and the model fits well enough (tunedSetting).
     const AlgorithmTraits& algorithm = *c.space.algorithm;
-    const OptionValues tuned = c.space.apply(c.scenario.culler.of(algorithm), r.tuned_values);
+    const OptionValues base = c.scenario.culler.of(algorithm);
+    const Setting reference{"paper", c.space.paper(base), std::nullopt};
+    const Setting tuned =
+        tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost, &r.cost_model_note);
+    r.cost_model_applied = tuned.cost_model.has_value();
     try {
-        confirmChoice(r, c, o, tuned, session, progress);
+        confirmChoice(r, c, o, tuned, reference, session, progress);
     } catch (const Interrupted&) {
         progress.finish();
         return interrupted(log, true);
     }
     progress.finish();
     r.renderer = r.confirmation.front().renderer;
-    s.tuned_file = tunedFile(algorithm, tuned, r.cost.model);
-    r.verdict = judgeConfirmation(r.confirmation, r.dropped.size() == c.space.size());
+    r.verdict = judgeConfirmation(r.confirmation, referenceName(algorithm));
+    s.tuned_file = tunedFile(algorithm, writtenSetting(r.verdict, tuned, reference));
     return s;
 }
 

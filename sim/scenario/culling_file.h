@@ -4,6 +4,10 @@
 //
 //   {"format_version": 1, "culling": { ...the keys of a scenario's "culling" section... }}
 //
+// occtune's tuned.json adds "tuned_for": NAME, and is then checked as one culler's setting: NAME a
+// loaded culler, culling.algorithm NAME, no other culler's options, a cost model only with
+// "cullers": [NAME]. Each breach is one line naming the file and the JSON pointer.
+//
 // Read by the scenario parser's own strict readers (parse_culling.cpp), so the same keys, ranges
 // and one-line errors apply. Applied after the scenario is parsed, it overrides what the file
 // gives: "algorithm", "threshold_pixels" and "stale_results" when present, and each options object
