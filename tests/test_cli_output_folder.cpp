@@ -80,7 +80,7 @@ TEST(CliOutputFolder, ARerunReplacesTheWholeFolderWithNoStalePicture) {
     EXPECT_EQ(namesIn(out),
               (std::vector<std::string>{".occsim-run", "frames.csv", "report.md", "summary.json"}))
         << "the first run's picture is gone with the rest of it";
-    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{"out", "out.lock"}))
+    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{".out.lock", "out"}))
         << "nothing staged is left beside it";
     fs::remove_all(dir);
 }
@@ -116,7 +116,7 @@ TEST(CliOutputFolder, AFolderThatIsNotAnOccsimRunIsRefusedBeforeAnyWork) {
 TEST(CliOutputFolder, ASecondRunIntoALockedFolderSaysSoOrWaits) {
     const fs::path dir = tempDir("locked");
     const fs::path out = dir / "out";
-    const int fd = ::open((dir / "out.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    const int fd = ::open((dir / ".out.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(::flock(fd, LOCK_EX), 0);  // as a run in progress holds it
     const std::string run = "run " + kSmall + " --algo vfc --frames 6 --out " + out.string();
@@ -169,7 +169,7 @@ TEST(CliOutputFolder, AFullDiskLeavesTheOldRunWholeAndNamesTheReason) {
     EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
     EXPECT_EQ(read(out / "frames.csv"), old_frames);
     EXPECT_EQ(read(out / "summary.json"), old_summary);
-    EXPECT_EQ(namesIn(disk.dir), (std::vector<std::string>{"filler", "out", "out.lock"}));
+    EXPECT_EQ(namesIn(disk.dir), (std::vector<std::string>{".out.lock", "filler", "out"}));
 }
 
 // A read-only --out is found before the first frame: the message is about the folder, not about

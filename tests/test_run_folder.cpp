@@ -122,17 +122,17 @@ TEST(RunFolder, AFolderThatIsNotAnOccsimRunIsRefusedAndLeftAlone) {
 TEST(RunFolder, TheNextRunRecoversWhatAnInterruptedOneLeft) {
     const fs::path dir = tempDir("recover");
     const fs::path run = oldRun(dir);
-    fs::rename(run, dir / "run.old");
-    fs::create_directories(dir / "run.tmp-999999");
-    write(dir / "run.tmp-999999" / kRunMarker, "");
+    fs::rename(run, dir / ".run.old");
+    fs::create_directories(dir / ".run.tmp-999999");
+    write(dir / ".run.tmp-999999" / kRunMarker, "");
     {
         StagedRunFolder folder(run);
         EXPECT_EQ(read(run / "summary.json"), "old") << "the old run is back in place";
     }
     EXPECT_EQ(namesIn(dir), std::vector<std::string>{"run"});
 
-    fs::create_directories(dir / "run.old");
-    write(dir / "run.old" / kRunMarker, "");  // published, but not yet deleted
+    fs::create_directories(dir / ".run.old");
+    write(dir / ".run.old" / kRunMarker, "");  // published, but not yet deleted
     {
         StagedRunFolder folder(run);
         folder.publish();

@@ -28,11 +28,14 @@ fs::path normalFolder(const fs::path& folder) {
     return p;
 }
 
-// A sibling of the folder: <folder><suffix>.
+// A hidden sibling of the folder: .<name><suffix> beside it. Hidden so that a glob over run
+// folders (`occsim merge out/shard-*`, as docs/regression.md writes it) never picks up a lock,
+// a staging folder or an old run set aside.
 fs::path beside(const fs::path& folder, const std::string& suffix) {
-    fs::path p = folder;
-    p += suffix;
-    return p;
+    std::string name(1, '.');  // appended, not "." + ...: GCC 12 warns falsely (-Wrestrict)
+    name += folder.filename().string();
+    name += suffix;
+    return folder.parent_path() / name;
 }
 
 fs::path parentOf(const fs::path& folder) {
@@ -75,7 +78,7 @@ void recoverInterrupted(const fs::path& target) {
                                  " left by an interrupted run: " + ec.message());
         }
     }
-    const std::string staging_prefix = target.filename().string() + ".tmp-";
+    const std::string staging_prefix = beside(target, ".tmp-").filename().string();
     for (const fs::directory_entry& e : fs::directory_iterator(parentOf(target), ec)) {
         const std::string name = e.path().filename().string();
         if (name.rfind(staging_prefix, 0) == 0 && e.is_directory(ec) &&

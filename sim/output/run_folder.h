@@ -1,11 +1,11 @@
 // A run's output folder as one unit: the folder holds the previous run or the new one, never a
-// mix. A run writes into a fresh staging folder beside its target (<target>.tmp-<pid>) and
-// publishes it as a whole at the end (the old folder renamed aside to <target>.old, the new one
-// renamed in, the old one deleted); whatever fails before, the old folder stays as it was. A lock
-// file beside the target (<target>.lock, flock(2), so a dead process never holds it) keeps two
-// runs out of one folder. Only folders that hold an occsim run (the .occsim-run marker every run
-// folder gets, or an older occsim summary.json), empty folders and absent ones are replaced:
-// anything else is not ours to delete.
+// mix. A run writes into a fresh staging folder beside its target (<parent>/.<name>.tmp-<pid>) and
+// publishes it as a whole at the end (the old folder renamed aside to <parent>/.<name>.old, the new
+// one renamed in, the old one deleted); whatever fails before, the old folder stays as it was. A
+// lock file beside the target (<parent>/.<name>.lock, flock(2), so a dead process never holds it)
+// keeps two runs out of one folder. Only folders that hold an occsim run (the .occsim-run marker
+// every run folder gets, or an older occsim summary.json), empty folders and absent ones are
+// replaced: anything else is not ours to delete.
 #pragma once
 
 #include <filesystem>
@@ -39,8 +39,8 @@ bool isReplaceableRunFolder(const std::filesystem::path& folder);
 // Throws RunFolderError when `folder` exists and is not replaceable, or cannot be written.
 void checkRunFolder(const std::filesystem::path& folder);
 
-// An exclusive lock on <folder>.lock, held until destroyed. With wait, blocks until the holder
-// lets go; without, throws RunFolderBusy. Throws RunFolderError when the lock file cannot be
+// An exclusive lock on <parent>/.<name>.lock, held until destroyed. With wait, blocks until the
+// holder lets go; without, throws RunFolderBusy. Throws RunFolderError when the lock file cannot be
 // created (the parent folder is created when missing).
 class FolderLock {
   public:
@@ -70,7 +70,7 @@ class StagedRunFolder {
 
     // Swaps the staging folder in place of the target. Throws std::runtime_error naming the
     // path and the OS reason; the target then holds the old run (or, after a crash between the
-    // two renames, <target>.old does, and the next run puts it back).
+    // two renames, <parent>/.<name>.old does, and the next run puts it back).
     void publish();
 
   private:
