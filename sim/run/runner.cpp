@@ -153,10 +153,6 @@ struct ProgressClock {
     }
 };
 
-// Every frame of one repetition. Interleaved: frame f of every configuration before frame f + 1
-// of any, so that drift on a shared machine hits all alike. Ground truth, when some configuration
-// needs it, is rendered once per frame before the first configuration renders (outside every
-// timing); a run in which none needs it renders none.
 // A configuration's frame that failed (its culler threw): what the partial result says.
 PartialRun failedFrame(const RunConfig& config, uint32_t rep, uint32_t frame,
                        const std::string& what) {
@@ -178,7 +174,10 @@ void dropUnevenFrame(std::vector<std::vector<FrameStats>>& frames, uint32_t fram
 }
 
 // Every frame of one repetition, or those before a stop (`stop` set): after a signal the frame
-// in hand is finished, after a failed frame the frames before it are kept.
+// in hand is finished, after a failed frame the frames before it are kept. Interleaved: frame f
+// of every configuration before frame f + 1 of any, so that drift on a shared machine hits all
+// alike. Ground truth, when some configuration needs it, is rendered once per frame before the
+// first configuration renders (outside every timing); a run in which none needs it renders none.
 std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& world,
                                                GroundTruth& truth,
                                                std::vector<std::unique_ptr<Simulation>>& sims,
