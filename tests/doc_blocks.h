@@ -16,11 +16,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -125,27 +125,46 @@ inline std::string singleQuoted(const std::string& s) {
     return out + "'";
 }
 
+// The double-quoted strings of `text` from `from` on, backslash escapes kept as written, up to
+// `end` (npos: the end of the text). Plain scanning, not <regex>: GCC 12 warns falsely
+// (-Wmaybe-uninitialized) inside std::regex in the sanitizer build, where warnings are errors.
+inline std::vector<std::string> quotedStrings(const std::string& text, size_t from, size_t end) {
+    std::vector<std::string> out;
+    end = std::min(end, text.size());
+    for (size_t i = from; i < end; ++i) {
+        if (text[i] != '"') continue;
+        std::string value;
+        for (++i; i < end && text[i] != '"'; ++i) {
+            if (text[i] == '\\' && i + 1 < end) value += text[i++];
+            value += text[i];
+        }
+        out.push_back(value);
+    }
+    return out;
+}
+
 // The container's command of a YAML block: the strings of `command: ["sh", "-c", "..."]`.
 inline std::vector<std::string> podCommand(const std::string& yaml) {
-    std::smatch line;
-    if (!std::regex_search(yaml, line, std::regex(R"(command: \[(.*)\])"))) return {};
-    std::vector<std::string> argv;
-    const std::string list = line[1].str();
-    const std::regex quoted(R"re("((?:[^"\\]|\\.)*)")re");
-    for (auto it = std::sregex_iterator(list.begin(), list.end(), quoted);
-         it != std::sregex_iterator(); ++it) {
-        argv.push_back((*it)[1].str());
-    }
-    return argv;
+    const size_t key = yaml.find("command: [");
+    if (key == std::string::npos) return {};
+    const size_t line_end = yaml.find('\n', key);
+    const size_t close = yaml.rfind(']', line_end == std::string::npos ? yaml.size() : line_end);
+    if (close == std::string::npos || close < key) return {};
+    return quotedStrings(yaml, key + 10, close);
 }
 
 // The container's `env:` entries written as `- {name: NAME, value: "VALUE"}`.
 inline std::map<std::string, std::string> podEnvironment(const std::string& yaml) {
     std::map<std::string, std::string> env;
-    const std::regex entry(R"re(\{name: (\w+), value: "([^"]*)"\})re");
-    for (auto it = std::sregex_iterator(yaml.begin(), yaml.end(), entry);
-         it != std::sregex_iterator(); ++it) {
-        env[(*it)[1].str()] = (*it)[2].str();
+    const std::string name_key = "{name: ", value_key = ", value: ";
+    for (size_t at = yaml.find(name_key); at != std::string::npos;
+         at = yaml.find(name_key, at + 1)) {
+        const size_t name_start = at + name_key.size();
+        const size_t comma = yaml.find(value_key, name_start);
+        const size_t brace = yaml.find('}', name_start);
+        if (comma == std::string::npos || brace == std::string::npos || comma > brace) continue;
+        const std::vector<std::string> value = quotedStrings(yaml, comma, brace);
+        if (value.size() == 1) env[yaml.substr(name_start, comma - name_start)] = value[0];
     }
     return env;
 }
