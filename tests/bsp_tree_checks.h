@@ -1,4 +1,4 @@
-// Checks of the BspTree contract (culling/bsp_tree.h) recomputed from scratch, and the random
+// Checks of the BspTree contract (culling/tree/bsp_tree.h) recomputed from scratch, and the random
 // scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
 #pragma once
 

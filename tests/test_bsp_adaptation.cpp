@@ -1,5 +1,5 @@
-// BspTree local adaptation (culling/bsp_tree.h): crowded leaves split, emptied leaves merge, the
-// root cell grows for movers that leave it; all without a rebuild, keeping every invariant
+// BspTree local adaptation (culling/tree/bsp_tree.h): crowded leaves split, emptied leaves merge,
+// the root cell grows for movers that leave it; all without a rebuild, keeping every invariant
 // (bsp_tree_checks.h) and the per-node state contract (BspNode::generation, structureVersion(),
 // NodeStateArray).
 #include <gtest/gtest.h>

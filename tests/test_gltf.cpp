@@ -1,7 +1,7 @@
-// The glTF scene source (sim/gltf_source.h): the three real files in scenarios/assets load with
-// the triangle and node counts of their README, instanced meshes are converted once, transforms
-// and replication place objects where the contract says, and broken files fail with one line.
-// Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
+// The glTF scene source (sim/scene/gltf_source.h): the three real files in scenarios/assets load
+// with the triangle and node counts of their README, instanced meshes are converted once,
+// transforms and replication place objects where the contract says, and broken files fail with one
+// line. Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

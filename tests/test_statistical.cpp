@@ -1,5 +1,5 @@
 // The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
-// drawn before them (culling/depth_raster_device.h): no OpenGL.
+// drawn before them (culling/testing/depth_raster_device.h): no OpenGL.
 #include <gtest/gtest.h>
 
 #include <algorithm>

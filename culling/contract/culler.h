@@ -1,8 +1,8 @@
 // The culler interface: one frame's visibility decisions over a BspTree, carried out through a
 // RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
-// registration in culling/algorithms.h. Implementations keep their own per-node state (sized by
-// reset()), use simulation time (never wall-clock time) for every decision, and are deterministic
-// given the device's answers.
+// registration in culling/registry/registry.h. Implementations keep their own per-node state (sized
+// by reset()), use simulation time (never wall-clock time) for every decision, and are
+// deterministic given the device's answers.
 #pragma once
 
 #include <cstdint>
@@ -43,7 +43,7 @@ struct CullFrame {
     double time_s = 0.0;  // simulation time: frame_index * dt
     CullView view;
     // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
-    // oracles (AlgorithmTraits::oracle, culling/algorithms.h); empty otherwise.
+    // oracles (AlgorithmTraits::oracle, culling/registry/registry.h); empty otherwise.
     std::span<const uint8_t> ground_truth_visible;
     // Per object, its triangle count. The culling layer knows no meshes, so the simulation passes
     // a view of a table it builds once (per frame, beside the view, rather than through reset():

@@ -1,5 +1,5 @@
 // A RenderDevice decorator that records what a culler did in one frame, for pictures of its
-// decisions (sim/birds_eye.h). It forwards every call to the wrapped device unchanged.
+// decisions (sim/output/birds_eye.h). It forwards every call to the wrapped device unchanged.
 //
 // Contract
 // - While tracing (between beginTrace() and endTrace()), every drawObject() call is recorded in

@@ -5,9 +5,9 @@
 // Contract
 // - classifyNodes() gives one NodeClass per BSP node from the tree as the culler saw it, the
 //   frame's view and a TracingDevice trace of that frame (see the enum for the rules). A query
-//   counts for the nodes it was tagged with (QueryTag, culling/render_device.h): a multiquery
-//   for each of its nodes; a query on a node's own objects only when it found them visible or
-//   is pending; a per-object query for no node.
+//   counts for the nodes it was tagged with (QueryTag, culling/contract/render_device.h): a
+//   multiquery for each of its nodes; a query on a node's own objects only when it found them
+//   visible or is pending; a per-object query for no node.
 // - renderBirdsEye() returns width * height * 4 bytes of RGBA8, row 0 at the bottom (for
 //   encodePngBottomUp()). Orthographic top view: x to the right, -z up, uniform scale fitted to
 //   the object boxes and the eye with a margin. Pure CPU drawing; deterministic.

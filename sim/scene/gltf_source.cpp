@@ -1,4 +1,4 @@
-// glTF 2.0 files as a scene source (contract in sim/gltf_source.h), read with tinygltf 2.7.
+// glTF 2.0 files as a scene source (contract in sim/scene/gltf_source.h), read with tinygltf 2.7.
 //
 // Debian ships tinygltf as a compiled shared library (libtinygltf.so, see its README.Debian), so
 // this file only includes the header and links TinyGLTF::TinyGLTF; defining
