@@ -53,7 +53,7 @@ OptionValues optionsOf(const Scenario& s, const char* culler) {
 }
 
 StatisticalOptions statisticalOf(const Scenario& s, const char* culler = "statistical") {
-    return statisticalOptionsFrom(optionsOf(s, culler));
+    return statisticalOptionTable().read(optionsOf(s, culler));
 }
 
 void expectError(const std::string& message, const std::string& pointer,
