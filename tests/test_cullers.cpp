@@ -105,10 +105,11 @@ TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingT
     EXPECT_EQ(both.number("requery_parallax"), 0.0);
     EXPECT_EQ(checkOptionValues(plus, both), "");
     // The values a culler reads are the descriptor's defaults: the paper's, or every improvement.
-    EXPECT_EQ(
-        statisticalOptionsFrom(OptionValues(findAlgorithm("statistical")->options)).base_time_s,
-        StatisticalOptions::paper().base_time_s);
-    EXPECT_TRUE(statisticalOptionsFrom(OptionValues(plus.options)).fallback);
+    EXPECT_EQ(statisticalOptionTable()
+                  .read(OptionValues(findAlgorithm("statistical")->options))
+                  .base_time_s,
+              StatisticalOptions::paper().base_time_s);
+    EXPECT_TRUE(statisticalOptionTable().read(OptionValues(plus.options)).fallback);
 }
 
 // --- The statistical culler's branches, through the scripted device ---------------------------

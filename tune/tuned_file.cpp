@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sim/scenario/culling_file.h"
+#include "sim/scenario/option_json.h"
 
 namespace occsim::tune {
 
@@ -56,18 +57,8 @@ const Setting& writtenSetting(const Verdict& verdict, const Setting& tuned,
 
 TunedFile tunedFile(const AlgorithmTraits& algorithm, const Setting& setting) {
     // Ordered, so that the file reads in the order of the culler's descriptor.
-    nlohmann::ordered_json options = nlohmann::ordered_json::object();
-    for (const OptionSpec& spec : setting.options.descriptor()) {
-        const double v = setting.options.number(spec.key);
-        if (spec.type == OptionType::Boolean) {
-            options[spec.key] = v != 0.0;
-        } else if (spec.type == OptionType::Integer) {
-            options[spec.key] = static_cast<uint64_t>(v);
-        } else {
-            options[spec.key] = v;
-        }
-    }
-    nlohmann::ordered_json culling = {{"algorithm", algorithm.name}, {algorithm.name, options}};
+    nlohmann::ordered_json culling = {{"algorithm", algorithm.name},
+                                      {algorithm.name, optionValuesJson(setting.options)}};
     TunedFile file;
     if (setting.cost_model) {
         nlohmann::json cost_option = nlohmann::json::object();

@@ -3,6 +3,7 @@
 // async_culler.h for the rules.
 #include "occsim/culling/cullers/async_culler.h"
 
+#include "occsim/culling/registry/option_table.h"
 #include "occsim/culling/registry/registry.h"
 namespace occsim {
 
@@ -94,22 +95,29 @@ void AsyncCuller::draw(uint32_t object, RenderDevice& device) {
 
 // --- Registration -------------------------------------------------------------------------------
 
+namespace {
+
+const OptionTable<AsyncOptions>& asyncOptionTable() {
+    static const OptionTable<AsyncOptions> table = {
+        integerOption(OCCSIM_OPTION_MEMBER(AsyncOptions, retest_interval_frames), "frames", 1,
+                      1000000,
+                      "N: a visible object is queried again this many frames after its last "
+                      "query; 1 = every frame"),
+    };
+    return table;
+}
+
+}  // namespace
+
 AlgorithmTraits asyncRegistration() {
     AlgorithmTraits t;
     t.name = "async";
     t.summary = "one asynchronous query per object (not conservative)";
     t.conservative = false;
     t.issues_queries = true;
-    const AsyncOptions d;
-    t.options = {
-        integerOption("retest_interval_frames", "frames", 1, 1000000, d.retest_interval_frames,
-                      "N: a visible object is queried again this many frames after its last "
-                      "query; 1 = every frame"),
-    };
+    t.options = asyncOptionTable().descriptor(AsyncOptions{});
     t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
-        AsyncOptions o;
-        o.retest_interval_frames = c.options.count("retest_interval_frames");
-        return std::make_unique<AsyncCuller>(o);
+        return std::make_unique<AsyncCuller>(asyncOptionTable().read(c.options));
     };
     return t;
 }

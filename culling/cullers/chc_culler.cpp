@@ -4,6 +4,7 @@
 // visibility testing, approximate visibility). See chc_culler.h for the rules.
 #include "occsim/culling/cullers/chc_culler.h"
 
+#include "occsim/culling/registry/option_table.h"
 #include "occsim/culling/registry/registry.h"
 namespace occsim {
 
@@ -106,21 +107,27 @@ void ChcCuller::issue(RenderDevice& device, std::span<const Aabb> boxes, const N
 
 // --- Registration -------------------------------------------------------------------------------
 
+namespace {
+
+const OptionTable<ChcOptions>& chcOptionTable() {
+    static const OptionTable<ChcOptions> table = {
+        integerOption(OCCSIM_OPTION_MEMBER(ChcOptions, visible_frames_skip), "frames", 0, 1000000,
+                      "t_av: a leaf found visible is assumed visible, with no query, for this many "
+                      "frames; 0 = the basic algorithm"),
+    };
+    return table;
+}
+
+}  // namespace
+
 AlgorithmTraits chcRegistration() {
     AlgorithmTraits t;
     t.name = "chc";
     t.summary = "coherent hierarchical culling (Bittner et al. 2004)";
     t.issues_queries = true;
-    const ChcOptions d;
-    t.options = {
-        integerOption("visible_frames_skip", "frames", 0, 1000000, d.visible_frames_skip,
-                      "t_av: a leaf found visible is assumed visible, with no query, for this many "
-                      "frames; 0 = the basic algorithm"),
-    };
+    t.options = chcOptionTable().descriptor(ChcOptions{});
     t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
-        ChcOptions o;
-        o.visible_frames_skip = c.options.count("visible_frames_skip");
-        return std::make_unique<ChcCuller>(o);
+        return std::make_unique<ChcCuller>(chcOptionTable().read(c.options));
     };
     return t;
 }

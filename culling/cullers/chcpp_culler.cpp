@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "occsim/culling/geometry/random.h"
+#include "occsim/culling/registry/option_table.h"
 #include "occsim/culling/registry/registry.h"
 
 namespace occsim {
@@ -307,35 +308,38 @@ void ChcppCuller::enterState(DeviceState state) {
 
 // --- Registration -------------------------------------------------------------------------------
 
+namespace {
+
+const OptionTable<ChcppOptions>& chcppOptionTable() {
+    using O = ChcppOptions;
+    static const OptionTable<O> table = {
+        integerOption(OCCSIM_OPTION_MEMBER(O, visible_frames_skip), "frames", 0, 1000000,
+                      "n_av: frames a node found visible is assumed visible before it is tested "
+                      "again"),
+        integerOption(OCCSIM_OPTION_MEMBER(O, batch_size), "nodes", 1, 4294967295.0,
+                      "previously invisible nodes per batch of queries"),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, multiqueries),
+                      "group previously invisible nodes into multiqueries; false: one query per "
+                      "node"),
+        integerOption(OCCSIM_OPTION_MEMBER(O, tight_bounds_depth), "tree levels", 0, 6,
+                      "query a previously invisible node with its descendants' boxes this many "
+                      "levels down; 0 = its own box"),
+        integerOption(OCCSIM_OPTION_MEMBER(O, seed), "", 0, kMaxExactInteger,
+                      "seeds the randomised first re-test of nodes that turned visible"),
+    };
+    return table;
+}
+
+}  // namespace
+
 AlgorithmTraits chcppRegistration() {
     AlgorithmTraits t;
     t.name = "chc++";
     t.summary = "CHC++ (Mattausch et al. 2008)";
     t.issues_queries = true;
-    const ChcppOptions d;
-    t.options = {
-        integerOption("visible_frames_skip", "frames", 0, 1000000, d.visible_frames_skip,
-                      "n_av: frames a node found visible is assumed visible before it is tested "
-                      "again"),
-        integerOption("batch_size", "nodes", 1, 4294967295.0, d.batch_size,
-                      "previously invisible nodes per batch of queries"),
-        booleanOption("multiqueries", d.multiqueries,
-                      "group previously invisible nodes into multiqueries; false: one query per "
-                      "node"),
-        integerOption("tight_bounds_depth", "tree levels", 0, 6, d.tight_bounds_depth,
-                      "query a previously invisible node with its descendants' boxes this many "
-                      "levels down; 0 = its own box"),
-        integerOption("seed", "", 0, kMaxExactInteger, static_cast<double>(d.seed),
-                      "seeds the randomised first re-test of nodes that turned visible"),
-    };
+    t.options = chcppOptionTable().descriptor(ChcppOptions{});
     t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
-        ChcppOptions o;
-        o.visible_frames_skip = c.options.count("visible_frames_skip");
-        o.batch_size = c.options.count("batch_size");
-        o.multiqueries = c.options.flag("multiqueries");
-        o.tight_bounds_depth = c.options.count("tight_bounds_depth");
-        o.seed = c.options.integer("seed");
-        return std::make_unique<ChcppCuller>(o);
+        return std::make_unique<ChcppCuller>(chcppOptionTable().read(c.options));
     };
     return t;
 }

@@ -38,7 +38,7 @@
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
 #include "occsim/culling/cullers/statistical_options.h"
-#include "occsim/culling/registry/options.h"
+#include "occsim/culling/registry/option_table.h"
 #include "occsim/culling/tree/node_state.h"
 #include "occsim/culling/tree/traversal.h"
 
@@ -68,8 +68,9 @@ struct NodeMotion {
     double distance_m = 0.0;
 };
 
-// The options a culler registered as "statistical" or "statistical+" was given.
-StatisticalOptions statisticalOptionsFrom(const OptionValues& values);
+// The options table of "statistical" and "statistical+" (statistical_registration.cpp): its
+// read() turns either culler's option values into StatisticalOptions.
+const OptionTable<StatisticalOptions>& statisticalOptionTable();
 
 // CalcNodeAction for a node that passed the frustum test; exposed for tests and the tuner.
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,

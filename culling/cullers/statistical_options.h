@@ -89,6 +89,8 @@ struct StatisticalOptions {
     // Every improvement on: the "statistical+" algorithm's defaults.
     static StatisticalOptions plus();
 
+    bool operator==(const StatisticalOptions&) const = default;
+
     // The rule that ties options together (each option's own range is the descriptor's,
     // statisticalDescriptor()): at most one of the two re-query distances.
     bool isValid(std::string* error) const;

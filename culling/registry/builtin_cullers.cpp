@@ -6,8 +6,8 @@ namespace occsim {
 
 AlgorithmTraits vfcRegistration();              // cullers/basic_cullers.cpp
 AlgorithmTraits stopAndWaitRegistration();      // cullers/basic_cullers.cpp
-AlgorithmTraits statisticalRegistration();      // cullers/statistical_culler.cpp
-AlgorithmTraits statisticalPlusRegistration();  // cullers/statistical_culler.cpp
+AlgorithmTraits statisticalRegistration();      // cullers/statistical_registration.cpp
+AlgorithmTraits statisticalPlusRegistration();  // cullers/statistical_registration.cpp
 AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
 AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
 AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp

@@ -7,31 +7,10 @@
 #include "sim/output/build_info.h"
 #include "sim/output/fixed_text.h"
 #include "sim/run/stop_request.h"
+#include "sim/scenario/option_json.h"
 
 namespace occsim {
-namespace {
-
-// Every option of the culler as it ran, by key, in its descriptor's order and JSON type: what a
-// reader needs to rerun the configuration exactly.
-nlohmann::json optionsJson(const OptionValues& values) {
-    nlohmann::json out = nlohmann::json::object();
-    if (values.values().empty()) return out;
-    const OptionsDescriptor& descriptor = values.descriptor();
-    for (size_t i = 0; i < descriptor.size(); ++i) {
-        const OptionSpec& spec = descriptor[i];
-        const double v = values.values()[i];
-        if (spec.type == OptionType::Boolean) {
-            out[spec.key] = v != 0.0;
-        } else if (spec.type == OptionType::Integer) {
-            out[spec.key] = static_cast<int64_t>(v);
-        } else {
-            out[spec.key] = v;
-        }
-    }
-    return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
     bool error = false, repeated = false;
@@ -214,7 +193,8 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         j["error"] = errorJson(s);
         j["pareto"] = r.pareto;
     }
-    j["options"] = optionsJson(r.options);
+    // Every option of the culler as it ran: what a reader needs to rerun the configuration.
+    j["options"] = nlohmann::json(optionValuesJson(r.options));
     j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
                           {"stale_results", r.approximation.stale_results}};
     if (r.cost_model) j["cost_model"] = costModelJson(*r.cost_model);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "occsim/culling/registry/registry.h"
+#include "sim/scenario/option_json.h"
 #include "sim/scenario/parser_parts.h"
 
 namespace occsim {
@@ -13,24 +14,14 @@ namespace {
 
 constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 
-// One option by its descriptor row; the range check is the descriptor's (checkOptionValue), so a
-// message reads the same wherever the value came from.
-double readOption(JsonObjectReader& reader, const OptionSpec& spec, double fallback) {
-    const auto value = reader.optional(spec.key);
-    if (!value) return fallback;
-    if (spec.type == OptionType::Boolean) return value->asBool() ? 1.0 : 0.0;
-    if (!value->json().is_number()) value->failExpected(describeOptionRange(spec));
-    const double v = value->json().get<double>();
-    if (const std::string why = checkOptionValue(spec, v); !why.empty()) value->fail(why);
-    return v;
-}
-
 // A culler's options object: keys it omits keep `defaults` (its descriptor's defaults, or what
 // the scenario gave before a --culling file is applied over it).
 OptionValues readCullerOptions(JsonObjectReader reader, const AlgorithmTraits& culler) {
     OptionValues values(culler.options);
     for (const OptionSpec& spec : culler.options) {
-        values.set(spec.key, readOption(reader, spec, spec.default_value));
+        if (const auto value = reader.optional(spec.key)) {
+            values.set(spec.key, readOptionValue(*value, spec));
+        }
     }
     reader.finish();
     if (culler.validate) {
