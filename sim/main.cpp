@@ -14,6 +14,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/plugin_loader.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/registry/registry_text.h"
@@ -44,15 +45,11 @@ namespace {
 constexpr int kExitBadInput = 2;
 constexpr int kExitFailure = 1;
 
-struct BadInput : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 // The one place a command-line algorithm name is checked.
 const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name) {
     if (const occsim::AlgorithmTraits* a = occsim::findAlgorithm(name)) return *a;
-    throw BadInput(flag + ": unknown algorithm '" + name +
-                   "'; expected one of: " + occsim::algorithmNameList());
+    throw occsim::InputError(flag + ": unknown algorithm '" + name +
+                             "'; expected one of: " + occsim::algorithmNameList());
 }
 
 // A whole number in [lo, hi], checked on the text before CLI11 converts it, so a bad value gets
@@ -99,7 +96,8 @@ occsim::BackendChoice backendChoice(const BackendFlags& flags) {
     occsim::BackendChoice choice;
     const auto backend = occsim::parseBackend(flags.backend);
     if (!backend)
-        throw BadInput("--backend: expected auto, egl or osmesa, got '" + flags.backend + "'");
+        throw occsim::InputError("--backend: expected auto, egl or osmesa, got '" + flags.backend +
+                                 "'");
     choice.backend = *backend;
     if (flags.device >= 0) choice.device = static_cast<uint32_t>(flags.device);
     return choice;
@@ -136,7 +134,7 @@ void loadPlugins(const std::vector<std::string>& plugins) {
         try {
             occsim::loadPlugin(file);
         } catch (const occsim::PluginError& e) {
-            throw BadInput(std::string("--plugin ") + e.what());
+            throw occsim::givenBy("--plugin", e);
         }
     }
 }
@@ -211,7 +209,7 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         try {
             o.sweep = occsim::parseSweep(flags.sweep, request.algorithms);
         } catch (const std::invalid_argument& e) {
-            throw BadInput(std::string("--sweep: ") + e.what());
+            throw occsim::InputError(std::string("--sweep: ") + e.what());
         }
     }
     o.ablate = flags.ablate;
@@ -221,7 +219,8 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         try {
             occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
         } catch (const std::invalid_argument& e) {
-            throw BadInput(std::string(o.ablate.empty() ? "--sweep: " : "--ablate: ") + e.what());
+            throw occsim::InputError(std::string(o.ablate.empty() ? "--sweep: " : "--ablate: ") +
+                                     e.what());
         }
     }
     if (flags.deterministic_latency >= 0) {
@@ -231,9 +230,9 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     const uint32_t frames = flags.frames > 0 ? flags.frames : request.scenario.frames;
     auto checkFrame = [frames](const char* flag, int64_t frame) {
         if (frame >= frames) {
-            throw BadInput(std::string(flag) + ": frame " + std::to_string(frame) +
-                           " is past the last frame (" + std::to_string(frames) +
-                           " frames, from 0)");
+            throw occsim::InputError(std::string(flag) + ": frame " + std::to_string(frame) +
+                                     " is past the last frame (" + std::to_string(frames) +
+                                     " frames, from 0)");
         }
     };
     if (flags.birds_eye >= 0) {
@@ -250,19 +249,20 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
 // when given.
 void checkOutputFolder(const std::string& flag, const std::string& path, bool given) {
     if (given && path.empty())
-        throw BadInput(flag + ": empty; expected a folder (created when missing)");
+        throw occsim::InputError(flag + ": empty; expected a folder (created when missing)");
     std::error_code ec;
     if (!path.empty() && std::filesystem::exists(path, ec) &&
         !std::filesystem::is_directory(path, ec)) {
-        throw BadInput(flag + " " + path + ": is a file; expected a folder (created when missing)");
+        throw occsim::InputError(flag + " " + path +
+                                 ": is a file; expected a folder (created when missing)");
     }
 }
 
 void checkOutputFile(const std::string& flag, const std::string& path, bool given) {
-    if (given && path.empty()) throw BadInput(flag + ": empty; expected a file name");
+    if (given && path.empty()) throw occsim::InputError(flag + ": empty; expected a file name");
     std::error_code ec;
     if (!path.empty() && std::filesystem::is_directory(path, ec)) {
-        throw BadInput(flag + " " + path + ": is a folder; expected a file name");
+        throw occsim::InputError(flag + " " + path + ": is a folder; expected a file name");
     }
 }
 
@@ -282,10 +282,11 @@ std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<st
     }
     std::vector<const occsim::AlgorithmTraits*> out;
     for (const std::string& name : names) {
-        if (name.empty()) throw BadInput("--algos: an empty algorithm name (a comma too many?)");
+        if (name.empty())
+            throw occsim::InputError("--algos: an empty algorithm name (a comma too many?)");
         const occsim::AlgorithmTraits* a = &algorithmNamed("--algos", name);
         if (std::find(out.begin(), out.end(), a) != out.end()) {
-            throw BadInput("--algos: '" + name + "' is listed twice");
+            throw occsim::InputError("--algos: '" + name + "' is listed twice");
         }
         out.push_back(a);
     }
@@ -408,7 +409,7 @@ int regressCommand(const std::vector<std::string>& inputs, bool update, const st
         options.shard =
             shard.empty() ? occsim::shardFromEnvironment(std::getenv) : occsim::parseShard(shard);
     } catch (const std::invalid_argument& e) {
-        throw BadInput(std::string("--shard: ") + e.what());
+        throw occsim::InputError(std::string("--shard: ") + e.what());
     }
     options.update = update;
     options.out_dir = out;
@@ -504,8 +505,8 @@ int viewCommand(const ViewFlags& flags) {
         char extra = 0;
         if (std::sscanf(flags.size.c_str(), "%ux%u%c", &w, &h, &extra) != 2 || w < 16 || h < 16 ||
             w > 8192 || h > 8192) {
-            throw BadInput("--size: expected WIDTHxHEIGHT, each in [16, 8192], got '" + flags.size +
-                           "'");
+            throw occsim::InputError("--size: expected WIDTHxHEIGHT, each in [16, 8192], got '" +
+                                     flags.size + "'");
         }
         options.width = w;
         options.height = h;
@@ -516,7 +517,16 @@ int viewCommand(const ViewFlags& flags) {
     // Recorded flights are the loaded scenario with a new camera path: keep its text.
     std::ifstream in(flags.scenario, std::ios::binary);
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    return occsim::runViewer(scenario, text, options);
+    try {
+        return occsim::runViewer(scenario, text, options);
+    } catch (const occsim::WindowUnavailable& e) {
+        // Bad input too (exit 2), in a line of its own: what to do without a window.
+        std::fprintf(stderr,
+                     "occsim view: cannot open a window: %s; the headless commands need no display "
+                     "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
+                     e.what());
+        return kExitBadInput;
+    }
 }
 
 // Every command's flags, filled by CLI11, and the command each belongs to (set when it is added).
@@ -744,7 +754,7 @@ int infoCommand(const std::string& scenario) {
 }
 
 // The command that was given, run.
-int dispatch(Commands& c, const std::string& command) {
+int runGivenCommand(Commands& c, const std::string& command) {
     if (*c.run || *c.bench) return runOrBench(c, command);
     if (*c.regress)
         return regressCommand(c.regress_inputs, c.regress_update, c.regress_junit, c.regress_shard,
@@ -766,43 +776,22 @@ int dispatch(Commands& c, const std::string& command) {
     return kExitFailure;
 }
 
-// Bad input: its one line, and exit code 2.
-int badInput(const std::exception& e) {
-    std::fprintf(stderr, "occsim: %s\n", e.what());
-    return kExitBadInput;
-}
-
 // dispatch(), with every error a command can end in turned into its one line and exit code:
-// bad input 2, a failure while running 1.
+// bad input (whichever module found it) 2, a failure while running 1. Every command's output
+// folder is --out's: a folder that cannot be used is bad input named by that flag, one that
+// another run holds (try again later) a failure.
 int dispatchReportingErrors(Commands& c, const std::string& command) {
     try {
-        return dispatch(c, command);
-    } catch (const occsim::WindowUnavailable& e) {
-        std::fprintf(stderr,
-                     "occsim view: cannot open a window: %s; the headless commands need no display "
-                     "(occsim run|bench|regress SCENARIO), or run the viewer under xvfb-run\n",
-                     e.what());
+        try {
+            return runGivenCommand(c, command);
+        } catch (const occsim::RunFolderError& e) {  // not an occsim run, or not writable
+            throw occsim::givenBy("--out", e);
+        } catch (const occsim::RunFolderBusy& e) {
+            throw std::runtime_error(std::string("--out ") + e.what());
+        }
+    } catch (const occsim::InputError& e) {
+        std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitBadInput;
-    } catch (const occsim::BackendUnavailable& e) {
-        return badInput(e);
-    } catch (const occsim::ScriptError& e) {
-        return badInput(e);
-    } catch (const occsim::ScenarioError& e) {
-        return badInput(e);
-    } catch (const occsim::GltfError& e) {
-        return badInput(e);
-    } catch (const occsim::RegistryError& e) {  // a plugin's factory that throws during a run
-        return badInput(e);
-    } catch (const occsim::ResultFileError& e) {  // a shard result, a history entry
-        return badInput(e);
-    } catch (const BadInput& e) {
-        return badInput(e);
-    } catch (const occsim::RunFolderError& e) {  // not an occsim run, or not writable
-        std::fprintf(stderr, "occsim: --out %s\n", e.what());
-        return kExitBadInput;
-    } catch (const occsim::RunFolderBusy& e) {  // another run writes there: try again later
-        std::fprintf(stderr, "occsim: --out %s\n", e.what());
-        return kExitFailure;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());
         return kExitFailure;
