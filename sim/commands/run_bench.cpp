@@ -77,6 +77,15 @@ struct RunRequest {
     std::string default_subdir;
 };
 
+// The plugins loaded first, then the scenario (which may name their cullers) parsed once; the
+// algorithms and the default folder are the command's to fill in.
+RunRequest requestOf(const std::string& command, const std::string& command_line,
+                     const CommonFlags& flags) {
+    loadPlugins(flags.plugins);
+    return RunRequest{
+        command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling), {}, ""};
+}
+
 occsim::BenchOptions benchOptions(const RunRequest& request) {
     const CommonFlags& flags = request.flags;
     occsim::BenchOptions o;
@@ -209,11 +218,7 @@ CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
 }
 
 int runCommand(const RunFlags& flags, const std::string& command_line) {
-    loadPlugins(flags.common.plugins);
-    RunRequest request{
-        "run",        command_line,
-        flags.common, scenarioWithCulling(flags.common.scenario, flags.common.culling),
-        {},           ""};
+    RunRequest request = requestOf("run", command_line, flags.common);
     const occsim::AlgorithmTraits& algorithm =
         flags.algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
                                 : algorithmNamed("--algo", flags.algorithm);
@@ -223,13 +228,10 @@ int runCommand(const RunFlags& flags, const std::string& command_line) {
 }
 
 int benchCommand(const BenchFlags& flags, const std::string& command_line) {
-    loadPlugins(flags.common.plugins);
-    RunRequest request{
-        "bench",      command_line,
-        flags.common, scenarioWithCulling(flags.common.scenario, flags.common.culling),
-        {},           "bench"};
+    RunRequest request = requestOf("bench", command_line, flags.common);
     request.algorithms =
         flags.algorithms_given ? algorithmsNamed(flags.algorithms) : occsim::algorithms();
+    request.default_subdir = "bench";
     return runAndReport(request);
 }
 
