@@ -9,7 +9,7 @@ if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckIncludes.cmake: pass -DSOURCE_DIR=<repository root>")
 endif()
 
-set(layers culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress sim/view tune)
+set(layers culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress sim/view sim/commands tune)
 set(allowed_culling occsim/culling)
 set(allowed_render occsim/culling render)
 set(allowed_sim/scenario occsim/culling sim/scenario)
@@ -19,6 +19,8 @@ set(allowed_sim/run occsim/culling render sim/scenario sim/scene sim/world sim/r
 set(allowed_sim/output occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output)
 set(allowed_sim/regress occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress)
 set(allowed_sim/view occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/view)
+# The occsim executable's commands, above every sim layer.
+set(allowed_sim/commands occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress sim/view sim/commands)
 set(allowed_tune occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output tune)
 
 set(violations "")

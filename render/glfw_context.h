@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "occsim/culling/contract/input_error.h"
 #include "render/gl_context.h"
 #include "render/gl_image_presenter.h"
 #include "render/window_events.h"
@@ -20,8 +21,8 @@ namespace occsim {
 
 // No window can be opened here: libglfw is missing, there is no display, or the display offers
 // no OpenGL 4.5 core context. what() is one line saying which.
-struct WindowUnavailable : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct WindowUnavailable : InputError {
+    using InputError::InputError;
 };
 
 class GlfwWindow final : public GlContext {

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "occsim/culling/contract/input_error.h"
 #include "render/gl_context.h"
 
 namespace occsim {
@@ -44,8 +45,8 @@ struct ContextInfo {
 // The requested backend or device cannot serve: missing, out of range, or its context falls
 // short of what occsim needs. The message is one line naming what is missing and what was found;
 // the command line reports it as bad input (exit 2).
-struct BackendUnavailable : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct BackendUnavailable : InputError {
+    using InputError::InputError;
 };
 
 class HeadlessContext : public GlContext {

@@ -139,6 +139,39 @@ TEST(PluginCli, ABadPluginStopsEveryCommandWithExitCode2AndWritesNothing) {
     fs::remove_all(dir);
 }
 
+// A factory that throws only when a run asks for options other than its defaults (the plugin
+// loads: its defaults work) is bad input as well, and both executables say so alike: exit code 2,
+// the plugin's file and the culler named.
+TEST(PluginCli, AFactoryThatThrowsInARunIsExitCode2InOccsimAndOcctune) {
+    const fs::path dir = tempDir("cli-picky");
+    const std::string picky = pluginFile("picky").string();
+    const std::string expected =
+        picky + ": culler 'test-frustum': its factory threw: margin is not 1";
+    nlohmann::json s = nlohmann::json::parse(
+        text(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
+    s["plugins"] = {picky};
+    s["culling"] = {{"test-frustum", {{"margin", 0.5}}}};
+    s["frames"] = 12;
+    s.erase("expect");
+    const fs::path scenario = dir / "picky.json";
+    std::ofstream(scenario) << s.dump(2);
+
+    const Outcome bench = occsim("bench " + scenario.string() + " --algos test-frustum --out " +
+                                 (dir / "bench").string());
+    EXPECT_EQ(bench.exit_code, 2) << bench.output;
+    EXPECT_NE(bench.output.find(expected), std::string::npos) << bench.output;
+
+    // occtune samples margins other than 1 (its reference keeps the default).
+    const Outcome tune = shell(std::string(OCCTUNE_EXE) + " " + OCCSIM_SOURCE_DIR +
+                               "/scenarios/small/teapots-small.json --plugin " + picky +
+                               " --algo test-frustum --params margin --budget 5 --batch 3 "
+                               "--frames 12 --repetitions 1 --out " +
+                               (dir / "tune").string());
+    EXPECT_EQ(tune.exit_code, 2) << tune.output;
+    EXPECT_NE(tune.output.find(expected), std::string::npos) << tune.output;
+    fs::remove_all(dir);
+}
+
 TEST(PluginCli, APluginsOptionsAreCheckedLikeABuiltinsAtTheirJsonPointer) {
     const fs::path dir = tempDir("cli-options");
     const struct {

@@ -6,11 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "occsim/culling/contract/input_error.h"
+
 namespace occsim::tune {
 
-class TuneInputError : public std::runtime_error {
+class TuneInputError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 // Thrown between frames (outside every timing) when SIGINT arrived.

@@ -10,11 +10,10 @@
 #include <cstdio>
 #include <sstream>
 
+#include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/plugin_loader.h"
 #include "render/headless_context.h"
-#include "sim/scenario/errors.h"
 #include "tune/console.h"
-#include "tune/errors.h"
 #include "tune/parameter_table.h"
 #include "tune/parameters.h"
 #include "tune/session_files.h"
@@ -102,8 +101,7 @@ int listParameters(const RawFlags& raw) {
         try {
             occsim::loadPlugin(plugin);
         } catch (const occsim::PluginError& e) {
-            std::fprintf(stderr, "occtune: --plugin %s\n", e.what());
-            return kExitBadInput;
+            throw occsim::givenBy("--plugin", e);
         }
     }
     std::printf("%s", (raw.markdown ? occsim::tune::tunableParametersMarkdown()
@@ -112,15 +110,13 @@ int listParameters(const RawFlags& raw) {
     return 0;
 }
 
-// The parsed flags into `o`; false (the line printed) when --backend names no backend.
-bool applyFlags(const CLI::App& app, const RawFlags& raw, TuneOptions& o) {
-    if (const auto b = occsim::parseBackend(raw.backend)) {
-        o.backend.backend = *b;
-    } else {
-        std::fprintf(stderr, "occtune: --backend: expected auto, egl or osmesa, got '%s'\n",
-                     raw.backend.c_str());
-        return false;
-    }
+// The parsed flags into `o`. Throws InputError when --backend names no backend.
+void applyFlags(const CLI::App& app, const RawFlags& raw, TuneOptions& o) {
+    const auto backend = occsim::parseBackend(raw.backend);
+    if (!backend)
+        throw occsim::InputError("--backend: expected auto, egl or osmesa, got '" + raw.backend +
+                                 "'");
+    o.backend.backend = *backend;
     if (raw.device >= 0) o.backend.device = static_cast<uint32_t>(raw.device);
     o.scenario = raw.scenario;
     for (const std::string& p : raw.plugins) o.plugins.emplace_back(p);
@@ -129,7 +125,6 @@ bool applyFlags(const CLI::App& app, const RawFlags& raw, TuneOptions& o) {
     if (app.count("--frames")) o.frames = raw.frames;
     if (app.count("--holdout-seed")) o.holdout_seed = raw.holdout_seed;
     o.progress = ::isatty(STDERR_FILENO) != 0;
-    return true;
 }
 
 // What the session ended with, said on the console and, when it finished, written to its folder.
@@ -148,26 +143,36 @@ int report(TuneSession& session, const TuneOptions& o) {
     return session.exitCode();
 }
 
-// Bad input is one line and exit code 2; a failure while running one line and exit code 1.
 int runSession(const TuneOptions& o) {
+    // The backend and device are input too: checked before the first run writes anything.
+    occsim::createHeadlessContext(o.backend, 16, 16);
+    TuneSession session = occsim::tune::runTuner(o);
+    return report(session, o);
+}
+
+// What the parsed command line asks for, done.
+int tune(const CLI::App& app, const RawFlags& raw, TuneOptions& o, const std::string& command) {
+    if (raw.list_parameters) return listParameters(raw);
+    if (raw.scenario.empty())
+        throw occsim::InputError("scenario: a scenario file is required (see occtune --help)");
+    applyFlags(app, raw, o);
+    o.command_line = command;
+    return runSession(o);
+}
+
+// tune(), with every error it can end in turned into its one line and exit code: bad input
+// (whichever module found it) 2, a failure while running 1.
+int tuneReportingErrors(const CLI::App& app, const RawFlags& raw, TuneOptions& o,
+                        const std::string& command) {
     try {
-        // The backend and device are input too: checked before the first run writes anything.
-        occsim::createHeadlessContext(o.backend, 16, 16);
-        TuneSession session = occsim::tune::runTuner(o);
-        return report(session, o);
-    } catch (const occsim::BackendUnavailable& e) {
+        return tune(app, raw, o, command);
+    } catch (const occsim::InputError& e) {
         std::fprintf(stderr, "occtune: %s\n", e.what());
-    } catch (const occsim::tune::TuneInputError& e) {
-        std::fprintf(stderr, "occtune: %s\n", e.what());
-    } catch (const occsim::ScenarioError& e) {
-        std::fprintf(stderr, "occtune: %s\n", e.what());
-    } catch (const occsim::GltfError& e) {
-        std::fprintf(stderr, "occtune: %s\n", e.what());
+        return kExitBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "occtune: %s\n", e.what());
         return 1;
     }
-    return kExitBadInput;
 }
 
 }  // namespace
@@ -188,13 +193,5 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());
         return kExitBadInput;
     }
-    if (raw.list_parameters) return listParameters(raw);
-    if (raw.scenario.empty()) {
-        std::fprintf(stderr,
-                     "occtune: scenario: a scenario file is required (see occtune --help)\n");
-        return kExitBadInput;
-    }
-    if (!applyFlags(app, raw, o)) return kExitBadInput;
-    o.command_line = commandLine(argc, argv);
-    return runSession(o);
+    return tuneReportingErrors(app, raw, o, commandLine(argc, argv));
 }

@@ -6,13 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "occsim/culling/contract/input_error.h"
+
 namespace occsim {
 
 class CullerRegistry;
 
 // A plugin that cannot be loaded: "<file>: <what was expected>", one line.
-struct PluginError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct PluginError : InputError {
+    using InputError::InputError;
 };
 
 // Loads `file` and registers its cullers in `registry`, each made once with its default options

@@ -14,6 +14,7 @@
 
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/culler_options.h"
 #include "occsim/culling/registry/options.h"
 
@@ -62,8 +63,8 @@ struct AlgorithmTraits {
 };
 
 // A registration the registry refuses: what is wrong, in one line.
-struct RegistryError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct RegistryError : InputError {
+    using InputError::InputError;
 };
 
 // Empty when `values` (of `culler`'s descriptor) are valid: each in its range, then the validate

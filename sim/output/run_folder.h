@@ -12,12 +12,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "occsim/culling/contract/input_error.h"
+
 namespace occsim {
 
 // The target cannot be used: it holds something other than an occsim run, or it (or its parent)
 // cannot be written. Found before any work; the message starts with the target's path.
-struct RunFolderError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct RunFolderError : InputError {
+    using InputError::InputError;
 };
 
 // Another run holds the target's lock (and the caller asked not to wait).

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
@@ -48,9 +49,9 @@ struct Baseline {
 };
 
 // A baseline file that cannot be used. Its message names the file and the key.
-class BaselineError : public std::runtime_error {
+class BaselineError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 Baseline readBaseline(const std::filesystem::path& file);

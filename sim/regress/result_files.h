@@ -3,13 +3,13 @@
 // command line prints it and exits with status 2.
 #pragma once
 
-#include <stdexcept>
+#include "occsim/culling/contract/input_error.h"
 
 namespace occsim {
 
-class ResultFileError : public std::runtime_error {
+class ResultFileError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 }  // namespace occsim

@@ -5,20 +5,22 @@
 #include <stdexcept>
 #include <string>
 
+#include "occsim/culling/contract/input_error.h"
+
 namespace occsim {
 
 // One line: "<file>: <json pointer>: <what was expected>", or "<file>: <what went wrong>" for
 // errors about the file as a whole (cannot open it, not JSON), which have no pointer.
-class ScenarioError : public std::runtime_error {
+class ScenarioError : public InputError {
   public:
     ScenarioError(const std::string& file, const std::string& pointer, const std::string& message)
-        : std::runtime_error(file + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
+        : InputError(file + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
 };
 
 // A glTF file that cannot be used: one line naming the file and tinygltf's (or our) reason.
-class GltfError : public std::runtime_error {
+class GltfError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 }  // namespace occsim

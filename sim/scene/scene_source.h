@@ -1,6 +1,6 @@
 // What one scene source (a generator or a glTF file) produces: its meshes, the objects placed
 // with them, lanes that movers may follow, and the region its content occupies. The scene builder
-// (sim/world/world.cpp) concatenates sources into one Scene.
+// (sim/world/scene_assembly.cpp) concatenates sources into one Scene.
 #pragma once
 
 #include <cstdint>

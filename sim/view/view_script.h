@@ -23,12 +23,13 @@
 #include <string>
 #include <vector>
 
+#include "occsim/culling/contract/input_error.h"
 #include "render/window_events.h"
 
 namespace occsim {
 
-struct ScriptError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct ScriptError : InputError {
+    using InputError::InputError;
 };
 
 struct ScriptStep {

@@ -184,5 +184,8 @@ void requireFiniteBoxes(const WorldState& state, uint32_t frame);
 // The point at `distance` along a closed path, and the unit direction of travel there.
 glm::dvec3 pointOnPath(const MotionPath& path, double distance, glm::dvec3* direction);
 MotionPath makePath(std::vector<glm::dvec3> points);
+// The rotation about y that turns a model's front (+x) along `direction`: how a model placed
+// on a path, or moving on one, faces its travel.
+glm::quat yawTowards(const glm::dvec3& direction);
 
 }  // namespace occsim

@@ -5,6 +5,8 @@
 //   PLUGIN_TAKEN_NAME      registers "chc", a built-in's name
 //   PLUGIN_BAD_DESCRIPTOR  an option whose range is inverted
 //   PLUGIN_THROWING        a factory that throws
+//   PLUGIN_PICKY           a factory that throws for a margin other than the default: it loads
+//                          (made once with its defaults) and fails when a run asks for another
 //   PLUGIN_FAILING         "test-frustum" throws in its frame 3 (the stopping tests)
 //   PLUGIN_CRASHING        "test-frustum" raises SIGSEGV in its frame 3 (the stopping tests)
 #include <csignal>
@@ -46,6 +48,11 @@ class FrustumOnly final : public occsim::Culler {
     throw std::runtime_error("no GPU budget configured");
 }
 
+[[maybe_unused]] std::unique_ptr<occsim::Culler> makePicky(const occsim::CullerContext& context) {
+    if (context.options.number("margin") != 1.0) throw std::runtime_error("margin is not 1");
+    return std::make_unique<FrustumOnly>();
+}
+
 [[maybe_unused]] void registerCullers(occsim::PluginRegistrar& registrar) {
     occsim::AlgorithmTraits t;
     t.name = "test-frustum";
@@ -62,6 +69,8 @@ class FrustumOnly final : public occsim::Culler {
     t.options[0].max = 1;
 #elif defined(PLUGIN_THROWING)
     t.factory = makeThrowing;
+#elif defined(PLUGIN_PICKY)
+    t.factory = makePicky;
 #endif
     registrar.add(std::move(t));
 }

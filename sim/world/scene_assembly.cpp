@@ -1,5 +1,4 @@
-#include "sim/world/world.h"
-
+// buildScene(): a scenario's sources and movers assembled into the Scene a run starts from.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include "sim/scene/scene_source.h"
 #include "sim/scene/teapot.h"
 #include "sim/world/model_copies.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -254,12 +254,6 @@ double nearestDistanceOnPath(const MotionPath& path, const glm::dvec3& p) {
         }
     }
     return best;
-}
-
-glm::quat yawTowards(const glm::dvec3& direction) {
-    // Models face +x (the teapot's spout); yaw about y so +x points along the travel direction.
-    const double yaw = std::atan2(-direction.z, direction.x);
-    return glm::angleAxis(static_cast<float>(yaw), glm::vec3(0, 1, 0));
 }
 
 [[noreturn]] void moverError(const Scenario& s, size_t m, const std::string& key,
@@ -591,36 +585,6 @@ void placeMover(Scene& scene, const Scenario& scenario, size_t m, std::vector<So
 
 }  // namespace
 
-MotionPath makePath(std::vector<glm::dvec3> points) {
-    MotionPath path;
-    path.points = std::move(points);
-    path.lengths.push_back(0.0);
-    const size_t n = path.points.size();
-    for (size_t i = 0; i < n; ++i) {
-        path.lengths.push_back(path.lengths.back() +
-                               glm::length(path.points[(i + 1) % n] - path.points[i]));
-    }
-    return path;
-}
-
-glm::dvec3 pointOnPath(const MotionPath& path, double distance, glm::dvec3* direction) {
-    const size_t n = path.points.size();
-    const double total = path.total();
-    if (n == 1 || !(total > 0.0)) {
-        if (direction) *direction = glm::dvec3(1, 0, 0);
-        return path.points.front();
-    }
-    double d = std::fmod(distance, total);
-    if (d < 0) d += total;
-    const auto it = std::upper_bound(path.lengths.begin(), path.lengths.end(), d);
-    const size_t i = std::min(static_cast<size_t>(it - path.lengths.begin()) - 1, n - 1);
-    const glm::dvec3 a = path.points[i], b = path.points[(i + 1) % n];
-    const double segment = path.lengths[i + 1] - path.lengths[i];
-    const double t = segment > 0 ? (d - path.lengths[i]) / segment : 0.0;
-    if (direction) *direction = segment > 0 ? (b - a) / segment : glm::dvec3(1, 0, 0);
-    return a + t * (b - a);
-}
-
 Scene buildScene(const Scenario& scenario) {
     Scene scene;
     std::vector<SourceRange> ranges = addSources(scene, scenario);
@@ -640,171 +604,6 @@ Scene buildScene(const Scenario& scenario) {
     poseCopies(scene, 0.0, scene.initial_copies, buffers, scene.initial_poses, nullptr);
     scene.culling_origin = cullingOriginOf(scenario.camera);
     return scene;
-}
-
-WorldState initialState(const Scene& scene) {
-    WorldState state;
-    state.poses = scene.initial_poses;
-    state.movers = scene.initial_movers;
-    state.copies = scene.initial_copies;
-    state.moved = movedObjects(scene, state.movers, state.copies);
-    state.pose_buffers = makePoseBuffers(scene.models);
-    state.boxes.resize(scene.objectCount());
-    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        state.boxes[o] =
-            worldBox(scene.mesh_bounds[scene.object_mesh[o]], state.poses[o], scene.culling_origin);
-    }
-    return state;
-}
-
-glm::dmat4 modelMatrix(const ObjectPose& pose) {
-    return glm::translate(glm::dmat4(1.0), pose.position) *
-           glm::dmat4(glm::mat4_cast(pose.rotation)) * glm::dmat4(glm::mat4(pose.linear));
-}
-
-namespace {
-
-// Float conversions that never move a bound inward.
-float floatAtMost(double v) {
-    float f = static_cast<float>(v);
-    if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-}
-
-float floatAtLeast(double v) {
-    float f = static_cast<float>(v);
-    if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
-
-}  // namespace
-
-Aabb worldBox(const Aabb& mesh_bounds, const ObjectPose& pose, const glm::dvec3& origin) {
-    // Arvo's transform of the local box by the linear part, in double, then the position relative
-    // to the origin: exact to double precision, and only then rounded (outward) to float.
-    ObjectPose at_origin = pose;
-    at_origin.position = glm::dvec3(0.0);
-    const glm::dmat4 m = modelMatrix(at_origin);
-    glm::dvec3 lo = pose.position - origin, hi = lo;
-    for (int col = 0; col < 3; ++col) {
-        for (int row = 0; row < 3; ++row) {
-            const double a = m[col][row] * mesh_bounds.min[col];
-            const double b = m[col][row] * mesh_bounds.max[col];
-            lo[row] += std::min(a, b);
-            hi[row] += std::max(a, b);
-        }
-    }
-    Aabb box;
-    for (int axis = 0; axis < 3; ++axis) {
-        box.min[axis] = floatAtMost(lo[axis]);
-        box.max[axis] = floatAtLeast(hi[axis]);
-    }
-    return box;
-}
-
-namespace {
-
-void reflectInto(double& position, double& velocity, double lo, double hi) {
-    if (!(hi > lo)) {
-        position = lo;
-        return;
-    }
-    // Fold the position back into [lo, hi] however far it went (large dt, fast movers): a
-    // triangle wave; an odd number of reflections reverses the velocity.
-    const double span = hi - lo;
-    const double t = (position - lo) / span;
-    const double k = std::floor(t);
-    const double frac = t - k;
-    const bool odd = std::fmod(std::abs(k), 2.0) == 1.0;
-    position = lo + span * (odd ? 1.0 - frac : frac);
-    if (odd) velocity = -velocity;
-}
-
-}  // namespace
-
-void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
-    state.time_s += dt_s;
-    for (Mover& mover : state.movers) {
-        ObjectPose& pose = mover.copy >= 0 ? state.copies[static_cast<size_t>(mover.copy)].anchor
-                                           : state.poses[mover.object];
-        if (auto* bounce = std::get_if<BounceMotion>(&mover.motion)) {
-            pose.position += bounce->velocity * dt_s;
-            for (int axis = 0; axis < 3; ++axis) {
-                reflectInto(pose.position[axis], bounce->velocity[axis], bounce->region.min[axis],
-                            bounce->region.max[axis]);
-            }
-        } else if (auto* orbit = std::get_if<OrbitMotion>(&mover.motion)) {
-            orbit->angle = std::remainder(orbit->angle + orbit->angular_speed * dt_s, 2.0 * kPi);
-            pose.position.x = orbit->center.x + orbit->radius_m * std::cos(orbit->angle);
-            pose.position.z = orbit->center.z + orbit->radius_m * std::sin(orbit->angle);
-        } else if (auto* path = std::get_if<PathMotion>(&mover.motion)) {
-            const MotionPath& p = scene.paths[path->path];
-            // Keep the distance within one lap so it never loses precision on long runs.
-            path->distance_m = std::fmod(path->distance_m + path->speed_mps * dt_s,
-                                         p.total() > 0 ? p.total() : 1.0);
-            glm::dvec3 direction;
-            pose.position = pointOnPath(p, path->distance_m, &direction);
-            pose.rotation = yawTowards(direction);
-        } else if (auto* walk = std::get_if<RandomWalkMotion>(&mover.motion)) {
-            walk->heading = std::remainder(
-                walk->heading + walk->turn_rate * dt_s * walk->rng.uniform(-1.0, 1.0), 2.0 * kPi);
-            double vx = walk->speed_mps * std::cos(walk->heading);
-            double vz = walk->speed_mps * std::sin(walk->heading);
-            pose.position.x += vx * dt_s;
-            pose.position.z += vz * dt_s;
-            reflectInto(pose.position.x, vx, walk->region.min.x, walk->region.max.x);
-            reflectInto(pose.position.z, vz, walk->region.min.z, walk->region.max.z);
-            walk->heading = std::atan2(vz, vx);
-            pose.rotation = yawTowards({vx, 0.0, vz});
-        } else if (auto* spin = std::get_if<SpinMotion>(&mover.motion)) {
-            spin->angle = std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * kPi);
-            pose.rotation =
-                glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
-        }
-        if (mover.copy < 0) {
-            state.boxes[mover.object] = worldBox(scene.mesh_bounds[scene.object_mesh[mover.object]],
-                                                 pose, scene.culling_origin);
-        }
-    }
-    if (!state.copies.empty()) {
-        poseCopies(scene, state.time_s, state.copies, state.pose_buffers, state.poses,
-                   &state.boxes);
-    }
-}
-
-namespace {
-
-[[noreturn]] void throwNotFinite(const WorldState& state, uint32_t object, uint32_t frame,
-                                 const std::string& how) {
-    const glm::dvec3& p = state.poses[object].position;
-    char position[160];
-    std::snprintf(position, sizeof position, "(%g, %g, %g)", p.x, p.y, p.z);
-    throw MotionError("frame " + std::to_string(frame) + ": object " + std::to_string(object) +
-                      " " + how + " left finite float coordinates (its position is " + position +
-                      "); the run stops here");
-}
-
-}  // namespace
-
-void requireFiniteBoxes(const WorldState& state, uint32_t frame) {
-    if (frame == 0) {
-        for (uint32_t o = 0; o < state.boxes.size(); ++o) {
-            if (!isFiniteAndOrdered(state.boxes[o])) throwNotFinite(state, o, frame, "as placed");
-        }
-        return;
-    }
-    for (size_t m = 0; m < state.movers.size(); ++m) {
-        const uint32_t o = state.movers[m].object;
-        if (state.movers[m].copy < 0 && !isFiniteAndOrdered(state.boxes[o])) {
-            throwNotFinite(state, o, frame, "moved by mover " + std::to_string(m));
-        }
-    }
-    for (const uint32_t o : state.moved) {
-        if (!isFiniteAndOrdered(state.boxes[o])) {
-            throwNotFinite(state, o, frame,
-                           "moved with its glTF model (animation or whole-copy mover)");
-        }
-    }
 }
 
 }  // namespace occsim

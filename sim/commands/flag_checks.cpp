@@ -1,0 +1,94 @@
+#include "sim/commands/flag_checks.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "occsim/culling/contract/input_error.h"
+
+namespace occsim_cli {
+
+// The one place a command-line algorithm name is checked.
+const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name) {
+    if (const occsim::AlgorithmTraits* a = occsim::findAlgorithm(name)) return *a;
+    throw occsim::InputError(flag + ": unknown algorithm '" + name +
+                             "'; expected one of: " + occsim::algorithmNameList());
+}
+
+// A whole number in [lo, hi], checked on the text before CLI11 converts it, so a bad value gets
+// the same one-line message as a bad scenario value: what was expected, and what was given.
+CLI::Validator integerIn(long long lo, long long hi) {
+    const std::string expected =
+        "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    return CLI::Validator(
+        [lo, hi, expected](std::string& text) -> std::string {
+            size_t used = 0;
+            long long value = 0;
+            try {
+                value = std::stoll(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (text.empty() || used != text.size() || value < lo || value > hi) {
+                return expected + ", got '" + text + "'";
+            }
+            return {};
+        },
+        "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+// An output path is checked before any work, so that a run never ends on a path it cannot
+// write: a folder flag must not name a file, a file flag not a folder, and neither may be empty
+// when given.
+void checkOutputFolder(const std::string& flag, const std::string& path, bool given) {
+    if (given && path.empty())
+        throw occsim::InputError(flag + ": empty; expected a folder (created when missing)");
+    std::error_code ec;
+    if (!path.empty() && std::filesystem::exists(path, ec) &&
+        !std::filesystem::is_directory(path, ec)) {
+        throw occsim::InputError(flag + " " + path +
+                                 ": is a file; expected a folder (created when missing)");
+    }
+}
+
+void checkOutputFile(const std::string& flag, const std::string& path, bool given) {
+    if (given && path.empty()) throw occsim::InputError(flag + ": empty; expected a file name");
+    std::error_code ec;
+    if (!path.empty() && std::filesystem::is_directory(path, ec)) {
+        throw occsim::InputError(flag + " " + path + ": is a folder; expected a file name");
+    }
+}
+
+// --algos as given: every name registered, none twice, none empty (a trailing comma).
+// The names come comma-separated, space-separated or both ("vfc,chc" or "vfc chc").
+std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<std::string>& lists) {
+    std::vector<std::string> names;
+    for (const std::string& list : lists) {
+        size_t start = 0;
+        while (true) {
+            const size_t comma = list.find(',', start);
+            names.push_back(
+                list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+            if (comma == std::string::npos) break;
+            start = comma + 1;
+        }
+    }
+    std::vector<const occsim::AlgorithmTraits*> out;
+    for (const std::string& name : names) {
+        if (name.empty())
+            throw occsim::InputError("--algos: an empty algorithm name (a comma too many?)");
+        const occsim::AlgorithmTraits* a = &algorithmNamed("--algos", name);
+        if (std::find(out.begin(), out.end(), a) != out.end()) {
+            throw occsim::InputError("--algos: '" + name + "' is listed twice");
+        }
+        out.push_back(a);
+    }
+    return out;
+}
+
+bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {
+    std::error_code ec;
+    return std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec) &&
+           std::filesystem::equivalent(a, b, ec);
+}
+
+}  // namespace occsim_cli

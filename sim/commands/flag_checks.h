@@ -1,0 +1,34 @@
+// The checks on flag values that CLI11 cannot make, shared by the commands. The idiom is one:
+// a value is checked once, before any work, and a bad one throws occsim::InputError whose line
+// starts with the flag ("--algos: 'vfc' is listed twice"); integerIn() is the same check made by
+// CLI11 while parsing, with the same kind of line.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "occsim/culling/registry/registry.h"
+
+namespace occsim_cli {
+
+// A whole number in [lo, hi], checked on the text before CLI11 converts it.
+CLI::Validator integerIn(long long lo, long long hi);
+
+// The registered algorithm `name`, given by `flag`.
+const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name);
+
+// --algos as given: every name registered, none twice, none empty (a trailing comma).
+std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<std::string>& lists);
+
+// An output path is checked before any work, so that a run never ends on a path it cannot
+// write: a folder flag must not name a file, a file flag not a folder, and neither may be empty
+// when given.
+void checkOutputFolder(const std::string& flag, const std::string& path, bool given);
+void checkOutputFile(const std::string& flag, const std::string& path, bool given);
+
+// Whether both exist and are one folder (an --out that would overwrite its input).
+bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b);
+
+}  // namespace occsim_cli

@@ -1,0 +1,238 @@
+#include "sim/commands/run_bench.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "occsim/culling/contract/input_error.h"
+#include "occsim/culling/registry/registry.h"
+#include "sim/commands/exit_codes.h"
+#include "sim/commands/flag_checks.h"
+#include "sim/output/pictures.h"
+#include "sim/output/report.h"
+#include "sim/output/run_folder.h"
+#include "sim/output/run_outputs.h"
+#include "sim/run/run_config.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/culling_file.h"
+#include "sim/scenario/scenario.h"
+
+namespace occsim_cli {
+namespace {
+
+void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
+    cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
+    addBackendFlags(cmd, flags.backend);
+    cmd->add_flag(
+        "--error", flags.error,
+        "Measure image error against a ground-truth render of every frame (outside the timing)");
+    cmd->add_option("--out", flags.out,
+                    "Output folder (default: out/<scenario>/<command>), replaced as a whole by "
+                    "the run");
+    cmd->add_flag("--wait-lock", flags.wait_lock,
+                  "Wait for another run writing the same --out to finish (default: exit)");
+    cmd->add_option("--frames", flags.frames, "Run this many frames instead of the scenario's")
+        ->check(integerIn(1, 10000000));
+    cmd->add_option("--capture", flags.capture, "Save these frames' colour buffers as PNG")
+        ->delimiter(',')
+        ->check(integerIn(0, 9999999));
+    cmd->add_option("--repetitions", flags.repetitions,
+                    "Run every configuration N times (interleaved); report medians and min-max")
+        ->check(integerIn(1, 1000));
+    cmd->add_option(
+           "--deterministic-latency", flags.deterministic_latency,
+           "A query result counts as ready only after N later draw calls (reproducible counts)")
+        ->check(integerIn(0, 1000000));
+    cmd->add_flag(
+        "--plots", flags.plots,
+        "Chart frame time, time against error, queries and triangles with gnuplot (PNG and SVG)");
+    cmd->add_option("--birds-eye", flags.birds_eye,
+                    "Picture this frame's culling decisions from above, per configuration (PNG)")
+        ->check(integerIn(0, 9999999));
+    addPluginFlag(cmd, flags.plugins);
+    cmd->add_option("--culling", flags.culling,
+                    "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
+                    "e.g. occtune's "
+                    "tuned.json), overriding the scenario's");
+}
+
+// The scenario with the --culling file, when given, applied over its own culling options.
+occsim::Scenario scenarioWithCulling(const std::string& scenario_file,
+                                     const std::string& culling_file) {
+    occsim::Scenario scenario = occsim::parseScenarioFile(scenario_file);
+    if (!culling_file.empty())
+        occsim::applyCullingFile(occsim::readCullingFile(culling_file), scenario);
+    return scenario;
+}
+
+// What `run` and `bench` share once their flags are read: the scenario (parsed once), the
+// algorithms (checked once) and which command this is.
+struct RunRequest {
+    std::string command;  // "run" or "bench"
+    std::string command_line;
+    const CommonFlags& flags;
+    occsim::Scenario scenario;
+    std::vector<const occsim::AlgorithmTraits*> algorithms;
+    std::string default_subdir;
+};
+
+// The plugins loaded first, then the scenario (which may name their cullers) parsed once; the
+// algorithms and the default folder are the command's to fill in.
+RunRequest requestOf(const std::string& command, const std::string& command_line,
+                     const CommonFlags& flags) {
+    loadPlugins(flags.plugins);
+    return RunRequest{
+        command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling), {}, ""};
+}
+
+occsim::BenchOptions benchOptions(const RunRequest& request) {
+    const CommonFlags& flags = request.flags;
+    occsim::BenchOptions o;
+    o.algorithms = request.algorithms;
+    o.command = request.command;
+    o.command_line = request.command_line;
+    o.measure_error = flags.error;
+    o.backend = backendChoice(flags.backend);
+    if (flags.frames > 0) o.frames = flags.frames;
+    o.repetitions = flags.repetitions;
+    if (!flags.sweep.empty()) {
+        try {
+            o.sweep = occsim::parseSweep(flags.sweep, request.algorithms);
+        } catch (const std::invalid_argument& e) {
+            throw occsim::InputError(std::string("--sweep: ") + e.what());
+        }
+    }
+    o.ablate = flags.ablate;
+    // The configurations are planned once here, before any work, so that a swept value that makes
+    // options invalid or repeats an ablation row is bad input, named by its flag.
+    if (o.sweep || !o.ablate.empty()) {
+        try {
+            occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
+        } catch (const std::invalid_argument& e) {
+            throw occsim::InputError(std::string(o.ablate.empty() ? "--sweep: " : "--ablate: ") +
+                                     e.what());
+        }
+    }
+    if (flags.deterministic_latency >= 0) {
+        o.latency.deterministic = true;
+        o.latency.latency_commands = static_cast<uint32_t>(flags.deterministic_latency);
+    }
+    const uint32_t frames = flags.frames > 0 ? flags.frames : request.scenario.frames;
+    auto checkFrame = [frames](const char* flag, int64_t frame) {
+        if (frame >= frames) {
+            throw occsim::InputError(std::string(flag) + ": frame " + std::to_string(frame) +
+                                     " is past the last frame (" + std::to_string(frames) +
+                                     " frames, from 0)");
+        }
+    };
+    if (flags.birds_eye >= 0) {
+        checkFrame("--birds-eye", flags.birds_eye);
+        o.trace_frame = static_cast<uint32_t>(flags.birds_eye);
+    }
+    for (uint32_t frame : flags.capture) checkFrame("--capture", frame);
+    o.progress = ::isatty(STDERR_FILENO) != 0;
+    return o;
+}
+
+// A run that ended early: its one line on stderr, after the partial outputs were written, and
+// its exit code (128 + the signal, as a shell reports a process the signal ended; 1 when a
+// configuration failed).
+int partialRunEnded(const std::string& command, const occsim::BenchResult& result,
+                    const std::filesystem::path& out_dir) {
+    const occsim::PartialRun& p = *result.partial;
+    std::fprintf(stderr, "occsim %s: %s; written to %s (marked partial)%s\n", command.c_str(),
+                 occsim::partialLine(result).c_str(), out_dir.string().c_str(),
+                 p.signal != 0 ? "; run the same command again for a whole run" : "");
+    return p.signal != 0 ? 128 + p.signal : kExitFailure;
+}
+
+int runAndReport(const RunRequest& request) {
+    const CommonFlags& flags = request.flags;
+    checkOutputFolder("--out", flags.out, flags.out_given);
+    occsim::BenchOptions options = benchOptions(request);
+    const std::filesystem::path out_dir =
+        flags.out.empty()
+            ? occsim::defaultOutputFolder(request.scenario.name, request.default_subdir)
+            : std::filesystem::path(flags.out);
+    // A run is one unit: its folder is locked, checked and staged before the first frame, every
+    // file (pictures taken during the run included) goes into the staging folder, and the whole
+    // set replaces the old folder at the end, or nothing does.
+    const occsim::FolderLock lock(out_dir, flags.wait_lock);
+    occsim::StagedRunFolder folder(out_dir);
+    occsim::PictureRecorder pictures(folder.staging(), flags.capture, options.trace_frame);
+    options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
+
+    watchFrames();
+    const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
+    const occsim::OutputFiles files = occsim::writeRunOutputs(
+        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}});
+    folder.publish();
+
+    std::printf("%s\n", occsim::runHeadline(result).c_str());
+    std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    std::printf("%s\n", occsim::costsLine(result).c_str());
+    std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
+    if (!pictures.birdsEyeFiles().empty()) {
+        std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
+                    pictures.birdsEyeFiles().size());
+    }
+    size_t plots = 0;
+    for (const std::string& f : files.files) plots += f.rfind("plot-", 0) == 0;
+    if (plots > 0) std::printf("plots: %zu files (plot-*.png, plot-*.svg)\n", plots);
+    if (!files.plots_message.empty()) std::printf("%s\n", files.plots_message.c_str());
+    if (result.partial) {
+        std::fflush(stdout);  // the table before the line that says it is partial
+        return partialRunEnded(request.command, result, out_dir);
+    }
+    return 0;
+}
+
+}  // namespace
+
+CLI::App* addRun(CLI::App& app, RunFlags& flags) {
+    CLI::App* run = app.add_subcommand(
+        "run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
+    addCommonFlags(run, flags.common);
+    run->add_option("--algo", flags.algorithm,
+                    "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
+    return run;
+}
+
+CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Run several algorithms over the same frames, interleaved, in one table");
+    addCommonFlags(bench, flags.common);
+    bench->add_option("--algos", flags.algorithms,
+                      "Algorithms to compare (default: every registered one, plugins' included)");
+    bench->add_option(
+        "--sweep", flags.common.sweep,
+        "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
+        "each listed algorithm with that option (KEY: threshold_pixels, stale_results, "
+        "or a key of a culler's options; occsim cullers lists them)");
+    bench->add_option(
+        "--ablate", flags.common.ablate,
+        "Run this algorithm also once with each mechanism its options switch on turned "
+        "off (the ablation; occsim cullers marks them)");
+    return bench;
+}
+
+int runCommand(const RunFlags& flags, const std::string& command_line) {
+    RunRequest request = requestOf("run", command_line, flags.common);
+    const occsim::AlgorithmTraits& algorithm =
+        flags.algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
+                                : algorithmNamed("--algo", flags.algorithm);
+    request.algorithms = {&algorithm};
+    request.default_subdir = "run-" + std::string(algorithm.name);
+    return runAndReport(request);
+}
+
+int benchCommand(const BenchFlags& flags, const std::string& command_line) {
+    RunRequest request = requestOf("bench", command_line, flags.common);
+    request.algorithms =
+        flags.algorithms_given ? algorithmsNamed(flags.algorithms) : occsim::algorithms();
+    request.default_subdir = "bench";
+    return runAndReport(request);
+}
+
+}  // namespace occsim_cli

@@ -1,0 +1,82 @@
+// A regression run as JUnit XML: one test case per scenario, its failed checks as the failure.
+#include <sstream>
+
+#include "sim/output/fixed_text.h"
+#include "sim/regress/regress.h"
+
+namespace occsim {
+namespace {
+
+std::string xmlEscape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string junitXml(const RegressReport& report) {
+    size_t tests = 0, failures = 0, skipped = 0;
+    double seconds = 0;
+    for (const ScenarioOutcome& s : report.scenarios) {
+        tests += s.skipped ? 1 : s.checks.size();
+        skipped += s.skipped;
+        for (const CheckResult& c : s.checks) failures += !c.passed;
+        seconds += s.seconds;
+    }
+    std::ostringstream out;
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"occsim regress\" "
+           "tests=\""
+        << tests << "\" failures=\"" << failures << "\" skipped=\"" << skipped << "\" time=\""
+        << fixed(seconds, 3) << "\">\n";
+    for (const ScenarioOutcome& s : report.scenarios) {
+        size_t f = 0;
+        for (const CheckResult& c : s.checks) f += !c.passed;
+        out << "  <testsuite name=\"" << xmlEscape(s.name) << "\" file=\"" << xmlEscape(s.scenario)
+            << "\" tests=\"" << (s.skipped ? 1 : s.checks.size()) << "\" failures=\"" << f
+            << "\" skipped=\"" << (s.skipped ? 1 : 0) << "\" time=\"" << fixed(s.seconds, 3)
+            << "\">\n";
+        if (s.skipped) {
+            out << "    <testcase classname=\"" << xmlEscape(s.name) << "\" name=\"scenario\">"
+                << "<skipped message=\"" << xmlEscape(s.note) << "\"/></testcase>\n";
+        }
+        for (const CheckResult& c : s.checks) {
+            out << "    <testcase classname=\"" << xmlEscape(s.name) << "\" name=\""
+                << xmlEscape(c.check) << "\"";
+            if (c.passed) {
+                out << "/>\n";
+            } else {
+                std::string detail = "expected " + c.expected + ", got " + c.got;
+                for (const auto& capture : s.captures) detail += "\ncapture: " + capture;
+                out << "><failure message=\""
+                    << xmlEscape("expected " + c.expected + ", got " + c.got) << "\">"
+                    << xmlEscape(detail) << "</failure></testcase>\n";
+            }
+        }
+        out << "  </testsuite>\n";
+    }
+    out << "</testsuites>\n";
+    return out.str();
+}
+
+}  // namespace occsim

@@ -1,0 +1,297 @@
+#include "sim/regress/run_checks.h"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "render/png_writer.h"
+#include "sim/output/atomic_file.h"
+#include "sim/output/error_picture.h"
+#include "sim/output/fixed_text.h"
+#include "sim/output/run_folder.h"
+
+namespace occsim {
+namespace {
+
+// Compares one per-frame series against the baseline; describes the first difference.
+template <class T>
+CheckResult compareSeries(const std::string& what, const std::string& algorithm,
+                          const std::vector<T>& expected, const std::vector<T>& got) {
+    CheckResult c;
+    c.check = what + " per frame = baseline: " + algorithm;
+    c.passed = expected == got;
+    if (c.passed) {
+        c.expected = c.got = "identical over " + std::to_string(got.size()) + " frames";
+        return c;
+    }
+    size_t frame = 0;
+    while (frame < expected.size() && frame < got.size() && expected[frame] == got[frame]) ++frame;
+    size_t differing = 0;
+    for (size_t i = 0; i < std::min(expected.size(), got.size()); ++i)
+        differing += expected[i] != got[i];
+    if (frame < expected.size() && frame < got.size()) {
+        c.expected = "frame " + std::to_string(frame) + ": " + std::to_string(expected[frame]);
+        c.got = std::to_string(got[frame]) + " (" + std::to_string(differing) + " frames differ)";
+    } else {
+        c.expected = std::to_string(expected.size()) + " frames";
+        c.got = std::to_string(got.size()) + " frames";
+    }
+    return c;
+}
+
+template <class T>
+std::string describeChange(const char* what, const std::vector<T>& before,
+                           const std::vector<T>& after) {
+    if (before == after) return "";
+    long long sum_before = 0, sum_after = 0;
+    size_t changed = 0;
+    for (size_t i = 0; i < std::max(before.size(), after.size()); ++i) {
+        const long long b = i < before.size() ? static_cast<long long>(before[i]) : 0;
+        const long long a = i < after.size() ? static_cast<long long>(after[i]) : 0;
+        sum_before += b;
+        sum_after += a;
+        changed += a != b;
+    }
+    return std::string(what) + " changed on " + std::to_string(changed) + " frames (total " +
+           std::to_string(sum_before) + " -> " + std::to_string(sum_after) + ")";
+}
+
+void checkZeroError(ResultChecks& checks, const Expectations& expect) {
+    for (const std::string& name : expect.zero_error) {
+        const RunSummary& s = checks.runOf(name).summary;
+        CheckResult c{"zero error pixels: " + name, "0 on every frame", "",
+                      s.error_pixels_total == 0};
+        // Ties (another object at the same depth) are no error; shown so a reader sees them apart.
+        const std::string ties = " (" + std::to_string(s.tie_pixels_total) + " tie px)";
+        c.got = c.passed ? "0" + ties
+                         : std::to_string(s.error_pixels_total) + " px on " +
+                               std::to_string(s.frames_with_error) + " frames (worst frame " +
+                               std::to_string(s.error_worst_frame) + ": " +
+                               std::to_string(s.error_pixels_worst) + " px)" + ties;
+        if (!c.passed) checks.capture(name);
+        checks.outcome.checks.push_back(c);
+        CheckResult m{"no missed objects: " + name, "0 on every frame", "",
+                      s.missed_objects_total == 0};
+        m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
+        checks.outcome.checks.push_back(m);
+    }
+}
+
+void checkMaxErrorPixels(ResultChecks& checks, const Expectations& expect) {
+    for (const auto& [name, bound] : expect.max_error_pixels) {
+        const RunSummary& s = checks.runOf(name).summary;
+        CheckResult c{"error pixels per frame: " + name, "<= " + std::to_string(bound),
+                      std::to_string(s.error_pixels_worst) + " (frame " +
+                          std::to_string(s.error_worst_frame) + ")",
+                      s.error_pixels_worst <= bound};
+        if (!c.passed) checks.capture(name);
+        checks.outcome.checks.push_back(c);
+    }
+}
+
+void checkRatios(ResultChecks& checks, const Expectations& expect, const Scenario& scenario) {
+    for (const RatioExpectation& r : expect.ratios) {
+        const RunSummary& sa = checks.runOf(r.algorithm).summary;
+        const RunSummary& sb = checks.runOf(r.reference).summary;
+        const double a = sa.frame_ms.mean, b = sb.frame_ms.mean;
+        const double limit = r.max * (1.0 + r.tolerance);
+        CheckResult c{"frame time " + r.algorithm + " / " + r.reference,
+                      "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) +
+                          "% = " + fixed(limit, 2) + ")",
+                      "", false};
+        // A ratio of nothing (every frame warm-up, or a reference that took no time) cannot
+        // judge anything: it fails rather than read 0/0 as a pass.
+        if (sa.timed_frames == 0 || sb.timed_frames == 0 || !(b > 0)) {
+            c.got = "nothing timed: " + std::to_string(std::min(sa.timed_frames, sb.timed_frames)) +
+                    " frames after warm-up (" +
+                    std::to_string(expect.frames.value_or(scenario.frames)) +
+                    " frames, warmup_frames " + std::to_string(scenario.warmup_frames) +
+                    "); raise expect.frames";
+        } else {
+            const double ratio = a / b;
+            c.got = fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)";
+            c.passed = ratio <= limit;
+        }
+        checks.outcome.checks.push_back(c);
+    }
+}
+
+// This run's counts, frame by frame, as a baseline file holds them.
+Baseline baselineOf(const Scenario& scenario, const Expectations& expect,
+                    const BenchResult& result) {
+    Baseline now;
+    now.scenario = scenario.name;
+    now.deterministic_latency = expect.deterministic_latency;
+    now.frames = static_cast<uint32_t>(result.runs.front().frames.size());
+    now.backend = result.metadata.backend;
+    now.renderer = result.metadata.gl_renderer;
+    for (const RunRecord& r : result.runs) {
+        AlgorithmTrace& t = now.algorithms[r.summary.label];
+        for (const FrameStats& f : r.frames) {
+            t.queries.push_back(f.queries);
+            t.objects.push_back(f.objects_drawn);
+            t.error_pixels.push_back(f.error_pixels);
+            t.missed_objects.push_back(f.missed_objects);
+        }
+    }
+    return now;
+}
+
+// The baseline file as found: read, or what is wrong with it (missing, unreadable).
+struct OldBaseline {
+    std::optional<Baseline> baseline;
+    std::string problem;
+    bool existed = false;
+};
+
+OldBaseline readOldBaseline(const std::filesystem::path& file) {
+    OldBaseline old;
+    old.existed = std::filesystem::exists(file);
+    if (old.existed) {
+        try {
+            old.baseline = readBaseline(file);
+        } catch (const BaselineError& e) {
+            old.problem = e.what();
+        }
+    } else {
+        old.problem = file.string() + ": no baseline file (create it with --update)";
+    }
+    return old;
+}
+
+// What --update changes, one line per algorithm and series that differs.
+std::vector<std::string> baselineChanges(const Baseline& now, const std::optional<Baseline>& old) {
+    std::vector<std::string> changes;
+    for (const auto& [name, trace] : now.algorithms) {
+        const AlgorithmTrace* before = nullptr;
+        if (old && old->algorithms.count(name)) before = &old->algorithms.at(name);
+        if (!before) {
+            changes.push_back(name + ": new");
+            continue;
+        }
+        for (const std::string& d :
+             {describeChange("queries", before->queries, trace.queries),
+              describeChange("objects", before->objects, trace.objects),
+              describeChange("error pixels", before->error_pixels, trace.error_pixels),
+              describeChange("missed objects", before->missed_objects, trace.missed_objects)}) {
+            if (!d.empty()) changes.push_back(name + ": " + d);
+        }
+    }
+    if (old) {
+        for (const auto& [name, trace] : old->algorithms) {
+            if (!now.algorithms.count(name)) changes.push_back(name + ": removed");
+        }
+    }
+    return changes;
+}
+
+void updateBaseline(ScenarioOutcome& outcome, const std::filesystem::path& file,
+                    const Baseline& now, const OldBaseline& old) {
+    const std::vector<std::string> changes = baselineChanges(now, old.baseline);
+    writeFileAtomically(file, baselineJson(now));
+    outcome.note = file.string() + (changes.empty() ? ": unchanged" : ": updated");
+    // An unreadable old file (another format version) is replaced, not compared: say so, or
+    // every algorithm would read as new.
+    if (old.existed && !old.baseline) {
+        outcome.note += " (the old file was not compared: " + old.problem + ")";
+    }
+    for (const auto& c : changes) outcome.note += "\n    " + c;
+}
+
+// Deterministic counts should not depend on where they were rendered; if a check fails, this
+// says what differed besides the code. Empty when the baseline was made on this backend.
+std::string renderedElsewhere(const Baseline& old, const Baseline& now) {
+    if ((!old.backend.empty() && old.backend != now.backend) ||
+        (!old.renderer.empty() && old.renderer != now.renderer)) {
+        return "baseline made on " + old.backend + " (" + old.renderer + "), this run on " +
+               now.backend + " (" + now.renderer + ")";
+    }
+    return "";
+}
+
+// Every series of every algorithm against the baseline's, frame by frame.
+void compareWithBaseline(ResultChecks& checks, const Baseline& old, const Baseline& now,
+                         const std::string& elsewhere) {
+    std::vector<CheckResult>& out = checks.outcome.checks;
+    if (old.deterministic_latency != now.deterministic_latency || old.frames != now.frames) {
+        out.push_back({"baseline settings",
+                       std::to_string(old.frames) + " frames, latency " +
+                           std::to_string(old.deterministic_latency),
+                       std::to_string(now.frames) + " frames, latency " +
+                           std::to_string(now.deterministic_latency),
+                       false});
+        return;
+    }
+    for (const auto& [name, trace] : now.algorithms) {
+        const auto it = old.algorithms.find(name);
+        if (it == old.algorithms.end()) {
+            out.push_back(
+                {"baseline has " + name, "present", "missing (run with --update)", false});
+            continue;
+        }
+        out.push_back(compareSeries("queries", name, it->second.queries, trace.queries));
+        out.push_back(compareSeries("objects", name, it->second.objects, trace.objects));
+        out.push_back(
+            compareSeries("error pixels", name, it->second.error_pixels, trace.error_pixels));
+        if (!out.back().passed) checks.capture(name);
+        out.push_back(
+            compareSeries("missed objects", name, it->second.missed_objects, trace.missed_objects));
+        // A count check that fails against a baseline made on another backend says so.
+        if (!elsewhere.empty()) {
+            for (size_t k = out.size() - 4; k < out.size(); ++k) {
+                if (!out[k].passed) out[k].got += " [" + elsewhere + "]";
+            }
+        }
+    }
+}
+
+// The baseline: written (--update), or compared with this run's counts.
+void checkBaseline(ResultChecks& checks, const Expectations& expect, const Baseline& now,
+                   bool update) {
+    ScenarioOutcome& outcome = checks.outcome;
+    const OldBaseline old = readOldBaseline(expect.baseline);
+    if (update) {
+        updateBaseline(outcome, expect.baseline, now, old);
+        return;
+    }
+    if (!old.problem.empty()) {
+        outcome.checks.push_back(
+            {"baseline", "a readable baseline of this format", old.problem, false});
+        return;
+    }
+    const std::string elsewhere = renderedElsewhere(*old.baseline, now);
+    if (!elsewhere.empty()) outcome.note = expect.baseline.string() + ": " + elsewhere;
+    compareWithBaseline(checks, *old.baseline, now, elsewhere);
+}
+
+}  // namespace
+
+void ResultChecks::capture(const std::string& algorithm) {
+    for (size_t a = 0; a < result.runs.size(); ++a) {
+        if (result.runs[a].summary.label != algorithm) continue;
+        const ErrorFrame& worst = result.worst_error_frames[a];
+        if (worst.error_pixels == 0) return;
+        const std::string name = "worst-error-" + safeFileName(algorithm) + "-frame-" +
+                                 std::to_string(worst.frame) + ".png";
+        const std::string published = (published_dir / name).string();
+        // An algorithm that fails several error checks (zero error and its baseline) has
+        // one worst frame: one picture, named once.
+        const auto& taken = outcome.captures;
+        if (std::find(taken.begin(), taken.end(), published) != taken.end()) return;
+        const LabelledPicture picture =
+            labelledErrorPicture(worst, result.metadata.width, result.metadata.height, algorithm);
+        writeFileAtomically(out_dir / name,
+                            encodePngBottomUp(picture.rgba, picture.width, picture.height));
+        outcome.captures.push_back(published);
+    }
+}
+
+void checkRun(ResultChecks& checks, const Scenario& scenario, const Expectations& expect,
+              bool update) {
+    checkZeroError(checks, expect);
+    checkMaxErrorPixels(checks, expect);
+    checkRatios(checks, expect, scenario);
+    checkBaseline(checks, expect, baselineOf(scenario, expect, checks.result), update);
+}
+
+}  // namespace occsim
