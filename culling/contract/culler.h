@@ -22,6 +22,13 @@ struct CullView {
     glm::vec3 eye{0.0f};
     Frustum frustum{};
     float near_radius = 0.0f;  // eye to a near-plane corner; see nearPlaneTouchesBox()
+    // The frustum's OpenGL-convention view-projection (clip z from -w at the near plane to w at
+    // the far one), in the culling frame: what a culler that projects boxes or triangles itself
+    // (a software depth buffer) needs. Identity when the caller gives no camera.
+    glm::mat4 view_projection{1.0f};
+    // The viewport in pixels, the size a device's depth buffer has. 0 when unknown.
+    uint32_t viewport_width = 0;
+    uint32_t viewport_height = 0;
 };
 
 // A CullView as the cullers read it during a frame: the frustum as its plane table, built once

@@ -32,6 +32,16 @@ namespace occsim {
 
 using QueryId = uint32_t;
 
+class ConditionalRendering;  // culling/contract/conditional_rendering.h
+class DepthPyramid;          // culling/contract/depth_pyramid.h
+
+// Optional capabilities of a device, as bits: a culler names those it needs
+// (AlgorithmTraits::device_needs) and a run refuses it before any work on a device without them.
+enum DeviceFeature : uint32_t {
+    kConditionalRendering = 1u << 0,  // draws that the device skips on a query's result
+    kDepthPyramid = 1u << 1,          // a hierarchical depth buffer that tests boxes
+};
+
 // What one query decides. `index` is a node for Node and NodeObjects, an object for Object.
 struct QueryTag {
     enum class Subject : uint8_t {
@@ -82,6 +92,16 @@ class RenderDevice {
 
     QueryId issueQuery(const Aabb& box, QueryTag subject = {}) {
         return issueQuery(std::span<const Aabb>(&box, 1), std::span<const QueryTag>(&subject, 1));
+    }
+
+    // The optional capabilities (DeviceFeature): nullptr when the device lacks one. A decorator
+    // hands over those of the device it wraps.
+    virtual ConditionalRendering* conditionalRendering() { return nullptr; }
+    virtual DepthPyramid* depthPyramid() { return nullptr; }
+    // The DeviceFeature bits of the capabilities above that are present.
+    uint32_t features() {
+        return (conditionalRendering() ? kConditionalRendering : 0u) |
+               (depthPyramid() ? kDepthPyramid : 0u);
     }
 
     virtual const DeviceCounters& counters() const { return counters_; }

@@ -42,6 +42,8 @@ class ApproximateDevice final : public RenderDevice {
     uint64_t staleAnswers() const { return stale_answers_; }
 
     // The wrapped device does the work, so its counters are the true ones.
+    ConditionalRendering* conditionalRendering() override { return inner_.conditionalRendering(); }
+    DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 

@@ -53,6 +53,8 @@ class TracingDevice final : public RenderDevice {
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     QueryAnswer takeAnswer(QueryId id) override;
 
+    ConditionalRendering* conditionalRendering() override { return inner_.conditionalRendering(); }
+    DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 

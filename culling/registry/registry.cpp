@@ -1,5 +1,7 @@
 #include "occsim/culling/registry/registry.h"
 
+#include <utility>
+
 #include "occsim/culling/registry/culler_options.h"
 
 namespace occsim {
@@ -20,6 +22,27 @@ bool validName(const std::string& name) {
 }
 
 }  // namespace
+
+std::string deviceFeatureNames(uint32_t features) {
+    static constexpr std::pair<uint32_t, const char*> kNames[] = {
+        {kConditionalRendering, "conditional rendering"},
+        {kDepthPyramid, "a depth pyramid (compute shaders)"},
+    };
+    std::string out;
+    for (const auto& [bit, name] : kNames) {
+        if (!(features & bit)) continue;
+        if (!out.empty()) out += ", ";
+        out += name;
+    }
+    return out;
+}
+
+void requireDeviceFeatures(const AlgorithmTraits& culler, uint32_t available) {
+    const uint32_t missing = culler.device_needs & ~available;
+    if (missing == 0) return;
+    throw RegistryError("culler '" + culler.name + "' needs " + deviceFeatureNames(missing) +
+                        ", which this device does not offer");
+}
 
 std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues& values) {
     const OptionsDescriptor& d = culler.options;

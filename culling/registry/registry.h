@@ -50,6 +50,9 @@ struct AlgorithmTraits {
     bool oracle = false;
     // The reference that speedups are measured against (frustum culling); exactly one built-in.
     bool speedup_reference = false;
+    // The device capabilities it cannot run without (DeviceFeature bits, render_device.h): a run
+    // on a device that lacks one refuses this culler before any work, naming it and the feature.
+    uint32_t device_needs = 0;
     // Its options, read from culling.<name> in a scenario.
     OptionsDescriptor options;
     std::unique_ptr<Culler> (*factory)(const CullerContext& context) = nullptr;
@@ -70,6 +73,12 @@ struct RegistryError : InputError {
 // Empty when `values` (of `culler`'s descriptor) are valid: each in its range, then the validate
 // hook. Else "<key>: expected ..., got ..." or the hook's line.
 std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues& values);
+
+// The names of the DeviceFeature bits in `features`, comma separated ("conditional rendering").
+std::string deviceFeatureNames(uint32_t features);
+// Throws RegistryError when `culler` needs a capability (device_needs) that a device with
+// `available` features lacks: "culler 'NAME' needs FEATURE, which this device does not offer".
+void requireDeviceFeatures(const AlgorithmTraits& culler, uint32_t available);
 
 class CullerRegistry {
   public:

@@ -40,6 +40,9 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     view.cull.frustum =
         frustumFromViewProjection(view_projection);  // planes in double: deep ranges
     view.cull.near_radius = static_cast<float>(nearPlaneCornerDistance(camera.near_m, fov, aspect));
+    view.cull.view_projection = glm::mat4(view_projection);
+    view.cull.viewport_width = width;
+    view.cull.viewport_height = height;
     view.render.near_radius = view.cull.near_radius;
     return view;
 }

@@ -56,6 +56,8 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       device_(approximate_device_ ? static_cast<RenderDevice*>(approximate_device_.get())
                                   : &gl_device_),
       tracer_(*device_) {
+    // Before any frame: a culler that needs what this device lacks is refused with one line.
+    requireDeviceFeatures(algorithm_, device_->features());
     if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
     culler_->reset(world_->tree());
 }
