@@ -319,11 +319,11 @@ void GlRenderer::drawObject(uint32_t object) {
 
 void GlRenderer::drawQueryBox(const Aabb& box) {
     useState(State::Query);
-    // Dilated by queryBoxPad (culling/geometry/query_box.h), the pad the cullers' near-plane rule
-    // assumes, so that zero-extent boxes still rasterise and edges shared with occluders count as
-    // visible; a larger box only makes the query more conservative.
-    // The box arrives in the culling frame; relative to the eye it is small again, so the float
-    // model-view matrix keeps its precision far from the world origin.
+    // Dilated by queryBoxPad (occsim/culling/geometry/query_box.h), the pad the cullers' near-plane
+    // rule assumes, so that zero-extent boxes still rasterise and edges shared with occluders count
+    // as visible; a larger box only makes the query more conservative. The box arrives in the
+    // culling frame; relative to the eye it is small again, so the float model-view matrix keeps
+    // its precision far from the world origin.
     const glm::dvec3 lo = glm::dvec3(box.min) + view_.box_origin;
     const glm::dvec3 hi = glm::dvec3(box.max) + view_.box_origin;
     const double pad = queryBoxPad(lo, hi, view_.eye);

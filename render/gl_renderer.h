@@ -73,8 +73,8 @@ class GlRenderer {
     void beginFrame();  // binds the framebuffer, clears colour, IDs and depth
     void drawObject(uint32_t object);
     void drawQueryBox(const Aabb& box);  // inside glBeginQuery/glEndQuery, writes nothing
-    // The near-plane rule (nearPlaneTouchesBox, culling/geometry/query_box.h) on a query box in
-    // the culling frame, as this renderer draws it: a query on it cannot be trusted.
+    // The near-plane rule (nearPlaneTouchesBox, occsim/culling/geometry/query_box.h) on a query box
+    // in the culling frame, as this renderer draws it: a query on it cannot be trusted.
     bool queryBoxNearEye(const Aabb& box) const;
     void finish();  // glFinish
 

@@ -1,5 +1,5 @@
-// Checks of the BspTree contract (culling/tree/bsp_tree.h) recomputed from scratch, and the random
-// scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
+// Checks of the BspTree contract (occsim/culling/tree/bsp_tree.h) recomputed from scratch, and the
+// random scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
 #pragma once
 
 #include <gtest/gtest.h>

@@ -7,8 +7,8 @@
 // Not a repository path, by rule rather than by list: a word with a placeholder or glob in it
 // (`<room>`, `*`, `$OUT`, `...`), a file whose name is one letter (`scenarios/X.json`) or starts
 // with "my" (`culling/cullers/my_culler.cpp`: the reader's own file), and links to web addresses.
-// `a.{h,cpp}` names both files; `occsim/culling/...` (the installed include path) names
-// `culling/...`.
+// `a.{h,cpp}` names both files; `occsim/culling/...` (the include path of a public header) names
+// `culling/include/occsim/culling/...`, the file it is.
 #pragma once
 
 #include <algorithm>
@@ -97,18 +97,24 @@ inline std::vector<std::string> wordAt(std::string_view text, size_t pos, bool* 
 inline std::vector<NamedPath> repositoryWords(std::string_view text,
                                               const std::set<std::string>& top_folders) {
     std::vector<NamedPath> found;
-    constexpr std::string_view kInstalled = "occsim/";  // the installed include prefix
+    constexpr std::string_view kIncludePath = "occsim/culling/";  // a public header's
+    const std::string kIncludeRoot = "culling/include/";          // folder of public headers
     for (size_t pos = 0; pos < text.size(); ++pos) {
         if (pos > 0 && (isPathChar(text[pos - 1]) || isPlaceholderChar(text[pos - 1]))) continue;
-        size_t start = pos;
-        if (text.substr(pos, kInstalled.size()) == kInstalled) start += kInstalled.size();
-        const size_t slash = text.find('/', start);
-        if (slash == std::string_view::npos || slash == start) continue;
-        if (!top_folders.count(std::string(text.substr(start, slash - start)))) continue;
+        const bool include_path = text.substr(pos, kIncludePath.size()) == kIncludePath;
+        if (!include_path) {
+            const size_t slash = text.find('/', pos);
+            if (slash == std::string_view::npos || slash == pos) continue;
+            if (!top_folders.count(std::string(text.substr(pos, slash - pos)))) continue;
+        }
         bool placeholder = false;
-        const std::vector<std::string> words = wordAt(text, start, &placeholder);
+        const std::vector<std::string> words = wordAt(text, pos, &placeholder);
         if (placeholder) continue;
-        for (const std::string& w : words) found.push_back({w, "", lineAt(text, pos)});
+        for (const std::string& w : words) {
+            std::string path = include_path ? kIncludeRoot : std::string();
+            path.append(w);
+            found.push_back({path, "", lineAt(text, pos)});
+        }
     }
     return found;
 }

@@ -1,7 +1,7 @@
-// BspTree local adaptation (culling/tree/bsp_tree.h): crowded leaves split, emptied leaves merge,
-// the root cell grows for movers that leave it; all without a rebuild, keeping every invariant
-// (bsp_tree_checks.h) and the per-node state contract (BspNode::generation, structureVersion(),
-// NodeStateArray).
+// BspTree local adaptation (occsim/culling/tree/bsp_tree.h): crowded leaves split, emptied leaves
+// merge, the root cell grows for movers that leave it; all without a rebuild, keeping every
+// invariant (bsp_tree_checks.h) and the per-node state contract (BspNode::generation,
+// structureVersion(), NodeStateArray).
 #include <gtest/gtest.h>
 
 #include <algorithm>

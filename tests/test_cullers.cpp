@@ -5,9 +5,9 @@
 #include <random>
 #include <set>
 
+#include "culling/cullers/basic_cullers.h"
+#include "culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
-#include "occsim/culling/cullers/basic_cullers.h"
-#include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/depth_raster_device.h"

@@ -124,23 +124,28 @@ TEST(DocPaths, EveryPathInTheDocsReadmesAndCodeCommentsExists) {
                                  << joined(missing);
 }
 
-// The check can fail: planted stale paths, in a page and in comments, are each found, and what is
-// no path (placeholders, string literals, web links, paths inside other paths) is not.
+// The check can fail: planted stale paths, in a page and in comments, are each found (a header's
+// path from before it moved, a private header named by a public include path), and what is no path
+// (placeholders, string literals, web links, paths inside other paths) is not.
 TEST(DocPaths, PlantedStalePathsAreFoundAndPlaceholdersAreNot) {
     const std::set<std::string> tops = topFolders(trackedFiles());
     const std::string page =
         "# Title\n"
         "The contract is `culling/algorithms.h`, see [the tree](bsp-tree.md) and\n"
         "[gone](no-such-page.md), [a heading](cli.md#no-such-heading), [here](#title),\n"
-        "[there](#nowhere), `culling/geometry/frustum.{h,cpp}` and `culling/tree/bsp_tree.{h,x}`.\n"
+        "[there](#nowhere), `culling/tree/{bsp_tree.cpp,tree_builder.h}`, `culling/tree/bsp_tree.{cpp,x}`.\n"
         "Placeholders: `scenarios/small/X.json`, `occsim/culling/<room>/<file>.h`, `docs/*.md`,\n"
         "`culling/cullers/my_culler.cpp`, `./build/release/sim/occsim`, https://x.org/docs/a.md,\n"
         "`occsim/culling/contract/culler.h`, `occsim/culling/culler.h`, "
-        "`sim/output/build_info.h`.\n";
+        "`sim/output/build_info.h`.\n"
+        "Moved: `culling/contract/culler.h`; private, not public: `culling/tree/tree_builder.h`, "
+        "`occsim/culling/tree/tree_builder.h`.\n";
     EXPECT_EQ(joined(missingPaths(kRoot, "docs/planted.md", page, tops)),
               "docs/planted.md:2: culling/algorithms.h\n"
               "docs/planted.md:4: culling/tree/bsp_tree.x\n"
-              "docs/planted.md:7: culling/culler.h\n"
+              "docs/planted.md:7: culling/include/occsim/culling/culler.h\n"
+              "docs/planted.md:8: culling/contract/culler.h\n"
+              "docs/planted.md:8: culling/include/occsim/culling/tree/tree_builder.h\n"
               "docs/planted.md:3: docs/no-such-page.md\n"
               "docs/planted.md:3: docs/cli.md#no-such-heading\n"
               "docs/planted.md:4: docs/planted.md#nowhere\n");

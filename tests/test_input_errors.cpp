@@ -1,5 +1,5 @@
-// One kind of bad input (culling/contract/input_error.h): every error that bad input causes, in
-// whichever module finds it, is an occsim::InputError, the one type occsim and occtune catch for
+// One kind of bad input (occsim/culling/contract/input_error.h): every error that bad input causes,
+// in whichever module finds it, is an occsim::InputError, the one type occsim and occtune catch for
 // exit code 2. A bad-input type that forgets the base fails here (and would end with exit code 1);
 // the errors that are no bad input (a failure while running, a run to try again later) stay apart.
 #include <gtest/gtest.h>

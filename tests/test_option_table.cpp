@@ -1,11 +1,12 @@
-// culling/registry/option_table.h: options structs bound to their descriptors, row by row.
+// occsim/culling/registration/option_table.h: options structs bound to their descriptors, row by
+// row.
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <stdexcept>
 
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "occsim/culling/registry/option_table.h"
+#include "culling/cullers/statistical_culler.h"
+#include "occsim/culling/registration/option_table.h"
 #include "occsim/culling/registry/registry.h"
 
 namespace occsim {

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "occsim/culling/cullers/statistical_culler.h"
+#include "culling/cullers/statistical_culler.h"
 #include "sim/output/error_picture.h"
 #include "sim/regress/regress.h"
 

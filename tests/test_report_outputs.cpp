@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "culling/cullers/basic_cullers.h"
 #include "culling_fixtures.h"
-#include "occsim/culling/cullers/basic_cullers.h"
 #include "occsim/culling/devices/tracing_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "sim/output/birds_eye.h"

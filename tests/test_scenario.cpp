@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "occsim/culling/cullers/statistical_culler.h"
+#include "culling/cullers/statistical_culler.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/number_text.h"

@@ -1,5 +1,5 @@
 // The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
-// drawn before them (culling/testing/depth_raster_device.h): no OpenGL.
+// drawn before them (occsim/culling/testing/depth_raster_device.h): no OpenGL.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
-#include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 

@@ -8,8 +8,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "culling/cullers/statistical_culler.h"
 #include "headless_backends.h"
-#include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/registry/registry.h"
 #include "render/gl_api.h"
 #include "render/gl_image_presenter.h"

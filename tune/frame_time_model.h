@@ -8,10 +8,10 @@
 // whether a query can pay (a node cheaper to draw than to query), as Guthe, Balázs & Klein do
 // with costs measured at start-up ("Near Optimal Hierarchical Culling", EGSR 2006).
 //
-// Not occsim::CostModel (culling/contract/cost_model.h), the per-box, per-triangle and per-draw
-// costs a culler reads; tuned_file.h turns this model into one. Where the figures are the same the
-// names are: draw_call_ms is the same figure in both. query_ms is per query (one box, or one
-// multiquery's boxes), which the cost model takes as its query_box_ms; kilotriangle_ms is per
+// Not occsim::CostModel (occsim/culling/contract/cost_model.h), the per-box, per-triangle and
+// per-draw costs a culler reads; tuned_file.h turns this model into one. Where the figures are the
+// same the names are: draw_call_ms is the same figure in both. query_ms is per query (one box, or
+// one multiquery's boxes), which the cost model takes as its query_box_ms; kilotriangle_ms is per
 // thousand triangles (better conditioned in the fit), triangleMs() per triangle as triangle_ms is.
 // cost_model.json keeps its key names (query_ms, draw_ms, ...): tools read them.
 #pragma once

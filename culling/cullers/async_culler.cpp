@@ -1,10 +1,10 @@
 // The per-object asynchronous scheme of the PURE engine's occlusion-culling notes ("Simple
 // Pseudo-code"), with the re-test rule of the ARB_occlusion_query specification. See
 // async_culler.h for the rules.
-#include "occsim/culling/cullers/async_culler.h"
+#include "culling/cullers/async_culler.h"
 
-#include "occsim/culling/registry/option_table.h"
-#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
 namespace occsim {
 
 AsyncCuller::AsyncCuller(const AsyncOptions& options) : options_(options) {}

@@ -1,6 +1,6 @@
-#include "occsim/culling/cullers/basic_cullers.h"
+#include "culling/cullers/basic_cullers.h"
 
-#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/registration/algorithm_traits.h"
 namespace occsim {
 
 void VfcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {

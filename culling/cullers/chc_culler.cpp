@@ -2,10 +2,10 @@
 // Queries Made Useful", Eurographics 2004: the algorithm of Figure "Pseudo-code of coherent
 // hierarchical culling" with the optimisations of "Further Optimizations" (conservative
 // visibility testing, approximate visibility). See chc_culler.h for the rules.
-#include "occsim/culling/cullers/chc_culler.h"
+#include "culling/cullers/chc_culler.h"
 
-#include "occsim/culling/registry/option_table.h"
-#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
 namespace occsim {
 
 ChcCuller::ChcCuller(const ChcOptions& options) : options_(options) {}

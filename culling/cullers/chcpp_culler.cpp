@@ -2,14 +2,14 @@
 // 2008: queues for batching (i-queue, v-queue, render queue, section 4), multiqueries (5.1),
 // randomised sampling of visible nodes (5.2) and tight bounds from the hierarchy (6). See
 // chcpp_culler.h for the rules.
-#include "occsim/culling/cullers/chcpp_culler.h"
+#include "culling/cullers/chcpp_culler.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "occsim/culling/geometry/random.h"
-#include "occsim/culling/registry/option_table.h"
-#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 

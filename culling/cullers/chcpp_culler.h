@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
+#include "culling/cullers/coherent_traversal.h"
 #include "occsim/culling/contract/culler.h"
-#include "occsim/culling/cullers/coherent_traversal.h"
 
 namespace occsim {
 

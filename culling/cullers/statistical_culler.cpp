@@ -1,7 +1,7 @@
 // Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries",
 // WSCG 2005 short papers, section 3 (the two-queue traversal and the optimised CalcNodeAction),
 // with the improvements of StatisticalOptions (docs/statistical.md), each off by default.
-#include "occsim/culling/cullers/statistical_culler.h"
+#include "culling/cullers/statistical_culler.h"
 
 #include <algorithm>
 #include <bit>

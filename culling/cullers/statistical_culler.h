@@ -35,10 +35,10 @@
 #include <string_view>
 #include <vector>
 
+#include "culling/cullers/statistical_options.h"
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
-#include "occsim/culling/cullers/statistical_options.h"
-#include "occsim/culling/registry/option_table.h"
+#include "occsim/culling/registration/option_table.h"
 #include "occsim/culling/tree/node_state.h"
 #include "occsim/culling/tree/traversal.h"
 

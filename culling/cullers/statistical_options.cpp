@@ -1,4 +1,4 @@
-#include "occsim/culling/cullers/statistical_options.h"
+#include "culling/cullers/statistical_options.h"
 
 namespace occsim {
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <limits>
 
-#include "occsim/culling/cullers/statistical_culler.h"
-#include "occsim/culling/registry/registry.h"
+#include "culling/cullers/statistical_culler.h"
+#include "occsim/culling/registration/algorithm_traits.h"
 
 namespace occsim {
 namespace {

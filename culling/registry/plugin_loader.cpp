@@ -6,7 +6,8 @@
 #include <set>
 #include <system_error>
 
-#include "occsim/culling/registry/plugin.h"
+#include "occsim/culling/plugin.h"
+#include "occsim/culling/registry/registry.h"
 
 namespace occsim {
 namespace {
@@ -48,7 +49,7 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
     if (!entry) {
         throw PluginError(name + ": no entry point '" OCCSIM_PLUGIN_ENTRY_POINT
                                  "'; expected a plugin built with OCCSIM_PLUGIN(...) "
-                                 "(occsim/culling/registry/plugin.h)");
+                                 "(occsim/culling/plugin.h)");
     }
     const OccsimPlugin* plugin = entry();
     if (!plugin || !plugin->register_cullers) {

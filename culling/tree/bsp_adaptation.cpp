@@ -6,9 +6,9 @@
 #include <cassert>
 #include <cmath>
 
+#include "culling/tree/loose_cells.h"
+#include "culling/tree/tree_builder.h"
 #include "occsim/culling/tree/bsp_tree.h"
-#include "occsim/culling/tree/loose_cells.h"
-#include "occsim/culling/tree/tree_builder.h"
 
 namespace occsim {
 namespace {

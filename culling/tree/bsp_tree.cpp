@@ -24,8 +24,8 @@
 #include <cmath>
 #include <string>
 
-#include "occsim/culling/tree/loose_cells.h"
-#include "occsim/culling/tree/tree_builder.h"
+#include "culling/tree/loose_cells.h"
+#include "culling/tree/tree_builder.h"
 
 namespace occsim {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "occsim/culling/tree/loose_cells.h"
+#include "culling/tree/loose_cells.h"
 
 namespace occsim::bsp_detail {
 

@@ -1,6 +1,6 @@
 // Unit test of the example culler on occsim's CPU test devices: no OpenGL, no window, no GPU.
 // ScriptedQueryDevice answers each query with the number of visible objects its box overlaps.
-#include <occsim/culling/geometry/frustum.h>
+#include <occsim/culling/plugin.h>
 #include <occsim/culling/testing/scripted_query_device.h>
 
 #include <algorithm>

@@ -2,8 +2,6 @@
 // header, and the entry point (OCCSIM_PLUGIN) that `occsim --plugin` loads.
 #include "trust_visible_culler.h"
 
-#include <occsim/culling/registry/plugin.h>
-
 namespace example {
 
 void TrustVisibleCuller::cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,

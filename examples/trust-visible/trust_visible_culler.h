@@ -5,9 +5,7 @@
 // trusted node only draws more than a query would.
 #pragma once
 
-#include <occsim/culling/contract/culler.h>
-#include <occsim/culling/tree/node_state.h>
-#include <occsim/culling/tree/traversal.h>
+#include <occsim/culling/plugin.h>
 
 #include <limits>
 #include <vector>

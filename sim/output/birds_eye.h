@@ -5,7 +5,7 @@
 // Contract
 // - classifyNodes() gives one NodeClass per BSP node from the tree as the culler saw it, the
 //   frame's view and a TracingDevice trace of that frame (see the enum for the rules). A query
-//   counts for the nodes it was tagged with (QueryTag, culling/contract/render_device.h): a
+//   counts for the nodes it was tagged with (QueryTag, occsim/culling/contract/render_device.h): a
 //   multiquery for each of its nodes; a query on a node's own objects only when it found them
 //   visible or is pending; a per-object query for no node.
 // - renderBirdsEye() returns width * height * 4 bytes of RGBA8, row 0 at the bottom (for

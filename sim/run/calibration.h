@@ -1,7 +1,7 @@
-// The cost model of the statistical+ culler (CostModel, culling/contract/cost_model.h), measured on
-// the renderer at hand before the first frame: a few timed draws and queries from the scenario's
-// first view, in the spirit of the start-up measurements of Guthe, Balazs & Klein, "Near Optimal
-// Hierarchical Culling" (EGSR 2006), section 4.
+// The cost model of the statistical+ culler (CostModel, occsim/culling/contract/cost_model.h),
+// measured on the renderer at hand before the first frame: a few timed draws and queries from the
+// scenario's first view, in the spirit of the start-up measurements of Guthe, Balazs & Klein, "Near
+// Optimal Hierarchical Culling" (EGSR 2006), section 4.
 #pragma once
 
 #include <string>

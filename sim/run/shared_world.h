@@ -1,8 +1,8 @@
 // The world every configuration of a run sees: poses, movers and the BSP tree, advanced once per
 // frame, with that frame's view and model-view matrices. Configurations (Simulation) render it
 // through their own cullers; each culler keeps its own per-node state beside the one tree
-// (NodeStateArray follows structure changes by node generation, culling/tree/node_state.h), so a
-// bench of seven configurations steps the movers and refits the tree once per frame, not seven
+// (NodeStateArray follows structure changes by node generation, occsim/culling/tree/node_state.h),
+// so a bench of seven configurations steps the movers and refits the tree once per frame, not seven
 // times. The world knows no OpenGL: ground truth of its frame is rendered by GroundTruth.
 #pragma once
 

@@ -3,8 +3,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "occsim/culling/cullers/basic_cullers.h"
-
 namespace occsim {
 namespace {
 

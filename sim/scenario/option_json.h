@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "occsim/culling/registry/options.h"
+#include "occsim/culling/registration/options.h"
 #include "sim/scenario/json_reader.h"
 
 namespace occsim {

@@ -1,6 +1,6 @@
 // The "culling" section of a scenario: the algorithm, the knobs every query-based culler shares,
 // the cost model, and each registered culler's options object under its own name, read through
-// its descriptor (occsim/culling/registry/options.h). A plugin's culler is read exactly as a
+// its descriptor (occsim/culling/registration/options.h). A plugin's culler is read exactly as a
 // built-in: the same types, ranges and one-line errors at the key's JSON pointer.
 #include <cmath>
 #include <limits>

@@ -438,7 +438,7 @@ void checkMoverObjectIndex(const Scenario& scenario, size_t mover, size_t item,
                             std::to_string(local));
 }
 
-// "plugins": shared objects with cullers (occsim/culling/registry/plugin.h), loaded before the
+// "plugins": shared objects with cullers (occsim/culling/plugin.h), loaded before the
 // culling section is read so that it may name their cullers and give their options. Paths
 // resolve against the scenario's folder.
 static std::vector<std::filesystem::path> readPlugins(JsonObjectReader& top,

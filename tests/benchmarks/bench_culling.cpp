@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
-#include "occsim/culling/cullers/statistical_culler.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "occsim/culling/tree/bsp_tree.h"

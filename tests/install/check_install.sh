@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The installed package from a user's side: install occsim into a temporary prefix, build the
-# example plugin (examples/trust-visible) against that prefix alone, run its CPU unit test, bench
-# it beside vfc and chc with error measured, tune it with occtune --algo, and bench again with the
-# tuned.json. Usage: check_install.sh BUILD_DIR SOURCE_DIR
+# The installed package from a user's side: install occsim into a temporary prefix, check that
+# exactly the public headers are installed and that the example includes only the plugin header,
+# build the example plugin (examples/trust-visible) against that prefix alone, run its CPU unit
+# test, bench it beside vfc and chc with error measured, tune it with occtune --algo, and bench
+# again with the tuned.json. Usage: check_install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build_dir=$1
 source_dir=$2
@@ -14,7 +15,21 @@ fail() { echo "check_install: $*" >&2; exit 1; }
 
 cmake --install "$build_dir" --prefix "$prefix" >/dev/null
 [ -f "$prefix/lib/cmake/occsim/occsimConfig.cmake" ] || fail "no package config installed"
-[ -f "$prefix/include/occsim/culling/registry/plugin.h" ] || fail "no plugin header installed"
+[ -f "$prefix/include/occsim/culling/plugin.h" ] || fail "no plugin header installed"
+# The installed headers are the public folder, culling/include/, file for file: no private header
+# (culling/<room>/*.h beside its .cpp, such as culling/tree/tree_builder.h) and no source.
+(cd "$source_dir/culling/include" && find . -type f | sort) >"$work/public.txt"
+(cd "$prefix/include" && find . -type f | sort) >"$work/installed.txt"
+diff "$work/public.txt" "$work/installed.txt" >"$work/headers.diff" || {
+  cat "$work/headers.diff" >&2; fail "the installed headers are not the public folder"; }
+for private in tree/tree_builder.h tree/loose_cells.h cullers; do
+  [ ! -e "$prefix/include/occsim/culling/$private" ] || fail "a private header is installed: $private"
+done
+# The example includes the plugin header alone (its unit test adds the CPU test devices' header).
+example_includes=$(grep -hoE '#include [<"]occsim/[^">]+' "$source_dir"/examples/trust-visible/*.h \
+  "$source_dir"/examples/trust-visible/*.cpp | sed -E 's/#include [<"]//' | sort -u | tr '\n' ' ')
+[ "$example_includes" = "occsim/culling/plugin.h occsim/culling/testing/scripted_query_device.h " ] \
+  || fail "the example includes more than the plugin header: $example_includes"
 
 # Only the prefix: no package registry, no build tree.
 cmake -S "$source_dir/examples/trust-visible" -B "$work/example" -DCMAKE_BUILD_TYPE=Release \

@@ -12,8 +12,7 @@
 #include <csignal>
 #include <stdexcept>
 
-#include "occsim/culling/registry/plugin.h"
-#include "occsim/culling/tree/traversal.h"
+#include "occsim/culling/plugin.h"
 
 namespace {
 

@@ -1,8 +1,12 @@
-// The one header a plugin culler needs beyond the culler contract: a shared object that defines
-// the entry point below can be loaded with `occsim run|bench|regress|view --plugin FILE` (or a
-// scenario's "plugins" key), and its cullers then run wherever the built-ins run.
+// The one header a plugin culler includes: what a culler is (the contract, the geometry, the BSP
+// tree's read API and its traversal helpers, per-node state), what its registry row is (traits,
+// options descriptor, option tables) and the entry point below. A shared object that defines the
+// entry point can be loaded with `occsim run|bench|regress|view --plugin FILE` (or a scenario's
+// "plugins" key), and its cullers then run wherever the built-ins run. The host's side of the
+// registry (the registry itself, lookups, makeCuller, the plugin loader: registry/) is not here:
+// a plugin hands its rows to the PluginRegistrar and never reaches the registry.
 //
-//   #include <occsim/culling/registry/plugin.h>
+//   #include <occsim/culling/plugin.h>
 //
 //   static void registerMine(occsim::PluginRegistrar& registrar) {
 //       occsim::AlgorithmTraits t;
@@ -20,9 +24,23 @@
 
 #include <cstdint>
 
-#include "occsim/culling/registry/registry.h"
+#include "occsim/culling/contract/cost_model.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/geometry/aabb.h"
+#include "occsim/culling/geometry/frustum.h"
+#include "occsim/culling/geometry/query_box.h"
+#include "occsim/culling/geometry/random.h"
+#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/registration/options.h"
+#include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/node_state.h"
+#include "occsim/culling/tree/traversal.h"
 
-#define OCCSIM_PLUGIN_ABI_VERSION 2u
+// 3: this header (the registry's row apart from the registry, the tree no longer reached through
+// the culler contract), CullView's view-projection and viewport, AlgorithmTraits::device_needs.
+#define OCCSIM_PLUGIN_ABI_VERSION 3u
 
 namespace occsim {
 

@@ -1,8 +1,8 @@
 // The culler interface: one frame's visibility decisions over a BspTree, carried out through a
 // RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
-// registration in culling/registry/registry.h. Implementations keep their own per-node state (sized
-// by reset()), use simulation time (never wall-clock time) for every decision, and are
-// deterministic given the device's answers.
+// registration (occsim/culling/registration/algorithm_traits.h). Implementations keep their own
+// per-node state (sized by reset()), use simulation time (never wall-clock time) for every
+// decision, and are deterministic given the device's answers.
 #pragma once
 
 #include <cstdint>
@@ -14,9 +14,12 @@
 
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
-#include "occsim/culling/tree/bsp_tree.h"
 
 namespace occsim {
+
+// The tree a culler reads (tree/bsp_tree.h). Only named here: the contract does not depend on the
+// tree's layout, and the tree's traversal helpers (tree/traversal.h) build on this contract.
+class BspTree;
 
 struct CullView {
     glm::vec3 eye{0.0f};
@@ -50,7 +53,8 @@ struct CullFrame {
     double time_s = 0.0;  // simulation time: frame_index * dt
     CullView view;
     // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
-    // oracles (AlgorithmTraits::oracle, culling/registry/registry.h); empty otherwise.
+    // oracles (AlgorithmTraits::oracle, occsim/culling/registration/algorithm_traits.h); empty
+    // otherwise.
     std::span<const uint8_t> ground_truth_visible;
     // Per object, its triangle count. The culling layer knows no meshes, so the simulation passes
     // a view of a table it builds once (per frame, beside the view, rather than through reset():

@@ -1,6 +1,7 @@
 // The only door from a culler to the renderer. Culling code draws objects and issues occlusion
 // queries through this interface and never sees OpenGL; render/ implements it with real GL
-// queries, culling/testing/scripted_query_device.h with a known visibility function for tests.
+// queries, occsim/culling/testing/scripted_query_device.h with a known visibility function for
+// tests.
 //
 // Query semantics (GL_SAMPLES_PASSED on bounding boxes):
 // - issueQuery() rasterises the given boxes with colour and depth writes off against the depth

@@ -1,4 +1,4 @@
-// Loads plugin cullers (plugin.h) from shared objects into the program's registry.
+// Loads plugin cullers (occsim/culling/plugin.h) from shared objects into the program's registry.
 #pragma once
 
 #include <filesystem>

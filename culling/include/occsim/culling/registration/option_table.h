@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "occsim/culling/registry/options.h"
+#include "occsim/culling/registration/options.h"
 
 namespace occsim {
 

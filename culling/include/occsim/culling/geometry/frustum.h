@@ -4,7 +4,7 @@
 //
 // Every box test runs one kernel (classifyBox below) over a FrustumPlanes table: the planes'
 // coefficients and the absolute values of their normals, which a culler builds once when it begins
-// a frame (PreparedView, culling/contract/culler.h). The batch form runs it over
+// a frame (PreparedView, occsim/culling/contract/culler.h). The batch form runs it over
 // structure-of-arrays boxes; the single-box calls are thin wrappers over it, so no path can drift
 // from another.
 #pragma once

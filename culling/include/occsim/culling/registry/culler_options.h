@@ -9,7 +9,7 @@
 
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/devices/approximation_options.h"
-#include "occsim/culling/registry/options.h"
+#include "occsim/culling/registration/options.h"
 
 namespace occsim {
 

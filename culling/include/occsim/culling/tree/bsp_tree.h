@@ -42,7 +42,7 @@
 //   topology changes (build, split, merge) structureVersion() increases and every slot that starts
 //   holding a new node gets a new BspNode::generation; a node that only changes its cell (root
 //   growth), becomes a leaf (merge) or an inner node (split) keeps its generation. So per-node
-//   state (culling/tree/node_state.h) is kept for unchanged nodes and reset for new ones.
+//   state (occsim/culling/tree/node_state.h) is kept for unchanged nodes and reset for new ones.
 // - Objects of a node form a doubly linked list threaded through per-object arrays (O(1) move);
 //   iterate with firstObject(node) / nextObject(object) until kNone.
 #pragma once
@@ -102,7 +102,7 @@ struct BspNode {
     // Changes whenever this slot starts holding a new node (a build, or a node a local split
     // creates, in a new or a freed slot): per-node state that others keep (a culler's statistics)
     // is stale when the generation it was recorded for differs. See NodeStateArray
-    // (culling/tree/node_state.h).
+    // (occsim/culling/tree/node_state.h).
     uint32_t generation = 0;
 
     bool isLeaf() const { return child[0] == UINT32_MAX; }

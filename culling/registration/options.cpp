@@ -1,4 +1,4 @@
-#include "occsim/culling/registry/options.h"
+#include "occsim/culling/registration/options.h"
 
 #include <cmath>
 #include <cstdio>
