@@ -33,8 +33,8 @@ namespace occsim {
 
 using QueryId = uint32_t;
 
-class ConditionalRendering;  // culling/contract/conditional_rendering.h
-class DepthPyramid;          // culling/contract/depth_pyramid.h
+class ConditionalRendering;  // occsim/culling/contract/conditional_rendering.h
+class DepthPyramid;          // occsim/culling/contract/depth_pyramid.h
 
 // Optional capabilities of a device, as bits: a culler names those it needs
 // (AlgorithmTraits::device_needs) and a run refuses it before any work on a device without them.
