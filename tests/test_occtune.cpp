@@ -116,6 +116,25 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
         EXPECT_GE(cost[key].get<double>(), 0.0) << key;
     }
 
+    // confirmation.json: the report's confirmation as numbers, agreeing with tuned.json.
+    const nlohmann::json conf = nlohmann::json::parse(text(dir / "confirmation.json"));
+    EXPECT_EQ(conf["culler"], "statistical");
+    ASSERT_EQ(conf["parameters"].size(), 1u);
+    EXPECT_EQ(conf["parameters"][0]["name"], "base_time");
+    if (conf["verdict"] == "accepted") {  // "no change" writes the reference into tuned.json
+        EXPECT_DOUBLE_EQ(conf["parameters"][0]["tuned"].get<double>(), base_time);
+    }
+    EXPECT_DOUBLE_EQ(conf["parameters"][0]["reference"].get<double>(), 2.0 / 3.0);
+    ASSERT_EQ(conf["variants"].size(), 2u);
+    EXPECT_EQ(conf["variants"][0]["variant"], "fitted (seed 7)");
+    EXPECT_EQ(conf["variants"][1]["variant"], "held out (seed 8)");
+    for (const nlohmann::json& v : conf["variants"]) {
+        EXPECT_GT(v["mean_ratio"]["median"].get<double>(), 0.0);
+        EXPECT_LE(v["mean_ratio"]["min"].get<double>(), v["mean_ratio"]["max"].get<double>());
+        EXPECT_EQ(v["tuned_error_pixels"], 0);
+    }
+    EXPECT_TRUE(conf["verdict"] == "accepted" || conf["verdict"] == "no change") << conf["verdict"];
+
     const std::string report = text(dir / "report.md");
     for (const char* part :
          {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)",

@@ -5,6 +5,7 @@
 
 #include "sim/output/atomic_file.h"
 #include "tune/charts.h"
+#include "tune/confirmation_file.h"
 #include "tune/report.h"
 
 namespace occsim::tune {
@@ -47,6 +48,8 @@ PlotResult writeSessionFiles(TuneSession& session) {
     r.charts_message = charts.message;
     r.files.insert(r.files.end(), charts.files.begin(), charts.files.end());
     writeFileAtomically(out_dir / "report.md", reportMarkdown(r));
+    writeFileAtomically(out_dir / "confirmation.json", confirmationJson(r));
+    r.files.push_back("confirmation.json");
     std::filesystem::remove(out_dir / (r.verdict.kind == Verdict::Kind::Rejected
                                            ? "tuned.json"
                                            : "tuned.rejected.json"));

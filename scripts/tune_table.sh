@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# docs/tuning.md's results: statistical+ tuned per scene by occtune on every scene of a set, each
+# tuning confirmed by occtune on the frames it fitted and on the held-out variant (the scenario's
+# seed + 1), then the scene benchmarked with the tuned file beside every other culler (the fastest
+# conservative peer in the same run). Every scene twice: two separate sessions (sampling seeds 1
+# and 2), so the run-to-run spread stands beside the means. The load average before and after each
+# step is logged; run this on a quiet machine (no build, test or other benchmark beside it).
+# Usage: scripts/tune_table.sh [default|paper|general|all] [occtune options...]
+#   e.g. scripts/tune_table.sh all --frames 120 --budget 17
+# Output: out/tuning/<set>/<scene>/run-<n>/{tune/,peers/,load.txt}, then the tables
+# (scripts/tune_table.py out/tuning/<set>).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+set_name=${1:-all}
+shift || true
+case "$set_name" in
+  default) sets=(default) ;;
+  paper) sets=(paper) ;;
+  general) sets=(general) ;;
+  all) sets=(default paper general) ;;
+  *) echo "tune_table.sh: unknown set '$set_name'; expected default, paper, general or all" >&2; exit 2 ;;
+esac
+scenes_of() {
+  case "$1" in
+    default) echo scenarios/teapots.json ;;
+    paper) echo scenarios/paper/teapots.json scenarios/paper/city.json scenarios/paper/library.json \
+                scenarios/paper/plant.json ;;
+    general) echo scenarios/general/*.json ;;
+  esac
+}
+# The occsim bench flags that match occtune's --frames, when given.
+bench_flags=()
+args=("$@")
+for ((i = 0; i < ${#args[@]}; i++)); do
+  if [[ ${args[i]} == --frames ]]; then bench_flags+=(--frames "${args[i + 1]}"); fi
+  if [[ ${args[i]} == --frames=* ]]; then bench_flags+=("${args[i]}"); fi
+done
+bash scripts/setup.sh
+bash scripts/build.sh release occsim occtune
+source scripts/core_dumps.sh  # a crash leaves a core (and says where)
+for set in "${sets[@]}"; do
+  for scene in $(scenes_of "$set"); do
+    name=$(basename "$scene" .json)
+    for run in 1 2; do
+      out="out/tuning/$set/$name/run-$run"
+      mkdir -p "$out"
+      echo "== $scene, run $run ($(uptime))"
+      echo "tune before: $(cut -d' ' -f1-3 /proc/loadavg)" > "$out/load.txt"
+      # Exit 3 (the confirmation rejected the values) is a result, not a failure of the script.
+      status=0
+      ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
+        "$@" || status=$?
+      echo "tune after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
+      if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" ]]; then
+        echo "tune_table.sh: occtune failed on $scene (exit $status)" >&2
+        exit "$status"
+      fi
+      culling=()
+      [[ -f "$out/tune/tuned.json" ]] && culling=(--culling "$out/tune/tuned.json")
+      echo "peers before: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
+      ./build/release/sim/occsim bench "$scene" --error "${culling[@]}" "${bench_flags[@]}" \
+        --out "$out/peers"
+      echo "peers after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
+    done
+  done
+  python3 scripts/tune_table.py "out/tuning/$set"
+done
