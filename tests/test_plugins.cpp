@@ -172,6 +172,31 @@ TEST(PluginCli, AFactoryThatThrowsInARunIsExitCode2InOccsimAndOcctune) {
     fs::remove_all(dir);
 }
 
+// A culler that needs a capability the run's device lacks is refused before any work: one line
+// naming it and the capability, exit code 2, nothing written. The GL device offers conditional
+// rendering; an approximating device (a pixel threshold) withholds it.
+TEST(PluginCli, ACullerNeedingWhatTheDeviceLacksIsRefusedWithOneLineAndExitCode2) {
+    const fs::path dir = tempDir("cli-needs");
+    const std::string small =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+    const std::string plugin = pluginFile("needs_conditional").string();
+    const Outcome plain = occsim("bench " + small + " --plugin " + plugin +
+                                 " --algos test-frustum --frames 3 --out " + (dir / "a").string());
+    EXPECT_EQ(plain.exit_code, 0) << plain.output;
+    const Outcome refused =
+        occsim("bench " + small + " --plugin " + plugin +
+               " --algos test-frustum --sweep threshold_pixels=4 --frames 3 --out " +
+               (dir / "b").string());
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_EQ(lineCount(refused.output), 1u) << refused.output;
+    EXPECT_NE(refused.output.find("culler 'test-frustum' needs conditional rendering, which this "
+                                  "device does not offer"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(fs::exists(dir / "b"));
+    fs::remove_all(dir);
+}
+
 TEST(PluginCli, APluginsOptionsAreCheckedLikeABuiltinsAtTheirJsonPointer) {
     const fs::path dir = tempDir("cli-options");
     const struct {

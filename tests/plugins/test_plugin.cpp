@@ -9,6 +9,8 @@
 //                          (made once with its defaults) and fails when a run asks for another
 //   PLUGIN_FAILING         "test-frustum" throws in its frame 3 (the stopping tests)
 //   PLUGIN_CRASHING        "test-frustum" raises SIGSEGV in its frame 3 (the stopping tests)
+//   PLUGIN_NEEDS_CONDITIONAL  "test-frustum" claims to issue queries and to need conditional
+//                          rendering, which an approximating device withholds (the refusal)
 #include <csignal>
 #include <stdexcept>
 
@@ -71,6 +73,9 @@ class FrustumOnly final : public occsim::Culler {
     t.factory = makeThrowing;
 #elif defined(PLUGIN_PICKY)
     t.factory = makePicky;
+#elif defined(PLUGIN_NEEDS_CONDITIONAL)
+    t.issues_queries = true;
+    t.device_needs = occsim::kConditionalRendering;
 #endif
     registrar.add(std::move(t));
 }
