@@ -1,4 +1,5 @@
-// Plugins for the loader's tests (test_plugins.cpp), one shared object per define:
+// Plugins for the loader's tests (test_plugin_loader.cpp, test_plugins.cpp), one shared object per
+// define:
 //   PLUGIN_GOOD            a conservative culler "test-frustum" (frustum culling) with options
 //   PLUGIN_NO_ENTRY        no entry point at all
 //   PLUGIN_OTHER_ABI       an entry point that carries another ABI version
