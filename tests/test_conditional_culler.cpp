@@ -1,6 +1,6 @@
-// The conditional-rendering culler (culling/cullers/conditional_culler.h) and the capability it
-// needs (culling/contract/conditional_rendering.h) on the CPU test devices, which evaluate a
-// condition as a GPU does: no OpenGL. The GL device's side is in test_render.cpp.
+// The conditional-rendering culler (culling/cullers/conditional_culler.h) on the CPU test devices,
+// which evaluate a condition as a GPU does: no OpenGL. The capability on each device is tested in
+// that device's test file, the GL device's in test_render.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
