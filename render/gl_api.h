@@ -80,6 +80,8 @@
     X(PFNGLDELETEQUERIESPROC, glDeleteQueries)                     \
     X(PFNGLBEGINQUERYPROC, glBeginQuery)                           \
     X(PFNGLENDQUERYPROC, glEndQuery)                               \
+    X(PFNGLBEGINCONDITIONALRENDERPROC, glBeginConditionalRender)   \
+    X(PFNGLENDCONDITIONALRENDERPROC, glEndConditionalRender)       \
     X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)             \
     X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
 
@@ -157,6 +159,8 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #define glDeleteQueries occsim_glDeleteQueries
 #define glBeginQuery occsim_glBeginQuery
 #define glEndQuery occsim_glEndQuery
+#define glBeginConditionalRender occsim_glBeginConditionalRender
+#define glEndConditionalRender occsim_glEndConditionalRender
 #define glGetQueryObjectuiv occsim_glGetQueryObjectuiv
 #define glGetQueryObjectui64v occsim_glGetQueryObjectui64v
 

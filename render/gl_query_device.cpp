@@ -30,7 +30,7 @@ GlQueryDevice::~GlQueryDevice() {
 }
 
 uint32_t GlQueryDevice::queriesInFlight() const {
-    return static_cast<uint32_t>(gl_queries_.size() - free_ids_.size());
+    return static_cast<uint32_t>(gl_queries_.size() - free_ids_.size() - held_ids_.size());
 }
 
 void GlQueryDevice::drawObject(uint32_t object) {
@@ -49,6 +49,62 @@ void GlQueryDevice::beginDrawnSet(uint32_t objects) {
         drawn_set_ = 1;
     }
     drawn_mark_.resize(objects, 0);
+    // The last set's conditional draws are forgotten: the queries they held may serve again.
+    conditional_draws_.clear();
+    for (QueryId id : held_ids_) conditioned_[id] = 0;
+    free_ids_.insert(free_ids_.end(), held_ids_.begin(), held_ids_.end());
+    held_ids_.clear();
+}
+
+void GlQueryDevice::retire(QueryId id) {
+    live_[id] = 0;
+    (conditioned_[id] ? held_ids_ : free_ids_).push_back(id);
+}
+
+void GlQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) {
+    const auto start = Clock::now();
+    // Release builds: a dead id draws unconditionally (the safe side). A box that reaches the near
+    // plane as drawn gives samples that mean nothing: drawn unconditionally, as takeAnswer()
+    // would have answered it visible.
+    bool conditional = isLive(id, "drawIf") && near_eye_[id] == 0;
+    GLenum mode = wait == ConditionWait::Wait ? GL_QUERY_WAIT : GL_QUERY_NO_WAIT;
+    if (conditional && latency_.deterministic) {
+        // The device's model of readiness, not the driver's: the same draws execute every run.
+        const bool ready = commands_ - issued_at_[id] > latency_.latency_commands;
+        if (wait == ConditionWait::NoWait && !ready) conditional = false;
+        mode = GL_QUERY_WAIT;
+    }
+    if (conditional) {
+        conditioned_[id] = 1;
+        OCCSIM_GL_CHECKED(glBeginConditionalRender(gl_queries_[id], mode));
+    }
+    for (uint32_t object : objects) {
+        renderer_.drawObject(object);
+        if (!conditional) {
+            if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
+        } else {
+            conditional_draws_.push_back({object, id});
+        }
+        ++commands_;
+        ++counters_.objects_drawn;
+        ++counters_.conditional_draws;
+        counters_.triangles_drawn += renderer_.triangleCount(object);
+    }
+    if (conditional) OCCSIM_GL_CHECKED(glEndConditionalRender());
+    counters_.submit_seconds += secondsSince(start);
+}
+
+void GlQueryDevice::release(QueryId id) {
+    if (isLive(id, "release")) retire(id);  // release builds: a dead id is released nothing
+}
+
+void GlQueryDevice::resolveConditionalDraws() {
+    for (const ConditionalDraw& d : conditional_draws_) {
+        if (d.object >= drawn_mark_.size() || drawn_mark_[d.object] == drawn_set_) continue;
+        GLuint64 samples = 0;
+        OCCSIM_GL_CHECKED(glGetQueryObjectui64v(gl_queries_[d.query], GL_QUERY_RESULT, &samples));
+        if (samples > 0) drawn_mark_[d.object] = drawn_set_;
+    }
 }
 
 QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
@@ -67,6 +123,7 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
         answered_.push_back(0);
         live_.push_back(0);
         near_eye_.push_back(0);
+        conditioned_.push_back(0);
     }
     near_eye_[id] = 0;
     for (const Aabb& box : boxes) near_eye_[id] |= renderer_.queryBoxNearEye(box) ? 1 : 0;
@@ -141,8 +198,7 @@ QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {
         counters_.poll_seconds += secondsSince(start);
     }
     ++counters_.results_fetched;
-    live_[id] = 0;
-    free_ids_.push_back(id);
+    retire(id);
     return {samples > 0 || near_eye_[id] != 0, samples, !ready};
 }
 

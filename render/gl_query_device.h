@@ -9,17 +9,26 @@
 // So is each query's latency as the culler feels it: how many commands (draws and queries) had
 // been submitted after it by the time its answer was known to be ready, when the culler polled
 // it or waited for it (takeAnswerLatencies()).
+// Conditional rendering (culling/contract/conditional_rendering.h) is glBeginConditionalRender on
+// the query's GL_SAMPLES_PASSED object, GL_QUERY_WAIT or GL_QUERY_NO_WAIT; the driver decides.
+// A query whose box reaches the near plane draws unconditionally (its samples mean nothing).
+// Under deterministic latency the device decides readiness by its command count instead:
+// NO_WAIT before the answer counts as ready draws unconditionally, after it the condition is
+// evaluated with GL_QUERY_WAIT. For error measurement, an object drawn under a condition counts as
+// drawn when the query passed samples (resolveConditionalDraws(), after the frame); so the query
+// objects conditioned on stay unused until the next beginDrawnSet().
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
 #include "render/gl_renderer.h"
 
 namespace occsim {
 
-class GlQueryDevice final : public RenderDevice {
+class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
   public:
     GlQueryDevice(GlRenderer& renderer, LatencyMode latency);
     ~GlQueryDevice() override;
@@ -31,6 +40,7 @@ class GlQueryDevice final : public RenderDevice {
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
+    ConditionalRendering* conditionalRendering() override { return this; }
 
     uint32_t queriesInFlight() const;
 
@@ -41,11 +51,17 @@ class GlQueryDevice final : public RenderDevice {
     bool drew(uint32_t object) const {
         return object < drawn_mark_.size() && drawn_mark_[object] == drawn_set_;
     }
+    // Adds to the drawn set the objects drawn under a condition whose query passed samples (reads
+    // those queries' results: call after the frame, outside any timing).
+    void resolveConditionalDraws();
     // The latencies of the answers that became ready since the last call (in the order they did),
     // moved into `out` (cleared first; its capacity is reused).
     void takeAnswerLatencies(std::vector<uint32_t>& out);
 
   private:
+    void drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) override;
+    void release(QueryId id) override;
+    void retire(QueryId id);  // frees the id, or holds it until beginDrawnSet() if conditioned on
     void noteAnswered(QueryId id);
     bool pollReady(QueryId id);                       // asks the driver (or the latency model) once
     bool isLive(QueryId id, const char* call) const;  // issued and not yet taken
@@ -66,6 +82,15 @@ class GlQueryDevice final : public RenderDevice {
     std::vector<uint32_t> latencies_;  // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;  // object -> drawn_set_ when drawn in the current set
+    // Conditional draws of the current set: the object and the query it was conditioned on.
+    struct ConditionalDraw {
+        uint32_t object;
+        QueryId query;
+    };
+    std::vector<ConditionalDraw> conditional_draws_;
+    std::vector<uint8_t>
+        conditioned_;                // QueryId -> draws of the current set were conditioned on it
+    std::vector<QueryId> held_ids_;  // released, kept until beginDrawnSet() for resolving
     uint32_t drawn_set_ = 1;
 };
 

@@ -110,6 +110,27 @@ inline std::set<uint32_t> inFrustum(const std::vector<Aabb>& boxes, const Frustu
     return out;
 }
 
+// A camera: the cullers' view and the OpenGL-convention view-projection a depth raster needs.
+struct Camera {
+    CullView view;
+    glm::mat4 view_projection;
+};
+
+inline Camera makeCamera(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f, float near = 0.1f,
+                         float far = 1000.0f, float aspect = 4.0f / 3.0f) {
+    Camera c;
+    c.view = makeView(eye, target, fov_deg, near, far, aspect);
+    c.view_projection = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
+                        glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    return c;
+}
+
+// Two unit boxes apart, and a box around both.
+struct TwoObjects {
+    std::vector<Aabb> boxes{{glm::vec3(0), glm::vec3(1)}, {glm::vec3(5), glm::vec3(6)}};
+    Aabb both{glm::vec3(0), glm::vec3(6)};
+};
+
 // The registered algorithm of that name (the test fails loudly on a typo).
 inline std::unique_ptr<Culler> cullerNamed(std::string_view name, const CullerOptions& options) {
     const AlgorithmTraits* algorithm = findAlgorithm(name);

@@ -1,6 +1,7 @@
-// Plugin cullers: the loader on each kind of bad file, and a plugin's culler running wherever a
-// built-in runs (the scenario's options with the same checks, bench tables, summaries, baselines
-// and JUnit files). The plugins are built from tests/plugins/test_plugin.cpp.
+// Plugin cullers through the command lines: a bad plugin file stops every command, and a plugin's
+// culler runs wherever a built-in runs (the scenario's options with the same checks, bench
+// tables, summaries, baselines and JUnit files). The plugins are built from
+// tests/plugins/test_plugin.cpp; the loader's own tests are in test_plugin_loader.cpp.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 
 #include "occsim/culling/registry/plugin_loader.h"
 #include "occsim/culling/registry/registry.h"
+#include "plugin_files.h"
 #include "shell_command.h"
 
 namespace {
@@ -20,33 +22,9 @@ using namespace occsim;
 using occsim::testing::Outcome;
 using occsim::testing::shell;
 namespace fs = std::filesystem;
-
-fs::path pluginFile(const std::string& kind) {
-    return fs::path(TEST_PLUGIN_DIR) / ("libtest_plugin_" + kind + ".so");
-}
-
-fs::path tempDir(const std::string& name) {
-    const fs::path p =
-        fs::temp_directory_path() / ("occsim-plugins-" + std::to_string(::getpid()) + "-" + name);
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-}
-
-std::string loadError(const fs::path& file, CullerRegistry& registry) {
-    try {
-        loadPlugin(file, registry);
-    } catch (const PluginError& e) {
-        return e.what();
-    }
-    return "";
-}
-
-size_t lineCount(const std::string& s) {
-    size_t n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
+using occsim::testing::lineCount;
+using occsim::testing::pluginFile;
+using occsim::testing::tempDir;
 
 Outcome occsim(const std::string& args) { return shell(std::string(OCCSIM_EXE) + " " + args); }
 
@@ -71,52 +49,6 @@ fs::path scenarioWithPlugin(const fs::path& dir, const nlohmann::json& culling,
     const fs::path file = dir / "with-plugin.json";
     std::ofstream(file) << s.dump(2);
     return file;
-}
-
-TEST(PluginLoader, AGoodPluginRegistersItsCullersOnceWithItsFileAsTheSource) {
-    CullerRegistry registry;
-    const std::vector<std::string> names = loadPlugin(pluginFile("good"), registry);
-    ASSERT_EQ(names, std::vector<std::string>{"test-frustum"});
-    const AlgorithmTraits* a = registry.find("test-frustum");
-    ASSERT_NE(a, nullptr);
-    EXPECT_EQ(a->source, pluginFile("good").string());
-    EXPECT_TRUE(a->conservative);
-    ASSERT_EQ(a->options.size(), 2u);
-    EXPECT_EQ(a->options[1].key, "margin");
-    EXPECT_TRUE(a->options[1].tunable);
-    EXPECT_TRUE(loadPlugin(pluginFile("good"), registry).empty())
-        << "a file already loaded is not loaded again";
-    EXPECT_EQ(registry.all().size(), 1u);
-}
-
-TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
-    const fs::path dir = tempDir("bad");
-    const fs::path text_file = dir / "libnotes.so";
-    std::ofstream(text_file) << "not a shared object\n";
-    const struct {
-        fs::path file;
-        std::string expected;
-    } cases[] = {
-        {dir / "libmissing.so", "no such file; expected a plugin culler"},
-        {text_file, "not a loadable shared object"},
-        {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
-        {pluginFile("other_abi"), "built for plugin ABI version 4; this occsim loads version 3"},
-        {pluginFile("taken_name"),
-         "culler 'chc': the name is already taken (by a built-in culler)"},
-        {pluginFile("bad_descriptor"),
-         "invalid options descriptor: option 0 ('budget'): the range must be ordered"},
-        {pluginFile("throwing"), "its factory threw: no GPU budget configured"},
-    };
-    for (const auto& c : cases) {
-        CullerRegistry registry;
-        registry.add(*findAlgorithm("chc"));  // the name a plugin must not take
-        const std::string why = loadError(c.file, registry);
-        EXPECT_EQ(why.rfind(c.file.string() + ": ", 0), 0u) << why;
-        EXPECT_NE(why.find(c.expected), std::string::npos) << why;
-        EXPECT_EQ(why.find('\n'), std::string::npos) << why;
-        EXPECT_EQ(registry.all().size(), 1u) << "a refused plugin registers nothing: " << c.file;
-    }
-    fs::remove_all(dir);
 }
 
 TEST(PluginCli, ABadPluginStopsEveryCommandWithExitCode2AndWritesNothing) {
@@ -169,6 +101,31 @@ TEST(PluginCli, AFactoryThatThrowsInARunIsExitCode2InOccsimAndOcctune) {
                                (dir / "tune").string());
     EXPECT_EQ(tune.exit_code, 2) << tune.output;
     EXPECT_NE(tune.output.find(expected), std::string::npos) << tune.output;
+    fs::remove_all(dir);
+}
+
+// A culler that needs a capability the run's device lacks is refused before any work: one line
+// naming it and the capability, exit code 2, nothing written. The GL device offers conditional
+// rendering; an approximating device (a pixel threshold) withholds it.
+TEST(PluginCli, ACullerNeedingWhatTheDeviceLacksIsRefusedWithOneLineAndExitCode2) {
+    const fs::path dir = tempDir("cli-needs");
+    const std::string small =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+    const std::string plugin = pluginFile("needs_conditional").string();
+    const Outcome plain = occsim("bench " + small + " --plugin " + plugin +
+                                 " --algos test-frustum --frames 3 --out " + (dir / "a").string());
+    EXPECT_EQ(plain.exit_code, 0) << plain.output;
+    const Outcome refused =
+        occsim("bench " + small + " --plugin " + plugin +
+               " --algos test-frustum --sweep threshold_pixels=4 --frames 3 --out " +
+               (dir / "b").string());
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_EQ(lineCount(refused.output), 1u) << refused.output;
+    EXPECT_NE(refused.output.find("culler 'test-frustum' needs conditional rendering, which this "
+                                  "device does not offer"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(fs::exists(dir / "b"));
     fs::remove_all(dir);
 }
 

@@ -20,6 +20,7 @@ unsigned char OSMesaGetColorBuffer(void* context, int* width, int* height, int* 
 #include <memory>
 
 #include "headless_backends.h"
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "render/gl_checked_call.h"
 #include "render/gl_frame_timer.h"
@@ -429,6 +430,72 @@ TEST_P(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     EXPECT_FALSE(device.drew(1)) << "a new set starts empty";
     device.drawObject(2);
     EXPECT_TRUE(device.drew(2));
+}
+
+// Conditional rendering (culling/contract/conditional_rendering.h) on the GL device: the driver
+// skips what the query found hidden, nothing is read back, and the drawn set used for missed
+// objects counts a conditional draw as drawn when its query passed samples.
+TEST_P(RenderTest, ConditionalDrawsBehindAnOccluderAreSkippedAndTheOthersDrawn) {
+    for (ConditionWait wait : {ConditionWait::Wait, ConditionWait::NoWait}) {
+        GlQueryDevice device(*renderer_, LatencyMode{});
+        ConditionalRendering* c = device.conditionalRendering();
+        ASSERT_NE(c, nullptr);
+        device.beginDrawnSet(3);
+        renderer_->beginFrame();
+        device.drawObject(0);
+        const QueryId hidden = device.issueQuery(boxes_[1]);
+        const QueryId visible = device.issueQuery(boxes_[2]);
+        c->drawIf(hidden, 1, wait);
+        c->drawIf(visible, 2, wait);
+        c->release(hidden);
+        c->release(visible);
+        renderer_->finish();
+        std::vector<uint32_t> ids;
+        renderer_->readObjectIds(ids);
+        EXPECT_GT(std::count(ids.begin(), ids.end(), 3u), 0) << "the side cube is drawn";
+        device.resolveConditionalDraws();
+        EXPECT_FALSE(device.drew(1)) << "its query passed nothing";
+        EXPECT_TRUE(device.drew(2));
+        EXPECT_EQ(device.counters().objects_drawn, 3u) << "submitted draws";
+        EXPECT_EQ(device.counters().conditional_draws, 2u);
+        EXPECT_EQ(device.counters().results_fetched, 0u) << "nothing read back";
+        EXPECT_EQ(device.queriesInFlight(), 0u) << "released";
+    }
+}
+
+TEST_P(RenderTest, ConditionalNoWaitUnderDeterministicLatencyDrawsUntilTheAnswerCountsAsReady) {
+    for (uint32_t latency : {0u, 100u}) {
+        GlQueryDevice device(*renderer_, LatencyMode{true, latency});
+        ConditionalRendering& c = *device.conditionalRendering();
+        device.beginDrawnSet(3);
+        renderer_->beginFrame();
+        device.drawObject(0);
+        const QueryId hidden = device.issueQuery(boxes_[1]);
+        c.drawIf(hidden, 1, ConditionWait::NoWait);
+        c.release(hidden);
+        renderer_->finish();
+        device.resolveConditionalDraws();
+        EXPECT_EQ(device.drew(1), latency == 100u)
+            << "latency " << latency << ": drawn unconditionally only while not ready";
+    }
+}
+
+TEST_P(RenderTest, AConditionOnABoxAroundTheEyeDrawsUnconditionally) {
+    const float near_radius =
+        static_cast<float>(nearPlaneCornerDistance(0.1, glm::radians(90.0), double(kW) / kH));
+    setEye({0, 0, 0}, near_radius);
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    device.beginDrawnSet(3);
+    renderer_->beginFrame();
+    device.drawObject(0);
+    const Aabb around{{-10, -10, -10}, {10, 10, 10}};
+    ASSERT_TRUE(renderer_->queryBoxNearEye(around));
+    const QueryId q = device.issueQuery(around);
+    device.conditionalRendering()->drawIf(q, 1, ConditionWait::Wait);
+    device.conditionalRendering()->release(q);
+    renderer_->finish();
+    device.resolveConditionalDraws();
+    EXPECT_TRUE(device.drew(1)) << "its samples mean nothing: drawn, as takeAnswer says visible";
 }
 
 TEST_P(RenderTest, PngEncodingProducesAValidPngSignature) {

@@ -19,6 +19,7 @@ void TracingDevice::beginTrace(uint64_t frame) {
     for (size_t i = trace_.queries.size(); i-- > 0;) spare_.push_back(std::move(trace_.queries[i]));
     trace_.queries.clear();
     trace_.drawn_objects.clear();
+    trace_.conditional_objects.clear();
     trace_.frame = frame;
     trace_.earlier_results_fetched = 0;
     std::fill(open_.begin(), open_.end(), kClosed);
@@ -64,8 +65,24 @@ QueryId TracingDevice::issueQuery(std::span<const Aabb> boxes, std::span<const Q
         q.fetched = false;
         q.visible = false;
         q.samples = 0;
+        q.conditional = false;
     }
     return id;
+}
+
+void TracingDevice::drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) {
+    if (tracing_) {
+        trace_.drawn_objects.insert(trace_.drawn_objects.end(), objects.begin(), objects.end());
+        trace_.conditional_objects.insert(trace_.conditional_objects.end(), objects.begin(),
+                                          objects.end());
+        if (id < open_.size() && open_[id] != kClosed) trace_.queries[open_[id]].conditional = true;
+    }
+    inner_.conditionalRendering()->drawIf(id, objects, wait);
+}
+
+void TracingDevice::release(QueryId id) {
+    inner_.conditionalRendering()->release(id);
+    if (tracing_ && id < open_.size()) open_[id] = kClosed;  // the id may be reused: unfetched
 }
 
 QueryAnswer TracingDevice::takeAnswer(QueryId id) {

@@ -13,6 +13,7 @@ std::string traitsOf(const AlgorithmTraits& a) {
     if (a.issues_queries) t += ", issues queries";
     if (a.oracle) t += ", oracle";
     if (a.speedup_reference) t += ", speedup reference";
+    if (a.device_needs != 0) t += ", needs " + deviceFeatureNames(a.device_needs);
     if (!a.source.empty()) t += ", plugin " + a.source;
     return t;
 }

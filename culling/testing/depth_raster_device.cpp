@@ -36,6 +36,7 @@ void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 e
     boxes_.assign(object_boxes.begin(), object_boxes.end());
     std::fill(depth_.begin(), depth_.end(), kFar);
     drawn_.clear();
+    skipped_.clear();
     query_log_.clear();
 }
 
@@ -64,10 +65,28 @@ DepthRasterDevice::Card DepthRasterDevice::cardOf(const Aabb& box) const {
 }
 
 void DepthRasterDevice::drawObject(uint32_t object) {
-    assert(object < boxes_.size());
-    drawn_.push_back(object);
     queries_.countDraw();
     ++counters_.objects_drawn;
+    rasterise(object);
+}
+
+void DepthRasterDevice::drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) {
+    const bool holds = queries_.conditionHolds(id, wait);  // decided when the draws are submitted
+    for (uint32_t object : objects) {
+        queries_.countDraw();
+        ++counters_.objects_drawn;
+        ++counters_.conditional_draws;
+        if (holds) {
+            rasterise(object);
+        } else {
+            skipped_.push_back(object);
+        }
+    }
+}
+
+void DepthRasterDevice::rasterise(uint32_t object) {
+    assert(object < boxes_.size());
+    drawn_.push_back(object);
     const Card c = cardOf(boxes_[object]);
     for (uint32_t y = c.y0; y < c.y1; ++y) {
         for (uint32_t x = c.x0; x < c.x1; ++x) {

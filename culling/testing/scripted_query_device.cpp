@@ -45,12 +45,24 @@ QueryId ScriptedQueryDevice::issueQuery(std::span<const Aabb> boxes,
     return id;
 }
 
+void ScriptedQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects,
+                                 ConditionWait wait) {
+    const bool holds = queries_.conditionHolds(id, wait);  // decided when the draws are submitted
+    for (uint32_t object : objects) {
+        (holds ? drawn_ : skipped_).push_back(object);
+        queries_.countDraw();
+        ++counters_.objects_drawn;
+        ++counters_.conditional_draws;
+    }
+}
+
 bool ScriptedQueryDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
 QueryAnswer ScriptedQueryDevice::takeAnswer(QueryId id) { return queries_.take(id, counters_); }
 
 void ScriptedQueryDevice::clearLog() {
     drawn_.clear();
+    skipped_.clear();
     queried_.clear();
     tags_.clear();
 }

@@ -17,7 +17,9 @@ struct QueryMarks {
 
 // What each node's queries said, from the subjects the culler tagged them with. A query on a
 // node's own objects (a virtual leaf) is made after they were drawn, so its zero result culls
-// nothing: only its visible or pending state counts. Per-object queries mark no node.
+// nothing: only its visible or pending state counts. Per-object queries mark no node. A query
+// that draws were conditioned on (conditional rendering) is never fetched; its node counts as
+// drawn after a query, which it was, the device having had the last word.
 QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
     QueryMarks m;
     m.zero.assign(tree.nodeCount(), 0);
@@ -27,7 +29,9 @@ QueryMarks markQueriedNodes(const BspTree& tree, const FrameTrace& trace) {
         for (const QueryTag& tag : q.subjects) {
             if (tag.subject == QueryTag::Subject::Object || tag.index >= tree.nodeCount()) continue;
             const uint32_t n = tag.index;
-            if (!q.fetched)
+            if (q.conditional)  // objects drawn under its condition: the device decided them
+                m.visible[n] = 1;
+            else if (!q.fetched)
                 m.pending[n] = 1;
             else if (q.visible)
                 m.visible[n] = 1;

@@ -30,7 +30,8 @@ enum class NodeClass : uint8_t {
     Empty,              // no objects in the subtree (empty bounds); not drawn
     FrustumCulled,      // bounds outside the view frustum (classify() says Outside)
     OcclusionCulled,    // its bounds were queried and the fetched result was 0
-    DrawnAfterQuery,    // queried, result > 0, and objects drawn in it or below it
+    DrawnAfterQuery,    // queried, result > 0 (or its objects drawn under the query's condition),
+                        // and objects drawn in it or below it
     DrawnWithoutQuery,  // own objects drawn without a fetched query (not queried, or pending)
     NotReached,         // inside the frustum, below an occlusion-culled node: never visited
     Passed,             // visited, nothing of its own drawn (e.g. an inner node, a visible query

@@ -146,6 +146,9 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     for (uint32_t id : culled_ids_) {
         if (id != 0) culled_visible_[id - 1] = 1;
     }
+    // Conditional draws count as drawn when their query passed samples: one the device skipped
+    // was not drawn; one it executed on a query that passed nothing cannot show.
+    gl_device_.resolveConditionalDraws();
     int64_t missed = 0, unseen = 0, visible = 0;
     missing_.assign(objects, 0);
     for (uint32_t o = 0; o < objects; ++o) {

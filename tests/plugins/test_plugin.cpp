@@ -1,4 +1,5 @@
-// Plugins for the loader's tests (test_plugins.cpp), one shared object per define:
+// Plugins for the loader's tests (test_plugin_loader.cpp, test_plugins.cpp), one shared object per
+// define:
 //   PLUGIN_GOOD            a conservative culler "test-frustum" (frustum culling) with options
 //   PLUGIN_NO_ENTRY        no entry point at all
 //   PLUGIN_OTHER_ABI       an entry point that carries another ABI version
@@ -9,6 +10,8 @@
 //                          (made once with its defaults) and fails when a run asks for another
 //   PLUGIN_FAILING         "test-frustum" throws in its frame 3 (the stopping tests)
 //   PLUGIN_CRASHING        "test-frustum" raises SIGSEGV in its frame 3 (the stopping tests)
+//   PLUGIN_NEEDS_CONDITIONAL  "test-frustum" claims to issue queries and to need conditional
+//                          rendering, which an approximating device withholds (the refusal)
 #include <csignal>
 #include <stdexcept>
 
@@ -70,6 +73,9 @@ class FrustumOnly final : public occsim::Culler {
     t.factory = makeThrowing;
 #elif defined(PLUGIN_PICKY)
     t.factory = makePicky;
+#elif defined(PLUGIN_NEEDS_CONDITIONAL)
+    t.issues_queries = true;
+    t.device_needs = occsim::kConditionalRendering;
 #endif
     registrar.add(std::move(t));
 }

@@ -71,6 +71,9 @@ struct QueryAnswer {
 struct DeviceCounters {
     uint64_t objects_drawn = 0;
     uint64_t triangles_drawn = 0;
+    // Of objects_drawn, those submitted under a query's condition (conditional_rendering.h): the
+    // device may have skipped them, which only it knows.
+    uint64_t conditional_draws = 0;
     uint64_t queries_issued = 0;  // query objects (a multiquery counts once)
     uint64_t query_boxes = 0;     // boxes rasterised for queries
     uint64_t results_fetched = 0;

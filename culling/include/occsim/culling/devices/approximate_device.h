@@ -13,6 +13,12 @@
 // Both make conservative cullers approximate; the error shows in the numbers. With threshold 0
 // and stale results off this device changes nothing.
 //
+// Conditional rendering (conditional_rendering.h) is offered only while neither knob is active:
+// the wrapped device evaluates a condition on the raw samples, where no threshold or stale answer
+// can reach it, so forwarding it would silently ignore the knobs. A culler that needs it is then
+// refused (requireDeviceFeatures); the built-in `conditional` does not issue queries in the
+// registry's sense, so runs never put it behind this device.
+//
 // Contract: results still become ready in issue order (a query answerable from a stale result is
 // ready only when every earlier open query is ready or answerable too), and the device allocates
 // nothing per frame once its tables are sized: the last results live in a fixed-size table (a
@@ -42,7 +48,9 @@ class ApproximateDevice final : public RenderDevice {
     uint64_t staleAnswers() const { return stale_answers_; }
 
     // The wrapped device does the work, so its counters are the true ones.
-    ConditionalRendering* conditionalRendering() override { return inner_.conditionalRendering(); }
+    ConditionalRendering* conditionalRendering() override {
+        return options_.active() ? nullptr : inner_.conditionalRendering();
+    }
     DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }

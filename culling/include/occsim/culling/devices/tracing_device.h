@@ -8,6 +8,9 @@
 //   fetched before endTrace() stays "pending" (fetched == false).
 // - Results fetched during the trace for queries issued before it (ids living across frames) are
 //   only counted: their boxes are unknown to this device.
+// - Conditional draws (conditional_rendering.h; offered when the wrapped device offers them) are
+//   recorded among drawn_objects, as submitted, and in conditional_objects; the query they were
+//   conditioned on is marked `conditional`. Its answer is never read back, so it stays unfetched.
 // - When not tracing, calls are forwarded and nothing is recorded.
 // - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
 #pragma once
@@ -16,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
 
 namespace occsim {
@@ -26,18 +30,20 @@ struct TracedQuery {
     bool fetched = false;            // false: pending at the end of the trace
     bool visible = false;            // the answer, when fetched
     uint64_t samples = 0;            // the samples it rests on, when fetched
+    bool conditional = false;        // draws were conditioned on it (the device decided them)
 };
 
 struct FrameTrace {
     uint64_t frame = 0;
-    std::vector<uint32_t> drawn_objects;   // in draw order
-    std::vector<TracedQuery> queries;      // in issue order
-    uint32_t earlier_results_fetched = 0;  // results of queries issued before the trace began
+    std::vector<uint32_t> drawn_objects;        // in draw order (conditional draws as submitted)
+    std::vector<uint32_t> conditional_objects;  // those drawn under a query's condition
+    std::vector<TracedQuery> queries;           // in issue order
+    uint32_t earlier_results_fetched = 0;       // results of queries issued before the trace began
 
     uint32_t pendingQueries() const;
 };
 
-class TracingDevice final : public RenderDevice {
+class TracingDevice final : public RenderDevice, private ConditionalRendering {
   public:
     explicit TracingDevice(RenderDevice& inner) : inner_(inner) {}
 
@@ -53,7 +59,9 @@ class TracingDevice final : public RenderDevice {
     bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
     QueryAnswer takeAnswer(QueryId id) override;
 
-    ConditionalRendering* conditionalRendering() override { return inner_.conditionalRendering(); }
+    ConditionalRendering* conditionalRendering() override {
+        return inner_.conditionalRendering() ? this : nullptr;
+    }
     DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
@@ -62,6 +70,8 @@ class TracingDevice final : public RenderDevice {
     static constexpr size_t kClosed = SIZE_MAX;
 
     void makeRoom(TracedQuery& q) const;
+    void drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) override;
+    void release(QueryId id) override;
 
     RenderDevice& inner_;
     bool tracing_ = false;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/query_id_check.h"
 #include "occsim/culling/contract/render_device.h"
 
@@ -43,6 +44,21 @@ class CommandLatencyQueries {
         ++counters.results_fetched;
         slots_[id].in_use = false;
         return {slots_[id].result > 0, slots_[id].result, waited};
+    }
+
+    // Whether draws under query `id`'s condition execute, decided as a GPU would when they are
+    // submitted now (conditional_rendering.h): Wait, or an answer already ready, executes them iff
+    // the answer is visible; NoWait before the answer is ready executes them unconditionally.
+    bool conditionHolds(QueryId id, ConditionWait wait) const {
+        checkLive(id, "drawIf");
+        if (wait == ConditionWait::NoWait && !isReady(id)) return true;
+        return slots_[id].result > 0;
+    }
+
+    // Ends a query without taking its answer (ConditionalRendering::release).
+    void release(QueryId id) {
+        checkLive(id, "release");
+        slots_[id].in_use = false;
     }
 
     uint32_t pending() const {

@@ -16,6 +16,11 @@
 // truth, so "conservative" means the same here as with the GL device.
 //
 // Results become ready after a fixed number of later commands, like ScriptedQueryDevice.
+//
+// Conditional rendering (conditional_rendering.h) as a GPU evaluates it: a conditional draw
+// executes (writes its card) iff its query passed a cell against the raster as it was when the
+// query was issued, or unconditionally under NoWait while the answer is not ready. Executed draws
+// join drawnObjects(), skipped ones skippedObjects(); both count as submitted draws.
 #pragma once
 
 #include <cstdint>
@@ -23,13 +28,14 @@
 #include <span>
 #include <vector>
 
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/command_latency_queries.h"
 
 namespace occsim {
 
-class DepthRasterDevice final : public RenderDevice {
+class DepthRasterDevice final : public RenderDevice, private ConditionalRendering {
   public:
     DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
 
@@ -44,12 +50,15 @@ class DepthRasterDevice final : public RenderDevice {
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
+    ConditionalRendering* conditionalRendering() override { return this; }
 
     // Per object, 1 when it is visible with every object in the frustum drawn (this frame's
     // camera and boxes; independent of what the culler drew).
     std::vector<uint8_t> groundTruth() const;
     // The objects drawn since beginFrame(), in order.
     const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
+    // Conditional draws since beginFrame() that the device skipped, in order.
+    const std::vector<uint32_t>& skippedObjects() const { return skipped_; }
     // Queries issued since beginFrame(), in order, with what they were for.
     const std::vector<QueryTag>& queryLog() const { return query_log_; }
     uint32_t pendingQueries() const;
@@ -60,6 +69,9 @@ class DepthRasterDevice final : public RenderDevice {
         float depth = 0.0f;
     };
     Card cardOf(const Aabb& box) const;
+    void rasterise(uint32_t object);
+    void drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) override;
+    void release(QueryId id) override { queries_.release(id); }
 
     uint32_t width_, height_;
     glm::mat4 view_projection_{1.0f};
@@ -69,6 +81,7 @@ class DepthRasterDevice final : public RenderDevice {
     std::vector<float> depth_;  // width * height, +inf = nothing drawn
     CommandLatencyQueries queries_;
     std::vector<uint32_t> drawn_;
+    std::vector<uint32_t> skipped_;
     std::vector<QueryTag> query_log_;
 };
 

@@ -5,18 +5,25 @@
 // after a fixed number of later commands (draws or queries), like the deterministic latency mode
 // of the GL device; taking one earlier counts as a wait. An answer is visible when its count is
 // above 0.
+//
+// It offers conditional rendering (conditional_rendering.h) with a GPU's semantics on that
+// answer: a conditional draw executes iff the answer is visible, or unconditionally under NoWait
+// while the answer is not ready (fewer than `latency_commands` later commands). Executed draws
+// join drawnObjects(), skipped ones skippedObjects(); both count as submitted draws.
+// offerConditionalRendering(false) makes it a device without the capability.
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/testing/command_latency_queries.h"
 
 namespace occsim {
 
-class ScriptedQueryDevice final : public RenderDevice {
+class ScriptedQueryDevice final : public RenderDevice, private ConditionalRendering {
   public:
     explicit ScriptedQueryDevice(uint32_t latency_commands = 0)
         : queries_(latency_commands, "ScriptedQueryDevice") {}
@@ -32,9 +39,15 @@ class ScriptedQueryDevice final : public RenderDevice {
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
+    ConditionalRendering* conditionalRendering() override {
+        return offer_conditional_ ? this : nullptr;
+    }
+    void offerConditionalRendering(bool offer) { offer_conditional_ = offer; }
 
     // What the culler did since the last clearLog().
     const std::vector<uint32_t>& drawnObjects() const { return drawn_; }
+    // Conditional draws the device skipped (their query's answer was occluded).
+    const std::vector<uint32_t>& skippedObjects() const { return skipped_; }
     const std::vector<Aabb>& queriedBoxes() const { return queried_; }
     // What each query since the last clearLog() was for (its first subject), in issue order.
     const std::vector<QueryTag>& queryTags() const { return tags_; }
@@ -44,11 +57,16 @@ class ScriptedQueryDevice final : public RenderDevice {
     uint32_t maxPendingQueries() const { return max_pending_; }
 
   private:
+    void drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) override;
+    void release(QueryId id) override { queries_.release(id); }
+
     CommandLatencyQueries queries_;
+    bool offer_conditional_ = true;
     uint32_t max_pending_ = 0;
     std::vector<uint8_t> visible_;
     std::vector<Aabb> boxes_;
     std::vector<uint32_t> drawn_;
+    std::vector<uint32_t> skipped_;
     std::vector<Aabb> queried_;
     std::vector<QueryTag> tags_;
 };

@@ -1,5 +1,7 @@
-// The statistical culler (Kovalcik & Sochor 2005) on test devices whose answers depend on what was
-// drawn before them (occsim/culling/testing/depth_raster_device.h): no OpenGL.
+// The statistical culler (Kovalcik & Sochor 2005; culling/cullers/statistical_culler.h): its
+// decision rule branch by branch, and whole traversals on the scripted query device and on test
+// devices whose answers depend on what was drawn before them
+// (culling/testing/depth_raster_device.h). No OpenGL.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "culling/cullers/statistical_culler.h"
 #include "culling_fixtures.h"
+#include "culling/cullers/basic_cullers.h"
+#include "culling/cullers/statistical_culler.h"
+#include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 
@@ -20,27 +24,15 @@ namespace occsim {
 namespace {
 
 using testing::buildTree;
+using testing::Camera;
 using testing::gridBoxes;
 using testing::inFrustum;
+using testing::makeCamera;
 using testing::makeFrame;
 using testing::makeView;
 using testing::overview;
 using testing::randomBoxes;
 using testing::randomVisibility;
-
-struct Camera {
-    CullView view;
-    glm::mat4 view_projection;
-};
-
-Camera makeCamera(glm::vec3 eye, glm::vec3 target, float fov_deg = 60.0f, float near = 0.1f,
-                  float far = 1000.0f, float aspect = 4.0f / 3.0f) {
-    Camera c;
-    c.view = testing::makeView(eye, target, fov_deg, near, far, aspect);
-    c.view_projection = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
-                        glm::lookAt(eye, target, glm::vec3(0, 1, 0));
-    return c;
-}
 
 // A wall of boxes across the view near the camera, and a field of small boxes behind it that the
 // wall hides completely.
@@ -62,23 +54,6 @@ struct WallAndField {
         }
     }
 };
-
-TEST(DepthRasterDevice, ANearerDrawnBoxHidesAFartherOne) {
-    const Camera cam = makeCamera({0, 1, 10}, {0, 1, 0});
-    DepthRasterDevice device(32, 24);
-    const std::vector<Aabb> boxes = {{glm::vec3(-5, -5, -1), glm::vec3(5, 5, 0)},
-                                     {glm::vec3(-1, 0, -20), glm::vec3(1, 2, -18)}};
-    device.beginFrame(cam.view_projection, cam.view.eye, boxes);
-    EXPECT_TRUE(device.takeAnswer(device.issueQuery(boxes[1])).visible) << "nothing drawn yet";
-    device.drawObject(0);
-    EXPECT_FALSE(device.takeAnswer(device.issueQuery(boxes[1])).visible) << "behind the drawn wall";
-    EXPECT_TRUE(device.takeAnswer(device.issueQuery(boxes[0])).visible) << "ties pass";
-    // A box containing a hidden object and part of the wall passes; ground truth sees the wall.
-    Aabb both = boxes[0];
-    extend(both, boxes[1]);
-    EXPECT_TRUE(device.takeAnswer(device.issueQuery(both)).visible);
-    EXPECT_EQ(device.groundTruth(), (std::vector<uint8_t>{1, 0}));
-}
 
 // What a culler did over one frame on the depth raster: objects drawn that ground truth does not
 // see, and objects ground truth sees that were not drawn.
@@ -809,6 +784,242 @@ INSTANTIATE_TEST_SUITE_P(Options, StatisticalConservative,
                          ::testing::Values("paper", "ready", "leaves", "objects", "costs",
                                            "distance", "parallax", "fallback", "draw", "weigh",
                                            "descend", "waits", "plus"));
+
+StatisticalOptions paperOptions() { return StatisticalOptions{}; }
+
+TEST(CalcNodeAction, RendersWithoutQueryWhenTheNearPlaneMayCutTheBox) {
+    NodeStatistics stats;  // even with no statistics at all
+    EXPECT_EQ(decideNodeAction(paperOptions(), stats, true, 5.0), NodeAction::Render);
+}
+
+TEST(CalcNodeAction, QueriesANodeWithoutStatistics) {
+    EXPECT_EQ(decideNodeAction(paperOptions(), NodeStatistics{}, false, 0.0), NodeAction::Query);
+}
+
+TEST(CalcNodeAction, QueriesWhenStatisticsAreTooOld) {
+    StatisticalOptions o = paperOptions();
+    o.max_statistics_age_s = 0.5;
+    NodeStatistics s;
+    recordQueryResult(o, s, true, 10.0);
+    EXPECT_EQ(decideNodeAction(o, s, false, 10.4), NodeAction::Render);
+    EXPECT_EQ(decideNodeAction(o, s, false, 10.6), NodeAction::Query);
+}
+
+TEST(CalcNodeAction, QueriesWhenTheLastResultWasOccluded) {
+    NodeStatistics s;
+    recordQueryResult(paperOptions(), s, true, 0.0);
+    recordQueryResult(paperOptions(), s, true, 0.1);
+    recordQueryResult(paperOptions(), s, false, 0.2);
+    EXPECT_EQ(decideNodeAction(paperOptions(), s, false, 0.2), NodeAction::Query);
+}
+
+TEST(CalcNodeAction, RendersUntilBaseTimeTimesDecayThenQueries) {
+    // BASE_TIME = 2/3 s, a = 2, b = 0.5: one visible result -> 2/3 * 1.5 = 1.0 s;
+    // two -> 2/3 * 1.75 = 1.1667 s; three -> 2/3 * 1.875 = 1.25 s.
+    const StatisticalOptions o = paperOptions();
+    const double expected[] = {1.0, 7.0 / 6.0, 1.25};
+    NodeStatistics s;
+    for (int n = 0; n < 3; ++n) {
+        recordQueryResult(o, s, true, 0.0);
+        EXPECT_EQ(decideNodeAction(o, s, false, expected[n] - 1e-6), NodeAction::Render) << n;
+        EXPECT_EQ(decideNodeAction(o, s, false, expected[n] + 1e-6), NodeAction::Query) << n;
+    }
+}
+
+TEST(CalcNodeAction, DecayCurveAndHistoryLengthAreParameters) {
+    StatisticalOptions o = paperOptions();
+    o.base_time_s = 1.0;
+    o.decay_a = 3.0;
+    o.decay_b = 0.25;
+    o.history_length = 2;
+    o.max_statistics_age_s = 10.0;
+    NodeStatistics s;
+    for (int i = 0; i < 5; ++i) recordQueryResult(o, s, true, 0.0);
+    // Only the last 2 results count: occ_num = 2 -> 1.0 * (3 - 0.0625) = 2.9375 s.
+    EXPECT_EQ(decideNodeAction(o, s, false, 2.93), NodeAction::Render);
+    EXPECT_EQ(decideNodeAction(o, s, false, 2.94), NodeAction::Query);
+}
+
+struct OneObjectWorld {
+    std::vector<Aabb> boxes{{glm::vec3(-1, -1, -11), glm::vec3(1, 1, -9)}};
+    BspTree tree = buildTree(boxes);
+    ScriptedQueryDevice device{0};
+    StatisticalCuller culler;
+    OneObjectWorld() { culler.reset(tree); }
+
+    void frame(const CullView& view, double t, bool visible) {
+        device.setVisibility({static_cast<uint8_t>(visible)}, boxes);
+        device.clearLog();
+        device.resetCounters();
+        culler.cullAndRender(tree, makeFrame(view, 0, t), device);
+    }
+};
+
+TEST(StatisticalCuller, SkipsAFrustumCulledNodeWithoutQueryOrDraw) {
+    OneObjectWorld w;
+    w.frame(makeView({0, 0, 0}, {0, 0, 10}), 0.0, true);  // looking away
+    EXPECT_EQ(w.device.counters().queries_issued, 0u);
+    EXPECT_TRUE(w.device.drawnObjects().empty());
+}
+
+TEST(StatisticalCuller, RendersWithoutQueryWhenTheViewerIsInsideTheBox) {
+    OneObjectWorld w;
+    w.frame(makeView({0, 0, -10}, {0, 0, -20}), 0.0, false);
+    EXPECT_EQ(w.device.counters().queries_issued, 0u);
+    EXPECT_EQ(w.device.drawnObjects(), std::vector<uint32_t>{0});
+}
+
+TEST(StatisticalCuller, QueriesFirstThenTrustsVisibleStatisticsThenQueriesAgain) {
+    OneObjectWorld w;
+    const CullView view = makeView({0, 0, 0}, {0, 0, -10});
+    w.frame(view, 0.0, true);  // no statistics: query, visible, drawn
+    EXPECT_EQ(w.device.counters().queries_issued, 1u);
+    EXPECT_EQ(w.device.drawnObjects(), std::vector<uint32_t>{0});
+    w.frame(view, 0.5, true);  // within BASE_TIME * 1.5: drawn with no query
+    EXPECT_EQ(w.device.counters().queries_issued, 0u);
+    EXPECT_EQ(w.device.drawnObjects(), std::vector<uint32_t>{0});
+    w.frame(view, 1.05, true);  // past it: query again
+    EXPECT_EQ(w.device.counters().queries_issued, 1u);
+    EXPECT_EQ(w.device.drawnObjects(), std::vector<uint32_t>{0});
+}
+
+TEST(StatisticalCuller, QueriesAnOccludedNodeEveryFrameAndNeverDrawsIt) {
+    OneObjectWorld w;
+    const CullView view = makeView({0, 0, 0}, {0, 0, -10});
+    for (int f = 0; f < 5; ++f) {
+        w.frame(view, f * 0.1, false);
+        EXPECT_EQ(w.device.counters().queries_issued, 1u) << f;
+        EXPECT_TRUE(w.device.drawnObjects().empty()) << f;
+    }
+    w.frame(view, 0.6, true);  // it appears: the query of this very frame finds it
+    EXPECT_EQ(w.device.drawnObjects(), std::vector<uint32_t>{0});
+}
+
+TEST(StatisticalCuller, QueriesAgainWhenStatisticsAreTooOld) {
+    OneObjectWorld w;
+    StatisticalOptions o;
+    o.max_statistics_age_s = 0.2;
+    w.culler = StatisticalCuller(o);
+    w.culler.reset(w.tree);
+    const CullView view = makeView({0, 0, 0}, {0, 0, -10});
+    w.frame(view, 0.0, true);
+    w.frame(view, 0.1, true);
+    EXPECT_EQ(w.device.counters().queries_issued, 0u);
+    w.frame(view, 0.35, true);
+    EXPECT_EQ(w.device.counters().queries_issued, 1u);
+}
+
+class TwoQueueTraversal : public ::testing::TestWithParam<uint32_t> {};
+
+// Over frames with visibility changing at random and any query latency, the statistical culler
+// draws every visible object in the frustum, draws nothing outside it, and draws nothing twice.
+TEST_P(TwoQueueTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible) {
+    const uint32_t latency = GetParam();
+    const std::vector<Aabb> boxes = randomBoxes(1500, 7);
+    const BspTree tree = buildTree(boxes);
+    ScriptedQueryDevice device(latency);
+    StatisticalCuller culler;
+    culler.reset(tree);
+    std::mt19937 rng(11);
+    std::bernoulli_distribution visible_draw(0.15);
+    uint64_t total_queries = 0;
+    for (uint32_t f = 0; f < 60; ++f) {
+        const float a = 0.05f * static_cast<float>(f);
+        const CullView view = makeView({0, 5, 0}, {100 * std::cos(a), 0, 100 * std::sin(a)});
+        std::vector<uint8_t> visible(boxes.size());
+        for (auto& v : visible) v = visible_draw(rng);
+        device.setVisibility(visible, boxes);
+        device.clearLog();
+        device.resetCounters();
+        culler.cullAndRender(tree, makeFrame(view, f, f / 30.0), device);
+        total_queries += device.counters().queries_issued;
+
+        const std::set<uint32_t> frustum = inFrustum(boxes, view.frustum);
+        std::set<uint32_t> drawn;
+        for (uint32_t o : device.drawnObjects()) {
+            EXPECT_TRUE(drawn.insert(o).second) << "object " << o << " drawn twice in frame " << f;
+            EXPECT_TRUE(frustum.count(o)) << "object " << o << " drawn outside the frustum";
+        }
+        for (uint32_t o : frustum) {
+            if (visible[o]) {
+                EXPECT_TRUE(drawn.count(o)) << "visible object " << o << " missed in frame " << f;
+            }
+        }
+        EXPECT_EQ(device.pendingQueries(), 0u) << "every query is answered within its frame";
+    }
+    EXPECT_GT(total_queries, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Latencies, TwoQueueTraversal, ::testing::Values(0u, 3u, 40u, 1000u));
+
+TEST(StatisticalCuller, IssuesFewerQueriesThanStopAndWaitOnACoherentScene) {
+    const std::vector<Aabb> boxes = randomBoxes(1500, 3);
+    const BspTree tree = buildTree(boxes);
+    std::vector<uint8_t> visible(boxes.size());
+    for (size_t i = 0; i < visible.size(); i += 3) visible[i] = 1;
+    ScriptedQueryDevice stat_device(4), saw_device(4);
+    stat_device.setVisibility(visible, boxes);
+    saw_device.setVisibility(visible, boxes);
+    StatisticalCuller statistical;
+    StopAndWaitCuller stop_and_wait;
+    statistical.reset(tree);
+    const CullView view = makeView({0, 5, 0}, {0, 0, -100});
+    for (int f = 0; f < 20; ++f) {
+        statistical.cullAndRender(tree, makeFrame(view, f, f / 30.0), stat_device);
+        stop_and_wait.cullAndRender(tree, makeFrame(view, f, f / 30.0), saw_device);
+    }
+    EXPECT_LT(stat_device.counters().queries_issued, saw_device.counters().queries_issued / 2);
+    EXPECT_EQ(saw_device.counters().results_waited, saw_device.counters().queries_issued)
+        << "stop-and-wait blocks on every query";
+}
+
+TEST(StatisticalCuller, ReturnsToTheQueueStartAfterTheConfiguredNumberOfQueries) {
+    // With a latency longer than any frame, answers are never ready in the main loop: the loop
+    // must stop after queries_before_restart queries and collect their answers before going on.
+    const std::vector<Aabb> boxes = randomBoxes(800, 5);
+    const BspTree tree = buildTree(boxes, 1);
+    StatisticalOptions o;
+    o.queries_before_restart = 5;
+    StatisticalCuller culler(o);
+    culler.reset(tree);
+    ScriptedQueryDevice device(1000000);
+    device.setVisibility(std::vector<uint8_t>(boxes.size(), 1), boxes);
+    culler.cullAndRender(tree, makeFrame(makeView({0, 5, 0}, {0, 0, -100}), 0, 0.0), device);
+    EXPECT_GT(device.counters().queries_issued, 5u);
+    EXPECT_LE(device.maxPendingQueries(), 5u);
+    EXPECT_EQ(device.counters().results_waited, device.counters().queries_issued);
+}
+
+// A wrapper that forwards queries but keeps counters of its own (all zero): a culler that looked
+// at the device's counters to learn whether it blocked would never see a wait through it.
+class OwnCountersDevice final : public RenderDevice {
+  public:
+    explicit OwnCountersDevice(RenderDevice& inner) : inner_(inner) {}
+    using RenderDevice::issueQuery;
+    void drawObject(uint32_t object) override { inner_.drawObject(object); }
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> tags) override {
+        return inner_.issueQuery(boxes, tags);
+    }
+    bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
+
+  private:
+    RenderDevice& inner_;
+};
+
+TEST(StatisticalCuller, CountsTheAnswersItBlockedOnFromTheAnswersThemselves) {
+    const std::vector<Aabb> boxes = randomBoxes(800, 5);
+    const BspTree tree = buildTree(boxes, 1);
+    StatisticalCuller culler;
+    culler.reset(tree);
+    ScriptedQueryDevice scripted(1000000);  // never ready: every answer is waited for
+    scripted.setVisibility(std::vector<uint8_t>(boxes.size(), 1), boxes);
+    OwnCountersDevice device(scripted);
+    culler.cullAndRender(tree, makeFrame(makeView({0, 5, 0}, {0, 0, -100}), 0, 0.0), device);
+    ASSERT_GT(scripted.counters().results_waited, 0u);
+    EXPECT_EQ(device.counters().results_waited, 0u) << "the wrapper's own counters";
+    EXPECT_EQ(culler.lastFrame().blocked_answers, scripted.counters().results_waited);
+}
 
 }  // namespace
 }  // namespace occsim

@@ -1,0 +1,71 @@
+// Tests are laid out like the sources (issue 31): every culling/**/*.cpp has tests/test_<stem>.cpp
+// holding its tests, so that the test of a file is found by its name. The exceptions below are
+// the sources whose behaviour is tested elsewhere, each with where and why.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "file_layout.h"
+
+namespace occsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Source -> why it has no test file of its own.
+const std::map<std::string, std::string>& exceptions() {
+    static const std::map<std::string, std::string> e = {
+        {"culling/registry/registry_text.cpp",
+         "the text of `occsim cullers`: tested whole, against docs/cullers.md, by "
+         "Cli.TheCullersPageIsTheRegistrysOwnOutput and PluginCli.OccsimCullersListsAPluginsCuller"
+         "AndItsOptions (they need the occsim executable)"},
+    };
+    return e;
+}
+
+TEST(FileLayout, EveryCullingSourceHasATestFileNamedAfterIt) {
+    const std::vector<std::string> missing =
+        testing::sourcesWithoutTestFile(OCCSIM_SOURCE_DIR, exceptions());
+    for (const std::string& source : missing) {
+        ADD_FAILURE() << source << " has no tests/test_" << fs::path(source).stem().string()
+                      << ".cpp (write one, or add it to the exceptions with the reason)";
+    }
+}
+
+TEST(FileLayout, EachExceptionIsASourceThatStillLacksItsTestFile) {
+    const fs::path root(OCCSIM_SOURCE_DIR);
+    for (const auto& [source, why] : exceptions()) {
+        EXPECT_TRUE(fs::exists(root / source)) << source << " is gone: drop its exception";
+        std::string name = "test_";
+        name.append(fs::path(source).stem().string()).append(".cpp");
+        EXPECT_FALSE(fs::exists(root / "tests" / name))
+            << source << " has its test file now: drop its exception";
+        EXPECT_FALSE(why.empty()) << source;
+    }
+}
+
+// The check can fail: a tree with a source and no test file for it names the source.
+TEST(FileLayout, TheCheckNamesASourceWithoutItsTestFile) {
+    const fs::path root =
+        fs::temp_directory_path() / ("occsim-file-layout-" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    fs::create_directories(root / "culling" / "cullers");
+    fs::create_directories(root / "tests");
+    std::ofstream(root / "culling" / "cullers" / "a_culler.cpp") << "\n";
+    std::ofstream(root / "culling" / "cullers" / "b_culler.cpp") << "\n";
+    std::ofstream(root / "culling" / "cullers" / "b_culler.h") << "\n";
+    std::ofstream(root / "tests" / "test_b_culler.cpp") << "\n";
+    EXPECT_EQ(testing::sourcesWithoutTestFile(root, {}),
+              (std::vector<std::string>{"culling/cullers/a_culler.cpp"}));
+    EXPECT_TRUE(
+        testing::sourcesWithoutTestFile(root, {{"culling/cullers/a_culler.cpp", "why"}}).empty());
+    fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace occsim
