@@ -12,9 +12,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "occsim/culling/contract/render_device.h"
+#include "render/gl_depth_pyramid.h"
 #include "render/gl_renderer.h"
 
 namespace occsim {
@@ -31,6 +33,9 @@ class GlQueryDevice final : public RenderDevice {
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
+    // The depth pyramid (render/gl_depth_pyramid.h), made on first use; nullptr when this
+    // context cannot compile its compute shaders.
+    DepthPyramid* depthPyramid() override;
 
     uint32_t queriesInFlight() const;
 
@@ -67,6 +72,8 @@ class GlQueryDevice final : public RenderDevice {
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;  // object -> drawn_set_ when drawn in the current set
     uint32_t drawn_set_ = 1;
+    std::unique_ptr<GlDepthPyramid> pyramid_;
+    bool pyramid_tried_ = false;
 };
 
 }  // namespace occsim

@@ -11,13 +11,14 @@ AlgorithmTraits statisticalPlusRegistration();  // cullers/statistical_registrat
 AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
 AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
 AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
+AlgorithmTraits hzbRegistration();              // cullers/hzb_culler.cpp
 AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
     for (AlgorithmTraits (*row)() :
          {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
           statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          idealRegistration}) {
+          hzbRegistration, idealRegistration}) {
         registry.add(row());
     }
 }

@@ -16,6 +16,11 @@
 // truth, so "conservative" means the same here as with the GL device.
 //
 // Results become ready after a fixed number of later commands, like ScriptedQueryDevice.
+//
+// It offers the depth-pyramid capability (culling/contract/depth_pyramid.h) over its raster
+// (software_depth_pyramid.h): a box's footprint is its card's cells, its nearest depth the
+// card's; a sphere's footprint is its exact projected rectangle, its depth the distance from the
+// eye to the sphere. Constructed with `with_pyramid` false it lacks the capability.
 #pragma once
 
 #include <cstdint>
@@ -23,15 +28,18 @@
 #include <span>
 #include <vector>
 
+#include "occsim/culling/contract/depth_pyramid.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/command_latency_queries.h"
+#include "occsim/culling/testing/software_depth_pyramid.h"
 
 namespace occsim {
 
-class DepthRasterDevice final : public RenderDevice {
+class DepthRasterDevice final : public RenderDevice, private DepthPyramid {
   public:
-    DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
+    DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0,
+                      bool with_pyramid = true);
 
     // Starts a frame: the camera (OpenGL-convention view-projection and the eye) and every
     // object's box (copied into the device's own buffer, so a frame allocates nothing once it is
@@ -44,6 +52,10 @@ class DepthRasterDevice final : public RenderDevice {
     QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override;
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
+    DepthPyramid* depthPyramid() override { return with_pyramid_ ? this : nullptr; }
+
+    // The pyramid of the last build() this frame (empty before it).
+    const SoftwareDepthPyramid& pyramid() const { return pyramid_; }
 
     // Per object, 1 when it is visible with every object in the frustum drawn (this frame's
     // camera and boxes; independent of what the culler drew).
@@ -60,6 +72,11 @@ class DepthRasterDevice final : public RenderDevice {
         float depth = 0.0f;
     };
     Card cardOf(const Aabb& box) const;
+    Card cardOfSphere(const Aabb& box) const;
+    // DepthPyramid
+    void build() override;
+    void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
+                    std::span<uint8_t> visible) override;
 
     uint32_t width_, height_;
     glm::mat4 view_projection_{1.0f};
@@ -70,6 +87,8 @@ class DepthRasterDevice final : public RenderDevice {
     CommandLatencyQueries queries_;
     std::vector<uint32_t> drawn_;
     std::vector<QueryTag> query_log_;
+    bool with_pyramid_ = true;
+    SoftwareDepthPyramid pyramid_;
 };
 
 }  // namespace occsim
