@@ -48,6 +48,7 @@ void SoftwareDepthPyramid::build(std::span<const float> depth, uint32_t width, u
             reduce(below.depth, below.width, below.height, level.depth, level.width, level.height);
         }
     }
+    built_ = true;
 }
 
 uint32_t SoftwareDepthPyramid::levelFor(const hzb::TexelRect& pixels) const {
@@ -62,7 +63,7 @@ hzb::TexelRect SoftwareDepthPyramid::footprintFor(const hzb::TexelRect& pixels) 
 }
 
 bool SoftwareDepthPyramid::mayShow(const hzb::TexelRect& pixels, float nearest) const {
-    if (levels_.empty()) return true;
+    if (!built_) return true;
     return mayShowAt(footprintFor(pixels), levelFor(pixels), nearest);
 }
 

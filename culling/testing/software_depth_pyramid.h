@@ -16,8 +16,9 @@ class SoftwareDepthPyramid {
   public:
     // Reduces a width x height raster (row-major, row 0 at the bottom) into the pyramid.
     void build(std::span<const float> depth, uint32_t width, uint32_t height);
-    void clear() { levels_.clear(); }
-    bool built() const { return !levels_.empty(); }
+    // Forgets the pyramid (every bound passes again) and keeps its memory.
+    void clear() { built_ = false; }
+    bool built() const { return built_; }
 
     // Whether a bound covering the viewport's pixels `pixels` whose nearest depth is `nearest` may
     // show: nearest is not farther than some texel of its footprint (ties pass). Every bound
@@ -44,6 +45,7 @@ class SoftwareDepthPyramid {
     };
     std::vector<Level> levels_;
     uint32_t viewport_w_ = 0, viewport_h_ = 0;
+    bool built_ = false;
 };
 
 }  // namespace occsim
