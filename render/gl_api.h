@@ -83,7 +83,19 @@
     X(PFNGLBEGINCONDITIONALRENDERPROC, glBeginConditionalRender)   \
     X(PFNGLENDCONDITIONALRENDERPROC, glEndConditionalRender)       \
     X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)             \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
+    X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)         \
+    X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                 \
+    X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                     \
+    X(PFNGLBINDIMAGETEXTUREPROC, glBindImageTexture)               \
+    X(PFNGLCOPYIMAGESUBDATAPROC, glCopyImageSubData)               \
+    X(PFNGLTEXSTORAGE2DPROC, glTexStorage2D)                       \
+    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                     \
+    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                     \
+    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                   \
+    X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData)               \
+    X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)                     \
+    X(PFNGLUNIFORM1IPROC, glUniform1i)                             \
+    X(PFNGLUNIFORM2IPROC, glUniform2i)
 
 #define OCCSIM_GL_DECLARE(type, name) extern type occsim_##name;
 extern "C" {
@@ -163,6 +175,18 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #define glEndConditionalRender occsim_glEndConditionalRender
 #define glGetQueryObjectuiv occsim_glGetQueryObjectuiv
 #define glGetQueryObjectui64v occsim_glGetQueryObjectui64v
+#define glDispatchCompute occsim_glDispatchCompute
+#define glMemoryBarrier occsim_glMemoryBarrier
+#define glBindImageTexture occsim_glBindImageTexture
+#define glCopyImageSubData occsim_glCopyImageSubData
+#define glTexStorage2D occsim_glTexStorage2D
+#define glTexParameteri occsim_glTexParameteri
+#define glActiveTexture occsim_glActiveTexture
+#define glBindBufferBase occsim_glBindBufferBase
+#define glGetBufferSubData occsim_glGetBufferSubData
+#define glBufferSubData occsim_glBufferSubData
+#define glUniform1i occsim_glUniform1i
+#define glUniform2i occsim_glUniform2i
 
 namespace occsim {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 
 #include "occsim/culling/contract/query_id_check.h"
 #include "render/gl_api.h"
@@ -27,6 +28,18 @@ GlQueryDevice::~GlQueryDevice() {
         OCCSIM_GL_CHECKED(
             glDeleteQueries(static_cast<GLsizei>(gl_queries_.size()), gl_queries_.data()));
     }
+}
+
+DepthPyramid* GlQueryDevice::depthPyramid() {
+    if (!pyramid_tried_) {
+        pyramid_tried_ = true;
+        try {
+            pyramid_ = std::make_unique<GlDepthPyramid>(renderer_, counters_);
+        } catch (const std::runtime_error&) {
+            pyramid_.reset();  // no compute shaders here: the capability is absent
+        }
+    }
+    return pyramid_.get();
 }
 
 uint32_t GlQueryDevice::queriesInFlight() const {

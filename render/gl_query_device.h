@@ -9,7 +9,7 @@
 // So is each query's latency as the culler feels it: how many commands (draws and queries) had
 // been submitted after it by the time its answer was known to be ready, when the culler polled
 // it or waited for it (takeAnswerLatencies()).
-// Conditional rendering (culling/contract/conditional_rendering.h) is glBeginConditionalRender on
+// Conditional rendering (occsim/culling/contract/conditional_rendering.h) is glBeginConditionalRender on
 // the query's GL_SAMPLES_PASSED object, GL_QUERY_WAIT or GL_QUERY_NO_WAIT; the driver decides.
 // A query whose box reaches the near plane draws unconditionally (its samples mean nothing).
 // Under deterministic latency the device decides readiness by its command count instead:
@@ -20,10 +20,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
+#include "render/gl_depth_pyramid.h"
 #include "render/gl_renderer.h"
 
 namespace occsim {
@@ -41,6 +43,9 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
     ConditionalRendering* conditionalRendering() override { return this; }
+    // The depth pyramid (render/gl_depth_pyramid.h), made on first use; nullptr when this
+    // context cannot compile its compute shaders.
+    DepthPyramid* depthPyramid() override;
 
     uint32_t queriesInFlight() const;
 
@@ -92,6 +97,8 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
         conditioned_;                // QueryId -> draws of the current set were conditioned on it
     std::vector<QueryId> held_ids_;  // released, kept until beginDrawnSet() for resolving
     uint32_t drawn_set_ = 1;
+    std::unique_ptr<GlDepthPyramid> pyramid_;
+    bool pyramid_tried_ = false;
 };
 
 }  // namespace occsim

@@ -91,6 +91,12 @@ class GlRenderer {
     // rank for a depth at or before the near plane.
     uint32_t depthRankAt(double view_depth) const;
     DepthConvention depthConvention() const { return depth_; }
+    // For passes that read the depth buffer (render/gl_depth_pyramid.h): the depth attachment,
+    // the current view, and forgetting which program and state are bound after such a pass
+    // bound its own (the next draw or query box binds the renderer's again).
+    uint32_t depthRenderbuffer() const { return depth_rb_; }
+    const ViewSetup& view() const { return view_; }
+    void forgetBoundState() { state_ = State::None; }
 
   private:
     enum class State : uint8_t { None, Draw, Query };

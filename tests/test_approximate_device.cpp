@@ -1,4 +1,4 @@
-// The approximating device (culling/devices/approximate_device.h): a pixel threshold and stale
+// The approximating device (occsim/culling/devices/approximate_device.h): a pixel threshold and stale
 // results for any culler that issues queries.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The cost model (culling/contract/cost_model.h): plain data, unknown when all zero, valid when
+// The cost model (occsim/culling/contract/cost_model.h): plain data, unknown when all zero, valid when
 // every figure is finite and >= 0.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// A run's culler options (culling/registry/culler_options.h): values by culler name, defaults for
+// A run's culler options (occsim/culling/registry/culler_options.h): values by culler name, defaults for
 // a culler not named, and the first invalid value named with its culler.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The plugin loader (culling/registry/plugin_loader.h) on each kind of plugin file, built from
+// The plugin loader (occsim/culling/registry/plugin_loader.h) on each kind of plugin file, built from
 // tests/plugins/test_plugin.cpp.
 #include <gtest/gtest.h>
 

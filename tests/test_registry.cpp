@@ -1,4 +1,4 @@
-// The registry (culling/registry/registry.h): what a culler needs of the device, checked before
+// The registry (occsim/culling/registry/registry.h): what a culler needs of the device, checked before
 // any work.
 #include <gtest/gtest.h>
 

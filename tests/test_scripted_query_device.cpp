@@ -1,4 +1,4 @@
-// The scripted query device (culling/testing/scripted_query_device.h) and the query contract it
+// The scripted query device (occsim/culling/testing/scripted_query_device.h) and the query contract it
 // keeps: answers decided by the device, ids checked in every build, conditional rendering.
 #include <gtest/gtest.h>
 

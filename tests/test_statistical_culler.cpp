@@ -1,7 +1,7 @@
 // The statistical culler (Kovalcik & Sochor 2005; culling/cullers/statistical_culler.h): its
 // decision rule branch by branch, and whole traversals on the scripted query device and on test
 // devices whose answers depend on what was drawn before them
-// (culling/testing/depth_raster_device.h). No OpenGL.
+// (occsim/culling/testing/depth_raster_device.h). No OpenGL.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The tracing device (culling/devices/tracing_device.h): what a culler did in one frame, recorded
+// The tracing device (occsim/culling/devices/tracing_device.h): what a culler did in one frame, recorded
 // for pictures.
 #include <gtest/gtest.h>
 

@@ -12,13 +12,14 @@ AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
 AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
 AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
 AlgorithmTraits conditionalRegistration();      // cullers/conditional_culler.cpp
+AlgorithmTraits hzbRegistration();              // cullers/hzb_culler.cpp
 AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
     for (AlgorithmTraits (*row)() :
          {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
           statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          conditionalRegistration, idealRegistration}) {
+          conditionalRegistration, hzbRegistration, idealRegistration}) {
         registry.add(row());
     }
 }

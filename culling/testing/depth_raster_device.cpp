@@ -22,11 +22,13 @@ uint32_t cellCeil(float ndc, uint32_t cells) {
 
 }  // namespace
 
-DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands)
+DepthRasterDevice::DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands,
+                                     bool with_pyramid)
     : width_(width),
       height_(height),
       depth_(width * height, kFar),
-      queries_(latency_commands, "DepthRasterDevice") {}
+      queries_(latency_commands, "DepthRasterDevice"),
+      with_pyramid_(with_pyramid) {}
 
 void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
                                    std::span<const Aabb> object_boxes) {
@@ -38,6 +40,7 @@ void DepthRasterDevice::beginFrame(const glm::mat4& view_projection, glm::vec3 e
     drawn_.clear();
     skipped_.clear();
     query_log_.clear();
+    pyramid_.clear();
 }
 
 DepthRasterDevice::Card DepthRasterDevice::cardOf(const Aabb& box) const {
@@ -112,6 +115,44 @@ QueryId DepthRasterDevice::issueQuery(std::span<const Aabb> boxes,
 bool DepthRasterDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
 QueryAnswer DepthRasterDevice::takeAnswer(QueryId id) { return queries_.take(id, counters_); }
+
+DepthRasterDevice::Card DepthRasterDevice::cardOfSphere(const Aabb& box) const {
+    const glm::dvec3 lo(box.min), hi(box.max);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo);
+    Card card;
+    card.depth = static_cast<float>(std::max(0.0, glm::length(centre - glm::dvec3(eye_)) - radius));
+    const hzb::ScreenBound b = hzb::projectSphere(glm::dmat4(view_projection_), centre, radius);
+    if (!hzb::testable(b, 1e-6)) {  // at or behind the eye plane: the whole screen
+        card.x1 = width_;
+        card.y1 = height_;
+        return card;
+    }
+    card.x0 = cellFloor(static_cast<float>(b.x0), width_);
+    card.x1 = cellCeil(static_cast<float>(b.x1), width_);
+    card.y0 = cellFloor(static_cast<float>(b.y0), height_);
+    card.y1 = cellCeil(static_cast<float>(b.y1), height_);
+    return card;
+}
+
+void DepthRasterDevice::build() {
+    ++counters_.pyramid_builds;
+    pyramid_.build(depth_, width_, height_);
+}
+
+void DepthRasterDevice::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
+                                   std::span<uint8_t> visible) {
+    assert(visible.size() == boxes.size());
+    counters_.pyramid_bounds += boxes.size();
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        const Card c = shape == PyramidBound::Sphere ? cardOfSphere(boxes[i]) : cardOf(boxes[i]);
+        if (c.x0 >= c.x1 || c.y0 >= c.y1) {  // no cell: it cannot show
+            visible[i] = 0;
+            continue;
+        }
+        visible[i] = pyramid_.mayShow({c.x0, c.y0, c.x1 - 1, c.y1 - 1}, c.depth) ? 1 : 0;
+    }
+}
 
 uint32_t DepthRasterDevice::pendingQueries() const { return queries_.pending(); }
 

@@ -83,6 +83,9 @@ struct DeviceCounters {
     // Wall-clock time asking whether answers are ready and fetching answers that were: on
     // llvmpipe a poll can flush the command stream, so it is the driver's time, not the culler's.
     double poll_seconds = 0.0;
+    // The depth-pyramid capability (depth_pyramid.h): pyramids built, bounds tested against them.
+    uint64_t pyramid_builds = 0;
+    uint64_t pyramid_bounds = 0;
 };
 
 class RenderDevice {

@@ -21,6 +21,10 @@
 // executes (writes its card) iff its query passed a cell against the raster as it was when the
 // query was issued, or unconditionally under NoWait while the answer is not ready. Executed draws
 // join drawnObjects(), skipped ones skippedObjects(); both count as submitted draws.
+// It offers the depth-pyramid capability (occsim/culling/contract/depth_pyramid.h) over its raster
+// (software_depth_pyramid.h): a box's footprint is its card's cells, its nearest depth the
+// card's; a sphere's footprint is its exact projected rectangle, its depth the distance from the
+// eye to the sphere. Constructed with `with_pyramid` false it lacks the capability.
 #pragma once
 
 #include <cstdint>
@@ -29,15 +33,20 @@
 #include <vector>
 
 #include "occsim/culling/contract/conditional_rendering.h"
+#include "occsim/culling/contract/depth_pyramid.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/command_latency_queries.h"
+#include "occsim/culling/testing/software_depth_pyramid.h"
 
 namespace occsim {
 
-class DepthRasterDevice final : public RenderDevice, private ConditionalRendering {
+class DepthRasterDevice final : public RenderDevice,
+                                private ConditionalRendering,
+                                private DepthPyramid {
   public:
-    DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
+    DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0,
+                      bool with_pyramid = true);
 
     // Starts a frame: the camera (OpenGL-convention view-projection and the eye) and every
     // object's box (copied into the device's own buffer, so a frame allocates nothing once it is
@@ -51,6 +60,10 @@ class DepthRasterDevice final : public RenderDevice, private ConditionalRenderin
     bool isQueryReady(QueryId id) override;
     QueryAnswer takeAnswer(QueryId id) override;
     ConditionalRendering* conditionalRendering() override { return this; }
+    DepthPyramid* depthPyramid() override { return with_pyramid_ ? this : nullptr; }
+
+    // The pyramid of the last build() this frame (empty before it).
+    const SoftwareDepthPyramid& pyramid() const { return pyramid_; }
 
     // Per object, 1 when it is visible with every object in the frustum drawn (this frame's
     // camera and boxes; independent of what the culler drew).
@@ -72,6 +85,11 @@ class DepthRasterDevice final : public RenderDevice, private ConditionalRenderin
     void rasterise(uint32_t object);
     void drawIf(QueryId id, std::span<const uint32_t> objects, ConditionWait wait) override;
     void release(QueryId id) override { queries_.release(id); }
+    Card cardOfSphere(const Aabb& box) const;
+    // DepthPyramid
+    void build() override;
+    void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
+                    std::span<uint8_t> visible) override;
 
     uint32_t width_, height_;
     glm::mat4 view_projection_{1.0f};
@@ -83,6 +101,8 @@ class DepthRasterDevice final : public RenderDevice, private ConditionalRenderin
     std::vector<uint32_t> drawn_;
     std::vector<uint32_t> skipped_;
     std::vector<QueryTag> query_log_;
+    bool with_pyramid_ = true;
+    SoftwareDepthPyramid pyramid_;
 };
 
 }  // namespace occsim
