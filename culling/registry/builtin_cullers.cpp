@@ -12,12 +12,13 @@ AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
 AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
 AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
 AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
+AlgorithmTraits maskedRegistration();           // cullers/masked_culler.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
     for (AlgorithmTraits (*row)() :
          {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
           statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          idealRegistration}) {
+          maskedRegistration, idealRegistration}) {
         registry.add(row());
     }
 }
