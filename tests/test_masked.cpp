@@ -137,9 +137,9 @@ TEST(MaskedDepthBuffer, MergingKeepsTheFartherDepth) {
 TEST(MaskedDepthBuffer, ReplacingTheWorkingLayerDropsTheOldPixelsToTheReference) {
     const Screen s{32, 8};
     MaskedDepthBuffer buffer = beginBuffer(s, 32);
-    wall(buffer, s, -10, 16.0, -10, 20, 20.0);  // left half at 20
-    wall(buffer, s, 16.0, 50, -10, 20, 2.0);    // right half much nearer, at 2
-    EXPECT_TRUE(buffer.testBox(card(s, 2, 12, 1, 7, 10.0)));   // in front of the wall at 20
+    wall(buffer, s, -10, 16.0, -10, 20, 20.0);                  // left half at 20
+    wall(buffer, s, 16.0, 50, -10, 20, 2.0);                    // right half much nearer, at 2
+    EXPECT_TRUE(buffer.testBox(card(s, 2, 12, 1, 7, 10.0)));    // in front of the wall at 20
     EXPECT_FALSE(buffer.testBox(card(s, 20, 30, 1, 7, 10.0)));  // behind the wall at 2
 }
 
@@ -148,11 +148,11 @@ TEST(MaskedDepthBuffer, ReplacingTheWorkingLayerDropsTheOldPixelsToTheReference)
 TEST(MaskedDepthBuffer, WhatLiesInFrontOfTheNearPlaneHidesNothing) {
     const Screen s{32, 32};
     MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 1.0);
-    const glm::vec3 corners[4] = {{-100, -0.5f, 10}, {100, -0.5f, 10}, {100, -0.5f, -100},
-                                  {-100, -0.5f, -100}};
+    const glm::vec3 corners[4] = {
+        {-100, -0.5f, 10}, {100, -0.5f, 10}, {100, -0.5f, -100}, {-100, -0.5f, -100}};
     const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
     buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
-    EXPECT_TRUE(buffer.testBox(card(s, 15.4, 15.6, 0.4, 0.6, 5.0)));   // below the clipped part
+    EXPECT_TRUE(buffer.testBox(card(s, 15.4, 15.6, 0.4, 0.6, 5.0)));  // below the clipped part
     // Below the floor proper (beyond its far end: the tile keeps its farthest depth, 100 m).
     EXPECT_FALSE(buffer.testBox(card(s, 15.4, 15.6, 12.4, 12.6, 120.0)));
 }
@@ -163,7 +163,8 @@ TEST(MaskedDepthBuffer, ABoxReachingBehindTheEyeIsVisible) {
     const Screen s{32, 32};
     MaskedDepthBuffer buffer = beginBuffer(s, 32);
     wall(buffer, s, -100, 100, -100, 100, 10.0);
-    EXPECT_TRUE(buffer.testBox(makeAabb(glm::vec3(-0.1f, -0.1f, -20.0f), glm::vec3(0.1f, 0.1f, 1.0f))));
+    EXPECT_TRUE(
+        buffer.testBox(makeAabb(glm::vec3(-0.1f, -0.1f, -20.0f), glm::vec3(0.1f, 0.1f, 1.0f))));
     EXPECT_FALSE(buffer.testBox(card(s, 10, 20, 10, 20, 20.0)));
 }
 
@@ -229,7 +230,8 @@ struct TestScene {
 
     uint32_t addMesh(std::vector<glm::vec3> p, std::vector<uint32_t> i) {
         meshes.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(i.size()),
-                          static_cast<uint32_t>(positions.size()), static_cast<uint32_t>(p.size())});
+                          static_cast<uint32_t>(positions.size()),
+                          static_cast<uint32_t>(p.size())});
         positions.insert(positions.end(), p.begin(), p.end());
         indices.insert(indices.end(), i.begin(), i.end());
         return static_cast<uint32_t>(meshes.size() - 1);
@@ -242,11 +244,14 @@ struct TestScene {
         for (uint32_t v = 0; v < r.vertex_count; ++v) {
             // As the simulation does: in double, rounded outward to float.
             const glm::dvec3 p =
-                glm::dvec3(glm::dmat4(transforms.back()) * glm::dvec4(glm::dvec3(positions[r.first_vertex + v]), 1.0));
+                glm::dvec3(glm::dmat4(transforms.back()) *
+                           glm::dvec4(glm::dvec3(positions[r.first_vertex + v]), 1.0));
             extend(box, glm::vec3(p));
             for (int k = 0; k < 3; ++k) {
-                box.min[k] = std::min(box.min[k], std::nextafter(static_cast<float>(p[k]), -INFINITY));
-                box.max[k] = std::max(box.max[k], std::nextafter(static_cast<float>(p[k]), INFINITY));
+                box.min[k] =
+                    std::min(box.min[k], std::nextafter(static_cast<float>(p[k]), -INFINITY));
+                box.max[k] =
+                    std::max(box.max[k], std::nextafter(static_cast<float>(p[k]), INFINITY));
             }
         }
         boxes.push_back(box);
@@ -258,7 +263,8 @@ struct TestScene {
 
 uint32_t cubeMesh(TestScene& s) {
     std::vector<glm::vec3> p;
-    for (int i = 0; i < 8; ++i) p.emplace_back(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f);
+    for (int i = 0; i < 8; ++i)
+        p.emplace_back(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f);
     return s.addMesh(p, {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                          2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5});
 }
@@ -282,11 +288,13 @@ RandomCase randomCase(uint32_t seed) {
     RandomCase c;
     TestScene& s = c.scene;
     const uint32_t cube = cubeMesh(s), quad = quadMesh(s);
-    const uint32_t tri = s.addMesh({{-0.5f, -0.5f, 0}, {0.7f, -0.2f, 0.1f}, {0.0f, 0.6f, -0.2f}}, {0, 1, 2});
+    const uint32_t tri =
+        s.addMesh({{-0.5f, -0.5f, 0}, {0.7f, -0.2f, 0.1f}, {0.0f, 0.6f, -0.2f}}, {0, 1, 2});
     const glm::dvec3 offset = u(rng) < 0.2 ? glm::dvec3(1e6, -3e5, 2e6) : glm::dvec3(0.0);
     const uint32_t objects = 20 + static_cast<uint32_t>(u(rng) * 60);
     for (uint32_t o = 0; o < objects; ++o) {
-        const glm::dvec3 at = offset + glm::dvec3(u(rng) * 40 - 20, u(rng) * 10 - 5, u(rng) * 40 - 20);
+        const glm::dvec3 at =
+            offset + glm::dvec3(u(rng) * 40 - 20, u(rng) * 10 - 5, u(rng) * 40 - 20);
         glm::dvec3 size(0.3 + u(rng) * 6, 0.3 + u(rng) * 6, 0.3 + u(rng) * 6);
         const double kind = u(rng);
         uint32_t mesh = cube;
@@ -298,7 +306,8 @@ RandomCase randomCase(uint32_t seed) {
             size[static_cast<int>(u(rng) * 3) % 3] = 0.01;  // a thin slab
         }
         glm::dmat4 m = glm::translate(glm::dmat4(1.0), at);
-        m = glm::rotate(m, u(rng) * 6.3, glm::normalize(glm::dvec3(u(rng), u(rng) + 0.5, u(rng)) - 0.4));
+        m = glm::rotate(m, u(rng) * 6.3,
+                        glm::normalize(glm::dvec3(u(rng), u(rng) + 0.5, u(rng)) - 0.4));
         s.addObject(mesh, glm::scale(m, size));
     }
     glm::dvec3 eye = offset + glm::dvec3(u(rng) * 30 - 15, u(rng) * 6 - 3, u(rng) * 30 - 15);
@@ -312,7 +321,8 @@ RandomCase randomCase(uint32_t seed) {
     const uint32_t height = 9 + static_cast<uint32_t>(u(rng) * 120);
     const double near = u(rng) < 0.3 ? 1e-3 : 0.05 + u(rng) * 0.3;
     const double far = u(rng) < 0.3 ? 1e6 : 200.0;
-    c.view = cameraView(eye - offset, target - offset, width, height, near, far, 40.0 + u(rng) * 60);
+    c.view =
+        cameraView(eye - offset, target - offset, width, height, near, far, 40.0 + u(rng) * 60);
     // Into the culling frame: the objects relative to the offset, as the simulation does.
     for (glm::mat4& t : s.transforms) {
         t = glm::mat4(glm::translate(glm::dmat4(1.0), -offset) * glm::dmat4(t));
@@ -353,16 +363,18 @@ TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
                               c.view.viewport_height, max_width);
             for (const uint32_t o : order) {
                 const MeshRange& r = c.scene.meshes[c.scene.object_mesh[o]];
-                const auto indices = std::span(c.scene.indices).subspan(r.first_index, r.index_count);
-                buffer.rasteriseMesh(std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count),
-                                     indices, c.scene.transforms[o], edgeNeighbours(indices));
+                const auto indices =
+                    std::span(c.scene.indices).subspan(r.first_index, r.index_count);
+                buffer.rasteriseMesh(
+                    std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count), indices,
+                    c.scene.transforms[o], edgeNeighbours(indices));
             }
             for (uint32_t o = 0; o < objects; ++o) {
                 const Aabb& box = c.scene.boxes[o];
                 if (classify(planeTableOf(c.view.frustum), box) == FrustumTest::Outside) continue;
                 const bool hidden = !buffer.testBox(box);
-                ASSERT_FALSE(hidden && visible[o]) << "seed " << seed << " object " << o
-                                                   << " max_width " << max_width;
+                ASSERT_FALSE(hidden && visible[o])
+                    << "seed " << seed << " object " << o << " max_width " << max_width;
                 ASSERT_FALSE(hidden && !reference.boxHiddenInTruth(box))
                     << "seed " << seed << " object " << o << " max_width " << max_width;
                 if (reference.boxHiddenInTruth(box)) {
@@ -424,15 +436,16 @@ TEST(MaskedDepthBuffer, TheAvx2KernelsGiveThePlainBuffer) {
                           c.view.viewport_height, 100);
             for (uint32_t o = 0; o < c.scene.boxes.size(); ++o) {
                 const MeshRange& r = c.scene.meshes[c.scene.object_mesh[o]];
-                const auto indices = std::span(c.scene.indices).subspan(r.first_index, r.index_count);
-                b->rasteriseMesh(std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count),
-                                 indices, c.scene.transforms[o], edgeNeighbours(indices));
+                const auto indices =
+                    std::span(c.scene.indices).subspan(r.first_index, r.index_count);
+                b->rasteriseMesh(
+                    std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count), indices,
+                    c.scene.transforms[o], edgeNeighbours(indices));
             }
         }
         ASSERT_EQ(plain.tiles().size(), avx2.tiles().size());
-        EXPECT_EQ(std::memcmp(plain.tiles().data(), avx2.tiles().data(),
-                              plain.tiles().size_bytes()),
-                  0)
+        EXPECT_EQ(
+            std::memcmp(plain.tiles().data(), avx2.tiles().data(), plain.tiles().size_bytes()), 0)
             << "seed " << seed;
     }
 }

@@ -12,8 +12,7 @@
 namespace occsim {
 
 MaskedCuller::MaskedCuller(const MaskedOptions& options)
-    : options_(options),
-      buffer_(options.simd ? MaskedKernel::Avx2 : MaskedKernel::Plain) {}
+    : options_(options), buffer_(options.simd ? MaskedKernel::Avx2 : MaskedKernel::Plain) {}
 
 void MaskedCuller::reset(const BspTree& tree) {
     drawn_last_.clear();

@@ -29,8 +29,8 @@ double maxAbs(const glm::dvec3& v) {
 
 std::vector<uint32_t> edgeNeighbours(std::span<const uint32_t> indices) {
     struct Edge {
-        uint64_t key;    // the two vertex indices, smaller first
-        uint32_t slot;   // 3t + i
+        uint64_t key;   // the two vertex indices, smaller first
+        uint32_t slot;  // 3t + i
     };
     const size_t triangles = indices.size() / 3;
     std::vector<Edge> edges;
@@ -38,11 +38,13 @@ std::vector<uint32_t> edgeNeighbours(std::span<const uint32_t> indices) {
     for (size_t t = 0; t < triangles; ++t) {
         for (uint32_t i = 0; i < 3; ++i) {
             const uint64_t p = indices[3 * t + i], q = indices[3 * t + (i + 1) % 3];
-            edges.push_back({std::min(p, q) << 32 | std::max(p, q), static_cast<uint32_t>(3 * t + i)});
+            edges.push_back(
+                {std::min(p, q) << 32 | std::max(p, q), static_cast<uint32_t>(3 * t + i)});
         }
     }
-    std::sort(edges.begin(), edges.end(),
-              [](const Edge& a, const Edge& b) { return a.key < b.key || (a.key == b.key && a.slot < b.slot); });
+    std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) {
+        return a.key < b.key || (a.key == b.key && a.slot < b.slot);
+    });
     std::vector<uint32_t> out(3 * triangles, kNoNeighbour);
     for (size_t e = 0; e < edges.size();) {
         size_t end = e;
@@ -154,8 +156,8 @@ void MaskedDepthBuffer::rasteriseTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c)
     ++stats_.triangles;
     if (!active_) return;
     const glm::dvec3 p[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
-    const double error = frame_error_ + kRoundingUlps * std::max({maxAbs(p[0]), maxAbs(p[1]),
-                                                                  maxAbs(p[2])});
+    const double error =
+        frame_error_ + kRoundingUlps * std::max({maxAbs(p[0]), maxAbs(p[1]), maxAbs(p[2])});
     rasteriseClipTriangle(view_projection_ * glm::dvec4(p[0], 1.0),
                           view_projection_ * glm::dvec4(p[1], 1.0),
                           view_projection_ * glm::dvec4(p[2], 1.0), error);
@@ -319,8 +321,8 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
             double far = inv_w_min;
             if (!sliver) {
                 const double x0 = std::max(span_lo, col0) - 0.5;
-                const double x1 = std::min(span_hi, col0 + static_cast<int32_t>(kTileWidth) - 1) +
-                                  0.5;
+                const double x1 =
+                    std::min(span_hi, col0 + static_cast<int32_t>(kTileWidth) - 1) + 0.5;
                 const double plane_far = plane_c + plane_a * (plane_a > 0.0 ? x0 : x1) +
                                          plane_b * (plane_b > 0.0 ? rows_lo - 0.5 : rows_hi + 0.5) -
                                          (std::abs(plane_a) + std::abs(plane_b)) * margin;
@@ -439,10 +441,12 @@ bool MaskedDepthBuffer::testBox(const Aabb& box) {
             if (nearest < t.z1) {
                 // Hidden where the mask is set: visible if the rectangle has a pixel outside it.
                 const uint32_t c0 = std::max(x0, tx * kTileWidth) - tx * kTileWidth;
-                const uint32_t c1 = std::min(x1, tx * kTileWidth + kTileWidth - 1) - tx * kTileWidth;
+                const uint32_t c1 =
+                    std::min(x1, tx * kTileWidth + kTileWidth - 1) - tx * kTileWidth;
                 const uint32_t columns = (~0u >> (kTileWidth - 1 - c1)) & (~0u << c0);
                 const uint32_t r0 = std::max(y0, ty * kTileHeight) - ty * kTileHeight;
-                const uint32_t r1 = std::min(y1, ty * kTileHeight + kTileHeight - 1) - ty * kTileHeight;
+                const uint32_t r1 =
+                    std::min(y1, ty * kTileHeight + kTileHeight - 1) - ty * kTileHeight;
                 bool covered = true;
                 for (uint32_t r = r0; r <= r1 && covered; ++r) {
                     covered = (columns & ~t.mask[r]) == 0;

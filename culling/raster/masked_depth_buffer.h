@@ -141,8 +141,8 @@ class MaskedDepthBuffer {
     bool active_ = false;
     glm::dmat4 view_projection_{1.0};  // the frame's, in double
     glm::dvec3 eye_{0.0};
-    double near_ = 0.0;        // the near plane's view depth (metres)
-    double clip_w_ = 0.0;      // triangles are clipped to w >= clip_w_ (a little beyond near_)
+    double near_ = 0.0;         // the near plane's view depth (metres)
+    double clip_w_ = 0.0;       // triangles are clipped to w >= clip_w_ (a little beyond near_)
     double frame_error_ = 0.0;  // metres: the rounding of the eye and the matrix
     double focal_px_ = 0.0;     // viewport pixels per unit of x/w or y/w, the larger
     uint32_t viewport_width_ = 0, viewport_height_ = 0;

@@ -56,9 +56,9 @@ __attribute__((target("avx2"))) void spansAvx2(const Edges& e, int32_t row0, int
         const __m256d y = _mm256_set_pd(row0 + g + 3, row0 + g + 2, row0 + g + 1, row0 + g);
         __m256d lo = _mm256_set1_pd(e.x_lo), hi = _mm256_set1_pd(e.x_hi);
         for (int i = 0; i < 3; ++i) {
-            const __m256d t = _mm256_sub_pd(
-                _mm256_sub_pd(_mm256_set1_pd(e.margin[i]), _mm256_mul_pd(_mm256_set1_pd(e.b[i]), y)),
-                _mm256_set1_pd(e.c[i]));
+            const __m256d t = _mm256_sub_pd(_mm256_sub_pd(_mm256_set1_pd(e.margin[i]),
+                                                          _mm256_mul_pd(_mm256_set1_pd(e.b[i]), y)),
+                                            _mm256_set1_pd(e.c[i]));
             if (e.a[i] != 0.0) {
                 __m256d q = _mm256_div_pd(t, _mm256_set1_pd(e.a[i]));
                 q = _mm256_min_pd(_mm256_max_pd(q, q_lo), q_hi);
@@ -74,9 +74,8 @@ __attribute__((target("avx2"))) void spansAvx2(const Edges& e, int32_t row0, int
                 lo = _mm256_blendv_pd(lo, empty, out);
             }
         }
-        const __m256d outside =
-            _mm256_or_pd(_mm256_cmp_pd(y, _mm256_set1_pd(y_lo), _CMP_LT_OQ),
-                         _mm256_cmp_pd(y, _mm256_set1_pd(y_hi), _CMP_GT_OQ));
+        const __m256d outside = _mm256_or_pd(_mm256_cmp_pd(y, _mm256_set1_pd(y_lo), _CMP_LT_OQ),
+                                             _mm256_cmp_pd(y, _mm256_set1_pd(y_hi), _CMP_GT_OQ));
         lo = _mm256_blendv_pd(lo, empty, outside);
         _mm_storeu_si128(reinterpret_cast<__m128i*>(xl + g), _mm256_cvtpd_epi32(lo));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(xr + g), _mm256_cvtpd_epi32(hi));
@@ -105,8 +104,7 @@ bool avx2Available() { return __builtin_cpu_supports("avx2"); }
 
 #else
 
-void spansAvx2(const Edges& e, int32_t row0, int32_t y_lo, int32_t y_hi, int32_t* xl,
-               int32_t* xr) {
+void spansAvx2(const Edges& e, int32_t row0, int32_t y_lo, int32_t y_hi, int32_t* xl, int32_t* xr) {
     spansPlain(e, row0, y_lo, y_hi, xl, xr);
 }
 void coverageAvx2(const int32_t* xl, const int32_t* xr, int32_t col0, uint32_t* out) {

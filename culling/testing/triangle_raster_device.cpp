@@ -41,7 +41,8 @@ void TriangleRasterDevice::rasteriseObject(uint32_t object, Fragment&& fragment)
     for (uint32_t t = 0; t + 2 < r.index_count; t += 3) {
         std::vector<glm::dvec4> polygon;
         for (uint32_t k = 0; k < 3; ++k) {
-            const glm::vec3 p = meshes_.positions[r.first_vertex + meshes_.indices[r.first_index + t + k]];
+            const glm::vec3 p =
+                meshes_.positions[r.first_vertex + meshes_.indices[r.first_index + t + k]];
             polygon.push_back(to_clip * glm::dvec4(glm::dvec3(p), 1.0));
         }
         polygon = clipPolygon(polygon, glm::dvec4(0, 0, 1, 1));   // near: z >= -w
@@ -56,21 +57,28 @@ void TriangleRasterDevice::rasteriseObject(uint32_t object, Fragment&& fragment)
             }
             const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
             if (!(std::abs(area) > 0.0)) continue;
-            const int j0 = std::max(0, static_cast<int>(std::ceil(std::min({x[0], x[1], x[2]}) - 0.5)));
-            const int j1 = std::min(static_cast<int>(width_) - 1,
-                                    static_cast<int>(std::floor(std::max({x[0], x[1], x[2]}) - 0.5)));
-            const int i0 = std::max(0, static_cast<int>(std::ceil(std::min({y[0], y[1], y[2]}) - 0.5)));
-            const int i1 = std::min(static_cast<int>(height_) - 1,
-                                    static_cast<int>(std::floor(std::max({y[0], y[1], y[2]}) - 0.5)));
+            const int j0 =
+                std::max(0, static_cast<int>(std::ceil(std::min({x[0], x[1], x[2]}) - 0.5)));
+            const int j1 =
+                std::min(static_cast<int>(width_) - 1,
+                         static_cast<int>(std::floor(std::max({x[0], x[1], x[2]}) - 0.5)));
+            const int i0 =
+                std::max(0, static_cast<int>(std::ceil(std::min({y[0], y[1], y[2]}) - 0.5)));
+            const int i1 =
+                std::min(static_cast<int>(height_) - 1,
+                         static_cast<int>(std::floor(std::max({y[0], y[1], y[2]}) - 0.5)));
             for (int i = i0; i <= i1; ++i) {
                 for (int j = j0; j <= j1; ++j) {
                     const double px = j + 0.5, py = i + 0.5;
                     // Barycentric weights of the sample; all >= 0 inside (or on an edge).
-                    const double b0 = ((x[1] - px) * (y[2] - py) - (x[2] - px) * (y[1] - py)) / area;
-                    const double b1 = ((x[2] - px) * (y[0] - py) - (x[0] - px) * (y[2] - py)) / area;
+                    const double b0 =
+                        ((x[1] - px) * (y[2] - py) - (x[2] - px) * (y[1] - py)) / area;
+                    const double b1 =
+                        ((x[2] - px) * (y[0] - py) - (x[0] - px) * (y[2] - py)) / area;
                     const double b2 = 1.0 - b0 - b1;
                     if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0) continue;
-                    fragment(static_cast<size_t>(i) * width_ + j, b0 * iw[0] + b1 * iw[1] + b2 * iw[2]);
+                    fragment(static_cast<size_t>(i) * width_ + j,
+                             b0 * iw[0] + b1 * iw[1] + b2 * iw[2]);
                 }
             }
         }
@@ -91,7 +99,8 @@ uint64_t TriangleRasterDevice::boxSamples(const Aabb& box, const std::vector<dou
         const glm::dvec3 corner(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y,
                                 c & 4 ? box.max.z : box.min.z);
         const glm::dvec4 v = view_projection_ * glm::dvec4(corner, 1.0);
-        if (!(v.z >= -v.w)) return static_cast<uint64_t>(width_) * height_;  // reaches the near plane
+        if (!(v.z >= -v.w))
+            return static_cast<uint64_t>(width_) * height_;  // reaches the near plane
         w_min = std::min(w_min, v.w);
         x_lo = std::min(x_lo, (v.x / v.w + 1.0) * 0.5 * width_);
         x_hi = std::max(x_hi, (v.x / v.w + 1.0) * 0.5 * width_);
@@ -104,13 +113,13 @@ uint64_t TriangleRasterDevice::boxSamples(const Aabb& box, const std::vector<dou
     const int j1 = std::min(width_ - 1.0, std::floor(x_hi - 0.5));
     const int i1 = std::min(height_ - 1.0, std::floor(y_hi - 0.5));
     for (int i = i0; i <= i1; ++i) {
-        for (int j = j0; j <= j1; ++j) samples += nearest >= depth[static_cast<size_t>(i) * width_ + j];
+        for (int j = j0; j <= j1; ++j)
+            samples += nearest >= depth[static_cast<size_t>(i) * width_ + j];
     }
     return samples;
 }
 
-QueryId TriangleRasterDevice::issueQuery(std::span<const Aabb> boxes,
-                                         std::span<const QueryTag>) {
+QueryId TriangleRasterDevice::issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag>) {
     uint64_t samples = 0;
     for (const Aabb& box : boxes) samples += boxSamples(box, depth_);
     return queries_.issue(samples, boxes.size(), counters_);

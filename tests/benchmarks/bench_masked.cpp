@@ -40,7 +40,8 @@ struct Scene {
             }
         }
         for (int b = 0; b < 1000; ++b) {
-            const glm::vec3 at(u(rng) * 40.0f - 20.0f, u(rng) * 20.0f - 10.0f, -5.0f - u(rng) * 60.0f);
+            const glm::vec3 at(u(rng) * 40.0f - 20.0f, u(rng) * 20.0f - 10.0f,
+                               -5.0f - u(rng) * 60.0f);
             boxes.push_back(makeAabb(at, at + glm::vec3(0.5f + u(rng))));
         }
         view_projection = glm::perspective(glm::radians(60.0f), 16.0f / 9.0f, 0.1f, 1000.0f);
@@ -67,7 +68,8 @@ void frame(benchmark::State& state, MaskedKernel kernel) {
     state.counters["triangles"] = 2.0 * n * n;
     state.counters["buffer_width"] = buffer.width();
     state.counters["hidden"] = static_cast<double>(buffer.stats().boxes_hidden);
-    state.counters["tri/s"] = benchmark::Counter(2.0 * n * n, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["tri/s"] =
+        benchmark::Counter(2.0 * n * n, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_MaskedFramePlain(benchmark::State& state) { frame(state, MaskedKernel::Plain); }
