@@ -350,8 +350,21 @@ void MaskedDepthBuffer::updateTile(uint32_t tile, const uint32_t (&coverage)[kTi
     // Rounding to float must not make the triangle nearer than computed.
     if (!(depth > t.z0)) return;  // nothing the tile does not know already (or NaN)
     ++stats_.tile_updates;
-    uint32_t any = 0;
-    for (uint32_t r = 0; r < kTileHeight; ++r) any |= t.mask[r];
+    uint32_t any = 0, fresh = 0;
+    uint32_t merged[kTileHeight];
+    for (uint32_t r = 0; r < kTileHeight; ++r) {
+        any |= t.mask[r];
+        fresh |= coverage[r] & ~t.mask[r];
+        merged[r] = t.mask[r] | coverage[r];
+    }
+    if (any != 0 && depth < t.z1) {
+        // Farther than the working layer: merging would move the layer's depth back to the
+        // triangle's. Worth it only for new pixels, and only when the triangle is nearer to the
+        // working layer than to z0 (by a factor of 2) or completes the tile. Skipping an
+        // occluder is always safe.
+        if (fresh == 0) return;
+        if (t.z1 - depth > 2.0f * (depth - t.z0) && !tileFull(tile, merged)) return;
+    }
     if (any == 0 || depth - t.z1 > t.z1 - t.z0) {
         // An empty working layer, or a triangle much nearer than it: the triangle becomes the
         // working layer; the pixels it leaves fall back to z0, which bounds them already.
