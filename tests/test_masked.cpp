@@ -207,6 +207,23 @@ TEST(MaskedDepthBuffer, AnOddViewportsEdgeTilesFlushOnlyOverTheirOwnPixels) {
     }
 }
 
+// Rule: an edge goes without the coverage margin only when the one triangle sharing it lies on
+// its other side on screen. Folded back over its neighbour (as a closed mesh's front and back
+// faces meet at its silhouette), the edge keeps its margin.
+TEST(MaskedDepthBuffer, AFoldedEdgeKeepsItsMargin) {
+    const Screen s{64, 16};
+    const double d = 10.0;
+    const glm::vec3 corners[4] = {{s.x(20.51, d), s.y(-100, d), static_cast<float>(-d)},
+                                  {s.x(20.51, d), s.y(100, d), static_cast<float>(-d)},
+                                  {s.x(-100, d), s.y(8, d), static_cast<float>(-d)},
+                                  {s.x(-50, d), s.y(8, d), static_cast<float>(-d - 1)}};
+    const uint32_t folded[6] = {0, 1, 2, 1, 0, 3};
+    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    buffer.rasteriseMesh(corners, folded, glm::mat4(1.0f), edgeNeighbours(folded));
+    EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 8.4, 8.6, 20.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 15.4, 15.6, 8.4, 8.6, 20.0)));
+}
+
 TEST(MaskedDepthBuffer, WithoutAPerspectiveCameraEverythingIsVisible) {
     MaskedDepthBuffer buffer;
     buffer.beginFrame(glm::mat4(1.0f), glm::vec3(0.0f), 64, 64, 64);

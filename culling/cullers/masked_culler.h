@@ -17,7 +17,7 @@ namespace occsim {
 struct MaskedOptions {
     // The software buffer's width at most (pixels): the viewport is divided by the smallest
     // whole number that makes it fit.
-    uint32_t width = 320;
+    uint32_t width = 1024;
     // An object occludes when the larger side of its box's projection is at least this fraction
     // of the viewport's height.
     double occluder_size = 0.1;
