@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "occsim/culling/cullers/masked_culler.h"
 #include "occsim/culling/raster/masked_depth_buffer.h"
 
 namespace occsim {
@@ -75,9 +76,10 @@ void frame(benchmark::State& state, MaskedKernel kernel) {
 void BM_MaskedFramePlain(benchmark::State& state) { frame(state, MaskedKernel::Plain); }
 void BM_MaskedFrameAvx2(benchmark::State& state) { frame(state, MaskedKernel::Avx2); }
 
-// Triangles (2n²) at the default width 320, then widths at 2·32² triangles.
+// Triangles (2n²) at the culler's default width, then widths at 2·32² triangles.
 void arguments(benchmark::internal::Benchmark* b) {
-    for (int n : {4, 16, 32, 64, 128}) b->Args({n, 320});
+    const int default_width = static_cast<int>(MaskedOptions{}.width);
+    for (int n : {4, 16, 32, 64, 128}) b->Args({n, default_width});
     for (int w : {64, 160, 640, 1280}) b->Args({32, w});
     b->Unit(benchmark::kMillisecond);
 }
