@@ -1,6 +1,6 @@
-// The depth-pyramid capability (occsim/culling/contract/depth_pyramid.h) on OpenGL 4.5: compute shaders
-// build the pyramid from the renderer's depth buffer and test bounds against it. GlQueryDevice
-// offers it (GlQueryDevice::depthPyramid()).
+// The depth-pyramid capability (occsim/culling/contract/depth_pyramid.h) on OpenGL 4.5: compute
+// shaders build the pyramid from the renderer's depth buffer and test bounds against it.
+// GlQueryDevice offers it (GlQueryDevice::depthPyramid()).
 //
 // - build(): the depth renderbuffer is copied into a depth texture (glCopyImageSubData); one
 //   compute dispatch per level reduces it, each texel the farthest depth of the cells it covers

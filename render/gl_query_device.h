@@ -9,14 +9,15 @@
 // So is each query's latency as the culler feels it: how many commands (draws and queries) had
 // been submitted after it by the time its answer was known to be ready, when the culler polled
 // it or waited for it (takeAnswerLatencies()).
-// Conditional rendering (occsim/culling/contract/conditional_rendering.h) is glBeginConditionalRender on
-// the query's GL_SAMPLES_PASSED object, GL_QUERY_WAIT or GL_QUERY_NO_WAIT; the driver decides.
-// A query whose box reaches the near plane draws unconditionally (its samples mean nothing).
-// Under deterministic latency the device decides readiness by its command count instead:
-// NO_WAIT before the answer counts as ready draws unconditionally, after it the condition is
-// evaluated with GL_QUERY_WAIT. For error measurement, an object drawn under a condition counts as
-// drawn when the query passed samples (resolveConditionalDraws(), after the frame); so the query
-// objects conditioned on stay unused until the next beginDrawnSet().
+// Conditional rendering (occsim/culling/contract/conditional_rendering.h) is
+// glBeginConditionalRender on the query's GL_SAMPLES_PASSED object, GL_QUERY_WAIT or
+// GL_QUERY_NO_WAIT; the driver decides. A query whose box reaches the near plane draws
+// unconditionally (its samples mean nothing). Under deterministic latency the device decides
+// readiness by its command count instead: NO_WAIT before the answer counts as ready draws
+// unconditionally, after it the condition is evaluated with GL_QUERY_WAIT. For error measurement,
+// an object drawn under a condition counts as drawn when the query passed samples
+// (resolveConditionalDraws(), after the frame); so the query objects conditioned on stay unused
+// until the next beginDrawnSet().
 #pragma once
 
 #include <cstdint>

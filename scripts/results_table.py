@@ -14,7 +14,8 @@ import json
 import os
 import sys
 
-ORDER = ["vfc", "stop-and-wait", "statistical", "statistical+", "chc", "chc++", "async", "ideal"]
+ORDER = ["vfc", "stop-and-wait", "statistical", "statistical+", "chc", "chc++", "async", "conditional",
+         "hzb", "masked", "ideal"]
 NOT_CONSERVATIVE = {"async", "ideal"}  # async may miss; ideal is the oracle, not a culler
 
 

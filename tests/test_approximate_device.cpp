@@ -1,13 +1,13 @@
-// The approximating device (occsim/culling/devices/approximate_device.h): a pixel threshold and stale
-// results for any culler that issues queries.
+// The approximating device (occsim/culling/devices/approximate_device.h): a pixel threshold and
+// stale results for any culler that issues queries.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 #include <set>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/statistical_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/scripted_query_device.h"

@@ -6,8 +6,8 @@
 #include <random>
 #include <set>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/basic_cullers.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 

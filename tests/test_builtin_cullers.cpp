@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/async_culler.h"
 #include "culling/cullers/chc_culler.h"
 #include "culling/cullers/chcpp_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/registry/registry.h"
 
 namespace occsim {

@@ -10,10 +10,10 @@
 #include <tuple>
 #include <vector>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/async_culler.h"
 #include "culling/cullers/chc_culler.h"
 #include "culling/cullers/chcpp_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/scripted_query_device.h"

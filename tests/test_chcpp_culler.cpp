@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/chcpp_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "scripted_frames.h"

@@ -11,9 +11,9 @@
 #include <tuple>
 #include <vector>
 
+#include "culling/cullers/conditional_culler.h"
 #include "culling_fixtures.h"
 #include "occsim/culling/contract/conditional_rendering.h"
-#include "culling/cullers/conditional_culler.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/devices/tracing_device.h"
 #include "occsim/culling/registry/registry.h"

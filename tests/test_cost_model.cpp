@@ -1,5 +1,5 @@
-// The cost model (occsim/culling/contract/cost_model.h): plain data, unknown when all zero, valid when
-// every figure is finite and >= 0.
+// The cost model (occsim/culling/contract/cost_model.h): plain data, unknown when all zero, valid
+// when every figure is finite and >= 0.
 #include <gtest/gtest.h>
 
 #include <limits>

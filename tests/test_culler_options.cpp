@@ -1,5 +1,5 @@
-// A run's culler options (occsim/culling/registry/culler_options.h): values by culler name, defaults for
-// a culler not named, and the first invalid value named with its culler.
+// A run's culler options (occsim/culling/registry/culler_options.h): values by culler name,
+// defaults for a culler not named, and the first invalid value named with its culler.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -1,5 +1,5 @@
-// The depth raster device (occsim/culling/testing/depth_raster_device.h): answers that depend on what was
-// drawn before them, and conditional draws evaluated against them.
+// The depth raster device (occsim/culling/testing/depth_raster_device.h): answers that depend on
+// what was drawn before them, and conditional draws evaluated against them.
 #include <gtest/gtest.h>
 
 #include <vector>

@@ -24,6 +24,14 @@ const std::map<std::string, std::string>& exceptions() {
          "the text of `occsim cullers`: tested whole, against docs/cullers.md, by "
          "Cli.TheCullersPageIsTheRegistrysOwnOutput and PluginCli.OccsimCullersListsAPluginsCuller"
          "AndItsOptions (they need the occsim executable)"},
+        // Not yet split out of test_masked_culler.cpp, which tests the three together (its
+        // property tests share one generator of random scenes); a debt, named here.
+        {"culling/raster/masked_depth_buffer.cpp",
+         "in test_masked_culler.cpp: MaskedDepthBuffer.* (not yet split out)"},
+        {"culling/raster/masked_kernels.cpp",
+         "in test_masked_culler.cpp: MaskedDepthBuffer.TheAvx2KernelsGiveThePlainBuffer"},
+        {"culling/testing/triangle_raster_device.cpp",
+         "the exact reference of test_masked_culler.cpp's property tests (MaskedProperty.*)"},
     };
     return e;
 }

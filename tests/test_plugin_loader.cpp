@@ -1,5 +1,5 @@
-// The plugin loader (occsim/culling/registry/plugin_loader.h) on each kind of plugin file, built from
-// tests/plugins/test_plugin.cpp.
+// The plugin loader (occsim/culling/registry/plugin_loader.h) on each kind of plugin file, built
+// from tests/plugins/test_plugin.cpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>

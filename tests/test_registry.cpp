@@ -1,5 +1,5 @@
-// The registry (occsim/culling/registry/registry.h): what a culler needs of the device, checked before
-// any work.
+// The registry (occsim/culling/registry/registry.h): what a culler needs of the device, checked
+// before any work.
 #include <gtest/gtest.h>
 
 #include "occsim/culling/registry/registry.h"

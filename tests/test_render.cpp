@@ -432,8 +432,8 @@ TEST_P(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     EXPECT_TRUE(device.drew(2));
 }
 
-// Conditional rendering (occsim/culling/contract/conditional_rendering.h) on the GL device: the driver
-// skips what the query found hidden, nothing is read back, and the drawn set used for missed
+// Conditional rendering (occsim/culling/contract/conditional_rendering.h) on the GL device: the
+// driver skips what the query found hidden, nothing is read back, and the drawn set used for missed
 // objects counts a conditional draw as drawn when its query passed samples.
 TEST_P(RenderTest, ConditionalDrawsBehindAnOccluderAreSkippedAndTheOthersDrawn) {
     for (ConditionWait wait : {ConditionWait::Wait, ConditionWait::NoWait}) {

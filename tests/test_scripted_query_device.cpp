@@ -1,5 +1,5 @@
-// The scripted query device (occsim/culling/testing/scripted_query_device.h) and the query contract it
-// keeps: answers decided by the device, ids checked in every build, conditional rendering.
+// The scripted query device (occsim/culling/testing/scripted_query_device.h) and the query contract
+// it keeps: answers decided by the device, ids checked in every build, conditional rendering.
 #include <gtest/gtest.h>
 
 #include <vector>

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/hzb_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/geometry/hzb_rules.h"
 #include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"

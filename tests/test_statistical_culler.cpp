@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "culling_fixtures.h"
 #include "culling/cullers/basic_cullers.h"
 #include "culling/cullers/statistical_culler.h"
+#include "culling_fixtures.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"

@@ -1,5 +1,5 @@
-// The tracing device (occsim/culling/devices/tracing_device.h): what a culler did in one frame, recorded
-// for pictures.
+// The tracing device (occsim/culling/devices/tracing_device.h): what a culler did in one frame,
+// recorded for pictures.
 #include <gtest/gtest.h>
 
 #include <vector>

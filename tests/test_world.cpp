@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "sim/run/frame_stats.h"
+#include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"
 #include "sim/world/world.h"
@@ -434,6 +435,38 @@ TEST(WorldBoxes, TheCullingOriginStaysWithTheCameraWhateverTheObjectsReach) {
     s.camera.keyframes = {{0.0, {3.4, 2, 6}, {0, 1, -20}}};
     const Scene scene = buildScene(s);
     EXPECT_EQ(scene.culling_origin, glm::dvec3(3, 2, 6));
+}
+
+// What a culler with needs_meshes gets (CullFrame::meshes): every mesh once, and per frame each
+// object's transform into the culling frame, which puts its mesh inside its world box.
+TEST(SharedWorld, MeshesForCullersAreFlatArraysAndTransformsFollowTheMovers) {
+    Scenario s = smallScenario();
+    auto& teapots = std::get<TeapotFieldSpec>(s.sources[0].spec);
+    teapots.region = {glm::vec3(999980, 0, 4950), glm::vec3(1000020, 5, 5000)};
+    s.camera.keyframes = {{0.0, {999990.2, 2, 5010}, {1e6, 1, 4975}}};
+    s.frames = 3;
+    const Scene scene = buildScene(s);
+    SharedWorld world(scene, s);
+    for (uint32_t frame = 0; frame < 3; ++frame) {
+        world.advance();
+        const CullMeshes& m = world.cullMeshes();
+        ASSERT_EQ(m.meshes.size(), scene.meshes.size());
+        ASSERT_EQ(m.object_mesh.size(), scene.objectCount());
+        ASSERT_EQ(m.object_to_culling.size(), scene.objectCount());
+        for (uint32_t o = 0; o < scene.objectCount(); o += 7) {
+            const MeshRange& r = m.meshes[m.object_mesh[o]];
+            EXPECT_EQ(r.index_count, scene.meshes[scene.object_mesh[o]].indices.size());
+            const Aabb& box = world.state().boxes[o];
+            for (uint32_t v = 0; v < r.vertex_count; v += 13) {
+                const glm::vec4 p =
+                    m.object_to_culling[o] * glm::vec4(m.positions[r.first_vertex + v], 1.0f);
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_GE(p[axis], box.min[axis] - 1e-3f) << o;
+                    EXPECT_LE(p[axis], box.max[axis] + 1e-3f) << o;
+                }
+            }
+        }
+    }
 }
 
 }  // namespace

@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "occsim/culling/geometry/query_box.h"
-#include "occsim/culling/registration/option_table.h"
 #include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 

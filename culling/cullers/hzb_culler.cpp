@@ -1,8 +1,8 @@
 // Two-phase hierarchical-Z culling; see hzb_culler.h and docs/hzb.md.
 #include "culling/cullers/hzb_culler.h"
 
-#include "occsim/culling/registration/option_table.h"
 #include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 

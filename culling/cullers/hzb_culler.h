@@ -17,8 +17,8 @@
 // would hide nothing, so it is not built and everything in the frustum is drawn.
 //
 // Needs the device's depth-pyramid capability (DeviceFeature kDepthPyramid); a device without it
-// refuses this culler before any work (requireDeviceFeatures, occsim/culling/registry/registry.h). Called
-// on such a device all the same, it draws everything in the frustum (frustum culling).
+// refuses this culler before any work (requireDeviceFeatures, occsim/culling/registry/registry.h).
+// Called on such a device all the same, it draws everything in the frustum (frustum culling).
 #pragma once
 
 #include <cstdint>

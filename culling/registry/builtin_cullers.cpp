@@ -14,12 +14,13 @@ AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
 AlgorithmTraits conditionalRegistration();      // cullers/conditional_culler.cpp
 AlgorithmTraits hzbRegistration();              // cullers/hzb_culler.cpp
 AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
+AlgorithmTraits maskedRegistration();           // cullers/masked_culler.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
     for (AlgorithmTraits (*row)() :
          {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
           statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          conditionalRegistration, hzbRegistration, idealRegistration}) {
+          conditionalRegistration, hzbRegistration, maskedRegistration, idealRegistration}) {
         registry.add(row());
     }
 }

@@ -40,6 +40,40 @@ void SharedWorld::computeModelViews() {
     }
 }
 
+const CullMeshes& SharedWorld::cullMeshes() {
+    if (!flat_meshes_) {
+        flat_meshes_ = std::make_unique<FlatMeshes>();
+        FlatMeshes& f = *flat_meshes_;
+        for (const MeshData& mesh : scene_.meshes) {
+            MeshRange range;
+            range.first_index = static_cast<uint32_t>(f.indices.size());
+            range.index_count = static_cast<uint32_t>(mesh.indices.size());
+            range.first_vertex = static_cast<uint32_t>(f.positions.size());
+            range.vertex_count = static_cast<uint32_t>(mesh.positions.size());
+            f.positions.insert(f.positions.end(), mesh.positions.begin(), mesh.positions.end());
+            f.indices.insert(f.indices.end(), mesh.indices.begin(), mesh.indices.end());
+            f.meshes.push_back(range);
+        }
+        f.object_to_culling.resize(scene_.objectCount());
+        f.view.positions = f.positions;
+        f.view.indices = f.indices;
+        f.view.meshes = f.meshes;
+        f.view.object_mesh = scene_.object_mesh;
+        f.view.object_to_culling = f.object_to_culling;
+    }
+    FlatMeshes& f = *flat_meshes_;
+    if (f.transforms_serial != serial_) {
+        // Relative to the culling origin in double, then float: precise however far the scene
+        // lies from the world origin (the boxes are in the same frame).
+        const glm::dmat4 to_culling = glm::translate(glm::dmat4(1.0), -scene_.culling_origin);
+        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+            f.object_to_culling[o] = glm::mat4(to_culling * modelMatrix(state_.poses[o]));
+        }
+        f.transforms_serial = serial_;
+    }
+    return f.view;
+}
+
 void SharedWorld::advance() {
     frame_ = advances_++;
     serial_ = g_next_serial.fetch_add(1, std::memory_order_relaxed);

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -69,6 +70,11 @@ class SharedWorld {
     const CullFrame& cullFrame() const { return cull_frame_; }
     const FrameView& view() const { return view_; }
     std::span<const glm::mat4> modelViews() const { return model_view_; }
+    // The scene's meshes as flat arrays (built on the first call) and the current frame's object
+    // transforms into the culling frame (computed on the first call of each frame): what a culler
+    // with AlgorithmTraits::needs_meshes gets in CullFrame::meshes. Runs without such a culler
+    // never call it, so neither the copy nor the per-frame transforms cost them anything.
+    const CullMeshes& cullMeshes();
 
     const Scene& scene() const { return scene_; }
     const Scenario& scenario() const { return scenario_; }
@@ -104,6 +110,16 @@ class SharedWorld {
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;
     std::vector<uint32_t> object_triangles_;  // per object, for cullers that weigh draw costs
+    // For cullers that rasterise triangles (cullMeshes()): built once, transforms per frame.
+    struct FlatMeshes {
+        std::vector<glm::vec3> positions;
+        std::vector<uint32_t> indices;
+        std::vector<MeshRange> meshes;
+        std::vector<glm::mat4> object_to_culling;
+        uint64_t transforms_serial = 0;  // the frame serial object_to_culling is for
+        CullMeshes view;
+    };
+    std::unique_ptr<FlatMeshes> flat_meshes_;
 };
 
 }  // namespace occsim

@@ -83,6 +83,9 @@ FrameStats Simulation::renderFrame() {
         truth = &truth_->of(*world_, options_.keep_worst_error_frame);
         cull_frame.ground_truth_visible = truth->visible;
     }
+    // The meshes and this frame's transforms, outside the timing (an engine keeps its transforms
+    // anyway), for a culler that rasterises triangles itself.
+    if (algorithm_.needs_meshes) cull_frame.meshes = world_->cullMeshes();
 
     // The measured frame: culled render to glFinish.
     renderer_.setView(world_->view().render, world_->modelViews());

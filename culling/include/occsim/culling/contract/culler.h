@@ -48,6 +48,32 @@ inline PreparedView prepareView(const CullView& view) {
     return PreparedView{view.eye, planeTableOf(view.frustum), view.near_radius};
 }
 
+// One mesh of CullMeshes' flat arrays: its triangles are indices[first_index, first_index +
+// index_count), three per triangle, each relative to first_vertex in positions.
+struct MeshRange {
+    uint32_t first_index = 0;
+    uint32_t index_count = 0;
+    uint32_t first_vertex = 0;
+    uint32_t vertex_count = 0;
+};
+
+// The scene's triangles, for a culler that rasterises them itself (a software depth buffer; it
+// asks for them with AlgorithmTraits::needs_meshes, culling/registry/registry.h). The arrays are
+// built once by the simulation and stay valid for the whole run; only object_to_culling changes
+// per frame. Empty (every span) for a culler that did not ask.
+struct CullMeshes {
+    std::span<const glm::vec3> positions;   // every mesh's vertices, object-local, metres
+    std::span<const uint32_t> indices;      // triangle lists, counter-clockwise front faces
+    std::span<const MeshRange> meshes;      // per mesh, its part of positions and indices
+    std::span<const uint32_t> object_mesh;  // per object, an index into meshes
+    // Per object, this frame: object-local to the culling frame (the frame of the object boxes,
+    // relative to the scene's culling origin), composed in double and then rounded to float, so
+    // that a scene far from the world origin keeps its precision.
+    std::span<const glm::mat4> object_to_culling;
+
+    bool empty() const { return object_mesh.empty(); }
+};
+
 struct CullFrame {
     uint64_t frame_index = 0;
     double time_s = 0.0;  // simulation time: frame_index * dt
@@ -61,6 +87,9 @@ struct CullFrame {
     // no culler that ignores it has to change). Empty when unknown; a culler weighing draw costs
     // (StatisticalOptions::cost_model) then leaves its cost model off.
     std::span<const uint32_t> object_triangles;
+    // The meshes and this frame's object transforms: filled only for cullers whose traits ask
+    // (AlgorithmTraits::needs_meshes), so that no other culler pays for the transforms.
+    CullMeshes meshes;
 };
 
 class Culler {

@@ -1,8 +1,8 @@
 // The depth-pyramid capability of a RenderDevice (DeviceFeature kDepthPyramid): a hierarchical
 // depth buffer built from what the device has drawn so far this frame, and a batch test of
 // bounds against it. The two-phase hierarchical-Z culler (cullers/hzb_culler.h) is its user;
-// render/gl_depth_pyramid.h implements it on the GPU, occsim/culling/testing/depth_raster_device.h in
-// software over its raster.
+// render/gl_depth_pyramid.h implements it on the GPU, occsim/culling/testing/depth_raster_device.h
+// in software over its raster.
 //
 // Semantics, the same for every device:
 // - build() reduces the depth buffer as it is now (the draws of the frame so far) into a pyramid,

@@ -49,6 +49,9 @@ struct AlgorithmTraits {
     // The device capabilities it cannot run without (DeviceFeature bits, render_device.h): a run
     // on a device that lacks one refuses this culler before any work, naming it and the feature.
     uint32_t device_needs = 0;
+    // Rasterises the scene's triangles itself: the run fills CullFrame::meshes (the flat mesh
+    // arrays, built once, and every frame's object transforms) for it, and for no other culler.
+    bool needs_meshes = false;
     // Its options, read from culling.<name> in a scenario.
     OptionsDescriptor options;
     std::unique_ptr<Culler> (*factory)(const CullerContext& context) = nullptr;

@@ -1,7 +1,7 @@
 // A depth pyramid over a CPU raster, built and tested with the rules of
-// occsim/culling/geometry/hzb_rules.h: what the CPU test devices offer as their DepthPyramid capability,
-// and what the rules' tests read. Depths are distances: larger is farther, so each texel holds
-// the maximum of what it covers.
+// occsim/culling/geometry/hzb_rules.h: what the CPU test devices offer as their DepthPyramid
+// capability, and what the rules' tests read. Depths are distances: larger is farther, so each
+// texel holds the maximum of what it covers.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,137 @@
+// Hasselgren, Andersson & Akenine-Möller, "Masked Software Occlusion Culling", HPG 2016, as a
+// culler over the BSP tree: see masked_culler.h and docs/masked.md.
+#include "culling/cullers/masked_culler.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "occsim/culling/geometry/query_box.h"
+#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/registration/option_table.h"
+
+namespace occsim {
+
+MaskedCuller::MaskedCuller(const MaskedOptions& options)
+    : options_(options), buffer_(options.simd ? MaskedKernel::Avx2 : MaskedKernel::Plain) {}
+
+void MaskedCuller::reset(const BspTree& tree) {
+    drawn_last_.clear();
+    drawn_now_.clear();
+    rasterised_in_.assign(tree.objectCount(), 0);
+    stamp_ = 0;
+    neighbours_.clear();
+    has_neighbours_.clear();
+}
+
+bool MaskedCuller::mayBeVisible(const Aabb& box, const CullView& view) {
+    return nearPlaneTouchesBox(box, view.eye, view.near_radius) || buffer_.testBox(box);
+}
+
+void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, uint32_t object) {
+    if (rasterised_in_[object] == stamp_) return;
+    rasterised_in_[object] = stamp_;
+    if (object >= meshes.object_mesh.size() || object >= meshes.object_to_culling.size()) return;
+    const uint32_t mesh = meshes.object_mesh[object];
+    if (mesh >= meshes.meshes.size()) return;
+    const MeshRange& r = meshes.meshes[mesh];
+    if (uint64_t{r.first_vertex} + r.vertex_count > meshes.positions.size() ||
+        uint64_t{r.first_index} + r.index_count > meshes.indices.size()) {
+        return;
+    }
+    const uint32_t triangles = r.index_count / 3;
+    if (triangles == 0 || triangles > budget_) return;
+    if (buffer_.screenExtent(tree.objectBox(object)) < options_.occluder_size) return;
+    budget_ -= triangles;
+    ++occluders_;
+    const std::span<const uint32_t> indices = meshes.indices.subspan(r.first_index, r.index_count);
+    if (has_neighbours_.size() != meshes.meshes.size()) {
+        has_neighbours_.assign(meshes.meshes.size(), 0);
+        neighbours_.assign(meshes.meshes.size(), {});
+    }
+    if (!has_neighbours_[mesh]) {
+        neighbours_[mesh] = edgeNeighbours(indices);  // once per mesh and run
+        has_neighbours_[mesh] = 1;
+    }
+    buffer_.rasteriseMesh(meshes.positions.subspan(r.first_vertex, r.vertex_count), indices,
+                          meshes.object_to_culling[object], neighbours_[mesh]);
+}
+
+void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                 RenderDevice& device) {
+    view_ = prepareView(frame.view);
+    if (rasterised_in_.size() != tree.objectCount()) rasterised_in_.assign(tree.objectCount(), 0);
+    ++stamp_;
+    occluders_ = 0;
+    budget_ = options_.occluder_triangles;
+    buffer_.beginFrame(frame.view.view_projection, frame.view.eye, frame.view.viewport_width,
+                       frame.view.viewport_height, options_.width);
+    // Without meshes (a caller that gives none) nothing occludes: every box is found visible.
+    const CullMeshes& meshes = frame.meshes;
+    const bool have_meshes = meshes.object_mesh.size() == tree.objectCount();
+
+    if (have_meshes && options_.last_drawn_first) {
+        for (const uint32_t o : drawn_last_) {
+            if (o < tree.objectCount() &&
+                classify(view_.frustum, tree.objectBox(o)) != FrustumTest::Outside) {
+                tryOccluder(tree, meshes, o);
+            }
+        }
+    }
+    drawn_now_.clear();
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        if (!mayBeVisible(tree.bounds(visit.node), frame.view)) return false;
+        forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
+                               [&](uint32_t o) {
+                                   if (!mayBeVisible(tree.objectBox(o), frame.view)) return;
+                                   device.drawObject(o);
+                                   drawn_now_.push_back(o);
+                                   if (have_meshes) tryOccluder(tree, meshes, o);
+                               });
+        return true;
+    });
+    std::swap(drawn_last_, drawn_now_);
+}
+
+// --- Registration -------------------------------------------------------------------------------
+
+namespace {
+
+const OptionTable<MaskedOptions>& maskedOptionTable() {
+    using O = MaskedOptions;
+    static const OptionTable<O> table = {
+        tunable(integerOption(OCCSIM_OPTION_MEMBER(O, width), "pixels", 32, 8192,
+                              "the software depth buffer's width at most: the viewport divided "
+                              "by the smallest whole number that fits"),
+                64, 1024),
+        tunable(numberOption(OCCSIM_OPTION_MEMBER(O, occluder_size), "viewport heights", 0.0,
+                             std::numeric_limits<double>::infinity(),
+                             "an object occludes when its box's projection is at least this "
+                             "large (its larger side)"),
+                0.0, 0.5),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, last_drawn_first),
+                                 "last frame's drawn occluders are rasterised before the "
+                                 "traversal; off = each as it is drawn"),
+                   0.0),
+        integerOption(OCCSIM_OPTION_MEMBER(O, occluder_triangles), "triangles", 0, 4294967295.0,
+                      "occluder triangles rasterised per frame at most"),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, simd),
+                      "AVX2 kernels where the CPU has them (same decisions as the plain path)"),
+    };
+    return table;
+}
+
+}  // namespace
+
+AlgorithmTraits maskedRegistration() {
+    AlgorithmTraits t;
+    t.name = "masked";
+    t.summary = "masked software occlusion culling on the CPU (Hasselgren et al. 2016)";
+    t.needs_meshes = true;
+    t.options = maskedOptionTable().descriptor(MaskedOptions{});
+    t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
+        return std::make_unique<MaskedCuller>(maskedOptionTable().read(c.options));
+    };
+    return t;
+}
+
+}  // namespace occsim

@@ -1,0 +1,64 @@
+// Masked software occlusion culling on the CPU (Hasselgren, Andersson & Akenine-Möller, HPG 2016):
+// a coarse software depth buffer (culling/raster/masked_depth_buffer.h) filled with the real
+// triangles of chosen occluders, near to far, and tested with node and object boxes while the
+// BSP tree is traversed front to back. No occlusion queries: the device only draws. How it
+// works here and what differs from the paper: docs/masked.md.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "culling/raster/masked_depth_buffer.h"
+#include "occsim/culling/contract/culler.h"
+#include "occsim/culling/tree/traversal.h"
+
+namespace occsim {
+
+struct MaskedOptions {
+    // The software buffer's width at most (pixels): the viewport is divided by the smallest
+    // whole number that makes it fit.
+    uint32_t width = 1024;
+    // An object occludes when the larger side of its box's projection is at least this fraction
+    // of the viewport's height.
+    double occluder_size = 0.1;
+    // Last frame's drawn objects that qualify as occluders are rasterised first, before the
+    // traversal (a depth pre-pass from coherence); the others as they are drawn.
+    bool last_drawn_first = true;
+    // Occluder triangles rasterised per frame at most; an object whose triangles no longer fit
+    // is not an occluder this frame.
+    uint32_t occluder_triangles = 200000;
+    // The AVX2 kernels where the CPU has them (the same decisions as the plain path).
+    bool simd = true;
+};
+
+class MaskedCuller final : public Culler {
+  public:
+    explicit MaskedCuller(const MaskedOptions& options = {});
+    std::string_view name() const override { return "masked"; }
+    void reset(const BspTree& tree) override;
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
+
+    // The buffer as the last frame left it (for tests and pictures).
+    const MaskedDepthBuffer& buffer() const { return buffer_; }
+    // Objects rasterised as occluders in the last frame.
+    uint32_t occluders() const { return occluders_; }
+
+  private:
+    bool mayBeVisible(const Aabb& box, const CullView& view);
+    void tryOccluder(const BspTree& tree, const CullMeshes& meshes, uint32_t object);
+
+    MaskedOptions options_;
+    MaskedDepthBuffer buffer_;
+    PreparedView view_;
+    std::vector<NodeVisit> stack_;
+    std::vector<uint32_t> drawn_last_, drawn_now_;  // in draw order (front to back)
+    std::vector<uint64_t> rasterised_in_;           // per object: frame stamp it was rasterised in
+    // Per mesh, its edges' neighbours (edgeNeighbours), built the first time it occludes.
+    std::vector<std::vector<uint32_t>> neighbours_;
+    std::vector<uint8_t> has_neighbours_;
+    uint64_t stamp_ = 0;
+    uint64_t budget_ = 0;
+    uint32_t occluders_ = 0;
+};
+
+}  // namespace occsim

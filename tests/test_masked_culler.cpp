@@ -1,0 +1,500 @@
+// The masked software depth buffer (culling/raster/masked_depth_buffer.h) and the masked culler:
+// one test per conservativeness rule (each built so that breaking the rule makes it fail), the
+// property test against the exact triangle reference
+// (occsim/culling/testing/triangle_raster_device.h), and the plain and AVX2 kernels giving the same
+// buffer.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <iostream>
+#include <random>
+
+#include "culling/cullers/masked_culler.h"
+#include "culling/raster/masked_depth_buffer.h"
+#include "culling_fixtures.h"
+#include "occsim/culling/testing/triangle_raster_device.h"
+
+namespace occsim {
+namespace {
+
+// A camera at `eye` looking at `target`, composed in double as the simulation does.
+CullView cameraView(glm::dvec3 eye, glm::dvec3 target, uint32_t width, uint32_t height,
+                    double near = 0.1, double far = 1000.0, double fov_deg = 90.0) {
+    const double aspect = static_cast<double>(width) / height;
+    const glm::dvec3 forward = glm::normalize(target - eye);
+    const glm::dvec3 up = std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    const glm::dmat4 vp = glm::perspective(glm::radians(fov_deg), aspect, near, far) *
+                          glm::lookAt(eye, eye + forward, up);
+    CullView view;
+    view.eye = glm::vec3(eye);
+    view.frustum = frustumFromViewProjection(vp);
+    view.near_radius =
+        static_cast<float>(nearPlaneCornerDistance(near, glm::radians(fov_deg), aspect));
+    view.view_projection = glm::mat4(vp);
+    view.viewport_width = width;
+    view.viewport_height = height;
+    return view;
+}
+
+// The rule tests' camera: at the origin looking down -z, 90 degrees, square pixels. A point at
+// view depth d shows at viewport pixel (px, py) when x = (2 px / W - 1) d aspect and
+// y = (2 py / H - 1) d.
+struct Screen {
+    uint32_t width, height;
+    double aspect() const { return static_cast<double>(width) / height; }
+    float x(double px, double d) const {
+        return static_cast<float>((2.0 * px / width - 1.0) * d * aspect());
+    }
+    float y(double py, double d) const { return static_cast<float>((2.0 * py / height - 1.0) * d); }
+    CullView view(double near = 0.1) const {
+        return cameraView({0, 0, 0}, {0, 0, -1}, width, height, near);
+    }
+};
+
+// A wall at view depth d over the viewport rectangle [x0, x1] x [y0, y1] (pixels).
+void wall(MaskedDepthBuffer& buffer, const Screen& s, double x0, double x1, double y0, double y1,
+          double d) {
+    const glm::vec3 a(s.x(x0, d), s.y(y0, d), -d), b(s.x(x1, d), s.y(y0, d), -d);
+    const glm::vec3 c(s.x(x1, d), s.y(y1, d), -d), e(s.x(x0, d), s.y(y1, d), -d);
+    const glm::vec3 corners[4] = {a, b, c, e};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
+}
+
+// A box 1 mm deep whose near face at view depth d shows over [x0, x1] x [y0, y1] (pixels).
+Aabb card(const Screen& s, double x0, double x1, double y0, double y1, double d) {
+    return makeAabb(glm::vec3(s.x(x0, d), s.y(y0, d), static_cast<float>(-d - 0.001)),
+                    glm::vec3(s.x(x1, d), s.y(y1, d), static_cast<float>(-d)));
+}
+
+MaskedDepthBuffer beginBuffer(const Screen& s, uint32_t max_width,
+                              MaskedKernel kernel = MaskedKernel::Plain, double near = 0.1) {
+    MaskedDepthBuffer buffer(kernel);
+    const CullView v = s.view(near);
+    buffer.beginFrame(v.view_projection, v.eye, s.width, s.height, max_width);
+    return buffer;
+}
+
+TEST(MaskedDepthBuffer, AWallHidesWhatIsBehindItAndNotWhatIsBeside) {
+    const Screen s{64, 32};
+    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    wall(buffer, s, -10, 40, -10, 50, 10.0);
+    EXPECT_FALSE(buffer.testBox(card(s, 5, 30, 5, 25, 20.0)));
+    EXPECT_TRUE(buffer.testBox(card(s, 35, 50, 5, 25, 20.0)));  // reaches past the wall's edge
+    EXPECT_TRUE(buffer.testBox(card(s, 5, 30, 5, 25, 5.0)));    // in front of it
+}
+
+// Rule: a pixel is covered only when its centre lies inside every edge with room to spare
+// (kCoverageMarginPx): a rasteriser's snapping may leave a centre 0.01 pixel inside uncovered.
+TEST(MaskedDepthBuffer, AnEdgeBarelyPastAPixelCentreDoesNotCoverIt) {
+    const Screen s{64, 16};
+    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    wall(buffer, s, -100, 20.51, -100, 100, 10.0);  // pixel 20's centre (20.5) 0.01 inside
+    EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 4.4, 4.6, 20.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 18.4, 18.6, 4.4, 4.6, 20.0)));
+}
+
+// Rule: at a coarse resolution a buffer pixel is covered only when every viewport pixel centre
+// in its k x k block is covered, not its own centre alone.
+TEST(MaskedDepthBuffer, ACoarsePixelIsCoveredOnlyWhenEveryPixelCentreInItIs) {
+    const Screen s{64, 16};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    ASSERT_EQ(buffer.pixelSize(), 2u);
+    // Buffer pixel 10 holds viewport columns 20 and 21 (centres 20.5, 21.5; block centre 21):
+    // the wall's edge at 21.3 covers the block's centre and column 20, not column 21.
+    wall(buffer, s, -100, 21.3, -100, 100, 10.0);
+    EXPECT_TRUE(buffer.testBox(card(s, 21.4, 21.6, 4.4, 4.6, 20.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 16.4, 17.6, 4.4, 4.6, 20.0)));
+}
+
+// Rule: a tile keeps a triangle's farthest depth over the part of the tile it covers.
+TEST(MaskedDepthBuffer, ASlopedOccludersTileDepthIsItsFarthestPoint) {
+    const Screen s{32, 32};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    // The plane w = 20 + x/2: depth 13.3 at the left edge of the view, 40 at the right.
+    const glm::vec3 corners[4] = {{-30, -100, -5}, {60, -100, -50}, {60, 100, -50}, {-30, 100, -5}};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
+    // At pixel column 28 the plane lies at depth 32.8: a card at 31 is in front of it.
+    EXPECT_TRUE(buffer.testBox(card(s, 28.4, 28.6, 16.4, 16.6, 31.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 28.4, 28.6, 16.4, 16.6, 45.0)));
+}
+
+// Rule: merging into the working layer keeps the farther of its depth and the triangle's; a
+// full mask makes that depth the tile's reference.
+TEST(MaskedDepthBuffer, MergingKeepsTheFartherDepth) {
+    const Screen s{32, 8};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    wall(buffer, s, -10, 16.0, -10, 20, 10.0);  // left half at 10
+    wall(buffer, s, 16.0, 50, -10, 20, 20.0);   // right half at 20: the tile is full
+    EXPECT_TRUE(buffer.testBox(card(s, 2, 30, 1, 7, 15.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 2, 30, 1, 7, 25.0)));
+}
+
+// Rule: when a much nearer triangle replaces the working layer, the pixels it leaves fall back
+// to the reference depth; they keep no claim to the new, nearer depth.
+TEST(MaskedDepthBuffer, ReplacingTheWorkingLayerDropsTheOldPixelsToTheReference) {
+    const Screen s{32, 8};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    wall(buffer, s, -10, 16.0, -10, 20, 20.0);                  // left half at 20
+    wall(buffer, s, 16.0, 50, -10, 20, 2.0);                    // right half much nearer, at 2
+    EXPECT_TRUE(buffer.testBox(card(s, 2, 12, 1, 7, 10.0)));    // in front of the wall at 20
+    EXPECT_FALSE(buffer.testBox(card(s, 20, 30, 1, 7, 10.0)));  // behind the wall at 2
+}
+
+// Rule: triangles are clipped at (a little beyond) the near plane: what a rasteriser clips away
+// hides nothing. A floor 0.5 m below the eye meets the bottom rows nearer than the near plane.
+TEST(MaskedDepthBuffer, WhatLiesInFrontOfTheNearPlaneHidesNothing) {
+    const Screen s{32, 32};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 1.0);
+    const glm::vec3 corners[4] = {
+        {-100, -0.5f, 10}, {100, -0.5f, 10}, {100, -0.5f, -100}, {-100, -0.5f, -100}};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
+    EXPECT_TRUE(buffer.testBox(card(s, 15.4, 15.6, 0.4, 0.6, 5.0)));  // below the clipped part
+    // Below the floor proper (beyond its far end: the tile keeps its farthest depth, 100 m).
+    EXPECT_FALSE(buffer.testBox(card(s, 15.4, 15.6, 12.4, 12.6, 120.0)));
+}
+
+// Rule: a box whose nearest point is at or behind the eye is visible (its projection means
+// nothing), even behind a wall that fills the view.
+TEST(MaskedDepthBuffer, ABoxReachingBehindTheEyeIsVisible) {
+    const Screen s{32, 32};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    wall(buffer, s, -100, 100, -100, 100, 10.0);
+    EXPECT_TRUE(
+        buffer.testBox(makeAabb(glm::vec3(-0.1f, -0.1f, -20.0f), glm::vec3(0.1f, 0.1f, 1.0f))));
+    EXPECT_FALSE(buffer.testBox(card(s, 10, 20, 10, 20, 20.0)));
+}
+
+// Rule: ties are visible: a box whose near face lies on the occluder is not hidden by it (the
+// stored depth is made farther and the box's nearer, by kDepthMargin and by the rounding bound;
+// either alone keeps this test passing, without both it fails).
+TEST(MaskedDepthBuffer, ABoxOnTheOccludersSurfaceIsVisible) {
+    const Screen s{32, 32};
+    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    wall(buffer, s, -100, 100, -100, 100, 10.0);
+    EXPECT_TRUE(buffer.testBox(card(s, 10, 20, 10, 20, 10.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 10, 20, 10, 20, 10.01)));
+}
+
+// Rule: a box's rectangle is grown by kBoxMarginPx before it is rounded to pixel centres: its
+// own triangles, snapped, may reach a centre 0.002 pixel outside it.
+TEST(MaskedDepthBuffer, ABoxsRectangleIsGrownBeforeRounding) {
+    const Screen s{64, 16};
+    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    wall(buffer, s, 21.0, 100, -100, 100, 10.0);  // covers column 21 on, not column 20
+    EXPECT_TRUE(buffer.testBox(card(s, 20.502, 22, 4.4, 4.6, 20.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 21.3, 22, 4.4, 4.6, 20.0)));
+}
+
+// Rule: pixels past the viewport's edge count as covered only where there are no pixels: the
+// last tile column and row of an odd viewport (33 x 9) flush only when their real pixels are.
+TEST(MaskedDepthBuffer, AnOddViewportsEdgeTilesFlushOnlyOverTheirOwnPixels) {
+    const Screen s{33, 9};
+    {
+        MaskedDepthBuffer buffer = beginBuffer(s, 64);
+        ASSERT_EQ(buffer.tilesAcross(), 2u);
+        wall(buffer, s, -10, 100, -10, 4.0, 10.0);  // rows 0-3 of every column
+        EXPECT_TRUE(buffer.testBox(card(s, 32.4, 32.6, 6.4, 6.6, 20.0)));  // column 32, row 6
+        EXPECT_FALSE(buffer.testBox(card(s, 32.4, 32.6, 2.4, 2.6, 20.0)));
+    }
+    {
+        MaskedDepthBuffer buffer = beginBuffer(s, 64);
+        wall(buffer, s, -10, 16.0, -10, 100, 10.0);  // columns 0-15 of every row
+        EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 8.4, 8.6, 20.0)));  // row 8, column 20
+        EXPECT_FALSE(buffer.testBox(card(s, 10.4, 10.6, 8.4, 8.6, 20.0)));
+    }
+}
+
+// Rule: an edge goes without the coverage margin only when the one triangle sharing it lies on
+// its other side on screen. Folded back over its neighbour (as a closed mesh's front and back
+// faces meet at its silhouette), the edge keeps its margin.
+TEST(MaskedDepthBuffer, AFoldedEdgeKeepsItsMargin) {
+    const Screen s{64, 16};
+    const double d = 10.0;
+    const glm::vec3 corners[4] = {{s.x(20.51, d), s.y(-100, d), static_cast<float>(-d)},
+                                  {s.x(20.51, d), s.y(100, d), static_cast<float>(-d)},
+                                  {s.x(-100, d), s.y(8, d), static_cast<float>(-d)},
+                                  {s.x(-50, d), s.y(8, d), static_cast<float>(-d - 1)}};
+    const uint32_t folded[6] = {0, 1, 2, 1, 0, 3};
+    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    buffer.rasteriseMesh(corners, folded, glm::mat4(1.0f), edgeNeighbours(folded));
+    EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 8.4, 8.6, 20.0)));
+    EXPECT_FALSE(buffer.testBox(card(s, 15.4, 15.6, 8.4, 8.6, 20.0)));
+}
+
+TEST(MaskedDepthBuffer, WithoutAPerspectiveCameraEverythingIsVisible) {
+    MaskedDepthBuffer buffer;
+    buffer.beginFrame(glm::mat4(1.0f), glm::vec3(0.0f), 64, 64, 64);
+    EXPECT_FALSE(buffer.active());
+    buffer.rasteriseTriangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
+    EXPECT_TRUE(buffer.testBox(makeAabb(glm::vec3(0.0f), glm::vec3(0.1f))));
+    buffer.beginFrame(cameraView({0, 0, 0}, {0, 0, -1}, 64, 64).view_projection, {}, 0, 64, 64);
+    EXPECT_TRUE(buffer.testBox(makeAabb(glm::vec3(0.0f), glm::vec3(0.1f))));
+}
+
+// --- Random scenes against the exact reference ---------------------------------------------------
+
+// Meshes and objects as the simulation hands them to cullers (CullMeshes).
+struct TestScene {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;
+    std::vector<MeshRange> meshes;
+    std::vector<uint32_t> object_mesh;
+    std::vector<glm::mat4> transforms;
+    std::vector<Aabb> boxes;
+
+    uint32_t addMesh(std::vector<glm::vec3> p, std::vector<uint32_t> i) {
+        meshes.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(i.size()),
+                          static_cast<uint32_t>(positions.size()),
+                          static_cast<uint32_t>(p.size())});
+        positions.insert(positions.end(), p.begin(), p.end());
+        indices.insert(indices.end(), i.begin(), i.end());
+        return static_cast<uint32_t>(meshes.size() - 1);
+    }
+    void addObject(uint32_t mesh, const glm::dmat4& to_culling) {
+        object_mesh.push_back(mesh);
+        transforms.push_back(glm::mat4(to_culling));
+        const MeshRange& r = meshes[mesh];
+        Aabb box;
+        for (uint32_t v = 0; v < r.vertex_count; ++v) {
+            // As the simulation does: in double, rounded outward to float.
+            const glm::dvec3 p =
+                glm::dvec3(glm::dmat4(transforms.back()) *
+                           glm::dvec4(glm::dvec3(positions[r.first_vertex + v]), 1.0));
+            extend(box, glm::vec3(p));
+            for (int k = 0; k < 3; ++k) {
+                box.min[k] =
+                    std::min(box.min[k], std::nextafter(static_cast<float>(p[k]), -INFINITY));
+                box.max[k] =
+                    std::max(box.max[k], std::nextafter(static_cast<float>(p[k]), INFINITY));
+            }
+        }
+        boxes.push_back(box);
+    }
+    CullMeshes view() const {
+        return CullMeshes{positions, indices, meshes, object_mesh, transforms};
+    }
+};
+
+uint32_t cubeMesh(TestScene& s) {
+    std::vector<glm::vec3> p;
+    for (int i = 0; i < 8; ++i)
+        p.emplace_back(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f);
+    return s.addMesh(p, {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                         2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5});
+}
+
+uint32_t quadMesh(TestScene& s) {
+    return s.addMesh({{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}},
+                     {0, 1, 2, 0, 2, 3});
+}
+
+struct RandomCase {
+    TestScene scene;
+    CullView view;
+};
+
+// Objects (cubes, walls, thin slabs, single triangles) in a 40 m region, a camera somewhere in
+// it (sometimes inside an object or against a surface), odd viewport sizes, deep depth ranges,
+// and sometimes the whole thing a million metres from the culling frame's origin.
+RandomCase randomCase(uint32_t seed, bool large_viewport = false) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    RandomCase c;
+    TestScene& s = c.scene;
+    const uint32_t cube = cubeMesh(s), quad = quadMesh(s);
+    const uint32_t tri =
+        s.addMesh({{-0.5f, -0.5f, 0}, {0.7f, -0.2f, 0.1f}, {0.0f, 0.6f, -0.2f}}, {0, 1, 2});
+    const glm::dvec3 offset = u(rng) < 0.2 ? glm::dvec3(1e6, -3e5, 2e6) : glm::dvec3(0.0);
+    const uint32_t objects = 20 + static_cast<uint32_t>(u(rng) * 60);
+    for (uint32_t o = 0; o < objects; ++o) {
+        const glm::dvec3 at =
+            offset + glm::dvec3(u(rng) * 40 - 20, u(rng) * 10 - 5, u(rng) * 40 - 20);
+        glm::dvec3 size(0.3 + u(rng) * 6, 0.3 + u(rng) * 6, 0.3 + u(rng) * 6);
+        const double kind = u(rng);
+        uint32_t mesh = cube;
+        if (kind < 0.3) {
+            mesh = quad;
+        } else if (kind < 0.4) {
+            mesh = tri;
+        } else if (kind < 0.55) {
+            size[static_cast<int>(u(rng) * 3) % 3] = 0.01;  // a thin slab
+        }
+        glm::dmat4 m = glm::translate(glm::dmat4(1.0), at);
+        m = glm::rotate(m, u(rng) * 6.3,
+                        glm::normalize(glm::dvec3(u(rng), u(rng) + 0.5, u(rng)) - 0.4));
+        s.addObject(mesh, glm::scale(m, size));
+    }
+    glm::dvec3 eye = offset + glm::dvec3(u(rng) * 30 - 15, u(rng) * 6 - 3, u(rng) * 30 - 15);
+    if (u(rng) < 0.2) {
+        // Against or inside an object.
+        const Aabb& b = s.boxes[static_cast<size_t>(u(rng) * objects) % objects];
+        eye = offset + glm::dvec3(b.min) + (glm::dvec3(b.max) - glm::dvec3(b.min)) * u(rng);
+    }
+    const glm::dvec3 target = eye + glm::dvec3(u(rng) - 0.5, u(rng) * 0.6 - 0.3, u(rng) - 0.5);
+    const uint32_t width = large_viewport ? 301 + static_cast<uint32_t>(u(rng) * 700)
+                                          : 17 + static_cast<uint32_t>(u(rng) * 180);
+    const uint32_t height = large_viewport ? 171 + static_cast<uint32_t>(u(rng) * 400)
+                                           : 9 + static_cast<uint32_t>(u(rng) * 120);
+    const double near = u(rng) < 0.3 ? 1e-3 : 0.05 + u(rng) * 0.3;
+    const double far = u(rng) < 0.3 ? 1e6 : 200.0;
+    c.view =
+        cameraView(eye - offset, target - offset, width, height, near, far, 40.0 + u(rng) * 60);
+    // Into the culling frame: the objects relative to the offset, as the simulation does.
+    for (glm::mat4& t : s.transforms) {
+        t = glm::mat4(glm::translate(glm::dmat4(1.0), -offset) * glm::dmat4(t));
+    }
+    s.boxes.clear();
+    const std::vector<glm::mat4> transforms = s.transforms;
+    const std::vector<uint32_t> meshes = s.object_mesh;
+    s.transforms.clear();
+    s.object_mesh.clear();
+    for (size_t o = 0; o < meshes.size(); ++o) s.addObject(meshes[o], glm::dmat4(transforms[o]));
+    return c;
+}
+
+// Distance of the box's nearest point along the view direction, for the near-to-far order.
+double viewDepth(const CullView& v, const Aabb& b) {
+    const glm::vec4 c = v.view_projection * glm::vec4(center(b), 1.0f);
+    return c.w;
+}
+
+TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
+    uint64_t exact_hidden = 0, both_hidden = 0, exact_hidden_coarse = 0, both_hidden_coarse = 0;
+    for (uint32_t seed = 1; seed <= 300; ++seed) {
+        RandomCase c = randomCase(seed, seed % 3 == 0);
+        const CullMeshes meshes = c.scene.view();
+        const uint32_t objects = static_cast<uint32_t>(c.scene.boxes.size());
+        TriangleRasterDevice reference(c.view.viewport_width, c.view.viewport_height);
+        reference.beginFrame(c.view.view_projection, meshes);
+        const std::vector<uint8_t> visible = reference.groundTruth();
+
+        std::vector<uint32_t> order(objects);
+        for (uint32_t o = 0; o < objects; ++o) order[o] = o;
+        std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+            return viewDepth(c.view, c.scene.boxes[a]) < viewDepth(c.view, c.scene.boxes[b]);
+        });
+        for (const uint32_t max_width : {4096u, 64u}) {
+            MaskedDepthBuffer buffer(seed % 2 ? MaskedKernel::Avx2 : MaskedKernel::Plain);
+            buffer.beginFrame(c.view.view_projection, c.view.eye, c.view.viewport_width,
+                              c.view.viewport_height, max_width);
+            for (const uint32_t o : order) {
+                const MeshRange& r = c.scene.meshes[c.scene.object_mesh[o]];
+                const auto indices =
+                    std::span(c.scene.indices).subspan(r.first_index, r.index_count);
+                buffer.rasteriseMesh(
+                    std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count), indices,
+                    c.scene.transforms[o], edgeNeighbours(indices));
+            }
+            for (uint32_t o = 0; o < objects; ++o) {
+                const Aabb& box = c.scene.boxes[o];
+                if (classify(planeTableOf(c.view.frustum), box) == FrustumTest::Outside) continue;
+                const bool hidden = !buffer.testBox(box);
+                ASSERT_FALSE(hidden && visible[o])
+                    << "seed " << seed << " object " << o << " max_width " << max_width;
+                ASSERT_FALSE(hidden && !reference.boxHiddenInTruth(box))
+                    << "seed " << seed << " object " << o << " max_width " << max_width;
+                if (reference.boxHiddenInTruth(box)) {
+                    (max_width == 64 ? exact_hidden_coarse : exact_hidden) += 1;
+                    (max_width == 64 ? both_hidden_coarse : both_hidden) += hidden ? 1 : 0;
+                }
+            }
+        }
+    }
+    const double share = static_cast<double>(both_hidden) / std::max<uint64_t>(exact_hidden, 1);
+    const double share_coarse =
+        static_cast<double>(both_hidden_coarse) / std::max<uint64_t>(exact_hidden_coarse, 1);
+    std::cout << "masked hides " << both_hidden << " of the " << exact_hidden
+              << " boxes an exact full-resolution buffer hides (" << 100.0 * share
+              << " %) at the viewport's resolution, " << both_hidden_coarse << " of "
+              << exact_hidden_coarse << " (" << 100.0 * share_coarse << " %) at most 64 wide\n";
+    RecordProperty("hidden_share_full_resolution", std::to_string(share));
+    RecordProperty("hidden_share_64_wide", std::to_string(share_coarse));
+    EXPECT_GT(exact_hidden, 500u);  // the scenes do hide things
+    // The issue's aim is 90 % (the paper reports 98 % on game scenes at 1920x1080); these random
+    // scenes with many small occluders at scattered depths and small viewports reach about 48 %
+    // (docs/masked.md). The floor keeps a regression in effectiveness from passing unnoticed.
+    EXPECT_GE(share, 0.4);
+}
+
+TEST(MaskedProperty, TheCullerDrawsEverythingTheReferenceSees) {
+    for (uint32_t seed = 1000; seed < 1100; ++seed) {
+        RandomCase c = randomCase(seed);
+        const BspTree tree = testing::buildTree(c.scene.boxes);
+        MaskedOptions options;
+        options.width = 64 + seed % 300;
+        options.occluder_size = (seed % 4) * 0.05;
+        options.last_drawn_first = seed % 2 == 0;
+        options.simd = seed % 3 == 0;
+        MaskedCuller culler(options);
+        culler.reset(tree);
+        TriangleRasterDevice device(c.view.viewport_width, c.view.viewport_height);
+        for (uint64_t frame = 0; frame < 2; ++frame) {
+            CullFrame f = testing::makeFrame(c.view, frame, frame / 60.0);
+            f.meshes = c.scene.view();
+            device.beginFrame(c.view.view_projection, f.meshes);
+            culler.cullAndRender(tree, f, device);
+            const std::vector<uint8_t> visible = device.groundTruth();
+            std::vector<uint8_t> drawn(visible.size(), 0);
+            for (const uint32_t o : device.drawnObjects()) drawn[o] = 1;
+            for (uint32_t o = 0; o < visible.size(); ++o) {
+                ASSERT_FALSE(visible[o] && !drawn[o]) << "seed " << seed << " object " << o;
+            }
+        }
+    }
+}
+
+// The AVX2 kernels give the plain path's buffer bit for bit.
+TEST(MaskedDepthBuffer, TheAvx2KernelsGiveThePlainBuffer) {
+    if (!maskedKernelAvailable(MaskedKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+    for (uint32_t seed = 1; seed <= 60; ++seed) {
+        RandomCase c = randomCase(seed);
+        MaskedDepthBuffer plain(MaskedKernel::Plain), avx2(MaskedKernel::Avx2);
+        ASSERT_EQ(avx2.kernel(), MaskedKernel::Avx2);
+        for (MaskedDepthBuffer* b : {&plain, &avx2}) {
+            b->beginFrame(c.view.view_projection, c.view.eye, c.view.viewport_width,
+                          c.view.viewport_height, 100);
+            for (uint32_t o = 0; o < c.scene.boxes.size(); ++o) {
+                const MeshRange& r = c.scene.meshes[c.scene.object_mesh[o]];
+                const auto indices =
+                    std::span(c.scene.indices).subspan(r.first_index, r.index_count);
+                b->rasteriseMesh(
+                    std::span(c.scene.positions).subspan(r.first_vertex, r.vertex_count), indices,
+                    c.scene.transforms[o], edgeNeighbours(indices));
+            }
+        }
+        ASSERT_EQ(plain.tiles().size(), avx2.tiles().size());
+        EXPECT_EQ(
+            std::memcmp(plain.tiles().data(), avx2.tiles().data(), plain.tiles().size_bytes()), 0)
+            << "seed " << seed;
+    }
+}
+
+TEST(MaskedCuller, WithoutMeshesItDrawsWhatFrustumCullingDraws) {
+    const std::vector<Aabb> boxes = testing::randomBoxes(200, 7);
+    const BspTree tree = testing::buildTree(boxes);
+    const CullView view = cameraView({0, 20, 90}, {0, 0, 0}, 64, 48);
+    TriangleRasterDevice device(64, 48);
+    MaskedCuller culler;
+    culler.reset(tree);
+    culler.cullAndRender(tree, testing::makeFrame(view, 0, 0.0), device);
+    const std::set<uint32_t> expected = testing::inFrustum(boxes, view.frustum);
+    const std::set<uint32_t> drawn(device.drawnObjects().begin(), device.drawnObjects().end());
+    EXPECT_EQ(drawn, expected);
+}
+
+TEST(MaskedCuller, IsRegisteredAsAConservativeCullerThatNeedsMeshes) {
+    const AlgorithmTraits* t = findAlgorithm("masked");
+    ASSERT_NE(t, nullptr);
+    EXPECT_TRUE(t->conservative);
+    EXPECT_TRUE(t->needs_meshes);
+    EXPECT_FALSE(t->issues_queries);
+    EXPECT_EQ(checkOptionValues(*t, OptionValues(t->options)), "");
+}
+
+}  // namespace
+}  // namespace occsim
