@@ -482,10 +482,11 @@ TEST(ScenarioRanges, InvalidBspOptionsReportIsValidMessage) {
 TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"algorithm", "statstical"}};
-    expectError(scenario, "/culling/algorithm",
-                "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"statistical+\", "
-                "\"chc\", \"chc++\", \"async\", \"ideal\" (did you mean \"statistical\"?), got "
-                "\"statstical\" (string)");
+    expectError(
+        scenario, "/culling/algorithm",
+        "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"statistical+\", "
+        "\"chc\", \"chc++\", \"async\", \"masked\", \"ideal\" (did you mean \"statistical\"?), got "
+        "\"statstical\" (string)");
 }
 
 TEST(ScenarioEnums, UnknownSourceTypeListsValidTypes) {
