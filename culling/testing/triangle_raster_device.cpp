@@ -86,10 +86,10 @@ void TriangleRasterDevice::rasteriseObject(uint32_t object, Fragment&& fragment)
 }
 
 void TriangleRasterDevice::drawObject(uint32_t object) {
-    assert(object < meshes_.object_mesh.size());
     drawn_.push_back(object);
     queries_.countDraw();
     ++counters_.objects_drawn;
+    if (object >= meshes_.object_mesh.size()) return;  // no mesh given for it: nothing to draw
     rasteriseObject(object, [&](size_t p, double iw) { depth_[p] = std::max(depth_[p], iw); });
 }
 

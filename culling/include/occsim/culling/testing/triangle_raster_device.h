@@ -28,7 +28,8 @@ class TriangleRasterDevice final : public RenderDevice {
     TriangleRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0);
 
     // Starts a frame: the camera (culling frame, OpenGL convention) and the meshes with this
-    // frame's transforms (the spans must outlive the frame). Clears the buffer and the log.
+    // frame's transforms (the spans must outlive the frame). Clears the buffer and the log. An
+    // object without a mesh here is logged when drawn and writes nothing.
     void beginFrame(const glm::mat4& view_projection, const CullMeshes& meshes);
 
     using RenderDevice::issueQuery;
