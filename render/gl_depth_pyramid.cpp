@@ -10,6 +10,7 @@
 #include "occsim/culling/geometry/hzb_rules.h"
 #include "occsim/culling/geometry/query_box.h"
 #include "render/gl_api.h"
+#include "render/gl_shader.h"
 
 namespace occsim {
 namespace {
@@ -81,30 +82,7 @@ void main() {
 )";
 
 uint32_t computeProgram(const char* source) {
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw std::runtime_error(std::string("depth pyramid: compute shader compile failed: ") +
-                                 log);
-    }
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, shader);
-    glLinkProgram(program);
-    glDeleteShader(shader);
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        glGetProgramInfoLog(program, sizeof log, nullptr, log);
-        glDeleteProgram(program);
-        throw std::runtime_error(std::string("depth pyramid: compute shader link failed: ") + log);
-    }
-    return program;
+    return linkProgram({{GL_COMPUTE_SHADER, source}}, "depth pyramid");
 }
 
 GLuint groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }

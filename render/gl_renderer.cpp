@@ -9,6 +9,7 @@
 
 #include "occsim/culling/geometry/query_box.h"
 #include "render/gl_api.h"
+#include "render/gl_shader.h"
 
 namespace occsim {
 namespace {
@@ -56,41 +57,6 @@ void main() { gl_Position = u_projection * (u_model_view * vec4(a_position, 1.0)
 const char* kQueryFragmentShader = R"(#version 330 core
 void main() {}
 )";
-
-GLuint compileShader(GLenum type, const char* source) {
-    GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw std::runtime_error(std::string("shader compile failed: ") + log);
-    }
-    return shader;
-}
-
-GLuint linkProgram(const char* vertex_source, const char* fragment_source) {
-    GLuint vs = compileShader(GL_VERTEX_SHADER, vertex_source);
-    GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment_source);
-    GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
-    glLinkProgram(program);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        glGetProgramInfoLog(program, sizeof log, nullptr, log);
-        glDeleteProgram(program);
-        throw std::runtime_error(std::string("shader link failed: ") + log);
-    }
-    return program;
-}
 
 void allocateRenderbuffer(GLuint rb, GLenum format, uint32_t width, uint32_t height) {
     glBindRenderbuffer(GL_RENDERBUFFER, rb);
@@ -152,11 +118,15 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     }
     checkGl("framebuffer set-up");
 
-    draw_program_ = linkProgram(kDrawVertexShader, kDrawFragmentShader);
+    draw_program_ = linkProgram(
+        {{GL_VERTEX_SHADER, kDrawVertexShader}, {GL_FRAGMENT_SHADER, kDrawFragmentShader}},
+        "the renderer's draw program");
     draw_model_view_loc_ = glGetUniformLocation(draw_program_, "u_model_view");
     draw_projection_loc_ = glGetUniformLocation(draw_program_, "u_projection");
     draw_object_id_loc_ = glGetUniformLocation(draw_program_, "u_object_id");
-    query_program_ = linkProgram(kQueryVertexShader, kQueryFragmentShader);
+    query_program_ = linkProgram(
+        {{GL_VERTEX_SHADER, kQueryVertexShader}, {GL_FRAGMENT_SHADER, kQueryFragmentShader}},
+        "the renderer's query program");
     query_model_view_loc_ = glGetUniformLocation(query_program_, "u_model_view");
     query_projection_loc_ = glGetUniformLocation(query_program_, "u_projection");
 

@@ -484,7 +484,8 @@ TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     scenario["culling"] = {{"algorithm", "statstical"}};
     expectError(scenario, "/culling/algorithm",
                 "expected one of \"vfc\", \"stop-and-wait\", \"statistical\", \"statistical+\", "
-                "\"chc\", \"chc++\", \"async\", \"conditional\", \"hzb\", \"masked\", \"ideal\" (did you mean "
+                "\"chc\", \"chc++\", \"async\", \"conditional\", \"hzb\", \"masked\", \"ideal\" "
+                "(did you mean "
                 "\"statistical\"?), got "
                 "\"statstical\" (string)");
 }
