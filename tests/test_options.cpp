@@ -1,5 +1,5 @@
-// Option rows (culling/registry/options.h): what a value must be, the check of one value, the
-// check of a whole descriptor, and the values a culler holds.
+// Option rows (occsim/culling/registration/options.h): what a value must be, the check of one
+// value, the check of a whole descriptor, and the values a culler holds.
 #include <gtest/gtest.h>
 
 #include <cmath>

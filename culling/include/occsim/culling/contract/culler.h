@@ -58,9 +58,10 @@ struct MeshRange {
 };
 
 // The scene's triangles, for a culler that rasterises them itself (a software depth buffer; it
-// asks for them with AlgorithmTraits::needs_meshes, culling/registry/registry.h). The arrays are
-// built once by the simulation and stay valid for the whole run; only object_to_culling changes
-// per frame. Empty (every span) for a culler that did not ask.
+// asks for them with AlgorithmTraits::needs_meshes,
+// occsim/culling/registration/algorithm_traits.h). The arrays are built once by the simulation and
+// stay valid for the whole run; only object_to_culling changes per frame. Empty (every span) for a
+// culler that did not ask.
 struct CullMeshes {
     std::span<const glm::vec3> positions;   // every mesh's vertices, object-local, metres
     std::span<const uint32_t> indices;      // triangle lists, counter-clockwise front faces
