@@ -10,6 +10,10 @@
 #   default: scenarios/teapots.json
 # Output: out/results/<set>/<scene>/run-<n>/{summary.json,frames.csv,report.md}, then the set's
 # table (scripts/results_table.py: means, spreads, the fastest conservative culler, loads).
+# `conditional` runs in a process of its own, beside VFC (run-<n>/conditional/): on llvmpipe its
+# GL_QUERY_NO_WAIT draws make the driver flush a scene per batch of queries, and the scenes it
+# leaves slow whatever renders after it in the same GL context (docs/conditional.md); its column
+# is its speedup over the VFC of its own process.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 set_name=${1:-paper}
@@ -24,11 +28,17 @@ esac
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
 source scripts/core_dumps.sh  # a crash leaves a core (and says where)
+# Every registered culler but conditional (which runs apart, see above).
+others=$(./build/release/sim/occsim cullers | grep -E '^[a-z0-9+-]+:' | cut -d: -f1 |
+  grep -vx conditional | paste -sd,)
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .json)
   for run in 1 2; do
     echo "== $scene, run $run ($(uptime))"
-    ./build/release/sim/occsim bench "$scene" --error --out "out/results/$set_name/$name/run-$run" "$@"
+    ./build/release/sim/occsim bench "$scene" --error --algos "$others" \
+      --out "out/results/$set_name/$name/run-$run" "$@"
+    ./build/release/sim/occsim bench "$scene" --error --algos vfc,conditional \
+      --out "out/results/$set_name/$name/run-$run/conditional" "$@"
   done
 done
 # The table of this set (docs/results.md's format): means of the two runs, their spread, loads.

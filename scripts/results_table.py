@@ -8,7 +8,9 @@ markdown table: per scene and algorithm the speedup over VFC as the mean of the 
 spread (half the range), VFC's frame time, the ratio of statistical+ to Ideal, the fastest
 conservative culler (bold; every culler within the spread of the fastest is marked too), the
 error (pixels and missed objects, summed over the runs) and the load average before and after each
-run. A run whose summary says busy is flagged: such a table is not a result.
+run. A run whose summary says busy is flagged: such a table is not a result. A second table per set
+gives each culler's own CPU time per frame (`cull ms`: deciding, queries' bookkeeping, the software
+buffer of masked; draws and waits excluded) and the objects it drew per frame, means of the runs.
 """
 import json
 import os
@@ -20,12 +22,26 @@ NOT_CONSERVATIVE = {"async", "ideal"}  # async may miss; ideal is the oracle, no
 
 
 def runs_of(scene_dir):
+    """Each run's summary; a run's cullers measured in a process of their own (a subfolder with
+    its own summary.json, e.g. run-1/conditional/, beside its own VFC) join it, each with the
+    speedup over the VFC of its own process."""
     runs = []
     for name in sorted(os.listdir(scene_dir)):
-        path = os.path.join(scene_dir, name, "summary.json")
-        if name.startswith("run-") and os.path.isfile(path):
-            with open(path) as f:
-                runs.append(json.load(f))
+        run_dir = os.path.join(scene_dir, name)
+        path = os.path.join(run_dir, "summary.json")
+        if not (name.startswith("run-") and os.path.isfile(path)):
+            continue
+        with open(path) as f:
+            summary = json.load(f)
+        have = {a["configuration"] for a in summary["algorithms"]}
+        for sub in sorted(os.listdir(run_dir)):
+            sub_path = os.path.join(run_dir, sub, "summary.json")
+            if os.path.isfile(sub_path):
+                with open(sub_path) as f:
+                    apart = json.load(f)
+                summary["algorithms"] += [a for a in apart["algorithms"]
+                                          if a["configuration"] not in have]
+        runs.append(summary)
     return runs
 
 
@@ -111,6 +127,40 @@ def table(set_dir):
     return "\n".join(out) + "\n"
 
 
+def cost_table(set_dir):
+    """Per scene and culler: cull CPU ms per frame (mean of the runs ± half their range) and
+    objects drawn per frame (mean of the runs)."""
+    rows, columns = [], []
+    for scene in sorted(os.listdir(set_dir)):
+        scene_dir = os.path.join(set_dir, scene)
+        if not os.path.isdir(scene_dir):
+            continue
+        runs = runs_of(scene_dir)
+        if len(runs) < 2:
+            continue
+        tables = [by_configuration(r) for r in runs]
+        configs = [c for c in ORDER if all(c in t for t in tables)]
+        configs += [c for c in tables[0] if c not in configs and all(c in t for t in tables)]
+        cells = {}
+        for c in configs:
+            cull = [t[c]["cull_cpu_ms_mean"] for t in tables]
+            objects = [t[c]["objects_per_frame"] for t in tables]
+            cells[c] = (f"{sum(cull) / len(cull):.2f} ±{(max(cull) - min(cull)) / 2:.2f}"
+                        f" / {sum(objects) / len(objects):.0f}")
+        columns += [c for c in cells if c not in columns]
+        rows.append((scene, cells))
+    if not rows:
+        return ""
+    header = ["scene"] + columns
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for scene, cells in rows:
+        out.append("| " + " | ".join([scene] + [cells.get(c, "–") for c in columns]) + " |")
+    out.append("")
+    out.append("Each cell: the culler's CPU ms per frame ± half the range of the runs / objects "
+               "drawn per frame.")
+    return "\n".join(out) + "\n"
+
+
 def main(argv):
     if len(argv) < 2:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
@@ -122,6 +172,10 @@ def main(argv):
             return 2
         print(f"### {os.path.basename(os.path.normpath(set_dir))}\n")
         print(table(set_dir))
+        costs = cost_table(set_dir)
+        if costs:
+            print(f"#### {os.path.basename(os.path.normpath(set_dir))}: cull ms / objects per frame\n")
+            print(costs)
     return 0
 
 

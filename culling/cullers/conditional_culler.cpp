@@ -86,7 +86,7 @@ const OptionTable<ConditionalOptions>& conditionalOptionTable() {
             tunable(integerOption(OCCSIM_OPTION_MEMBER(O, queries_ahead), "queries", 0, 65536,
                                   "queries issued before the draws conditioned on the "
                                   "oldest of them (time for its answer to arrive)"),
-                    0, 64),
+                    0, 256),
             0),
     };
     return table;

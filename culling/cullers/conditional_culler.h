@@ -37,7 +37,7 @@ namespace occsim {
 struct ConditionalOptions {
     bool wait = false;            // GL_QUERY_WAIT; false: GL_QUERY_NO_WAIT
     bool node_queries = false;    // one query per node's own objects; false: one per object
-    uint32_t queries_ahead = 16;  // queries issued before the draws conditioned on the oldest
+    uint32_t queries_ahead = 64;  // queries issued before the draws conditioned on the oldest
 };
 
 class ConditionalCuller final : public Culler {
