@@ -38,6 +38,10 @@ done
 bash scripts/setup.sh
 bash scripts/build.sh release occsim occtune
 source scripts/core_dumps.sh  # a crash leaves a core (and says where)
+# The peers: every registered culler but conditional, whose llvmpipe flushes slow what renders
+# after it in the same process (docs/conditional.md; scripts/results.sh measures it apart).
+others=$(./build/release/sim/occsim cullers | grep -E '^[a-z0-9+-]+:' | cut -d: -f1 |
+  grep -vx conditional | paste -sd,)
 for set in "${sets[@]}"; do
   for scene in $(scenes_of "$set"); do
     name=$(basename "$scene" .json)
@@ -58,8 +62,8 @@ for set in "${sets[@]}"; do
       culling=()
       [[ -f "$out/tune/tuned.json" ]] && culling=(--culling "$out/tune/tuned.json")
       echo "peers before: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
-      ./build/release/sim/occsim bench "$scene" --error "${culling[@]}" "${bench_flags[@]}" \
-        --out "$out/peers"
+      ./build/release/sim/occsim bench "$scene" --error --algos "$others" "${culling[@]}" \
+        "${bench_flags[@]}" --out "$out/peers"
       echo "peers after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
     done
   done
