@@ -109,13 +109,19 @@ def table(set_dir):
     header = ["scene", "tuned values (per run)", "verdict", "tuned/defaults, fitted",
               "tuned/defaults, held out", "tuned/fastest other conservative", "tuned/Ideal",
               "error px / missed (tuned)", "load 1-min (tune before/after/peers before/after)"]
-    rows = []
+    rows, notes = [], []
     defaults = None
     for scene in sorted(os.listdir(set_dir)):
         scene_dir = os.path.join(set_dir, scene)
         if not os.path.isdir(scene_dir):
             continue
         runs = runs_of(scene_dir)
+        failed = sorted(name for name in os.listdir(scene_dir)
+                        if os.path.isfile(os.path.join(scene_dir, name, "failed.txt")))
+        if failed:  # occtune ended without a confirmation (tune_table.sh wrote why)
+            notes.append(f"{scene}: {', '.join(failed)}: occtune failed (" + "; ".join(
+                open(os.path.join(scene_dir, name, "failed.txt")).read().strip()
+                for name in failed) + ")")
         if not runs:
             continue
         defaults = defaults or ", ".join(f"{p['name']}={p['reference']:.4g}"
@@ -128,6 +134,8 @@ def table(set_dir):
     out.append("| " + " | ".join(header) + " |")
     out.append("|" + "---|" * len(header))
     out += ["| " + " | ".join(r) + " |" for r in rows]
+    if notes:
+        out += [""] + [f"- {n}" for n in notes]
     return "\n".join(out)
 
 

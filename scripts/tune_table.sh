@@ -8,7 +8,8 @@
 # Usage: scripts/tune_table.sh [default|paper|general|all] [occtune options...]
 #   e.g. scripts/tune_table.sh all --frames 120 --budget 17
 # Output: out/tuning/<set>/<scene>/run-<n>/{tune/,peers/,load.txt}, then the tables
-# (scripts/tune_table.py out/tuning/<set>).
+# (scripts/tune_table.py out/tuning/<set>). Rerun with the same flags to resume a stopped table:
+# runs already benchmarked are kept, a tuning session whose fit failed is resumed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 set_name=${1:-all}
@@ -47,6 +48,12 @@ for set in "${sets[@]}"; do
     name=$(basename "$scene" .json)
     for run in 1 2; do
       out="out/tuning/$set/$name/run-$run"
+      # A table stopped part-way resumes: a run whose peers were benchmarked is kept as it is.
+      if [[ -f "$out/peers/summary.json" ]]; then
+        echo "== $scene, run $run: kept from before ($out)"
+        continue
+      fi
+      rm -rf "$out/peers" "$out/failed.txt"
       mkdir -p "$out"
       echo "== $scene, run $run ($(uptime))"
       echo "tune before: $(cut -d' ' -f1-3 /proc/loadavg)" > "$out/load.txt"
@@ -54,10 +61,20 @@ for set in "${sets[@]}"; do
       status=0
       ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
         "$@" || status=$?
+      # A fit that did not converge (exit 1, the samples all logged): the same session resumed
+      # with ten times Ceres' iterations refits the logged samples without measuring them again.
+      if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" && -f "$out/tune/samples.jsonl" ]]
+      then
+        echo "tune_table.sh: occtune exit $status on $scene; resuming with --max-fit-iterations 2000"
+        status=0
+        ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
+          "$@" --resume --max-fit-iterations 2000 || status=$?
+      fi
       echo "tune after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
       if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" ]]; then
-        echo "tune_table.sh: occtune failed on $scene (exit $status)" >&2
-        exit "$status"
+        # Said in the table (tune_table.py lists the run as failed), and the other scenes go on.
+        echo "tune_table.sh: occtune failed on $scene, run $run (exit $status)" | tee "$out/failed.txt" >&2
+        continue
       fi
       culling=()
       [[ -f "$out/tune/tuned.json" ]] && culling=(--culling "$out/tune/tuned.json")
