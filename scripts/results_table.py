@@ -45,6 +45,27 @@ def runs_of(scene_dir):
     return runs
 
 
+def scenes_with_runs(set_dir, warn=False):
+    """(scene, runs) for every scene folder of the set with two or more runs."""
+    for scene in sorted(os.listdir(set_dir)):
+        scene_dir = os.path.join(set_dir, scene)
+        if not os.path.isdir(scene_dir):
+            continue
+        runs = runs_of(scene_dir)
+        if len(runs) < 2:
+            if warn:
+                print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need two",
+                      file=sys.stderr)
+            continue
+        yield scene, runs
+
+
+def configurations(tables):
+    """The configurations every run has: the built-ins in ORDER, then the others as run."""
+    configs = [c for c in ORDER if all(c in t for t in tables)]
+    return configs + [c for c in tables[0] if c not in configs and all(c in t for t in tables)]
+
+
 def by_configuration(summary):
     return {a["configuration"]: a for a in summary["algorithms"]}
 
@@ -57,8 +78,7 @@ def fmt_load(machine):
 
 def scene_row(scene, runs):
     tables = [by_configuration(r) for r in runs]
-    configs = [c for c in ORDER if all(c in t for t in tables)]
-    configs += [c for c in tables[0] if c not in configs and all(c in t for t in tables)]
+    configs = configurations(tables)
     speed = {}
     for c in configs:
         values = [t[c]["speedup_over_vfc"] for t in tables]
@@ -97,15 +117,7 @@ def scene_row(scene, runs):
 
 def table(set_dir):
     rows, columns, leads, scenes = [], [], 0, 0
-    for scene in sorted(os.listdir(set_dir)):
-        scene_dir = os.path.join(set_dir, scene)
-        if not os.path.isdir(scene_dir):
-            continue
-        runs = runs_of(scene_dir)
-        if len(runs) < 2:
-            print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need two",
-                  file=sys.stderr)
-            continue
+    for scene, runs in scenes_with_runs(set_dir, warn=True):
         cells, head, tail, fastest = scene_row(scene, runs)
         # Scenes may have run different configurations (a sweep over other values): one column
         # per configuration any scene has, a dash where a scene lacks it.
@@ -131,16 +143,9 @@ def cost_table(set_dir):
     """Per scene and culler: cull CPU ms per frame (mean of the runs ± half their range) and
     objects drawn per frame (mean of the runs)."""
     rows, columns = [], []
-    for scene in sorted(os.listdir(set_dir)):
-        scene_dir = os.path.join(set_dir, scene)
-        if not os.path.isdir(scene_dir):
-            continue
-        runs = runs_of(scene_dir)
-        if len(runs) < 2:
-            continue
+    for scene, runs in scenes_with_runs(set_dir):
         tables = [by_configuration(r) for r in runs]
-        configs = [c for c in ORDER if all(c in t for t in tables)]
-        configs += [c for c in tables[0] if c not in configs and all(c in t for t in tables)]
+        configs = configurations(tables)
         cells = {}
         for c in configs:
             cull = [t[c]["cull_cpu_ms_mean"] for t in tables]
