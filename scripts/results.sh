@@ -28,17 +28,15 @@ esac
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
 source scripts/core_dumps.sh  # a crash leaves a core (and says where)
-# Every registered culler but conditional (which runs apart, see above).
-others=$(./build/release/sim/occsim cullers | grep -E '^[a-z0-9+-]+:' | cut -d: -f1 |
-  grep -vx conditional | paste -sd,)
+source scripts/cullers_apart.sh  # $cullers_together; conditional runs apart (see above)
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .json)
   for run in 1 2; do
     echo "== $scene, run $run ($(uptime))"
-    ./build/release/sim/occsim bench "$scene" --error --algos "$others" \
+    ./build/release/sim/occsim bench "$scene" --error --algos "$cullers_together" \
       --out "out/results/$set_name/$name/run-$run" "$@"
-    ./build/release/sim/occsim bench "$scene" --error --algos vfc,conditional \
-      --out "out/results/$set_name/$name/run-$run/conditional" "$@"
+    ./build/release/sim/occsim bench "$scene" --error --algos "vfc,$cullers_apart" \
+      --out "out/results/$set_name/$name/run-$run/$cullers_apart" "$@"
   done
 done
 # The table of this set (docs/results.md's format): means of the two runs, their spread, loads.

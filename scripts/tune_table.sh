@@ -39,10 +39,9 @@ done
 bash scripts/setup.sh
 bash scripts/build.sh release occsim occtune
 source scripts/core_dumps.sh  # a crash leaves a core (and says where)
-# The peers: every registered culler but conditional, whose llvmpipe flushes slow what renders
-# after it in the same process (docs/conditional.md; scripts/results.sh measures it apart).
-others=$(./build/release/sim/occsim cullers | grep -E '^[a-z0-9+-]+:' | cut -d: -f1 |
-  grep -vx conditional | paste -sd,)
+# The peers: $cullers_together, every registered culler but conditional, which slows what renders
+# after it in the same process on llvmpipe (scripts/cullers_apart.sh).
+source scripts/cullers_apart.sh
 for set in "${sets[@]}"; do
   for scene in $(scenes_of "$set"); do
     name=$(basename "$scene" .json)
@@ -79,7 +78,7 @@ for set in "${sets[@]}"; do
       culling=()
       [[ -f "$out/tune/tuned.json" ]] && culling=(--culling "$out/tune/tuned.json")
       echo "peers before: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
-      ./build/release/sim/occsim bench "$scene" --error --algos "$others" "${culling[@]}" \
+      ./build/release/sim/occsim bench "$scene" --error --algos "$cullers_together" "${culling[@]}" \
         "${bench_flags[@]}" --out "$out/peers"
       echo "peers after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
     done

@@ -1,0 +1,9 @@
+# Sourced by the table scripts (results.sh, tune_table.sh): which cullers share a process.
+# `conditional` runs apart: on llvmpipe its GL_QUERY_NO_WAIT draws make the driver flush a scene
+# per batch of queries, and what it leaves slows whatever renders after it in the same GL context
+# (docs/conditional.md). Needs ./build/release/sim/occsim built.
+# shellcheck shell=bash
+cullers_apart=conditional
+# Every registered culler but those apart, comma-separated (for --algos).
+cullers_together=$(./build/release/sim/occsim cullers | grep -E '^[a-z0-9+-]+:' | cut -d: -f1 |
+  grep -vx "$cullers_apart" | paste -sd,)
