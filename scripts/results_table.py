@@ -81,7 +81,7 @@ def scene_row(scene, runs):
     configs = configurations(tables)
     speed = {}
     for c in configs:
-        values = [t[c]["speedup_over_vfc"] for t in tables]
+        values = [t[c].get("speedup_over_vfc") for t in tables]  # absent: no timed frame
         if any(v is None for v in values):
             continue
         speed[c] = (sum(values) / len(values), (max(values) - min(values)) / 2)
