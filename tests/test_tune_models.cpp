@@ -302,14 +302,18 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     ASSERT_EQ(every.size(), 3u);
     EXPECT_EQ(every.parameters[0].name, "base_time");
     const ParameterSpace plus = parseParameterSpace(*findAlgorithm("statistical+"), "", {});
-    ASSERT_EQ(plus.size(), 4u);
-    EXPECT_EQ(plus.parameters[2].name, "queries_before_restart");
+    ASSERT_EQ(plus.size(), 3u);
+    EXPECT_EQ(plus.parameters[0].name, "queries_before_restart");
+    EXPECT_TRUE(plus.parameters[0].integer);
+    EXPECT_EQ(plus.parameters[1].name, "requery_parallax");
+    EXPECT_EQ(plus.parameters[2].name, "waits_per_frame");
     EXPECT_TRUE(plus.parameters[2].integer);
-    EXPECT_EQ(plus.parameters[3].name, "requery_parallax");
-    EXPECT_EQ(
-        plus.apply(OptionValues(findAlgorithm("statistical+")->options), {2.0, 0.5, 7.6, 0.05})
-            .number("queries_before_restart"),
-        8.0);
+    EXPECT_EQ(plus.parameters[2].default_lo, 1.0) << "0 switches the growing bound off";
+    const OptionValues applied =
+        plus.apply(OptionValues(findAlgorithm("statistical+")->options), {7.6, 0.01, 3.4});
+    EXPECT_EQ(applied.number("queries_before_restart"), 8.0);
+    EXPECT_EQ(applied.number("waits_per_frame"), 3.0);
+    EXPECT_EQ(applied.number("requery_parallax"), 0.01);
 
     const ParameterSpace s =
         parseParameterSpace(statistical(), "decay_a,base_time", {"base_time=0.2:1.2"});
@@ -475,14 +479,14 @@ TEST(TunedFile, TheCostModelIsConfirmedAndWrittenOnlyWhenItFitsWell) {
     const AlgorithmTraits& plus = *findAlgorithm("statistical+");
     const OptionValues options(plus.options);
     std::string why;
-    const Setting poor = tunedSetting(plus, options, fittedCosts(10.0, 12.3), &why);
+    const Setting poor = tunedSetting(plus, options, fittedCosts(10.0, 12.3), true, &why);
     EXPECT_FALSE(poor.cost_model) << "a residual of 123 % of the mean frame steers by noise";
     EXPECT_NE(why.find("residual RMS 123 % of the mean frame, above the 25 % allowed"),
               std::string::npos)
         << why;
     EXPECT_FALSE(tunedFile(plus, poor).has_cost_option);
 
-    const Setting good = tunedSetting(plus, options, fittedCosts(10.0, 2.5), &why);
+    const Setting good = tunedSetting(plus, options, fittedCosts(10.0, 2.5), true, &why);
     ASSERT_TRUE(good.cost_model) << why;
     EXPECT_TRUE(why.empty()) << why;
     EXPECT_DOUBLE_EQ(good.cost_model->query_box_ms, 0.02);
@@ -491,17 +495,33 @@ TEST(TunedFile, TheCostModelIsConfirmedAndWrittenOnlyWhenItFitsWell) {
 
     FrameTimeModelFit zero = fittedCosts(10.0, 1.0);
     zero.model = FrameTimeModel{1.0, 0.0, 0.0, 0.0, 1.0};
-    EXPECT_FALSE(tunedSetting(plus, options, zero, &why).cost_model);
+    EXPECT_FALSE(tunedSetting(plus, options, zero, true, &why).cost_model);
     EXPECT_NE(why.find("cost_model.json only"), std::string::npos) << why;
     FrameTimeModelFit unconverged = fittedCosts(10.0, 1.0);
     unconverged.fit.converged = false;
-    EXPECT_FALSE(tunedSetting(plus, options, unconverged, &why).cost_model);
+    EXPECT_FALSE(tunedSetting(plus, options, unconverged, true, &why).cost_model);
 
     // The paper's culler weighs no costs: never a cost model, and nothing to explain.
     EXPECT_FALSE(tunedSetting(statistical(), OptionValues(statistical().options),
-                              fittedCosts(10.0, 1.0), &why)
+                              fittedCosts(10.0, 1.0), true, &why)
                      .cost_model);
     EXPECT_TRUE(why.empty()) << why;
+}
+
+// Unless asked for (occtune --apply-cost-model), even a model that fits well stays out of the
+// confirmed setting: the samples ran with the culler's start-up calibration, and the
+// confirmation measures what they measured. The line says so and how to ask for it.
+TEST(TunedFile, AWellFittingCostModelIsAppliedOnlyWhenAskedFor) {
+    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const OptionValues options(plus.options);
+    std::string why;
+    const Setting unasked = tunedSetting(plus, options, fittedCosts(10.0, 1.0), false, &why);
+    EXPECT_FALSE(unasked.cost_model);
+    EXPECT_NE(why.find("calibrates at start-up, as in every sample"), std::string::npos) << why;
+    EXPECT_NE(why.find("--apply-cost-model"), std::string::npos) << why;
+    EXPECT_TRUE(unasked.sameSettingAs(Setting{"paper", options, std::nullopt}));
+    EXPECT_FALSE(tunedFile(plus, unasked).has_cost_option);
+    EXPECT_TRUE(tunedSetting(plus, options, fittedCosts(10.0, 1.0), true, &why).cost_model);
 }
 
 // "no change" writes the reference setting (no cost model), so that the file changes no
@@ -511,7 +531,7 @@ TEST(TunedFile, NoChangeWritesTheReferenceSettingAndTheOthersTheConfirmedOne) {
     const Setting reference{"paper", OptionValues(plus.options), std::nullopt};
     std::string why;
     const Setting tuned =
-        tunedSetting(plus, OptionValues(plus.options), fittedCosts(10.0, 1.0), &why);
+        tunedSetting(plus, OptionValues(plus.options), fittedCosts(10.0, 1.0), true, &why);
     ASSERT_TRUE(tuned.cost_model);
     const Verdict no_change{Verdict::Kind::NoChange, "same decisions"};
     EXPECT_EQ(&writtenSetting(no_change, tuned, reference), &reference);

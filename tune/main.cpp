@@ -87,6 +87,10 @@ void addOptions(CLI::App& app, TuneOptions& o, RawFlags& raw) {
     app.add_option("--max-fit-iterations", o.max_fit_iterations,
                    "Ceres iteration limit of each fit; default 200")
         ->check(CLI::Range(1, 100000));
+    app.add_flag("--apply-cost-model", o.apply_cost_model,
+                 "Confirm and write the tuned options with the fitted cost model when it fits "
+                 "well enough (residual RMS at most 25 % of the mean frame); default: the culler "
+                 "calibrates at start-up, as in every sample");
     app.add_option("--backend", raw.backend,
                    "Headless OpenGL: auto (EGL, or OSMesa where EGL is missing), egl, osmesa "
                    "(docs/headless-gpu.md)");

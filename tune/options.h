@@ -30,6 +30,11 @@ struct TuneOptions {
     uint32_t batch = 4;                    // samples per interleaved run
     std::optional<uint64_t> holdout_seed;  // default: the scenario's seed + 1
     int max_fit_iterations = 200;
+    // Confirm (and write) the tuned options with the fitted cost model, when it fits well enough
+    // (tune/tuned_file.h). Off: the culler calibrates at start-up, as it did in every sample, so
+    // the confirmation measures the setting the samples measured (docs/tuning.md, "The cost
+    // model").
+    bool apply_cost_model = false;
     bool progress = false;  // the progress line (stderr)
     BackendChoice backend;  // --backend, --device
     std::string command_line;

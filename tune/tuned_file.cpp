@@ -24,7 +24,7 @@ void addCostOption(nlohmann::json& culling, const CostModel& model, const std::s
 }
 
 Setting tunedSetting(const AlgorithmTraits& algorithm, const OptionValues& tuned,
-                     const FrameTimeModelFit& cost, std::string* why) {
+                     const FrameTimeModelFit& cost, bool apply_cost_model, std::string* why) {
     Setting setting{"tuned", tuned, std::nullopt};
     why->clear();
     if (!algorithm.cost_model_use || !algorithm.cost_model_use(tuned).wanted) return setting;
@@ -32,7 +32,13 @@ Setting tunedSetting(const AlgorithmTraits& algorithm, const OptionValues& tuned
         cost.mean_frame_ms > 0.0 ? cost.residual_rms_ms / cost.mean_frame_ms : INFINITY;
     char percent[64];
     std::snprintf(percent, sizeof percent, "%.0f %%", 100.0 * share);
-    if (!cost.fit.converged) {
+    if (!apply_cost_model) {
+        *why = algorithm.name +
+               " confirmed and written without the fitted cost model: it calibrates at start-up, "
+               "as in every sample (--apply-cost-model confirms it with the fitted one; fit "
+               "residual RMS " +
+               std::string(percent) + " of the mean frame)";
+    } else if (!cost.fit.converged) {
         *why = "the fitted cost model did not converge: " + algorithm.name +
                " confirmed and written without it (it calibrates at start-up)";
     } else if (!(share <= kMaxCostModelResidualShare)) {

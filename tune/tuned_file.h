@@ -31,12 +31,12 @@ std::optional<CostModel> costModelOf(const FrameTimeModel& model);
 void addCostOption(nlohmann::json& culling, const CostModel& model, const std::string& culler);
 
 // The tuned setting the confirmation runs: the tuned options, with the fitted cost model for the
-// culler alone when the culler, so configured, weighs costs (AlgorithmTraits::cost_model_use), the
-// fit converged, its residual RMS is at most kMaxCostModelResidualShare of the mean frame, and it
-// has a figure > 0. `why` says, in one line, why a culler that weighs costs runs without it (empty
-// otherwise).
+// culler alone when it was asked for (`apply_cost_model`, occtune --apply-cost-model), the culler,
+// so configured, weighs costs (AlgorithmTraits::cost_model_use), the fit converged, its residual
+// RMS is at most kMaxCostModelResidualShare of the mean frame, and it has a figure > 0. `why` says,
+// in one line, why a culler that weighs costs runs without it (empty otherwise).
 Setting tunedSetting(const AlgorithmTraits& algorithm, const OptionValues& tuned,
-                     const FrameTimeModelFit& cost, std::string* why);
+                     const FrameTimeModelFit& cost, bool apply_cost_model, std::string* why);
 
 // What tuned.json holds for a verdict: "no change" writes the reference setting (it changes no
 // decision), the others the tuned setting as confirmed.

@@ -164,12 +164,13 @@ TuneSession runTuner(const TuneOptions& o) {
     chooseTunedValues(r, c.space);
 
     // What is confirmed is what tuned.json will carry: the tuned options, and the fitted cost
-    // model when the culler weighs costs and the model fits well enough (tunedSetting).
+    // model when asked for, the culler weighs costs and the model fits well enough (tunedSetting).
     const AlgorithmTraits& algorithm = *c.space.algorithm;
     const OptionValues base = c.scenario.culler.of(algorithm);
     const Setting reference{"paper", c.space.paper(base), std::nullopt};
     const Setting tuned =
-        tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost, &r.cost_model_note);
+        tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost,
+                                       o.apply_cost_model, &r.cost_model_note);
     r.cost_model_applied = tuned.cost_model.has_value();
     try {
         confirmChoice(r, c, o, tuned, reference, session, progress);
