@@ -168,8 +168,7 @@ TuneSession runTuner(const TuneOptions& o) {
     const AlgorithmTraits& algorithm = *c.space.algorithm;
     const OptionValues base = c.scenario.culler.of(algorithm);
     const Setting reference{"paper", c.space.paper(base), std::nullopt};
-    const Setting tuned =
-        tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost,
+    const Setting tuned = tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost,
                                        o.apply_cost_model, &r.cost_model_note);
     r.cost_model_applied = tuned.cost_model.has_value();
     try {
