@@ -34,8 +34,11 @@ def runs_of(scene_dir):
             continue
         peers = os.path.join(run, "peers", "summary.json")
         loads = os.path.join(run, "load.txt")
+        written = [os.path.join(run, "tune", f) for f in ("tuned.json", "tuned.rejected.json")]
+        written = [load(f) for f in written if os.path.isfile(f)]
         runs.append({
             "confirmation": load(conf),
+            "written": written[0] if written else None,
             "peers": load(peers) if os.path.isfile(peers) else None,
             "loads": open(loads).read().split("\n") if os.path.isfile(loads) else [],
         })
@@ -78,15 +81,27 @@ def load_cell(lines):
     return "/".join(firsts)
 
 
+def is_integer_option(run, name):
+    """Whether the culler's option is an integer: tuned.json (or tuned.rejected.json) writes it as
+    one, and the confirmation ran the tuned value rounded (confirmation.json before 2026-12-03
+    kept the unrounded optimum)."""
+    conf, written = run["confirmation"], run["written"]
+    if not written:
+        return False
+    value = written.get("culling", {}).get(conf["culler"], {}).get(name)
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
 def scene_row(scene, runs):
     confs = [r["confirmation"] for r in runs]
     values = []
-    for conf in confs:
+    for run, conf in zip(runs, confs):
         parts = []
         for p in conf["parameters"]:
             mark = "" if not p["kept_at_reference"] else " (kept)"
             bound = f" [{p['bound_hit']} bound]" if p["bound_hit"] else ""
-            parts.append(f"{p['name']}={p['tuned']:.4g}{mark}{bound}")
+            tuned = round(p["tuned"]) if is_integer_option(run, p["name"]) else p["tuned"]
+            parts.append(f"{p['name']}={tuned:.4g}{mark}{bound}")
         values.append(", ".join(parts))
     peer = [peers_cell(r["peers"]) for r in runs]
     best = sorted({b for _, b, _ in peer if b})
@@ -118,10 +133,10 @@ def table(set_dir):
         runs = runs_of(scene_dir)
         failed = sorted(name for name in os.listdir(scene_dir)
                         if os.path.isfile(os.path.join(scene_dir, name, "failed.txt")))
-        if failed:  # occtune ended without a confirmation (tune_table.sh wrote why)
-            notes.append(f"{scene}: {', '.join(failed)}: occtune failed (" + "; ".join(
+        if failed:  # occtune ended without a confirmation, or the peers bench failed
+            notes.append(f"{scene}: {', '.join(failed)}: " + "; ".join(
                 open(os.path.join(scene_dir, name, "failed.txt")).read().strip()
-                for name in failed) + ")")
+                for name in failed))
         if not runs:
             continue
         defaults = defaults or ", ".join(f"{p['name']}={p['reference']:.4g}"

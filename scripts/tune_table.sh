@@ -55,21 +55,29 @@ for set in "${sets[@]}"; do
       rm -rf "$out/peers" "$out/failed.txt"
       mkdir -p "$out"
       echo "== $scene, run $run ($(uptime))"
-      echo "tune before: $(cut -d' ' -f1-3 /proc/loadavg)" > "$out/load.txt"
-      # Exit 3 (the confirmation rejected the values) is a result, not a failure of the script.
       status=0
-      ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
-        "$@" || status=$?
-      # A fit that did not converge (exit 1, the samples all logged): the same session resumed
-      # with ten times Ceres' iterations refits the logged samples without measuring them again.
-      if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" && -f "$out/tune/samples.jsonl" ]]
-      then
-        echo "tune_table.sh: occtune exit $status on $scene; resuming with --max-fit-iterations 2000"
-        status=0
+      if [[ -f "$out/tune/confirmation.json" && -f "$out/load.txt" ]] &&
+        grep -q '^tune after:' "$out/load.txt"; then
+        # The session finished before the table stopped (in the peers bench): keep it and its
+        # loads, and bench the peers again.
+        echo "tune_table.sh: $out/tune finished before; benchmarking the peers again"
+        sed -i '/^peers /d' "$out/load.txt"
+      else
+        echo "tune before: $(cut -d' ' -f1-3 /proc/loadavg)" > "$out/load.txt"
+        # Exit 3 (the confirmation rejected the values) is a result, not a failure of the script.
         ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
-          "$@" --resume --max-fit-iterations 2000 || status=$?
+          "$@" || status=$?
+        # A fit that did not converge (exit 1, the samples all logged): the same session resumed
+        # with ten times Ceres' iterations refits the logged samples without measuring them again.
+        if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" && -f "$out/tune/samples.jsonl" ]]
+        then
+          echo "tune_table.sh: occtune exit $status on $scene; resuming with --max-fit-iterations 2000"
+          status=0
+          ./build/release/tune/occtune "$scene" --algo statistical+ --seed "$run" --out "$out/tune" \
+            "$@" --resume --max-fit-iterations 2000 || status=$?
+        fi
+        echo "tune after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
       fi
-      echo "tune after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
       if [[ $status -ne 0 && ! -f "$out/tune/confirmation.json" ]]; then
         # Said in the table (tune_table.py lists the run as failed), and the other scenes go on.
         echo "tune_table.sh: occtune failed on $scene, run $run (exit $status)" | tee "$out/failed.txt" >&2
@@ -78,9 +86,17 @@ for set in "${sets[@]}"; do
       culling=()
       [[ -f "$out/tune/tuned.json" ]] && culling=(--culling "$out/tune/tuned.json")
       echo "peers before: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
+      status=0
       ./build/release/sim/occsim bench "$scene" --error --algos "$cullers_together" "${culling[@]}" \
-        "${bench_flags[@]}" --out "$out/peers"
+        "${bench_flags[@]}" --out "$out/peers" || status=$?
       echo "peers after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/load.txt"
+      if [[ $status -ne 0 ]]; then
+        # A crash keeps its core (core_dumps.sh) and says so; the table goes on, and a rerun with
+        # the same flags benches these peers again.
+        echo "tune_table.sh: the peers bench failed on $scene, run $run (exit $status)" |
+          tee "$out/failed.txt" >&2
+        rm -rf "$out/peers"
+      fi
     done
   done
   python3 scripts/tune_table.py "out/tuning/$set"

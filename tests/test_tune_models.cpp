@@ -679,6 +679,34 @@ TEST(Choice, AnOptimumBeyondTheRangeEndsOnItsBoundAndIsReportedWithTheWiderRange
         << lines[0];
 }
 
+// An integer option's optimum is reported as the integer the confirmation runs (apply() rounds),
+// within its bounds: confirmation.json once said queries_before_restart=22.71 for a run of 23.
+TEST(Choice, AnIntegerOptionIsChosenAsTheIntegerTheConfirmationRuns) {
+    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    for (const auto& [bounds, expected] : std::vector<std::pair<std::string, double>>{
+             {"queries_before_restart=1:32", 19.0}, {"queries_before_restart=1:18.6", 18.0}}) {
+        TuneResult r;
+        r.space = parseParameterSpace(plus, "queries_before_restart", {bounds});
+        // A bowl whose minimum lies at 19.3 in the option's own unit (beyond 18.6 in the second
+        // box, where the optimum is its upper bound, 18.6, and 18 the integer within it).
+        const std::vector<Point> xs = latinHypercube(10, 1, 3);
+        std::vector<double> ys;
+        const double opt = r.space.unit(0, 19.3);
+        for (const Point& x : xs) ys.push_back(1.0 + 0.3 * (x[0] - opt) * (x[0] - opt));
+        r.response = selectResponseModel(xs, ys, 1, 200, &r.dropped);
+        chooseTunedValues(r, r.space);
+        ASSERT_FALSE(r.kept_at_paper[0]) << bounds;
+        EXPECT_EQ(r.tuned_values[0], expected) << bounds;
+        EXPECT_EQ(r.space.apply(OptionValues(plus.options), r.tuned_values)
+                      .number("queries_before_restart"),
+                  expected)
+            << bounds;
+        EXPECT_NEAR(r.space.value(0, r.tuned_unit[0]), expected, 1e-9)
+            << "the prediction is at the value run";
+        EXPECT_EQ(r.bounds_hit[0], expected == 18.0 ? "upper" : "") << bounds;
+    }
+}
+
 // A parameter the samples show no effect of stays at its reference value, even where --bounds
 // excluded it: a result outside the searched range, said in one line.
 TEST(Choice, AValueKeptOutsideTheSearchedRangeIsSaidWithWhy) {
