@@ -171,6 +171,8 @@ int runAndReport(const RunRequest& request) {
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    if (const std::string line = occsim::aggregationLine(result); !line.empty())
+        std::printf("%s\n", line.c_str());
     std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (!pictures.birdsEyeFiles().empty()) {
