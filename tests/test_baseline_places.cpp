@@ -99,8 +99,8 @@ TEST(BaselinePlaces, UpdateNeverOverwritesAFileThatIsNotABaseline) {
     ASSERT_EQ(p.size(), 1u);
     EXPECT_NE(p[0].find("is not an occsim baseline file"), std::string::npos) << p[0];
     // An older baseline (another version) is ours: --update rewrites it.
-    const fs::path old = t.write("scenarios/old.baseline.json",
-                                 R"({"format": "occsim-baseline", "version": 1})");
+    const fs::path old =
+        t.write("scenarios/old.baseline.json", R"({"format": "occsim-baseline", "version": 1})");
     EXPECT_TRUE(problems({{s, old}}, {s}, true).empty());
     EXPECT_TRUE(isOccsimBaselineFile(old));
     EXPECT_FALSE(isOccsimBaselineFile(notes));

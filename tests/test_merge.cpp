@@ -396,6 +396,37 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
                   "junit.xml: line 1: unexpected element <html>", out);
 }
 
+// The regress command refuses a set's problems before any work, one line each as every other
+// error ("occsim: ..."), exit 2; and an --out that would hold its own inputs.
+TEST(RegressCommand, EveryProblemOfTheSetIsItsOwnLineAndNothingRuns) {
+    const fs::path root = freshDir("regress-plan");
+    const fs::path set = root / "set";
+    fs::create_directories(set);
+    Json scenario =
+        Json::parse(readFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
+    scenario["expect"]["baseline"] = "self.json";
+    writeFile(set / "self.json", scenario.dump());
+    scenario["expect"]["baseline"] = "../x.json";
+    writeFile(set / "up.json", scenario.dump());
+    const Command c = runOccsim("regress " + set.string() + " --out " + (root / "out").string());
+    EXPECT_EQ(c.status, 2) << c.output;
+    EXPECT_EQ(std::count(c.output.begin(), c.output.end(), '\n'), 2) << c.output;
+    EXPECT_EQ(c.output.rfind("occsim: ", 0), 0u) << c.output;
+    EXPECT_NE(c.output.find("\noccsim: "), std::string::npos) << c.output;
+    EXPECT_FALSE(fs::exists(root / "out"));
+
+    const Command inside = runOccsim("regress " + set.string() + " --out " + set.string());
+    EXPECT_EQ(inside.status, 2) << inside.output;
+    EXPECT_NE(inside.output.find("holds the scenario folder"), std::string::npos) << inside.output;
+    writeFile(root / "file", "a file\n");
+    const Command junit =
+        runOccsim("regress " + set.string() + " --out " + (root / "out").string() + " --junit " +
+                  (root / "file" / "x.xml").string());
+    EXPECT_EQ(junit.status, 2) << junit.output;
+    EXPECT_NE(junit.output.find("--junit"), std::string::npos) << junit.output;
+    EXPECT_FALSE(fs::exists(root / "out"));
+}
+
 // A history entry of machine `host`, with statistical's speedup and queries in scenario s.
 HistoryEntry entry(const std::string& date, const std::string& host, double speedup,
                    double queries = 40) {

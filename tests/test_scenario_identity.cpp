@@ -51,9 +51,9 @@ TEST(ScenarioIdentity, AnIdIsThePathBelowTheFolderGivenAsOneSafeComponent) {
 
 TEST(ScenarioIdentity, DistinctPathsNeverShareAnId) {
     // What safeFileName() made one: '+' and '/', letters outside ASCII, '%' itself.
-    const std::vector<std::string> paths = {"a+b.json", "a/b.json",    "a_b.json",
-                                            "a%2Bb.json", "\xC3\xA4.json", "\xC3\xB6.json",
-                                            "\xE6\x97\xA5.json", "\xE4\xB8\xAD.json"};
+    const std::vector<std::string> paths = {
+        "a+b.json",      "a/b.json",      "a_b.json",          "a%2Bb.json",
+        "\xC3\xA4.json", "\xC3\xB6.json", "\xE6\x97\xA5.json", "\xE4\xB8\xAD.json"};
     std::set<std::string> ids;
     for (const std::string& p : paths) ids.insert(scenarioId(p));
     EXPECT_EQ(ids.size(), paths.size());

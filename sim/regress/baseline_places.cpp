@@ -40,17 +40,19 @@ std::vector<std::string> baselinePlaceProblems(const std::vector<BaselinePlace>&
     std::map<fs::path, const BaselinePlace*> owner;
     std::vector<std::string> problems;
     for (const BaselinePlace& p : places) {
-        const std::string where = p.scenario_file.string() + ": /expect/baseline: " +
-                                  p.baseline.string();
+        const std::string where =
+            p.scenario_file.string() + ": /expect/baseline: " + p.baseline.string();
         const fs::path file = resolved(p.baseline);
         const fs::path folder = resolved(p.scenario_file).parent_path();
         std::error_code ec;
         if (file == resolved(p.scenario_file)) {
-            problems.push_back(where + " is the scenario file itself; expected a file of its "
-                                       "own (default <name>.baseline.json beside the scenario)");
+            problems.push_back(where +
+                               " is the scenario file itself; expected a file of its "
+                               "own (default <name>.baseline.json beside the scenario)");
         } else if (scenarios.count(file)) {
-            problems.push_back(where + " is a scenario file of this run; expected a file of its "
-                                       "own (default <name>.baseline.json beside the scenario)");
+            problems.push_back(where +
+                               " is a scenario file of this run; expected a file of its "
+                               "own (default <name>.baseline.json beside the scenario)");
         } else if (!inside(file, folder)) {
             problems.push_back(where + " lies outside the scenario's folder " + folder.string() +
                                "; expected a file in it or below it");
@@ -59,9 +61,10 @@ std::vector<std::string> baselinePlaceProblems(const std::vector<BaselinePlace>&
                                it->second->scenario_file.string() +
                                "; expected one baseline file per scenario");
         } else if (update && fs::exists(file, ec) && !isOccsimBaselineFile(file)) {
-            problems.push_back(where + " exists and is not an occsim baseline file (no \"format\": "
-                                       "\"occsim-baseline\"); --update overwrites only baselines: "
-                                       "move it, or name another file");
+            problems.push_back(where +
+                               " exists and is not an occsim baseline file (no \"format\": "
+                               "\"occsim-baseline\"); --update overwrites only baselines: "
+                               "move it, or name another file");
         }
     }
     return problems;

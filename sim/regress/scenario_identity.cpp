@@ -71,8 +71,8 @@ std::vector<ScenarioFile> collectScenarioFiles(const std::vector<fs::path>& inpu
             continue;
         }
         std::vector<fs::path> files;
-        for (auto it = fs::recursive_directory_iterator(input); it != fs::recursive_directory_iterator();
-             ++it) {
+        for (auto it = fs::recursive_directory_iterator(input);
+             it != fs::recursive_directory_iterator(); ++it) {
             if (it->is_directory() && isOutputFolder(it->path())) {
                 it.disable_recursion_pending();
             } else if (it->is_regular_file() && isScenarioFile(it->path())) {
