@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -18,6 +20,7 @@
 #include "sim/regress/merge.h"
 #include "sim/regress/regress.h"
 #include "sim/regress/shard_result.h"
+#include "sim/run/stop_request.h"
 
 namespace occsim {
 namespace {
@@ -533,6 +536,51 @@ TEST(Regress, AThreeRepetitionBenchOfACullerThatMissesReportsEveryMiss) {
     EXPECT_EQ(async.summary.error_pixels_total, 3 * async.repetitions[0].error_pixels_total);
     EXPECT_EQ(async.summary.frames_with_error, 3 * async.repetitions[0].frames_with_error);
     EXPECT_GT(async.summary.error_pixels_mean, 0.0);
+}
+
+// "partial" only when frames were lost: a signal after the last frame leaves the run whole; one
+// before it keeps the whole frames and says so. In a child process of its own (a death test):
+// the stop request, once recorded, stays for the process.
+TEST(Stopping, ASignalAfterTheLastFrameLosesNothingAndOneBeforeItMarksThePartialRun) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    auto runSignalledAt = [](uint32_t signal_frame) {
+        installStopHandlers();
+        Scenario s =
+            parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
+        BenchOptions b;
+        b.algorithms = {findAlgorithm("vfc")};
+        b.frames = 4;
+        b.on_frame = [signal_frame](const FrameEvent& e) {
+            if (e.frame == signal_frame) std::raise(SIGINT);
+        };
+        const BenchResult r = runBenchmark(s, b);
+        if (stopSignal() != SIGINT) std::exit(9);
+        std::exit(r.partial ? static_cast<int>(r.partial->frames_reached) : 0);
+    };
+    EXPECT_EXIT(runSignalledAt(3), ::testing::ExitedWithCode(0), "") << "after the last frame";
+    EXPECT_EXIT(runSignalledAt(1), ::testing::ExitedWithCode(2), "") << "two whole frames kept";
+}
+
+// A world that cannot go on (an object beyond finite float coordinates) keeps the frames before
+// it, marked partial with the reason, instead of ending the run with nothing written.
+TEST(Stopping, AWorldThatLeavesFiniteCoordinatesKeepsTheFramesBeforeIt) {
+    Scenario s =
+        parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
+    s.movers.resize(1);
+    s.movers[0] = MoverSpec{};
+    s.movers[0].motion = MotionType::Orbit;
+    s.movers[0].fraction = 0.05;
+    s.movers[0].radius_min_m = s.movers[0].radius_max_m = 1e39;  // beyond float once it moves
+    s.movers[0].speed_min_mps = s.movers[0].speed_max_mps = 1e300;
+    BenchOptions b;
+    b.algorithms = {findAlgorithm("vfc")};
+    b.frames = 6;
+    const BenchResult r = runBenchmark(s, b);
+    ASSERT_TRUE(r.partial.has_value());
+    EXPECT_NE(r.partial->reason.find("the world stopped at frame"), std::string::npos)
+        << r.partial->reason;
+    EXPECT_NE(r.partial->reason.find("its scale"), std::string::npos) << r.partial->reason;
+    EXPECT_EQ(r.runs[0].frames.size(), r.partial->frames_reached);
 }
 
 TEST(Shard, ParsesIndexOverCountAndRejectsNonsense) {

@@ -55,7 +55,8 @@ TEST(Scene, PlacesTeapotsInsideTheRegionWithSizesInRange) {
     const Scene scene = buildScene(s);
     const auto& spec = std::get<TeapotFieldSpec>(s.sources[0].spec);
     for (const ObjectPose& p : scene.initial_poses) {
-        EXPECT_TRUE(contains(spec.region, glm::vec3(p.position)));
+        EXPECT_TRUE(contains(Aabb{glm::vec3(spec.region.min), glm::vec3(spec.region.max)},
+                             glm::vec3(p.position)));
         const float scale = glm::length(p.linear[1]);  // the y column: height scale
         EXPECT_GE(scale, spec.size_min_m - 1e-5);
         EXPECT_LE(scale, spec.size_max_m + 1e-5);
@@ -129,7 +130,8 @@ TEST(Movers, SpawnAddsObjectsWithTheirOwnMeshInsideTheRegion) {
     EXPECT_EQ(scene.initial_movers.size(), 7u);
     for (const Mover& m : scene.initial_movers) {
         EXPECT_GE(m.object, 200u);
-        EXPECT_TRUE(contains(std::get<TeapotFieldSpec>(s.sources[0].spec).region,
+        const WorldBox& region = std::get<TeapotFieldSpec>(s.sources[0].spec).region;
+        EXPECT_TRUE(contains(Aabb{glm::vec3(region.min), glm::vec3(region.max)},
                              glm::vec3(scene.initial_poses[m.object].position)));
     }
 }
@@ -422,6 +424,24 @@ TEST(Movers, AMotionThatLeavesFiniteCoordinatesStopsTheRunNamingObjectAndFrame) 
     }
 }
 
+// A glTF scale animation to 3e38 overflows a box at the origin: the message names the scale, not
+// only a position that is fine.
+TEST(Movers, AnOverflowingScaleIsNamedInTheMessage) {
+    WorldState state;
+    state.poses.resize(1);
+    state.poses[0].linear = glm::mat3(3e38f);
+    state.boxes = {Aabb{{0, 0, 0}, {std::numeric_limits<float>::infinity(), 1, 1}}};
+    state.moved = {0};
+    try {
+        requireFiniteBoxes(state, 2);
+        ADD_FAILURE() << "expected a MotionError";
+    } catch (const MotionError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("its position is (0, 0, 0), its scale 3e+38"), std::string::npos)
+            << message;
+    }
+}
+
 TEST(Movers, PlacementsOutsideFiniteCoordinatesAreNamedToo) {
     WorldState state;
     state.poses.resize(3);
@@ -466,6 +486,21 @@ TEST(WorldBoxes, AreRelativeToTheCullingOriginAndRoundedOutward) {
     // The centre of the camera's keyframes, in whole metres: precision where the camera is.
     EXPECT_EQ(scene.culling_origin.x, 1000000.0);
     EXPECT_EQ(scene.culling_origin.z, 5025.0);
+}
+
+// A region is in double like the camera: 10^12 m out, the field is where the camera is aimed
+// (in float, 10^12 rounds to 999,999,995,904: the scene landed 4 km away).
+TEST(WorldBoxes, ARegionFarOutIsWhereTheScenarioPutsIt) {
+    Scenario s = smallScenario();
+    auto& teapots = std::get<TeapotFieldSpec>(s.sources[0].spec);
+    teapots.region = {glm::dvec3(1e12, 0, 0), glm::dvec3(1e12 + 100, 5, 100)};
+    s.camera.keyframes = {{0.0, {1e12 + 50, 3, 150}, {1e12 + 50, 1, 50}}};
+    const Scene scene = buildScene(s);
+    ASSERT_FALSE(scene.initial_poses.empty());
+    for (const ObjectPose& p : scene.initial_poses) {
+        EXPECT_GE(p.position.x, 1e12);
+        EXPECT_LE(p.position.x, 1e12 + 100);
+    }
 }
 
 // A far object does not pull the origin: one teapot 10^9 m away beside a field at the origin.

@@ -15,7 +15,7 @@ namespace occsim {
 std::string readScenarioFileText(const std::filesystem::path& file);
 
 // scenario_parser.cpp: {"min": [x,y,z], "max": [x,y,z]}, min <= max, float-representable.
-Aabb readRegion(const JsonValueReader& value);
+WorldBox readRegion(const JsonValueReader& value);
 
 // parse_culling.cpp: the "culling" section (algorithm and per-algorithm options).
 void readCulling(JsonObjectReader& top, Scenario& s);

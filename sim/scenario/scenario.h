@@ -69,7 +69,7 @@ struct MoverSpec {
     double speed_max_mps = 4.0;
     // Bounce and random walk: the box movers stay in (default: the source's region).
     bool has_region = false;
-    Aabb region;
+    WorldBox region;
     double radius_min_m = 2.0;  // orbit
     double radius_max_m = 8.0;
     std::vector<glm::dvec3> waypoints;  // path: a closed loop; empty = the source's lanes
