@@ -24,6 +24,8 @@ namespace occsim {
 struct ReportFiles {
     std::vector<std::string> plot_files;  // PNG and SVG; the PNGs are shown
     std::vector<std::string> birds_eye_files;
+    // Worst windows' worst frames (windowPictureName()), linked under "Worst windows".
+    std::vector<std::string> window_pictures;
     std::string plots_note;      // why plots are missing or incomplete, if so
     std::string extra_markdown;  // a whole section, after the table (regress: the checks)
 };

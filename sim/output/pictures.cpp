@@ -6,6 +6,9 @@
 #include "render/png_writer.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/birds_eye.h"
+#include "sim/output/fixed_text.h"
+#include "sim/output/moments.h"
+#include "sim/output/raster_canvas.h"
 #include "sim/world/camera_path.h"
 
 namespace occsim {
@@ -33,7 +36,33 @@ std::vector<uint8_t> birdsEyePng(const Simulation& sim, const Scenario& scenario
     return encodePngBottomUp(renderBirdsEye(in, size.width, size.height), size.width, size.height);
 }
 
+// The replayed frame under a strip that says which frame it is, as the error pictures are labelled.
+std::vector<uint8_t> labelledFramePng(const ReplayedFrame& frame) {
+    const int text_scale = 2, margin = 6;
+    const int band = RasterCanvas::textHeight(text_scale) + 2 * margin;
+    const std::string label = "frame " + std::to_string(frame.frame) + ", " +
+                              fixed(frame.time_s, 3) + " s: the camera's view";
+    const auto w = static_cast<int>(frame.width), h = static_cast<int>(frame.height);
+    RasterCanvas canvas(static_cast<uint32_t>(std::max(w, RasterCanvas::textWidth(label, 2) + 12)),
+                        static_cast<uint32_t>(band + h), Rgb{255, 255, 255});
+    canvas.text(margin, margin, label, Rgb{0, 0, 0}, text_scale);
+    for (int y = 0; y < h; ++y) {
+        // The frame's rows are bottom-up; the canvas's top-down.
+        const uint8_t* row = frame.rgba.data() + static_cast<size_t>(h - 1 - y) * frame.width * 4;
+        for (int x = 0; x < w; ++x)
+            canvas.pixel(x, band + y, Rgb{row[4 * x], row[4 * x + 1], row[4 * x + 2]});
+    }
+    return encodePngBottomUp(canvas.rgbaBottomUp(), canvas.width(), canvas.height());
+}
+
 }  // namespace
+
+void PictureRecorder::onWindowFrame(const ReplayedFrame& frame) {
+    const std::string name = windowPictureName(frame.frame);
+    std::filesystem::create_directories(out_dir_);
+    writeFileAtomically(out_dir_ / name, labelledFramePng(frame));
+    windows_.push_back(name);
+}
 
 PictureRecorder::PictureRecorder(std::filesystem::path out_dir,
                                  std::vector<uint32_t> capture_frames,

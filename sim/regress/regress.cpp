@@ -114,7 +114,9 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
 
     // The scenario's folder is one unit, staged before the run and replaced as a whole after.
     StagedRunFolder folder(scenarioFolder(options, file));
-    const BenchResult result = runBenchmark(scenario, regressBenchOptions(file, expect, options));
+    BenchOptions bench = regressBenchOptions(file, expect, options);
+    bench.segments = regressSegments(scenario, expect);
+    const BenchResult result = runBenchmark(scenario, bench);
 
     if (result.partial) {
         // Checks of frames that were never run would pass or fail by accident, and an update
