@@ -201,9 +201,9 @@ int runAndReport(const RunRequest& request) {
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("%s", occsim::segmentTablesText(result).c_str());
     std::printf("%s", occsim::worstWindowsText(result).c_str());
-    std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (!pictures.birdsEyeFiles().empty()) {
         std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
