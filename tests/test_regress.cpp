@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,11 @@
 
 #include "culling/cullers/statistical_culler.h"
 #include "sim/output/error_picture.h"
+#include "sim/output/run_folder.h"
+#include "sim/regress/history.h"
+#include "sim/regress/merge.h"
 #include "sim/regress/regress.h"
+#include "sim/regress/shard_result.h"
 
 namespace occsim {
 namespace {
@@ -492,6 +497,125 @@ TEST(Regress, JunitXmlHasOneTestcasePerCheckAndFailuresWithMessages) {
               std::string::npos);
 }
 
+// A folder of scenarios as issue 40 found them: a.json named "b" and b.json named "a", the same
+// file name in two subfolders, a scenario whose baseline is itself, one whose baseline lies two
+// folders up. The last two are refused before any work, one line each; the first two are each
+// filed under their own identity through regress, merge and history.
+TEST(Regress, ASetWithSwappedNamesSameStemsASelfBaselineAndAnOutsideOneIsCheckedBeforeAnyWork) {
+    const fs::path root = makeScenario("identity-seed", kExpect, 4).parent_path();
+    const fs::path seed = root / "identity-seed.json";
+    nlohmann::json base = nlohmann::json::parse(std::ifstream(seed));
+    fs::remove(seed);
+    const fs::path set = root / "set";
+    auto write = [&](const fs::path& rel, const std::string& name, const std::string& baseline) {
+        nlohmann::json j = base;
+        j["name"] = name;
+        if (!baseline.empty()) j["expect"]["baseline"] = baseline;
+        fs::create_directories((set / rel).parent_path());
+        std::ofstream(set / rel) << j.dump(2);
+    };
+    write("a.json", "b", "");
+    write("b.json", "a", "");
+    write("x/scene.json", "scene", "");
+    write("y/scene.json", "scene", "");
+    write("self.json", "self", "self.json");
+    write("up/up.json", "up", "../../x.json");
+    RegressOptions o = optionsFor(set);
+    o.inputs = {set};
+    o.out_dir = root / "out";
+    std::string refused;
+    try {
+        runRegression(o);
+    } catch (const InputError& e) {
+        refused = e.what();
+    }
+    EXPECT_EQ(std::count(refused.begin(), refused.end(), '\n'), 1) << "two problems: " << refused;
+    EXPECT_NE(refused.find("self.json: /expect/baseline: " + (set / "self.json").string() +
+                           " is the scenario file itself"),
+              std::string::npos)
+        << refused;
+    EXPECT_NE(refused.find("up.json: /expect/baseline:"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("lies outside the scenario's folder"), std::string::npos) << refused;
+    EXPECT_FALSE(fs::exists(o.out_dir)) << "refused before any work";
+    EXPECT_TRUE(fs::exists(set / "self.json"));
+
+    fs::remove(set / "self.json");
+    fs::remove_all(set / "up");
+    o.update = true;
+    runRegression(o);
+    o.update = false;
+    const RegressReport report = runRegression(o);
+    ASSERT_EQ(report.scenarios.size(), 4u);
+    std::map<std::string, std::string> name_of;  // id -> name
+    for (const ScenarioOutcome& s : report.scenarios) name_of[s.id] = s.name;
+    EXPECT_EQ(name_of, (std::map<std::string, std::string>{
+                           {"a", "b"}, {"b", "a"}, {"x+scene", "scene"}, {"y+scene", "scene"}}));
+    for (const ScenarioOutcome& s : report.scenarios) {
+        EXPECT_TRUE(s.passed()) << report.table();
+        const nlohmann::json summary =
+            nlohmann::json::parse(std::ifstream(o.out_dir / s.id / "summary.json"));
+        EXPECT_EQ(summary["scenario"]["id"], s.id);
+        EXPECT_EQ(summary["scenario"]["file"], s.scenario);
+    }
+    // The same set as shards, merged: each summary where its id says, into the history by id.
+    const ScenarioSet whole = scenarioSetOf({set});
+    std::vector<fs::path> dirs;
+    for (uint32_t i = 0; i < 2; ++i) {
+        RegressOptions shard = o;
+        shard.shard = {i, 2};
+        shard.out_dir = root / ("shard-" + std::to_string(i));
+        writeShardResult(shard.out_dir,
+                         {shard.out_dir, whole, shard.shard, "host", "cpu", runRegression(shard)});
+        dirs.push_back(shard.out_dir);
+    }
+    const MergedRun merged = mergeShards(dirs);
+    std::vector<std::pair<std::string, Json>> summaries;
+    for (size_t k = 0; k < merged.summaries.size(); ++k) {
+        EXPECT_EQ(merged.summaries[k]["scenario"]["id"], merged.report.scenarios[k].id);
+        EXPECT_EQ(merged.summaries[k]["scenario"]["name"], merged.report.scenarios[k].name);
+        summaries.emplace_back(merged.report.scenarios[k].id, merged.summaries[k]);
+    }
+    const HistoryEntry entry = historyEntryNow(summaries, "test");
+    EXPECT_EQ(entry.scenarios.size(), 4u);
+    EXPECT_TRUE(entry.scenarios.count("x+scene") && entry.scenarios.count("y+scene"));
+    fs::remove_all(root);
+}
+
+// A `run --out` into a scenario's folder of a regress in progress holds that folder's lock; the
+// regress, which locks every scenario folder of its share before the first runs, says so and
+// runs nothing (and, the other way round, such a run is refused while regress holds them).
+TEST(Regress, AScenarioFolderHeldByAnotherRunIsFoundBeforeAnyScenarioRuns) {
+    const fs::path file = makeScenario("locked", kExpect, 4);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    claimRegressFolder(o.out_dir);  // an earlier regress's folder
+    const FolderLock held(o.out_dir / "locked", false);
+    EXPECT_THROW(runRegression(o), RunFolderBusy);
+    EXPECT_FALSE(fs::exists(file.parent_path() / "locked.baseline.json")) << "nothing ran";
+    fs::remove_all(file.parent_path());
+}
+
+// Issue 40: a 3-repetition bench of a culler that misses reports the misses of every repetition,
+// not their median (deep-depth-small: async misses an object in deterministic-latency mode).
+TEST(Regress, AThreeRepetitionBenchOfACullerThatMissesReportsEveryMiss) {
+    const Scenario scenario =
+        parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/deep-depth-small.json");
+    BenchOptions bench;
+    bench.algorithms = {findAlgorithm("vfc"), findAlgorithm("async")};
+    bench.measure_error = true;
+    bench.latency = {true, 8};
+    bench.repetitions = 3;
+    const BenchResult result = runBenchmark(scenario, bench);
+    const RunRecord& async = result.runs[1];
+    ASSERT_EQ(async.repetitions.size(), 3u);
+    const int64_t once = async.repetitions[0].missed_objects_total;
+    ASSERT_GT(once, 0) << "the scene no longer makes async miss: pick another";
+    EXPECT_EQ(async.summary.missed_objects_total, 3 * once);
+    EXPECT_EQ(async.summary.error_pixels_total, 3 * async.repetitions[0].error_pixels_total);
+    EXPECT_EQ(async.summary.frames_with_error, 3 * async.repetitions[0].frames_with_error);
+    EXPECT_GT(async.summary.error_pixels_mean, 0.0);
+}
+
 TEST(Shard, ParsesIndexOverCountAndRejectsNonsense) {
     EXPECT_EQ(parseShard("2/5").index, 2u);
     EXPECT_EQ(parseShard("2/5").count, 5u);
@@ -539,7 +663,7 @@ TEST(Shard, ShardsPartitionTheScenariosDeterministically) {
         const auto mine = collectScenarios({dir}, {i, 3});
         EXPECT_EQ(mine, collectScenarios({dir}, {i, 3}));
         total += mine.size();
-        all.insert(mine.begin(), mine.end());
+        for (const ScenarioFile& s : mine) all.insert(s.file);
     }
     EXPECT_EQ(total, 8u);
     EXPECT_EQ(all.size(), 8u) << "every scenario in exactly one shard, baselines excluded";

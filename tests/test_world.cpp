@@ -326,6 +326,51 @@ TEST(Summary, RepetitionsGiveMediansAndTheSpreadOfTheMean) {
     EXPECT_DOUBLE_EQ(m.queries_mean, 5.0);
 }
 
+// Issue 40's case: async with (0 px, 0 missed), (0, 0) and (2 px, 1 missed) over three
+// repetitions. A median would report it exact; the counts are summed, the worst kept.
+TEST(Summary, RepetitionsSumErrorCountsInsteadOfTakingTheirMedian) {
+    RunSummary clean, miss;
+    clean.frames = miss.frames = 120;
+    clean.frame_ms.mean = 10, miss.frame_ms.mean = 11;
+    miss.error_pixels_total = 2;
+    miss.missed_objects_total = 1;
+    miss.frames_with_error = 1;
+    miss.error_pixels_worst = 2;
+    miss.error_worst_frame = 57;
+    miss.error_pixels_mean = 2.0 / 120.0;
+    miss.error_pixels_p99 = 0;
+    miss.tie_pixels_total = 4;
+    miss.popping_events = 1;
+    miss.popping_mean_frames = 1;
+    miss.popping_max_frames = 1;
+    const RunSummary m = aggregateRepetitions({clean, clean, miss});
+    EXPECT_EQ(m.error_pixels_total, 2);
+    EXPECT_EQ(m.missed_objects_total, 1);
+    EXPECT_EQ(m.frames_with_error, 1u);
+    EXPECT_EQ(m.error_pixels_worst, 2);
+    EXPECT_EQ(m.error_worst_frame, 57u);
+    EXPECT_EQ(m.tie_pixels_total, 4);
+    EXPECT_EQ(m.popping_events, 1u);
+    EXPECT_GT(m.error_pixels_mean, 0.0) << "a miss in one repetition keeps the mean above zero";
+    EXPECT_DOUBLE_EQ(m.error_pixels_mean, 2.0 / 360.0);
+    EXPECT_DOUBLE_EQ(m.frame_ms.mean, 10.0) << "times keep their median";
+    // The same three ways round: a sum, whatever the order.
+    EXPECT_EQ(aggregateRepetitions({miss, clean, miss}).missed_objects_total, 2);
+}
+
+// A Pareto mark decided by a difference below the run-to-run noise is a tie: with repetitions,
+// two times whose ranges overlap are not told apart.
+TEST(Summary, TheParetoFrontTiesTimesWhoseSpreadsOverlap) {
+    // a: 10.0 ms [9.5-10.5], 0 error; b: 10.2 ms [9.8-10.6], 0 error: neither is faster.
+    EXPECT_EQ(paretoFront({9.5, 9.8}, {10.5, 10.6}, {0.0, 0.0}), (std::vector<bool>{true, true}));
+    // Apart beyond the spread, the slower one drops off.
+    EXPECT_EQ(paretoFront({9.5, 11.0}, {10.5, 11.6}, {0.0, 0.0}), (std::vector<bool>{true, false}));
+    // Tied on time, the one with less error dominates.
+    EXPECT_EQ(paretoFront({9.5, 9.8}, {10.5, 10.6}, {0.1, 0.0}), (std::vector<bool>{false, true}));
+    // One repetition: the means decide, as before.
+    EXPECT_EQ(paretoFront({10.0, 10.2}, {0.0, 0.0}), (std::vector<bool>{true, false}));
+}
+
 TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
     std::vector<FrameStats> frames(10);
     for (uint32_t i = 0; i < 10; ++i) {

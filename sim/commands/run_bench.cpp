@@ -201,6 +201,8 @@ int runAndReport(const RunRequest& request) {
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    if (const std::string line = occsim::aggregationLine(result); !line.empty())
+        std::printf("%s\n", line.c_str());
     std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("%s", occsim::segmentTablesText(result).c_str());
     std::printf("%s", occsim::worstWindowsText(result).c_str());

@@ -58,7 +58,10 @@ void header(std::ostringstream& out, const BenchResult& result) {
                                        : "; auto fell back to OSMesa: " + cell(c.backend_fallback))
         << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
-        << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
+        << (c.repetitions == 1 ? " time"
+                               : " times (times and per-frame counts are medians over them; "
+                                 "error counts sums over every repetition)")
+        << " |\n";
     if (c.sweep) {
         out << "| sweep | " << cell(c.sweep->parameter) << " =";
         for (size_t i = 0; i < c.sweep->values.size(); ++i) {

@@ -208,11 +208,13 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
 namespace {
 
 nlohmann::json scenarioJson(const RunMetadata& m) {
-    return {{"name", m.scenario_name}, {"file", m.scenario_file},
-            {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
-            {"dt_s", m.dt_s},          {"seed", m.seed},
-            {"objects", m.objects},    {"triangles", m.triangles},
-            {"movers", m.movers}};
+    nlohmann::json j = {{"name", m.scenario_name}, {"file", m.scenario_file},
+                        {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
+                        {"dt_s", m.dt_s},          {"seed", m.seed},
+                        {"objects", m.objects},    {"triangles", m.triangles},
+                        {"movers", m.movers}};
+    if (!m.scenario_id.empty()) j["id"] = m.scenario_id;  // what merge and history file it under
+    return j;
 }
 
 nlohmann::json machineJson(const RunMetadata& m) {
@@ -273,6 +275,21 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["nothing_in_view"] =
         nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
+    // How each figure joins the repetitions (aggregateRepetitions), so no reader takes a sum for
+    // a median or the other way round.
+    summary["aggregation"] = {
+        {"timings",
+         "median over repetitions (frame_ms, cull_cpu_ms_mean, wait_ms_mean, "
+         "update_ms_mean, gpu_ms, answer latency); frame_ms_mean_over_repetitions "
+         "gives the spread"},
+        {"per_frame_counts", "median over repetitions (queries, objects, triangles per frame)"},
+        {"error_counts",
+         "sum over every repetition's frames (error.pixels_total, "
+         "missed_objects_total, frames_with_error, tie, stray and popping counts); "
+         "per-frame error means over those frames; worst frame, p99 and longest "
+         "popping run the worst repetition's"},
+        {"pareto", m.repetitions > 1 ? "times whose spreads over repetitions overlap tie"
+                                     : "one repetition: times compared by their means"}};
     summary["error_measured"] = m.error_measured;
     if (m.error_measured) {
         // What decides error against tie (docs/error.md), so a reader of the file knows.
@@ -313,6 +330,22 @@ std::string costsLine(const BenchResult& result) {
                 " ms (render and read-back, outside the frame timing)";
     }
     return line;
+}
+
+std::string aggregationLine(const BenchResult& result) {
+    const RunMetadata& m = result.metadata;
+    if (m.repetitions > 1) {
+        const std::string n = std::to_string(m.repetitions);
+        return "repetitions: " + n +
+               "; times and per-frame counts are medians over them, error counts (err px, tie "
+               "px, missed) sums over all " +
+               n + (m.error_measured ? ", pareto with their spread (overlapping times tie)" : "");
+    }
+    if (m.error_measured && result.runs.size() > 2) {
+        return "pareto: from one repetition, times within the run-to-run spread are not told "
+               "apart (--repetitions 3 measures the spread)";
+    }
+    return "";
 }
 
 std::string runHeadline(const BenchResult& result) {

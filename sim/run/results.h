@@ -47,6 +47,7 @@ struct RunMetadata {
     // The scenario.
     std::string scenario_name;
     std::string scenario_file;
+    std::string scenario_id;  // its identity in a regression run (scenario_identity.h); else empty
     uint32_t frames = 0;
     uint32_t warmup_frames = 0;
     double dt_s = 0.0;
@@ -146,7 +147,9 @@ bool nothingInView(const std::vector<RunRecord>& runs);
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s);
 double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s);
 
-// Marks RunRecord::pareto over every run that is not an oracle (the bound is no candidate).
+// Marks RunRecord::pareto over every run that is not an oracle (the bound is no candidate): the
+// front of mean frame time against error pixels per frame, where with repetitions two times whose
+// spreads overlap tie (paretoFront()).
 void markParetoFront(std::vector<RunRecord>& runs);
 
 }  // namespace occsim

@@ -53,6 +53,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.command_line = options.command_line;
     m.scenario_name = scenario.name;
     m.scenario_file = scenario.file.string();
+    m.scenario_id = options.scenario_id;
     m.frames = scenario.frames;
     m.warmup_frames = std::min(scenario.warmup_frames, scenario.frames);
     m.dt_s = scenario.dt_s;
@@ -194,7 +195,16 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
     for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
     const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
     for (uint32_t f = 0; f < scenario.frames; ++f) {
-        world.advance();
+        try {
+            world.advance();
+        } catch (const MotionError& e) {
+            // A world that cannot go on (an object left finite coordinates): the frames before it
+            // stand, and the partial run names the object, its position and scale.
+            stop = PartialRun{
+                std::string("the world stopped at frame ") + std::to_string(f) + ": " + e.what(), 0,
+                rep, f};
+            return frames;
+        }
         if (any_needs_truth) truth.of(world, truth_colour);
         for (size_t k = 0; k < sims.size(); ++k) {
             const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
@@ -218,7 +228,10 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
             }
         }
         progress.frameDone(options.progress, rep * scenario.frames + f + 1);
-        if (const int signal = stopSignal()) {
+        // A signal after the run's last frame loses nothing: the run is whole, not partial.
+        const bool frames_left =
+            f + 1 < scenario.frames || rep + 1 < std::max(1u, options.repetitions);
+        if (const int signal = stopSignal(); signal && frames_left) {
             stop =
                 PartialRun{std::string("interrupted by ") + signalName(signal), signal, rep, f + 1};
             break;

@@ -53,6 +53,7 @@ struct BenchOptions {
     std::optional<uint32_t> frames;       // overrides the scenario's frame count
     std::string command = "bench";        // recorded in the metadata
     std::string command_line;             // recorded in the metadata
+    std::string scenario_id;              // a regression run's id of the scenario (metadata)
     bool progress = false;                // a progress line on stderr
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
     uint32_t repetitions = 1;             // each configuration runs this often; medians reported
