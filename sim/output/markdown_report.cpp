@@ -161,9 +161,12 @@ void worstWindows(std::ostringstream& out, const BenchResult& result, const Repo
         << "first; with repetitions each frame's figures are its medians over them)"
         << (oracle ? "" : ": no oracle ran, so against the speedup reference") << ". "
         << "Objects and triangles are per frame, the configuration's / " << result.window_reference
-        << "'s. The picture under a window is its worst frame, the world replayed to it after the "
-           "run and "
-           "drawn whole (what the camera saw).\n\n";
+        << "'s.";
+    if (!files.window_pictures.empty()) {
+        out << " The picture under a window is its worst frame, the world replayed to it after the "
+               "run and drawn whole (what the camera saw).";
+    }
+    out << "\n\n";
     for (const RunRecord& r : result.runs) {
         if (r.worst_windows.empty()) continue;
         out << "### " << cell(r.summary.label) << "\n\n";
