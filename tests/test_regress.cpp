@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -69,7 +70,7 @@ class DroppingDevice final : public RenderDevice {
     uint64_t draws_ = 0;
 };
 
-enum class Sabotage { DropDraws, Slow, ExtraQuery };
+enum class Sabotage { DropDraws, Slow, ExtraQuery, DropFromFrame10, SlowFromFrame10 };
 
 // The statistical culler, deliberately broken in one way.
 class SabotagedCuller final : public Culler {
@@ -92,6 +93,21 @@ class SabotagedCuller final : public Culler {
             }
             case Sabotage::ExtraQuery:
                 device.takeAnswer(device.issueQuery(tree.bounds(tree.root())));
+                break;
+            case Sabotage::DropFromFrame10:
+                if (frame.frame_index >= 10) {
+                    DroppingDevice dropping(device, 5);
+                    inner_.cullAndRender(tree, frame, dropping);
+                    return;
+                }
+                break;
+            case Sabotage::SlowFromFrame10:
+                if (frame.frame_index >= 10) {
+                    const auto until =
+                        std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
+                    while (std::chrono::steady_clock::now() < until) {
+                    }
+                }
                 break;
         }
         inner_.cullAndRender(tree, frame, device);
@@ -275,6 +291,71 @@ TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
     const CheckResult* ratio = findCheck(slow, "frame time statistical / vfc");
     ASSERT_NE(ratio, nullptr);
     EXPECT_FALSE(ratio->passed) << ratio->got;
+}
+
+// makeScenario's scenario (16 frames, 2 of warm-up) with two segments: frames 2 to 9 and 10 to 15.
+fs::path makeSegmentedScenario(const std::string& name, const nlohmann::json& expect) {
+    const fs::path file = makeScenario(name, nullptr);
+    nlohmann::json scenario = nlohmann::json::parse(std::ifstream(file));
+    scenario["segments"] = nlohmann::json::parse(R"([
+        {"name": "calm", "from_frame": 2, "to_frame": 10},
+        {"name": "late", "from_frame": 10, "to_frame": 16}])");
+    scenario["expect"] = expect;
+    std::ofstream(file) << scenario.dump(2);
+    return file;
+}
+
+// A check scoped to a segment judges that segment's frames only: a culler slow from frame 10 on
+// passes its ratio over the calm segment and fails it over the late one, by name.
+TEST(Regress, ARatioCheckOverASegmentFailsOnlyWhereItsBoundIsBroken) {
+    nlohmann::json expect = kExpect;
+    for (const char* segment : {"calm", "late"}) {
+        expect["ratios"].push_back({{"algorithm", "statistical"},
+                                    {"reference", "vfc"},
+                                    {"max", 1.0},
+                                    {"tolerance", 0.5},
+                                    {"segment", segment}});
+    }
+    const fs::path file = makeSegmentedScenario("segment-ratio", expect);
+    const RegressReport slow = runRegression(optionsFor(file, Sabotage::SlowFromFrame10));
+    const CheckResult* calm = findCheck(slow, "frame time statistical / vfc in segment calm");
+    const CheckResult* late = findCheck(slow, "frame time statistical / vfc in segment late");
+    ASSERT_NE(calm, nullptr);
+    ASSERT_NE(late, nullptr);
+    EXPECT_TRUE(calm->passed) << calm->got;
+    EXPECT_FALSE(late->passed) << late->got;
+    // report.md has the segment tables the checks read.
+    std::ifstream in(file.parent_path() / "out" / "segment-ratio" / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_NE(md.find("### late: frames 10 to 15"), std::string::npos) << md;
+}
+
+// Zero error over a segment: a culler that drops draws from frame 10 on is exact over the calm
+// segment and fails over the late one, with a picture of its worst frame (which lies in it).
+TEST(Regress, AZeroErrorCheckOverASegmentFailsOnlyOverTheSegmentWithTheError) {
+    nlohmann::json expect = kExpect;
+    expect["zero_error"] = nlohmann::json::parse(R"(["vfc",
+        {"algorithm": "statistical", "segment": "calm"},
+        {"algorithm": "statistical", "segment": "late"}])");
+    expect["max_error_pixels"] =
+        nlohmann::json::parse(R"([{"algorithm": "statistical", "max": 0, "segment": "calm"}])");
+    const fs::path file = makeSegmentedScenario("segment-error", expect);
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::DropFromFrame10));
+    const CheckResult* calm = findCheck(report, "zero error pixels in segment calm: statistical");
+    const CheckResult* late = findCheck(report, "zero error pixels in segment late: statistical");
+    const CheckResult* bound = findCheck(report, "error pixels per frame in segment calm");
+    const CheckResult* missed = findCheck(report, "no missed objects in segment late: statistical");
+    ASSERT_NE(calm, nullptr);
+    ASSERT_NE(late, nullptr);
+    ASSERT_NE(bound, nullptr);
+    ASSERT_NE(missed, nullptr);
+    EXPECT_TRUE(calm->passed) << calm->got;
+    EXPECT_TRUE(bound->passed) << bound->got;
+    EXPECT_FALSE(late->passed) << late->got;
+    EXPECT_FALSE(missed->passed) << missed->got;
+    EXPECT_EQ(late->expected, "0 on frames 10 to 15");
+    ASSERT_EQ(report.scenarios[0].captures.size(), 1u);
+    EXPECT_TRUE(fs::exists(report.scenarios[0].captures[0]));
 }
 
 // With every expected frame inside the warm-up nothing is timed: the ratio check has nothing to

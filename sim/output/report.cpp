@@ -6,6 +6,7 @@
 
 #include "sim/output/build_info.h"
 #include "sim/output/fixed_text.h"
+#include "sim/output/moments.h"
 #include "sim/run/stop_request.h"
 #include "sim/scenario/option_json.h"
 
@@ -156,7 +157,8 @@ nlohmann::json errorJson(const RunSummary& s) {
             {"popping_max_frames", s.popping_max_frames}};
 }
 
-// One configuration: its figures, options and, where they mean something, its speed-ups.
+}  // namespace
+
 nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord>& runs) {
     const RunSummary& s = r.summary;
     nlohmann::json j = {
@@ -203,6 +205,8 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
     return j;
 }
 
+namespace {
+
 nlohmann::json scenarioJson(const RunMetadata& m) {
     nlohmann::json j = {{"name", m.scenario_name}, {"file", m.scenario_file},
                         {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
@@ -240,7 +244,9 @@ nlohmann::json simulatorCostsJson(const RunCosts& c) {
             {"world_update_ms_total", c.world_update_ms_total},
             {"ground_truth_renders", c.ground_truth_renders},
             {"ground_truth_ms_total", c.ground_truth_ms_total},
-            {"error_read_backs", c.error_read_backs}};
+            {"error_read_backs", c.error_read_backs},
+            {"window_frames_replayed", c.window_frames_replayed},
+            {"window_replay_ms", c.window_replay_ms}};
 }
 
 // null for a complete run; else why it ended early, how far it got, and the console's line.
@@ -298,6 +304,8 @@ nlohmann::json summaryJson(const BenchResult& result) {
         summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     summary["simulator_costs"] = simulatorCostsJson(result.costs);
     summary["partial"] = partialJson(result);
+    summary["segments"] = segmentsJson(result);
+    summary["worst_windows"] = worstWindowsJson(result);
     if (m.cost_model) {
         summary["cost_model"] = costModelJson(*m.cost_model);
         summary["cost_model"]["source"] = m.cost_model_source;

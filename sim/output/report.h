@@ -26,6 +26,10 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs);
 // CSV with a header, one row per frame per algorithm.
 std::string framesCsv(const std::vector<RunRecord>& runs);
 
+// One configuration's entry of summary.json's "algorithms": its figures, options and, where they
+// mean something, its speedup over VFC and ratio to Ideal among `runs`.
+nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord>& runs);
+
 // summary.json: the metadata (scenario, machine, command) and every configuration's figures.
 nlohmann::json summaryJson(const BenchResult& result);
 

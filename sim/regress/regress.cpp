@@ -146,6 +146,7 @@ ScenarioOutcome runOne(const ReadScenario& read, const RegressOptions& options) 
     StagedRunFolder folder(scenarioFolder(options, read.file.id));
     BenchOptions bench = regressBenchOptions(file, expect, options);
     bench.scenario_id = read.file.id;
+    bench.segments = regressSegments(scenario, expect);
     const BenchResult result = runBenchmark(scenario, bench);
 
     if (result.partial) {

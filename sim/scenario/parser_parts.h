@@ -28,6 +28,9 @@ CitySpec readCity(JsonObjectReader& source);
 LibrarySpec readLibrary(JsonObjectReader& source);
 PlantSpec readPlant(JsonObjectReader& source);
 
+// parse_segments.cpp: the "segments" list, placed on the scenario's frames (frames and dt read).
+std::vector<SegmentSpec> readSegments(JsonObjectReader& top, const Scenario& scenario);
+
 // parse_expectations.cpp: the "expect" block; reads the run settings and the culling section of
 // `scenario`, so it is called after them.
 Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario);

@@ -501,6 +501,7 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     s.plugins = readPlugins(top, file.parent_path());
     readCulling(top, s);
     s.bsp = readBsp(top);
+    s.segments = readSegments(top, s);
     s.expect = readExpect(top, s);
     top.finish();
     return s;
