@@ -419,6 +419,33 @@ TEST(HistoryReport, RunsWithinTheSpreadAreNotFlagged) {
         << b.not_compared[0];
 }
 
+TEST(HistoryReport, FailOnChangeFailsOnWorseOnlyNeverOnBetter) {
+    // A speedup that rose beyond the spread is flagged "better": printed, and exit 0.
+    const fs::path dir = historyOf("faster", {entry("2025-01-01T00:00:00Z", "m", 2.00),
+                                              entry("2025-01-02T00:00:00Z", "m", 2.05),
+                                              entry("2025-01-03T00:00:00Z", "m", 2.90)});
+    const HistoryAnalysis a = analyseHistory(readHistory(dir), windowOf(1));
+    ASSERT_EQ(a.flagged.size(), 1u);
+    EXPECT_FALSE(a.flagged[0].worse);
+    EXPECT_FALSE(a.anyWorse());
+    const std::string out = (dir.parent_path() / "r").string();
+    const Command better =
+        runOccsim("history " + dir.string() + " --out " + out + " --window 1 --fail-on-change");
+    EXPECT_EQ(better.status, 0) << better.output;
+    EXPECT_NE(better.output.find("changed: s statistical: speedup over VFC 2.050 -> 2.900 "
+                                 "(+41.5%, better)"),
+              std::string::npos)
+        << better.output;
+    // The same folder with a slowdown after it: worse, exit 1.
+    appendHistory(dir, entry("2025-01-04T00:00:00Z", "m", 1.20));
+    const HistoryAnalysis b = analyseHistory(readHistory(dir), windowOf(1));
+    EXPECT_TRUE(b.anyWorse());
+    const Command worse =
+        runOccsim("history " + dir.string() + " --out " + out + " --window 1 --fail-on-change");
+    EXPECT_EQ(worse.status, 1) << worse.output;
+    EXPECT_NE(worse.output.find(", worse)"), std::string::npos) << worse.output;
+}
+
 TEST(HistoryReport, MachinesAreSeparateSeriesNeverMixed) {
     // Machine m is steady at 2.0; a slower machine n joins with 1.0. Mixed into one series that
     // would read as a slowdown.
