@@ -513,6 +513,27 @@ TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, VersionPrintsTheProjectVersionAndCommitThatSummaryJsonRecords) {
+    const Outcome v = runOccsim("--version");
+    ASSERT_EQ(v.exit_code, 0) << v.output;
+    const std::string prefix = std::string("occsim ") + OCCSIM_PROJECT_VERSION + " (commit ";
+    ASSERT_EQ(v.output.rfind(prefix, 0), 0u) << v.output;
+    ASSERT_EQ(lineCount(v.output), 1u) << v.output;
+    const std::string commit = v.output.substr(prefix.size(), v.output.find(")\n") - prefix.size());
+    EXPECT_FALSE(commit.empty()) << v.output;
+    const auto out = tempPath("version");
+    const Outcome o = runOccsim("run " + kSmall + " --algo vfc --frames 1 --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
+    EXPECT_NE(json.find("\"commit\": \"" + commit + "\""), std::string::npos) << json;
+    EXPECT_NE(json.find(std::string("\"version\": \"") + OCCSIM_PROJECT_VERSION + "\""),
+              std::string::npos)
+        << json;
+    std::filesystem::remove_all(out);
+}
+
 // A cost model a culling file gives for one culler (as tuned.json does) reaches that culler
 // only: statistical+ keeps the reference figures of a deterministic run.
 TEST(Cli, ACostModelForOneCullerChangesNoOther) {

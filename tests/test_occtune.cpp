@@ -25,6 +25,7 @@
 #include "occsim/culling/registry/registry.h"
 #include "shell_command.h"
 #include "sim/output/plots.h"
+#include "sim/output/version.h"
 #include "tune/parameters.h"
 #include "tune/sample_log.h"
 #include "tune/tuned_file.h"
@@ -163,6 +164,18 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     EXPECT_EQ(lineCount(again.output), 1u) << again.output;
     EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
     fs::remove_all(dir);
+}
+
+TEST(Occtune, VersionPrintsTheSameVersionAndCommitAsOccsim) {
+    const Outcome tune = occtune("--version");
+    ASSERT_EQ(tune.exit_code, 0) << tune.output;
+    EXPECT_EQ(tune.output, versionLine("occtune") + "\n");
+    EXPECT_EQ(tune.output.rfind(std::string("occtune ") + OCCSIM_PROJECT_VERSION + " (commit ", 0),
+              0u)
+        << tune.output;
+    const Outcome sim = run(OCCSIM_EXE, "--version");
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    EXPECT_EQ(sim.output, versionLine("occsim") + "\n");
 }
 
 // A scene warning is said once a session, not once for every batch and confirmation run that

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sim/output/build_info.h"
+#include "sim/output/version.h"
 #include "sim/output/fixed_text.h"
 #include "sim/run/stop_request.h"
 #include "sim/scenario/option_json.h"
@@ -263,7 +264,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["scenario"] = scenarioJson(m);
     summary["machine"] = machineJson(m);
     summary["command"] = m.command_line;
-    summary["occsim"] = {{"version", OCCSIM_VERSION}, {"commit", OCCSIM_GIT_COMMIT}};
+    summary["occsim"] = {{"version", occsimVersion()}, {"commit", occsimCommit()}};
     summary["nothing_in_view"] =
         nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
