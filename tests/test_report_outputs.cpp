@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "sim/output/birds_eye.h"
 #include "sim/output/error_picture.h"
+#include "sim/output/fixed_text.h"
 #include "sim/output/markdown_report.h"
 #include "sim/output/plots.h"
 #include "sim/output/report.h"
@@ -385,6 +387,37 @@ TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
     EXPECT_NE(md.find("](birds-eye-chc-frame-00020.png)"), std::string::npos);
     EXPECT_NE(md.find("## How to read this"), std::string::npos);
     EXPECT_NE(md.find("popping"), std::string::npos);
+}
+
+// One error pixel in 240 frames is an error: no cell of the table (console and report.md alike)
+// prints a figure that is not zero as 0.0.
+TEST(ComparisonTable, ANonZeroFigureNeverPrintsAsZero) {
+    EXPECT_EQ(fixedNonZero(1.0 / 240, 1), "<0.1");
+    EXPECT_EQ(fixedNonZero(0.3, 0), "<1");
+    EXPECT_EQ(fixedNonZero(-0.001, 2), ">-0.01");
+    EXPECT_EQ(fixedNonZero(0.0, 1), "0.0");
+    EXPECT_EQ(fixedNonZero(0.06, 1), "0.1");
+    EXPECT_EQ(fixedNonZero(2.25, 1), fixed(2.25, 1));
+    BenchResult result;
+    result.runs = {record("vfc", "vfc", 20.0, 0.0, false),
+                   record("async", "async", 10.0, 0.0, true)};
+    RunSummary& s = result.runs[1].summary;
+    s.frames = 240;
+    s.error_pixels_total = 1;
+    s.error_pixels_worst = 1;
+    s.error_pixels_mean = 1.0 / 240;
+    s.queries_mean = 0.02;
+    const ComparisonTable t = comparisonTable(result.runs);
+    auto column = [&](const std::string& name) {
+        return static_cast<size_t>(std::find(t.header.begin(), t.header.end(), name) -
+                                   t.header.begin());
+    };
+    ASSERT_LT(column("err px/fr"), t.header.size());
+    EXPECT_EQ(t.rows[1][column("err px/fr")], "<0.1");
+    EXPECT_EQ(t.rows[1][column("queries/fr")], "<0.1");
+    EXPECT_EQ(t.rows[0][column("err px/fr")], "0.0") << "zero stays zero";
+    EXPECT_NE(formatComparisonTable(result.runs).find("<0.1"), std::string::npos);
+    EXPECT_NE(markdownReport(result, ReportFiles{}).find("| <0.1 |"), std::string::npos);
 }
 
 // ---- writePlots ---------------------------------------------------------------------------

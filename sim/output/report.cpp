@@ -4,9 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "sim/output/build_info.h"
-#include "sim/output/version.h"
 #include "sim/output/fixed_text.h"
+#include "sim/output/version.h"
 #include "sim/run/stop_request.h"
 #include "sim/scenario/option_json.h"
 
@@ -34,36 +33,37 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
     if (error) header.push_back("pareto");
 
     const bool nothing_in_view = nothingInView(runs);
+    // Every figure through fixedNonZero: 1 error pixel in 240 frames reads "<0.1", never 0.0.
     std::vector<std::vector<std::string>> rows;
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
         const double speedup = speedupOverReference(runs, s), ideal = ratioToOracle(runs, s);
-        std::string mean = fixed(s.frame_ms.mean, 2);
+        std::string mean = fixedNonZero(s.frame_ms.mean, 2);
         if (repeated)
-            mean +=
-                " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+            mean += " [" + fixedNonZero(s.frame_ms_mean_min, 2) + "-" +
+                    fixedNonZero(s.frame_ms_mean_max, 2) + "]";
         // GPU time only where it was measured: never on a software rasteriser, whose timer
         // queries do not time rasterisation (see the console's backend line).
-        const std::string gpu = s.gpu_ms_mean >= 0 ? fixed(s.gpu_ms_mean, 2) : "n/a";
-        const std::string latency =
-            s.answer_latency_median >= 0
-                ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
-                : "-";
+        const std::string gpu = s.gpu_ms_mean >= 0 ? fixedNonZero(s.gpu_ms_mean, 2) : "n/a";
+        const std::string latency = s.answer_latency_median >= 0
+                                        ? fixedNonZero(s.answer_latency_median, 0) + "/" +
+                                              fixedNonZero(s.answer_latency_p95, 0)
+                                        : "-";
         std::vector<std::string> row = {s.label,
                                         mean,
-                                        fixed(s.frame_ms.median, 2),
-                                        fixed(s.frame_ms.p95, 2),
+                                        fixedNonZero(s.frame_ms.median, 2),
+                                        fixedNonZero(s.frame_ms.p95, 2),
                                         gpu,
-                                        fixed(s.queries_mean, 1),
-                                        fixed(s.wait_ms_mean, 3),
+                                        fixedNonZero(s.queries_mean, 1),
+                                        fixedNonZero(s.wait_ms_mean, 3),
                                         latency,
-                                        fixed(s.triangles_mean, 0),
-                                        fixed(s.objects_mean, 1)};
+                                        fixedNonZero(s.triangles_mean, 0),
+                                        fixedNonZero(s.objects_mean, 1)};
         // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
         if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
         if (error) {
-            row.push_back(fixed(s.error_pixels_mean, 1));
-            row.push_back(fixed(s.error_pixels_p99, 0));
+            row.push_back(fixedNonZero(s.error_pixels_mean, 1));
+            row.push_back(fixedNonZero(s.error_pixels_p99, 0));
             row.push_back(std::to_string(s.error_pixels_worst));
             row.push_back(std::to_string(s.error_pixels_total));
             row.push_back(std::to_string(s.tie_pixels_total));
