@@ -1,8 +1,10 @@
 #include "tune/measure.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "occsim/culling/registry/registry.h"
+#include "sim/output/report.h"
 #include "tune/errors.h"
 
 namespace occsim::tune {
@@ -36,11 +38,19 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.command = "tune";
     options.on_frame = on_frame;
     BenchResult result = runBenchmark(scenario, options);
+    if (const std::string busy = noteMachineLoad(session, result.metadata); !busy.empty())
+        std::fprintf(stderr, "\nwarning: %s\n", busy.c_str());
     // A run cut short is no sample: its frames would weigh unlike the others'. A signal ends the
     // session as an interruption (the log whole), a culler that threw as a failure while running.
     if (result.partial && result.partial->signal != 0) throw Interrupted();
     if (result.partial) throw std::runtime_error(result.partial->reason);
     return result;
+}
+
+std::string noteMachineLoad(SessionRuns& session, const RunMetadata& metadata) {
+    ++session.runs;
+    if (!metadata.busyMachine()) return "";
+    return ++session.busy_runs == 1 ? busyMachineLine(metadata) : "";
 }
 
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {

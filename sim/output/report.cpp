@@ -308,6 +308,14 @@ std::string costsLine(const BenchResult& result) {
     return line;
 }
 
+std::string busyMachineLine(const RunMetadata& m) {
+    if (!m.busyMachine()) return "";
+    return "busy machine: other work ran beside this run (load average above its " +
+           std::to_string(m.hardware_threads) +
+           " hardware threads before it, or above twice that after it); these timings are not "
+           "results";
+}
+
 std::string runHeadline(const BenchResult& result) {
     const RunMetadata& m = result.metadata;
     const uint32_t timed = result.runs.empty() ? 0 : result.runs.front().summary.timed_frames;
@@ -325,14 +333,7 @@ std::string runHeadline(const BenchResult& result) {
                   "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
                   m.hardware_threads, m.load_before[0], m.load_after[0]);
     headline += load;
-    if (m.busyMachine()) {
-        std::snprintf(
-            load, sizeof load,
-            "\nbusy machine: other work ran beside this run (load average above its %u hardware "
-            "threads before it, or above twice that after it); these timings are not results",
-            m.hardware_threads);
-        headline += load;
-    }
+    if (m.busyMachine()) headline += "\n" + busyMachineLine(m);
     headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " +
                 m.driver +
                 (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
