@@ -24,8 +24,8 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                        "wait ms/fr",    "answer lat p50/p95",
                                        "tris/fr",       "objs/fr"};
     if (error) {
-        for (const char* h :
-             {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
+        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed",
+                              "pop max", "overdrawn/fr", "overdrawn tris/fr"}) {
             header.push_back(h);
         }
     }
@@ -69,6 +69,8 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
             row.push_back(std::to_string(s.tie_pixels_total));
             row.push_back(std::to_string(s.missed_objects_total));
             row.push_back(std::to_string(s.popping_max_frames));
+            row.push_back(fixedNonZero(s.overdrawn_objects_mean, 1));
+            row.push_back(fixedNonZero(s.overdrawn_triangles_mean, 0));
         }
         // Ratios of empty frames mean nothing: n/a, and the headline says why.
         const std::string none = nothing_in_view ? "n/a" : "-";
@@ -106,8 +108,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
-           "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_"
-           "median,stray_pixels\n";
+           "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
+           "median,stray_pixels,overdrawn_objects,overdrawn_triangles\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -117,12 +119,13 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries
                     << ',' << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
                     << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
-                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
+                    << f.missed_objects << ',' << f.tied_away_objects << ',' << f.visible_objects
                     << ','
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
-                    << ',' << f.stray_pixels << '\n';
+                    << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
+                    << f.overdrawn_triangles << '\n';
             }
         }
     }
@@ -151,7 +154,9 @@ nlohmann::json errorJson(const RunSummary& s) {
             {"frames_with_ties", s.frames_with_ties},
             {"stray_pixels_total", s.stray_pixels_total},
             {"missed_objects_total", s.missed_objects_total},
-            {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
+            {"tied_away_objects_total", s.tied_away_objects_total},
+            {"overdrawn_objects_per_frame_mean", s.overdrawn_objects_mean},
+            {"overdrawn_triangles_per_frame_mean", s.overdrawn_triangles_mean},
             {"popping_events", s.popping_events},
             {"popping_mean_frames", s.popping_mean_frames},
             {"popping_max_frames", s.popping_max_frames}};

@@ -36,7 +36,9 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
             s.tie_pixels_total += f.tie_pixels;
             s.stray_pixels_total += std::max<int64_t>(f.stray_pixels, 0);
             s.missed_objects_total += f.missed_objects;
-            s.drawn_unseen_objects_total += f.drawn_unseen_objects;
+            s.tied_away_objects_total += f.tied_away_objects;
+            s.overdrawn_objects_mean += static_cast<double>(f.overdrawn_objects);
+            s.overdrawn_triangles_mean += static_cast<double>(f.overdrawn_triangles);
             if (f.error_pixels > 0) ++s.frames_with_error;
             if (f.tie_pixels > 0) ++s.frames_with_ties;
             if (f.error_pixels > s.error_pixels_worst) {
@@ -74,6 +76,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
         s.tie_pixels_mean =
             static_cast<double>(s.tie_pixels_total) / static_cast<double>(error.size());
+        s.overdrawn_objects_mean /= static_cast<double>(error.size());
+        s.overdrawn_triangles_mean /= static_cast<double>(error.size());
     }
     if (s.timed_frames > 0) {
         const double n = s.timed_frames;
@@ -190,8 +194,12 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
         static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
     out.stray_pixels_total =
         static_cast<int64_t>(median([](const RunSummary& r) { return r.stray_pixels_total; }));
-    out.drawn_unseen_objects_total = static_cast<int64_t>(
-        median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
+    out.tied_away_objects_total =
+        static_cast<int64_t>(median([](const RunSummary& r) { return r.tied_away_objects_total; }));
+    out.overdrawn_objects_mean =
+        median([](const RunSummary& r) { return r.overdrawn_objects_mean; });
+    out.overdrawn_triangles_mean =
+        median([](const RunSummary& r) { return r.overdrawn_triangles_mean; });
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
     for (const RunSummary& r : reps) {
         out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);

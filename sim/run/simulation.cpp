@@ -152,23 +152,31 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     // Conditional draws count as drawn when their query passed samples: one the device skipped
     // was not drawn; one it executed on a query that passed nothing cannot show.
     gl_device_.resolveConditionalDraws();
-    int64_t missed = 0, unseen = 0, visible = 0;
+    int64_t missed = 0, tied_away = 0, visible = 0, overdrawn = 0, overdrawn_triangles = 0;
     missing_.assign(objects, 0);
+    const Scene& scene = world_->scene();
     for (uint32_t o = 0; o < objects; ++o) {
-        if (!truth.visible[o]) continue;
-        ++visible;
         const bool drawn = gl_device_.drew(o);
+        if (!truth.visible[o]) {
+            // Drawn, and not a pixel of it in the full render: over-draw.
+            overdrawn += drawn;
+            if (drawn) overdrawn_triangles += scene.meshes[scene.object_mesh[o]].triangleCount();
+            continue;
+        }
+        ++visible;
         missing_[o] = !drawn;
         missed += !drawn;
-        unseen += drawn && !culled_visible_[o];
+        tied_away += drawn && !culled_visible_[o];
     }
     popping_.addFrame(missing_);
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;
     stats.stray_pixels = pixels.stray;
     stats.missed_objects = missed;
-    stats.drawn_unseen_objects = unseen;
+    stats.tied_away_objects = tied_away;
     stats.visible_objects = visible;
+    stats.overdrawn_objects = overdrawn;
+    stats.overdrawn_triangles = overdrawn_triangles;
     if (options_.keep_worst_error_frame && pixels.error > worst_.error_pixels) {
         worst_.frame = stats.frame;
         worst_.error_pixels = pixels.error;
