@@ -4,12 +4,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shell_command.h"
@@ -315,6 +319,102 @@ TEST(Cli, TheCullersPageIsTheRegistrysOwnOutput) {
     ASSERT_EQ(o.exit_code, 0) << o.output;
     EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), o.output)
         << "docs/cullers.md is out of date: paste the output of occsim cullers --markdown";
+}
+
+namespace {
+
+// Where `name` stands as a word of its own in `line` (not inside "statistical+" or "chc++").
+std::vector<std::pair<size_t, size_t>> nameSpans(const std::string& line,
+                                                 const std::vector<std::string>& names) {
+    auto part = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '+' || c == '-';
+    };
+    std::vector<std::pair<size_t, size_t>> spans;
+    for (size_t i = 0; i < line.size(); ++i) {
+        if (i > 0 && part(line[i - 1])) continue;
+        size_t longest = 0;
+        for (const std::string& n : names) {
+            if (line.compare(i, n.size(), n) == 0 &&
+                (i + n.size() == line.size() || !part(line[i + n.size()])))
+                longest = std::max(longest, n.size());
+        }
+        if (longest > 0) spans.push_back({i, i + longest});
+    }
+    return spans;
+}
+
+// Text between two names of one typed list: a comma and a space (a bare comma is a command
+// line's), "and", "or", with backticks.
+bool listSeparator(std::string between) {
+    std::erase(between, '`');
+    if (between == ",") return false;  // a command line's list: --algos vfc,chc
+    while (!between.empty() && between.front() == ' ') between.erase(0, 1);
+    while (!between.empty() && between.back() == ' ') between.pop_back();
+    return between == "," || between == "and" || between == ", and" || between == "or" ||
+           between == ", or";
+}
+
+}  // namespace
+
+// A page that lists the cullers by hand goes stale when one is added (docs/cli.md once gave 8 of
+// 11 as bench's default): a typed list of five or more of them names every one, or ends in "...",
+// or is replaced by a link to docs/cullers.md, which the registry generates. Lists of a command
+// line (--algos a,b,c) are the command's own choice, and pass.
+TEST(Cli, NoPageTypesAnIncompleteListOfTheCullers) {
+    const Outcome o = runOccsim("cullers");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::vector<std::string> names;
+    std::istringstream listing(o.output);
+    for (std::string line; std::getline(listing, line);) {
+        if (!line.empty() && line[0] != ' ') names.push_back(line.substr(0, line.find(':')));
+    }
+    ASSERT_GE(names.size(), 11u) << o.output;
+    std::vector<std::filesystem::path> pages = {std::filesystem::path(OCCSIM_SOURCE_DIR) /
+                                                "README.md"};
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::filesystem::path(OCCSIM_SOURCE_DIR) / "docs")) {
+        if (e.path().extension() == ".md" && e.path().filename() != "cullers.md")
+            pages.push_back(e.path());
+    }
+    auto incomplete = [&](const std::string& line) {
+        const auto spans = nameSpans(line, names);
+        for (size_t first = 0; first < spans.size();) {
+            size_t last = first;
+            while (last + 1 < spans.size() &&
+                   listSeparator(
+                       line.substr(spans[last].second, spans[last + 1].first - spans[last].second)))
+                ++last;
+            std::set<std::string> listed;
+            for (size_t k = first; k <= last; ++k)
+                listed.insert(line.substr(spans[k].first, spans[k].second - spans[k].first));
+            const std::string after = line.substr(spans[last].second, 6);
+            const bool elided =
+                after.find("...") != std::string::npos || after.find("\u2026") != std::string::npos;
+            if (listed.size() >= 5 && listed.size() < names.size() && !elided) return true;
+            first = last + 1;
+        }
+        return false;
+    };
+    // The check finds what it is for.
+    EXPECT_TRUE(
+        incomplete("(default: all: `vfc, stop-and-wait, statistical, statistical+, chc, "
+                   "chc++, async, ideal`)"));
+    EXPECT_FALSE(
+        incomplete("expected one of: vfc, stop-and-wait, statistical, statistical+, chc, "
+                   "..."));
+    EXPECT_FALSE(incomplete("--algos vfc,stop-and-wait,statistical,chc,chc++,ideal"));
+    for (const auto& page : pages) {
+        std::ifstream in(page);
+        size_t number = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++number;
+            EXPECT_FALSE(incomplete(line))
+                << page.filename().string() << ":" << number
+                << ": names some of the cullers by hand; list every one, end the list in \"...\", "
+                   "or link to docs/cullers.md: "
+                << line;
+        }
+    }
 }
 
 // A sweep names an option by its JSON key and is checked against the listed algorithms'
