@@ -1,7 +1,5 @@
 #include "sim/commands/run_bench.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 
@@ -51,6 +49,8 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
     addPluginFlag(cmd, flags.plugins);
+    cmd->add_flag("--quiet", flags.quiet,
+                  "No progress on stderr (default: a bar on a terminal, else a line every 10 s)");
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -131,7 +131,7 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         o.trace_frame = static_cast<uint32_t>(flags.birds_eye);
     }
     for (uint32_t frame : flags.capture) checkFrame("--capture", frame);
-    o.progress = ::isatty(STDERR_FILENO) != 0;
+    o.progress = occsim::stderrProgressStyle(flags.quiet);
     return o;
 }
 

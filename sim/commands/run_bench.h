@@ -30,6 +30,7 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
+    bool quiet = false;  // no progress on stderr
 };
 
 struct RunFlags {

@@ -94,6 +94,7 @@ BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expect
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
     bench.backend = options.backend;
+    bench.progress = options.progress;
     return bench;
 }
 
@@ -208,7 +209,7 @@ RegressReport runRegression(const RegressOptions& options) {
     // A folder that is not an occsim run is refused before any scenario runs.
     for (const auto& file : files) checkRunFolder(scenarioFolder(options, file));
     for (size_t i = 0; i < files.size(); ++i) {
-        if (options.progress) {
+        if (options.progress == ProgressStyle::Bar) {
             std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, files.size(), files[i].string().c_str());
         }
         report.scenarios.push_back(runOne(files[i], options));

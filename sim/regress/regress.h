@@ -107,7 +107,9 @@ struct RegressOptions {
     // Each scenario's folder in it (its file name, made one path component) is replaced as a
     // whole (run_folder.h); the caller holds the lock on out_dir.
     std::filesystem::path out_dir = "out/regress";
-    bool progress = false;
+    // On stderr: with a bar (a terminal) "[i/n] scenario" before each scenario, and each run's
+    // frames as bench gives them (sim/run/progress.h).
+    ProgressStyle progress = ProgressStyle::None;
     BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
