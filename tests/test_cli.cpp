@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -632,6 +633,81 @@ TEST(Cli, VersionPrintsTheProjectVersionAndCommitThatSummaryJsonRecords) {
               std::string::npos)
         << json;
     std::filesystem::remove_all(out);
+}
+
+// --algos NAME,NAME@tuned.json: a tuned file's setting runs beside the culler's own, interleaved
+// in one run, as a row of its own everywhere; a file that cannot be that is one line, exit 2.
+TEST(Cli, ATunedFileRunsBesideTheDefaultsInterleavedAndLabelledApart) {
+    const auto dir = tempPath("tuned-beside");
+    std::filesystem::create_directories(dir);
+    auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    const std::string tuned =
+        write("tuned.json", R"({"format_version": 1, "tuned_for": "statistical+", "culling": {
+            "algorithm": "statistical+",
+            "statistical+": {"queries_before_restart": 1, "ready_answers": true}}})");
+    const auto out = dir / "out";
+    const Outcome o =
+        runOccsim("bench " + kSmall + " --algos statistical+,statistical+@" + tuned +
+                  " --frames 8 --deterministic-latency 8 --quiet --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("\nstatistical+@tuned "), std::string::npos) << o.output;
+    std::ifstream summary_in(out / "summary.json");
+    const std::string summary{std::istreambuf_iterator<char>(summary_in),
+                              std::istreambuf_iterator<char>()};
+    EXPECT_NE(summary.find("\"configuration\": \"statistical+@tuned\""), std::string::npos);
+    EXPECT_NE(summary.find("\"culling_file\": \"" + tuned + "\""), std::string::npos) << summary;
+    EXPECT_NE(summary.find("\"queries_before_restart\": 1,"), std::string::npos) << summary;
+    std::ifstream report_in(out / "report.md");
+    const std::string report{std::istreambuf_iterator<char>(report_in),
+                             std::istreambuf_iterator<char>()};
+    EXPECT_NE(report.find("| statistical+@tuned |"), std::string::npos) << report;
+    // frames.csv: both rows every frame, interleaved in one run; the tuned options decide
+    // otherwise (another query count on some frame).
+    std::ifstream csv(out / "frames.csv");
+    std::map<std::string, std::vector<std::string>> queries;
+    std::string line;
+    std::getline(csv, line);
+    while (std::getline(csv, line)) {
+        std::vector<std::string> cells;
+        std::stringstream cell(line);
+        for (std::string c; std::getline(cell, c, ',');) cells.push_back(c);
+        ASSERT_GT(cells.size(), 8u) << line;
+        queries[cells[0]].push_back(cells[8]);
+    }
+    ASSERT_EQ(queries.size(), 2u);
+    EXPECT_EQ(queries["statistical+"].size(), 8u);
+    EXPECT_EQ(queries["statistical+@tuned"].size(), 8u);
+    EXPECT_NE(queries["statistical+"], queries["statistical+@tuned"]);
+
+    // Bad input: one line naming the flag and the file, exit 2, nothing written.
+    const std::string other =
+        write("other.json", R"({"format_version": 1, "tuned_for": "statistical", "culling": {
+            "algorithm": "statistical", "statistical": {"base_time": 0.3}}})");
+    const std::string broken = write("broken.json", R"({"format_version": 1, "culling": )");
+    const struct {
+        std::string entry, expected;
+    } refused[] = {
+        {"statistical+@" + (dir / "missing.json").string(), "missing.json: cannot open file"},
+        {"statistical+@" + broken, "broken.json: "},
+        {"statistical+@" + other, "other.json is a culling file for statistical, not statistical+"},
+        {"statistical+@", "no file after '@'"},
+        {"statistical+@" + tuned + ",statistical+@" + tuned,
+         "'statistical+@tuned' is listed twice"},
+    };
+    for (const auto& r : refused) {
+        const auto bad_out = dir / "bad-out";
+        const Outcome bad = runOccsim("bench " + kSmall + " --algos " + r.entry +
+                                      " --frames 2 --out " + bad_out.string());
+        EXPECT_EQ(bad.exit_code, 2) << r.entry << ": " << bad.output;
+        EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+        EXPECT_EQ(bad.output.rfind("occsim: --algos", 0), 0u) << bad.output;
+        EXPECT_NE(bad.output.find(r.expected), std::string::npos) << bad.output;
+        EXPECT_FALSE(std::filesystem::exists(bad_out)) << r.entry;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 // A cost model a culling file gives for one culler (as tuned.json does) reaches that culler

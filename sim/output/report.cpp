@@ -203,6 +203,7 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
     j["options"] = nlohmann::json(optionValuesJson(r.options));
     j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
                           {"stale_results", r.approximation.stale_results}};
+    if (!r.culling_file.empty()) j["culling_file"] = r.culling_file;
     if (r.cost_model) j["cost_model"] = costModelJson(*r.cost_model);
     if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
     if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;

@@ -92,6 +92,7 @@ void prepareRecords(BenchResult& result, const std::vector<RunConfig>& configs) 
         result.runs[c].algorithm = configs[c].algorithm;
         result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
         result.runs[c].approximation = configs[c].culler.approximation;
+        result.runs[c].culling_file = configs[c].culling_file;
         const AlgorithmTraits& a = *configs[c].algorithm;
         if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
             result.runs[c].cost_model = configs[c].culler.cost_model;
