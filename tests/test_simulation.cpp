@@ -178,8 +178,49 @@ TEST(Simulation, OverdrawCountsTheObjectsDrawnThatGroundTruthDoesNotSee) {
               table.header.end());
     EXPECT_NE(std::find(table.header.begin(), table.header.end(), "overdrawn tris/fr"),
               table.header.end());
-    EXPECT_NE(framesCsv(result.runs).find(",stray_pixels,overdrawn_objects,overdrawn_triangles\n"),
+    EXPECT_NE(framesCsv(result.runs).find(",stray_pixels,overdrawn_objects,overdrawn_triangles,"),
               std::string::npos);
+}
+
+// conditional submits every object in the frustum and the device skips the hidden ones: the two
+// are counted apart. With GL_QUERY_WAIT a draw executes exactly when its query passed samples,
+// so the executed draws are the drawn set error measurement reads from those samples.
+TEST(Simulation, ConditionalDrawsAreCountedAsSubmittedAndAsExecuted) {
+    const Scenario scenario = parseScenarioFile(kSmall);
+    BenchOptions options;
+    options.measure_error = true;
+    options.latency = LatencyMode{true, 8};
+    options.frames = 12;
+    const AlgorithmTraits& conditional = *findAlgorithm("conditional");
+    RunConfig waited{"conditional wait=true", &conditional, scenario.culler};
+    waited.culler.edit(conditional).set("wait", 1.0);
+    options.configs = {RunConfig{"vfc", findAlgorithm("vfc"), scenario.culler},
+                       RunConfig{"conditional", &conditional, scenario.culler}, waited};
+    options.algorithms = {findAlgorithm("vfc")};
+    const BenchResult result = runBenchmark(scenario, options);
+    ASSERT_EQ(result.runs.size(), 3u);
+    bool skipped_some = false;
+    for (const RunRecord& run : result.runs) {
+        for (const FrameStats& f : run.frames) {
+            EXPECT_LE(f.executed_objects, f.objects_drawn);
+            EXPECT_LE(f.executed_triangles, f.triangles);
+            if (run.summary.label == "vfc") {
+                EXPECT_EQ(f.executed_objects, f.objects_drawn);
+                EXPECT_EQ(f.executed_triangles, f.triangles);
+            }
+            if (run.summary.label == "conditional wait=true") {
+                EXPECT_EQ(static_cast<int64_t>(f.executed_objects),
+                          f.visible_objects - f.missed_objects + f.overdrawn_objects)
+                    << "frame " << f.frame;
+                skipped_some |= f.executed_objects < f.objects_drawn;
+            }
+        }
+    }
+    EXPECT_TRUE(skipped_some) << "the teapot field hides some of what is in the frustum";
+    EXPECT_LT(result.runs[2].summary.executed_objects_mean, result.runs[2].summary.objects_mean);
+    const ComparisonTable table = comparisonTable(result.runs);
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "exec objs/fr"),
+              table.header.end());
 }
 
 TEST(Simulation, MovingObjectsAreReinsertedIntoOtherNodes) {

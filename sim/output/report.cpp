@@ -23,6 +23,14 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                        "gpu ms",        "queries/fr",
                                        "wait ms/fr",    "answer lat p50/p95",
                                        "tris/fr",       "objs/fr"};
+    // Submitted and executed apart where a culler draws under conditions the device decides.
+    bool conditional = false;
+    for (const RunRecord& r : runs)
+        conditional |= r.algorithm && (r.algorithm->device_needs & kConditionalRendering) != 0;
+    if (conditional) {
+        header.push_back("exec tris/fr");
+        header.push_back("exec objs/fr");
+    }
     if (error) {
         for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed",
                               "pop max", "overdrawn/fr", "overdrawn tris/fr"}) {
@@ -59,6 +67,10 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                         latency,
                                         fixedNonZero(s.triangles_mean, 0),
                                         fixedNonZero(s.objects_mean, 1)};
+        if (conditional) {
+            row.push_back(fixedNonZero(s.executed_triangles_mean, 0));
+            row.push_back(fixedNonZero(s.executed_objects_mean, 1));
+        }
         // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
         if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
         if (error) {
@@ -109,7 +121,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
-           "median,stray_pixels,overdrawn_objects,overdrawn_triangles\n";
+           "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
+           "executed_triangles\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -125,7 +138,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
                     << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
-                    << f.overdrawn_triangles << '\n';
+                    << f.overdrawn_triangles << ',' << f.executed_objects << ','
+                    << f.executed_triangles << '\n';
             }
         }
     }
@@ -185,6 +199,10 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         {"queries_per_frame", s.queries_mean},
         {"objects_per_frame", s.objects_mean},
         {"triangles_per_frame", s.triangles_mean},
+        // Of the draws submitted, those the device executed (conditional draws it skipped are
+        // not); equal to the submitted counts for every culler that draws no conditional draw.
+        {"executed_objects_per_frame", s.executed_objects_mean},
+        {"executed_triangles_per_frame", s.executed_triangles_mean},
         // null where not measured: see machine.gpu_time_meaningful.
         {"gpu_ms", s.gpu_ms_mean >= 0
                        ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}

@@ -29,6 +29,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
     std::vector<double> frame_ms, gpu_ms;
     bool gpu_measured = true;
     double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
+    double executed_objects = 0, executed_triangles = 0;
     for (const FrameStats& f : frames) {
         if (f.error_pixels >= 0) {
             s.error_measured = true;
@@ -56,6 +57,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         queries += static_cast<double>(f.queries);
         objects += static_cast<double>(f.objects_drawn);
         triangles += static_cast<double>(f.triangles);
+        executed_objects += static_cast<double>(f.executed_objects);
+        executed_triangles += static_cast<double>(f.executed_triangles);
     }
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
@@ -87,6 +90,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.queries_mean = queries / n;
         s.objects_mean = objects / n;
         s.triangles_mean = triangles / n;
+        s.executed_objects_mean = executed_objects / n;
+        s.executed_triangles_mean = executed_triangles / n;
     }
     return s;
 }
@@ -179,6 +184,9 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.queries_mean = median([](const RunSummary& r) { return r.queries_mean; });
     out.objects_mean = median([](const RunSummary& r) { return r.objects_mean; });
     out.triangles_mean = median([](const RunSummary& r) { return r.triangles_mean; });
+    out.executed_objects_mean = median([](const RunSummary& r) { return r.executed_objects_mean; });
+    out.executed_triangles_mean =
+        median([](const RunSummary& r) { return r.executed_triangles_mean; });
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });

@@ -22,8 +22,12 @@ struct FrameStats {
     uint64_t answers = 0;
     double answer_latency_median = -1.0;
     uint64_t queries = 0;
-    uint64_t objects_drawn = 0;
+    uint64_t objects_drawn = 0;  // submitted draws, and their triangles
     uint64_t triangles = 0;
+    // Of those, what the device executed: all of them but conditional draws it skipped on their
+    // query's result (render/gl_query_device.h: counted with GL_PRIMITIVES_GENERATED).
+    uint64_t executed_objects = 0;
+    uint64_t executed_triangles = 0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -62,6 +66,7 @@ struct RunSummary {
     uint64_t answers = 0;
     double answer_latency_median = -1, answer_latency_p95 = -1;
     double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
+    double executed_objects_mean = 0, executed_triangles_mean = 0;  // over the timed frames
     bool error_measured = false;
     int64_t error_pixels_total = 0;
     int64_t error_pixels_worst = 0;

@@ -116,6 +116,10 @@ FrameStats Simulation::renderFrame() {
     stats.queries = c.queries_issued;
     stats.objects_drawn = c.objects_drawn;
     stats.triangles = c.triangles_drawn;
+    // What the device skipped of the conditional draws, read back after the frame.
+    const GlQueryDevice::SkippedDraws skipped = gl_device_.skippedConditionalDraws();
+    stats.executed_objects = c.objects_drawn - skipped.objects;
+    stats.executed_triangles = c.triangles_drawn - skipped.triangles;
 
     if (options_.measure_error) measureError(*truth, stats);
     return stats;
