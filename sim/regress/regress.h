@@ -62,7 +62,15 @@ struct CheckResult {
     std::string expected;
     std::string got;
     bool passed = false;
+    // The configuration the check is about ("statistical"); empty for a check of several or of
+    // the scenario. A failed check's JUnit entry lists that configuration's pictures only.
+    std::string algorithm = {};
 };
+
+// The file name of a configuration's worst-error picture, "worst-error-<label>-frame-N.png"
+// (the label made one path component), and whether `capture` (a path) is one of its pictures.
+std::string worstErrorPictureName(const std::string& algorithm, uint32_t frame);
+bool isPictureOf(const std::string& capture, const std::string& algorithm);
 
 struct ScenarioOutcome {
     std::string scenario;  // path as given/found
@@ -70,7 +78,7 @@ struct ScenarioOutcome {
     bool skipped = false;
     std::string note;  // why skipped, or what an update changed
     std::vector<CheckResult> checks;
-    std::vector<std::string> captures;  // pictures written for failures
+    std::vector<std::string> captures;  // pictures written for failures (worstErrorPictureName)
     double seconds = 0.0;
 
     bool passed() const;
