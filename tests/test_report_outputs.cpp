@@ -306,6 +306,52 @@ TEST(BirdsEye, ADrawnGroundSlabHidesNoObjectThatWasNotDrawn) {
     EXPECT_GT(with, without / 2) << "the ground slab covers the hidden objects";
 }
 
+// A level whose big floor box is drawn every frame is not one yellow field: the floor is outlined
+// over a faint tint, so the drawn objects on it stand out, each in full, and the floor still shows
+// as drawn (its outline).
+TEST(BirdsEye, ADrawnFloorIsOutlinedSoTheDrawnObjectsOnItStandOut) {
+    auto picture = [](bool floor_drawn) {
+        std::vector<Aabb> boxes = kBoxes;
+        boxes.push_back({{-12, -0.1f, -25}, {75, 0, 3}});  // the floor under every object
+        BspTree tree;
+        BspBuildOptions options;
+        options.max_objects_per_leaf = 1;
+        tree.build(boxes, options);
+        std::vector<uint32_t> drawn = {0, 1, 6};
+        if (floor_drawn) drawn.push_back(7);
+        const std::vector<NodeClass> classes(tree.nodeCount(), NodeClass::Empty);
+        BirdsEyeInput in;
+        in.tree = &tree;
+        in.object_boxes = boxes;
+        in.drawn_objects = drawn;
+        in.node_classes = classes;
+        in.view = sceneView();
+        in.draw_legend = false;
+        return Picture{renderBirdsEye(in, 640, 400), 640, 400};
+    };
+    const Picture hidden_floor = picture(false), drawn_floor = picture(true);
+    const size_t objects = hidden_floor.count(kDrawnObjectColour);
+    ASSERT_GT(objects, 0u);
+    const size_t yellow = drawn_floor.count(kDrawnObjectColour);
+    EXPECT_LT(yellow, size_t{640} * 400 / 5) << "not one yellow field";
+    EXPECT_GT(yellow, objects) << "the floor's outline shows it drawn";
+    // Every drawn object keeps its own yellow pixels, whole, on the drawn floor, and the floor
+    // between them is not yellow.
+    size_t floor_pixels = 0;
+    for (size_t i = 0; i < hidden_floor.rgba.size(); i += 4) {
+        const auto colour = [&](const Picture& p) {
+            return Rgb{p.rgba[i], p.rgba[i + 1], p.rgba[i + 2]};
+        };
+        if (colour(hidden_floor) == kDrawnObjectColour) {
+            ASSERT_EQ(colour(drawn_floor), kDrawnObjectColour) << "an object pixel, " << i / 4;
+        }
+        floor_pixels += colour(hidden_floor) != kDrawnObjectColour &&
+                        colour(drawn_floor) != kDrawnObjectColour &&
+                        colour(drawn_floor) != kBirdsEyeBackground;
+    }
+    EXPECT_GT(floor_pixels, size_t{640} * 400 / 4) << "the floor shows, tinted, under them";
+}
+
 // ---- markdownReport -----------------------------------------------------------------------
 
 RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,

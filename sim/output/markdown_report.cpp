@@ -139,7 +139,8 @@ void pictures(std::ostringstream& out, const ReportFiles& c) {
     if (!c.plots_note.empty()) out << c.plots_note << "\n\n";
     if (c.birds_eye_files.empty()) return;
     out << "## Bird's-eye view\n\n"
-        << "The scene from above: objects drawn this frame in yellow, the others grey; BSP node "
+        << "The scene from above: objects drawn this frame in yellow, the others grey (large ones, "
+        << "such as a floor, outlined over a faint tint so that they hide nothing); BSP node "
         << "bounds outlined red where the view frustum culled them, blue where an occlusion query "
         << "culled them, green where they were drawn after a visible query, magenta where their "
         << "objects were drawn without a query, dim blue below an occluded node (never reached), "
