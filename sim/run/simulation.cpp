@@ -158,9 +158,13 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     gl_device_.resolveConditionalDraws();
     int64_t missed = 0, tied_away = 0, visible = 0, overdrawn = 0, overdrawn_triangles = 0;
     missing_.assign(objects, 0);
+    verdicts_.resize(objects);
     const Scene& scene = world_->scene();
     for (uint32_t o = 0; o < objects; ++o) {
         const bool drawn = gl_device_.drew(o);
+        verdicts_[o] = static_cast<uint8_t>(
+            truth.visible[o] ? (drawn ? ObjectVerdict::DrawnVisible : ObjectVerdict::Missed)
+                             : (drawn ? ObjectVerdict::DrawnHidden : ObjectVerdict::Culled));
         if (!truth.visible[o]) {
             // Drawn, and not a pixel of it in the full render: over-draw.
             overdrawn += drawn;
