@@ -169,9 +169,9 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     fs::remove_all(dir);
 }
 
-// A run on a busy machine is said as bench says it: once a session when it happens, and at the
-// end with how many of the session's runs were busy.
-TEST(Occtune, ABusyMachineIsSaidOnceWhenItHappensAndCountedAtTheEnd) {
+// A run on a busy machine is said as bench says it of its run: at the end, with how many of the
+// session's runs were busy (the test sets the load; it never depends on the machine's).
+TEST(Occtune, ABusyMachineIsCountedOverTheSessionAndSaidAtTheEnd) {
     RunMetadata quiet, busy;
     quiet.hardware_threads = busy.hardware_threads = 2;
     quiet.load_before = {0.5, 0.5, 0.5};
@@ -179,11 +179,12 @@ TEST(Occtune, ABusyMachineIsSaidOnceWhenItHappensAndCountedAtTheEnd) {
     busy.load_before = {3.5, 3.0, 3.0};
     busy.load_after = {4.1, 3.0, 3.0};
     SessionRuns session;
-    EXPECT_EQ(noteMachineLoad(session, quiet), "");
-    const std::string line = noteMachineLoad(session, busy);
-    EXPECT_EQ(line, busyMachineLine(busy));
-    EXPECT_NE(line.find("busy machine: other work ran beside this run"), std::string::npos);
-    EXPECT_EQ(noteMachineLoad(session, busy), "") << "said once a session";
+    EXPECT_FALSE(noteMachineLoad(session, quiet));
+    EXPECT_TRUE(noteMachineLoad(session, busy));
+    EXPECT_TRUE(noteMachineLoad(session, busy));
+    EXPECT_NE(busyMachineLine(busy).find("busy machine: other work ran beside this run"),
+              std::string::npos);
+    EXPECT_EQ(busyMachineLine(quiet), "");
     EXPECT_EQ(session.runs, 3u);
     EXPECT_EQ(session.busy_runs, 2u);
     TuneResult r;

@@ -1,10 +1,8 @@
 #include "tune/measure.h"
 
-#include <cstdio>
 #include <stdexcept>
 
 #include "occsim/culling/registry/registry.h"
-#include "sim/output/report.h"
 #include "tune/errors.h"
 
 namespace occsim::tune {
@@ -38,8 +36,7 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.command = "tune";
     options.on_frame = on_frame;
     BenchResult result = runBenchmark(scenario, options);
-    if (const std::string busy = noteMachineLoad(session, result.metadata); !busy.empty())
-        std::fprintf(stderr, "\nwarning: %s\n", busy.c_str());
+    noteMachineLoad(session, result.metadata);
     // A run cut short is no sample: its frames would weigh unlike the others'. A signal ends the
     // session as an interruption (the log whole), a culler that threw as a failure while running.
     if (result.partial && result.partial->signal != 0) throw Interrupted();
@@ -47,10 +44,11 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     return result;
 }
 
-std::string noteMachineLoad(SessionRuns& session, const RunMetadata& metadata) {
+bool noteMachineLoad(SessionRuns& session, const RunMetadata& metadata) {
     ++session.runs;
-    if (!metadata.busyMachine()) return "";
-    return ++session.busy_runs == 1 ? busyMachineLine(metadata) : "";
+    if (!metadata.busyMachine()) return false;
+    ++session.busy_runs;
+    return true;
 }
 
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {

@@ -41,9 +41,9 @@ struct SessionRuns {
     uint32_t runs = 0, busy_runs = 0;
 };
 
-// Counts a finished run of the session; returns bench's busy-machine line the first time a run
-// was busy (to print once a session), empty otherwise.
-std::string noteMachineLoad(SessionRuns& session, const RunMetadata& metadata);
+// Counts a finished run of the session, and whether it ran on a busy machine; returns that.
+// The session says it at its end (busyMachineNote()), as bench says it of its run.
+bool noteMachineLoad(SessionRuns& session, const RunMetadata& metadata);
 
 // The scenario's own culling options with the setting's values (and cost model, if any) for
 // `algorithm` swapped in.
