@@ -28,6 +28,10 @@ GlQueryDevice::~GlQueryDevice() {
         OCCSIM_GL_CHECKED(
             glDeleteQueries(static_cast<GLsizei>(gl_queries_.size()), gl_queries_.data()));
     }
+    if (!primitive_queries_.empty()) {
+        OCCSIM_GL_CHECKED(glDeleteQueries(static_cast<GLsizei>(primitive_queries_.size()),
+                                          primitive_queries_.data()));
+    }
 }
 
 DepthPyramid* GlQueryDevice::depthPyramid() {
@@ -64,6 +68,7 @@ void GlQueryDevice::beginDrawnSet(uint32_t objects) {
     drawn_mark_.resize(objects, 0);
     // The last set's conditional draws are forgotten: the queries they held may serve again.
     conditional_draws_.clear();
+    blocks_.clear();
     for (QueryId id : held_ids_) conditioned_[id] = 0;
     free_ids_.insert(free_ids_.end(), held_ids_.begin(), held_ids_.end());
     held_ids_.clear();
@@ -89,6 +94,14 @@ void GlQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects, Condit
     }
     if (conditional) {
         conditioned_[id] = 1;
+        const auto block = static_cast<uint32_t>(blocks_.size());
+        if (block == primitive_queries_.size()) {
+            GLuint q = 0;
+            OCCSIM_GL_CHECKED(glGenQueries(1, &q));
+            primitive_queries_.push_back(q);
+        }
+        blocks_.push_back({static_cast<uint32_t>(conditional_draws_.size()), 0, block});
+        OCCSIM_GL_CHECKED(glBeginQuery(GL_PRIMITIVES_GENERATED, primitive_queries_[block]));
         OCCSIM_GL_CHECKED(glBeginConditionalRender(gl_queries_[id], mode));
     }
     for (uint32_t object : objects) {
@@ -97,13 +110,17 @@ void GlQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects, Condit
             if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
         } else {
             conditional_draws_.push_back({object, id});
+            ++blocks_.back().draws;
         }
         ++commands_;
         ++counters_.objects_drawn;
         ++counters_.conditional_draws;
         counters_.triangles_drawn += renderer_.triangleCount(object);
     }
-    if (conditional) OCCSIM_GL_CHECKED(glEndConditionalRender());
+    if (conditional) {
+        OCCSIM_GL_CHECKED(glEndConditionalRender());
+        OCCSIM_GL_CHECKED(glEndQuery(GL_PRIMITIVES_GENERATED));
+    }
     counters_.submit_seconds += secondsSince(start);
 }
 
@@ -118,6 +135,25 @@ void GlQueryDevice::resolveConditionalDraws() {
         OCCSIM_GL_CHECKED(glGetQueryObjectui64v(gl_queries_[d.query], GL_QUERY_RESULT, &samples));
         if (samples > 0) drawn_mark_[d.object] = drawn_set_;
     }
+}
+
+GlQueryDevice::SkippedDraws GlQueryDevice::skippedConditionalDraws() {
+    SkippedDraws skipped;
+    for (const ConditionalBlock& b : blocks_) {
+        GLuint64 primitives = 0;
+        OCCSIM_GL_CHECKED(glGetQueryObjectui64v(primitive_queries_[b.primitive_query],
+                                                GL_QUERY_RESULT, &primitives));
+        for (uint32_t k = b.first_draw; k < b.first_draw + b.draws; ++k) {
+            const uint64_t triangles = renderer_.triangleCount(conditional_draws_[k].object);
+            if (primitives >= triangles) {
+                primitives -= triangles;  // executed
+            } else {
+                ++skipped.objects;
+                skipped.triangles += triangles;
+            }
+        }
+    }
+    return skipped;
 }
 
 QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,

@@ -17,7 +17,9 @@
 // unconditionally, after it the condition is evaluated with GL_QUERY_WAIT. For error measurement,
 // an object drawn under a condition counts as drawn when the query passed samples
 // (resolveConditionalDraws(), after the frame); so the query objects conditioned on stay unused
-// until the next beginDrawnSet().
+// until the next beginDrawnSet(). What the driver executed is counted apart from what was
+// submitted: a GL_PRIMITIVES_GENERATED query around each block of conditional draws (not counted
+// as a command) gives the triangles it executed, read after the frame (skippedConditionalDraws()).
 #pragma once
 
 #include <cstdint>
@@ -60,6 +62,16 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     // Adds to the drawn set the objects drawn under a condition whose query passed samples (reads
     // those queries' results: call after the frame, outside any timing).
     void resolveConditionalDraws();
+    // The draws of the current set that the driver skipped under their condition, and their
+    // triangles: what was submitted (counters()) less what executed. Read from each conditional
+    // block's GL_PRIMITIVES_GENERATED query (call after the frame, outside any timing). A block's
+    // draws execute in order and, once its condition is known to be hidden, the rest are skipped
+    // (GL_QUERY_NO_WAIT may execute the first ones unconditionally), so the executed ones are its
+    // first draws up to the triangles the query counted.
+    struct SkippedDraws {
+        uint64_t objects = 0, triangles = 0;
+    };
+    SkippedDraws skippedConditionalDraws();
     // The latencies of the answers that became ready since the last call (in the order they did),
     // moved into `out` (cleared first; its capacity is reused).
     void takeAnswerLatencies(std::vector<uint32_t>& out);
@@ -94,6 +106,13 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
         QueryId query;
     };
     std::vector<ConditionalDraw> conditional_draws_;
+    // The current set's conditional blocks (one drawIf each): its draws in conditional_draws_
+    // and its GL_PRIMITIVES_GENERATED query in primitive_queries_.
+    struct ConditionalBlock {
+        uint32_t first_draw, draws, primitive_query;
+    };
+    std::vector<ConditionalBlock> blocks_;
+    std::vector<uint32_t> primitive_queries_;  // a pool, used from 0 again each set
     std::vector<uint8_t>
         conditioned_;                // QueryId -> draws of the current set were conditioned on it
     std::vector<QueryId> held_ids_;  // released, kept until beginDrawnSet() for resolving

@@ -22,6 +22,7 @@
 #include "sim/commands/view.h"
 #include "sim/output/run_folder.h"
 #include "sim/output/shell_quote.h"
+#include "sim/output/version.h"
 #include "sim/scenario/json_reader.h"
 
 namespace {
@@ -166,6 +167,8 @@ int main(int argc, char** argv) {
         "occsim: simulate dynamic scenes and measure occlusion culling against ground truth"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Help for every command");
+    app.set_version_flag("--version", occsim::versionLine("occsim"),
+                         "Print the version and the commit it was built from, and exit");
     Commands c;
     addCommands(app, c);
 
@@ -175,6 +178,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "occsim: %s (see occsim --help)\n",

@@ -4,12 +4,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shell_command.h"
@@ -317,6 +322,102 @@ TEST(Cli, TheCullersPageIsTheRegistrysOwnOutput) {
         << "docs/cullers.md is out of date: paste the output of occsim cullers --markdown";
 }
 
+namespace {
+
+// Where `name` stands as a word of its own in `line` (not inside "statistical+" or "chc++").
+std::vector<std::pair<size_t, size_t>> nameSpans(const std::string& line,
+                                                 const std::vector<std::string>& names) {
+    auto part = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '+' || c == '-';
+    };
+    std::vector<std::pair<size_t, size_t>> spans;
+    for (size_t i = 0; i < line.size(); ++i) {
+        if (i > 0 && part(line[i - 1])) continue;
+        size_t longest = 0;
+        for (const std::string& n : names) {
+            if (line.compare(i, n.size(), n) == 0 &&
+                (i + n.size() == line.size() || !part(line[i + n.size()])))
+                longest = std::max(longest, n.size());
+        }
+        if (longest > 0) spans.push_back({i, i + longest});
+    }
+    return spans;
+}
+
+// Text between two names of one typed list: a comma and a space (a bare comma is a command
+// line's), "and", "or", with backticks.
+bool listSeparator(std::string between) {
+    std::erase(between, '`');
+    if (between == ",") return false;  // a command line's list: --algos vfc,chc
+    while (!between.empty() && between.front() == ' ') between.erase(0, 1);
+    while (!between.empty() && between.back() == ' ') between.pop_back();
+    return between == "," || between == "and" || between == ", and" || between == "or" ||
+           between == ", or";
+}
+
+}  // namespace
+
+// A page that lists the cullers by hand goes stale when one is added (docs/cli.md once gave 8 of
+// 11 as bench's default): a typed list of five or more of them names every one, or ends in "...",
+// or is replaced by a link to docs/cullers.md, which the registry generates. Lists of a command
+// line (--algos a,b,c) are the command's own choice, and pass.
+TEST(Cli, NoPageTypesAnIncompleteListOfTheCullers) {
+    const Outcome o = runOccsim("cullers");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::vector<std::string> names;
+    std::istringstream listing(o.output);
+    for (std::string line; std::getline(listing, line);) {
+        if (!line.empty() && line[0] != ' ') names.push_back(line.substr(0, line.find(':')));
+    }
+    ASSERT_GE(names.size(), 11u) << o.output;
+    std::vector<std::filesystem::path> pages = {std::filesystem::path(OCCSIM_SOURCE_DIR) /
+                                                "README.md"};
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::filesystem::path(OCCSIM_SOURCE_DIR) / "docs")) {
+        if (e.path().extension() == ".md" && e.path().filename() != "cullers.md")
+            pages.push_back(e.path());
+    }
+    auto incomplete = [&](const std::string& line) {
+        const auto spans = nameSpans(line, names);
+        for (size_t first = 0; first < spans.size();) {
+            size_t last = first;
+            while (last + 1 < spans.size() &&
+                   listSeparator(
+                       line.substr(spans[last].second, spans[last + 1].first - spans[last].second)))
+                ++last;
+            std::set<std::string> listed;
+            for (size_t k = first; k <= last; ++k)
+                listed.insert(line.substr(spans[k].first, spans[k].second - spans[k].first));
+            const std::string after = line.substr(spans[last].second, 6);
+            const bool elided =
+                after.find("...") != std::string::npos || after.find("\u2026") != std::string::npos;
+            if (listed.size() >= 5 && listed.size() < names.size() && !elided) return true;
+            first = last + 1;
+        }
+        return false;
+    };
+    // The check finds what it is for.
+    EXPECT_TRUE(
+        incomplete("(default: all: `vfc, stop-and-wait, statistical, statistical+, chc, "
+                   "chc++, async, ideal`)"));
+    EXPECT_FALSE(
+        incomplete("expected one of: vfc, stop-and-wait, statistical, statistical+, chc, "
+                   "..."));
+    EXPECT_FALSE(incomplete("--algos vfc,stop-and-wait,statistical,chc,chc++,ideal"));
+    for (const auto& page : pages) {
+        std::ifstream in(page);
+        size_t number = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++number;
+            EXPECT_FALSE(incomplete(line))
+                << page.filename().string() << ":" << number
+                << ": names some of the cullers by hand; list every one, end the list in \"...\", "
+                   "or link to docs/cullers.md: "
+                << line;
+        }
+    }
+}
+
 // A sweep names an option by its JSON key and is checked against the listed algorithms'
 // descriptors before any run; --ablate switches off each mechanism a descriptor marks.
 TEST(Cli, SweepsAndAblationsReadTheDescriptors) {
@@ -510,6 +611,102 @@ TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
     const Outcome again = shell(command);
     EXPECT_EQ(again.exit_code, 0) << command << ": " << again.output;
     EXPECT_TRUE(std::filesystem::exists(out / "summary.json")) << command;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, VersionPrintsTheProjectVersionAndCommitThatSummaryJsonRecords) {
+    const Outcome v = runOccsim("--version");
+    ASSERT_EQ(v.exit_code, 0) << v.output;
+    const std::string prefix = std::string("occsim ") + OCCSIM_PROJECT_VERSION + " (commit ";
+    ASSERT_EQ(v.output.rfind(prefix, 0), 0u) << v.output;
+    ASSERT_EQ(lineCount(v.output), 1u) << v.output;
+    const std::string commit = v.output.substr(prefix.size(), v.output.find(")\n") - prefix.size());
+    EXPECT_FALSE(commit.empty()) << v.output;
+    const auto out = tempPath("version");
+    const Outcome o = runOccsim("run " + kSmall + " --algo vfc --frames 1 --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::ifstream summary(out / "summary.json");
+    const std::string json{std::istreambuf_iterator<char>(summary),
+                           std::istreambuf_iterator<char>()};
+    EXPECT_NE(json.find("\"commit\": \"" + commit + "\""), std::string::npos) << json;
+    EXPECT_NE(json.find(std::string("\"version\": \"") + OCCSIM_PROJECT_VERSION + "\""),
+              std::string::npos)
+        << json;
+    std::filesystem::remove_all(out);
+}
+
+// --algos NAME,NAME@tuned.json: a tuned file's setting runs beside the culler's own, interleaved
+// in one run, as a row of its own everywhere; a file that cannot be that is one line, exit 2.
+TEST(Cli, ATunedFileRunsBesideTheDefaultsInterleavedAndLabelledApart) {
+    const auto dir = tempPath("tuned-beside");
+    std::filesystem::create_directories(dir);
+    auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    const std::string tuned =
+        write("tuned.json", R"({"format_version": 1, "tuned_for": "statistical+", "culling": {
+            "algorithm": "statistical+",
+            "statistical+": {"queries_before_restart": 1, "ready_answers": true}}})");
+    const auto out = dir / "out";
+    const Outcome o =
+        runOccsim("bench " + kSmall + " --algos statistical+,statistical+@" + tuned +
+                  " --frames 8 --deterministic-latency 8 --quiet --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("\nstatistical+@tuned "), std::string::npos) << o.output;
+    std::ifstream summary_in(out / "summary.json");
+    const std::string summary{std::istreambuf_iterator<char>(summary_in),
+                              std::istreambuf_iterator<char>()};
+    EXPECT_NE(summary.find("\"configuration\": \"statistical+@tuned\""), std::string::npos);
+    EXPECT_NE(summary.find("\"culling_file\": \"" + tuned + "\""), std::string::npos) << summary;
+    EXPECT_NE(summary.find("\"queries_before_restart\": 1,"), std::string::npos) << summary;
+    std::ifstream report_in(out / "report.md");
+    const std::string report{std::istreambuf_iterator<char>(report_in),
+                             std::istreambuf_iterator<char>()};
+    EXPECT_NE(report.find("| statistical+@tuned |"), std::string::npos) << report;
+    // frames.csv: both rows every frame, interleaved in one run; the tuned options decide
+    // otherwise (another query count on some frame).
+    std::ifstream csv(out / "frames.csv");
+    std::map<std::string, std::vector<std::string>> queries;
+    std::string line;
+    std::getline(csv, line);
+    while (std::getline(csv, line)) {
+        std::vector<std::string> cells;
+        std::stringstream cell(line);
+        for (std::string c; std::getline(cell, c, ',');) cells.push_back(c);
+        ASSERT_GT(cells.size(), 8u) << line;
+        queries[cells[0]].push_back(cells[8]);
+    }
+    ASSERT_EQ(queries.size(), 2u);
+    EXPECT_EQ(queries["statistical+"].size(), 8u);
+    EXPECT_EQ(queries["statistical+@tuned"].size(), 8u);
+    EXPECT_NE(queries["statistical+"], queries["statistical+@tuned"]);
+
+    // Bad input: one line naming the flag and the file, exit 2, nothing written.
+    const std::string other =
+        write("other.json", R"({"format_version": 1, "tuned_for": "statistical", "culling": {
+            "algorithm": "statistical", "statistical": {"base_time": 0.3}}})");
+    const std::string broken = write("broken.json", R"({"format_version": 1, "culling": )");
+    const struct {
+        std::string entry, expected;
+    } refused[] = {
+        {"statistical+@" + (dir / "missing.json").string(), "missing.json: cannot open file"},
+        {"statistical+@" + broken, "broken.json: "},
+        {"statistical+@" + other, "other.json is a culling file for statistical, not statistical+"},
+        {"statistical+@", "no file after '@'"},
+        {"statistical+@" + tuned + ",statistical+@" + tuned,
+         "'statistical+@tuned' is listed twice"},
+    };
+    for (const auto& r : refused) {
+        const auto bad_out = dir / "bad-out";
+        const Outcome bad = runOccsim("bench " + kSmall + " --algos " + r.entry +
+                                      " --frames 2 --out " + bad_out.string());
+        EXPECT_EQ(bad.exit_code, 2) << r.entry << ": " << bad.output;
+        EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+        EXPECT_EQ(bad.output.rfind("occsim: --algos", 0), 0u) << bad.output;
+        EXPECT_NE(bad.output.find(r.expected), std::string::npos) << bad.output;
+        EXPECT_FALSE(std::filesystem::exists(bad_out)) << r.entry;
+    }
     std::filesystem::remove_all(dir);
 }
 

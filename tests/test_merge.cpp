@@ -145,6 +145,42 @@ TEST(Junit, ReadsBackWhatJunitXmlWrites) {
     EXPECT_EQ(suites[4].skipped, 1u);
 }
 
+// A failed check's entry names the pictures of its own culler's worst frame, not another's; the
+// culler a check is about survives a shard's file, so a merged junit.xml says the same.
+TEST(Junit, AFailedChecksEntryListsOnlyItsOwnCullersPictures) {
+    ShardResult r;
+    r.set = sixScenarios();
+    r.set.scenarios = {"scenarios/a.json"};
+    r.shard = {0, 1};
+    ScenarioOutcome o = outcomeOf("scenarios/a.json");
+    o.checks = {
+        {"zero error pixels: statistical", "0 on every frame", "4 px", false, "statistical"},
+        {"zero error pixels: statistical+", "0 on every frame", "9 px", false, "statistical+"},
+        {"frame time chc / vfc", "<= 1.00", "1.20", false}};
+    o.captures = {"out/a/worst-error-statistical-frame-00003.png",
+                  "out/a/worst-error-statistical_-frame-00007.png"};
+    r.report.scenarios = {o};
+    auto failureOf = [](const std::string& xml, const std::string& check) {
+        const size_t at = xml.find("name=\"" + check + "\"><failure");
+        EXPECT_NE(at, std::string::npos) << check << " in " << xml;
+        return xml.substr(at, xml.find("</failure>", at) - at);
+    };
+    for (const RegressReport& report : {r.report, [&] {
+                                            const fs::path dir = freshDir("junit-pictures");
+                                            writeShardResult(dir / "shard", r);
+                                            return readShardResult(dir / "shard").report;
+                                        }()}) {
+        const std::string xml = junitXml(report);
+        const std::string plain = failureOf(xml, "zero error pixels: statistical");
+        EXPECT_NE(plain.find("worst-error-statistical-frame-00003.png"), std::string::npos);
+        EXPECT_EQ(plain.find("worst-error-statistical_-frame"), std::string::npos) << plain;
+        const std::string plus = failureOf(xml, "zero error pixels: statistical+");
+        EXPECT_NE(plus.find("worst-error-statistical_-frame-00007.png"), std::string::npos);
+        EXPECT_EQ(plus.find("worst-error-statistical-frame"), std::string::npos) << plus;
+        EXPECT_EQ(failureOf(xml, "frame time chc / vfc").find("capture:"), std::string::npos);
+    }
+}
+
 TEST(Junit, EveryTruncationOfAFileIsRefusedNamingTheFile) {
     const std::string xml = junitXml(wholeReport());
     for (size_t cut = 0; cut + 1 < xml.size(); cut += 7) {
@@ -602,6 +638,33 @@ TEST(HistoryReport, RunsWithinTheSpreadAreNotFlagged) {
     ASSERT_EQ(b.not_compared.size(), 1u);
     EXPECT_NE(b.not_compared[0].find("3 runs, 6 needed for a window of 3"), std::string::npos)
         << b.not_compared[0];
+}
+
+TEST(HistoryReport, FailOnChangeFailsOnWorseOnlyNeverOnBetter) {
+    // A speedup that rose beyond the spread is flagged "better": printed, and exit 0.
+    const fs::path dir = historyOf("faster", {entry("2025-01-01T00:00:00Z", "m", 2.00),
+                                              entry("2025-01-02T00:00:00Z", "m", 2.05),
+                                              entry("2025-01-03T00:00:00Z", "m", 2.90)});
+    const HistoryAnalysis a = analyseHistory(readHistory(dir), windowOf(1));
+    ASSERT_EQ(a.flagged.size(), 1u);
+    EXPECT_FALSE(a.flagged[0].worse);
+    EXPECT_FALSE(a.anyWorse());
+    const std::string out = (dir.parent_path() / "r").string();
+    const Command better =
+        runOccsim("history " + dir.string() + " --out " + out + " --window 1 --fail-on-change");
+    EXPECT_EQ(better.status, 0) << better.output;
+    EXPECT_NE(better.output.find("changed: s statistical: speedup over VFC 2.050 -> 2.900 "
+                                 "(+41.5%, better)"),
+              std::string::npos)
+        << better.output;
+    // The same folder with a slowdown after it: worse, exit 1.
+    appendHistory(dir, entry("2025-01-04T00:00:00Z", "m", 1.20));
+    const HistoryAnalysis b = analyseHistory(readHistory(dir), windowOf(1));
+    EXPECT_TRUE(b.anyWorse());
+    const Command worse =
+        runOccsim("history " + dir.string() + " --out " + out + " --window 1 --fail-on-change");
+    EXPECT_EQ(worse.status, 1) << worse.output;
+    EXPECT_NE(worse.output.find(", worse)"), std::string::npos) << worse.output;
 }
 
 TEST(HistoryReport, MachinesAreSeparateSeriesNeverMixed) {

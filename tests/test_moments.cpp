@@ -33,7 +33,7 @@ std::vector<FrameStats> frames(uint32_t count, Ms ms, Objects objects) {
         out[f].tie_pixels = 0;
         out[f].stray_pixels = 0;
         out[f].missed_objects = f == 6 ? 2 : 0;
-        out[f].drawn_unseen_objects = 0;
+        out[f].tied_away_objects = 0;
         out[f].visible_objects = 5;
     }
     return out;

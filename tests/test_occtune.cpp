@@ -25,7 +25,11 @@
 #include "occsim/culling/registry/registry.h"
 #include "shell_command.h"
 #include "sim/output/plots.h"
+#include "sim/output/report.h"
+#include "sim/output/version.h"
+#include "tune/measure.h"
 #include "tune/parameters.h"
+#include "tune/report.h"
 #include "tune/sample_log.h"
 #include "tune/tuned_file.h"
 
@@ -136,10 +140,10 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     EXPECT_TRUE(conf["verdict"] == "accepted" || conf["verdict"] == "no change") << conf["verdict"];
 
     const std::string report = text(dir / "report.md");
-    for (const char* part :
-         {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)",
-          "held out (seed 8)", "Residual RMS", "Leave-one-out prediction error",
-          "Prediction error on runs left out", "Ceres Solver Report", "| 0 / 0 |"}) {
+    for (const char* part : {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)",
+                             "held out (seed 8)", "Residual RMS", "Leave-one-out prediction error",
+                             "Prediction error on runs left out", "Ceres Solver Report",
+                             "| 0 / 0 |", "held out: seed 8 changes the layout of the scene"}) {
         EXPECT_NE(report.find(part), std::string::npos) << part;
     }
     if (findOnPath("gnuplot")) {
@@ -163,6 +167,48 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     EXPECT_EQ(lineCount(again.output), 1u) << again.output;
     EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
     fs::remove_all(dir);
+}
+
+// A run on a busy machine is said as bench says it of its run: at the end, with how many of the
+// session's runs were busy (the test sets the load; it never depends on the machine's).
+TEST(Occtune, ABusyMachineIsCountedOverTheSessionAndSaidAtTheEnd) {
+    RunMetadata quiet, busy;
+    quiet.hardware_threads = busy.hardware_threads = 2;
+    quiet.load_before = {0.5, 0.5, 0.5};
+    quiet.load_after = {1.9, 1.0, 1.0};
+    busy.load_before = {3.5, 3.0, 3.0};
+    busy.load_after = {4.1, 3.0, 3.0};
+    SessionRuns session;
+    EXPECT_FALSE(noteMachineLoad(session, quiet));
+    EXPECT_TRUE(noteMachineLoad(session, busy));
+    EXPECT_TRUE(noteMachineLoad(session, busy));
+    EXPECT_NE(busyMachineLine(busy).find("busy machine: other work ran beside this run"),
+              std::string::npos);
+    EXPECT_EQ(busyMachineLine(quiet), "");
+    EXPECT_EQ(session.runs, 3u);
+    EXPECT_EQ(session.busy_runs, 2u);
+    TuneResult r;
+    r.hardware_threads = 2;
+    EXPECT_EQ(busyMachineNote(r), "");
+    r.runs = session.runs;
+    r.busy_runs = session.busy_runs;
+    EXPECT_EQ(busyMachineNote(r).rfind("busy machine: 2 of 3 runs of this session ran beside "
+                                       "other work",
+                                       0),
+              0u)
+        << busyMachineNote(r);
+}
+
+TEST(Occtune, VersionPrintsTheSameVersionAndCommitAsOccsim) {
+    const Outcome tune = occtune("--version");
+    ASSERT_EQ(tune.exit_code, 0) << tune.output;
+    EXPECT_EQ(tune.output, versionLine("occtune") + "\n");
+    EXPECT_EQ(tune.output.rfind(std::string("occtune ") + OCCSIM_PROJECT_VERSION + " (commit ", 0),
+              0u)
+        << tune.output;
+    const Outcome sim = run(OCCSIM_EXE, "--version");
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    EXPECT_EQ(sim.output, versionLine("occsim") + "\n");
 }
 
 // A scene warning is said once a session, not once for every batch and confirmation run that

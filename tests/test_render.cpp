@@ -480,6 +480,45 @@ TEST_P(RenderTest, ConditionalNoWaitUnderDeterministicLatencyDrawsUntilTheAnswer
     }
 }
 
+// What the driver executed of the conditional draws, counted by GL_PRIMITIVES_GENERATED around
+// each block, is real: GL_QUERY_WAIT skips the hidden cube (12 triangles) and nothing else, and
+// under deterministic latency a NO_WAIT draw before its answer counts as ready executes.
+TEST_P(RenderTest, ConditionalDrawsTheDriverSkippedAreCountedApartFromThoseSubmitted) {
+    const uint64_t cube = renderer_->triangleCount(1);
+    ASSERT_EQ(cube, 12u);
+    auto skipped = [&](LatencyMode latency, ConditionWait wait) {
+        GlQueryDevice device(*renderer_, latency);
+        ConditionalRendering& c = *device.conditionalRendering();
+        device.beginDrawnSet(3);
+        renderer_->beginFrame();
+        device.drawObject(0);
+        const QueryId hidden = device.issueQuery(boxes_[1]);
+        const QueryId visible = device.issueQuery(boxes_[2]);
+        c.drawIf(hidden, 1, wait);
+        c.drawIf(visible, 2, wait);
+        c.release(hidden);
+        c.release(visible);
+        renderer_->finish();
+        const GlQueryDevice::SkippedDraws s = device.skippedConditionalDraws();
+        EXPECT_EQ(device.counters().objects_drawn, 3u) << "submitted, skipped ones included";
+        EXPECT_EQ(device.counters().triangles_drawn, 3 * cube);
+        // The next frame's set starts with nothing skipped.
+        device.beginDrawnSet(3);
+        EXPECT_EQ(device.skippedConditionalDraws().objects, 0u);
+        return s;
+    };
+    const GlQueryDevice::SkippedDraws waited = skipped(LatencyMode{}, ConditionWait::Wait);
+    EXPECT_EQ(waited.objects, 1u) << "the hidden cube, and only it";
+    EXPECT_EQ(waited.triangles, cube);
+    const GlQueryDevice::SkippedDraws early =
+        skipped(LatencyMode{true, 100}, ConditionWait::NoWait);
+    EXPECT_EQ(early.objects, 0u) << "not ready: drawn unconditionally";
+    const GlQueryDevice::SkippedDraws late = skipped(LatencyMode{true, 0}, ConditionWait::NoWait);
+    EXPECT_EQ(late.objects, 1u) << "ready: the condition is evaluated";
+    // Measured NO_WAIT: the driver decides; never more skipped than hidden.
+    EXPECT_LE(skipped(LatencyMode{}, ConditionWait::NoWait).objects, 1u);
+}
+
 TEST_P(RenderTest, AConditionOnABoxAroundTheEyeDrawsUnconditionally) {
     const float near_radius =
         static_cast<float>(nearPlaneCornerDistance(0.1, glm::radians(90.0), double(kW) / kH));

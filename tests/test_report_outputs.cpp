@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "occsim/culling/testing/scripted_query_device.h"
 #include "sim/output/birds_eye.h"
 #include "sim/output/error_picture.h"
+#include "sim/output/fixed_text.h"
 #include "sim/output/markdown_report.h"
 #include "sim/output/plots.h"
 #include "sim/output/report.h"
@@ -325,6 +327,52 @@ TEST(BirdsEye, ADrawnGroundSlabHidesNoObjectThatWasNotDrawn) {
     EXPECT_GT(with, without / 2) << "the ground slab covers the hidden objects";
 }
 
+// A level whose big floor box is drawn every frame is not one yellow field: the floor is outlined
+// over a faint tint, so the drawn objects on it stand out, each in full, and the floor still shows
+// as drawn (its outline).
+TEST(BirdsEye, ADrawnFloorIsOutlinedSoTheDrawnObjectsOnItStandOut) {
+    auto picture = [](bool floor_drawn) {
+        std::vector<Aabb> boxes = kBoxes;
+        boxes.push_back({{-12, -0.1f, -25}, {75, 0, 3}});  // the floor under every object
+        BspTree tree;
+        BspBuildOptions options;
+        options.max_objects_per_leaf = 1;
+        tree.build(boxes, options);
+        std::vector<uint32_t> drawn = {0, 1, 6};
+        if (floor_drawn) drawn.push_back(7);
+        const std::vector<NodeClass> classes(tree.nodeCount(), NodeClass::Empty);
+        BirdsEyeInput in;
+        in.tree = &tree;
+        in.object_boxes = boxes;
+        in.drawn_objects = drawn;
+        in.node_classes = classes;
+        in.view = sceneView();
+        in.draw_legend = false;
+        return Picture{renderBirdsEye(in, 640, 400), 640, 400};
+    };
+    const Picture hidden_floor = picture(false), drawn_floor = picture(true);
+    const size_t objects = hidden_floor.count(kDrawnObjectColour);
+    ASSERT_GT(objects, 0u);
+    const size_t yellow = drawn_floor.count(kDrawnObjectColour);
+    EXPECT_LT(yellow, size_t{640} * 400 / 5) << "not one yellow field";
+    EXPECT_GT(yellow, objects) << "the floor's outline shows it drawn";
+    // Every drawn object keeps its own yellow pixels, whole, on the drawn floor, and the floor
+    // between them is not yellow.
+    size_t floor_pixels = 0;
+    for (size_t i = 0; i < hidden_floor.rgba.size(); i += 4) {
+        const auto colour = [&](const Picture& p) {
+            return Rgb{p.rgba[i], p.rgba[i + 1], p.rgba[i + 2]};
+        };
+        if (colour(hidden_floor) == kDrawnObjectColour) {
+            ASSERT_EQ(colour(drawn_floor), kDrawnObjectColour) << "an object pixel, " << i / 4;
+        }
+        floor_pixels += colour(hidden_floor) != kDrawnObjectColour &&
+                        colour(drawn_floor) != kDrawnObjectColour &&
+                        colour(drawn_floor) != kBirdsEyeBackground;
+    }
+    EXPECT_GT(floor_pixels, size_t{640} * 400 / 4) << "the floor shows, tinted, under them";
+}
+
 // ---- markdownReport -----------------------------------------------------------------------
 
 RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,
@@ -406,6 +454,37 @@ TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
     EXPECT_NE(md.find("](birds-eye-chc-frame-00020.png)"), std::string::npos);
     EXPECT_NE(md.find("## How to read this"), std::string::npos);
     EXPECT_NE(md.find("popping"), std::string::npos);
+}
+
+// One error pixel in 240 frames is an error: no cell of the table (console and report.md alike)
+// prints a figure that is not zero as 0.0.
+TEST(ComparisonTable, ANonZeroFigureNeverPrintsAsZero) {
+    EXPECT_EQ(fixedNonZero(1.0 / 240, 1), "<0.1");
+    EXPECT_EQ(fixedNonZero(0.3, 0), "<1");
+    EXPECT_EQ(fixedNonZero(-0.001, 2), ">-0.01");
+    EXPECT_EQ(fixedNonZero(0.0, 1), "0.0");
+    EXPECT_EQ(fixedNonZero(0.06, 1), "0.1");
+    EXPECT_EQ(fixedNonZero(2.25, 1), fixed(2.25, 1));
+    BenchResult result;
+    result.runs = {record("vfc", "vfc", 20.0, 0.0, false),
+                   record("async", "async", 10.0, 0.0, true)};
+    RunSummary& s = result.runs[1].summary;
+    s.frames = 240;
+    s.error_pixels_total = 1;
+    s.error_pixels_worst = 1;
+    s.error_pixels_mean = 1.0 / 240;
+    s.queries_mean = 0.02;
+    const ComparisonTable t = comparisonTable(result.runs);
+    auto column = [&](const std::string& name) {
+        return static_cast<size_t>(std::find(t.header.begin(), t.header.end(), name) -
+                                   t.header.begin());
+    };
+    ASSERT_LT(column("err px/fr"), t.header.size());
+    EXPECT_EQ(t.rows[1][column("err px/fr")], "<0.1");
+    EXPECT_EQ(t.rows[1][column("queries/fr")], "<0.1");
+    EXPECT_EQ(t.rows[0][column("err px/fr")], "0.0") << "zero stays zero";
+    EXPECT_NE(formatComparisonTable(result.runs).find("<0.1"), std::string::npos);
+    EXPECT_NE(markdownReport(result, ReportFiles{}).find("| <0.1 |"), std::string::npos);
 }
 
 // ---- writePlots ---------------------------------------------------------------------------
@@ -618,6 +697,86 @@ TEST(ErrorPicture, TheLabelledPictureShowsEachErrorPixelAsASquareUnderALabel) {
             ink += at(x, y) == std::vector<uint8_t>{0, 0, 0};
     }
     EXPECT_GT(ink, 100) << "a label";
+}
+
+// The worst frame's error pixels are found at any size: every cluster of them is ringed, a few
+// picture pixels outside it, and every object ground truth shows there is labelled beside it.
+TEST(ErrorPicture, EveryClusterOfErrorPixelsIsRingedAndEachMissedObjectLabelled) {
+    const uint32_t w = 60, h = 40;  // scale 8
+    ErrorFrame frame;
+    frame.culled_rgba.assign(w * h * 4, 30);
+    frame.truth_rgba.assign(w * h * 4, 90);
+    frame.culled_ids.assign(w * h, 1);
+    frame.truth_ids.assign(w * h, 1);
+    frame.differences.assign(w * h, static_cast<uint8_t>(PixelDifference::Same));
+    auto mark = [&](uint32_t x, uint32_t y, uint32_t truth_id) {
+        frame.differences[y * w + x] = static_cast<uint8_t>(PixelDifference::Error);
+        frame.truth_ids[y * w + x] = truth_id;
+    };
+    for (uint32_t x = 10; x <= 12; ++x) {  // object 4: 3 x 2 pixels
+        mark(x, 5, 5);
+        mark(x, 6, 5);
+    }
+    mark(45, 30, 8);  // object 7: one pixel
+    frame.differences[20 * w + 30] = static_cast<uint8_t>(PixelDifference::Tie);
+    frame.error_pixels = 7;
+
+    const std::vector<PixelCluster> clusters = errorClusters(frame.differences, w, h);
+    ASSERT_EQ(clusters.size(), 2u);
+    EXPECT_EQ(clusters[0].pixels, 6u);
+    EXPECT_EQ(
+        std::vector<uint32_t>({clusters[0].x0, clusters[0].y0, clusters[0].x1, clusters[0].y1}),
+        std::vector<uint32_t>({10, 5, 12, 6}));
+    EXPECT_EQ(clusters[1].pixels, 1u);
+    const std::vector<MissedObject> missed = missedObjects(frame, w, h);
+    ASSERT_EQ(missed.size(), 2u);
+    EXPECT_EQ(missed[0].object, 4u);
+    EXPECT_EQ(missed[1].object, 7u);
+    EXPECT_EQ(missed[1].where.pixels, 1u);
+
+    const uint32_t scale = errorPictureScale(w);
+    ASSERT_EQ(scale, 8u);
+    auto greenIn = [](const LabelledPicture& p, uint32_t x0, uint32_t y0, uint32_t x1,
+                      uint32_t y1) {
+        int n = 0;
+        for (uint32_t y = y0; y <= y1; ++y) {
+            for (uint32_t x = x0; x <= x1; ++x) {
+                const uint8_t* c = p.rgba.data() + (size_t{y} * p.width + x) * 4;
+                n += c[0] == kRingColour[0] && c[1] == kRingColour[1] && c[2] == kRingColour[2];
+            }
+        }
+        return n;
+    };
+    const LabelledPicture picture = labelledErrorPicture(frame, w, h, "async");
+    // The difference panel is the bottom one; frame pixel (x, y) covers picture pixels
+    // [8x, 8x + 7] x [8y, 8y + 7], rows bottom-up. The one-pixel cluster at (45, 30):
+    const uint32_t x0 = 45 * scale, x1 = x0 + scale - 1, y0 = 30 * scale, y1 = y0 + scale - 1;
+    EXPECT_EQ(greenIn(picture, x0, y0, x1, y1), 0) << "the ring stands outside the pixel";
+    EXPECT_GT(greenIn(picture, x0 - 12, y0, x0 - 1, y1), 0) << "left side";
+    EXPECT_GT(greenIn(picture, x1 + 1, y0, x1 + 12, y1), 0) << "right side";
+    EXPECT_GT(greenIn(picture, x0, y1 + 1, x1, y1 + 12), 0) << "above";
+    EXPECT_GT(greenIn(picture, x0, y0 - 12, x1, y0 - 1), 0) << "below";
+    // The larger cluster's ring, on its left.
+    EXPECT_GT(greenIn(picture, 10 * scale - 12, 5 * scale, 10 * scale - 1, 7 * scale - 1), 0);
+    // The label "#7" beside the ring of object 7, right of it.
+    const int label = greenIn(picture, x1 + 13, y0 - 30, x1 + 60, y1 + 30);
+    EXPECT_GT(label, 20) << "a label beside the ring";
+    // Every error pixel stays magenta, whatever is drawn around it.
+    const std::vector<uint8_t> magenta(kErrorColour, kErrorColour + 3);
+    int marked = 0;
+    for (uint32_t y = 0; y < h * scale; ++y) {
+        for (uint32_t x = 0; x < w * scale; ++x) {
+            const uint8_t* c = picture.rgba.data() + (size_t{y} * picture.width + x) * 4;
+            marked += std::vector<uint8_t>(c, c + 3) == magenta;
+        }
+    }
+    EXPECT_EQ(marked, static_cast<int>(7 * scale * scale));
+    // With names, the label says the name too: a longer label.
+    std::vector<std::string> names(8);
+    names[7] = "statue";
+    const LabelledPicture named = labelledErrorPicture(frame, w, h, "async", &names);
+    EXPECT_GT(greenIn(named, 0, 0, w * scale - 1, h * scale - 1),
+              greenIn(picture, 0, 0, w * scale - 1, h * scale - 1) + 20);
 }
 
 }  // namespace

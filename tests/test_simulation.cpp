@@ -14,11 +14,13 @@
 #include "occsim/culling/registry/registry.h"
 #include "render/gl_renderer.h"
 #include "sim/output/pictures.h"
+#include "sim/output/report.h"
 #include "sim/output/run_outputs.h"
 #include "sim/run/runner.h"
 #include "sim/run/simulation.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/scene_info.h"
+#include "sim/world/world.h"
 
 namespace occsim {
 namespace {
@@ -141,6 +143,84 @@ TEST(Simulation, CullersDrawFewerObjectsThanVfcAndIdealDrawsFewestWithNoQueries)
     EXPECT_LT(by("statistical").objects_mean, by("vfc").objects_mean);
     EXPECT_LT(by("stop-and-wait").objects_mean, by("vfc").objects_mean);
     EXPECT_LE(by("ideal").objects_mean, by("stop-and-wait").objects_mean);
+}
+
+// Over-draw is what a culler drew that ground truth does not see: every drawn object is either
+// visible (and not missed) or over-drawn; Ideal over-draws nothing, VFC a great deal.
+TEST(Simulation, OverdrawCountsTheObjectsDrawnThatGroundTruthDoesNotSee) {
+    const BenchResult result =
+        benchSmall(true, LatencyMode{true, 8}, {"vfc", "statistical", "async", "ideal"});
+    const Scene scene = buildScene(parseScenarioFile(kSmall));
+    const uint64_t teapot = scene.meshes[scene.object_mesh[0]].triangleCount();
+    for (const RunRecord& run : result.runs) {
+        double overdrawn = 0;
+        for (const FrameStats& f : run.frames) {
+            EXPECT_EQ(static_cast<int64_t>(f.objects_drawn),
+                      f.visible_objects - f.missed_objects + f.overdrawn_objects)
+                << run.summary.label << " frame " << f.frame;
+            EXPECT_LE(f.overdrawn_triangles, static_cast<int64_t>(f.triangles));
+            EXPECT_EQ(static_cast<uint64_t>(f.overdrawn_triangles),
+                      teapot * static_cast<uint64_t>(f.overdrawn_objects))
+                << "every object is a teapot of one tessellation";
+            overdrawn += static_cast<double>(f.overdrawn_objects);
+        }
+        EXPECT_DOUBLE_EQ(run.summary.overdrawn_objects_mean,
+                         overdrawn / static_cast<double>(run.frames.size()));
+        if (run.summary.label == "ideal") {
+            EXPECT_EQ(run.summary.overdrawn_objects_mean, 0.0);
+        }
+        if (run.summary.label == "vfc") {
+            EXPECT_GT(run.summary.overdrawn_objects_mean, 10.0);
+        }
+    }
+    const ComparisonTable table = comparisonTable(result.runs);
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "overdrawn/fr"),
+              table.header.end());
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "overdrawn tris/fr"),
+              table.header.end());
+    EXPECT_NE(framesCsv(result.runs).find(",stray_pixels,overdrawn_objects,overdrawn_triangles,"),
+              std::string::npos);
+}
+
+// conditional submits every object in the frustum and the device skips the hidden ones: the two
+// are counted apart. With GL_QUERY_WAIT a draw executes exactly when its query passed samples,
+// so the executed draws are the drawn set error measurement reads from those samples.
+TEST(Simulation, ConditionalDrawsAreCountedAsSubmittedAndAsExecuted) {
+    const Scenario scenario = parseScenarioFile(kSmall);
+    BenchOptions options;
+    options.measure_error = true;
+    options.latency = LatencyMode{true, 8};
+    options.frames = 12;
+    const AlgorithmTraits& conditional = *findAlgorithm("conditional");
+    RunConfig waited{"conditional wait=true", &conditional, scenario.culler};
+    waited.culler.edit(conditional).set("wait", 1.0);
+    options.configs = {RunConfig{"vfc", findAlgorithm("vfc"), scenario.culler},
+                       RunConfig{"conditional", &conditional, scenario.culler}, waited};
+    options.algorithms = {findAlgorithm("vfc")};
+    const BenchResult result = runBenchmark(scenario, options);
+    ASSERT_EQ(result.runs.size(), 3u);
+    bool skipped_some = false;
+    for (const RunRecord& run : result.runs) {
+        for (const FrameStats& f : run.frames) {
+            EXPECT_LE(f.executed_objects, f.objects_drawn);
+            EXPECT_LE(f.executed_triangles, f.triangles);
+            if (run.summary.label == "vfc") {
+                EXPECT_EQ(f.executed_objects, f.objects_drawn);
+                EXPECT_EQ(f.executed_triangles, f.triangles);
+            }
+            if (run.summary.label == "conditional wait=true") {
+                EXPECT_EQ(static_cast<int64_t>(f.executed_objects),
+                          f.visible_objects - f.missed_objects + f.overdrawn_objects)
+                    << "frame " << f.frame;
+                skipped_some |= f.executed_objects < f.objects_drawn;
+            }
+        }
+    }
+    EXPECT_TRUE(skipped_some) << "the teapot field hides some of what is in the frustum";
+    EXPECT_LT(result.runs[2].summary.executed_objects_mean, result.runs[2].summary.objects_mean);
+    const ComparisonTable table = comparisonTable(result.runs);
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "exec objs/fr"),
+              table.header.end());
 }
 
 TEST(Simulation, MovingObjectsAreReinsertedIntoOtherNodes) {
@@ -393,7 +473,7 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
         if (lines == 0) {
             EXPECT_NE(
                 line.find(
-                    ",error_pixels,tie_pixels,missed_objects,drawn_unseen_objects,visible_objects"),
+                    ",error_pixels,tie_pixels,missed_objects,tied_away_objects,visible_objects"),
                 std::string::npos)
                 << line;
         }
@@ -404,8 +484,10 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     EXPECT_EQ(summary["algorithms"].size(), 2u);
     EXPECT_EQ(summary["algorithms"][0]["error"]["pixels_total"], 0);
     // The three figures of error, and what tells error from tie (docs/error.md).
-    for (const char* key : {"tie_pixels_total", "tie_pixels_per_frame_mean", "frames_with_ties",
-                            "missed_objects_total", "drawn_unseen_objects_total"}) {
+    for (const char* key :
+         {"tie_pixels_total", "tie_pixels_per_frame_mean", "frames_with_ties",
+          "missed_objects_total", "tied_away_objects_total", "overdrawn_objects_per_frame_mean",
+          "overdrawn_triangles_per_frame_mean"}) {
         EXPECT_TRUE(summary["algorithms"][0]["error"].contains(key)) << key;
     }
     EXPECT_EQ(summary["error_definition"]["tie_tolerance_depth_steps"], 1);

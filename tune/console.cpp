@@ -59,8 +59,11 @@ void printFinished(const TuneSession& s, const PlotResult& charts) {
     printModels(r);
     std::printf("%s\n", costModelLine(r).c_str());
     std::printf("%s", confirmationTable(r).c_str());
+    std::printf("%s\n", heldOutLine(r).c_str());
     if (!s.tuned_file.note.empty()) std::printf("%s\n", s.tuned_file.note.c_str());
     if (!charts.ok && !charts.message.empty()) std::printf("%s\n", charts.message.c_str());
+    if (const std::string busy = busyMachineNote(r); !busy.empty())
+        std::printf("%s\n", busy.c_str());
     std::printf("verdict: %s: %s\n", r.verdict.name(), r.verdict.reason.c_str());
     std::printf("written: %s/{%s,report.md,cost_model.json,samples.jsonl}\n",
                 s.out_dir.string().c_str(), r.verdict.fileName());

@@ -70,6 +70,13 @@ CheckedInput checkInput(const TuneOptions& o) {
     const Scene scene = buildScene(c.scenario);
     c.objects = scene.objectCount();
     c.triangles = scene.triangle_count;
+    Scenario held_out = c.scenario;
+    held_out.seed = o.holdout_seed.value_or(c.scenario.seed + 1);
+    c.held_out_seed = held_out.seed;
+    // The first frames show whether the movers move otherwise: a seed acts when the scene is
+    // built (placements, picks, speeds, directions, phases), never later.
+    c.held_out_effect =
+        seedEffect(scene, buildScene(held_out), c.scenario.dt_s, std::min(c.scenario.frames, 30u));
 
     c.out_dir = o.out.empty() ? fs::path("out") / safeFileName(c.scenario.name) / "tune" : o.out;
     c.log_file = c.out_dir / "samples.jsonl";

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "sim/scenario/scenario.h"
+#include "sim/world/seed_effect.h"
 #include "tune/options.h"
 #include "tune/parameters.h"
 #include "tune/sample_log.h"
@@ -22,6 +23,10 @@ struct CheckedInput {
     std::filesystem::path log_file;
     uint32_t objects = 0;
     uint64_t triangles = 0;
+    // The held-out variant's seed, and what it changes in this scene (the held-out scene is built
+    // here too, so that a seed whose scene cannot be built fails before any run).
+    uint64_t held_out_seed = 0;
+    SeedEffect held_out_effect;
 };
 
 CheckedInput checkInput(const TuneOptions& options);

@@ -13,6 +13,7 @@
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/plugin_loader.h"
 #include "render/headless_context.h"
+#include "sim/output/version.h"
 #include "tune/console.h"
 #include "tune/parameter_table.h"
 #include "tune/parameters.h"
@@ -189,9 +190,13 @@ int main(int argc, char** argv) {
         "curve) to a "
         "scenario (docs/tuning.md)"};
     addOptions(app, o, raw);
+    app.set_version_flag("--version", occsim::versionLine("occtune"),
+                         "Print the version and the commit it was built from, and exit");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "occtune: %s (see occtune --help)\n", e.what());

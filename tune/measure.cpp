@@ -36,11 +36,19 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.command = "tune";
     options.on_frame = on_frame;
     BenchResult result = runBenchmark(scenario, options);
+    noteMachineLoad(session, result.metadata);
     // A run cut short is no sample: its frames would weigh unlike the others'. A signal ends the
     // session as an interruption (the log whole), a culler that threw as a failure while running.
     if (result.partial && result.partial->signal != 0) throw Interrupted();
     if (result.partial) throw std::runtime_error(result.partial->reason);
     return result;
+}
+
+bool noteMachineLoad(SessionRuns& session, const RunMetadata& metadata) {
+    ++session.runs;
+    if (!metadata.busyMachine()) return false;
+    ++session.busy_runs;
+    return true;
 }
 
 LoggedRun loggedRunOf(const occsim::RunRecord& run, uint32_t warmup_frames) {

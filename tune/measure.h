@@ -36,7 +36,14 @@ struct Setting {
 struct SessionRuns {
     BackendChoice backend;
     std::set<std::string> warnings_shown;
+    // The runs of this session, and those on a busy machine (RunMetadata::busyMachine(): the
+    // load average above the hardware threads before a run, or above twice that after it).
+    uint32_t runs = 0, busy_runs = 0;
 };
+
+// Counts a finished run of the session, and whether it ran on a busy machine; returns that.
+// The session says it at its end (busyMachineNote()), as bench says it of its run.
+bool noteMachineLoad(SessionRuns& session, const RunMetadata& metadata);
 
 // The scenario's own culling options with the setting's values (and cost model, if any) for
 // `algorithm` swapped in.

@@ -169,6 +169,27 @@ std::string confirmationTable(const TuneResult& r) {
     return out.str();
 }
 
+std::string busyMachineNote(const TuneResult& r) {
+    if (r.busy_runs == 0) return "";
+    return "busy machine: " + std::to_string(r.busy_runs) + " of " + std::to_string(r.runs) +
+           " runs of this session ran beside other work (load average above the " +
+           std::to_string(r.hardware_threads) +
+           " hardware threads before a run, or above twice that after it); these timings are not "
+           "results";
+}
+
+std::string heldOutLine(const TuneResult& r) {
+    const std::string seed = "held out: seed " + std::to_string(r.held_out_seed);
+    if (r.held_out_changes == "nothing") {
+        return seed +
+               " changes nothing in this scene (no generator lays it out, no mover or animation "
+               "phase is seeded), so the held-out run repeats the fitted frames: a second "
+               "measurement of them, not another scene.";
+    }
+    return seed + " changes " + r.held_out_changes +
+           "; the camera path stays: the fit never saw those frames.";
+}
+
 namespace {
 
 // What was tuned on what, how it was measured, and how noisy the measurements were.
@@ -202,6 +223,8 @@ void headerSection(std::ostringstream& out, const TuneResult& r) {
         << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)"
                                        : " (**zero expected**)")
         << "\n\n";
+    if (const std::string busy = busyMachineNote(r); !busy.empty())
+        out << "**" << busy << ".**\n\n";
 }
 
 // The tuned values beside the reference values, what the model predicts of them, and what it
@@ -247,9 +270,7 @@ void confirmationSection(std::ostringstream& out, const TuneResult& r) {
     out << "\n## Confirmation\n\nThe tuned setting against " << ref
         << ", interleaved frame by frame in one run, " << o.repetitions
         << " repetitions; a ratio below 1 means the tuned values are faster. The held-out variant "
-        << "is the same scenario with another seed (another layout of the scene and other movers, "
-           "the same camera "
-           "path): the fit never saw it.\n\n"
+        << "is the same scenario with another seed. " << heldOutLine(r) << "\n\n"
         << "| variant | seed | frames | mean ratio, median [min-max] | p95 ratio, median [min-max] "
            "| tuned ms | "
         << ref_short << " ms | queries/frame tuned / " << ref_short << " | objects/frame tuned / "

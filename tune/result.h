@@ -51,9 +51,15 @@ struct TuneResult {
     bool cost_model_applied = false;
     std::string cost_model_note;
 
+    // The held-out variant's seed, and what it changes in this scene (SeedEffect::text(): "the
+    // layout of the scene and the movers' starts and motions", or "nothing").
+    uint64_t held_out_seed = 0;
+    std::string held_out_changes;
     std::vector<ConfirmationRow> confirmation;  // fitted, then held out
-    Verdict verdict;                            // judgeConfirmation() of them
-    std::vector<std::string> files;             // written, in out_dir
+    // This session's runs and those on a busy machine (SessionRuns): its timings are not results.
+    uint32_t runs = 0, busy_runs = 0;
+    Verdict verdict;                 // judgeConfirmation() of them
+    std::vector<std::string> files;  // written, in out_dir
     std::string charts_message;
 };
 

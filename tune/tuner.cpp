@@ -52,6 +52,8 @@ void describeSession(TuneResult& r, const TuneOptions& o, const CheckedInput& c,
     r.warmup_frames = c.scenario.warmup_frames;
     r.objects = c.objects;
     r.triangles = c.triangles;
+    r.held_out_seed = c.held_out_seed;
+    r.held_out_changes = c.held_out_effect.text();
     r.hardware_threads = std::thread::hardware_concurrency();
     r.log = &log;
     r.samples = log.samples();
@@ -93,7 +95,7 @@ void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o, c
                    const Setting& reference, SessionRuns& session, Progress& progress) {
     const AlgorithmTraits& algorithm = *c.space.algorithm;
     Scenario held_out = c.scenario;
-    held_out.seed = o.holdout_seed.value_or(c.scenario.seed + 1);
+    held_out.seed = c.held_out_seed;
     for (const auto& run :
          {std::pair<const Scenario*, std::string>{
               &c.scenario, "fitted (seed " + std::to_string(c.scenario.seed) + ")"},
@@ -178,6 +180,8 @@ TuneSession runTuner(const TuneOptions& o) {
         return interrupted(log, true);
     }
     progress.finish();
+    r.runs = session.runs;
+    r.busy_runs = session.busy_runs;
     r.renderer = r.confirmation.front().renderer;
     r.verdict = judgeConfirmation(r.confirmation, r.reference_noise, referenceName(algorithm));
     s.tuned_file = tunedFile(algorithm, writtenSetting(r.verdict, tuned, reference));

@@ -64,31 +64,6 @@ void checkOutputFile(const std::string& flag, const std::string& path, bool give
 
 // --algos as given: every name registered, none twice, none empty (a trailing comma).
 // The names come comma-separated, space-separated or both ("vfc,chc" or "vfc chc").
-std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<std::string>& lists) {
-    std::vector<std::string> names;
-    for (const std::string& list : lists) {
-        size_t start = 0;
-        while (true) {
-            const size_t comma = list.find(',', start);
-            names.push_back(
-                list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-            if (comma == std::string::npos) break;
-            start = comma + 1;
-        }
-    }
-    std::vector<const occsim::AlgorithmTraits*> out;
-    for (const std::string& name : names) {
-        if (name.empty())
-            throw occsim::InputError("--algos: an empty algorithm name (a comma too many?)");
-        const occsim::AlgorithmTraits* a = &algorithmNamed("--algos", name);
-        if (std::find(out.begin(), out.end(), a) != out.end()) {
-            throw occsim::InputError("--algos: '" + name + "' is listed twice");
-        }
-        out.push_back(a);
-    }
-    return out;
-}
-
 namespace {
 
 namespace fs = std::filesystem;

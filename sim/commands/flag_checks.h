@@ -19,9 +19,6 @@ CLI::Validator integerIn(long long lo, long long hi);
 // The registered algorithm `name`, given by `flag`.
 const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name);
 
-// --algos as given: every name registered, none twice, none empty (a trailing comma).
-std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<std::string>& lists);
-
 // An output path is checked before any work, so that a run never ends on a path it cannot
 // write: a folder flag must not name a file, a file flag not a folder, and neither may be empty
 // when given.

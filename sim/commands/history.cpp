@@ -29,7 +29,8 @@ CLI::App* addHistory(CLI::App& app, HistoryFlags& flags) {
                      "Smallest relative change flagged, beside the spread (default 0.05)")
         ->check(CLI::Range(0.0, 10.0));
     history->add_flag("--fail-on-change", flags.fail_on_change,
-                      "Exit with status 1 when a figure got worse beyond the spread");
+                      "Exit with status 1 when a figure got worse beyond the spread "
+                      "(a change for the better is flagged and exits 0)");
     return history;
 }
 
@@ -63,7 +64,7 @@ int historyCommand(const HistoryFlags& flags) {
         "plots\n",
         analysis.runs.size(), analysis.series.size(), analysis.scenarios.size(),
         analysis.flagged.size(), flags.out.c_str(), files.size() - 1);
-    return flags.fail_on_change && !analysis.flagged.empty() ? 1 : 0;
+    return flags.fail_on_change && analysis.anyWorse() ? 1 : 0;
 }
 
 }  // namespace occsim_cli

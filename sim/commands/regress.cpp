@@ -1,7 +1,5 @@
 #include "sim/commands/regress.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -44,6 +42,9 @@ CLI::App* addRegress(CLI::App& app, RegressFlags& flags) {
         "Culling options from this file, overriding every scenario's (see run --help)");
     addPluginFlag(regress, flags.plugins);
     addBackendFlags(regress, flags.backend);
+    regress->add_flag("--quiet", flags.quiet,
+                      "No progress on stderr (default: [i/n] and a bar on a terminal, else a "
+                      "line every 10 s)");
     regress->add_option(
         "--history", flags.history,
         "Append this run's figures to a history folder (occsim history DIR reports it)");
@@ -99,7 +100,7 @@ int regressCommand(const RegressFlags& flags) {
     options.update = flags.update;
     options.out_dir = flags.out;
     options.wait_lock = flags.wait_lock;
-    options.progress = ::isatty(STDERR_FILENO) != 0;
+    options.progress = occsim::stderrProgressStyle(flags.quiet);
     watchFrames();
     const occsim::RegressReport report = occsim::runRegression(options);
     std::printf("%s", report.table().c_str());

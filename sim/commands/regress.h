@@ -19,6 +19,7 @@ struct RegressFlags {
     std::vector<std::string> plugins;
     BackendFlags backend;
     std::string history, commit;
+    bool quiet = false;  // no progress on stderr
 };
 
 CLI::App* addRegress(CLI::App& app, RegressFlags& flags);

@@ -1,12 +1,12 @@
 #include "sim/commands/run_bench.h"
 
-#include <unistd.h>
-
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
+#include "sim/commands/algorithm_entries.h"
 #include "sim/commands/exit_codes.h"
 #include "sim/commands/flag_checks.h"
 #include "sim/output/moments.h"
@@ -56,6 +56,8 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                     "frames, FROM inclusive, TO exclusive, comma-separated (corner=4.0:4.6): every "
                     "figure is also given per segment, beside the scenario's segments");
     addPluginFlag(cmd, flags.plugins);
+    cmd->add_flag("--quiet", flags.quiet,
+                  "No progress on stderr (default: a bar on a terminal, else a line every 10 s)");
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -78,7 +80,8 @@ struct RunRequest {
     std::string command_line;
     const CommonFlags& flags;
     occsim::Scenario scenario;
-    std::vector<const occsim::AlgorithmTraits*> algorithms;
+    std::vector<AlgorithmEntry> entries;                     // as given: cullers, and NAME@FILE
+    std::vector<const occsim::AlgorithmTraits*> algorithms;  // the plain cullers among them
     std::string default_subdir;
 };
 
@@ -88,7 +91,8 @@ RunRequest requestOf(const std::string& command, const std::string& command_line
                      const CommonFlags& flags) {
     loadPlugins(flags.plugins);
     return RunRequest{
-        command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling), {}, ""};
+        command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling),
+        {},      {},           ""};
 }
 
 // The scenario's segments and --segments', placed on the frames this run runs, before any work; a
@@ -115,7 +119,10 @@ std::vector<occsim::Segment> runSegments(const occsim::Scenario& scenario,
 occsim::BenchOptions benchOptions(const RunRequest& request) {
     const CommonFlags& flags = request.flags;
     occsim::BenchOptions o;
-    o.algorithms = request.algorithms;
+    for (const AlgorithmEntry& e : request.entries) {
+        if (std::find(o.algorithms.begin(), o.algorithms.end(), e.algorithm) == o.algorithms.end())
+            o.algorithms.push_back(e.algorithm);
+    }
     o.command = request.command;
     o.command_line = request.command_line;
     o.measure_error = flags.error;
@@ -132,9 +139,15 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.ablate = flags.ablate;
     // The configurations are planned once here, before any work, so that a swept value that makes
     // options invalid or repeats an ablation row is bad input, named by its flag.
-    if (o.sweep || !o.ablate.empty()) {
+    // A NAME@FILE entry makes the configurations explicit: each plain culler's as planned, each
+    // file's beside them, in the order given.
+    if (o.sweep || !o.ablate.empty() || anyCullingFile(request.entries)) {
         try {
-            occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
+            if (anyCullingFile(request.entries)) {
+                o.configs = entryConfigs(request.entries, request.scenario, o.sweep, o.ablate);
+            } else {
+                occsim::planConfigs(request.algorithms, request.scenario.culler, o.sweep, o.ablate);
+            }
         } catch (const std::invalid_argument& e) {
             throw occsim::InputError(std::string(o.ablate.empty() ? "--sweep: " : "--ablate: ") +
                                      e.what());
@@ -158,7 +171,7 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     }
     for (uint32_t frame : flags.capture) checkFrame("--capture", frame);
     o.segments = runSegments(request.scenario, flags.segments, frames);
-    o.progress = ::isatty(STDERR_FILENO) != 0;
+    o.progress = occsim::stderrProgressStyle(flags.quiet);
     return o;
 }
 
@@ -233,7 +246,9 @@ CLI::App* addRun(CLI::App& app, RunFlags& flags) {
         "run", "Run one algorithm over a scenario (summary, frames.csv, summary.json)");
     addCommonFlags(run, flags.common);
     run->add_option("--algo", flags.algorithm,
-                    "Culling algorithm (default: the scenario's): " + occsim::algorithmNameList());
+                    "Culling algorithm (default: the scenario's), or NAME@FILE with a culling "
+                    "file's options (occtune's tuned.json): " +
+                        occsim::algorithmNameList());
     return run;
 }
 
@@ -242,7 +257,9 @@ CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
         "bench", "Run several algorithms over the same frames, interleaved, in one table");
     addCommonFlags(bench, flags.common);
     bench->add_option("--algos", flags.algorithms,
-                      "Algorithms to compare (default: every registered one, plugins' included)");
+                      "Algorithms to compare (default: every registered one, plugins' included); "
+                      "NAME@FILE runs NAME with a culling file's options (occtune's tuned.json) "
+                      "as a row of its own, NAME@<file stem>");
     bench->add_option(
         "--sweep", flags.common.sweep,
         "Sweep one option, [ALGORITHM:]KEY=V1,V2,...: one configuration per value, for "
@@ -257,18 +274,28 @@ CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
 
 int runCommand(const RunFlags& flags, const std::string& command_line) {
     RunRequest request = requestOf("run", command_line, flags.common);
-    const occsim::AlgorithmTraits& algorithm =
-        flags.algorithm.empty() ? *occsim::findAlgorithm(request.scenario.algorithm)
-                                : algorithmNamed("--algo", flags.algorithm);
-    request.algorithms = {&algorithm};
-    request.default_subdir = "run-" + std::string(algorithm.name);
+    if (flags.algorithm.empty()) {
+        request.entries = {{occsim::findAlgorithm(request.scenario.algorithm),
+                            request.scenario.algorithm, std::nullopt}};
+    } else {
+        request.entries = algorithmEntries("--algo", {flags.algorithm});
+        // One culler: "a,b" is no algorithm's name.
+        if (request.entries.size() != 1) algorithmNamed("--algo", flags.algorithm);
+    }
+    request.algorithms = plainAlgorithms(request.entries);
+    request.default_subdir = "run-" + request.entries.front().label;
     return runAndReport(request);
 }
 
 int benchCommand(const BenchFlags& flags, const std::string& command_line) {
     RunRequest request = requestOf("bench", command_line, flags.common);
-    request.algorithms =
-        flags.algorithms_given ? algorithmsNamed(flags.algorithms) : occsim::algorithms();
+    if (flags.algorithms_given) {
+        request.entries = algorithmEntries("--algos", flags.algorithms);
+    } else {
+        for (const occsim::AlgorithmTraits* a : occsim::algorithms())
+            request.entries.push_back({a, a->name, std::nullopt});
+    }
+    request.algorithms = plainAlgorithms(request.entries);
     request.default_subdir = "bench";
     return runAndReport(request);
 }

@@ -31,6 +31,7 @@ struct CommonFlags {
     std::vector<std::string> plugins;
     std::string ablate;
     std::vector<std::string> segments;  // --segments, each as given (joined by ',')
+    bool quiet = false;  // no progress on stderr
 };
 
 struct RunFlags {

@@ -318,8 +318,10 @@ Rgb darker(Rgb c) {
             static_cast<uint8_t>(c.b / 2)};
 }
 
-// Footprints covering at least this share of the picture's area are ground: floors and slabs.
+// Footprints covering at least this share of the picture's area are ground: floors and slabs,
+// outlined over this tint of their colour.
 constexpr double kGroundShare = 0.05;
+constexpr float kGroundTint = 0.15f;
 
 void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in) {
     std::vector<uint8_t> drawn(in.object_boxes.size(), 0);
@@ -327,9 +329,11 @@ void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in
         if (o < drawn.size()) drawn[o] = 1;
     }
     // Ground first (the largest footprint lowest), whether drawn or not: the always-drawn floor
-    // of a city or a library must lie under the objects on it, not be painted over them. Then
-    // the hidden ones, so a drawn object is never painted over by a hidden neighbour. A darker
-    // border keeps overlapping objects apart.
+    // of a city or a library must lie under the objects on it, not be painted over them. A large
+    // object is outlined in its colour over a faint tint, not filled: a drawn floor filled yellow
+    // would make the level one yellow field, in which the drawn objects on it cannot be told
+    // from the floor. Then the hidden ones, so a drawn object is never painted over by a hidden
+    // neighbour. A darker border keeps overlapping objects apart.
     const double picture_area = double(canvas.width()) * double(canvas.height());
     std::vector<std::pair<double, size_t>> ground;
     std::vector<uint8_t> is_ground(in.object_boxes.size(), 0);
@@ -351,7 +355,13 @@ void drawObjects(RasterCanvas& canvas, const TopView& v, const BirdsEyeInput& in
         if (r.x1 - r.x0 >= 3 && r.y1 - r.y0 >= 3)
             canvas.outlineRect(r.x0, r.y0, r.x1, r.y1, darker(fill));
     };
-    for (const auto& g : ground) paint(g.second);
+    for (const auto& g : ground) {
+        const Rgb colour = drawn[g.second] ? kDrawnObjectColour : kHiddenObjectColour;
+        const PixelRect r = rectOf(v, in.object_boxes[g.second]);
+        canvas.fillRect(r.x0, r.y0, r.x1, r.y1, colour, kGroundTint);
+        for (int k = 0; k < 2; ++k)
+            canvas.outlineRect(r.x0 + k, r.y0 + k, r.x1 - k, r.y1 - k, colour);
+    }
     for (int pass = 0; pass < 2; ++pass) {
         for (size_t o = 0; o < in.object_boxes.size(); ++o) {
             if (drawn[o] != pass || is_ground[o] || !isFiniteAndOrdered(in.object_boxes[o]))

@@ -201,7 +201,8 @@ void pictures(std::ostringstream& out, const ReportFiles& c) {
     if (!c.plots_note.empty()) out << c.plots_note << "\n\n";
     if (c.birds_eye_files.empty()) return;
     out << "## Bird's-eye view\n\n"
-        << "The scene from above: objects drawn this frame in yellow, the others grey; BSP node "
+        << "The scene from above: objects drawn this frame in yellow, the others grey (large ones, "
+        << "such as a floor, outlined over a faint tint so that they hide nothing); BSP node "
         << "bounds outlined red where the view frustum culled them, blue where an occlusion query "
         << "culled them, green where they were drawn after a visible query, magenta where their "
         << "objects were drawn without a query, dim blue below an occluded node (never reached), "
@@ -233,7 +234,10 @@ void howToRead(std::ostringstream& out) {
            "same "
         << "surface, no error. **missed** counts, over the frames, objects ground truth saw that "
            "the "
-        << "culler did not draw. **pop max** is the longest run of consecutive frames one visible "
+        << "culler did not draw. **overdrawn/fr** and **overdrawn tris/fr** are over-draw: the "
+        << "objects (and their triangles) the culler drew per frame that ground truth does not see "
+        << "at all, the work culling was there to save. **pop max** is the longest run of "
+           "consecutive frames one visible "
         << "object stayed missing (not drawn): short runs flicker (popping), long ones are holes. "
         << "In the time-against-error plot, down and to the left is better: a configuration that "
            "buys "

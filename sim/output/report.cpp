@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include "sim/output/build_info.h"
 #include "sim/output/fixed_text.h"
 #include "sim/output/moments.h"
+#include "sim/output/version.h"
 #include "sim/run/stop_request.h"
 #include "sim/scenario/option_json.h"
 
@@ -24,9 +24,17 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
                                        "gpu ms",        "queries/fr",
                                        "wait ms/fr",    "answer lat p50/p95",
                                        "tris/fr",       "objs/fr"};
+    // Submitted and executed apart where a culler draws under conditions the device decides.
+    bool conditional = false;
+    for (const RunRecord& r : runs)
+        conditional |= r.algorithm && (r.algorithm->device_needs & kConditionalRendering) != 0;
+    if (conditional) {
+        header.push_back("exec tris/fr");
+        header.push_back("exec objs/fr");
+    }
     if (error) {
-        for (const char* h :
-             {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed", "pop max"}) {
+        for (const char* h : {"err px/fr", "p99 px", "worst px", "err px", "tie px", "missed",
+                              "pop max", "overdrawn/fr", "overdrawn tris/fr"}) {
             header.push_back(h);
         }
     }
@@ -34,41 +42,48 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
     if (error) header.push_back("pareto");
 
     const bool nothing_in_view = nothingInView(runs);
+    // Every figure through fixedNonZero: 1 error pixel in 240 frames reads "<0.1", never 0.0.
     std::vector<std::vector<std::string>> rows;
     for (const RunRecord& r : runs) {
         const RunSummary& s = r.summary;
         const double speedup = speedupOverReference(runs, s), ideal = ratioToOracle(runs, s);
-        std::string mean = fixed(s.frame_ms.mean, 2);
+        std::string mean = fixedNonZero(s.frame_ms.mean, 2);
         if (repeated)
-            mean +=
-                " [" + fixed(s.frame_ms_mean_min, 2) + "-" + fixed(s.frame_ms_mean_max, 2) + "]";
+            mean += " [" + fixedNonZero(s.frame_ms_mean_min, 2) + "-" +
+                    fixedNonZero(s.frame_ms_mean_max, 2) + "]";
         // GPU time only where it was measured: never on a software rasteriser, whose timer
         // queries do not time rasterisation (see the console's backend line).
-        const std::string gpu = s.gpu_ms_mean >= 0 ? fixed(s.gpu_ms_mean, 2) : "n/a";
-        const std::string latency =
-            s.answer_latency_median >= 0
-                ? fixed(s.answer_latency_median, 0) + "/" + fixed(s.answer_latency_p95, 0)
-                : "-";
+        const std::string gpu = s.gpu_ms_mean >= 0 ? fixedNonZero(s.gpu_ms_mean, 2) : "n/a";
+        const std::string latency = s.answer_latency_median >= 0
+                                        ? fixedNonZero(s.answer_latency_median, 0) + "/" +
+                                              fixedNonZero(s.answer_latency_p95, 0)
+                                        : "-";
         std::vector<std::string> row = {s.label,
                                         mean,
-                                        fixed(s.frame_ms.median, 2),
-                                        fixed(s.frame_ms.p95, 2),
+                                        fixedNonZero(s.frame_ms.median, 2),
+                                        fixedNonZero(s.frame_ms.p95, 2),
                                         gpu,
-                                        fixed(s.queries_mean, 1),
-                                        fixed(s.wait_ms_mean, 3),
+                                        fixedNonZero(s.queries_mean, 1),
+                                        fixedNonZero(s.wait_ms_mean, 3),
                                         latency,
-                                        fixed(s.triangles_mean, 0),
-                                        fixed(s.objects_mean, 1)};
+                                        fixedNonZero(s.triangles_mean, 0),
+                                        fixedNonZero(s.objects_mean, 1)};
+        if (conditional) {
+            row.push_back(fixedNonZero(s.executed_triangles_mean, 0));
+            row.push_back(fixedNonZero(s.executed_objects_mean, 1));
+        }
         // Every frame was warm-up: there is no figure to show, and 0.00 would read as measured.
         if (s.timed_frames == 0) std::fill(row.begin() + 1, row.end(), "not timed");
         if (error) {
-            row.push_back(fixed(s.error_pixels_mean, 1));
-            row.push_back(fixed(s.error_pixels_p99, 0));
+            row.push_back(fixedNonZero(s.error_pixels_mean, 1));
+            row.push_back(fixedNonZero(s.error_pixels_p99, 0));
             row.push_back(std::to_string(s.error_pixels_worst));
             row.push_back(std::to_string(s.error_pixels_total));
             row.push_back(std::to_string(s.tie_pixels_total));
             row.push_back(std::to_string(s.missed_objects_total));
             row.push_back(std::to_string(s.popping_max_frames));
+            row.push_back(fixedNonZero(s.overdrawn_objects_mean, 1));
+            row.push_back(fixedNonZero(s.overdrawn_triangles_mean, 0));
         }
         // Ratios of empty frames mean nothing: n/a, and the headline says why.
         const std::string none = nothing_in_view ? "n/a" : "-";
@@ -106,8 +121,9 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
     std::ostringstream out;
     out << "configuration,repetition,frame,time_s,frame_ms,cull_cpu_ms,wait_ms,update_ms,queries,"
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
-           "missed_objects,drawn_unseen_objects,visible_objects,gpu_ms,answers,answer_latency_"
-           "median,stray_pixels\n";
+           "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
+           "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
+           "executed_triangles\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -117,12 +133,14 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << fixed(f.wait_ms, 4) << ',' << fixed(f.update_ms, 4) << ',' << f.queries
                     << ',' << f.objects_drawn << ',' << f.triangles << ',' << f.moved_objects << ','
                     << f.node_changes << ',' << f.error_pixels << ',' << f.tie_pixels << ','
-                    << f.missed_objects << ',' << f.drawn_unseen_objects << ',' << f.visible_objects
+                    << f.missed_objects << ',' << f.tied_away_objects << ',' << f.visible_objects
                     << ','
                     // Empty where not measured (gpu_ms on a software rasteriser; no answers).
                     << (f.gpu_ms >= 0 ? fixed(f.gpu_ms, 4) : "") << ',' << f.answers << ','
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
-                    << ',' << f.stray_pixels << '\n';
+                    << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
+                    << f.overdrawn_triangles << ',' << f.executed_objects << ','
+                    << f.executed_triangles << '\n';
             }
         }
     }
@@ -151,7 +169,9 @@ nlohmann::json errorJson(const RunSummary& s) {
             {"frames_with_ties", s.frames_with_ties},
             {"stray_pixels_total", s.stray_pixels_total},
             {"missed_objects_total", s.missed_objects_total},
-            {"drawn_unseen_objects_total", s.drawn_unseen_objects_total},
+            {"tied_away_objects_total", s.tied_away_objects_total},
+            {"overdrawn_objects_per_frame_mean", s.overdrawn_objects_mean},
+            {"overdrawn_triangles_per_frame_mean", s.overdrawn_triangles_mean},
             {"popping_events", s.popping_events},
             {"popping_mean_frames", s.popping_mean_frames},
             {"popping_max_frames", s.popping_max_frames}};
@@ -181,6 +201,10 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         {"queries_per_frame", s.queries_mean},
         {"objects_per_frame", s.objects_mean},
         {"triangles_per_frame", s.triangles_mean},
+        // Of the draws submitted, those the device executed (conditional draws it skipped are
+        // not); equal to the submitted counts for every culler that draws no conditional draw.
+        {"executed_objects_per_frame", s.executed_objects_mean},
+        {"executed_triangles_per_frame", s.executed_triangles_mean},
         // null where not measured: see machine.gpu_time_meaningful.
         {"gpu_ms", s.gpu_ms_mean >= 0
                        ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}
@@ -199,6 +223,7 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
     j["options"] = nlohmann::json(optionValuesJson(r.options));
     j["approximation"] = {{"threshold_pixels", r.approximation.threshold_pixels},
                           {"stale_results", r.approximation.stale_results}};
+    if (!r.culling_file.empty()) j["culling_file"] = r.culling_file;
     if (r.cost_model) j["cost_model"] = costModelJson(*r.cost_model);
     if (const double v = speedupOverReference(runs, s); v > 0) j["speedup_over_vfc"] = v;
     if (const double v = ratioToOracle(runs, s); v > 0) j["ratio_to_ideal"] = v;
@@ -271,7 +296,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["scenario"] = scenarioJson(m);
     summary["machine"] = machineJson(m);
     summary["command"] = m.command_line;
-    summary["occsim"] = {{"version", OCCSIM_VERSION}, {"commit", OCCSIM_GIT_COMMIT}};
+    summary["occsim"] = {{"version", occsimVersion()}, {"commit", occsimCommit()}};
     summary["nothing_in_view"] =
         nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
@@ -348,6 +373,14 @@ std::string aggregationLine(const BenchResult& result) {
     return "";
 }
 
+std::string busyMachineLine(const RunMetadata& m) {
+    if (!m.busyMachine()) return "";
+    return "busy machine: other work ran beside this run (load average above its " +
+           std::to_string(m.hardware_threads) +
+           " hardware threads before it, or above twice that after it); these timings are not "
+           "results";
+}
+
 std::string runHeadline(const BenchResult& result) {
     const RunMetadata& m = result.metadata;
     const uint32_t timed = result.runs.empty() ? 0 : result.runs.front().summary.timed_frames;
@@ -365,14 +398,7 @@ std::string runHeadline(const BenchResult& result) {
                   "\nmachine: %u hardware threads, load average %.2f before the run, %.2f after",
                   m.hardware_threads, m.load_before[0], m.load_after[0]);
     headline += load;
-    if (m.busyMachine()) {
-        std::snprintf(
-            load, sizeof load,
-            "\nbusy machine: other work ran beside this run (load average above its %u hardware "
-            "threads before it, or above twice that after it); these timings are not results",
-            m.hardware_threads);
-        headline += load;
-    }
+    if (m.busyMachine()) headline += "\n" + busyMachineLine(m);
     headline += "\nbackend: " + backendLabel(m) + ", vendor " + m.gl_vendor + ", driver " +
                 m.driver +
                 (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");

@@ -46,4 +46,8 @@ std::string aggregationLine(const BenchResult& result);
 // when the machine was busier than its hardware threads.
 std::string runHeadline(const BenchResult& result);
 
+// "busy machine: other work ran beside this run (...); these timings are not results" when
+// RunMetadata::busyMachine(), else empty: the headline's line, which occtune gives too.
+std::string busyMachineLine(const RunMetadata& m);
+
 }  // namespace occsim

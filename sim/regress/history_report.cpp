@@ -77,6 +77,11 @@ std::string FlaggedChange::text() const {
            " [" + series + "]";
 }
 
+bool HistoryAnalysis::anyWorse() const {
+    return std::any_of(flagged.begin(), flagged.end(),
+                       [](const FlaggedChange& c) { return c.worse; });
+}
+
 HistoryAnalysis analyseHistory(std::vector<HistoryEntry> runs, const HistoryOptions& options) {
     HistoryAnalysis a;
     a.runs = std::move(runs);

@@ -43,6 +43,10 @@ struct HistoryAnalysis {
     std::vector<std::string> scenarios;  // sorted
     std::vector<FlaggedChange> flagged;
     std::vector<std::string> not_compared;  // series with too few runs, said in the report
+
+    // Whether a flagged change is worse: what `history --fail-on-change` fails on (a figure that
+    // got better is flagged and printed, and exits 0).
+    bool anyWorse() const;
 };
 
 HistoryAnalysis analyseHistory(std::vector<HistoryEntry> runs, const HistoryOptions& options);

@@ -95,7 +95,11 @@ std::string junitXml(const RegressReport& report) {
                 out << "/>\n";
             } else {
                 std::string detail = "expected " + c.expected + ", got " + c.got;
-                for (const auto& capture : s.captures) detail += "\ncapture: " + capture;
+                // Its own configuration's pictures only: another culler's worst frame says
+                // nothing about this check.
+                for (const auto& capture : s.captures) {
+                    if (isPictureOf(capture, c.algorithm)) detail += "\ncapture: " + capture;
+                }
                 out << "><failure message=\""
                     << xmlEscape("expected " + c.expected + ", got " + c.got) << "\">"
                     << xmlEscape(detail) << "</failure></testcase>\n";

@@ -126,6 +126,7 @@ BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expect
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
     bench.backend = options.backend;
+    bench.progress = options.progress;
     return bench;
 }
 
@@ -235,7 +236,7 @@ RegressReport runRegression(const RegressOptions& options) {
     }
     for (size_t i = 0; i < mine.size(); ++i) {
         const std::string file = mine[i]->file.file.string();
-        if (options.progress)
+        if (options.progress == ProgressStyle::Bar)
             std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, mine.size(), file.c_str());
         report.scenarios.push_back(runOne(*mine[i], options));
         const std::vector<CheckResult>& last = report.scenarios.back().checks;

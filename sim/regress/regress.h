@@ -63,7 +63,15 @@ struct CheckResult {
     std::string expected;
     std::string got;
     bool passed = false;
+    // The configuration the check is about ("statistical"); empty for a check of several or of
+    // the scenario. A failed check's JUnit entry lists that configuration's pictures only.
+    std::string algorithm = {};
 };
+
+// The file name of a configuration's worst-error picture, "worst-error-<label>-frame-N.png"
+// (the label made one path component), and whether `capture` (a path) is one of its pictures.
+std::string worstErrorPictureName(const std::string& algorithm, uint32_t frame);
+bool isPictureOf(const std::string& capture, const std::string& algorithm);
 
 struct ScenarioOutcome {
     std::string scenario;  // path as given/found
@@ -72,7 +80,7 @@ struct ScenarioOutcome {
     bool skipped = false;
     std::string note;  // why skipped, or what an update changed
     std::vector<CheckResult> checks;
-    std::vector<std::string> captures;  // pictures written for failures
+    std::vector<std::string> captures;  // pictures written for failures (worstErrorPictureName)
     double seconds = 0.0;
 
     bool passed() const;
@@ -110,7 +118,9 @@ struct RegressOptions {
     // (run_folder.h) under a lock of its own; the caller holds the lock on out_dir.
     std::filesystem::path out_dir = "out/regress";
     bool wait_lock = false;  // wait for a run that holds a scenario folder's lock (else refuse)
-    bool progress = false;
+    // On stderr: with a bar (a terminal) "[i/n] scenario" before each scenario, and each run's
+    // frames as bench gives them (sim/run/progress.h).
+    ProgressStyle progress = ProgressStyle::None;
     BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>

@@ -19,6 +19,7 @@ CheckResult compareSeries(const std::string& what, const std::string& algorithm,
                           const std::vector<T>& expected, const std::vector<T>& got) {
     CheckResult c;
     c.check = what + " per frame = baseline: " + algorithm;
+    c.algorithm = algorithm;
     c.passed = expected == got;
     if (c.passed) {
         c.expected = c.got = "identical over " + std::to_string(got.size()) + " frames";
@@ -60,7 +61,7 @@ void checkZeroError(ResultChecks& checks, const Expectations& expect) {
     for (const std::string& name : expect.zero_error) {
         const RunSummary& s = checks.runOf(name).summary;
         CheckResult c{"zero error pixels: " + name, "0 on every frame", "",
-                      s.error_pixels_total == 0};
+                      s.error_pixels_total == 0, name};
         // Ties (another object at the same depth) are no error; shown so a reader sees them apart.
         const std::string ties = " (" + std::to_string(s.tie_pixels_total) + " tie px)";
         c.got = c.passed ? "0" + ties
@@ -71,7 +72,7 @@ void checkZeroError(ResultChecks& checks, const Expectations& expect) {
         if (!c.passed) checks.capture(name);
         checks.outcome.checks.push_back(c);
         CheckResult m{"no missed objects: " + name, "0 on every frame", "",
-                      s.missed_objects_total == 0};
+                      s.missed_objects_total == 0, name};
         m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
         checks.outcome.checks.push_back(m);
     }
@@ -83,7 +84,7 @@ void checkMaxErrorPixels(ResultChecks& checks, const Expectations& expect) {
         CheckResult c{"error pixels per frame: " + name, "<= " + std::to_string(bound),
                       std::to_string(s.error_pixels_worst) + " (frame " +
                           std::to_string(s.error_worst_frame) + ")",
-                      s.error_pixels_worst <= bound};
+                      s.error_pixels_worst <= bound, name};
         if (!c.passed) checks.capture(name);
         checks.outcome.checks.push_back(c);
     }
@@ -326,13 +327,22 @@ void checkBaseline(ResultChecks& checks, const Expectations& expect, const Basel
 
 }  // namespace
 
+std::string worstErrorPictureName(const std::string& algorithm, uint32_t frame) {
+    return "worst-error-" + safeFileName(algorithm) + "-frame-" + std::to_string(frame) + ".png";
+}
+
+bool isPictureOf(const std::string& capture, const std::string& algorithm) {
+    const std::string name = std::filesystem::path(capture).filename().string();
+    return !algorithm.empty() &&
+           name.rfind("worst-error-" + safeFileName(algorithm) + "-frame-", 0) == 0;
+}
+
 void ResultChecks::capture(const std::string& algorithm) {
     for (size_t a = 0; a < result.runs.size(); ++a) {
         if (result.runs[a].summary.label != algorithm) continue;
         const ErrorFrame& worst = result.worst_error_frames[a];
         if (worst.error_pixels == 0) return;
-        const std::string name = "worst-error-" + safeFileName(algorithm) + "-frame-" +
-                                 std::to_string(worst.frame) + ".png";
+        const std::string name = worstErrorPictureName(algorithm, worst.frame);
         const std::string published = (published_dir / name).string();
         // An algorithm that fails several error checks (zero error and its baseline) has
         // one worst frame: one picture, named once.

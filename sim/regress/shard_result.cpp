@@ -34,8 +34,10 @@ std::string fileText(const std::filesystem::path& file) {
 Json outcomeJson(const ScenarioOutcome& s) {
     Json checks = Json::array();
     for (const CheckResult& c : s.checks) {
-        checks.push_back(
-            {{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
+        Json check = {
+            {"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}};
+        if (!c.algorithm.empty()) check["algorithm"] = c.algorithm;
+        checks.push_back(check);
     }
     return {{"file", s.scenario},     {"id", s.id},      {"name", s.name},
             {"skipped", s.skipped},   {"note", s.note},  {"seconds", s.seconds},
@@ -63,7 +65,8 @@ ScenarioOutcome readOutcome(const JsonValueReader& value) {
     for (size_t i = 0; i < checks.size(); ++i) {
         JsonObjectReader c = checks.at(i).asObject();
         s.checks.push_back({c.required("check").asString(), c.required("expected").asString(),
-                            c.required("got").asString(), c.required("passed").asBool()});
+                            c.required("got").asString(), c.required("passed").asBool(),
+                            c.string("algorithm", "")});
         c.finish();
     }
     o.finish();

@@ -29,6 +29,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
     std::vector<double> frame_ms, gpu_ms;
     bool gpu_measured = true;
     double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
+    double executed_objects = 0, executed_triangles = 0;
     for (const FrameStats& f : frames) {
         if (f.error_pixels >= 0) {
             s.error_measured = true;
@@ -36,7 +37,9 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
             s.tie_pixels_total += f.tie_pixels;
             s.stray_pixels_total += std::max<int64_t>(f.stray_pixels, 0);
             s.missed_objects_total += f.missed_objects;
-            s.drawn_unseen_objects_total += f.drawn_unseen_objects;
+            s.tied_away_objects_total += f.tied_away_objects;
+            s.overdrawn_objects_mean += static_cast<double>(f.overdrawn_objects);
+            s.overdrawn_triangles_mean += static_cast<double>(f.overdrawn_triangles);
             if (f.error_pixels > 0) ++s.frames_with_error;
             if (f.tie_pixels > 0) ++s.frames_with_ties;
             if (f.error_pixels > s.error_pixels_worst) {
@@ -54,6 +57,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         queries += static_cast<double>(f.queries);
         objects += static_cast<double>(f.objects_drawn);
         triangles += static_cast<double>(f.triangles);
+        executed_objects += static_cast<double>(f.executed_objects);
+        executed_triangles += static_cast<double>(f.executed_triangles);
     }
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
@@ -74,6 +79,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.error_pixels_p99 = error[std::clamp<size_t>(rank, 1, error.size()) - 1];
         s.tie_pixels_mean =
             static_cast<double>(s.tie_pixels_total) / static_cast<double>(error.size());
+        s.overdrawn_objects_mean /= static_cast<double>(error.size());
+        s.overdrawn_triangles_mean /= static_cast<double>(error.size());
     }
     if (s.timed_frames > 0) {
         const double n = s.timed_frames;
@@ -83,6 +90,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.queries_mean = queries / n;
         s.objects_mean = objects / n;
         s.triangles_mean = triangles / n;
+        s.executed_objects_mean = executed_objects / n;
+        s.executed_triangles_mean = executed_triangles / n;
     }
     return s;
 }
@@ -175,6 +184,9 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.queries_mean = median([](const RunSummary& r) { return r.queries_mean; });
     out.objects_mean = median([](const RunSummary& r) { return r.objects_mean; });
     out.triangles_mean = median([](const RunSummary& r) { return r.triangles_mean; });
+    out.executed_objects_mean = median([](const RunSummary& r) { return r.executed_objects_mean; });
+    out.executed_triangles_mean =
+        median([](const RunSummary& r) { return r.executed_triangles_mean; });
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });
@@ -183,16 +195,17 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     // shows the miss. Totals are sums over every repetition's frames, per-frame means are over
     // those frames, the worst frame and p99 the worst repetition's.
     out.error_pixels_total = out.missed_objects_total = out.tie_pixels_total = 0;
-    out.stray_pixels_total = out.drawn_unseen_objects_total = 0;
+    out.stray_pixels_total = out.tied_away_objects_total = 0;
     out.frames_with_error = out.frames_with_ties = out.popping_events = 0;
     out.error_pixels_mean = out.tie_pixels_mean = out.error_pixels_p99 = 0;
+    out.overdrawn_objects_mean = out.overdrawn_triangles_mean = 0;
     double popping_frames = 0;
     for (const RunSummary& r : reps) {
         out.error_pixels_total += r.error_pixels_total;
         out.missed_objects_total += r.missed_objects_total;
         out.tie_pixels_total += r.tie_pixels_total;
         out.stray_pixels_total += r.stray_pixels_total;
-        out.drawn_unseen_objects_total += r.drawn_unseen_objects_total;
+        out.tied_away_objects_total += r.tied_away_objects_total;
         out.frames_with_error += r.frames_with_error;
         out.frames_with_ties += r.frames_with_ties;
         out.popping_events += r.popping_events;
@@ -200,6 +213,8 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
         // Every repetition renders the same frames: the mean over all of them is the mean of means.
         out.error_pixels_mean += r.error_pixels_mean / static_cast<double>(n);
         out.tie_pixels_mean += r.tie_pixels_mean / static_cast<double>(n);
+        out.overdrawn_objects_mean += r.overdrawn_objects_mean / static_cast<double>(n);
+        out.overdrawn_triangles_mean += r.overdrawn_triangles_mean / static_cast<double>(n);
         out.error_pixels_p99 = std::max(out.error_pixels_p99, r.error_pixels_p99);
     }
     out.popping_mean_frames = out.popping_events ? popping_frames / out.popping_events : 0.0;

@@ -22,8 +22,12 @@ struct FrameStats {
     uint64_t answers = 0;
     double answer_latency_median = -1.0;
     uint64_t queries = 0;
-    uint64_t objects_drawn = 0;
+    uint64_t objects_drawn = 0;  // submitted draws, and their triangles
     uint64_t triangles = 0;
+    // Of those, what the device executed: all of them but conditional draws it skipped on their
+    // query's result (render/gl_query_device.h: counted with GL_PRIMITIVES_GENERATED).
+    uint64_t executed_objects = 0;
+    uint64_t executed_triangles = 0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -32,9 +36,14 @@ struct FrameStats {
     int64_t stray_pixels = -1;    // ground truth's stray fragments the culled frame lacks: no error
     int64_t missed_objects = -1;  // seen by ground truth, not drawn by the culler
     // Seen by ground truth and drawn, yet without a pixel in the culled frame: every one of its
-    // pixels went to a tie (what "missed" counted when it was judged by IDs alone).
-    int64_t drawn_unseen_objects = -1;
+    // pixels went to a tie (what "missed" counted when it was judged by IDs alone). Named
+    // drawn_unseen_objects before; no file read back holds it.
+    int64_t tied_away_objects = -1;
     int64_t visible_objects = -1;  // objects with at least one pixel in ground truth
+    // Over-draw: objects the culler drew that ground truth does not see (no pixel of theirs in
+    // the full render), and their triangles: the work culling was there to save.
+    int64_t overdrawn_objects = -1;
+    int64_t overdrawn_triangles = -1;
 };
 
 struct Distribution {
@@ -57,6 +66,7 @@ struct RunSummary {
     uint64_t answers = 0;
     double answer_latency_median = -1, answer_latency_p95 = -1;
     double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
+    double executed_objects_mean = 0, executed_triangles_mean = 0;  // over the timed frames
     bool error_measured = false;
     int64_t error_pixels_total = 0;
     int64_t error_pixels_worst = 0;
@@ -67,7 +77,9 @@ struct RunSummary {
     double tie_pixels_mean = 0;  // per frame, over all frames
     int64_t stray_pixels_total = 0;
     int64_t missed_objects_total = 0;
-    int64_t drawn_unseen_objects_total = 0;
+    int64_t tied_away_objects_total = 0;
+    // Over-draw per frame, over all frames (FrameStats::overdrawn_objects).
+    double overdrawn_objects_mean = 0, overdrawn_triangles_mean = 0;
     double error_pixels_mean = 0;  // per frame, over all frames
     double error_pixels_p99 = 0;   // per frame, nearest rank
     // Popping: runs of consecutive frames in which an object visible in ground truth was not

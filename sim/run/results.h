@@ -29,6 +29,7 @@ struct RunRecord {
     // (summary.json records them), and the shared approximation knobs.
     OptionValues options;
     ApproximationOptions approximation;
+    std::string culling_file;             // RunConfig::culling_file
     std::optional<CostModel> cost_model;  // the one it read, when it weighs costs
     bool pareto = false;                  // on the time-against-error front
     // Per segment of RunMetadata::segments: the summary over its frames, over the repetitions

@@ -21,6 +21,9 @@ struct RunConfig {
     std::string label;                           // "statistical", or "statistical base_time=0.3"
     const AlgorithmTraits* algorithm = nullptr;  // a registered culler
     CullerOptions culler;                        // with the approximation knobs
+    // The culling file its options came from (bench --algos NAME@FILE), recorded in summary.json;
+    // empty for the scenario's own.
+    std::string culling_file = {};
 };
 
 struct Sweep {

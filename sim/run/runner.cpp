@@ -21,15 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void printProgress(uint32_t done, uint32_t total, Clock::time_point start) {
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    const double left = done > 0 ? elapsed / done * (total - done) : 0.0;
-    std::fprintf(stderr, "\rframe %u/%u  %.0f s elapsed, about %.0f s left   ", done, total,
-                 elapsed, left);
-    if (done == total) std::fputc('\n', stderr);
-    std::fflush(stderr);
-}
-
 // The 1, 5 and 15-minute load averages, or -1 where the system does not say.
 std::array<double, 3> loadAverage() {
     std::array<double, 3> load{-1.0, -1.0, -1.0};
@@ -104,6 +95,7 @@ void prepareRecords(BenchResult& result, const std::vector<RunConfig>& configs) 
         result.runs[c].algorithm = configs[c].algorithm;
         result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
         result.runs[c].approximation = configs[c].culler.approximation;
+        result.runs[c].culling_file = configs[c].culling_file;
         const AlgorithmTraits& a = *configs[c].algorithm;
         if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
             result.runs[c].cost_model = configs[c].culler.cost_model;
@@ -142,18 +134,13 @@ std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, Sha
     return sims;
 }
 
-// The progress line, at most four times a second and on the last frame.
+// The run's progress (sim/run/progress.h), timed from the first frame.
 struct ProgressClock {
     Clock::time_point start = Clock::now();
-    Clock::time_point last = start;
-    uint32_t total_frames = 0;
+    RunProgress progress;
 
-    void frameDone(bool enabled, uint32_t done) {
-        if (enabled &&
-            (Clock::now() - last > std::chrono::milliseconds(250) || done == total_frames)) {
-            printProgress(done, total_frames, start);
-            last = Clock::now();
-        }
+    void frameDone(uint32_t done) {
+        progress.frameDone(done, std::chrono::duration<double>(Clock::now() - start).count());
     }
 };
 
@@ -227,7 +214,7 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
                     FrameEvent{rep, f, stage.configs[c], *sims[c], scenario, stage.renderer});
             }
         }
-        progress.frameDone(options.progress, rep * scenario.frames + f + 1);
+        progress.frameDone(rep * scenario.frames + f + 1);
         // A signal after the run's last frame loses nothing: the run is whole, not partial.
         const bool frames_left =
             f + 1 < scenario.frames || rep + 1 < std::max(1u, options.repetitions);
@@ -355,11 +342,14 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     prepareRecords(result, configs);
 
     const Stage stage{scenario, configs, options, *context, renderer};
-    ProgressClock progress;
-    progress.total_frames = repetitions * scenario.frames;
+    ProgressClock progress{
+        Clock::now(), RunProgress(options.progress,
+                                  scenario.name + ", " + std::to_string(configs.size()) +
+                                      (configs.size() == 1 ? " configuration" : " configurations"),
+                                  repetitions * scenario.frames, scenario.frames)};
     for (uint32_t rep = 0; rep < repetitions && !result.partial; ++rep)
         runRepetition(result, stage, scene, rep, progress);
-    if (result.partial && options.progress) std::fputc('\n', stderr);  // ends the progress line
+    progress.progress.finish();  // ends a bar a stopped run left open
 
     result.metadata.load_before = load_before;
     result.metadata.load_after = loadAverage();

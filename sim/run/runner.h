@@ -14,6 +14,7 @@
 
 #include "occsim/culling/registry/registry.h"
 #include "render/headless_context.h"
+#include "sim/run/progress.h"
 #include "sim/run/results.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
@@ -49,14 +50,14 @@ struct BenchOptions {
     std::vector<RunConfig> configs;
     bool measure_error = false;
     LatencyMode latency;
-    BackendChoice backend;                // --backend, --device
-    std::optional<uint32_t> frames;       // overrides the scenario's frame count
-    std::string command = "bench";        // recorded in the metadata
-    std::string command_line;             // recorded in the metadata
-    std::string scenario_id;              // a regression run's id of the scenario (metadata)
-    bool progress = false;                // a progress line on stderr
-    bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
-    uint32_t repetitions = 1;             // each configuration runs this often; medians reported
+    BackendChoice backend;                         // --backend, --device
+    std::optional<uint32_t> frames;                // overrides the scenario's frame count
+    std::string command = "bench";                 // recorded in the metadata
+    std::string command_line;                      // recorded in the metadata
+    std::string scenario_id;  // a regression run's id of the scenario (metadata)
+    ProgressStyle progress = ProgressStyle::None;  // on stderr (sim/run/progress.h)
+    bool keep_worst_error_frame = false;           // see SimulationOptions; needs measure_error
+    uint32_t repetitions = 1;  // each configuration runs this often; medians reported
     // Frame f renders configuration (f + k) mod n as its k-th, so that every configuration takes
     // every place within a frame equally often. A place has its own cost (the first
     // configuration's world was advanced longest before it renders, and it renders right after

@@ -117,6 +117,10 @@ FrameStats Simulation::renderFrame() {
     stats.queries = c.queries_issued;
     stats.objects_drawn = c.objects_drawn;
     stats.triangles = c.triangles_drawn;
+    // What the device skipped of the conditional draws, read back after the frame.
+    const GlQueryDevice::SkippedDraws skipped = gl_device_.skippedConditionalDraws();
+    stats.executed_objects = c.objects_drawn - skipped.objects;
+    stats.executed_triangles = c.triangles_drawn - skipped.triangles;
 
     if (options_.measure_error) measureError(*truth, stats);
     return stats;
@@ -154,15 +158,25 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     // Conditional draws count as drawn when their query passed samples: one the device skipped
     // was not drawn; one it executed on a query that passed nothing cannot show.
     gl_device_.resolveConditionalDraws();
-    int64_t missed = 0, unseen = 0, visible = 0;
+    int64_t missed = 0, tied_away = 0, visible = 0, overdrawn = 0, overdrawn_triangles = 0;
     missing_.assign(objects, 0);
+    verdicts_.resize(objects);
+    const Scene& scene = world_->scene();
     for (uint32_t o = 0; o < objects; ++o) {
-        if (!truth.visible[o]) continue;
-        ++visible;
         const bool drawn = gl_device_.drew(o);
+        verdicts_[o] = static_cast<uint8_t>(
+            truth.visible[o] ? (drawn ? ObjectVerdict::DrawnVisible : ObjectVerdict::Missed)
+                             : (drawn ? ObjectVerdict::DrawnHidden : ObjectVerdict::Culled));
+        if (!truth.visible[o]) {
+            // Drawn, and not a pixel of it in the full render: over-draw.
+            overdrawn += drawn;
+            if (drawn) overdrawn_triangles += scene.meshes[scene.object_mesh[o]].triangleCount();
+            continue;
+        }
+        ++visible;
         missing_[o] = !drawn;
         missed += !drawn;
-        unseen += drawn && !culled_visible_[o];
+        tied_away += drawn && !culled_visible_[o];
     }
     popping_.addFrame(missing_);
     segment_tallies_.addMissing(stats.frame, missing_);
@@ -170,8 +184,10 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     stats.tie_pixels = pixels.tie;
     stats.stray_pixels = pixels.stray;
     stats.missed_objects = missed;
-    stats.drawn_unseen_objects = unseen;
+    stats.tied_away_objects = tied_away;
     stats.visible_objects = visible;
+    stats.overdrawn_objects = overdrawn;
+    stats.overdrawn_triangles = overdrawn_triangles;
     if (options_.keep_worst_error_frame && pixels.error > worst_.error_pixels) {
         worst_.frame = stats.frame;
         worst_.error_pixels = pixels.error;

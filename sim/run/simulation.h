@@ -51,6 +51,15 @@ struct SimulationOptions {
 // The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them),
 // with each pixel's PixelDifference (sim/run/pixel_error.h) so that a picture can tell errors
 // from ties.
+// What a culler did with an object in a frame, beside ground truth (error measured): what the
+// viewer's validation overlay shows.
+enum class ObjectVerdict : uint8_t {
+    DrawnVisible,  // drawn, and ground truth sees it
+    Missed,        // ground truth sees it, not drawn
+    DrawnHidden,   // drawn while ground truth does not see it (over-draw)
+    Culled,        // not drawn, not seen
+};
+
 struct ErrorFrame {
     uint32_t frame = 0;
     int64_t error_pixels = 0;
@@ -96,6 +105,9 @@ class Simulation {
     uint64_t errorReadBacks() const { return error_read_backs_; }
     // Popping and answer latencies per segment of SimulationOptions::segments.
     const SegmentTallies& segmentTallies() const { return segment_tallies_; }
+    // Per object, the last frame measured against ground truth (ObjectVerdict values); empty
+    // before one, or when error is not measured.
+    const std::vector<uint8_t>& objectVerdicts() const { return verdicts_; }
     // The trace of options.trace_frame (or of every frame, LiveControls::trace_every_frame) once
     // that frame was rendered; null before. The tree, the world and view() stay as the culler
     // saw them until the world's next advance().
@@ -136,7 +148,8 @@ class Simulation {
     uint64_t error_read_backs_ = 0;
     // Per-frame scratch, reused so the steady state allocates nothing.
     ErrorFrame worst_;
-    std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
+    std::vector<uint8_t> missing_;   // per object, this frame: visible in ground truth, not drawn
+    std::vector<uint8_t> verdicts_;  // per object, this frame: an ObjectVerdict
     PoppingCounter popping_;
     SegmentTallies segment_tallies_;
     std::unique_ptr<GlFrameTimer> gpu_timer_;  // when options_.measure_gpu_time

@@ -5,6 +5,7 @@
 
 #include "sim/view/key_bindings.h"
 #include "sim/view/node_boxes.h"
+#include "sim/view/validation_overlay.h"
 
 namespace occsim {
 namespace {
@@ -108,6 +109,12 @@ HudLayout layoutHud(uint32_t width, uint32_t height, const HudState& state) {
                                  RasterCanvas::textWidth(c.label, scale));
             }
         }
+        if (state.validation_legend) {
+            for (const ValidationClass& c : validationClasses()) {
+                widths.push_back(RasterCanvas::textHeight(scale) + 4 * scale +
+                                 RasterCanvas::textWidth(c.label, scale));
+            }
+        }
         HudLayout layout = placeRows(widths, scale, height);
         // The large font only where one column holds every row; the small one wraps.
         const bool one_column = layout.rows.empty() || layout.rows.back().x == layout.pad;
@@ -128,13 +135,22 @@ void drawHud(RasterCanvas& canvas, const HudState& state) {
                                              : kDim,
                     scale);
     }
-    if (!state.legend) return;
     size_t i = lines.size();
-    for (const NodeBoxClass& c : shownNodeBoxClasses()) {
-        const HudRow& r = layout.rows[i++];
-        canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1,
-                           nodeClassColour(c.node_class));
-        canvas.text(r.x + layout.swatch + layout.pad, r.y, c.label, kText, scale);
+    if (state.legend) {
+        for (const NodeBoxClass& c : shownNodeBoxClasses()) {
+            const HudRow& r = layout.rows[i++];
+            canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1,
+                               nodeClassColour(c.node_class));
+            canvas.text(r.x + layout.swatch + layout.pad, r.y, c.label, kText, scale);
+        }
+    }
+    if (state.validation_legend) {
+        for (const ValidationClass& c : validationClasses()) {
+            const HudRow& r = layout.rows[i++];
+            canvas.outlineRect(r.x, r.y, r.x + layout.swatch - 1, r.y + layout.swatch - 1,
+                               c.colour);
+            canvas.text(r.x + layout.swatch + layout.pad, r.y, c.label, kText, scale);
+        }
     }
 }
 

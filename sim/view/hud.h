@@ -26,7 +26,8 @@ struct HudState {
     bool error_on = false;
     bool has_stats = false;  // false before the first frame
     FrameStats stats;
-    bool legend = false;  // node boxes are on: explain their colours
+    bool legend = false;             // node boxes are on: explain their colours
+    bool validation_legend = false;  // the validation overlay is on: explain its colours
     bool help = false;
     std::string message;  // e.g. the file a screenshot went to; empty: none
 };

@@ -5,7 +5,7 @@
 namespace occsim {
 namespace {
 
-constexpr std::array<KeyBinding, 14> kActionKeys = {{
+constexpr std::array<KeyBinding, 15> kActionKeys = {{
     {"space", ViewAction::TogglePause, "pause / resume"},
     {"n", ViewAction::Step, "one frame (while paused)"},
     {"backspace", ViewAction::Restart, "restart from frame 0"},
@@ -14,6 +14,7 @@ constexpr std::array<KeyBinding, 14> kActionKeys = {{
     {"b", ViewAction::ToggleBoxes, "node boxes by what the culler did"},
     {"m", ViewAction::ToggleBirdsEye, "the tree and the frustum from above"},
     {"g", ViewAction::ToggleError, "ground truth and error pixels"},
+    {"v", ViewAction::ToggleValidation, "validation: missed red, drawn hidden yellow, culled grey"},
     {"c", ViewAction::ToggleCameraMode, "follow the path / fly by hand"},
     {"r", ViewAction::ToggleRecording, "record the flight / stop and save a scenario"},
     {"p", ViewAction::Screenshot, "screenshot (PNG)"},

@@ -19,6 +19,7 @@ enum class ViewAction : uint8_t {
     ToggleBoxes,       // node bounding boxes, coloured by what the culler did
     ToggleBirdsEye,    // the tree and the frustum from above
     ToggleError,       // ground truth every frame, error pixels on screen
+    ToggleValidation,  // missed, drawn-while-hidden and culled objects over the frame
     ToggleCameraMode,  // follow the scenario's path / fly by hand
     ToggleRecording,   // record the hand-flown camera; on stop, write a scenario
     Screenshot,

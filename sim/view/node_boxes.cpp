@@ -86,6 +86,13 @@ bool frontier(const BspTree& tree, std::span<const NodeClass> classes, uint32_t 
 
 std::span<const NodeBoxClass> shownNodeBoxClasses() { return kShown; }
 
+void drawBoxWireframe(RasterCanvas& canvas, const ViewSetup& view, double near_m, const Aabb& box,
+                      Rgb colour) {
+    if (!isFiniteAndOrdered(box)) return;
+    drawBox(canvas, Projector{view, near_m, double(canvas.width()), double(canvas.height())}, box,
+            colour);
+}
+
 void drawNodeBoxes(RasterCanvas& canvas, const BspTree& tree, std::span<const NodeClass> classes,
                    const ViewSetup& view, double near_m) {
     const Projector p{view, near_m, double(canvas.width()), double(canvas.height())};

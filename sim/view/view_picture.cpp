@@ -4,6 +4,7 @@
 
 #include "sim/output/birds_eye.h"
 #include "sim/view/node_boxes.h"
+#include "sim/view/validation_overlay.h"
 
 namespace occsim {
 namespace {
@@ -68,6 +69,10 @@ RasterCanvas composeViewPicture(std::span<const uint8_t> rgba, uint32_t width, u
                                 const Simulation& sim, const CameraSpec& camera,
                                 const ViewLayers& layers, const HudState& hud) {
     RasterCanvas canvas = canvasFromBottomUp(rgba, width, height);
+    if (layers.validation && sim.objectVerdicts().size() == sim.state().boxes.size()) {
+        drawValidationOverlay(canvas, {sim.objectVerdicts(), sim.state().boxes, layers.truth_ids,
+                                       sim.view().render, camera.near_m});
+    }
     // Only a trace of the frame just rendered describes this picture.
     const FrameTrace* trace = sim.lastTrace();
     if (trace && trace->frame == sim.world().frame() && (layers.boxes || layers.birds_eye)) {

@@ -135,6 +135,7 @@ class Viewer {
     bool error_;
     bool paused_ = false, step_ = false, dirty_ = true, quit_ = false;
     bool boxes_ = false, birds_eye_ = false, help_ = false, panel_ = true;
+    bool validation_ = false;  // the overlay; it turns ground truth on
     bool screenshot_ = false;
 
     // The camera: the path, or flown by hand.
@@ -336,7 +337,16 @@ void Viewer::onKey(std::string_view key) {
             break;
         case ViewAction::ToggleError:
             error_ = !error_;
+            if (!error_) validation_ = false;  // the overlay needs ground truth
             replaceSimulation(true);
+            break;
+        case ViewAction::ToggleValidation:
+            validation_ = !validation_;
+            if (validation_ && !error_) {
+                error_ = true;
+                replaceSimulation(true);
+                say("validation needs ground truth: turned on (g)");
+            }
             break;
         case ViewAction::ToggleCameraMode:
             if (flying_) {
@@ -418,6 +428,9 @@ void Viewer::renderFrame(bool play) {
     layers.boxes = boxes_;
     layers.birds_eye = birds_eye_;
     layers.hud = panel_;
+    layers.validation = validation_;
+    // Ground truth of this frame, already rendered for its error (kept, not rendered again).
+    if (validation_ && error_) layers.truth_ids = truth_.of(*world_).ids;
     const RasterCanvas picture = composeViewPicture(rgba_, renderer_.width(), renderer_.height(),
                                                     *sim_, scenario_.camera, layers, hudState());
     picture_ = picture.rgbaBottomUp();
@@ -443,6 +456,7 @@ HudState Viewer::hudState() const {
     h.has_stats = has_stats_;
     h.stats = stats_;
     h.legend = boxes_;
+    h.validation_legend = validation_;
     h.help = help_;
     h.message = message_;
     return h;
