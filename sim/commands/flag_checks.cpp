@@ -85,6 +85,18 @@ std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<st
     return out;
 }
 
+bool recordsObjects(const std::vector<std::string>& values) {
+    bool objects = false;
+    for (const std::string& v : values) {
+        if (v != "objects") {
+            throw occsim::InputError("--record: '" + v +
+                                     "' is not something a run records; expected: objects");
+        }
+        objects = true;
+    }
+    return objects;
+}
+
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {
     std::error_code ec;
     return std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec) &&

@@ -28,6 +28,15 @@ std::vector<const occsim::AlgorithmTraits*> algorithmsNamed(const std::vector<st
 void checkOutputFolder(const std::string& flag, const std::string& path, bool given);
 void checkOutputFile(const std::string& flag, const std::string& path, bool given);
 
+// --record as given (comma-separated, repeatable): true when it asks for objects (the only kind
+// there is); an empty list is false. Throws occsim::InputError for a value not listed.
+bool recordsObjects(const std::vector<std::string>& values);
+// --record's help text: what it takes and does.
+inline constexpr const char* kRecordHelp =
+    "Record more of the run: 'objects' writes objects.sqlite into the run folder (every object's "
+    "decision per frame and configuration, the culler's reason and ground truth's pixels; "
+    "measures error as --error does; occsim why reads it)";
+
 // Whether both exist and are one folder (an --out that would overwrite its input).
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b);
 

@@ -44,6 +44,7 @@ CLI::App* addRegress(CLI::App& app, RegressFlags& flags) {
         "Culling options from this file, overriding every scenario's (see run --help)");
     addPluginFlag(regress, flags.plugins);
     addBackendFlags(regress, flags.backend);
+    regress->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     regress->add_option(
         "--history", flags.history,
         "Append this run's figures to a history folder (occsim history DIR reports it)");
@@ -57,6 +58,7 @@ int regressCommand(const RegressFlags& flags) {
     checkOutputFile("--junit", flags.junit, flags.junit_given);
     checkOutputFolder("--out", flags.out, true);
     occsim_cli::checkHistoryFlag(flags.history);
+    const bool record_objects = recordsObjects(flags.record);
     // Each scenario's folder under --flags.out is one unit (runRegression); the lock covers them
     // all.
     const occsim::FolderLock lock(flags.out, flags.wait_lock);
@@ -69,6 +71,8 @@ int regressCommand(const RegressFlags& flags) {
         options.rerun_flags.insert(options.rerun_flags.end(), {"--culling", flags.culling_file});
     if (flags.backend.backend != "auto")
         options.rerun_flags.insert(options.rerun_flags.end(), {"--backend", flags.backend.backend});
+    if (record_objects)
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--record", "objects"});
     if (flags.backend.device >= 0) {
         options.rerun_flags.insert(options.rerun_flags.end(),
                                    {"--device", std::to_string(flags.backend.device)});
@@ -87,6 +91,7 @@ int regressCommand(const RegressFlags& flags) {
         throw occsim::InputError(std::string("--shard: ") + e.what());
     }
     options.update = flags.update;
+    options.record_objects = record_objects;
     options.out_dir = flags.out;
     options.progress = ::isatty(STDERR_FILENO) != 0;
     watchFrames();

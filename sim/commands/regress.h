@@ -19,6 +19,7 @@ struct RegressFlags {
     std::vector<std::string> plugins;
     BackendFlags backend;
     std::string history, commit;
+    std::vector<std::string> record;  // --record: "objects"
 };
 
 CLI::App* addRegress(CLI::App& app, RegressFlags& flags);

@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
@@ -13,6 +15,8 @@
 #include "sim/output/report.h"
 #include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
+#include "sim/record/object_recorder.h"
+#include "sim/record/object_schema.h"
 #include "sim/run/run_config.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
@@ -51,6 +55,7 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
     addPluginFlag(cmd, flags.plugins);
+    cmd->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -92,7 +97,9 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.algorithms = request.algorithms;
     o.command = request.command;
     o.command_line = request.command_line;
-    o.measure_error = flags.error;
+    // Objects need ground truth's pixels: recording them measures error, as --error does.
+    o.record_objects = recordsObjects(flags.record);
+    o.measure_error = flags.error || o.record_objects;
     o.backend = backendChoice(flags.backend);
     if (flags.frames > 0) o.frames = flags.frames;
     o.repetitions = flags.repetitions;
@@ -161,18 +168,31 @@ int runAndReport(const RunRequest& request) {
     const occsim::FolderLock lock(out_dir, flags.wait_lock);
     occsim::StagedRunFolder folder(out_dir);
     occsim::PictureRecorder pictures(folder.staging(), flags.capture, options.trace_frame);
-    options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
+    std::unique_ptr<occsim::ObjectRecorder> objects;
+    if (options.record_objects)
+        objects = std::make_unique<occsim::ObjectRecorder>(folder.staging());
+    options.on_frame = [&pictures, &objects](const occsim::FrameEvent& e) {
+        pictures.onFrame(e);
+        if (objects) objects->onFrame(e);
+    };
 
     watchFrames();
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
+    std::optional<occsim::ObjectHighlights> highlights;
+    if (objects) highlights = objects->finish(result);
     const occsim::OutputFiles files = occsim::writeRunOutputs(
-        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}});
+        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}, highlights});
     folder.publish();
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
     std::printf("%s\n", occsim::costsLine(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
+    if (objects) {
+        std::printf("objects: %s/%s (occsim why %s --object ID|NAME, --overdraw, --missed)\n",
+                    out_dir.string().c_str(), occsim::kObjectsDatabaseFile,
+                    out_dir.string().c_str());
+    }
     if (!pictures.birdsEyeFiles().empty()) {
         std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
                     pictures.birdsEyeFiles().size());

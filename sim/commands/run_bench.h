@@ -30,6 +30,7 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
+    std::vector<std::string> record;  // --record: "objects"
 };
 
 struct RunFlags {

@@ -186,6 +186,7 @@ std::string markdownReport(const BenchResult& result, const ReportFiles& files) 
     header(out, result);
     table(out, result);
     out << files.extra_markdown;
+    if (files.objects) out << objectHighlightsMarkdown(*files.objects);
     pictures(out, files);
     howToRead(out);
     return out.str();

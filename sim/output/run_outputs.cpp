@@ -17,6 +17,7 @@ OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& requ
     ReportFiles report;
     report.birds_eye_files = request.birds_eye_files;
     report.extra_markdown = request.extra_markdown;
+    report.objects = request.objects;
     if (request.plots) {
         const PlotResult plots = writePlots(result.runs, request.out_dir);
         report.plot_files = plots.files;

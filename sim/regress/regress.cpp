@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -13,6 +15,7 @@
 #include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
+#include "sim/record/object_recorder.h"
 #include "sim/regress/run_checks.h"
 #include "sim/run/runner.h"
 #include "sim/run/stop_request.h"
@@ -114,7 +117,16 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
 
     // The scenario's folder is one unit, staged before the run and replaced as a whole after.
     StagedRunFolder folder(scenarioFolder(options, file));
-    const BenchResult result = runBenchmark(scenario, regressBenchOptions(file, expect, options));
+    BenchOptions bench = regressBenchOptions(file, expect, options);
+    std::unique_ptr<ObjectRecorder> objects;
+    if (options.record_objects) {
+        objects = std::make_unique<ObjectRecorder>(folder.staging());
+        bench.record_objects = true;
+        bench.on_frame = [&objects](const FrameEvent& e) { objects->onFrame(e); };
+    }
+    const BenchResult result = runBenchmark(scenario, bench);
+    std::optional<ObjectHighlights> highlights;
+    if (objects) highlights = objects->finish(result);
 
     if (result.partial) {
         // Checks of frames that were never run would pass or fail by accident, and an update
@@ -123,8 +135,9 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
             {kEveryFrameCheck,
              std::to_string(result.metadata.frames) + " frames of every configuration",
              partialLine(result), false});
-        writeRunOutputs(result,
-                        OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+        writeRunOutputs(
+            result,
+            OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome), highlights});
         folder.publish();
         outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         return outcome;
@@ -132,7 +145,8 @@ ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& 
     ResultChecks checks{result, folder.staging(), folder.target(), outcome};
     checkRun(checks, scenario, expect, options.update);
 
-    writeRunOutputs(result, OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+    writeRunOutputs(
+        result, OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome), highlights});
     folder.publish();
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return outcome;

@@ -45,7 +45,11 @@ struct BenchOptions {
     std::string command_line;             // recorded in the metadata
     bool progress = false;                // a progress line on stderr
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
-    uint32_t repetitions = 1;             // each configuration runs this often; medians reported
+    // Every object's decision, reason and pixels per frame of the first repetition, for on_frame
+    // to read (Simulation::objectFrames(); SimulationOptions::record_objects); needs
+    // measure_error.
+    bool record_objects = false;
+    uint32_t repetitions = 1;  // each configuration runs this often; medians reported
     // Frame f renders configuration (f + k) mod n as its k-th, so that every configuration takes
     // every place within a frame equally often. A place has its own cost (the first
     // configuration's world was advanced longest before it renders, and it renders right after
