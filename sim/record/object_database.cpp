@@ -1,5 +1,6 @@
 #include "sim/record/object_database.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <fstream>
@@ -16,6 +17,12 @@ uint32_t bigEndian(const unsigned char* p, int bytes) {
 }
 
 std::string hint() { return "; record the run again with --record objects"; }
+
+// SQLite's words on one line (an integrity report can span several).
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s;
+}
 
 }  // namespace
 
@@ -68,7 +75,8 @@ ObjectDatabase::ObjectDatabase(const std::filesystem::path& run_folder)
         db_ = std::make_unique<sql::Database>(file_, sql::Database::Mode::ReadOnly);
         sql::Statement check = db_->prepare("PRAGMA quick_check(1)");
         if (check.step() && check.text(0) != "ok") {
-            throw ObjectsDatabaseError(name + ": corrupt (" + check.text(0) + ")" + hint());
+            throw ObjectsDatabaseError(name + ": corrupt (" + oneLine(check.text(0)) + ")" +
+                                       hint());
         }
         sql::Statement has_run = db_->prepare(
             "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'run'");
@@ -105,7 +113,7 @@ ObjectDatabase::ObjectDatabase(const std::filesystem::path& run_folder)
     } catch (const sql::Error& e) {
         std::string why = e.what();
         if (why.rfind(name + ": ", 0) == 0) why = why.substr(name.size() + 2);
-        throw ObjectsDatabaseError(name + ": unreadable (" + why + ")" + hint());
+        throw ObjectsDatabaseError(name + ": unreadable (" + oneLine(why) + ")" + hint());
     }
 }
 
