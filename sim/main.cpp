@@ -88,7 +88,11 @@ std::string withSuggestion(const CLI::App& app, const std::string& message) {
     std::vector<std::string> flags;
     for (const CLI::App* sub : app.get_subcommands({})) {
         for (const CLI::Option* option : sub->get_options()) {
-            for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+            for (const std::string& name : option->get_lnames()) {
+                // A flag of another command spelt the same (why's --frame for run's --frames)
+                // is no suggestion.
+                if ("--" + name != word) flags.push_back("--" + name);
+            }
         }
     }
     if (const auto match = occsim::closestMatch(word, flags))
