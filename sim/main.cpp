@@ -6,9 +6,11 @@
 // exit code 2, and so does `view` where no window can be opened; runtime failures (OpenGL, output)
 // with exit 1.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "occsim/culling/contract/input_error.h"
 #include "sim/commands/exit_codes.h"
@@ -133,6 +135,17 @@ int runGivenCommand(const Commands& c, const std::string& command) {
     return kExitFailure;
 }
 
+// An error of several problems (a regression run's plan) is one line per problem, each as the
+// command's other errors are.
+void printLines(const std::string& message) {
+    size_t start = 0;
+    while (start <= message.size()) {
+        const size_t end = std::min(message.find('\n', start), message.size());
+        std::fprintf(stderr, "occsim: %s\n", message.substr(start, end - start).c_str());
+        start = end + 1;
+    }
+}
+
 // dispatch(), with every error a command can end in turned into its one line and exit code:
 // bad input (whichever module found it) 2, a failure while running 1. Every command's output
 // folder is --out's: a folder that cannot be used is bad input named by that flag, one that
@@ -147,7 +160,7 @@ int dispatchReportingErrors(const Commands& c, const std::string& command) {
             throw std::runtime_error(std::string("--out ") + e.what());
         }
     } catch (const occsim::InputError& e) {
-        std::fprintf(stderr, "occsim: %s\n", e.what());
+        printLines(e.what());
         return kExitBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "occsim: %s\n", e.what());

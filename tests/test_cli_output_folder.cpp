@@ -91,25 +91,35 @@ TEST(CliOutputFolder, AFolderThatIsNotAnOccsimRunIsRefusedBeforeAnyWork) {
     fs::create_directories(out / "teapots-small");
     std::ofstream(out / "notes.txt") << "keep me";
     std::ofstream(out / "teapots-small" / "notes.txt") << "keep me too";
+    // An earlier regress's folder, whose scenario folder holds someone else's files.
+    const fs::path regress_out = dir / "regress-out";
+    fs::create_directories(regress_out / "teapots-small");
+    std::ofstream(regress_out / ".occsim-regress") << "";
+    std::ofstream(regress_out / "teapots-small" / "notes.txt") << "keep me too";
     const struct {
-        std::string args, folder;
+        std::string args, folder, what;
     } cases[] = {
-        {"run " + kSmall + " --algo vfc --frames 6 --out " + out.string(), out.string()},
-        {"bench " + kSmall + " --algos vfc --frames 6 --out " + out.string(), out.string()},
-        {"regress " + kSmall + " --out " + out.string(), (out / "teapots-small").string()},
+        {"run " + kSmall + " --algo vfc --frames 6 --out " + out.string(), out.string(),
+         "occsim run"},
+        {"bench " + kSmall + " --algos vfc --frames 6 --out " + out.string(), out.string(),
+         "occsim run"},
+        {"regress " + kSmall + " --out " + out.string(), out.string(), "occsim regress run"},
+        {"regress " + kSmall + " --out " + regress_out.string(),
+         (regress_out / "teapots-small").string(), "occsim run"},
     };
     for (const auto& c : cases) {
         const Outcome o = runOccsim(c.args);
         EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
         EXPECT_EQ(lineCount(o.output), 1u) << o.output;
-        EXPECT_NE(
-            o.output.find("occsim: --out " + c.folder + ": holds files that are not an occsim run"),
-            std::string::npos)
+        EXPECT_NE(o.output.find("occsim: --out " + c.folder + ": holds files that are not an " +
+                                c.what + " ("),
+                  std::string::npos)
             << o.output;
     }
     EXPECT_EQ(read(out / "notes.txt"), "keep me");
     EXPECT_EQ(namesIn(out), (std::vector<std::string>{"notes.txt", "teapots-small"}));
     EXPECT_EQ(namesIn(out / "teapots-small"), std::vector<std::string>{"notes.txt"});
+    EXPECT_EQ(namesIn(regress_out / "teapots-small"), std::vector<std::string>{"notes.txt"});
     fs::remove_all(dir);
 }
 

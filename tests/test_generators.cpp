@@ -154,7 +154,8 @@ void expectWithinRegion(const SourceOutput& s) {
     const glm::vec3 slack(1e-3f);
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const Aabb box = objectBox(s, s.objects[i]);
-        EXPECT_TRUE(contains(Aabb{s.region.min - slack, s.region.max + slack}, box))
+        EXPECT_TRUE(
+            contains(Aabb{glm::vec3(s.region.min) - slack, glm::vec3(s.region.max) + slack}, box))
             << "object " << i;
     }
 }

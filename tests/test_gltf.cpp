@@ -128,7 +128,7 @@ TEST(GltfRealFiles, TeapotLoadsItsTrianglesOnOneNodeWithTheReadmeBounds) {
     EXPECT_EQ(drawnTriangles(out), 9128u);
     EXPECT_EQ(out.objects.size(), 1u);
     EXPECT_EQ(out.meshes.size(), 1u);
-    expectBoxNear(out.region, {-30.4f, -17.2f, -20.0f}, {33.9f, 14.3f, 20.0f}, 0.1f);
+    expectBoxNear(floatBox(out.region), {-30.4f, -17.2f, -20.0f}, {33.9f, 14.3f, 20.0f}, 0.1f);
     EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
     expectWellFormed(out);
 }
@@ -138,7 +138,7 @@ TEST(GltfRealFiles, SubpassSceneLoadsSeventyNodesSharingTwelveMeshes) {
     EXPECT_EQ(drawnTriangles(out), 23388u);
     EXPECT_EQ(out.objects.size(), 70u);
     EXPECT_EQ(out.meshes.size(), 12u);  // every node mirrors (scale -1), so one variant per mesh
-    expectBoxNear(out.region, {-11.0f, -9.7f, -11.0f}, {11.0f, 0.5f, 11.0f}, 0.1f);
+    expectBoxNear(floatBox(out.region), {-11.0f, -9.7f, -11.0f}, {11.0f, 0.5f, 11.0f}, 0.1f);
     EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
     expectWellFormed(out);
 }
@@ -148,7 +148,7 @@ TEST(GltfRealFiles, FzkHausGlbLoadsItsTrianglesOn110NodesSharing59Meshes) {
     EXPECT_EQ(drawnTriangles(out), 35906u);
     EXPECT_EQ(out.objects.size(), 110u);
     EXPECT_EQ(out.meshes.size(), 59u);
-    expectBoxNear(out.region, {-3.0f, -1.0f, -13.0f}, {15.0f, 6.3f, 3.0f}, 0.1f);
+    expectBoxNear(floatBox(out.region), {-3.0f, -1.0f, -13.0f}, {15.0f, 6.3f, 3.0f}, 0.1f);
     EXPECT_TRUE(out.warnings.empty()) << allWarnings(out);
     expectWellFormed(out);
 }
@@ -533,15 +533,15 @@ TEST(GltfReplication, GridMakesCountXTimesCountZCopiesAtTheSpacing) {
     }
     // Streets between the copies (the house is 18 x 16 m, the spacing 40 m): one loop per copy.
     EXPECT_EQ(out.lanes.size(), 6u);
-    const Aabb bounds = sourceBounds(out);
-    EXPECT_EQ(out.region.min, bounds.min);
-    EXPECT_EQ(out.region.max, bounds.max);
-    expectBoxNear(out.region, {2.0f, -1.0f, -6.0f}, {100.0f, 6.3f, 50.0f}, 0.1f);
+    const Aabb bounds = floatBox(sourceBounds(out));
+    EXPECT_EQ(glm::vec3(out.region.min), bounds.min);
+    EXPECT_EQ(glm::vec3(out.region.max), bounds.max);
+    expectBoxNear(floatBox(out.region), {2.0f, -1.0f, -6.0f}, {100.0f, 6.3f, 50.0f}, 0.1f);
 }
 
 TEST(GltfReplication, GridSpacingZeroIsTheModelSizePlusTenPercent) {
     const SourceOutput one = load(kHouse);
-    const glm::vec3 size = extent(one.region);
+    const glm::vec3 size = extent(floatBox(one.region));
     const SourceOutput out = load(kHouse, 1.0, {}, grid(2, 2, 0.0));
     const size_t n = one.objects.size();
     EXPECT_NEAR(out.objects[n].position.x - out.objects[0].position.x, 1.1 * size.x, 1e-4);
@@ -560,7 +560,7 @@ TEST(GltfReplication, RandomCopiesAreDeterministicPerSeedInsideTheRegion) {
         EXPECT_EQ(a.objects[i].position, b.objects[i].position);
         EXPECT_EQ(a.objects[i].linear, b.objects[i].linear);
         // The teapot's node sits at the origin, so each copy's origin is its object's position.
-        EXPECT_TRUE(contains(random(1, true).region, glm::vec3(a.objects[i].position)));
+        EXPECT_TRUE(contains(floatBox(random(1, true).region), glm::vec3(a.objects[i].position)));
         yawed = yawed || a.objects[i].linear != one.objects[0].linear;
     }
     EXPECT_TRUE(yawed);

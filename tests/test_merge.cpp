@@ -47,15 +47,17 @@ void writeFile(const fs::path& file, const std::string& text) {
 ScenarioSet sixScenarios() {
     ScenarioSet set;
     set.id = "0123456789abcdef";
-    for (const char* n : {"a", "b", "c", "d", "e", "f"})
+    for (const char* n : {"a", "b", "c", "d", "e", "f"}) {
         set.scenarios.push_back(std::string("scenarios/") + n + ".json");
+        set.ids.push_back(n);
+    }
     return set;
 }
 
 ScenarioOutcome outcomeOf(const std::string& file) {
     ScenarioOutcome o;
     o.scenario = file;
-    o.name = fs::path(file).stem().string();
+    o.id = o.name = fs::path(file).stem().string();
     if (o.name == "e") {
         o.skipped = true;
         o.note = "no expect block";
@@ -67,6 +69,11 @@ ScenarioOutcome outcomeOf(const std::string& file) {
                         o.name != "c"});
     o.seconds = 0.25;
     return o;
+}
+
+// A scenario's summary.json as runRegression writes it: its scenario block names it.
+std::string summaryOf(const ScenarioOutcome& o) {
+    return Json{{"scenario", {{"id", o.id}, {"name", o.name}, {"file", o.scenario}}}}.dump() + "\n";
 }
 
 // Shard i of n of the six, as `occsim regress --shard i/n --out dir` leaves it.
@@ -82,8 +89,8 @@ fs::path writeShard(const fs::path& root, uint32_t i, uint32_t n,
     // Every scenario that ran leaves its summary.json (runRegression's writeRunOutputs).
     for (const ScenarioOutcome& o : r.report.scenarios) {
         if (!o.ran()) continue;
-        fs::create_directories(dir / o.name);
-        writeFile(dir / o.name / "summary.json", "{\"scenario\": \"" + o.name + "\"}\n");
+        fs::create_directories(dir / o.id);
+        writeFile(dir / o.id / "summary.json", summaryOf(o));
     }
     return dir;
 }
@@ -227,7 +234,7 @@ TEST(Merge, RefusesAScenarioThatRanWithoutItsSummary) {
     const fs::path root = freshDir("nosummary");
     const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
     EXPECT_EQ(mergeError({s0, s1}), "");
-    EXPECT_EQ(mergeShards({s0, s1}).summaries[3]["scenario"], "d");
+    EXPECT_EQ(mergeShards({s0, s1}).summaries[3]["scenario"]["name"], "d");
     fs::remove(s1 / "d" / "summary.json");
     const std::string e = mergeError({s0, s1});
     EXPECT_NE(e.find("shard-1/d/summary.json: missing; scenarios/d.json ran in this shard"),
@@ -235,6 +242,104 @@ TEST(Merge, RefusesAScenarioThatRanWithoutItsSummary) {
         << e;
     // A skipped scenario (e) has none to miss.
     EXPECT_FALSE(fs::exists(s0 / "e"));
+}
+
+// A summary.json copied from another scenario's folder would file its figures under this one.
+TEST(Merge, RefusesASummaryThatBelongsToAnotherScenario) {
+    const fs::path root = freshDir("copied");
+    const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
+    fs::copy_file(s0 / "a" / "summary.json", s1 / "b" / "summary.json",
+                  fs::copy_options::overwrite_existing);
+    const std::string e = mergeError({s0, s1});
+    EXPECT_NE(e.find("shard-1/b/summary.json: /scenario: the summary of scenario 'a' (id a, "
+                     "file scenarios/a.json); expected that of 'b' (id b, file scenarios/b.json)"),
+              std::string::npos)
+        << e;
+    // A run's own summary (no id: `occsim run --out` into a regress folder) is not the scenario's.
+    writeFile(s1 / "b" / "summary.json",
+              R"({"scenario": {"name": "b", "file": "scenarios/b.json"}})");
+    EXPECT_NE(mergeError({s0, s1}).find("(id (none)"), std::string::npos) << mergeError({s0, s1});
+}
+
+// Two files whose names are each other's: a.json named "b", b.json named "a". Each is filed
+// under its own id, the folder regress wrote it to, never under the other's.
+TEST(Merge, ScenariosNamedAsEachOthersFilesAreFiledUnderTheirOwnIds) {
+    const fs::path root = freshDir("swapped");
+    ScenarioSet set;
+    set.id = "feedfacefeedface";
+    set.scenarios = {"scenarios/a.json", "scenarios/b.json"};
+    set.ids = {"a", "b"};
+    ShardResult r;
+    r.set = set;
+    for (size_t k = 0; k < 2; ++k) {
+        ScenarioOutcome o;
+        o.scenario = set.scenarios[k];
+        o.id = set.ids[k];
+        o.name = k == 0 ? "b" : "a";
+        o.checks.push_back({"zero error pixels: chc", "0 on every frame", "0", true});
+        r.report.scenarios.push_back(o);
+        fs::create_directories(root / "shard" / o.id);
+        writeFile(root / "shard" / o.id / "summary.json", summaryOf(o));
+    }
+    writeShardResult(root / "shard", r);
+    const MergedRun run = mergeShards({root / "shard"});
+    ASSERT_EQ(run.summaries.size(), 2u);
+    EXPECT_EQ(run.report.scenarios[0].id, "a");
+    EXPECT_EQ(run.summaries[0]["scenario"]["file"], "scenarios/a.json");
+    EXPECT_EQ(run.summaries[0]["scenario"]["name"], "b");
+    EXPECT_EQ(run.summaries[1]["scenario"]["file"], "scenarios/b.json");
+    // Swapped back into each other's folders, as the old merge read them: refused.
+    fs::rename(root / "shard" / "a", root / "shard" / "tmp");
+    fs::rename(root / "shard" / "b", root / "shard" / "a");
+    fs::rename(root / "shard" / "tmp", root / "shard" / "b");
+    EXPECT_NE(mergeError({root / "shard"}).find("/scenario: the summary of scenario 'a' (id b"),
+              std::string::npos)
+        << mergeError({root / "shard"});
+}
+
+// A history series is one machine and backend: shards rendered elsewhere are merged apart.
+TEST(Merge, RefusesShardsRenderedOnDifferentBackendsOrCpus) {
+    const fs::path root = freshDir("backends");
+    const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
+    auto withMachine = [&](const fs::path& shard, const std::string& id,
+                           const std::string& backend) {
+        Json summary = Json::parse(readFile(shard / id / "summary.json"));
+        summary["machine"] = {{"backend", backend}, {"gl_renderer", "llvmpipe"}};
+        writeFile(shard / id / "summary.json", summary.dump());
+    };
+    withMachine(s0, "a", "egl");
+    withMachine(s1, "b", "egl");
+    EXPECT_EQ(mergeError({s0, s1}), "");
+    withMachine(s1, "d", "osmesa");
+    const std::string e = mergeError({s0, s1});
+    EXPECT_NE(e.find("scenarios/d.json was rendered on osmesa, llvmpipe but scenarios/a.json on "
+                     "egl, llvmpipe"),
+              std::string::npos)
+        << e;
+    withMachine(s1, "d", "egl");
+    ShardResult other = readShardResult(s1);
+    other.cpu = "Another CPU";
+    writeShardResult(s1, other);
+    EXPECT_NE(mergeError({s0, s1}).find("/machine/cpu: Another CPU"), std::string::npos)
+        << mergeError({s0, s1});
+}
+
+// A name with a control character is written so that junit.xml stays well-formed XML, and reads
+// back as the merge compares it.
+TEST(Junit, AControlCharacterInANameKeepsTheFileWellFormed) {
+    RegressReport report = wholeReport();
+    report.scenarios[0].name =
+        "a\x01"
+        "b\tc";
+    report.scenarios[0].checks[0].got = "bell\x07";
+    const std::string xml = junitXml(report);
+    EXPECT_EQ(xml.find('\x01'), std::string::npos);
+    EXPECT_EQ(xml.find('\x07'), std::string::npos);
+    const auto suites = parseJunit(xml, "x.xml");
+    EXPECT_EQ(suites[0].name,
+              "a\\x01"
+              "b\tc");
+    EXPECT_EQ(suites[0].name, junitVisibleText(report.scenarios[0].name));
 }
 
 TEST(Merge, RefusesATruncatedOrDisagreeingJunitFile) {
@@ -270,6 +375,7 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
     expectRefused("merge " + shards + " --out " + s0.string(), "is the shard folder", out);
     ScenarioSet other = sixScenarios();
     other.scenarios.pop_back();
+    other.ids.pop_back();
     const fs::path foreign = writeShard(root / "foreign", 1, 2, other);
     expectRefused("merge " + s0.string() + " " + foreign.string() + " --out " + out.string(),
                   "from another scenario set", out);
@@ -288,6 +394,37 @@ TEST(MergeCommand, BadInputIsOneLineExitTwoAndNothingOverwritten) {
     writeFile(s1 / "junit.xml", "<html>not junit</html>\n");
     expectRefused("merge " + shards + " --out " + out.string(),
                   "junit.xml: line 1: unexpected element <html>", out);
+}
+
+// The regress command refuses a set's problems before any work, one line each as every other
+// error ("occsim: ..."), exit 2; and an --out that would hold its own inputs.
+TEST(RegressCommand, EveryProblemOfTheSetIsItsOwnLineAndNothingRuns) {
+    const fs::path root = freshDir("regress-plan");
+    const fs::path set = root / "set";
+    fs::create_directories(set);
+    Json scenario =
+        Json::parse(readFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json"));
+    scenario["expect"]["baseline"] = "self.json";
+    writeFile(set / "self.json", scenario.dump());
+    scenario["expect"]["baseline"] = "../x.json";
+    writeFile(set / "up.json", scenario.dump());
+    const Command c = runOccsim("regress " + set.string() + " --out " + (root / "out").string());
+    EXPECT_EQ(c.status, 2) << c.output;
+    EXPECT_EQ(std::count(c.output.begin(), c.output.end(), '\n'), 2) << c.output;
+    EXPECT_EQ(c.output.rfind("occsim: ", 0), 0u) << c.output;
+    EXPECT_NE(c.output.find("\noccsim: "), std::string::npos) << c.output;
+    EXPECT_FALSE(fs::exists(root / "out"));
+
+    const Command inside = runOccsim("regress " + set.string() + " --out " + set.string());
+    EXPECT_EQ(inside.status, 2) << inside.output;
+    EXPECT_NE(inside.output.find("holds the scenario folder"), std::string::npos) << inside.output;
+    writeFile(root / "file", "a file\n");
+    const Command junit =
+        runOccsim("regress " + set.string() + " --out " + (root / "out").string() + " --junit " +
+                  (root / "file" / "x.xml").string());
+    EXPECT_EQ(junit.status, 2) << junit.output;
+    EXPECT_NE(junit.output.find("--junit"), std::string::npos) << junit.output;
+    EXPECT_FALSE(fs::exists(root / "out"));
 }
 
 // A history entry of machine `host`, with statistical's speedup and queries in scenario s.
@@ -316,6 +453,53 @@ HistoryOptions windowOf(size_t n) {
     HistoryOptions o;
     o.window = n;
     return o;
+}
+
+// merge and history write only where an occsim output may be replaced: another folder's files
+// are never touched.
+TEST(MergeCommand, AnOutFolderOfSomeoneElsesIsRefusedAndLeftAsItWas) {
+    const fs::path root = freshDir("not-ours");
+    const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
+    const fs::path mine = root / "my-notes";
+    fs::create_directories(mine);
+    writeFile(mine / "report.md", "my own report\n");
+    const Command merge =
+        runOccsim("merge " + s0.string() + " " + s1.string() + " --out " + mine.string());
+    EXPECT_EQ(merge.status, 2) << merge.output;
+    EXPECT_EQ(std::count(merge.output.begin(), merge.output.end(), '\n'), 1) << merge.output;
+    EXPECT_NE(merge.output.find("--out"), std::string::npos) << merge.output;
+    EXPECT_EQ(readFile(mine / "report.md"), "my own report\n");
+    EXPECT_FALSE(fs::exists(mine / "summary.json"));
+
+    appendHistory(root / "history", entry("2025-01-01T00:00:00Z", "m", 2.0));
+    const Command history =
+        runOccsim("history " + (root / "history").string() + " --out " + mine.string());
+    EXPECT_EQ(history.status, 2) << history.output;
+    EXPECT_EQ(readFile(mine / "report.md"), "my own report\n");
+    // An empty folder, or one an earlier occsim run wrote, is replaced as a whole.
+    const Command fresh = runOccsim("history " + (root / "history").string() + " --out " +
+                                    (root / "report").string());
+    EXPECT_EQ(fresh.status, 0) << fresh.output;
+    EXPECT_TRUE(fs::exists(root / "report" / ".occsim-run"));
+    const Command again = runOccsim("history " + (root / "history").string() + " --out " +
+                                    (root / "report").string());
+    EXPECT_EQ(again.status, 0) << again.output;
+}
+
+TEST(MergeCommand, AJunitOrHistoryThatCannotBeWrittenIsFoundBeforeAnyWork) {
+    const fs::path root = freshDir("unwritable");
+    const fs::path s0 = writeShard(root, 0, 2), s1 = writeShard(root, 1, 2);
+    writeFile(root / "file", "a file\n");
+    const std::string shards = s0.string() + " " + s1.string();
+    const Command junit = runOccsim("merge " + shards + " --out " + (root / "m").string() +
+                                    " --junit " + (root / "file" / "junit.xml").string());
+    EXPECT_EQ(junit.status, 2) << junit.output;
+    EXPECT_NE(junit.output.find("--junit"), std::string::npos) << junit.output;
+    EXPECT_FALSE(fs::exists(root / "m"));
+    const Command history = runOccsim("merge " + shards + " --out " + (root / "m").string() +
+                                      " --history " + (root / "file").string());
+    EXPECT_EQ(history.status, 2) << history.output;
+    EXPECT_FALSE(fs::exists(root / "m"));
 }
 
 TEST(History, AnEntryReadsBackAsWritten) {
@@ -355,6 +539,7 @@ TEST(History, AnotherFormatVersionIsRefusedOneLineExitTwoNothingWritten) {
     const fs::path out = dir.parent_path() / "report";
     fs::create_directories(out);
     writeFile(out / "report.md", "earlier report\n");
+    writeFile(out / ".occsim-run", "");  // an earlier report's folder, replaceable
     expectRefused("history " + dir.string() + " --out " + out.string(),
                   "v2.json: /version: history format version 2; this program reads version 1", out);
     // regress --history refuses before running anything: no result folder, no new entry.

@@ -49,12 +49,12 @@ TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
     for (uint32_t i = 0; i < 4; ++i) {
         const RegressOptions o =
             shortRun(root / "small", root / ("shard-" + std::to_string(i)), {i, 4});
-        writeShardResult(o.out_dir, {o.out_dir, set, o.shard, runRegression(o)});
+        writeShardResult(o.out_dir, {o.out_dir, set, o.shard, "host", "cpu", runRegression(o)});
         dirs.push_back(o.out_dir);
     }
     const RegressOptions single = shortRun(root / "small", root / "single", {});
     const RegressReport one = runRegression(single);
-    writeShardResult(single.out_dir, {single.out_dir, set, single.shard, one});
+    writeShardResult(single.out_dir, {single.out_dir, set, single.shard, "host", "cpu", one});
 
     const MergedRun merged = mergeShards(dirs);
     const MergedRun alone = mergeShards({single.out_dir});

@@ -520,6 +520,13 @@ TEST(Occtune, ATunedJsonThatIsNotOneCullersSettingIsRefusedInOneLine) {
         {"other-options",
          R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "chc": {}}})",
          R"(/culling/chc: expected the options of "statistical")"},
+        // The approximation knobs every querying culler shares would change the others too.
+        {"shared-threshold",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "threshold_pixels": 4}})",
+         R"(/culling/threshold_pixels: a tuned file changes "statistical" (the culler this file was tuned for) alone)"},
+        {"shared-stale",
+         R"({"format_version": 1, "tuned_for": "statistical", "culling": {"algorithm": "statistical", "stale_results": true}})",
+         "/culling/stale_results: a tuned file changes"},
     };
     for (const Case& c : cases) {
         const fs::path file = dir / (c.name + ".json");

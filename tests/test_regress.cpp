@@ -3,16 +3,25 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "culling/cullers/statistical_culler.h"
 #include "sim/output/error_picture.h"
+#include "sim/output/run_folder.h"
+#include "sim/regress/history.h"
+#include "sim/regress/merge.h"
 #include "sim/regress/regress.h"
+#include "sim/regress/shard_result.h"
+#include "sim/run/stop_request.h"
 
 namespace occsim {
 namespace {
@@ -61,7 +70,7 @@ class DroppingDevice final : public RenderDevice {
     uint64_t draws_ = 0;
 };
 
-enum class Sabotage { DropDraws, Slow, ExtraQuery };
+enum class Sabotage { DropDraws, Slow, ExtraQuery, DropFromFrame10, SlowFromFrame10 };
 
 // The statistical culler, deliberately broken in one way.
 class SabotagedCuller final : public Culler {
@@ -84,6 +93,21 @@ class SabotagedCuller final : public Culler {
             }
             case Sabotage::ExtraQuery:
                 device.takeAnswer(device.issueQuery(tree.bounds(tree.root())));
+                break;
+            case Sabotage::DropFromFrame10:
+                if (frame.frame_index >= 10) {
+                    DroppingDevice dropping(device, 5);
+                    inner_.cullAndRender(tree, frame, dropping);
+                    return;
+                }
+                break;
+            case Sabotage::SlowFromFrame10:
+                if (frame.frame_index >= 10) {
+                    const auto until =
+                        std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
+                    while (std::chrono::steady_clock::now() < until) {
+                    }
+                }
                 break;
         }
         inner_.cullAndRender(tree, frame, device);
@@ -269,6 +293,71 @@ TEST(Regress, ASlowedCullerFailsTheRatioCheck) {
     EXPECT_FALSE(ratio->passed) << ratio->got;
 }
 
+// makeScenario's scenario (16 frames, 2 of warm-up) with two segments: frames 2 to 9 and 10 to 15.
+fs::path makeSegmentedScenario(const std::string& name, const nlohmann::json& expect) {
+    const fs::path file = makeScenario(name, nullptr);
+    nlohmann::json scenario = nlohmann::json::parse(std::ifstream(file));
+    scenario["segments"] = nlohmann::json::parse(R"([
+        {"name": "calm", "from_frame": 2, "to_frame": 10},
+        {"name": "late", "from_frame": 10, "to_frame": 16}])");
+    scenario["expect"] = expect;
+    std::ofstream(file) << scenario.dump(2);
+    return file;
+}
+
+// A check scoped to a segment judges that segment's frames only: a culler slow from frame 10 on
+// passes its ratio over the calm segment and fails it over the late one, by name.
+TEST(Regress, ARatioCheckOverASegmentFailsOnlyWhereItsBoundIsBroken) {
+    nlohmann::json expect = kExpect;
+    for (const char* segment : {"calm", "late"}) {
+        expect["ratios"].push_back({{"algorithm", "statistical"},
+                                    {"reference", "vfc"},
+                                    {"max", 1.0},
+                                    {"tolerance", 0.5},
+                                    {"segment", segment}});
+    }
+    const fs::path file = makeSegmentedScenario("segment-ratio", expect);
+    const RegressReport slow = runRegression(optionsFor(file, Sabotage::SlowFromFrame10));
+    const CheckResult* calm = findCheck(slow, "frame time statistical / vfc in segment calm");
+    const CheckResult* late = findCheck(slow, "frame time statistical / vfc in segment late");
+    ASSERT_NE(calm, nullptr);
+    ASSERT_NE(late, nullptr);
+    EXPECT_TRUE(calm->passed) << calm->got;
+    EXPECT_FALSE(late->passed) << late->got;
+    // report.md has the segment tables the checks read.
+    std::ifstream in(file.parent_path() / "out" / "segment-ratio" / "report.md");
+    const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_NE(md.find("### late: frames 10 to 15"), std::string::npos) << md;
+}
+
+// Zero error over a segment: a culler that drops draws from frame 10 on is exact over the calm
+// segment and fails over the late one, with a picture of its worst frame (which lies in it).
+TEST(Regress, AZeroErrorCheckOverASegmentFailsOnlyOverTheSegmentWithTheError) {
+    nlohmann::json expect = kExpect;
+    expect["zero_error"] = nlohmann::json::parse(R"(["vfc",
+        {"algorithm": "statistical", "segment": "calm"},
+        {"algorithm": "statistical", "segment": "late"}])");
+    expect["max_error_pixels"] =
+        nlohmann::json::parse(R"([{"algorithm": "statistical", "max": 0, "segment": "calm"}])");
+    const fs::path file = makeSegmentedScenario("segment-error", expect);
+    const RegressReport report = runRegression(optionsFor(file, Sabotage::DropFromFrame10));
+    const CheckResult* calm = findCheck(report, "zero error pixels in segment calm: statistical");
+    const CheckResult* late = findCheck(report, "zero error pixels in segment late: statistical");
+    const CheckResult* bound = findCheck(report, "error pixels per frame in segment calm");
+    const CheckResult* missed = findCheck(report, "no missed objects in segment late: statistical");
+    ASSERT_NE(calm, nullptr);
+    ASSERT_NE(late, nullptr);
+    ASSERT_NE(bound, nullptr);
+    ASSERT_NE(missed, nullptr);
+    EXPECT_TRUE(calm->passed) << calm->got;
+    EXPECT_TRUE(bound->passed) << bound->got;
+    EXPECT_FALSE(late->passed) << late->got;
+    EXPECT_FALSE(missed->passed) << missed->got;
+    EXPECT_EQ(late->expected, "0 on frames 10 to 15");
+    ASSERT_EQ(report.scenarios[0].captures.size(), 1u);
+    EXPECT_TRUE(fs::exists(report.scenarios[0].captures[0]));
+}
+
 // With every expected frame inside the warm-up nothing is timed: the ratio check has nothing to
 // judge and fails, saying so, instead of passing on 0 / 0.
 TEST(Regress, ARatioCheckWithNothingTimedFails) {
@@ -411,6 +500,170 @@ TEST(Regress, JunitXmlHasOneTestcasePerCheckAndFailuresWithMessages) {
               std::string::npos);
 }
 
+// A folder of scenarios as issue 40 found them: a.json named "b" and b.json named "a", the same
+// file name in two subfolders, a scenario whose baseline is itself, one whose baseline lies two
+// folders up. The last two are refused before any work, one line each; the first two are each
+// filed under their own identity through regress, merge and history.
+TEST(Regress, ASetWithSwappedNamesSameStemsASelfBaselineAndAnOutsideOneIsCheckedBeforeAnyWork) {
+    const fs::path root = makeScenario("identity-seed", kExpect, 4).parent_path();
+    const fs::path seed = root / "identity-seed.json";
+    nlohmann::json base = nlohmann::json::parse(std::ifstream(seed));
+    fs::remove(seed);
+    const fs::path set = root / "set";
+    auto write = [&](const fs::path& rel, const std::string& name, const std::string& baseline) {
+        nlohmann::json j = base;
+        j["name"] = name;
+        if (!baseline.empty()) j["expect"]["baseline"] = baseline;
+        fs::create_directories((set / rel).parent_path());
+        std::ofstream(set / rel) << j.dump(2);
+    };
+    write("a.json", "b", "");
+    write("b.json", "a", "");
+    write("x/scene.json", "scene", "");
+    write("y/scene.json", "scene", "");
+    write("self.json", "self", "self.json");
+    write("up/up.json", "up", "../../x.json");
+    RegressOptions o = optionsFor(set);
+    o.inputs = {set};
+    o.out_dir = root / "out";
+    std::string refused;
+    try {
+        runRegression(o);
+    } catch (const InputError& e) {
+        refused = e.what();
+    }
+    EXPECT_EQ(std::count(refused.begin(), refused.end(), '\n'), 1) << "two problems: " << refused;
+    EXPECT_NE(refused.find("self.json: /expect/baseline: " + (set / "self.json").string() +
+                           " is the scenario file itself"),
+              std::string::npos)
+        << refused;
+    EXPECT_NE(refused.find("up.json: /expect/baseline:"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("lies outside the scenario's folder"), std::string::npos) << refused;
+    EXPECT_FALSE(fs::exists(o.out_dir)) << "refused before any work";
+    EXPECT_TRUE(fs::exists(set / "self.json"));
+
+    fs::remove(set / "self.json");
+    fs::remove_all(set / "up");
+    o.update = true;
+    runRegression(o);
+    o.update = false;
+    const RegressReport report = runRegression(o);
+    ASSERT_EQ(report.scenarios.size(), 4u);
+    std::map<std::string, std::string> name_of;  // id -> name
+    for (const ScenarioOutcome& s : report.scenarios) name_of[s.id] = s.name;
+    EXPECT_EQ(name_of, (std::map<std::string, std::string>{
+                           {"a", "b"}, {"b", "a"}, {"x+scene", "scene"}, {"y+scene", "scene"}}));
+    for (const ScenarioOutcome& s : report.scenarios) {
+        EXPECT_TRUE(s.passed()) << report.table();
+        const nlohmann::json summary =
+            nlohmann::json::parse(std::ifstream(o.out_dir / s.id / "summary.json"));
+        EXPECT_EQ(summary["scenario"]["id"], s.id);
+        EXPECT_EQ(summary["scenario"]["file"], s.scenario);
+    }
+    // The same set as shards, merged: each summary where its id says, into the history by id.
+    const ScenarioSet whole = scenarioSetOf({set});
+    std::vector<fs::path> dirs;
+    for (uint32_t i = 0; i < 2; ++i) {
+        RegressOptions shard = o;
+        shard.shard = {i, 2};
+        shard.out_dir = root / ("shard-" + std::to_string(i));
+        writeShardResult(shard.out_dir,
+                         {shard.out_dir, whole, shard.shard, "host", "cpu", runRegression(shard)});
+        dirs.push_back(shard.out_dir);
+    }
+    const MergedRun merged = mergeShards(dirs);
+    std::vector<std::pair<std::string, Json>> summaries;
+    for (size_t k = 0; k < merged.summaries.size(); ++k) {
+        EXPECT_EQ(merged.summaries[k]["scenario"]["id"], merged.report.scenarios[k].id);
+        EXPECT_EQ(merged.summaries[k]["scenario"]["name"], merged.report.scenarios[k].name);
+        summaries.emplace_back(merged.report.scenarios[k].id, merged.summaries[k]);
+    }
+    const HistoryEntry entry = historyEntryNow(summaries, "test");
+    EXPECT_EQ(entry.scenarios.size(), 4u);
+    EXPECT_TRUE(entry.scenarios.count("x+scene") && entry.scenarios.count("y+scene"));
+    fs::remove_all(root);
+}
+
+// A `run --out` into a scenario's folder of a regress in progress holds that folder's lock; the
+// regress, which locks every scenario folder of its share before the first runs, says so and
+// runs nothing (and, the other way round, such a run is refused while regress holds them).
+TEST(Regress, AScenarioFolderHeldByAnotherRunIsFoundBeforeAnyScenarioRuns) {
+    const fs::path file = makeScenario("locked", kExpect, 4);
+    RegressOptions o = optionsFor(file);
+    o.update = true;
+    claimRegressFolder(o.out_dir);  // an earlier regress's folder
+    const FolderLock held(o.out_dir / "locked", false);
+    EXPECT_THROW(runRegression(o), RunFolderBusy);
+    EXPECT_FALSE(fs::exists(file.parent_path() / "locked.baseline.json")) << "nothing ran";
+    fs::remove_all(file.parent_path());
+}
+
+// Issue 40: a 3-repetition bench of a culler that misses reports the misses of every repetition,
+// not their median (deep-depth-small: async misses an object in deterministic-latency mode).
+TEST(Regress, AThreeRepetitionBenchOfACullerThatMissesReportsEveryMiss) {
+    const Scenario scenario =
+        parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/deep-depth-small.json");
+    BenchOptions bench;
+    bench.algorithms = {findAlgorithm("vfc"), findAlgorithm("async")};
+    bench.measure_error = true;
+    bench.latency = {true, 8};
+    bench.repetitions = 3;
+    const BenchResult result = runBenchmark(scenario, bench);
+    const RunRecord& async = result.runs[1];
+    ASSERT_EQ(async.repetitions.size(), 3u);
+    const int64_t once = async.repetitions[0].missed_objects_total;
+    ASSERT_GT(once, 0) << "the scene no longer makes async miss: pick another";
+    EXPECT_EQ(async.summary.missed_objects_total, 3 * once);
+    EXPECT_EQ(async.summary.error_pixels_total, 3 * async.repetitions[0].error_pixels_total);
+    EXPECT_EQ(async.summary.frames_with_error, 3 * async.repetitions[0].frames_with_error);
+    EXPECT_GT(async.summary.error_pixels_mean, 0.0);
+}
+
+// "partial" only when frames were lost: a signal after the last frame leaves the run whole; one
+// before it keeps the whole frames and says so. In a child process of its own (a death test):
+// the stop request, once recorded, stays for the process.
+TEST(Stopping, ASignalAfterTheLastFrameLosesNothingAndOneBeforeItMarksThePartialRun) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    auto runSignalledAt = [](uint32_t signal_frame) {
+        installStopHandlers();
+        Scenario s =
+            parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
+        BenchOptions b;
+        b.algorithms = {findAlgorithm("vfc")};
+        b.frames = 4;
+        b.on_frame = [signal_frame](const FrameEvent& e) {
+            if (e.frame == signal_frame) std::raise(SIGINT);
+        };
+        const BenchResult r = runBenchmark(s, b);
+        if (stopSignal() != SIGINT) std::exit(9);
+        std::exit(r.partial ? static_cast<int>(r.partial->frames_reached) : 0);
+    };
+    EXPECT_EXIT(runSignalledAt(3), ::testing::ExitedWithCode(0), "") << "after the last frame";
+    EXPECT_EXIT(runSignalledAt(1), ::testing::ExitedWithCode(2), "") << "two whole frames kept";
+}
+
+// A world that cannot go on (an object beyond finite float coordinates) keeps the frames before
+// it, marked partial with the reason, instead of ending the run with nothing written.
+TEST(Stopping, AWorldThatLeavesFiniteCoordinatesKeepsTheFramesBeforeIt) {
+    Scenario s =
+        parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
+    s.movers.resize(1);
+    s.movers[0] = MoverSpec{};
+    s.movers[0].motion = MotionType::Orbit;
+    s.movers[0].fraction = 0.05;
+    s.movers[0].radius_min_m = s.movers[0].radius_max_m = 1e39;  // beyond float once it moves
+    s.movers[0].speed_min_mps = s.movers[0].speed_max_mps = 1e300;
+    BenchOptions b;
+    b.algorithms = {findAlgorithm("vfc")};
+    b.frames = 6;
+    const BenchResult r = runBenchmark(s, b);
+    ASSERT_TRUE(r.partial.has_value());
+    EXPECT_NE(r.partial->reason.find("the world stopped at frame"), std::string::npos)
+        << r.partial->reason;
+    EXPECT_NE(r.partial->reason.find("its scale"), std::string::npos) << r.partial->reason;
+    EXPECT_EQ(r.runs[0].frames.size(), r.partial->frames_reached);
+}
+
 TEST(Shard, ParsesIndexOverCountAndRejectsNonsense) {
     EXPECT_EQ(parseShard("2/5").index, 2u);
     EXPECT_EQ(parseShard("2/5").count, 5u);
@@ -458,7 +711,7 @@ TEST(Shard, ShardsPartitionTheScenariosDeterministically) {
         const auto mine = collectScenarios({dir}, {i, 3});
         EXPECT_EQ(mine, collectScenarios({dir}, {i, 3}));
         total += mine.size();
-        all.insert(mine.begin(), mine.end());
+        for (const ScenarioFile& s : mine) all.insert(s.file);
     }
     EXPECT_EQ(total, 8u);
     EXPECT_EQ(all.size(), 8u) << "every scenario in exactly one shard, baselines excluded";

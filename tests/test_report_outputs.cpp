@@ -192,6 +192,27 @@ TEST(ClassifyNodes, MultiqueriesCountForEveryNodeTheyWereTaggedWith) {
     EXPECT_EQ(classifyNodes(tree, view, other)[2], NodeClass::Passed);
 }
 
+// hzb and masked decide without queries (a depth pyramid, a software buffer): what they left
+// out inside the frustum is culled by their own test, the topmost node of it named so, not
+// "passed through" as if nothing had culled it.
+TEST(ClassifyNodes, AFrameWithoutQueriesNamesWhatItsOwnTestCulled) {
+    const BspTree tree = sceneTree();
+    const CullView view = sceneView();
+    FrameTrace trace;
+    trace.drawn_objects = {0, 1, 6};  // nodes 0 and 1 drawn; 2 (4), 3 (2) and 5 (3) not
+    const std::vector<NodeClass> got = classifyNodes(tree, view, trace);
+    EXPECT_EQ(got[0], NodeClass::DrawnWithoutQuery);
+    EXPECT_EQ(got[1], NodeClass::DrawnWithoutQuery);
+    EXPECT_EQ(got[2], NodeClass::CulledWithoutQuery);
+    EXPECT_EQ(got[3], NodeClass::CulledWithoutQuery) << "below a drawn node, culled itself";
+    EXPECT_EQ(got[5], NodeClass::NotReached) << "below the culled node 2";
+    EXPECT_EQ(got[6], NodeClass::FrustumCulled);
+    EXPECT_STREQ(nodeClassName(NodeClass::CulledWithoutQuery), "culled without query");
+    // With a query in the frame, the query says what was culled, as before.
+    trace.queries.push_back({{tree.bounds(1)}, {QueryTag::node(1)}, true, true, 5});
+    EXPECT_EQ(classifyNodes(tree, view, trace)[2], NodeClass::Passed);
+}
+
 // ---- renderBirdsEye -----------------------------------------------------------------------
 
 struct Picture {

@@ -141,6 +141,63 @@ TEST(RunFolder, TheNextRunRecoversWhatAnInterruptedOneLeft) {
     fs::remove_all(dir);
 }
 
+// A staging folder is another run's while its process lives (a `run --out` into the folder of a
+// regress in progress once deleted regress's live staging): only a dead owner's is removed.
+TEST(RunFolder, AStagingFolderOfALiveProcessIsNeverRemoved) {
+    const fs::path dir = tempDir("live-staging");
+    const fs::path run = oldRun(dir);
+    const std::string live = ".run.tmp-" + std::to_string(::getppid());  // our parent lives
+    fs::create_directories(dir / live);
+    write(dir / live / kRunMarker, "");
+    write(dir / live / "frames.csv", "half written");
+    {
+        StagedRunFolder folder(run);
+        folder.publish();
+    }
+    EXPECT_EQ(read(dir / live / "frames.csv"), "half written");
+    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{live, "run"}));
+    fs::remove_all(dir);
+}
+
+// A symlink as --out is followed before any work: the run is staged beside where it points and
+// published there, even when the link dangles (its target not yet made).
+TEST(RunFolder, ASymlinkedFolderIsFollowedBeforeTheRunEvenWhenItDangles) {
+    const fs::path dir = tempDir("symlink");
+    fs::create_directories(dir / "real");
+    fs::create_symlink(dir / "real" / "run", dir / "link");
+    EXPECT_EQ(resolvedFolder(dir / "link"), dir / "real" / "run");
+    {
+        StagedRunFolder folder(dir / "link");
+        EXPECT_EQ(folder.target(), dir / "real" / "run");
+        EXPECT_EQ(folder.staging().parent_path(), dir / "real");
+        write(folder.staging() / "summary.json", "new");
+        folder.publish();
+    }
+    EXPECT_EQ(read(dir / "link" / "summary.json"), "new") << "reached through the link";
+    EXPECT_TRUE(fs::is_symlink(dir / "link"));
+    // A link into a folder that cannot be made is refused when staging, before any frame.
+    write(dir / "file", "a file");
+    fs::create_symlink(dir / "file" / "run", dir / "bad-link");
+    EXPECT_THROW(StagedRunFolder(dir / "bad-link"), RunFolderError);
+    fs::remove_all(dir);
+}
+
+// A regress --out holds its own marker; another folder's files are refused, not written beside.
+TEST(RunFolder, ARegressFolderIsClaimedOnlyWhenEmptyNewOrAnEarlierRegresss) {
+    const fs::path dir = tempDir("regress-folder");
+    claimRegressFolder(dir / "new");
+    EXPECT_TRUE(fs::exists(dir / "new" / kRegressMarker));
+    claimRegressFolder(dir / "new");  // again: it is ours
+    fs::create_directories(dir / "notes");
+    write(dir / "notes" / "todo.txt", "mine");
+    EXPECT_THROW(checkRegressFolder(dir / "notes"), RunFolderError);
+    EXPECT_EQ(namesIn(dir / "notes"), std::vector<std::string>{"todo.txt"});
+    fs::create_directories(dir / "older");
+    write(dir / "older" / "shard.json", R"({"format": "occsim-regress-shard", "version": 1})");
+    EXPECT_NO_THROW(claimRegressFolder(dir / "older"));
+    fs::remove_all(dir);
+}
+
 TEST(RunFolder, TheLockKeepsASecondRunOutOrMakesItWait) {
     const fs::path dir = tempDir("lock");
     auto first = std::make_unique<FolderLock>(dir / "run", false);

@@ -590,8 +590,8 @@ TEST(ScenarioDefaults, MinimalScenarioGetsAllDocumentedDefaults) {
     const auto& t = std::get<TeapotFieldSpec>(s.sources[0].spec);
     EXPECT_EQ(s.sources[0].type, SourceType::Teapots);
     EXPECT_EQ(t.count, 1000u);
-    EXPECT_EQ(t.region.min, glm::vec3(-50, 0, -200));
-    EXPECT_EQ(t.region.max, glm::vec3(50, 10, 0));
+    EXPECT_EQ(t.region.min, glm::dvec3(-50, 0, -200));
+    EXPECT_EQ(t.region.max, glm::dvec3(50, 10, 0));
     EXPECT_EQ(t.region.min, teapot_defaults.region.min);
     EXPECT_DOUBLE_EQ(t.size_min_m, 1.0);
     EXPECT_DOUBLE_EQ(t.size_max_m, 3.0);
@@ -659,14 +659,14 @@ TEST(ScenarioValid, EveryKeyIsReadIntoTheScenario) {
     EXPECT_TRUE(s.camera.loop);
     const auto& t = std::get<TeapotFieldSpec>(s.sources[0].spec);
     EXPECT_EQ(t.count, 20u);
-    EXPECT_EQ(t.region.min, glm::vec3(-1, -2, -3));
-    EXPECT_EQ(t.region.max, glm::vec3(1, 2, 3));
+    EXPECT_EQ(t.region.min, glm::dvec3(-1, -2, -3));
+    EXPECT_EQ(t.region.max, glm::dvec3(1, 2, 3));
     EXPECT_DOUBLE_EQ(t.size_min_m, 0.5);
     EXPECT_EQ(t.tessellation, 2u);
     ASSERT_EQ(s.movers.size(), 2u);
     EXPECT_EQ(s.movers[0].motion, MotionType::Bounce);
     EXPECT_TRUE(s.movers[0].has_region);
-    EXPECT_EQ(s.movers[0].region.max, glm::vec3(4, 4, 4));
+    EXPECT_EQ(s.movers[0].region.max, glm::dvec3(4, 4, 4));
     EXPECT_DOUBLE_EQ(s.movers[0].speed_min_mps, 0.0);
     EXPECT_DOUBLE_EQ(s.movers[0].fraction, 0.5);
     EXPECT_EQ(s.movers[1].motion, MotionType::Orbit);

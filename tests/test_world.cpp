@@ -55,7 +55,8 @@ TEST(Scene, PlacesTeapotsInsideTheRegionWithSizesInRange) {
     const Scene scene = buildScene(s);
     const auto& spec = std::get<TeapotFieldSpec>(s.sources[0].spec);
     for (const ObjectPose& p : scene.initial_poses) {
-        EXPECT_TRUE(contains(spec.region, glm::vec3(p.position)));
+        EXPECT_TRUE(contains(Aabb{glm::vec3(spec.region.min), glm::vec3(spec.region.max)},
+                             glm::vec3(p.position)));
         const float scale = glm::length(p.linear[1]);  // the y column: height scale
         EXPECT_GE(scale, spec.size_min_m - 1e-5);
         EXPECT_LE(scale, spec.size_max_m + 1e-5);
@@ -129,7 +130,8 @@ TEST(Movers, SpawnAddsObjectsWithTheirOwnMeshInsideTheRegion) {
     EXPECT_EQ(scene.initial_movers.size(), 7u);
     for (const Mover& m : scene.initial_movers) {
         EXPECT_GE(m.object, 200u);
-        EXPECT_TRUE(contains(std::get<TeapotFieldSpec>(s.sources[0].spec).region,
+        const WorldBox& region = std::get<TeapotFieldSpec>(s.sources[0].spec).region;
+        EXPECT_TRUE(contains(Aabb{glm::vec3(region.min), glm::vec3(region.max)},
                              glm::vec3(scene.initial_poses[m.object].position)));
     }
 }
@@ -326,6 +328,51 @@ TEST(Summary, RepetitionsGiveMediansAndTheSpreadOfTheMean) {
     EXPECT_DOUBLE_EQ(m.queries_mean, 5.0);
 }
 
+// Issue 40's case: async with (0 px, 0 missed), (0, 0) and (2 px, 1 missed) over three
+// repetitions. A median would report it exact; the counts are summed, the worst kept.
+TEST(Summary, RepetitionsSumErrorCountsInsteadOfTakingTheirMedian) {
+    RunSummary clean, miss;
+    clean.frames = miss.frames = 120;
+    clean.frame_ms.mean = 10, miss.frame_ms.mean = 11;
+    miss.error_pixels_total = 2;
+    miss.missed_objects_total = 1;
+    miss.frames_with_error = 1;
+    miss.error_pixels_worst = 2;
+    miss.error_worst_frame = 57;
+    miss.error_pixels_mean = 2.0 / 120.0;
+    miss.error_pixels_p99 = 0;
+    miss.tie_pixels_total = 4;
+    miss.popping_events = 1;
+    miss.popping_mean_frames = 1;
+    miss.popping_max_frames = 1;
+    const RunSummary m = aggregateRepetitions({clean, clean, miss});
+    EXPECT_EQ(m.error_pixels_total, 2);
+    EXPECT_EQ(m.missed_objects_total, 1);
+    EXPECT_EQ(m.frames_with_error, 1u);
+    EXPECT_EQ(m.error_pixels_worst, 2);
+    EXPECT_EQ(m.error_worst_frame, 57u);
+    EXPECT_EQ(m.tie_pixels_total, 4);
+    EXPECT_EQ(m.popping_events, 1u);
+    EXPECT_GT(m.error_pixels_mean, 0.0) << "a miss in one repetition keeps the mean above zero";
+    EXPECT_DOUBLE_EQ(m.error_pixels_mean, 2.0 / 360.0);
+    EXPECT_DOUBLE_EQ(m.frame_ms.mean, 10.0) << "times keep their median";
+    // The same three ways round: a sum, whatever the order.
+    EXPECT_EQ(aggregateRepetitions({miss, clean, miss}).missed_objects_total, 2);
+}
+
+// A Pareto mark decided by a difference below the run-to-run noise is a tie: with repetitions,
+// two times whose ranges overlap are not told apart.
+TEST(Summary, TheParetoFrontTiesTimesWhoseSpreadsOverlap) {
+    // a: 10.0 ms [9.5-10.5], 0 error; b: 10.2 ms [9.8-10.6], 0 error: neither is faster.
+    EXPECT_EQ(paretoFront({9.5, 9.8}, {10.5, 10.6}, {0.0, 0.0}), (std::vector<bool>{true, true}));
+    // Apart beyond the spread, the slower one drops off.
+    EXPECT_EQ(paretoFront({9.5, 11.0}, {10.5, 11.6}, {0.0, 0.0}), (std::vector<bool>{true, false}));
+    // Tied on time, the one with less error dominates.
+    EXPECT_EQ(paretoFront({9.5, 9.8}, {10.5, 10.6}, {0.1, 0.0}), (std::vector<bool>{false, true}));
+    // One repetition: the means decide, as before.
+    EXPECT_EQ(paretoFront({10.0, 10.2}, {0.0, 0.0}), (std::vector<bool>{true, false}));
+}
+
 TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
     std::vector<FrameStats> frames(10);
     for (uint32_t i = 0; i < 10; ++i) {
@@ -377,6 +424,24 @@ TEST(Movers, AMotionThatLeavesFiniteCoordinatesStopsTheRunNamingObjectAndFrame) 
     }
 }
 
+// A glTF scale animation to 3e38 overflows a box at the origin: the message names the scale, not
+// only a position that is fine.
+TEST(Movers, AnOverflowingScaleIsNamedInTheMessage) {
+    WorldState state;
+    state.poses.resize(1);
+    state.poses[0].linear = glm::mat3(3e38f);
+    state.boxes = {Aabb{{0, 0, 0}, {std::numeric_limits<float>::infinity(), 1, 1}}};
+    state.moved = {0};
+    try {
+        requireFiniteBoxes(state, 2);
+        ADD_FAILURE() << "expected a MotionError";
+    } catch (const MotionError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("its position is (0, 0, 0), its scale 3e+38"), std::string::npos)
+            << message;
+    }
+}
+
 TEST(Movers, PlacementsOutsideFiniteCoordinatesAreNamedToo) {
     WorldState state;
     state.poses.resize(3);
@@ -421,6 +486,21 @@ TEST(WorldBoxes, AreRelativeToTheCullingOriginAndRoundedOutward) {
     // The centre of the camera's keyframes, in whole metres: precision where the camera is.
     EXPECT_EQ(scene.culling_origin.x, 1000000.0);
     EXPECT_EQ(scene.culling_origin.z, 5025.0);
+}
+
+// A region is in double like the camera: 10^12 m out, the field is where the camera is aimed
+// (in float, 10^12 rounds to 999,999,995,904: the scene landed 4 km away).
+TEST(WorldBoxes, ARegionFarOutIsWhereTheScenarioPutsIt) {
+    Scenario s = smallScenario();
+    auto& teapots = std::get<TeapotFieldSpec>(s.sources[0].spec);
+    teapots.region = {glm::dvec3(1e12, 0, 0), glm::dvec3(1e12 + 100, 5, 100)};
+    s.camera.keyframes = {{0.0, {1e12 + 50, 3, 150}, {1e12 + 50, 1, 50}}};
+    const Scene scene = buildScene(s);
+    ASSERT_FALSE(scene.initial_poses.empty());
+    for (const ObjectPose& p : scene.initial_poses) {
+        EXPECT_GE(p.position.x, 1e12);
+        EXPECT_LE(p.position.x, 1e12 + 100);
+    }
 }
 
 // A far object does not pull the origin: one teapot 10^9 m away beside a field at the origin.

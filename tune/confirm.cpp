@@ -1,10 +1,21 @@
 #include "tune/confirm.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "tune/measure.h"
 
 namespace occsim::tune {
+namespace {
+
+std::string fixedText(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+}  // namespace
 
 Spread spreadOf(std::vector<double> v) {
     if (v.empty()) return {};
@@ -26,7 +37,8 @@ const char* Verdict::name() const {
     return "";
 }
 
-Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, const std::string& reference) {
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_noise,
+                          const std::string& reference) {
     for (const ConfirmationRow& r : rows) {
         if (r.tuned_error_pixels > r.paper_error_pixels) {
             return {Verdict::Kind::Rejected, r.variant +
@@ -55,16 +67,39 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, const std::s
                     "tuned.json holds " +
                     reference};
     }
+    // A gain is a median ratio below 1 by more than the noise of that median: each repetition's
+    // ratio is of two runs (log noise s * sqrt(2)), and the median of R of them about that over
+    // sqrt(R) (docs/tuning.md "The verdict").
+    auto margin = [&](const ConfirmationRow& r) {
+        return run_noise * std::sqrt(2.0 / std::max<double>(1.0, r.repetitions));
+    };
     for (const ConfirmationRow& r : rows) {
         if (r.repetitions >= 2 && r.mean_ratio.min > 1.0) {
             return {Verdict::Kind::Rejected, r.variant + ": slower in every repetition"};
         }
+        if (std::log(r.mean_ratio.median) > margin(r)) {
+            return {Verdict::Kind::Rejected, r.variant +
+                                                 ": slower beyond the noise (median ratio " +
+                                                 fixedText(r.mean_ratio.median, 3) + ", noise " +
+                                                 fixedText(100.0 * margin(r), 1) + " %)"};
+        }
     }
-    const bool one = std::any_of(rows.begin(), rows.end(),
-                                 [](const ConfirmationRow& r) { return r.repetitions < 2; });
+    for (const ConfirmationRow& r : rows) {
+        if (r.same_decisions) {
+            return {Verdict::Kind::NoChange,
+                    r.variant + ": the same decisions as " + reference +
+                        " on every frame, so no gain there: tuned.json holds " + reference};
+        }
+        if (std::log(r.mean_ratio.median) >= -margin(r)) {
+            return {Verdict::Kind::NoChange, r.variant + ": not faster than " + reference +
+                                                 " beyond the noise (median ratio " +
+                                                 fixedText(r.mean_ratio.median, 3) + ", noise " +
+                                                 fixedText(100.0 * margin(r), 1) +
+                                                 " %): tuned.json holds " + reference};
+        }
+    }
     return {Verdict::Kind::Accepted,
-            one ? "not slower nor worse (one repetition: too few to tell time apart)"
-                : "not slower in every repetition, no more error"};
+            "faster than " + reference + " beyond the noise on every variant, no more error"};
 }
 
 ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,

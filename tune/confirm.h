@@ -56,12 +56,16 @@ struct Verdict {
     }
 };
 
-// Rejected when any variant shows more error pixels or missed objects with the tuned setting, or
-// is slower in every one of at least two repetitions (one repetition cannot show that); "no
-// change" when the two settings were the same (ConfirmationRow::same_setting) or made the same
-// decisions on every variant; accepted otherwise. `reference` names the reference in the reason:
-// "the paper's values" or "the defaults" (referenceName()).
-Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows,
+// Rejected when any variant shows more error pixels or missed objects with the tuned setting, is
+// slower in every one of at least two repetitions, or has a median ratio above 1 beyond the
+// noise; "no change" when the two settings were the same (ConfirmationRow::same_setting), made
+// the same decisions on every variant, or when any variant's median ratio is not below 1 beyond
+// the noise; accepted only when every variant (the fitted frames and the held-out ones) is
+// faster beyond it. The noise of a variant's median ratio is run_noise * sqrt(2 / repetitions),
+// run_noise being the session's measured noise of one run's mean frame time (a relative standard
+// deviation, SampleLog::referenceNoise()). `reference` names the reference in the reason: "the
+// paper's values" or "the defaults" (referenceName()).
+Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_noise,
                           const std::string& reference = "the paper's values");
 
 // `reference` first, then `tuned`: the same order as every sampling batch.

@@ -179,7 +179,7 @@ TuneSession runTuner(const TuneOptions& o) {
     }
     progress.finish();
     r.renderer = r.confirmation.front().renderer;
-    r.verdict = judgeConfirmation(r.confirmation, referenceName(algorithm));
+    r.verdict = judgeConfirmation(r.confirmation, r.reference_noise, referenceName(algorithm));
     s.tuned_file = tunedFile(algorithm, writtenSetting(r.verdict, tuned, reference));
     return s;
 }

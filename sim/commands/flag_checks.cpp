@@ -1,6 +1,10 @@
 #include "sim/commands/flag_checks.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 #include "occsim/culling/contract/input_error.h"
@@ -95,6 +99,61 @@ bool recordsObjects(const std::vector<std::string>& values) {
         objects = true;
     }
     return objects;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path absoluteResolved(const fs::path& p) {
+    std::error_code ec;
+    const fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
+    return ec ? fs::absolute(p).lexically_normal() : r;
+}
+
+// `path` exists and is writable, or the nearest folder above it that exists is.
+void checkWritable(const std::string& flag, const fs::path& path) {
+    std::error_code ec;
+    fs::path p = absoluteResolved(path);
+    if (fs::exists(p, ec)) {
+        if (::access(p.c_str(), W_OK) != 0) {
+            throw occsim::InputError(flag + " " + path.string() + ": cannot be written (" +
+                                     std::strerror(errno) +
+                                     "); expected a place this user can write");
+        }
+        return;
+    }
+    fs::path above = p.parent_path();
+    while (!above.empty() && !fs::exists(above, ec) && above != above.parent_path())
+        above = above.parent_path();
+    if (!fs::is_directory(above, ec)) {
+        throw occsim::InputError(flag + " " + path.string() + ": " + above.string() +
+                                 " is not a folder; expected a path whose folders can be made");
+    }
+    if (::access(above.c_str(), W_OK) != 0) {
+        throw occsim::InputError(flag + " " + path.string() + ": cannot create it in " +
+                                 above.string() + " (" + std::strerror(errno) +
+                                 "); expected a place this user can write");
+    }
+}
+
+}  // namespace
+
+void checkWritableFile(const std::string& flag, const std::string& path) {
+    if (path.empty()) return;
+    checkOutputFile(flag, path, true);
+    checkWritable(flag, path);
+}
+
+void checkWritableFolder(const std::string& flag, const std::string& path) {
+    if (path.empty()) return;
+    checkOutputFolder(flag, path, true);
+    checkWritable(flag, path);
+}
+
+bool sameOrInside(const fs::path& inner, const fs::path& outer) {
+    const fs::path rel = absoluteResolved(inner).lexically_relative(absoluteResolved(outer));
+    return !rel.empty() && *rel.begin() != "..";
 }
 
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {

@@ -36,6 +36,14 @@ inline constexpr const char* kRecordHelp =
     "Record more of the run: 'objects' writes objects.sqlite into the run folder (every object's "
     "decision per frame and configuration, the culler's reason and ground truth's pixels; "
     "measures error as --error does; occsim why reads it)";
+// A file or folder the command will write at its end, checked before any work (symlinks followed):
+// it, or the nearest folder above it that exists, can be written by this process. Throws
+// InputError starting with the flag.
+void checkWritableFile(const std::string& flag, const std::string& path);
+void checkWritableFolder(const std::string& flag, const std::string& path);
+
+// Whether `inner` is `outer` or lies below it (both made absolute, symlinks followed).
+bool sameOrInside(const std::filesystem::path& inner, const std::filesystem::path& outer);
 
 // Whether both exist and are one folder (an --out that would overwrite its input).
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b);

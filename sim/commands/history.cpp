@@ -4,6 +4,7 @@
 
 #include "occsim/culling/contract/input_error.h"
 #include "sim/commands/flag_checks.h"
+#include "sim/output/run_folder.h"
 #include "sim/regress/history.h"
 #include "sim/regress/history_report.h"
 #include "sim/regress/result_files.h"
@@ -39,6 +40,10 @@ int historyCommand(const HistoryFlags& flags) {
         throw occsim::InputError("--out " + flags.out +
                                  ": is the history folder; expected a folder of its own");
     }
+    // The report's folder follows the run folder's rule (run_folder.h): replaced as a whole, and
+    // only when it is empty, absent or an earlier occsim output.
+    const occsim::FolderLock lock(flags.out, false);
+    occsim::checkRunFolder(occsim::resolvedFolder(flags.out));
     std::vector<occsim::HistoryEntry> runs = occsim::readHistory(flags.dir);
     if (runs.empty())
         throw ResultFileError(flags.dir +
@@ -47,7 +52,9 @@ int historyCommand(const HistoryFlags& flags) {
     options.window = flags.window;
     options.min_change = flags.min_change;
     const occsim::HistoryAnalysis analysis = occsim::analyseHistory(std::move(runs), options);
-    const auto files = occsim::writeHistoryReport(flags.out, analysis, options);
+    occsim::StagedRunFolder folder(flags.out);
+    const auto files = occsim::writeHistoryReport(folder.staging(), analysis, options);
+    folder.publish();
     for (const auto& c : analysis.flagged) std::printf("changed: %s\n", c.text().c_str());
     for (const auto& s : analysis.not_compared) std::printf("not compared: %s\n", s.c_str());
     std::printf(

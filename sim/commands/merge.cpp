@@ -7,6 +7,7 @@
 #include "sim/commands/flag_checks.h"
 #include "sim/commands/regress_results.h"
 #include "sim/output/atomic_file.h"
+#include "sim/output/run_folder.h"
 #include "sim/regress/history.h"
 #include "sim/regress/merge.h"
 #include "sim/regress/result_files.h"
@@ -38,9 +39,17 @@ int mergeCommand(const MergeFlags& flags) {
                                      "; expected a folder of its own for the merged report");
         }
     }
+    checkWritableFile("--junit", flags.junit);
     if (!flags.history.empty()) occsim::checkHistoryFolder(flags.history);
+    checkWritableFolder("--history", flags.history);
+    // The merged report's folder follows the run folder's rule (run_folder.h): replaced as a
+    // whole, and only when it is empty, absent or an earlier occsim output.
+    const occsim::FolderLock lock(flags.out, false);
+    occsim::checkRunFolder(occsim::resolvedFolder(flags.out));
     const occsim::MergedRun run = occsim::mergeShards({flags.dirs.begin(), flags.dirs.end()});
-    occsim::writeMergedReport(flags.out, run);
+    occsim::StagedRunFolder folder(flags.out);
+    occsim::writeMergedReport(folder.staging(), run);
+    folder.publish();
     if (!flags.junit.empty()) {
         const std::filesystem::path junit(flags.junit);
         if (junit.has_parent_path()) std::filesystem::create_directories(junit.parent_path());
@@ -61,9 +70,9 @@ int mergeCommand(const MergeFlags& flags) {
         std::vector<std::pair<std::string, occsim::Json>> summaries;
         for (size_t k = 0; k < run.report.scenarios.size(); ++k) {
             if (!run.summaries[k].is_null())
-                summaries.emplace_back(run.report.scenarios[k].name, run.summaries[k]);
+                summaries.emplace_back(run.report.scenarios[k].id, run.summaries[k]);
         }
-        appendHistoryAndSay(flags.history, summaries, flags.commit);
+        appendHistoryAndSay(flags.history, summaries, flags.commit, run.hosts, run.cpu);
     }
     return run.report.passed() ? 0 : 1;
 }

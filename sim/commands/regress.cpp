@@ -56,12 +56,22 @@ CLI::App* addRegress(CLI::App& app, RegressFlags& flags) {
 
 int regressCommand(const RegressFlags& flags) {
     checkOutputFile("--junit", flags.junit, flags.junit_given);
+    checkWritableFile("--junit", flags.junit);
     checkOutputFolder("--out", flags.out, true);
+    for (const std::string& input : flags.inputs) {
+        // The next run would take this run's summaries for scenarios, or replace its inputs.
+        if (std::filesystem::is_directory(input) && sameOrInside(input, flags.out)) {
+            throw occsim::InputError("--out " + flags.out + ": holds the scenario folder " + input +
+                                     "; expected an output folder apart from the scenarios");
+        }
+    }
     occsim_cli::checkHistoryFlag(flags.history);
     const bool record_objects = recordsObjects(flags.record);
-    // Each scenario's folder under --flags.out is one unit (runRegression); the lock covers them
-    // all.
+    checkWritableFolder("--history", flags.history);
+    // Each scenario's folder under --out is one unit with its own lock (runRegression); this
+    // lock keeps two regress runs out of the folder's shard.json and junit.xml.
     const occsim::FolderLock lock(flags.out, flags.wait_lock);
+    occsim::checkRegressFolder(flags.out);
     loadPlugins(flags.plugins);
     occsim::RegressOptions options;
     options.backend = backendChoice(flags.backend);
@@ -93,6 +103,7 @@ int regressCommand(const RegressFlags& flags) {
     options.update = flags.update;
     options.record_objects = record_objects;
     options.out_dir = flags.out;
+    options.wait_lock = flags.wait_lock;
     options.progress = ::isatty(STDERR_FILENO) != 0;
     watchFrames();
     const occsim::RegressReport report = occsim::runRegression(options);

@@ -21,9 +21,12 @@ void checkHistoryFlag(const std::string& history_dir);
 void writeRegressResults(const occsim::RegressOptions& options, const occsim::RegressReport& report,
                          const std::string& history_dir, const std::string& commit);
 
-// The scenarios' summaries appended to the history folder as one entry, and a line saying so.
+// The scenarios' summaries (by scenario id) appended to the history folder as one entry, and a
+// line saying so. `hosts` and `cpu`, when given, are where a merged run's shards ran (the entry's
+// machine); otherwise the entry names this machine.
 void appendHistoryAndSay(const std::string& history_dir,
                          const std::vector<std::pair<std::string, occsim::Json>>& summaries,
-                         const std::string& commit);
+                         const std::string& commit, const std::vector<std::string>& hosts = {},
+                         const std::string& cpu = {});
 
 }  // namespace occsim_cli

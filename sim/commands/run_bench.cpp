@@ -11,6 +11,7 @@
 #include "occsim/culling/registry/registry.h"
 #include "sim/commands/exit_codes.h"
 #include "sim/commands/flag_checks.h"
+#include "sim/output/moments.h"
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
 #include "sim/output/run_folder.h"
@@ -54,6 +55,10 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--birds-eye", flags.birds_eye,
                     "Picture this frame's culling decisions from above, per configuration (PNG)")
         ->check(integerIn(0, 9999999));
+    cmd->add_option("--segments", flags.segments,
+                    "Name stretches of the run, NAME=FROM:TO in seconds or NAME=fFROM:TO in "
+                    "frames, FROM inclusive, TO exclusive, comma-separated (corner=4.0:4.6): every "
+                    "figure is also given per segment, beside the scenario's segments");
     addPluginFlag(cmd, flags.plugins);
     cmd->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     cmd->add_option("--culling", flags.culling,
@@ -89,6 +94,27 @@ RunRequest requestOf(const std::string& command, const std::string& command_line
     loadPlugins(flags.plugins);
     return RunRequest{
         command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling), {}, ""};
+}
+
+// The scenario's segments and --segments', placed on the frames this run runs, before any work; a
+// scenario segment that a shorter --frames cuts is said on stderr.
+std::vector<occsim::Segment> runSegments(const occsim::Scenario& scenario,
+                                         const std::vector<std::string>& flag, uint32_t frames) {
+    std::vector<occsim::SegmentSpec> extra;
+    if (!flag.empty()) {
+        std::string text;
+        for (const std::string& item : flag) text += (text.empty() ? "" : ",") + item;
+        try {
+            extra = occsim::parseSegmentList(text);
+        } catch (const std::invalid_argument& e) {
+            throw occsim::InputError(std::string("--segments: ") + e.what());
+        }
+    }
+    occsim::PlannedSegments plan =
+        occsim::planSegments(scenario.segments, scenario.frames, extra, frames, scenario.dt_s);
+    for (const std::string& note : plan.notes)
+        std::fprintf(stderr, "note: %s (--frames)\n", note.c_str());
+    return plan.segments;
 }
 
 occsim::BenchOptions benchOptions(const RunRequest& request) {
@@ -138,6 +164,7 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         o.trace_frame = static_cast<uint32_t>(flags.birds_eye);
     }
     for (uint32_t frame : flags.capture) checkFrame("--capture", frame);
+    o.segments = runSegments(request.scenario, flags.segments, frames);
     o.progress = ::isatty(STDERR_FILENO) != 0;
     return o;
 }
@@ -175,6 +202,9 @@ int runAndReport(const RunRequest& request) {
         pictures.onFrame(e);
         if (objects) objects->onFrame(e);
     };
+    options.on_window_frame = [&pictures](const occsim::ReplayedFrame& f) {
+        pictures.onWindowFrame(f);
+    };
 
     watchFrames();
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
@@ -186,7 +216,11 @@ int runAndReport(const RunRequest& request) {
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
     std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    if (const std::string line = occsim::aggregationLine(result); !line.empty())
+        std::printf("%s\n", line.c_str());
     std::printf("%s\n", occsim::costsLine(result).c_str());
+    std::printf("%s", occsim::segmentTablesText(result).c_str());
+    std::printf("%s", occsim::worstWindowsText(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (objects) {
         std::printf("objects: %s/%s (occsim why %s --object ID|NAME, --overdraw, --missed)\n",
@@ -196,6 +230,10 @@ int runAndReport(const RunRequest& request) {
     if (!pictures.birdsEyeFiles().empty()) {
         std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
                     pictures.birdsEyeFiles().size());
+    }
+    if (!pictures.windowFiles().empty()) {
+        std::printf("worst-window pictures: %zu (worst-window-frame-*.png)\n",
+                    pictures.windowFiles().size());
     }
     size_t plots = 0;
     for (const std::string& f : files.files) plots += f.rfind("plot-", 0) == 0;

@@ -31,6 +31,7 @@ struct CommonFlags {
     std::vector<std::string> plugins;
     std::string ablate;
     std::vector<std::string> record;  // --record: "objects"
+    std::vector<std::string> segments;  // --segments, each as given (joined by ',')
 };
 
 struct RunFlags {

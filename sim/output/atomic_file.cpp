@@ -57,4 +57,17 @@ std::string safeFileName(std::string_view label) {
     return out.empty() ? "_" : out;
 }
 
+std::string distinctFileName(std::string_view label) {
+    const std::string safe = safeFileName(label);
+    if (safe == label) return safe;
+    uint32_t h = 2166136261u;  // FNV-1a
+    for (unsigned char c : label) {
+        h ^= c;
+        h *= 16777619u;
+    }
+    char hex[9];
+    std::snprintf(hex, sizeof hex, "%08x", h);
+    return safe + "-" + hex;
+}
+
 }  // namespace occsim

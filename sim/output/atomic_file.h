@@ -20,4 +20,9 @@ void writeFileAtomically(const std::filesystem::path& path, const std::vector<ui
 // "_", so that the result is always one path component.
 std::string safeFileName(std::string_view label);
 
+// safeFileName(), and when that changed the label, "-" and 8 hex digits of a hash of the label:
+// two labels that differ only in what safeFileName() replaces ("a+b", "a/b", "ä", "ö") still name
+// two files.
+std::string distinctFileName(std::string_view label);
+
 }  // namespace occsim

@@ -60,6 +60,8 @@ const char* nodeClassName(NodeClass c) {
             return "not reached";
         case NodeClass::Passed:
             return "passed through";
+        case NodeClass::CulledWithoutQuery:
+            return "culled without query";
     }
     return "?";
 }
@@ -80,6 +82,8 @@ Rgb nodeClassColour(NodeClass c) {
             return {72, 84, 150};  // dim blue: behind a blue one
         case NodeClass::Passed:
             return {70, 150, 150};  // dim teal
+        case NodeClass::CulledWithoutQuery:
+            return {150, 110, 255};  // violet: occlusion culled like blue, by another test
     }
     return {};
 }
@@ -98,6 +102,9 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
         if (tree.isLive(n)) subtree_drawn[tree.node(n).parent] |= subtree_drawn[n];
     }
     const QueryMarks q = markQueriedNodes(tree, trace);
+    // A frame without queries culled by a test of its own (a depth pyramid, a software buffer):
+    // what it hid is what it did not draw, and says so in the picture.
+    const bool no_queries = trace.queries.empty() && trace.earlier_results_fetched == 0;
 
     std::vector<NodeClass> out(count, NodeClass::Empty);
     for (uint32_t n = 0; n < count; ++n) {  // parents first: NotReached needs the parent's class
@@ -105,7 +112,8 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
         const uint32_t parent = tree.node(n).parent;
         const bool below_culled =
             parent != BspTree::kNone &&
-            (out[parent] == NodeClass::OcclusionCulled || out[parent] == NodeClass::NotReached);
+            (out[parent] == NodeClass::OcclusionCulled || out[parent] == NodeClass::NotReached ||
+             out[parent] == NodeClass::CulledWithoutQuery);
         if (isEmpty(b))
             out[n] = NodeClass::Empty;
         else if (classify(view.frustum, b) == FrustumTest::Outside)
@@ -118,6 +126,8 @@ std::vector<NodeClass> classifyNodes(const BspTree& tree, const CullView& view,
             out[n] = NodeClass::DrawnWithoutQuery;
         else if (below_culled)
             out[n] = NodeClass::NotReached;
+        else if (no_queries && !subtree_drawn[n])
+            out[n] = NodeClass::CulledWithoutQuery;
         else
             out[n] = NodeClass::Passed;
     }
@@ -181,9 +191,9 @@ std::vector<LegendLine> legendLines(const BirdsEyeInput& in) {
         {kDrawnObjectColour, true, "drawn object: " + std::to_string(drawn)},
         {kHiddenObjectColour, true, "not drawn: " + std::to_string(objects - drawn)},
     };
-    for (NodeClass c :
-         {NodeClass::FrustumCulled, NodeClass::OcclusionCulled, NodeClass::DrawnAfterQuery,
-          NodeClass::DrawnWithoutQuery, NodeClass::NotReached, NodeClass::Passed}) {
+    for (NodeClass c : {NodeClass::FrustumCulled, NodeClass::OcclusionCulled,
+                        NodeClass::CulledWithoutQuery, NodeClass::DrawnAfterQuery,
+                        NodeClass::DrawnWithoutQuery, NodeClass::NotReached, NodeClass::Passed}) {
         lines.push_back({nodeClassColour(c), false,
                          std::string(nodeClassName(c)) + ": " +
                              std::to_string(counts[static_cast<size_t>(c)])});

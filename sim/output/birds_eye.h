@@ -36,8 +36,12 @@ enum class NodeClass : uint8_t {
     NotReached,         // inside the frustum, below an occlusion-culled node: never visited
     Passed,             // visited, nothing of its own drawn (e.g. an inner node, a visible query
                         // whose objects all failed the per-object frustum test)
+    // In a frame without a single query (hzb's depth pyramid, masked's software buffer, the
+    // oracle): inside the frustum, objects below it and none of them drawn, the topmost such
+    // node. What culled it is the culler's own test; nodes below it are NotReached.
+    CulledWithoutQuery,
 };
-constexpr int kNodeClassCount = 7;
+constexpr int kNodeClassCount = 8;
 
 const char* nodeClassName(NodeClass c);
 Rgb nodeClassColour(NodeClass c);

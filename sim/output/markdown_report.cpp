@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/output/moments.h"
 #include "sim/output/report.h"
+#include "sim/run/segment_summaries.h"
 
 namespace occsim {
 namespace {
@@ -56,7 +58,10 @@ void header(std::ostringstream& out, const BenchResult& result) {
                                        : "; auto fell back to OSMesa: " + cell(c.backend_fallback))
         << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
-        << (c.repetitions == 1 ? " time" : " times (figures are medians)") << " |\n";
+        << (c.repetitions == 1 ? " time"
+                               : " times (times and per-frame counts are medians over them; "
+                                 "error counts sums over every repetition)")
+        << " |\n";
     if (c.sweep) {
         out << "| sweep | " << cell(c.sweep->parameter) << " =";
         for (size_t i = 0; i < c.sweep->values.size(); ++i) {
@@ -88,11 +93,11 @@ void header(std::ostringstream& out, const BenchResult& result) {
     out << costsLine(result) << ".\n\n";
 }
 
-void table(std::ostringstream& out, const BenchResult& result) {
-    const ComparisonTable t = comparisonTable(result.runs);
+// The comparison table of `runs` (the whole run's, or a segment's) as a Markdown table.
+bool markdownTable(std::ostringstream& out, const std::vector<RunRecord>& runs) {
+    const ComparisonTable t = comparisonTable(runs);
     const bool has_pareto = !t.header.empty() && t.header.back() == "pareto";
-    out << "## Comparison\n\n";
-    if (nothingInView(result.runs)) {
+    if (nothingInView(runs)) {
         out << "**Warning:** the camera sees no object on any frame (none drawn, none visible): "
                "the speedups are n/a.\n\n";
     }
@@ -113,10 +118,67 @@ void table(std::ostringstream& out, const BenchResult& result) {
         out << "\n";
     }
     out << "\n";
+    return has_pareto;
+}
+
+void table(std::ostringstream& out, const BenchResult& result) {
+    out << "## Comparison\n\n";
+    const bool has_pareto = markdownTable(out, result.runs);
     if (has_pareto) {
         out << "Configurations marked **yes** under `pareto` (and in bold) are on the "
             << "time-against-error Pareto front: no other configuration is both faster and at "
             << "most as wrong. The Ideal oracle is the bound, not a candidate.\n\n";
+    }
+}
+
+// Every figure of the table again over each segment's frames.
+void segments(std::ostringstream& out, const BenchResult& result) {
+    const RunMetadata& m = result.metadata;
+    if (m.segments.empty()) return;
+    out << "## Segments\n\n"
+        << "Each table is the comparison table over one segment's frames only: timing over its "
+        << "frames after the warm-up (a segment inside the warm-up is not timed), error and "
+        << "popping over all its frames, speedup and ratio to Ideal from the same frames.\n\n";
+    for (size_t k = 0; k < m.segments.size(); ++k) {
+        out << "### " << cell(segmentHeading(m.segments[k], m)) << "\n\n";
+        markdownTable(out, segmentRuns(result, k));
+    }
+}
+
+// Each configuration's worst windows against the reference, with the picture of the worst frame
+// of each where one was taken.
+void worstWindows(std::ostringstream& out, const BenchResult& result, const ReportFiles& files) {
+    bool any = false;
+    for (const RunRecord& r : result.runs) any |= !r.worst_windows.empty();
+    if (!any) return;
+    const bool oracle = std::any_of(result.runs.begin(), result.runs.end(), [&](const auto& r) {
+        return r.summary.label == result.window_reference && r.algorithm && r.algorithm->oracle;
+    });
+    out << "## Worst windows\n\n"
+        << "Per configuration, the windows of " << kWorstWindowFrames
+        << " consecutive timed frames where its frame time over " << result.window_reference
+        << "'s was highest (up to " << kWorstWindowsPerConfiguration << ", none overlapping, worst "
+        << "first; with repetitions each frame's figures are its medians over them)"
+        << (oracle ? "" : ": no oracle ran, so against the speedup reference") << ". "
+        << "Objects and triangles are per frame, the configuration's / " << result.window_reference
+        << "'s.";
+    if (!files.window_pictures.empty()) {
+        out << " The picture under a window is its worst frame, the world replayed to it after the "
+               "run and drawn whole (what the camera saw).";
+    }
+    out << "\n\n";
+    for (const RunRecord& r : result.runs) {
+        if (r.worst_windows.empty()) continue;
+        out << "### " << cell(r.summary.label) << "\n\n";
+        for (const WorstWindow& w : r.worst_windows) {
+            out << "- " << cell(describeWindow(w, result.window_reference, result.metadata.dt_s))
+                << "\n";
+            const std::string picture = windowPictureName(w.worst_frame);
+            const auto& taken = files.window_pictures;
+            if (std::find(taken.begin(), taken.end(), picture) != taken.end())
+                out << "\n  ![" << picture << "](" << picture << ")\n\n";
+        }
+        out << "\n";
     }
 }
 
@@ -185,6 +247,8 @@ std::string markdownReport(const BenchResult& result, const ReportFiles& files) 
     std::ostringstream out;
     header(out, result);
     table(out, result);
+    segments(out, result);
+    worstWindows(out, result, files);
     out << files.extra_markdown;
     if (files.objects) out << objectHighlightsMarkdown(*files.objects);
     pictures(out, files);

@@ -4,8 +4,10 @@
 // Contract
 // - markdownReport() is pure formatting: it measures nothing and touches no file. The table has
 //   exactly the columns of formatComparisonTable() (comparisonTable() gives both), with the
-//   Pareto configurations marked. Only the pictures named in ReportFiles are linked (by file
-//   name, relative to report.md, which lives in the same folder).
+//   Pareto configurations marked; each segment's table follows ("Segments", the same columns
+//   over its frames), then each configuration's worst windows ("Worst windows", moments.h).
+//   Only the pictures named in ReportFiles are linked (by file name, relative to report.md,
+//   which lives in the same folder).
 // - The header states, from the run's metadata, the scenario, the exact command, the machine,
 //   the warm-up frames excluded from timing, and that ground-truth rendering, PNG writing and
 //   statistics I/O are outside all timing.
@@ -25,6 +27,8 @@ namespace occsim {
 struct ReportFiles {
     std::vector<std::string> plot_files;  // PNG and SVG; the PNGs are shown
     std::vector<std::string> birds_eye_files;
+    // Worst windows' worst frames (windowPictureName()), linked under "Worst windows".
+    std::vector<std::string> window_pictures;
     std::string plots_note;      // why plots are missing or incomplete, if so
     std::string extra_markdown;  // a whole section, after the table (regress: the checks)
     // The objects section, when the run recorded objects.sqlite (`--record objects`).

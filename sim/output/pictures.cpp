@@ -6,6 +6,10 @@
 #include "render/png_writer.h"
 #include "sim/output/atomic_file.h"
 #include "sim/output/birds_eye.h"
+#include "sim/output/error_picture.h"
+#include "sim/output/fixed_text.h"
+#include "sim/output/moments.h"
+#include "sim/output/raster_canvas.h"
 #include "sim/world/camera_path.h"
 
 namespace occsim {
@@ -33,7 +37,39 @@ std::vector<uint8_t> birdsEyePng(const Simulation& sim, const Scenario& scenario
     return encodePngBottomUp(renderBirdsEye(in, size.width, size.height), size.width, size.height);
 }
 
+// The replayed frame under a strip that says which frame it is, each frame pixel a square of
+// errorPictureScale() as in the error pictures, so that a small frame can be seen.
+std::vector<uint8_t> labelledFramePng(const ReplayedFrame& frame) {
+    const int text_scale = 2, margin = 6;
+    const int band = RasterCanvas::textHeight(text_scale) + 2 * margin;
+    const std::string label = "frame " + std::to_string(frame.frame) + ", " +
+                              fixed(frame.time_s, 3) + " s, as the camera saw it";
+    const int scale = static_cast<int>(errorPictureScale(frame.width));
+    const int w = static_cast<int>(frame.width) * scale, h = static_cast<int>(frame.height);
+    RasterCanvas canvas(
+        static_cast<uint32_t>(std::max(w, RasterCanvas::textWidth(label, text_scale) + 2 * margin)),
+        static_cast<uint32_t>(band + h * scale), Rgb{255, 255, 255});
+    canvas.text(margin, margin, label, Rgb{0, 0, 0}, text_scale);
+    for (int y = 0; y < h; ++y) {
+        // The frame's rows are bottom-up; the canvas's top-down.
+        const uint8_t* row = frame.rgba.data() + static_cast<size_t>(h - 1 - y) * frame.width * 4;
+        for (uint32_t x = 0; x < frame.width; ++x) {
+            const uint8_t* c = row + 4 * x;
+            const int x0 = static_cast<int>(x) * scale, y0 = band + y * scale;
+            canvas.fillRect(x0, y0, x0 + scale - 1, y0 + scale - 1, Rgb{c[0], c[1], c[2]});
+        }
+    }
+    return encodePngBottomUp(canvas.rgbaBottomUp(), canvas.width(), canvas.height());
+}
+
 }  // namespace
+
+void PictureRecorder::onWindowFrame(const ReplayedFrame& frame) {
+    const std::string name = windowPictureName(frame.frame);
+    std::filesystem::create_directories(out_dir_);
+    writeFileAtomically(out_dir_ / name, labelledFramePng(frame));
+    windows_.push_back(name);
+}
 
 PictureRecorder::PictureRecorder(std::filesystem::path out_dir,
                                  std::vector<uint32_t> capture_frames,

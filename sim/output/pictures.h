@@ -22,15 +22,19 @@ class PictureRecorder {
                     std::optional<uint32_t> birds_eye_frame);
 
     void onFrame(const FrameEvent& event);
+    // A worst window's worst frame, replayed after the run (BenchOptions::on_window_frame):
+    // worst-window-frame-NNNNN.png, under a label with its frame and time.
+    void onWindowFrame(const ReplayedFrame& frame);
 
     const std::vector<std::string>& captureFiles() const { return captures_; }
     const std::vector<std::string>& birdsEyeFiles() const { return birds_eye_; }
+    const std::vector<std::string>& windowFiles() const { return windows_; }
 
   private:
     std::filesystem::path out_dir_;
     std::vector<uint32_t> capture_frames_;
     std::optional<uint32_t> birds_eye_frame_;
-    std::vector<std::string> captures_, birds_eye_;
+    std::vector<std::string> captures_, birds_eye_, windows_;
     std::vector<uint8_t> rgba_;  // read-back scratch
 };
 

@@ -6,6 +6,7 @@
 
 #include "sim/output/build_info.h"
 #include "sim/output/fixed_text.h"
+#include "sim/output/moments.h"
 #include "sim/run/stop_request.h"
 #include "sim/scenario/option_json.h"
 
@@ -156,7 +157,8 @@ nlohmann::json errorJson(const RunSummary& s) {
             {"popping_max_frames", s.popping_max_frames}};
 }
 
-// One configuration: its figures, options and, where they mean something, its speed-ups.
+}  // namespace
+
 nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord>& runs) {
     const RunSummary& s = r.summary;
     nlohmann::json j = {
@@ -203,12 +205,16 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
     return j;
 }
 
+namespace {
+
 nlohmann::json scenarioJson(const RunMetadata& m) {
-    return {{"name", m.scenario_name}, {"file", m.scenario_file},
-            {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
-            {"dt_s", m.dt_s},          {"seed", m.seed},
-            {"objects", m.objects},    {"triangles", m.triangles},
-            {"movers", m.movers}};
+    nlohmann::json j = {{"name", m.scenario_name}, {"file", m.scenario_file},
+                        {"frames", m.frames},      {"warmup_frames", m.warmup_frames},
+                        {"dt_s", m.dt_s},          {"seed", m.seed},
+                        {"objects", m.objects},    {"triangles", m.triangles},
+                        {"movers", m.movers}};
+    if (!m.scenario_id.empty()) j["id"] = m.scenario_id;  // what merge and history file it under
+    return j;
 }
 
 nlohmann::json machineJson(const RunMetadata& m) {
@@ -238,7 +244,9 @@ nlohmann::json simulatorCostsJson(const RunCosts& c) {
             {"world_update_ms_total", c.world_update_ms_total},
             {"ground_truth_renders", c.ground_truth_renders},
             {"ground_truth_ms_total", c.ground_truth_ms_total},
-            {"error_read_backs", c.error_read_backs}};
+            {"error_read_backs", c.error_read_backs},
+            {"window_frames_replayed", c.window_frames_replayed},
+            {"window_replay_ms", c.window_replay_ms}};
 }
 
 // null for a complete run; else why it ended early, how far it got, and the console's line.
@@ -267,6 +275,21 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["nothing_in_view"] =
         nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
+    // How each figure joins the repetitions (aggregateRepetitions), so no reader takes a sum for
+    // a median or the other way round.
+    summary["aggregation"] = {
+        {"timings",
+         "median over repetitions (frame_ms, cull_cpu_ms_mean, wait_ms_mean, "
+         "update_ms_mean, gpu_ms, answer latency); frame_ms_mean_over_repetitions "
+         "gives the spread"},
+        {"per_frame_counts", "median over repetitions (queries, objects, triangles per frame)"},
+        {"error_counts",
+         "sum over every repetition's frames (error.pixels_total, "
+         "missed_objects_total, frames_with_error, tie, stray and popping counts); "
+         "per-frame error means over those frames; worst frame, p99 and longest "
+         "popping run the worst repetition's"},
+        {"pareto", m.repetitions > 1 ? "times whose spreads over repetitions overlap tie"
+                                     : "one repetition: times compared by their means"}};
     summary["error_measured"] = m.error_measured;
     if (m.error_measured) {
         // What decides error against tie (docs/error.md), so a reader of the file knows.
@@ -281,6 +304,8 @@ nlohmann::json summaryJson(const BenchResult& result) {
         summary["sweep"] = {{"parameter", m.sweep->parameter}, {"values", m.sweep->values}};
     summary["simulator_costs"] = simulatorCostsJson(result.costs);
     summary["partial"] = partialJson(result);
+    summary["segments"] = segmentsJson(result);
+    summary["worst_windows"] = worstWindowsJson(result);
     if (m.cost_model) {
         summary["cost_model"] = costModelJson(*m.cost_model);
         summary["cost_model"]["source"] = m.cost_model_source;
@@ -305,6 +330,22 @@ std::string costsLine(const BenchResult& result) {
                 " ms (render and read-back, outside the frame timing)";
     }
     return line;
+}
+
+std::string aggregationLine(const BenchResult& result) {
+    const RunMetadata& m = result.metadata;
+    if (m.repetitions > 1) {
+        const std::string n = std::to_string(m.repetitions);
+        return "repetitions: " + n +
+               "; times and per-frame counts are medians over them, error counts (err px, tie "
+               "px, missed) sums over all " +
+               n + (m.error_measured ? ", pareto with their spread (overlapping times tie)" : "");
+    }
+    if (m.error_measured && result.runs.size() > 2) {
+        return "pareto: from one repetition, times within the run-to-run spread are not told "
+               "apart (--repetitions 3 measures the spread)";
+    }
+    return "";
 }
 
 std::string runHeadline(const BenchResult& result) {

@@ -26,6 +26,10 @@ std::string formatComparisonTable(const std::vector<RunRecord>& runs);
 // CSV with a header, one row per frame per algorithm.
 std::string framesCsv(const std::vector<RunRecord>& runs);
 
+// One configuration's entry of summary.json's "algorithms": its figures, options and, where they
+// mean something, its speedup over VFC and ratio to Ideal among `runs`.
+nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord>& runs);
+
 // summary.json: the metadata (scenario, machine, command) and every configuration's figures.
 nlohmann::json summaryJson(const BenchResult& result);
 
@@ -33,6 +37,9 @@ nlohmann::json summaryJson(const BenchResult& result);
 // of the frame loops against the sum of the frame times, the shared world's update, and ground
 // truth (renders and their time, or that none was rendered).
 std::string costsLine(const BenchResult& result);
+// How repetitions were joined (medians of times, sums of error counts) and what decided the
+// Pareto mark; empty when there is nothing to say (one repetition, no error measured).
+std::string aggregationLine(const BenchResult& result);
 
 // The console's header: "<scenario>: N frames (M timed after W warm-up), <renderer>", the
 // machine's hardware threads and load average before and after the run, and a line saying so

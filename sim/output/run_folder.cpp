@@ -1,10 +1,12 @@
 #include "sim/output/run_folder.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -18,7 +20,7 @@ namespace {
 
 // "out/run/" and "out/run" are one folder; "." and ".." are made absolute so that they have a
 // name to put a suffix on.
-fs::path normalFolder(const fs::path& folder) {
+fs::path lexicalFolder(const fs::path& folder) {
     fs::path p = folder.lexically_normal();
     if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();
     if (p.empty() || p.filename() == "." || p.filename() == "..") {
@@ -26,6 +28,17 @@ fs::path normalFolder(const fs::path& folder) {
         if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();
     }
     return p;
+}
+
+// Whether the process that named a staging folder .<name>.tmp-<pid> still runs: its folder is
+// then another run's, in use, even where no lock says so.
+bool ownerAlive(const std::string& staging_name, const std::string& prefix) {
+    const std::string pid_text = staging_name.substr(prefix.size());
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos)
+        return false;
+    const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid()) return false;
+    return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
 }
 
 // A hidden sibling of the folder: .<name><suffix> beside it. Hidden so that a glob over run
@@ -49,6 +62,15 @@ bool holdsOlderOccsimSummary(const fs::path& folder) {
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     const nlohmann::json summary = nlohmann::json::parse(text, nullptr, false);
     return summary.is_object() && summary.contains("occsim") && summary["occsim"].is_object();
+}
+
+// Regress folders written before their marker existed: an occsim shard.json.
+bool holdsOlderShard(const fs::path& folder) {
+    std::ifstream in(folder / "shard.json", std::ios::binary);
+    if (!in) return false;
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const nlohmann::json shard = nlohmann::json::parse(text, nullptr, false);
+    return shard.is_object() && shard.value("format", std::string()) == "occsim-regress-shard";
 }
 
 bool holdsMarker(const fs::path& folder) {
@@ -82,13 +104,64 @@ void recoverInterrupted(const fs::path& target) {
     for (const fs::directory_entry& e : fs::directory_iterator(parentOf(target), ec)) {
         const std::string name = e.path().filename().string();
         if (name.rfind(staging_prefix, 0) == 0 && e.is_directory(ec) &&
-            (holdsMarker(e.path()) || isEmptyFolder(e.path()))) {
+            (holdsMarker(e.path()) || isEmptyFolder(e.path())) &&
+            !ownerAlive(name, staging_prefix)) {
             fs::remove_all(e.path(), ec);
         }
     }
 }
 
 }  // namespace
+
+fs::path resolvedFolder(const fs::path& folder) {
+    fs::path p = lexicalFolder(folder);
+    std::error_code ec;
+    // A bounded walk: a loop of links ends here and fails when the folder is made.
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        const fs::path to = fs::read_symlink(p, ec);
+        if (ec) break;
+        p = lexicalFolder(to.is_absolute() ? to : parentOf(p) / to);
+    }
+    return p;
+}
+
+void checkRegressFolder(const fs::path& folder) {
+    const fs::path target = resolvedFolder(folder);
+    std::error_code ec;
+    const bool exists = fs::exists(target, ec);
+    if (exists && !fs::is_directory(target, ec))
+        throw RunFolderError(target.string() + ": is a file; expected a folder");
+    const bool ours = !exists || isEmptyFolder(target) ||
+                      fs::is_regular_file(target / kRegressMarker, ec) || holdsOlderShard(target);
+    if (!ours) {
+        throw RunFolderError(target.string() +
+                             ": holds files that are not an occsim regress run (no " +
+                             kRegressMarker +
+                             " marker); expected an earlier regress --out, an empty folder or a "
+                             "new name");
+    }
+    if (exists && ::access(target.c_str(), W_OK) != 0)
+        throw RunFolderError("cannot write " + target.string() + ": " + std::strerror(errno));
+}
+
+void claimRegressFolder(const fs::path& folder) {
+    checkRegressFolder(folder);
+    const fs::path target = resolvedFolder(folder);
+    std::error_code ec;
+    fs::create_directories(target, ec);
+    if (ec || ::access(target.c_str(), W_OK) != 0) {
+        throw RunFolderError("cannot write " + target.string() + ": " +
+                             (ec ? ec.message() : std::string(std::strerror(errno))));
+    }
+    try {
+        writeFileAtomically(
+            target / kRegressMarker,
+            "An occsim regress --out folder: each scenario folder in it is replaced "
+            "by the next regress that runs that scenario.\n");
+    } catch (const std::runtime_error& e) {
+        throw RunFolderError(target.string() + ": " + e.what());
+    }
+}
 
 fs::path defaultOutputFolder(const std::string& scenario_name, const std::string& command_folder) {
     return fs::path("out") / safeFileName(scenario_name) / safeFileName(command_folder);
@@ -118,7 +191,7 @@ void checkRunFolder(const fs::path& folder) {
 }
 
 FolderLock::FolderLock(const fs::path& folder, bool wait) {
-    const fs::path target = normalFolder(folder);
+    const fs::path target = resolvedFolder(folder);
     const fs::path lock = beside(target, ".lock");
     std::error_code ec;
     fs::create_directories(parentOf(target), ec);
@@ -152,7 +225,7 @@ FolderLock::~FolderLock() {
     if (fd_ >= 0) ::close(fd_);
 }
 
-StagedRunFolder::StagedRunFolder(fs::path target) : target_(normalFolder(target)) {
+StagedRunFolder::StagedRunFolder(fs::path target) : target_(resolvedFolder(target)) {
     checkRunFolder(target_);
     recoverInterrupted(target_);
     staging_ = beside(target_, ".tmp-" + std::to_string(::getpid()));

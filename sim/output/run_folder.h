@@ -29,6 +29,20 @@ struct RunFolderBusy : std::runtime_error {
 
 // The marker file a published run folder holds.
 inline constexpr const char* kRunMarker = ".occsim-run";
+// The marker file a regress --out folder holds: its scenario folders are run folders, each
+// replaced on its own, and shard.json and junit.xml beside them are rewritten by every regress.
+inline constexpr const char* kRegressMarker = ".occsim-regress";
+
+// The folder a path names once its symlinks are followed (a link to a link, a link to a folder
+// not yet made), "out/run/" and "out/run" one folder: what a run writes is found where the link
+// points, before the run, never after its last frame.
+std::filesystem::path resolvedFolder(const std::filesystem::path& folder);
+
+// A regress --out folder: absent, empty, or one an earlier regress wrote (its marker, or an older
+// occsim shard.json). checkRegressFolder() throws RunFolderError otherwise, or when it cannot be
+// written; claimRegressFolder() checks, then creates the folder and its marker.
+void checkRegressFolder(const std::filesystem::path& folder);
+void claimRegressFolder(const std::filesystem::path& folder);
 
 // out/<scenario name>/<command folder>, each name made one safe path component, so that a
 // scenario named "/abs" or "../.." still writes under out/.
@@ -55,11 +69,12 @@ class FolderLock {
     int fd_ = -1;
 };
 
-// The staging folder of one run into `target`. The caller holds the target's lock (FolderLock,
-// or one around a set of targets). The constructor checks the target (checkRunFolder), finishes
-// a publication a crash interrupted, and creates the staging folder with its marker, so that an
-// unwritable place is found before any work. Destroyed unpublished, the staging folder is
-// removed and the target left as it was.
+// The staging folder of one run into `target` (its symlinks followed: resolvedFolder()). The
+// caller holds the target's lock (FolderLock). The constructor checks the target
+// (checkRunFolder), finishes a publication a crash interrupted (a staging folder left by a run
+// whose process is gone), and creates the staging folder with its marker, so that an unwritable
+// place is found before any work. Destroyed unpublished, the staging folder is removed and the
+// target left as it was.
 class StagedRunFolder {
   public:
     explicit StagedRunFolder(std::filesystem::path target);

@@ -2,6 +2,7 @@
 
 #include "sim/output/atomic_file.h"
 #include "sim/output/markdown_report.h"
+#include "sim/output/moments.h"
 #include "sim/output/plots.h"
 #include "sim/output/report.h"
 
@@ -16,6 +17,14 @@ OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& requ
 
     ReportFiles report;
     report.birds_eye_files = request.birds_eye_files;
+    // The worst windows' pictures the run took (PictureRecorder::onWindowFrame), by their names.
+    for (const RunRecord& r : result.runs) {
+        for (const WorstWindow& w : r.worst_windows) {
+            const std::string name = windowPictureName(w.worst_frame);
+            if (std::filesystem::exists(request.out_dir / name))
+                report.window_pictures.push_back(name);
+        }
+    }
     report.extra_markdown = request.extra_markdown;
     report.objects = request.objects;
     if (request.plots) {

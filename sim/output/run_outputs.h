@@ -28,7 +28,8 @@ struct OutputFiles {
     std::string plots_message;       // why plots were skipped or failed, or a remark
 };
 
-// Throws std::runtime_error naming the file when one cannot be written.
+// report.md links every worst window's picture (windowPictureName(), PictureRecorder) that is in
+// out_dir. Throws std::runtime_error naming the file when one cannot be written.
 OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& request);
 
 }  // namespace occsim

@@ -33,24 +33,6 @@ std::string trimmed(std::string s) {
     return s.substr(i);
 }
 
-std::string hostName() {
-    char buf[256] = {};
-    if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
-    return buf;
-}
-
-std::string cpuModel() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) return trimmed(line.substr(colon + 1));
-        }
-    }
-    return "unknown";
-}
-
 std::string gitHead() {
     FILE* pipe = popen("git rev-parse HEAD 2>/dev/null", "r");
     if (!pipe) return "";
@@ -85,6 +67,24 @@ double numberOr(const Json& j, const char* key, double fallback) {
 
 }  // namespace
 
+std::string thisHostName() {
+    char buf[256] = {};
+    if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+    return buf;
+}
+
+std::string thisCpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) return trimmed(line.substr(colon + 1));
+        }
+    }
+    return "unknown";
+}
+
 std::string HistoryEntry::series() const {
     return hostname + "; " + cpu + "; " + renderer + "; " + backend;
 }
@@ -94,8 +94,8 @@ HistoryEntry historyEntryNow(const std::vector<std::pair<std::string, Json>>& su
     HistoryEntry e;
     e.commit = commitNow(commit);
     e.date = utcNow();
-    e.hostname = hostName();
-    e.cpu = cpuModel();
+    e.hostname = thisHostName();
+    e.cpu = thisCpuModel();
     for (const auto& [scenario, summary] : summaries) {
         if (summary.contains("machine") && e.backend.empty()) {
             const Json& m = summary.at("machine");

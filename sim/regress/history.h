@@ -36,6 +36,11 @@ struct HistoryEntry {
     std::string series() const;
 };
 
+// This machine as a history series names it: its host name and CPU model ("unknown" when not
+// found).
+std::string thisHostName();
+std::string thisCpuModel();
+
 // An entry for a run made now on this machine, from each scenario's summary.json (as `occsim
 // regress` writes it into its --out folder): (scenario name, summary). The commit is `commit`
 // when given, else $OCCSIM_COMMIT, $GITHUB_SHA or $CI_COMMIT_SHA, else `git rev-parse HEAD` in

@@ -153,8 +153,8 @@ std::string historyMarkdown(const HistoryAnalysis& a, const HistoryOptions& opti
     for (size_t i = 0; i < a.series.size(); ++i)
         out << "| " << i + 1 << " | " << a.series[i] << " |\n";
     for (const std::string& scenario : a.scenarios) {
-        out << "\n## " << scenario << "\n\n![" << scenario << "](history-" << safeFileName(scenario)
-            << ".svg)\n\n"
+        out << "\n## " << scenario << "\n\n![" << scenario << "](history-"
+            << distinctFileName(scenario) << ".svg)\n\n"
             << "Speedup over VFC per run:\n\n";
         std::set<std::string> algorithms;
         for (const HistoryEntry& e : a.runs) {
@@ -191,7 +191,7 @@ std::vector<std::string> writeHistoryReport(const std::filesystem::path& out,
     std::filesystem::create_directories(out);
     std::vector<std::string> files;
     for (const std::string& scenario : a.scenarios) {
-        const std::string name = "history-" + safeFileName(scenario) + ".svg";
+        const std::string name = "history-" + distinctFileName(scenario) + ".svg";
         writeFileAtomically(out / name, historySvg(a, scenario));
         files.push_back(name);
     }

@@ -99,10 +99,12 @@ size_t countAttribute(const Tag& tag, const char* key, TagReader& reader) {
     return std::stoul(v);
 }
 
-// The attribute text as written by junitXml(): the five entities decoded.
+// The attribute text as written by junitXml(): the five entities and the references to tab,
+// newline and carriage return decoded.
 std::string unescape(const std::string& s) {
     static const std::pair<const char*, char> entities[] = {
-        {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
+        {"&amp;", '&'},   {"&lt;", '<'},  {"&gt;", '>'},   {"&quot;", '"'},
+        {"&apos;", '\''}, {"&#9;", '\t'}, {"&#10;", '\n'}, {"&#13;", '\r'}};
     std::string out;
     for (size_t i = 0; i < s.size();) {
         bool matched = false;

@@ -1,4 +1,5 @@
 // A regression run as JUnit XML: one test case per scenario, its failed checks as the failure.
+#include <cstdio>
 #include <sstream>
 
 #include "sim/output/fixed_text.h"
@@ -7,9 +8,12 @@
 namespace occsim {
 namespace {
 
+// Escaped for an attribute or text of XML 1.0. Tab, newline and carriage return become character
+// references (an attribute keeps them); the other control characters, which XML 1.0 forbids even
+// as references, are written as visible text (junitVisibleText()).
 std::string xmlEscape(const std::string& s) {
     std::string out;
-    for (char c : s) {
+    for (char c : junitVisibleText(s)) {
         switch (c) {
             case '&':
                 out += "&amp;";
@@ -26,6 +30,15 @@ std::string xmlEscape(const std::string& s) {
             case '\'':
                 out += "&apos;";
                 break;
+            case '\t':
+                out += "&#9;";
+                break;
+            case '\n':
+                out += "&#10;";
+                break;
+            case '\r':
+                out += "&#13;";
+                break;
             default:
                 out += c;
         }
@@ -34,6 +47,21 @@ std::string xmlEscape(const std::string& s) {
 }
 
 }  // namespace
+
+std::string junitVisibleText(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02X", u);
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
 
 std::string junitXml(const RegressReport& report) {
     size_t tests = 0, failures = 0, skipped = 0;

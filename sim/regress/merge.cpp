@@ -23,7 +23,8 @@ void checkShardsAgree(const std::vector<ShardResult>& shards) {
     std::map<uint32_t, const ShardResult*> by_index;
     for (const ShardResult& s : shards) {
         const std::string where = (s.dir / "shard.json").string();
-        if (s.set.id != first.set.id || s.set.scenarios != first.set.scenarios) {
+        if (s.set.id != first.set.id || s.set.scenarios != first.set.scenarios ||
+            s.set.ids != first.set.ids) {
             throw ResultFileError(where + ": /scenario_set: from another scenario set (id " +
                                   s.set.id + ", " + std::to_string(s.set.scenarios.size()) +
                                   " scenarios) than " + (first.dir / "shard.json").string() +
@@ -53,6 +54,43 @@ void checkShardsAgree(const std::vector<ShardResult>& shards) {
                               std::to_string(first.shard.count) + " missing (given " +
                               joinIndices(have) + "); expected one folder per shard");
     }
+}
+
+// A history series is one kind of machine and backend (history.h): shards rendered on different
+// backends or renderers, or on different CPUs, are not one run.
+void checkOneMachineKind(MergedRun& run, const std::vector<ShardResult>& shards) {
+    auto kindOf = [](const Json& summary) {
+        if (!summary.is_object() || !summary.contains("machine")) return std::string();
+        const Json& m = summary["machine"];
+        return m.value("backend", std::string()) + ", " + m.value("gl_renderer", std::string());
+    };
+    std::string kind, where;
+    for (size_t k = 0; k < run.summaries.size(); ++k) {
+        const std::string here = kindOf(run.summaries[k]);
+        if (here.empty()) continue;
+        const std::string scenario = run.report.scenarios[k].scenario;
+        if (kind.empty()) {
+            kind = here;
+            where = scenario;
+        } else if (here != kind) {
+            throw ResultFileError("merge: " + scenario + " was rendered on " + here + " but " +
+                                  where + " on " + kind +
+                                  "; expected every shard on one backend and renderer (merge each "
+                                  "kind of machine apart)");
+        }
+    }
+    for (const ShardResult& s : shards) {
+        if (s.cpu != shards.front().cpu) {
+            throw ResultFileError((s.dir / "shard.json").string() + ": /machine/cpu: " + s.cpu +
+                                  ", but " + (shards.front().dir / "shard.json").string() +
+                                  " ran on " + shards.front().cpu +
+                                  "; expected every shard on one kind of machine");
+        }
+        if (std::find(run.hosts.begin(), run.hosts.end(), s.hostname) == run.hosts.end())
+            run.hosts.push_back(s.hostname);
+    }
+    run.cpu = shards.front().cpu;
+    std::sort(run.hosts.begin(), run.hosts.end());
 }
 
 }  // namespace
@@ -86,17 +124,24 @@ MergedRun mergeShards(const std::vector<std::filesystem::path>& dirs) {
             }
         }
     }
-    for (const std::string& file : run.set.scenarios) {
+    for (size_t k = 0; k < run.set.scenarios.size(); ++k) {
+        const std::string& file = run.set.scenarios[k];
         const auto it = ran.find(file);
         if (it == ran.end()) {
             throw ResultFileError("merge: " + file + " of scenario set " + run.set.id +
                                   " ran in no shard; expected every scenario in exactly one shard");
         }
         const auto& [shard, outcome] = it->second;
+        if (outcome->id != run.set.ids[k]) {
+            throw ResultFileError((shard->dir / "shard.json").string() + ": /scenarios: " + file +
+                                  " filed as '" + outcome->id + "'; expected its id in the set, '" +
+                                  run.set.ids[k] + "'");
+        }
         run.report.scenarios.push_back(*outcome);
         run.shard_of.push_back(shard->shard.index);
         run.summaries.push_back(scenarioSummary(shard->dir, *outcome));
     }
+    checkOneMachineKind(run, shards);
     return run;
 }
 

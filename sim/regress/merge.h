@@ -20,9 +20,14 @@ struct MergedRun {
     RegressReport report;                           // in the set's order
     std::vector<uint32_t> shard_of;                 // per scenario of report: which shard ran it
     std::vector<Json> summaries;                    // per scenario: its summary.json, or null
+    // Where the shards ran: one kind of CPU (checked), the hosts sorted.
+    std::string cpu;
+    std::vector<std::string> hosts;
 };
 
-// Throws ResultFileError (one line, naming the folder or file) on any inconsistency.
+// Throws ResultFileError (one line, naming the folder or file) on any inconsistency: shards of
+// different sets or counts, a scenario in no shard or in two, a summary that belongs to another
+// scenario, shards rendered on different backends, renderers or CPUs.
 MergedRun mergeShards(const std::vector<std::filesystem::path>& dirs);
 
 // The merged report's text: the table of every check (exactly what `occsim regress` prints for

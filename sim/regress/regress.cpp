@@ -16,6 +16,7 @@
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
 #include "sim/record/object_recorder.h"
+#include "sim/regress/baseline_places.h"
 #include "sim/regress/run_checks.h"
 #include "sim/run/runner.h"
 #include "sim/run/stop_request.h"
@@ -58,26 +59,57 @@ std::string checksMarkdown(const ScenarioOutcome& outcome) {
     return out.str();
 }
 
-// The scenario of a regression run (options.adjust_scenario applied), or nothing when the
-// outcome already says all: skipped (no expect block) or failed (not a valid file).
-std::optional<Scenario> readRegressScenario(const std::filesystem::path& file,
-                                            const RegressOptions& options,
-                                            ScenarioOutcome& outcome) {
-    Scenario scenario;
+// A scenario of the run as read before any of them runs: parsed (options.adjust_scenario
+// applied), or its outcome already says all: skipped (no expect block) or failed (not a valid
+// file).
+struct ReadScenario {
+    ScenarioFile file;
+    std::optional<Scenario> scenario;
+    ScenarioOutcome outcome;
+};
+
+ReadScenario readRegressScenario(const ScenarioFile& file, const RegressOptions& options) {
+    ReadScenario read{file, std::nullopt, {}};
+    ScenarioOutcome& outcome = read.outcome;
+    outcome.scenario = file.file.string();
+    outcome.id = file.id;
+    outcome.name = file.file.stem().string();
     try {
-        scenario = parseScenarioFile(file);
+        Scenario scenario = parseScenarioFile(file.file);
         if (options.adjust_scenario) options.adjust_scenario(scenario);
         outcome.name = scenario.name;
         if (!scenario.expect) {
             outcome.skipped = true;
             outcome.note = "no expect block";
-            return std::nullopt;
+            return read;
         }
+        read.scenario = std::move(scenario);
     } catch (const ScenarioError& e) {
         outcome.checks.push_back({kValidScenarioCheck, "a valid file", e.what(), false});
-        return std::nullopt;
     }
-    return scenario;
+    return read;
+}
+
+// Every scenario of the set read, and every baseline's place checked (baseline_places.h), before
+// any of them runs: a problem in any shard's share refuses every shard alike.
+std::vector<ReadScenario> readAndCheck(const std::vector<ScenarioFile>& all,
+                                       const RegressOptions& options) {
+    std::vector<ReadScenario> read;
+    std::vector<BaselinePlace> places;
+    std::vector<std::filesystem::path> files;
+    for (const ScenarioFile& f : all) {
+        read.push_back(readRegressScenario(f, options));
+        files.push_back(f.file);
+        if (read.back().scenario)
+            places.push_back({f.file, read.back().scenario->expect->baseline});
+    }
+    const std::vector<std::string> problems = baselinePlaceProblems(places, files, options.update);
+    if (!problems.empty()) {
+        std::string message;
+        for (const std::string& p : problems) message += (message.empty() ? "" : "\n") + p;
+        throw InputError(message);
+    }
+    return read;
 }
 
 // The run the expectations ask for: their algorithms, deterministic latency, error measured.
@@ -100,24 +132,24 @@ BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expect
     return bench;
 }
 
-std::filesystem::path scenarioFolder(const RegressOptions& options,
-                                     const std::filesystem::path& file) {
-    return options.out_dir / safeFileName(file.stem().string());
+std::filesystem::path scenarioFolder(const RegressOptions& options, const std::string& id) {
+    return options.out_dir / id;
 }
 
-ScenarioOutcome runOne(const std::filesystem::path& file, const RegressOptions& options) {
-    ScenarioOutcome outcome;
-    outcome.scenario = file.string();
-    outcome.name = file.stem().string();
+ScenarioOutcome runOne(const ReadScenario& read, const RegressOptions& options) {
+    ScenarioOutcome outcome = read.outcome;
+    if (!read.scenario) return outcome;
+    const std::filesystem::path& file = read.file.file;
     const auto start = Clock::now();
-    const std::optional<Scenario> read = readRegressScenario(file, options, outcome);
-    if (!read) return outcome;
-    const Scenario& scenario = *read;
+    const Scenario& scenario = *read.scenario;
     const Expectations& expect = *scenario.expect;
 
-    // The scenario's folder is one unit, staged before the run and replaced as a whole after.
-    StagedRunFolder folder(scenarioFolder(options, file));
+    // The scenario's folder is one unit, staged before the run and replaced as a whole after
+    // (its lock is held by runRegression).
+    StagedRunFolder folder(scenarioFolder(options, read.file.id));
     BenchOptions bench = regressBenchOptions(file, expect, options);
+    bench.scenario_id = read.file.id;
+    bench.segments = regressSegments(scenario, expect);
     std::unique_ptr<ObjectRecorder> objects;
     if (options.record_objects) {
         objects = std::make_unique<ObjectRecorder>(folder.staging());
@@ -162,28 +194,9 @@ bool ScenarioOutcome::ran() const {
     return !skipped && !(checks.size() == 1 && checks.front().check == kValidScenarioCheck);
 }
 
-std::vector<std::filesystem::path> collectScenarios(
-    const std::vector<std::filesystem::path>& inputs, const Shard& shard) {
-    std::set<std::filesystem::path> found;
-    auto isScenario = [](const std::filesystem::path& p) {
-        const std::string name = p.filename().string();
-        return p.extension() == ".json" && !name.ends_with(".baseline.json");
-    };
-    for (const auto& input : inputs) {
-        if (std::filesystem::is_directory(input)) {
-            for (const auto& entry : std::filesystem::recursive_directory_iterator(input)) {
-                if (entry.is_regular_file() && isScenario(entry.path())) found.insert(entry.path());
-            }
-        } else {
-            found.insert(input);  // a missing file is reported when it is parsed
-        }
-    }
-    std::vector<std::filesystem::path> mine;
-    size_t i = 0;
-    for (const auto& path : found) {
-        if (i++ % shard.count == shard.index) mine.push_back(path);
-    }
-    return mine;
+std::vector<ScenarioFile> collectScenarios(const std::vector<std::filesystem::path>& inputs,
+                                           const Shard& shard) {
+    return shardOf(collectScenarioFiles(inputs), shard);
 }
 
 bool RegressReport::passed() const {
@@ -218,22 +231,35 @@ std::string RegressReport::table() const {
 
 RegressReport runRegression(const RegressOptions& options) {
     RegressReport report;
-    const auto files = collectScenarios(options.inputs, options.shard);
-    // A folder that is not an occsim run is refused before any scenario runs.
-    for (const auto& file : files) checkRunFolder(scenarioFolder(options, file));
-    for (size_t i = 0; i < files.size(); ++i) {
-        if (options.progress) {
-            std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, files.size(), files[i].string().c_str());
-        }
-        report.scenarios.push_back(runOne(files[i], options));
-        if (const int signal = stopSignal()) {
+    const std::vector<ScenarioFile> all = collectScenarioFiles(options.inputs);
+    const std::vector<ReadScenario> read = readAndCheck(all, options);
+    std::vector<const ReadScenario*> mine;  // this shard's share: every count-th from index
+    for (size_t i = options.shard.index; i < read.size(); i += options.shard.count)
+        mine.push_back(&read[i]);
+    claimRegressFolder(options.out_dir);
+    // A folder that is not an occsim run is refused before any scenario runs, and each scenario's
+    // folder is locked for the whole run: a `run --out` into one of them is refused (or waits)
+    // instead of replacing it, or its staging folder, under this run.
+    std::vector<std::unique_ptr<FolderLock>> locks;
+    for (const ReadScenario* r : mine) {
+        checkRunFolder(scenarioFolder(options, r->file.id));
+        locks.push_back(
+            std::make_unique<FolderLock>(scenarioFolder(options, r->file.id), options.wait_lock));
+    }
+    for (size_t i = 0; i < mine.size(); ++i) {
+        const std::string file = mine[i]->file.file.string();
+        if (options.progress)
+            std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, mine.size(), file.c_str());
+        report.scenarios.push_back(runOne(*mine[i], options));
+        const std::vector<CheckResult>& last = report.scenarios.back().checks;
+        const bool cut_short = !last.empty() && last.back().check == kEveryFrameCheck;
+        // A signal after the last frame of the last scenario loses nothing: the run is whole.
+        if (const int signal = stopSignal(); signal && (cut_short || i + 1 < mine.size())) {
             report.stop_signal = signal;
-            report.stopped = std::string("interrupted by ") + signalName(signal) + " in " +
-                             files[i].string() + "; " + std::to_string(i + 1) + " of " +
-                             std::to_string(files.size()) + " scenarios ran";
-            const std::vector<CheckResult>& last = report.scenarios.back().checks;
-            if (!last.empty() && last.back().check == kEveryFrameCheck)
-                report.stopped += ", the last one partly";
+            report.stopped = std::string("interrupted by ") + signalName(signal) + " in " + file +
+                             "; " + std::to_string(i + 1) + " of " + std::to_string(mine.size()) +
+                             " scenarios ran";
+            if (cut_short) report.stopped += ", the last one partly";
             break;
         }
     }

@@ -21,6 +21,7 @@
 
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
+#include "sim/regress/scenario_identity.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 
@@ -66,6 +67,7 @@ struct CheckResult {
 
 struct ScenarioOutcome {
     std::string scenario;  // path as given/found
+    std::string id;        // its identity in the run: its folder's name (scenario_identity.h)
     std::string name;
     bool skipped = false;
     std::string note;  // why skipped, or what an update changed
@@ -95,18 +97,19 @@ Shard parseShard(const std::string& text);
 // set. `get` reads a variable (std::getenv in production). Throws std::invalid_argument.
 Shard shardFromEnvironment(const std::function<const char*(const char*)>& get);
 
-// The scenario files under the inputs (files as given; folders searched recursively for *.json,
-// skipping *.baseline.json), sorted, then this shard's share: every count-th from index.
-std::vector<std::filesystem::path> collectScenarios(
-    const std::vector<std::filesystem::path>& inputs, const Shard& shard);
+// The scenario files under the inputs (collectScenarioFiles(), scenario_identity.h), then this
+// shard's share: every count-th from index. Throws InputError as collectScenarioFiles() does.
+std::vector<ScenarioFile> collectScenarios(const std::vector<std::filesystem::path>& inputs,
+                                           const Shard& shard);
 
 struct RegressOptions {
     std::vector<std::filesystem::path> inputs;
     Shard shard;
     bool update = false;
-    // Each scenario's folder in it (its file name, made one path component) is replaced as a
-    // whole (run_folder.h); the caller holds the lock on out_dir.
+    // Each scenario's folder in it (named by its id, scenario_identity.h) is replaced as a whole
+    // (run_folder.h) under a lock of its own; the caller holds the lock on out_dir.
     std::filesystem::path out_dir = "out/regress";
+    bool wait_lock = false;  // wait for a run that holds a scenario folder's lock (else refuse)
     bool progress = false;
     BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
@@ -132,9 +135,15 @@ struct RegressReport {
     std::string table() const;  // scenario, check, expected, got, pass/fail
 };
 
+// Every scenario found is read and the run's places checked before any scenario runs: the
+// scenario files' identities (collectScenarios()) and every baseline's place
+// (checkBaselinePlaces(), baseline_places.h). A problem throws InputError, one line per problem.
 RegressReport runRegression(const RegressOptions& options);
 
 // JUnit XML: one testsuite per scenario, one testcase per check.
 std::string junitXml(const RegressReport& report);
+// `s` as junitXml() writes it once read back: the control characters XML 1.0 forbids (all below
+// 0x20 but tab, newline and carriage return) as the text "\xNN".
+std::string junitVisibleText(const std::string& s);
 
 }  // namespace occsim

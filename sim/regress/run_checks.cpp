@@ -89,13 +89,72 @@ void checkMaxErrorPixels(ResultChecks& checks, const Expectations& expect) {
     }
 }
 
+// The segment of the run a check names (the parser checked it is one of the scenario's, whole
+// within the run).
+size_t segmentIndex(const ResultChecks& checks, const std::string& name) {
+    const std::vector<Segment>& segments = checks.result.metadata.segments;
+    for (size_t k = 0; k < segments.size(); ++k) {
+        if (segments[k].name == name) return k;
+    }
+    throw std::logic_error("no segment " + name);
+}
+
+// An algorithm's summary over the whole run (segment empty) or over one segment.
+const RunSummary& summaryIn(const ResultChecks& checks, const std::string& algorithm,
+                            const std::string& segment) {
+    const RunRecord& r = checks.runOf(algorithm);
+    return segment.empty() ? r.summary : r.segments.at(segmentIndex(checks, segment));
+}
+
+// zero_error and max_error_pixels over one segment's frames. A failure pictures the run's worst
+// error frame when it lies in the segment (the run keeps one worst frame per algorithm).
+void checkSegmentErrors(ResultChecks& checks, const Expectations& expect) {
+    for (const SegmentErrorExpectation& e : expect.segment_errors) {
+        const Segment& seg = checks.result.metadata.segments.at(segmentIndex(checks, e.segment));
+        const RunSummary& s = summaryIn(checks, e.algorithm, e.segment);
+        const std::string frames = "frames " + std::to_string(seg.first_frame) + " to " +
+                                   std::to_string(seg.end_frame - 1);
+        const std::string worst = std::to_string(s.error_pixels_worst) + " (frame " +
+                                  std::to_string(s.error_worst_frame) + ")";
+        CheckResult c;
+        if (e.max_pixels) {
+            c = {"error pixels per frame in segment " + e.segment + ": " + e.algorithm,
+                 "<= " + std::to_string(*e.max_pixels) + " on " + frames, worst,
+                 s.error_pixels_worst <= *e.max_pixels};
+        } else {
+            c = {"zero error pixels in segment " + e.segment + ": " + e.algorithm, "0 on " + frames,
+                 "", s.error_pixels_total == 0};
+            c.got = c.passed ? "0"
+                             : std::to_string(s.error_pixels_total) + " px on " +
+                                   std::to_string(s.frames_with_error) + " frames (worst frame " +
+                                   worst + ")";
+        }
+        if (!c.passed) {
+            const uint32_t pictured = checks.runOf(e.algorithm).summary.error_worst_frame;
+            if (seg.contains(pictured)) {
+                checks.capture(e.algorithm);
+            } else {
+                c.got += "; no picture: the run's worst error frame, " + std::to_string(pictured) +
+                         ", lies outside the segment";
+            }
+        }
+        checks.outcome.checks.push_back(c);
+        if (e.max_pixels) continue;
+        checks.outcome.checks.push_back(
+            {"no missed objects in segment " + e.segment + ": " + e.algorithm, "0 on " + frames,
+             std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)",
+             s.missed_objects_total == 0});
+    }
+}
+
 void checkRatios(ResultChecks& checks, const Expectations& expect, const Scenario& scenario) {
     for (const RatioExpectation& r : expect.ratios) {
-        const RunSummary& sa = checks.runOf(r.algorithm).summary;
-        const RunSummary& sb = checks.runOf(r.reference).summary;
+        const RunSummary& sa = summaryIn(checks, r.algorithm, r.segment);
+        const RunSummary& sb = summaryIn(checks, r.reference, r.segment);
         const double a = sa.frame_ms.mean, b = sb.frame_ms.mean;
         const double limit = r.max * (1.0 + r.tolerance);
-        CheckResult c{"frame time " + r.algorithm + " / " + r.reference,
+        const std::string in = r.segment.empty() ? "" : " in segment " + r.segment;
+        CheckResult c{"frame time " + r.algorithm + " / " + r.reference + in,
                       "<= " + fixed(r.max, 2) + " (+" + fixed(100 * r.tolerance, 0) +
                           "% = " + fixed(limit, 2) + ")",
                       "", false};
@@ -105,8 +164,9 @@ void checkRatios(ResultChecks& checks, const Expectations& expect, const Scenari
             c.got = "nothing timed: " + std::to_string(std::min(sa.timed_frames, sb.timed_frames)) +
                     " frames after warm-up (" +
                     std::to_string(expect.frames.value_or(scenario.frames)) +
-                    " frames, warmup_frames " + std::to_string(scenario.warmup_frames) +
-                    "); raise expect.frames";
+                    " frames, warmup_frames " + std::to_string(scenario.warmup_frames) + ")" +
+                    (r.segment.empty() ? "; raise expect.frames"
+                                       : " in the segment; move it past the warm-up");
         } else {
             const double ratio = a / b;
             c.got = fixed(ratio, 3) + " (" + fixed(a, 2) + " / " + fixed(b, 2) + " ms)";
@@ -286,10 +346,17 @@ void ResultChecks::capture(const std::string& algorithm) {
     }
 }
 
+std::vector<Segment> regressSegments(const Scenario& scenario, const Expectations& expect) {
+    return planSegments(scenario.segments, scenario.frames, {},
+                        expect.frames.value_or(scenario.frames), scenario.dt_s)
+        .segments;
+}
+
 void checkRun(ResultChecks& checks, const Scenario& scenario, const Expectations& expect,
               bool update) {
     checkZeroError(checks, expect);
     checkMaxErrorPixels(checks, expect);
+    checkSegmentErrors(checks, expect);
     checkRatios(checks, expect, scenario);
     checkBaseline(checks, expect, baselineOf(scenario, expect, checks.result), update);
 }

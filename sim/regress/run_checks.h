@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sim/regress/regress.h"
 #include "sim/run/runner.h"
@@ -32,6 +33,9 @@ struct ResultChecks {
     // The worst error frame of `algorithm` as a picture, once.
     void capture(const std::string& algorithm);
 };
+
+// The scenario's segments on the frames a regression run runs (expect.frames cuts them).
+std::vector<Segment> regressSegments(const Scenario& scenario, const Expectations& expect);
 
 // Every check of the run, in the order the table lists them; `update` rewrites the baseline.
 void checkRun(ResultChecks& checks, const Scenario& scenario, const Expectations& expect,

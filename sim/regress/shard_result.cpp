@@ -37,9 +37,9 @@ Json outcomeJson(const ScenarioOutcome& s) {
         checks.push_back(
             {{"check", c.check}, {"expected", c.expected}, {"got", c.got}, {"passed", c.passed}});
     }
-    return {{"file", s.scenario}, {"name", s.name},       {"skipped", s.skipped},
-            {"note", s.note},     {"seconds", s.seconds}, {"captures", s.captures},
-            {"checks", checks}};
+    return {{"file", s.scenario},     {"id", s.id},      {"name", s.name},
+            {"skipped", s.skipped},   {"note", s.note},  {"seconds", s.seconds},
+            {"captures", s.captures}, {"checks", checks}};
 }
 
 std::vector<std::string> stringList(JsonObjectReader& object, const char* key) {
@@ -53,6 +53,7 @@ ScenarioOutcome readOutcome(const JsonValueReader& value) {
     JsonObjectReader o = value.asObject();
     ScenarioOutcome s;
     s.scenario = o.required("file").asString();
+    s.id = o.required("id").asString();
     s.name = o.required("name").asString();
     s.skipped = o.required("skipped").asBool();
     s.note = o.required("note").asString();
@@ -83,7 +84,7 @@ void checkJunitAgrees(const std::filesystem::path& file, const RegressReport& re
         size_t failed = 0;
         for (const CheckResult& c : s.checks) failed += !c.passed;
         const size_t tests = s.skipped ? 1 : s.checks.size();
-        if (suites[i].name != s.name || suites[i].testcases != tests ||
+        if (suites[i].name != junitVisibleText(s.name) || suites[i].testcases != tests ||
             suites[i].failures != failed) {
             throw ResultFileError(file.string() + ": testsuite " + std::to_string(i + 1) + " ('" +
                                   suites[i].name + "', " + std::to_string(suites[i].testcases) +
@@ -100,10 +101,11 @@ void checkJunitAgrees(const std::filesystem::path& file, const RegressReport& re
 ScenarioSet scenarioSetOf(const std::vector<std::filesystem::path>& inputs) {
     ScenarioSet set;
     uint64_t h = 14695981039346656037ull;
-    for (const auto& path : collectScenarios(inputs, Shard{})) {
-        set.scenarios.push_back(path.string());
-        fnv1a(h, path.string());
-        fnv1a(h, fileText(path));
+    for (const ScenarioFile& s : collectScenarioFiles(inputs)) {
+        set.scenarios.push_back(s.file.string());
+        set.ids.push_back(s.id);
+        fnv1a(h, s.file.string());
+        fnv1a(h, fileText(s.file));
     }
     char buf[17];
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
@@ -114,11 +116,13 @@ ScenarioSet scenarioSetOf(const std::vector<std::filesystem::path>& inputs) {
 std::string shardResultJson(const ShardResult& r) {
     Json scenarios = Json::array();
     for (const ScenarioOutcome& s : r.report.scenarios) scenarios.push_back(outcomeJson(s));
-    const Json j = {{"format", kFormat},
-                    {"version", ShardResult::kFormatVersion},
-                    {"scenario_set", {{"id", r.set.id}, {"scenarios", r.set.scenarios}}},
-                    {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
-                    {"scenarios", scenarios}};
+    const Json j = {
+        {"format", kFormat},
+        {"version", ShardResult::kFormatVersion},
+        {"scenario_set", {{"id", r.set.id}, {"scenarios", r.set.scenarios}, {"ids", r.set.ids}}},
+        {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
+        {"machine", {{"hostname", r.hostname}, {"cpu", r.cpu}}},
+        {"scenarios", scenarios}};
     return j.dump(2) + "\n";
 }
 
@@ -155,12 +159,22 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
         JsonObjectReader set = top.object("scenario_set");
         r.set.id = set.required("id").asString();
         r.set.scenarios = stringList(set, "scenarios");
+        r.set.ids = stringList(set, "ids");
+        if (r.set.ids.size() != r.set.scenarios.size()) {
+            set.fail("ids", "expected one id per scenario (" +
+                                std::to_string(r.set.scenarios.size()) + "), got " +
+                                std::to_string(r.set.ids.size()));
+        }
         set.finish();
         JsonObjectReader shard = top.object("shard");
         r.shard.count = static_cast<uint32_t>(shard.requiredUnsignedInteger("count", 1, 1000000));
         r.shard.index =
             static_cast<uint32_t>(shard.requiredUnsignedInteger("index", 0, r.shard.count - 1));
         shard.finish();
+        JsonObjectReader machine = top.object("machine");
+        r.hostname = machine.required("hostname").asString();
+        r.cpu = machine.required("cpu").asString();
+        machine.finish();
         const JsonArrayReader scenarios = top.array("scenarios");
         for (size_t i = 0; i < scenarios.size(); ++i)
             r.report.scenarios.push_back(readOutcome(scenarios.at(i)));
@@ -173,7 +187,7 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
 }
 
 Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& outcome) {
-    const std::filesystem::path file = dir / safeFileName(outcome.name) / "summary.json";
+    const std::filesystem::path file = dir / outcome.id / "summary.json";
     if (!outcome.ran()) return nullptr;
     // A scenario that ran and left no summary would drop out of the merged summary unseen.
     if (!std::filesystem::is_regular_file(file)) {
@@ -181,11 +195,28 @@ Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& ou
                               " ran in this shard (shard.json lists its checks); expected its "
                               "summary.json beside every scenario that ran");
     }
+    Json summary;
     try {
-        return parseStrictJson(fileText(file), file.string());
+        summary = parseStrictJson(fileText(file), file.string());
     } catch (const ScenarioError& e) {
         throw ResultFileError(e.what());
     }
+    // A summary copied from another scenario's folder would file its figures under this one.
+    const Json* block =
+        summary.is_object() && summary.contains("scenario") ? &summary["scenario"] : nullptr;
+    auto field = [&](const char* key) {
+        return block && block->is_object() && block->contains(key) && (*block)[key].is_string()
+                   ? (*block)[key].get<std::string>()
+                   : std::string("(none)");
+    };
+    const std::string id = field("id"), name = field("name"), scenario_file = field("file");
+    if (id != outcome.id || name != outcome.name || scenario_file != outcome.scenario) {
+        throw ResultFileError(file.string() + ": /scenario: the summary of scenario '" + name +
+                              "' (id " + id + ", file " + scenario_file + "); expected that of '" +
+                              outcome.name + "' (id " + outcome.id + ", file " + outcome.scenario +
+                              "), which shard.json files here");
+    }
+    return summary;
 }
 
 }  // namespace occsim

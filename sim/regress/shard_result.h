@@ -16,14 +16,16 @@ namespace occsim {
 struct ScenarioSet {
     std::string id;                      // hash of the sorted paths and their files' contents
     std::vector<std::string> scenarios;  // every scenario file of the set, sorted
+    std::vector<std::string> ids;        // per scenario file, its identity (scenario_identity.h)
 };
 
 struct ShardResult {
-    static constexpr int kFormatVersion = 1;
-    std::filesystem::path dir;  // where it was read from
+    static constexpr int kFormatVersion = 2;  // 2: scenario ids, the machine
+    std::filesystem::path dir;                // where it was read from
     ScenarioSet set;
     Shard shard;
-    RegressReport report;  // this shard's scenarios, in run order
+    std::string hostname, cpu;  // the machine it ran on
+    RegressReport report;       // this shard's scenarios, in run order
 };
 
 // The set the inputs name (collectScenarios() with no sharding); the id changes when a scenario
@@ -37,9 +39,10 @@ void writeShardResult(const std::filesystem::path& dir, const ShardResult& resul
 // ResultFileError naming the file.
 ShardResult readShardResult(const std::filesystem::path& dir);
 
-// The scenario's summary.json in a regress --out folder (dir/<name>/summary.json, as
+// The scenario's summary.json in a regress --out folder (dir/<id>/summary.json, as
 // runRegression writes it), or null when the scenario did not run (skipped, or its file did not
-// parse). Throws ResultFileError when it ran and its summary is missing or unreadable.
+// parse). Throws ResultFileError when it ran and its summary is missing, unreadable, or belongs
+// to another scenario (its "scenario" block names another id, name or file).
 Json scenarioSummary(const std::filesystem::path& dir, const ScenarioOutcome& outcome);
 
 }  // namespace occsim

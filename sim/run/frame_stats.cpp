@@ -179,19 +179,30 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });
     out.answer_latency_p95 = median([](const RunSummary& r) { return r.answer_latency_p95; });
-    out.error_pixels_mean = median([](const RunSummary& r) { return r.error_pixels_mean; });
-    out.error_pixels_p99 = median([](const RunSummary& r) { return r.error_pixels_p99; });
-    out.error_pixels_total =
-        static_cast<int64_t>(median([](const RunSummary& r) { return r.error_pixels_total; }));
-    out.missed_objects_total =
-        static_cast<int64_t>(median([](const RunSummary& r) { return r.missed_objects_total; }));
-    out.tie_pixels_mean = median([](const RunSummary& r) { return r.tie_pixels_mean; });
-    out.tie_pixels_total =
-        static_cast<int64_t>(median([](const RunSummary& r) { return r.tie_pixels_total; }));
-    out.stray_pixels_total =
-        static_cast<int64_t>(median([](const RunSummary& r) { return r.stray_pixels_total; }));
-    out.drawn_unseen_objects_total = static_cast<int64_t>(
-        median([](const RunSummary& r) { return r.drawn_unseen_objects_total; }));
+    // Counts are never averaged away: a culler that misses an object in one repetition of three
+    // shows the miss. Totals are sums over every repetition's frames, per-frame means are over
+    // those frames, the worst frame and p99 the worst repetition's.
+    out.error_pixels_total = out.missed_objects_total = out.tie_pixels_total = 0;
+    out.stray_pixels_total = out.drawn_unseen_objects_total = 0;
+    out.frames_with_error = out.frames_with_ties = out.popping_events = 0;
+    out.error_pixels_mean = out.tie_pixels_mean = out.error_pixels_p99 = 0;
+    double popping_frames = 0;
+    for (const RunSummary& r : reps) {
+        out.error_pixels_total += r.error_pixels_total;
+        out.missed_objects_total += r.missed_objects_total;
+        out.tie_pixels_total += r.tie_pixels_total;
+        out.stray_pixels_total += r.stray_pixels_total;
+        out.drawn_unseen_objects_total += r.drawn_unseen_objects_total;
+        out.frames_with_error += r.frames_with_error;
+        out.frames_with_ties += r.frames_with_ties;
+        out.popping_events += r.popping_events;
+        popping_frames += r.popping_mean_frames * r.popping_events;
+        // Every repetition renders the same frames: the mean over all of them is the mean of means.
+        out.error_pixels_mean += r.error_pixels_mean / static_cast<double>(n);
+        out.tie_pixels_mean += r.tie_pixels_mean / static_cast<double>(n);
+        out.error_pixels_p99 = std::max(out.error_pixels_p99, r.error_pixels_p99);
+    }
+    out.popping_mean_frames = out.popping_events ? popping_frames / out.popping_events : 0.0;
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;
     for (const RunSummary& r : reps) {
         out.frame_ms_mean_min = std::min(out.frame_ms_mean_min, r.frame_ms.mean);
@@ -207,11 +218,21 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
 }
 
 std::vector<bool> paretoFront(const std::vector<double>& time, const std::vector<double>& error) {
-    std::vector<bool> front(time.size(), true);
-    for (size_t i = 0; i < time.size(); ++i) {
-        for (size_t j = 0; j < time.size() && front[i]; ++j) {
-            const bool no_worse = time[j] <= time[i] && error[j] <= error[i];
-            const bool better = time[j] < time[i] || error[j] < error[i];
+    return paretoFront(time, time, error);
+}
+
+std::vector<bool> paretoFront(const std::vector<double>& time_low,
+                              const std::vector<double>& time_high,
+                              const std::vector<double>& error) {
+    const size_t n = error.size();
+    std::vector<bool> front(n, true);
+    for (size_t i = 0; i < n; ++i) {
+        for (size_t j = 0; j < n && front[i]; ++j) {
+            // Faster only when the ranges do not overlap: a difference inside the spread is a tie.
+            const bool faster = time_high[j] < time_low[i];
+            const bool slower = time_high[i] < time_low[j];
+            const bool no_worse = !slower && error[j] <= error[i];
+            const bool better = faster || error[j] < error[i];
             if (j != i && no_worse && better) front[i] = false;
         }
     }

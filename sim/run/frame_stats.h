@@ -75,7 +75,8 @@ struct RunSummary {
     uint32_t popping_events = 0;
     double popping_mean_frames = 0;
     uint32_t popping_max_frames = 0;
-    // Over repetitions (all equal to frame_ms.mean for a single run).
+    // Over repetitions (all equal to frame_ms.mean for a single run). With repetitions, `frames`
+    // and `timed_frames` are one repetition's; the error counts above are over all of them.
     uint32_t repetitions = 1;
     double frame_ms_mean_min = 0, frame_ms_mean_max = 0;
 };
@@ -107,12 +108,21 @@ void addAnswerLatencies(RunSummary& summary, const std::vector<uint64_t>& histog
 // Median of the latencies a frame's answers had (-1 when there were none); sorts `latencies`.
 double medianLatency(std::vector<uint32_t>& latencies);
 
-// One summary for several repetitions of the same configuration: every figure is the median
-// over the repetitions; frame_ms_mean_min/max give the spread of the mean frame time.
+// One summary for several repetitions of the same configuration (docs/cli.md "Repetitions"):
+// timings and the per-frame means of queries, objects and triangles are medians over the
+// repetitions (frame_ms_mean_min/max give the spread of the mean frame time); counts of error
+// (error, tie and stray pixels, missed and tied-away objects, frames with error or ties, popping
+// events) are sums over every repetition's frames, never averaged; per-frame error means are
+// over those frames; the worst frame, p99 and the longest popping run the worst repetition's.
 RunSummary aggregateRepetitions(const std::vector<RunSummary>& repetitions);
 
 // Indices of the points on the Pareto front of (time, error), both to be minimised: no other
 // point is at least as good in both and better in one.
 std::vector<bool> paretoFront(const std::vector<double>& time, const std::vector<double>& error);
+// The same with each time a range (the spread of repetitions, low to high): a point is faster
+// only when its whole range lies below the other's; overlapping ranges tie on time.
+std::vector<bool> paretoFront(const std::vector<double>& time_low,
+                              const std::vector<double>& time_high,
+                              const std::vector<double>& error);
 
 }  // namespace occsim

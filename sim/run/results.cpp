@@ -80,15 +80,20 @@ double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s) {
 
 void markParetoFront(std::vector<RunRecord>& runs) {
     std::vector<size_t> candidates;
-    std::vector<double> time, error;
+    std::vector<double> low, high, error;
     for (size_t c = 0; c < runs.size(); ++c) {
         runs[c].pareto = false;
         if (runs[c].algorithm && runs[c].algorithm->oracle) continue;
         candidates.push_back(c);
-        time.push_back(runs[c].summary.frame_ms.mean);
-        error.push_back(runs[c].summary.error_pixels_mean);
+        // The spread of the repetitions' means (a single run's range is its mean).
+        const RunSummary& s = runs[c].summary;
+        low.push_back(s.repetitions > 1 ? s.frame_ms_mean_min : s.frame_ms.mean);
+        high.push_back(s.repetitions > 1 ? s.frame_ms_mean_max : s.frame_ms.mean);
+        // Error over every repetition's frames (aggregateRepetitions): a miss in one repetition
+        // keeps a culler off the front.
+        error.push_back(s.error_pixels_mean);
     }
-    const std::vector<bool> front = paretoFront(time, error);
+    const std::vector<bool> front = paretoFront(low, high, error);
     for (size_t i = 0; i < candidates.size(); ++i) runs[candidates[i]].pareto = front[i];
 }
 

@@ -12,6 +12,8 @@
 #include "sim/run/frame_stats.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
+#include "sim/run/worst_windows.h"
+#include "sim/scenario/segments.h"
 
 namespace occsim {
 
@@ -29,6 +31,13 @@ struct RunRecord {
     ApproximationOptions approximation;
     std::optional<CostModel> cost_model;  // the one it read, when it weighs costs
     bool pareto = false;                  // on the time-against-error front
+    // Per segment of RunMetadata::segments: the summary over its frames, over the repetitions
+    // as `summary` is (aggregateRepetitions()), and each repetition's.
+    std::vector<RunSummary> segments;
+    std::vector<std::vector<RunSummary>> segment_repetitions;  // [segment][repetition]
+    // Where it lost most against BenchResult::window_reference (empty for the reference itself,
+    // for oracles, and when no reference ran).
+    std::vector<WorstWindow> worst_windows;
 };
 
 // Everything about a run that is not a measurement: what ran, how, and where.
@@ -38,6 +47,7 @@ struct RunMetadata {
     // The scenario.
     std::string scenario_name;
     std::string scenario_file;
+    std::string scenario_id;  // its identity in a regression run (scenario_identity.h); else empty
     uint32_t frames = 0;
     uint32_t warmup_frames = 0;
     double dt_s = 0.0;
@@ -74,6 +84,8 @@ struct RunMetadata {
     std::string backend_fallback;      // why --backend auto took OSMesa; empty when it did not
     uint32_t width = 0, height = 0;
     std::string depth_format;  // the depth buffer both renders share: what a tie's step is
+    // The run's segments (BenchOptions::segments), frames as it ran them.
+    std::vector<Segment> segments;
 };
 
 // The run's own work beside the frames it measured, over every repetition: what a reader needs to
@@ -93,6 +105,10 @@ struct RunCosts {
     uint32_t ground_truth_renders = 0;
     double ground_truth_ms_total = 0.0;
     uint64_t error_read_backs = 0;  // culled object-ID buffers read to count error
+    // After the frames: the world replayed to the worst windows' worst frames for their pictures
+    // (BenchOptions::on_window_frame); 0 when none was asked for.
+    uint32_t window_frames_replayed = 0;
+    double window_replay_ms = 0.0;
 };
 
 // A run that ended before its last frame: stopped by a signal (SIGINT, SIGTERM), or by a
@@ -111,6 +127,8 @@ struct BenchResult {
     std::vector<RunRecord> runs;
     std::vector<ErrorFrame> worst_error_frames;  // per run, when keep_worst_error_frame
     std::optional<PartialRun> partial;           // set when the run ended early
+    // The label of the run worst windows are measured against (Ideal, else VFC); empty: none ran.
+    std::string window_reference;
 };
 
 // "partial: interrupted by SIGINT after 12 of 40 frames; the 12 whole frames are reported", or
@@ -129,7 +147,9 @@ bool nothingInView(const std::vector<RunRecord>& runs);
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s);
 double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s);
 
-// Marks RunRecord::pareto over every run that is not an oracle (the bound is no candidate).
+// Marks RunRecord::pareto over every run that is not an oracle (the bound is no candidate): the
+// front of mean frame time against error pixels per frame, where with repetitions two times whose
+// spreads overlap tie (paretoFront()).
 void markParetoFront(std::vector<RunRecord>& runs);
 
 }  // namespace occsim

@@ -12,6 +12,7 @@
 #include "sim/run/crash_note.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
+#include "sim/run/segment_summaries.h"
 #include "sim/run/shared_world.h"
 #include "sim/run/stop_request.h"
 
@@ -52,6 +53,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.command_line = options.command_line;
     m.scenario_name = scenario.name;
     m.scenario_file = scenario.file.string();
+    m.scenario_id = options.scenario_id;
     m.frames = scenario.frames;
     m.warmup_frames = std::min(scenario.warmup_frames, scenario.frames);
     m.dt_s = scenario.dt_s;
@@ -77,6 +79,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.backend_fallback = gl.fallback;
     m.width = scenario.width;
     m.height = scenario.height;
+    m.segments = options.segments;
     m.depth_format = depthConventionOf(scenario) == DepthConvention::ReverseFloat
                          ? "reverse-Z, 32-bit float"
                          : "conventional, 24-bit fixed point";
@@ -130,6 +133,7 @@ std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, Sha
         if (rep == 0) sim_options.trace_frame = options.trace_frame;
         sim_options.record_objects = options.record_objects && options.measure_error && rep == 0;
         sim_options.measure_gpu_time = stage.context.info().gpu_time_meaningful;
+        sim_options.segments = options.segments;
         auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                           : makeConfiguredCuller(config);
         sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
@@ -192,7 +196,16 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
     for (const auto& sim : sims) any_needs_truth |= sim->needsGroundTruth();
     const bool truth_colour = options.keep_worst_error_frame && options.measure_error && rep == 0;
     for (uint32_t f = 0; f < scenario.frames; ++f) {
-        world.advance();
+        try {
+            world.advance();
+        } catch (const MotionError& e) {
+            // A world that cannot go on (an object left finite coordinates): the frames before it
+            // stand, and the partial run names the object, its position and scale.
+            stop = PartialRun{
+                std::string("the world stopped at frame ") + std::to_string(f) + ": " + e.what(), 0,
+                rep, f};
+            return frames;
+        }
         if (any_needs_truth) truth.of(world, truth_colour);
         for (size_t k = 0; k < sims.size(); ++k) {
             const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
@@ -216,7 +229,10 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
             }
         }
         progress.frameDone(options.progress, rep * scenario.frames + f + 1);
-        if (const int signal = stopSignal()) {
+        // A signal after the run's last frame loses nothing: the run is whole, not partial.
+        const bool frames_left =
+            f + 1 < scenario.frames || rep + 1 < std::max(1u, options.repetitions);
+        if (const int signal = stopSignal(); signal && frames_left) {
             stop =
                 PartialRun{std::string("interrupted by ") + signalName(signal), signal, rep, f + 1};
             break;
@@ -245,6 +261,13 @@ void recordRepetition(BenchResult& result, const Stage& stage,
         if (stage.options.measure_error) addPopping(summary, sims[c]->poppingRuns());
         addAnswerLatencies(summary, sims[c]->answerLatencies());
         record.repetitions.push_back(summary);
+        const std::vector<Segment>& segments = stage.options.segments;
+        record.segment_repetitions.resize(segments.size());
+        for (size_t k = 0; k < segments.size(); ++k) {
+            record.segment_repetitions[k].push_back(summarizeSegment(
+                stage.configs[c].label, frames[c], segments[k], stage.scenario.warmup_frames,
+                &sims[c]->segmentTallies(), k, stage.options.measure_error));
+        }
         if (rep == 0) {
             record.frames = std::move(frames[c]);
             if (sims[c]->keepsWorstErrorFrame())
@@ -272,6 +295,34 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
         std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
     addWorldCosts(result.costs, world, truth);
     if (!result.partial || rep == 0) recordRepetition(result, stage, sims, frames, rep);
+}
+
+// The worst windows' worst frames, each rendered again on a fresh world replayed to it (the same
+// frames every repetition rendered) and handed to the hook, outside every timing.
+void replayWindowFrames(BenchResult& result, const Scene& scene, const Scenario& scenario,
+                        GlRenderer& renderer, const BenchOptions& options) {
+    std::vector<uint32_t> wanted;
+    for (const RunRecord& r : result.runs) {
+        for (const WorstWindow& w : r.worst_windows) wanted.push_back(w.worst_frame);
+    }
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    if (wanted.empty()) return;
+    const auto start = Clock::now();
+    SharedWorld world(scene, scenario);
+    GroundTruth truth(renderer);
+    size_t next = 0;
+    while (next < wanted.size() && !world.done()) {
+        world.advance();
+        if (world.frame() != wanted[next]) continue;
+        const GroundTruthFrame& frame = truth.of(world, true);
+        options.on_window_frame(ReplayedFrame{world.frame(), world.frame() * scenario.dt_s,
+                                              frame.rgba, renderer.width(), renderer.height()});
+        ++next;
+    }
+    result.costs.window_frames_replayed = static_cast<uint32_t>(next);
+    result.costs.window_replay_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 }  // namespace
@@ -313,8 +364,16 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     result.metadata.load_before = load_before;
     result.metadata.load_after = loadAverage();
-    for (RunRecord& record : result.runs) record.summary = aggregateRepetitions(record.repetitions);
+    for (RunRecord& record : result.runs) {
+        record.summary = aggregateRepetitions(record.repetitions);
+        for (const std::vector<RunSummary>& reps : record.segment_repetitions)
+            record.segments.push_back(aggregateRepetitions(reps));
+    }
     if (options.measure_error) markParetoFront(result.runs);
+    const int reference = markWorstWindows(result.runs, scenario.warmup_frames);
+    if (reference >= 0) result.window_reference = result.runs[size_t(reference)].summary.label;
+    if (options.on_window_frame && !(result.partial && result.partial->signal != 0))
+        replayWindowFrames(result, scene, scenario, renderer, options);
     return result;
 }
 

@@ -32,6 +32,16 @@ struct FrameEvent {
     GlRenderer& renderer;
 };
 
+// A frame of the run rendered again after it (BenchOptions::on_window_frame): the world replayed
+// to it and drawn whole, every object with no culling code (ground truth's colour: what the camera
+// saw), outside every timing. Rows bottom-up, as GL gives them.
+struct ReplayedFrame {
+    uint32_t frame = 0;
+    double time_s = 0.0;  // frame * dt: seconds of the camera path
+    const std::vector<uint8_t>& rgba;
+    uint32_t width = 0, height = 0;
+};
+
 struct BenchOptions {
     std::vector<const AlgorithmTraits*> algorithms;  // from algorithms(); at least one
     // Explicit configurations (label, algorithm, options), e.g. a tuner's samples beside its
@@ -43,6 +53,7 @@ struct BenchOptions {
     std::optional<uint32_t> frames;       // overrides the scenario's frame count
     std::string command = "bench";        // recorded in the metadata
     std::string command_line;             // recorded in the metadata
+    std::string scenario_id;              // a regression run's id of the scenario (metadata)
     bool progress = false;                // a progress line on stderr
     bool keep_worst_error_frame = false;  // see SimulationOptions; needs measure_error
     // Every object's decision, reason and pixels per frame of the first repetition, for on_frame
@@ -61,6 +72,13 @@ struct BenchOptions {
     // on_frame can picture its culling decisions (Simulation::lastTrace()).
     std::optional<uint32_t> trace_frame;
     std::function<void(const FrameEvent&)> on_frame;
+    // Segments (sim/scenario/segments.h, planSegments()): every summary is also made over each.
+    std::vector<Segment> segments;
+    // After the last repetition (not after a run that a signal stopped): each frame that is the
+    // worst frame of a configuration's worst window (RunRecord::worst_windows), in frame order,
+    // replayed and handed here, e.g. to save its picture. The world replays the same frames as
+    // every repetition did, so the frame is the one measured; its cost is RunCosts::window_*.
+    std::function<void(const ReplayedFrame&)> on_window_frame;
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
         make_culler;

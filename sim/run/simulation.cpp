@@ -66,6 +66,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
         decisions_.reserve(4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
     }
     if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
+    segment_tallies_.reset(options_.segments, world_->scenario().warmup_frames);
     culler_->reset(world_->tree());
 }
 
@@ -137,6 +138,7 @@ FrameStats Simulation::renderFrame() {
 void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
     gl_device_.takeAnswerLatencies(frame_latencies_);
     stats.answers = frame_latencies_.size();
+    segment_tallies_.addLatencies(frame, frame_latencies_);
     if (frame >= world_->scenario().warmup_frames) {
         for (uint32_t latency : frame_latencies_) {
             if (latency >= answer_latencies_.size())
@@ -177,6 +179,7 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         unseen += drawn && !culled_visible_[o];
     }
     popping_.addFrame(missing_);
+    segment_tallies_.addMissing(stats.frame, missing_);
     if (options_.record_objects) recordObjects(truth);
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;

@@ -24,6 +24,7 @@
 #include "sim/run/frame_view.h"
 #include "sim/run/ground_truth.h"
 #include "sim/run/pixel_error.h"
+#include "sim/run/segment_tallies.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
@@ -47,6 +48,9 @@ struct SimulationOptions {
     // objects.sqlite): the culler's decision log is on (its appends sit inside the frame's
     // timing), everything else is worked out after the frame. Needs measure_error.
     bool record_objects = false;
+    // The run's segments: popping and answer latencies are also counted per segment
+    // (segmentTallies()).
+    std::vector<Segment> segments;
 };
 
 // One object's part of a frame (SimulationOptions::record_objects).
@@ -102,6 +106,8 @@ class Simulation {
     const std::vector<uint64_t>& answerLatencies() const { return answer_latencies_; }
     // Culled object-ID and depth buffers read back to count error (none unless error is measured).
     uint64_t errorReadBacks() const { return error_read_backs_; }
+    // Popping and answer latencies per segment of SimulationOptions::segments.
+    const SegmentTallies& segmentTallies() const { return segment_tallies_; }
     // The trace of options.trace_frame (or of every frame, LiveControls::trace_every_frame) once
     // that frame was rendered; null before. The tree, the world and view() stay as the culler
     // saw them until the world's next advance().
@@ -147,6 +153,7 @@ class Simulation {
     ErrorFrame worst_;
     std::vector<uint8_t> missing_;  // per object, this frame: visible in ground truth, not drawn
     PoppingCounter popping_;
+    SegmentTallies segment_tallies_;
     std::unique_ptr<GlFrameTimer> gpu_timer_;  // when options_.measure_gpu_time
     std::vector<uint32_t> frame_latencies_;
     std::vector<uint64_t> answer_latencies_;

@@ -9,8 +9,9 @@ namespace {
 constexpr uint64_t kFormatVersion = 1;
 
 // A tuned file ("tuned_for": NAME, as occtune writes it) is one culler's confirmed setting: NAME
-// is a loaded culler, culling.algorithm is NAME, no other culler's options are in it, and its cost
-// model is scoped to NAME alone (a shared one would change every culler that weighs costs).
+// is a loaded culler, culling.algorithm is NAME, no other culler's options are in it, nor the
+// approximation knobs every querying culler shares, and its cost model is scoped to NAME alone
+// (a shared one would change every culler that weighs costs).
 // Checked before the culling section, so that a culler not loaded is named as such.
 void checkTunedFor(JsonObjectReader& top) {
     const std::optional<JsonValueReader> marker = top.optional("tuned_for");
@@ -26,6 +27,15 @@ void checkTunedFor(JsonObjectReader& top) {
     const JsonValueReader algorithm = section.required("algorithm");
     if (!(algorithm.json().is_string() && algorithm.asString() == culler))
         algorithm.failExpected(tuned);
+    // The approximation knobs apply to every culler that issues queries: in a tuned file they
+    // would turn the other cullers of a run approximate too.
+    for (const char* shared : {"threshold_pixels", "stale_results"}) {
+        if (const auto knob = section.optional(shared)) {
+            knob->fail(std::string("a tuned file changes ") + tuned +
+                       " alone; this knob applies to every culler that issues queries (set it "
+                       "in the scenario or a culling file without tuned_for)");
+        }
+    }
     for (const AlgorithmTraits* other : algorithms()) {
         if (other->name == culler) continue;
         if (const auto options = section.optional(other->name)) {

@@ -20,6 +20,85 @@ void checkKnown(JsonValueReader at, const std::string& name, const std::vector<s
     }
 }
 
+// The segment a check names: one of the scenario's, whole within the frames the run runs (a check
+// over part of a segment would judge frames that never ran).
+std::string segmentNamed(const JsonValueReader& at, const Scenario& scenario, uint32_t frames) {
+    const std::string name = at.asString();
+    std::string names;
+    for (const SegmentSpec& spec : scenario.segments) {
+        names += (names.empty() ? "" : ", ") + spec.name;
+        if (spec.name != name) continue;
+        const Segment s = placeSegment(spec, scenario.frames, scenario.dt_s);
+        if (s.end_frame > frames) {
+            at.fail("segment '" + name + "' (frames " + std::to_string(s.first_frame) + " to " +
+                    std::to_string(s.end_frame - 1) + ") reaches past the " +
+                    std::to_string(frames) + " frames this run runs (/expect/frames)");
+        }
+        return name;
+    }
+    at.failExpected(names.empty()
+                        ? std::string("a segment, but the scenario names none (/segments)")
+                        : "a segment named in /segments (" + names + ")");
+}
+
+// A zero_error entry: an algorithm's name (the whole run) or {"algorithm", "segment"}.
+void readZeroError(const JsonValueReader& at, const Scenario& scenario, uint32_t frames,
+                   Expectations& e) {
+    if (!at.json().is_object() && !at.json().is_string())
+        at.failExpected("an algorithm's name or {\"algorithm\": ..., \"segment\": ...}");
+    if (at.json().is_string()) {
+        const std::string name = at.asString();
+        checkKnown(at, name, e.algorithms);
+        e.zero_error.push_back(name);
+        return;
+    }
+    JsonObjectReader entry = at.asObject();
+    const JsonValueReader algorithm = entry.required("algorithm");
+    SegmentErrorExpectation z{algorithm.asString(), "", std::nullopt};
+    checkKnown(algorithm, z.algorithm, e.algorithms);
+    z.segment = segmentNamed(entry.required("segment"), scenario, frames);
+    entry.finish();
+    e.segment_errors.push_back(z);
+}
+
+// max_error_pixels as an object ({"async": 2000}: whole-run bounds) or as a list of
+// {"algorithm", "max", "segment"} (a missing segment: the whole run).
+void readMaxErrorPixels(const JsonValueReader& value, const Scenario& scenario, uint32_t frames,
+                        Expectations& e) {
+    if (!value.json().is_array() && !value.json().is_object()) {
+        value.failExpected(
+            "an object of bounds ({\"async\": 2000}) or a list of {\"algorithm\", "
+            "\"max\", \"segment\"}");
+    }
+    if (value.json().is_object()) {
+        JsonObjectReader bounds = value.asObject();
+        for (const auto& item : value.json().items()) {
+            const JsonValueReader at = bounds.required(item.key());
+            checkKnown(at, item.key(), e.algorithms);
+            e.max_error_pixels[item.key()] = static_cast<int64_t>(at.asUnsigned());
+        }
+        bounds.finish();
+        return;
+    }
+    const JsonArrayReader list = value.asArray();
+    for (size_t i = 0; i < list.size(); ++i) {
+        JsonObjectReader entry = list.at(i).asObject();
+        const JsonValueReader algorithm = entry.required("algorithm");
+        const std::string name = algorithm.asString();
+        checkKnown(algorithm, name, e.algorithms);
+        const auto max = static_cast<int64_t>(entry.required("max").asUnsigned());
+        if (const auto segment = entry.optional("segment")) {
+            e.segment_errors.push_back({name, segmentNamed(*segment, scenario, frames), max});
+        } else {
+            if (e.max_error_pixels.count(name)) {
+                algorithm.fail("'" + name + "' has a whole-run bound already");
+            }
+            e.max_error_pixels[name] = max;
+        }
+        entry.finish();
+    }
+}
+
 }  // namespace
 
 Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario) {
@@ -44,12 +123,9 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
         e.frames =
             static_cast<uint32_t>(expect.requiredUnsignedInteger("frames", 1, scenario.frames));
     }
+    const uint32_t frames = e.frames.value_or(scenario.frames);
     if (auto zero = expect.optionalArray("zero_error")) {
-        for (size_t i = 0; i < zero->size(); ++i) {
-            const std::string name = zero->at(i).asString();
-            checkKnown(zero->at(i), name, e.algorithms);
-            e.zero_error.push_back(name);
-        }
+        for (size_t i = 0; i < zero->size(); ++i) readZeroError(zero->at(i), scenario, frames, e);
     } else {
         // Algorithms that must never drop a visible pixel: zero error is expected of them unless
         // the scenario says otherwise.
@@ -57,15 +133,8 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
             if (findAlgorithm(name)->conservative) e.zero_error.push_back(name);
         }
     }
-    if (const auto value = expect.optional("max_error_pixels")) {
-        JsonObjectReader bounds = value->asObject();
-        for (const auto& item : value->json().items()) {
-            const JsonValueReader at = bounds.required(item.key());
-            checkKnown(at, item.key(), e.algorithms);
-            e.max_error_pixels[item.key()] = static_cast<int64_t>(at.asUnsigned());
-        }
-        bounds.finish();
-    }
+    if (const auto value = expect.optional("max_error_pixels"))
+        readMaxErrorPixels(*value, scenario, frames, e);
     if (auto ratios = expect.optionalArray("ratios")) {
         for (size_t i = 0; i < ratios->size(); ++i) {
             JsonObjectReader r = ratios->at(i).asObject();
@@ -76,6 +145,8 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
             checkKnown(r.required("reference"), ratio.reference, e.algorithms);
             ratio.max = r.requiredNumber("max", NumberRange::greaterThan(0.0));
             ratio.tolerance = r.number("tolerance", 0.0, NumberRange::closed(0.0, 10.0));
+            if (const auto segment = r.optional("segment"))
+                ratio.segment = segmentNamed(*segment, scenario, frames);
             r.finish();
             e.ratios.push_back(ratio);
         }

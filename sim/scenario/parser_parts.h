@@ -15,7 +15,7 @@ namespace occsim {
 std::string readScenarioFileText(const std::filesystem::path& file);
 
 // scenario_parser.cpp: {"min": [x,y,z], "max": [x,y,z]}, min <= max, float-representable.
-Aabb readRegion(const JsonValueReader& value);
+WorldBox readRegion(const JsonValueReader& value);
 
 // parse_culling.cpp: the "culling" section (algorithm and per-algorithm options).
 void readCulling(JsonObjectReader& top, Scenario& s);
@@ -27,6 +27,9 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
 CitySpec readCity(JsonObjectReader& source);
 LibrarySpec readLibrary(JsonObjectReader& source);
 PlantSpec readPlant(JsonObjectReader& source);
+
+// parse_segments.cpp: the "segments" list, placed on the scenario's frames (frames and dt read).
+std::vector<SegmentSpec> readSegments(JsonObjectReader& top, const Scenario& scenario);
 
 // parse_expectations.cpp: the "expect" block; reads the run settings and the culling section of
 // `scenario`, so it is called after them.

@@ -18,6 +18,7 @@
 #include "occsim/culling/tree/bsp_tree.h"
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scene_specs.h"
+#include "sim/scenario/segments.h"
 
 namespace occsim {
 
@@ -69,7 +70,7 @@ struct MoverSpec {
     double speed_max_mps = 4.0;
     // Bounce and random walk: the box movers stay in (default: the source's region).
     bool has_region = false;
-    Aabb region;
+    WorldBox region;
     double radius_min_m = 2.0;  // orbit
     double radius_max_m = 8.0;
     std::vector<glm::dvec3> waypoints;  // path: a closed loop; empty = the source's lanes
@@ -84,6 +85,15 @@ struct RatioExpectation {
     std::string reference;  // denominator
     double max = 1.0;       // the ratio must be <= max * (1 + tolerance)
     double tolerance = 0.0;
+    std::string segment;  // the means over this segment's frames; empty: the whole run
+};
+
+// A check of error scoped to one segment of the scenario: zero error pixels and no missed object
+// on its frames (max_pixels unset), or at most max_pixels error pixels on any of its frames.
+struct SegmentErrorExpectation {
+    std::string algorithm;
+    std::string segment;
+    std::optional<int64_t> max_pixels;
 };
 
 struct Expectations {
@@ -93,6 +103,8 @@ struct Expectations {
     std::vector<std::string> zero_error;  // must show 0 error pixels on every frame
     std::map<std::string, int64_t> max_error_pixels;  // per-frame bound for approximate ones
     std::vector<RatioExpectation> ratios;
+    // zero_error and max_error_pixels entries that name a segment, in the order written.
+    std::vector<SegmentErrorExpectation> segment_errors;
     std::filesystem::path baseline;  // default: <scenario stem>.baseline.json beside it
 };
 
@@ -120,6 +132,8 @@ struct Scenario {
         "statistical";  // a registered culler (occsim/culling/registry/registry.h)
     CullerOptions culler;
     BspBuildOptions bsp;
+    // Named stretches of the run ("segments"), every figure also given over each.
+    std::vector<SegmentSpec> segments;
     std::optional<Expectations> expect;  // present when the file has an "expect" block
 };
 

@@ -404,11 +404,14 @@ std::string readFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-Aabb readRegion(const JsonValueReader& value) {
+// In double, as the camera and every pose: only checked to fit in float, which object boxes use.
+WorldBox readRegion(const JsonValueReader& value) {
     JsonObjectReader region = value.asObject();
     const JsonValueReader min_at = region.required("min");
     const JsonValueReader max_at = region.required("max");
-    const Aabb box{toFloatPoint(min_at, min_at.asVec3()), toFloatPoint(max_at, max_at.asVec3())};
+    const WorldBox box{min_at.asVec3(), max_at.asVec3()};
+    toFloatPoint(min_at, box.min);
+    toFloatPoint(max_at, box.max);
     region.finish();
     for (int axis = 0; axis < 3; ++axis) {
         if (box.min[axis] > box.max[axis]) {
@@ -498,6 +501,7 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     s.plugins = readPlugins(top, file.parent_path());
     readCulling(top, s);
     s.bsp = readBsp(top);
+    s.segments = readSegments(top, s);
     s.expect = readExpect(top, s);
     top.finish();
     return s;

@@ -2,9 +2,11 @@
 // the scene layer (sim/scene/) builds from them. Units: metres, degrees.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <limits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -13,11 +15,38 @@
 
 namespace occsim {
 
+// A box in world coordinates, in double like the camera and every pose: a region 10^12 m out is
+// where the scenario puts it (in float it would land kilometres away from the camera aimed at
+// it). Empty (min > max) until extended.
+struct WorldBox {
+    glm::dvec3 min{std::numeric_limits<double>::infinity()};
+    glm::dvec3 max{-std::numeric_limits<double>::infinity()};
+};
+
+inline bool isEmpty(const WorldBox& b) {
+    return !(b.min.x <= b.max.x && b.min.y <= b.max.y && b.min.z <= b.max.z);
+}
+inline void extend(WorldBox& b, const glm::dvec3& p) {
+    b.min = glm::min(b.min, p);
+    b.max = glm::max(b.max, p);
+}
+inline void extend(WorldBox& b, const Aabb& box) {
+    if (isEmpty(box)) return;
+    extend(b, glm::dvec3(box.min));
+    extend(b, glm::dvec3(box.max));
+}
+
+// The box in float, as culling's boxes are (to the nearest float: no place that needs the outward
+// rounding of an object's box should use it).
+inline Aabb floatBox(const WorldBox& b) {
+    return isEmpty(b) ? Aabb{} : Aabb{glm::vec3(b.min), glm::vec3(b.max)};
+}
+
 // The teapot field of both papers: `count` teapots of random size and orientation placed
 // uniformly (seeded) in a box.
 struct TeapotFieldSpec {
     uint32_t count = 1000;
-    Aabb region{glm::vec3(-50, 0, -200), glm::vec3(50, 10, 0)};
+    WorldBox region{glm::dvec3(-50, 0, -200), glm::dvec3(50, 10, 0)};
     double size_min_m = 1.0;  // teapot height
     double size_max_m = 3.0;
     uint32_t tessellation = 6;  // segments per Bézier patch side
@@ -64,7 +93,7 @@ struct GltfReplication {
     uint32_t count_x = 1, count_z = 1;  // grid: copies along x and z
     double spacing_m = 0.0;             // grid: distance between copies (0 = model size + 10%)
     uint32_t count = 1;                 // random: number of copies
-    Aabb region;                        // random: where copies are placed (their origins)
+    WorldBox region;                    // random: where copies are placed (their origins)
     bool random_yaw = true;             // random: rotate each copy about y
 };
 

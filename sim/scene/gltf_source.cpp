@@ -616,7 +616,8 @@ std::vector<std::vector<glm::dvec3>> gridLanes(const std::vector<Copy>& copies,
 
 SourceOutput replicate(SourceOutput model, const GltfSourceSpec& spec, uint64_t seed,
                        const std::string& file) {
-    const Aabb model_bounds = sourceBounds(model);
+    // One copy's bounds about its own origin: small, so float holds them.
+    const Aabb model_bounds = floatBox(sourceBounds(model));
     glm::dvec2 spacing(0.0);
     const std::vector<Copy> copies = copyPlacements(spec.replicate, model_bounds, seed, spacing);
     if (copies.size() * model.objects.size() > kMaxObjects) {

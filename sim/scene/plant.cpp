@@ -286,8 +286,8 @@ SourceOutput buildPlant(PlantContext& c) {
     c.out.region = sourceBounds(c.out);
     for (const auto& lane : c.out.lanes) {
         for (const glm::dvec3& p : lane) {  // room for a 2 m mover above every lane point
-            extend(c.out.region, glm::vec3(p));
-            extend(c.out.region, glm::vec3(p + glm::dvec3(0, 2, 0)));
+            extend(c.out.region, p);
+            extend(c.out.region, p + glm::dvec3(0, 2, 0));
         }
     }
     return std::move(c.out);

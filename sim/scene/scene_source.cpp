@@ -2,17 +2,17 @@
 
 namespace occsim {
 
-Aabb sourceBounds(const SourceOutput& source) {
+WorldBox sourceBounds(const SourceOutput& source) {
     std::vector<Aabb> mesh_bounds;
     for (const MeshData& mesh : source.meshes) mesh_bounds.push_back(meshBounds(mesh));
-    Aabb bounds;
+    WorldBox bounds;
     for (const PlacedObject& o : source.objects) {
         glm::mat4 m(o.linear);
         m[3] = glm::vec4(0, 0, 0, 1);
-        Aabb box = transformAabb(mesh_bounds.at(o.mesh), m);
-        box.min = glm::vec3(glm::dvec3(box.min) + o.position);
-        box.max = glm::vec3(glm::dvec3(box.max) + o.position);
-        extend(bounds, box);
+        const Aabb box = transformAabb(mesh_bounds.at(o.mesh), m);  // about the origin
+        if (isEmpty(box)) continue;
+        extend(bounds, glm::dvec3(box.min) + o.position);  // placed in double
+        extend(bounds, glm::dvec3(box.max) + o.position);
     }
     return bounds;
 }

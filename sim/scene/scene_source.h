@@ -41,7 +41,7 @@ struct SourceOutput {
     // cars, aisles for people, walkways for the plant. Movers with motion "path" and no
     // waypoints of their own follow these.
     std::vector<std::vector<glm::dvec3>> lanes;
-    Aabb region;                        // bounds of the content; the default region for movers
+    WorldBox region;                    // bounds of the content; the default region for movers
     std::vector<std::string> warnings;  // things skipped or approximated, shown to the user
     // glTF sources: the model's hierarchy and animations, and its copies. The objects of copy k
     // are objects[k * n .. (k + 1) * n - 1], n = model->object_visit.size().
@@ -50,7 +50,7 @@ struct SourceOutput {
 };
 
 // Bounds of every object's mesh bounds under its placement.
-Aabb sourceBounds(const SourceOutput& source);
+WorldBox sourceBounds(const SourceOutput& source);
 
 // Builds the source a scenario describes; deterministic for a given spec and seed. Throws
 // GltfError for unusable glTF files.

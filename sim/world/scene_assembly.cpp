@@ -30,7 +30,7 @@ constexpr uint32_t kSpawnTeapotTessellation = 4;
 struct SourceRange {
     uint32_t first = 0;
     uint32_t count = 0;
-    Aabb region;
+    WorldBox region;
     std::vector<uint32_t> lanes;  // indices into Scene::paths
     // glTF sources: the model (index into Scene::models), where each copy went, and each copy's
     // index into Scene::initial_copies once it moves (-1 while it stands still).
@@ -257,7 +257,7 @@ MeshData spawnMesh(SpawnShape shape) {
     return {};
 }
 
-glm::dvec3 randomPointIn(const Aabb& region, Rng& rng) {
+glm::dvec3 randomPointIn(const WorldBox& region, Rng& rng) {
     return {rng.uniform(region.min.x, region.max.x), rng.uniform(region.min.y, region.max.y),
             rng.uniform(region.min.z, region.max.z)};
 }
@@ -446,7 +446,7 @@ struct MoverObjects {
 
 // A spawning mover's new copies of a glTF model, each moved whole.
 void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
-                      const SourceRange& model_range, const Aabb& region, MoverObjects& out,
+                      const SourceRange& model_range, const WorldBox& region, MoverObjects& out,
                       MotionFlags& flags) {
     const MoverSpec& spec = scenario.movers[m];
     Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
@@ -481,7 +481,7 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
 
 // A spawning mover's new objects of a built-in shape.
 std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t m,
-                                  const Aabb& region, MotionFlags& flags) {
+                                  const WorldBox& region, MotionFlags& flags) {
     const MoverSpec& spec = scenario.movers[m];
     Rng spawn(deriveSeed(scenario.seed, m, kSpawn));
     const uint32_t mesh = addMesh(scene, spawnMesh(spec.spawn.shape));
@@ -525,7 +525,7 @@ std::vector<uint32_t> listedObjects(const Scenario& scenario, size_t m, const So
 // The objects a mover moves: picked from the source, listed, or spawned; or whole copies of a
 // model.
 MoverObjects selectMoverObjects(Scene& scene, const Scenario& scenario, size_t m,
-                                std::vector<SourceRange>& ranges, const Aabb& region, Rng& pick,
+                                std::vector<SourceRange>& ranges, const WorldBox& region, Rng& pick,
                                 MotionFlags& flags, std::vector<uint8_t>& rigid_copy) {
     const MoverSpec& spec = scenario.movers[m];
     SourceRange& range = ranges.at(spec.source);
@@ -549,8 +549,9 @@ MoverObjects selectMoverObjects(Scene& scene, const Scenario& scenario, size_t m
 }
 
 // One object's (or copy's) motion under a mover; a path motion also places `pose` on its path.
-Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose, const Aabb& region,
-                   const std::vector<uint32_t>& paths, Rng& pick, Rng& motion) {
+Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose,
+                   const WorldBox& region, const std::vector<uint32_t>& paths, Rng& pick,
+                   Rng& motion) {
     const double speed = motion.uniform(spec.speed_min_mps, spec.speed_max_mps);
     switch (spec.motion) {
         case MotionType::Bounce: {
@@ -603,7 +604,7 @@ void placeMover(Scene& scene, const Scenario& scenario, size_t m, std::vector<So
     const MoverSpec& spec = scenario.movers[m];
     Rng pick(deriveSeed(scenario.seed, m, kMoverPick));
     Rng motion(deriveSeed(scenario.seed, m, kMoverMotion));
-    const Aabb region = spec.has_region ? spec.region : ranges.at(spec.source).region;
+    const WorldBox region = spec.has_region ? spec.region : ranges.at(spec.source).region;
     const std::vector<uint32_t> paths = moverPaths(scene, scenario, m, ranges.at(spec.source));
     const MoverObjects chosen =
         selectMoverObjects(scene, scenario, m, ranges, region, pick, flags, rigid_copy);

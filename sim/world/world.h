@@ -17,6 +17,7 @@
 #include "occsim/culling/geometry/random.h"
 #include "render/mesh_data.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scene_specs.h"
 #include "sim/scene/model_animation.h"
 
 namespace occsim {
@@ -33,7 +34,7 @@ struct ObjectPose {
 // Straight line at constant velocity, reflected at the region's faces (object position).
 struct BounceMotion {
     glm::dvec3 velocity{0.0};
-    Aabb region;
+    WorldBox region;
 };
 
 // Circle around a vertical axis through `center`, at constant speed.
@@ -57,7 +58,7 @@ struct RandomWalkMotion {
     double speed_mps = 0.0;
     double heading = 0.0;    // radians about y; 0 = +x
     double turn_rate = 0.0;  // radians per second, largest change
-    Aabb region;
+    WorldBox region;
     Rng rng{0};
 };
 

@@ -1,5 +1,6 @@
 // World boxes: an object's box under its pose, rounded outward to float, and the check that stops
 // a run when a placement or a motion took one out of finite coordinates.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
@@ -59,11 +60,17 @@ namespace {
 
 [[noreturn]] void throwNotFinite(const WorldState& state, uint32_t object, uint32_t frame,
                                  const std::string& how) {
-    const glm::dvec3& p = state.poses[object].position;
-    char position[160];
-    std::snprintf(position, sizeof position, "(%g, %g, %g)", p.x, p.y, p.z);
+    const ObjectPose& pose = state.poses[object];
+    const glm::dvec3& p = pose.position;
+    // A scale (a glTF animation's, a node's) can overflow the box as surely as a position: the
+    // largest stretch of the pose's linear part says which it was.
+    double scale = 0.0;
+    for (int c = 0; c < 3; ++c) scale = std::max(scale, double(glm::length(pose.linear[c])));
+    char figures[240];
+    std::snprintf(figures, sizeof figures, "its position is (%g, %g, %g), its scale %g", p.x, p.y,
+                  p.z, scale);
     throw MotionError("frame " + std::to_string(frame) + ": object " + std::to_string(object) +
-                      " " + how + " left finite float coordinates (its position is " + position +
+                      " " + how + " left finite float coordinates (" + figures +
                       "); the run stops here");
 }
 

@@ -15,6 +15,7 @@
 #include "sim/run/run_config.h"
 #include "sim/scenario/culling_file.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/segments.h"
 #include "sim/scene/gltf_source.h"
 #include "sim/view/view_script.h"
 #include "tune/errors.h"
@@ -174,6 +175,22 @@ bool sweepInput(const uint8_t* data, size_t size) {
     }
 }
 
+bool segmentListInput(const uint8_t* data, size_t size) {
+    try {
+        const std::vector<SegmentSpec> specs = parseSegmentList(textOf(data, size));
+        const PlannedSegments plan = planSegments({}, 300, specs, 300, 1.0 / 30.0);
+        for (const Segment& s : plan.segments) {
+            if (s.end_frame <= s.first_frame || s.end_frame > 300)
+                brokenPromise("a placed segment outside the run or without a frame");
+        }
+        return true;
+    } catch (const std::invalid_argument&) {
+        return false;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
 bool cullingFileInput(const uint8_t* data, size_t size) {
     registerFuzzPlugin();
     try {
@@ -233,6 +250,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
         {"baseline", baselineInput, "regression baselines (*.baseline.json), read and rewritten"},
         {"sample_log", sampleLogInput, "the tuner's sample log (samples.jsonl, occtune --resume)"},
         {"sweep", sweepInput, "occsim bench --sweep strings, parsed and planned"},
+        {"segments", segmentListInput, "occsim bench --segments strings, parsed and placed"},
         {"culling_file", cullingFileInput, "--culling files, a plugin culler's options included"},
         {"plugin_descriptor", pluginDescriptorInput,
          "a plugin's options descriptor, as registered"},

@@ -42,6 +42,9 @@ bool sampleLogInput(const uint8_t* data, size_t size);
 // Parses the bytes as an `occsim bench --sweep` string against every registered culler and plans
 // the runs it asks for.
 bool sweepInput(const uint8_t* data, size_t size);
+// Parses the bytes as an `occsim bench --segments` string and places the segments on a run of 300
+// frames at 30 a second; every placed one must hold a frame of the run.
+bool segmentListInput(const uint8_t* data, size_t size);
 // Reads the bytes as a `--culling` file and applies it to a scenario, with a plugin culler
 // registered beside the built-ins, so that the file may set a plugin's options too.
 bool cullingFileInput(const uint8_t* data, size_t size);

@@ -1,0 +1,73 @@
+#include "sim/regress/baseline_places.h"
+
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace occsim {
+namespace fs = std::filesystem;
+namespace {
+
+// The path that tells two names of one file apart from two files: symlinks and ".." resolved.
+fs::path resolved(const fs::path& file) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(file, ec), ec);
+    return ec ? fs::absolute(file).lexically_normal() : p;
+}
+
+bool inside(const fs::path& file, const fs::path& folder) {
+    const fs::path rel = file.lexically_relative(folder);
+    return !rel.empty() && *rel.begin() != ".." && rel != ".";
+}
+
+}  // namespace
+
+bool isOccsimBaselineFile(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return false;
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    return j.is_object() && j.contains("format") && j["format"] == "occsim-baseline";
+}
+
+std::vector<std::string> baselinePlaceProblems(const std::vector<BaselinePlace>& places,
+                                               const std::vector<fs::path>& scenario_files,
+                                               bool update) {
+    std::set<fs::path> scenarios;
+    for (const fs::path& f : scenario_files) scenarios.insert(resolved(f));
+    std::map<fs::path, const BaselinePlace*> owner;
+    std::vector<std::string> problems;
+    for (const BaselinePlace& p : places) {
+        const std::string where =
+            p.scenario_file.string() + ": /expect/baseline: " + p.baseline.string();
+        const fs::path file = resolved(p.baseline);
+        const fs::path folder = resolved(p.scenario_file).parent_path();
+        std::error_code ec;
+        if (file == resolved(p.scenario_file)) {
+            problems.push_back(where +
+                               " is the scenario file itself; expected a file of its "
+                               "own (default <name>.baseline.json beside the scenario)");
+        } else if (scenarios.count(file)) {
+            problems.push_back(where +
+                               " is a scenario file of this run; expected a file of its "
+                               "own (default <name>.baseline.json beside the scenario)");
+        } else if (!inside(file, folder)) {
+            problems.push_back(where + " lies outside the scenario's folder " + folder.string() +
+                               "; expected a file in it or below it");
+        } else if (const auto [it, first] = owner.emplace(file, &p); !first) {
+            problems.push_back(where + " is also the baseline of " +
+                               it->second->scenario_file.string() +
+                               "; expected one baseline file per scenario");
+        } else if (update && fs::exists(file, ec) && !isOccsimBaselineFile(file)) {
+            problems.push_back(where +
+                               " exists and is not an occsim baseline file (no \"format\": "
+                               "\"occsim-baseline\"); --update overwrites only baselines: "
+                               "move it, or name another file");
+        }
+    }
+    return problems;
+}
+
+}  // namespace occsim
