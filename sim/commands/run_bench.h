@@ -30,7 +30,7 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
-    std::vector<std::string> record;  // --record: "objects"
+    std::vector<std::string> record;    // --record: "objects"
     std::vector<std::string> segments;  // --segments, each as given (joined by ',')
 };
 
