@@ -12,17 +12,18 @@ if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckIncludes.cmake: pass -DSOURCE_DIR=<repository root>")
 endif()
 
-set(layers render sim/scenario sim/scene sim/world sim/run sim/output sim/regress sim/view sim/commands tune)
+set(layers render sim/scenario sim/scene sim/world sim/run sim/output sim/record sim/regress sim/view sim/commands tune)
 set(allowed_render occsim/culling render)
 set(allowed_sim/scenario occsim/culling sim/scenario)
 set(allowed_sim/scene occsim/culling render/mesh_data.h sim/scenario sim/scene)
 set(allowed_sim/world occsim/culling render/mesh_data.h sim/scenario sim/scene sim/world)
 set(allowed_sim/run occsim/culling render sim/scenario sim/scene sim/world sim/run)
 set(allowed_sim/output occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output)
-set(allowed_sim/regress occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress)
+set(allowed_sim/record occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/record)
+set(allowed_sim/regress occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/record sim/regress)
 set(allowed_sim/view occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/view)
 # The occsim executable's commands, above every sim layer.
-set(allowed_sim/commands occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/regress sim/view sim/commands)
+set(allowed_sim/commands occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output sim/record sim/regress sim/view sim/commands)
 set(allowed_tune occsim/culling render sim/scenario sim/scene sim/world sim/run sim/output tune)
 
 # The rooms of culling/, each with the rooms its files may include (its own and those below). A

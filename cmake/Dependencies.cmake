@@ -6,6 +6,7 @@ find_package(nlohmann_json 3.10 CONFIG REQUIRED)  # nlohmann-json3-dev
 find_package(CLI11 CONFIG REQUIRED)               # libcli11-dev
 find_package(TinyGLTF CONFIG REQUIRED)            # libtinygltf-dev
 find_package(Threads REQUIRED)
+find_package(SQLite3 REQUIRED)                    # libsqlite3-dev: objects.sqlite (sim/record/)
 # EGL is opened with dlopen at run time (render/egl_context.cpp); only its headers are needed here.
 find_path(EGL_INCLUDE_DIR EGL/egl.h REQUIRED)               # libegl-dev
 # OSMesa is optional (Mesa removed it in 25.1): AUTO uses it when installed, ON requires it, OFF

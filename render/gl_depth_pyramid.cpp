@@ -224,6 +224,11 @@ GlDepthPyramid::Test GlDepthPyramid::testFor(const Aabb& box, PyramidBound shape
                 0};
 }
 
+uint32_t GlDepthPyramid::levelOf(const Aabb& box, PyramidBound shape) const {
+    const Test t = testFor(box, shape);
+    return built_ && !t.untested ? static_cast<uint32_t>(t.level) : kNoLevel;
+}
+
 void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                                 std::span<uint8_t> visible) {
     assert(visible.size() == boxes.size());

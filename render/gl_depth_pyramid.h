@@ -38,6 +38,7 @@ class GlDepthPyramid final : public DepthPyramid {
     void build() override;
     void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                     std::span<uint8_t> visible) override;
+    uint32_t levelOf(const Aabb& box, PyramidBound shape) const override;
 
     // The pyramid's levels as the last build() left them, read back (tests): level `level`'s
     // texels, row 0 at the bottom, and its size.

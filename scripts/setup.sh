@@ -12,6 +12,7 @@ packages=(
   libosmesa6-dev                                # headless OpenGL through OSMesa (optional backend)
   libglfw3-dev                                  # window (occsim view)
   libglm-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
+  libsqlite3-dev                                # objects.sqlite (--record objects, occsim why)
   libceres-dev                                  # the tuner
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and micro-benchmarks
   xvfb xauth                                    # window test under a virtual X server

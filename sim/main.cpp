@@ -1,10 +1,10 @@
 // occsim: the simulator executable. Commands: run, bench, regress, merge, history, info, devices,
-// cullers, view, each in sim/commands/ with its flags; this file reads the command line, runs the
-// command given and turns what it ends in into an exit code (sim/commands/exit_codes.h).
-// Bad input (flags, scenario and script files, plugins, a headless backend or device that is
-// missing or falls short: an occsim::InputError, whichever module found it) ends with one line on
-// stderr and exit code 2, and so does `view` where no window can be opened; runtime failures
-// (OpenGL, output) with exit 1.
+// cullers, view, why, each in sim/commands/ with its flags; this file reads the command line, runs
+// the command given and turns what it ends in into an exit code (sim/commands/exit_codes.h). Bad
+// input (flags, scenario and script files, plugins, a headless backend or device that is missing or
+// falls short: an occsim::InputError, whichever module found it) ends with one line on stderr and
+// exit code 2, and so does `view` where no window can be opened; runtime failures (OpenGL, output)
+// with exit 1.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -20,6 +20,7 @@
 #include "sim/commands/regress.h"
 #include "sim/commands/run_bench.h"
 #include "sim/commands/view.h"
+#include "sim/commands/why.h"
 #include "sim/output/run_folder.h"
 #include "sim/output/shell_quote.h"
 #include "sim/output/version.h"
@@ -51,6 +52,8 @@ struct Commands {
     std::string info_scenario;
     CLI::App* view = nullptr;
     ViewFlags view_flags;
+    CLI::App* why = nullptr;
+    WhyFlags why_flags;
 };
 
 // The commands in the order --help lists them.
@@ -64,6 +67,7 @@ void addCommands(CLI::App& app, Commands& c) {
     c.devices = addDevices(app);
     c.info = addInfo(app, c.info_scenario);
     c.view = addView(app, c.view_flags);
+    c.why = addWhy(app, c.why_flags);
 }
 
 // Which flags were given (CLI11 knows once it has parsed): an empty one given is refused.
@@ -87,7 +91,11 @@ std::string withSuggestion(const CLI::App& app, const std::string& message) {
     std::vector<std::string> flags;
     for (const CLI::App* sub : app.get_subcommands({})) {
         for (const CLI::Option* option : sub->get_options()) {
-            for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+            for (const std::string& name : option->get_lnames()) {
+                // A flag of another command spelt the same (why's --frame for run's --frames)
+                // is no suggestion.
+                if ("--" + name != word) flags.push_back("--" + name);
+            }
         }
     }
     if (const auto match = occsim::closestMatch(word, flags))
@@ -124,6 +132,7 @@ int runGivenCommand(const Commands& c, const std::string& command) {
     if (*c.devices) return devicesCommand();
     if (*c.info) return infoCommand(c.info_scenario);
     if (*c.view) return viewCommand(c.view_flags);
+    if (*c.why) return whyCommand(c.why_flags);
     return kExitFailure;
 }
 

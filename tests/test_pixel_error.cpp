@@ -97,5 +97,39 @@ TEST(PixelError, BuffersOfDifferentSizesAreRefused) {
     EXPECT_THROW(comparePixels(four, four, four, four, stray), std::invalid_argument);
 }
 
+// The frame's pixels per object: ground truth's own (not stray), and each error or tie pixel
+// on the object ground truth shows there; an error over background on the object drawn there.
+TEST(PixelError, ErrorAndTiePixelsGoToTheObjectGroundTruthShowsThere) {
+    //                                 same  error  tie  stray  error over bg  bg
+    const std::vector<uint32_t> truth_ids = {1, 2, 2, 1, 0, 0};
+    const std::vector<uint32_t> truth_depth = {50, 60, 70, 80, 0, 0};
+    const std::vector<uint32_t> culled_ids = {1, 0, 3, 0, 3, 0};
+    const std::vector<uint32_t> culled_depth = {50, 0, 70, 0, 40, 0};
+    const std::vector<uint8_t> truth_stray = {0, 0, 0, 1, 0, 0};
+    std::vector<uint8_t> marks;
+    const PixelCounts counts =
+        comparePixels(truth_ids, truth_depth, culled_ids, culled_depth, truth_stray, &marks);
+    std::vector<ObjectPixels> per_object;
+    attributePixels(truth_ids, truth_stray, culled_ids, marks, 3, per_object);
+    ASSERT_EQ(per_object.size(), 3u);
+    EXPECT_EQ(per_object[0].truth, 1u) << "its stray fragment is not its own";
+    EXPECT_EQ(per_object[0].error, 0u);
+    EXPECT_EQ(per_object[1].truth, 2u);
+    EXPECT_EQ(per_object[1].error, 1u);
+    EXPECT_EQ(per_object[1].tie, 1u);
+    EXPECT_EQ(per_object[2].truth, 0u);
+    EXPECT_EQ(per_object[2].error, 1u) << "drawn over background: nearer than ground truth";
+    int64_t errors = 0, ties = 0;
+    for (const ObjectPixels& p : per_object) {
+        errors += p.error;
+        ties += p.tie;
+    }
+    EXPECT_EQ(errors, counts.error);
+    EXPECT_EQ(ties, counts.tie);
+    EXPECT_THROW(
+        attributePixels(truth_ids, truth_stray, culled_ids, std::vector<uint8_t>(2), 3, per_object),
+        std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace occsim

@@ -728,7 +728,7 @@ TEST(ErrorPicture, EveryClusterOfErrorPixelsIsRingedAndEachMissedObjectLabelled)
         std::vector<uint32_t>({clusters[0].x0, clusters[0].y0, clusters[0].x1, clusters[0].y1}),
         std::vector<uint32_t>({10, 5, 12, 6}));
     EXPECT_EQ(clusters[1].pixels, 1u);
-    const std::vector<MissedObject> missed = missedObjects(frame, w, h);
+    const std::vector<MissedInFrame> missed = missedObjects(frame, w, h);
     ASSERT_EQ(missed.size(), 2u);
     EXPECT_EQ(missed[0].object, 4u);
     EXPECT_EQ(missed[1].object, 7u);

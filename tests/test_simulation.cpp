@@ -465,7 +465,7 @@ TEST(Simulation, WritesFramesCsvAndSummaryJsonAndCaptures) {
     PictureRecorder pictures(out_dir, {3}, std::nullopt);
     options.on_frame = [&pictures](const FrameEvent& e) { pictures.onFrame(e); };
     const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
-    writeRunOutputs(result, {out_dir, false, {}, {}});
+    writeRunOutputs(result, {out_dir, false, {}, {}, {}});
     std::ifstream csv(out_dir / "frames.csv");
     std::string line;
     int lines = 0;

@@ -20,12 +20,12 @@ void AsyncCuller::reset(const BspTree& tree) {
 void AsyncCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     if (state_.size() != tree.objectCount()) reset(tree);
     frame_ = frame.frame_index;
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     ++pass_;
     // Whatever arrived since the last frame decides this frame.
     collectReadyResults(device);
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
-        forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
+        forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum,
                                [&](uint32_t o) { decide(o, tree, frame, device); });
         collectReadyResults(device);
         return true;
@@ -46,7 +46,7 @@ void AsyncCuller::decide(uint32_t object, const BspTree& tree, const CullFrame& 
 
     const Aabb& box = tree.objectBox(object);
     if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
-        draw(object, device);
+        draw(object, device, decisionOf(DecisionKind::DrawnNearPlane));
         return;
     }
     if (!s.pending && frame_ >= s.next_query) {
@@ -57,7 +57,28 @@ void AsyncCuller::decide(uint32_t object, const BspTree& tree, const CullFrame& 
         ++pending_count_;
         collectReadyResults(device);  // with no latency the answer is already there
     }
-    if (s.status != Status::Occluded) draw(object, device);
+    switch (s.status) {
+        case Status::Occluded:  // a later answer this frame may still draw it
+            recordDecision(view_.decisions, QueryTag::object(object), answered(s));
+            break;
+        case Status::Visible:
+            draw(object, device, answered(s));
+            break;
+        case Status::Untested:
+            draw(object, device,
+                 s.pending ? inFlightDecision(s.query_frame)
+                           : decisionOf(DecisionKind::DrawnNoTest));
+            break;
+    }
+}
+
+Decision AsyncCuller::answered(const ObjectState& s) const {
+    Decision d;
+    d.kind = s.status == Status::Visible ? DecisionKind::DrawnOnQuery : DecisionKind::CulledOnQuery;
+    d.query_frame = static_cast<uint32_t>(s.answered_frame);
+    d.samples = s.answered_samples;
+    d.next_query_frame = static_cast<uint32_t>(s.next_query);
+    return d;
 }
 
 void AsyncCuller::collectReadyResults(RenderDevice& device) {
@@ -68,17 +89,21 @@ void AsyncCuller::collectReadyResults(RenderDevice& device) {
         if (!device.isQueryReady(s.query)) break;
         pending_head_ = static_cast<uint32_t>((pending_head_ + 1) % pending_.size());
         --pending_count_;
-        const bool visible = device.takeAnswer(s.query).visible;
+        const QueryAnswer answer = device.takeAnswer(s.query);
+        const bool visible = answer.visible;
         s.pending = false;
         if (s.query_frame < s.streak_start) {
             s.next_query = 0;  // asked before the object left the frustum: ask again
             continue;
         }
+        s.answered_frame = s.query_frame;
+        s.answered_samples =
+            answer.samples > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(answer.samples);
         if (visible) {
             s.status = Status::Visible;
             s.next_query = s.query_frame + options_.retest_interval_frames;
             // Passed over earlier in this frame while its answer was on the way: draw it now.
-            if (s.in_frustum == pass_) draw(object, device);
+            if (s.in_frustum == pass_) draw(object, device, answered(s));
         } else {
             s.status = Status::Occluded;
             s.next_query = s.query_frame + 1;
@@ -86,10 +111,11 @@ void AsyncCuller::collectReadyResults(RenderDevice& device) {
     }
 }
 
-void AsyncCuller::draw(uint32_t object, RenderDevice& device) {
+void AsyncCuller::draw(uint32_t object, RenderDevice& device, const Decision& why) {
     ObjectState& s = state_[object];
     if (s.drawn == pass_) return;
     s.drawn = pass_;
+    recordDecision(view_.decisions, QueryTag::object(object), why);
     device.drawObject(object);
 }
 

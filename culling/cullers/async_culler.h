@@ -63,6 +63,9 @@ class AsyncCuller final : public Culler {
         uint64_t next_query = 0;    // first frame index in which it is queried again
         uint64_t query_frame = 0;   // the frame index its pending query was issued in
         uint64_t streak_start = 0;  // the frame index it last entered the frustum
+        // The issue frame and samples of the answer `status` rests on (for decision logs).
+        uint64_t answered_frame = 0;
+        uint32_t answered_samples = 0;
         QueryId query = 0;
         bool pending = false;
         Status status = Status::Untested;
@@ -70,7 +73,9 @@ class AsyncCuller final : public Culler {
 
     void decide(uint32_t object, const BspTree& tree, const CullFrame& frame, RenderDevice& device);
     void collectReadyResults(RenderDevice& device);
-    void draw(uint32_t object, RenderDevice& device);
+    // Draws the object unless it was drawn this frame, recording `why` when it does.
+    void draw(uint32_t object, RenderDevice& device, const Decision& why);
+    Decision answered(const ObjectState& s) const;
 
     AsyncOptions options_;
     PreparedView view_;  // this frame's view with its plane table (prepareView)

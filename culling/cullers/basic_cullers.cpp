@@ -4,33 +4,47 @@
 namespace occsim {
 
 void VfcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
+    const Decision why = decisionOf(DecisionKind::DrawnNoTest);
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
-        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        drawNodeObjects(tree, visit.node, view_, visit.inside_frustum, device, why);
         return true;
     });
 }
 
 void StopAndWaitCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
         const Aabb& box = tree.bounds(visit.node);
-        if (!nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius) &&
-            !device.takeAnswer(device.issueQuery(box, QueryTag::node(visit.node))).visible) {
+        if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
+            drawNodeObjects(tree, visit.node, view_, visit.inside_frustum, device,
+                            decisionOf(DecisionKind::DrawnNearPlane));
+            return true;
+        }
+        const QueryAnswer answer =
+            device.takeAnswer(device.issueQuery(box, QueryTag::node(visit.node)));
+        const Decision why = answeredDecision(frame.frame_index, answer);
+        if (!answer.visible) {
+            recordDecision(view_.decisions, QueryTag::node(visit.node), why);
             return false;  // occluded: skip the subtree
         }
-        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        drawNodeObjects(tree, visit.node, view_, visit.inside_frustum, device, why);
         return true;
     });
 }
 
 void IdealCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        // Every object of the node is the oracle's to decide: those ground truth saw are drawn.
+        recordDecision(view_.decisions, QueryTag::nodeObjects(visit.node),
+                       decisionOf(DecisionKind::CulledByOracle));
         for (uint32_t o = tree.firstObject(visit.node); o != BspTree::kNone;
              o = tree.nextObject(o)) {
             if (o < frame.ground_truth_visible.size() && frame.ground_truth_visible[o]) {
+                recordDecision(view_.decisions, QueryTag::object(o),
+                               decisionOf(DecisionKind::DrawnByOracle));
                 device.drawObject(o);
             }
         }

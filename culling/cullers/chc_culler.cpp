@@ -19,7 +19,7 @@ void ChcCuller::reset(const BspTree& tree) {
 
 void ChcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     frame_ = frame.frame_index;
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     nodes_.beginFrame(tree);
     traversal_queue_.clear();
     query_queue_.clear();
@@ -43,9 +43,11 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
                           RenderDevice& device) {
     switch (nodes_.visit(tree, view_, visit)) {
         case CoherentClassification::Visit::Culled:
+            recordDecision(view_.decisions, QueryTag::node(visit.node),
+                           decisionOf(DecisionKind::FrustumCulled));
             return;
         case CoherentClassification::Visit::NearPlane:
-            traverseNode(tree, frame, visit, device);
+            traverseNode(tree, frame, visit, device, decisionOf(DecisionKind::DrawnNearPlane));
             return;
         case CoherentClassification::Visit::PreviouslyInvisible:
             issue(device, std::span<const Aabb>(&tree.bounds(visit.node), 1), visit,
@@ -76,24 +78,34 @@ void ChcCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit
             }
         }
     }
-    traverseNode(tree, frame, visit, device);
+    traverseNode(tree, frame, visit, device,
+                 nodes_.previouslyVisible(visit.node, query_due, frame_));
 }
 
 void ChcCuller::handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
                              const QueryAnswer& answer, RenderDevice& device) {
-    if (!answer.visible) return;  // stays invisible
+    if (!answer.visible) {  // stays invisible
+        // Only a node that was waited for is decided by the answer; the others were drawn.
+        if (query.purpose == QueryPurpose::Invisible) {
+            recordDecision(view_.decisions, QueryTag::node(query.node),
+                           answeredDecision(frame_, answer));
+        }
+        return;
+    }
     // Found visible: assumed visible (no query on its geometry) for the next t_av frames.
     nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
+    nodes_[query.node].found_visible = frame_;
     nodes_.pullUp(tree, query.node);
     // Only a node that was waited for is traversed now; the others were rendered at their visit.
     if (query.purpose == QueryPurpose::Invisible) {
-        traverseNode(tree, frame, {query.node, query.inside_frustum}, device);
+        traverseNode(tree, frame, {query.node, query.inside_frustum}, device,
+                     answeredDecision(frame_, answer));
     }
 }
 
 void ChcCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
-                             RenderDevice& device) {
-    drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+                             RenderDevice& device, const Decision& why) {
+    drawNodeObjects(tree, visit.node, view_, visit.inside_frustum, device, why);
     traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
 }
 

@@ -76,8 +76,10 @@ class ChcCuller final : public Culler {
                    RenderDevice& device);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
                       const QueryAnswer& answer, RenderDevice& device);
+    // Draws the node's own objects (recording `why`) and queues its children.
     void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
-                      RenderDevice& device);
+                      RenderDevice& device, const Decision& why);
+
     void issue(RenderDevice& device, std::span<const Aabb> boxes, const NodeVisit& visit,
                QueryPurpose purpose);
 

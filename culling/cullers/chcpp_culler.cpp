@@ -44,7 +44,7 @@ void ChcppCuller::reset(const BspTree& tree) {
 
 void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     frame_ = frame.frame_index;
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     nodes_.beginFrame(tree);
     stats_ = {};
     device_state_ = DeviceState::None;
@@ -97,9 +97,11 @@ void ChcppCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Ren
 void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit) {
     switch (nodes_.visit(tree, view_, visit)) {
         case CoherentClassification::Visit::Culled:
+            recordDecision(view_.decisions, QueryTag::node(visit.node),
+                           decisionOf(DecisionKind::FrustumCulled));
             return;
         case CoherentClassification::Visit::NearPlane:
-            traverseNode(tree, frame, visit);
+            traverseNode(tree, frame, visit, decisionOf(DecisionKind::DrawnNearPlane));
             return;
         case CoherentClassification::Visit::PreviouslyInvisible:
             i_queue_.push_back({visit.node, visit.inside_frustum, false, QueryPurpose::Invisible});
@@ -125,7 +127,7 @@ void ChcppCuller::visitNode(const BspTree& tree, const CullFrame& frame, NodeVis
             nodes_.pullUp(tree, visit.node);  // still assumed visible
         }
     }
-    traverseNode(tree, frame, visit);
+    traverseNode(tree, frame, visit, nodes_.previouslyVisible(visit.node, query_due, frame_));
 }
 
 void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
@@ -144,9 +146,12 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                 }
                 if (i_queue_.size() >= options_.batch_size) issueBatch(tree, device);
             } else {
+                Decision why = answeredDecision(frame_, answer);
+                why.flags |= kDecisionMultiquery;
                 for (uint32_t i = 0; i < query.group_size; ++i) {
-                    nodes_.markInvisible(multi_nodes_[query.group_begin + i].node,
-                                         kMaxInvisibleFrames);
+                    const uint32_t node = multi_nodes_[query.group_begin + i].node;
+                    nodes_.markInvisible(node, kMaxInvisibleFrames);
+                    recordDecision(view_.decisions, QueryTag::node(node), why);
                 }
             }
             break;
@@ -155,10 +160,14 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
                 CoherentClassification::NodeState& s = nodes_[query.node];
                 s.invisible_frames = 0;
                 s.next_query = firstRetestFrame(query.node);
+                s.found_visible = frame_;
                 nodes_.pullUp(tree, query.node);
-                traverseNode(tree, frame, {query.node, query.inside_frustum});
+                traverseNode(tree, frame, {query.node, query.inside_frustum},
+                             answeredDecision(frame_, answer));
             } else {
                 nodes_.markInvisible(query.node, kMaxInvisibleFrames);
+                recordDecision(view_.decisions, QueryTag::node(query.node),
+                               answeredDecision(frame_, answer));
             }
             break;
         case QueryPurpose::Visible:
@@ -166,15 +175,21 @@ void ChcppCuller::handleResult(const BspTree& tree, const CullFrame& frame,
             if (visible) {
                 // Visible at its previous test too: the regular interval.
                 nodes_[query.node].next_query = frame_ + 1 + options_.visible_frames_skip;
+                nodes_[query.node].found_visible = frame_;
                 nodes_.pullUp(tree, query.node);
             }
             break;
     }
 }
 
-void ChcppCuller::traverseNode(const BspTree& tree, const CullFrame& frame,
-                               const NodeVisit& visit) {
-    if (tree.firstObject(visit.node) != BspTree::kNone) render_queue_.push_back(visit);
+void ChcppCuller::traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
+                               const Decision& why) {
+    if (tree.firstObject(visit.node) != BspTree::kNone) {
+        // Decided now, drawn when the render queue is flushed (which records the frustum's
+        // decisions on its objects after this one).
+        recordDecision(view_.decisions, QueryTag::nodeObjects(visit.node), why);
+        render_queue_.push_back(visit);
+    }
     traversal_queue_.pushChildren(tree, visit.node, frame.view.eye, visit.inside_frustum);
 }
 
@@ -277,7 +292,8 @@ void ChcppCuller::flushRenderQueue(const BspTree& tree, RenderDevice& device) {
     if (render_queue_.empty()) return;
     enterState(DeviceState::Render);
     for (const NodeVisit& visit : render_queue_) {
-        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum,
+                               [&device](uint32_t o) { device.drawObject(o); });
     }
     render_queue_.clear();
 }

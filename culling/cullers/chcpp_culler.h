@@ -101,7 +101,9 @@ class ChcppCuller final : public Culler {
     void visitNode(const BspTree& tree, const CullFrame& frame, NodeVisit visit);
     void handleResult(const BspTree& tree, const CullFrame& frame, const PendingQuery& query,
                       const QueryAnswer& answer, RenderDevice& device);
-    void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit);
+    // Queues the node's own objects for rendering (recording `why`) and its children.
+    void traverseNode(const BspTree& tree, const CullFrame& frame, const NodeVisit& visit,
+                      const Decision& why);
     uint64_t firstRetestFrame(uint32_t node) const;
 
     void issueBatch(const BspTree& tree, RenderDevice& device);

@@ -100,6 +100,7 @@ class CoherentClassification {
     struct NodeState {
         uint64_t visited = 0;           // stamp of the last frame that visited the node
         uint64_t next_query = 0;        // first frame index its geometry is queried again
+        uint64_t found_visible = 0;     // frame index of the last answer that found it visible
         uint32_t invisible_frames = 0;  // consecutive frames its queries found it invisible
         bool visible = false;
     };
@@ -154,6 +155,17 @@ class CoherentClassification {
     void markInvisible(uint32_t node, uint32_t cap) {
         NodeState& s = state_[node];
         s.invisible_frames = std::min(s.invisible_frames + 1, cap);
+    }
+
+    // Why a previously visible node's geometry is drawn: its query of this frame is queued or in
+    // flight, or it is still assumed visible since the answer that found it visible.
+    Decision previouslyVisible(uint32_t node, bool query_due, uint64_t frame) const {
+        if (query_due) return inFlightDecision(frame);
+        const NodeState& s = state_[node];
+        Decision d = decisionOf(DecisionKind::DrawnAssumedVisible);
+        d.query_frame = static_cast<uint32_t>(s.found_visible);
+        d.next_query_frame = static_cast<uint32_t>(s.next_query);
+        return d;
     }
 
     NodeState& operator[](uint32_t node) { return state_[node]; }

@@ -31,7 +31,10 @@ void ConditionalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
             "conditional: the device offers no conditional rendering (a run refuses this culler "
             "before any work: requireDeviceFeatures)");
     }
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
+    Decision conditional_why = decisionOf(DecisionKind::DrawnConditional);
+    conditional_why.query_frame = static_cast<uint32_t>(frame.frame_index);
+    const Decision near_why = decisionOf(DecisionKind::DrawnNearPlane);
     pending_.clear();
     objects_.clear();
     head_ = 0;
@@ -41,20 +44,26 @@ void ConditionalCuller::cullAndRender(const BspTree& tree, const CullFrame& fram
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
         batch_.clear();
         Aabb around;  // the box around batch_
-        forEachObjectInFrustum(
-            tree, visit.node, view_.frustum, visit.inside_frustum, [&](uint32_t o) {
-                const Aabb& box = tree.objectBox(o);
-                if (nearPlaneTouchesBox(box, eye, near_radius)) {
-                    device.drawObject(o);  // a query on it could say zero while it shows
-                } else if (options_.node_queries) {
-                    batch_.push_back(o);
-                    extend(around, box);
-                } else {
-                    queueQuery(box, QueryTag::object(o), std::span<const uint32_t>(&o, 1), device);
-                }
-            });
+        forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum, [&](uint32_t o) {
+            const Aabb& box = tree.objectBox(o);
+            if (nearPlaneTouchesBox(box, eye, near_radius)) {
+                recordDecision(view_.decisions, QueryTag::object(o), near_why);
+                device.drawObject(o);  // a query on it could say zero while it shows
+            } else if (options_.node_queries) {
+                batch_.push_back(o);
+                extend(around, box);
+            } else {
+                recordDecision(view_.decisions, QueryTag::object(o), conditional_why);
+                queueQuery(box, QueryTag::object(o), std::span<const uint32_t>(&o, 1), device);
+            }
+        });
         if (!batch_.empty()) {
-            if (nearPlaneTouchesBox(around, eye, near_radius)) {
+            const bool near = nearPlaneTouchesBox(around, eye, near_radius);
+            for (uint32_t o : batch_) {
+                recordDecision(view_.decisions, QueryTag::object(o),
+                               near ? near_why : conditional_why);
+            }
+            if (near) {
                 for (uint32_t o : batch_) device.drawObject(o);
             } else {
                 const QueryTag tag = tree.node(visit.node).isLeaf()

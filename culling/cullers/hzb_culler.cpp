@@ -35,8 +35,15 @@ void HzbCuller::drawUnit(const BspTree& tree, const Unit& u, RenderDevice& devic
         drawObject(u.index, device);
         return;
     }
-    forEachObjectInFrustum(tree, u.index, view_.frustum, u.inside_frustum,
+    forEachObjectInFrustum(tree, u.index, view_, u.inside_frustum,
                            [&](uint32_t o) { drawObject(o, device); });
+}
+
+void HzbCuller::recordUnit(const Unit& u, Decision why) const {
+    if (!view_.decisions) return;
+    if (u.is_node) why.flags |= kDecisionNodeUnit;
+    view_.decisions->add(u.is_node ? QueryTag::nodeObjects(u.index) : QueryTag::object(u.index),
+                         why);
 }
 
 // The units in the frustum, front to back. Those the near plane may cut are visible without a
@@ -53,8 +60,7 @@ void HzbCuller::collectUnits(const BspTree& tree, const CullFrame& frame) {
     };
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
         if (!options_.node_units || nearPlaneTouches(tree.bounds(visit.node))) {
-            forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
-                                   addObject);
+            forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum, addObject);
         } else if (tree.firstObject(visit.node) != BspTree::kNone) {
             units_.push_back({visit.node, true, visit.inside_frustum});
         }
@@ -65,7 +71,7 @@ void HzbCuller::collectUnits(const BspTree& tree, const CullFrame& frame) {
 void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
     if (object_visible_.size() != tree.objectCount()) reset(tree);
     node_visible_.sync(tree);
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     ++pass_;
     // A run refuses this culler on a device without the capability (AlgorithmTraits::
     // device_needs); called on one anyway (a test looping over every culler), it draws
@@ -78,6 +84,10 @@ void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
     for (const Unit& u : units_) {
         const uint64_t stamp = u.is_node ? node_visible_[u.index] : object_visible_[u.index];
         if (stamp == pass_ || wasVisible(u)) {
+            Decision why = decisionOf(stamp == pass_ ? DecisionKind::DrawnNearPlane
+                                                     : DecisionKind::DrawnOnPyramid);
+            why.phase = 1;
+            recordUnit(u, why);
             drawUnit(tree, u, device);
             drew_any = true;
         }
@@ -91,7 +101,8 @@ void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
         boxes_.push_back(u.is_node ? tree.bounds(u.index) : tree.objectBox(u.index));
     }
     flags_.assign(boxes_.size(), 1);
-    if (drew_any && pyramid && !boxes_.empty()) {
+    const bool tested = drew_any && pyramid && !boxes_.empty();
+    if (tested) {
         pyramid->build();
         pyramid->testBounds(
             boxes_, options_.sphere_bounds ? PyramidBound::Sphere : PyramidBound::Box, flags_);
@@ -102,7 +113,24 @@ void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
     for (const Unit& u : units_) {
         const uint64_t stamp = u.is_node ? node_visible_[u.index] : object_visible_[u.index];
         if (stamp == pass_) continue;
-        if (!flags_[next++]) continue;  // hidden: it drops out of next frame's phase 1
+        const bool passed = flags_[next] != 0;
+        if (view_.decisions && !wasVisible(u)) {  // a unit phase 1 drew keeps phase 1's reason
+            Decision why =
+                decisionOf(passed ? DecisionKind::DrawnOnPyramid : DecisionKind::CulledOnPyramid);
+            why.phase = 2;
+            if (tested) {
+                const uint32_t level =
+                    pyramid->levelOf(boxes_[next], options_.sphere_bounds ? PyramidBound::Sphere
+                                                                          : PyramidBound::Box);
+                why.level =
+                    level < Decision::kNoLevel ? static_cast<uint8_t>(level) : Decision::kNoLevel;
+            } else {
+                why.flags |= kDecisionNoPyramid;
+            }
+            recordUnit(u, why);
+        }
+        ++next;
+        if (!passed) continue;  // hidden: it drops out of next frame's phase 1
         ++last_passed_;
         markVisible(u);
         drawUnit(tree, u, device);  // a unit drawn in phase 1 is not drawn again

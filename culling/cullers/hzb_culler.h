@@ -65,6 +65,8 @@ class HzbCuller final : public Culler {
     void markVisible(const Unit& u);
     void drawUnit(const BspTree& tree, const Unit& u, RenderDevice& device);
     void drawObject(uint32_t object, RenderDevice& device);
+    // Records `why` on the unit (an object, or a node's own objects) when someone records.
+    void recordUnit(const Unit& u, Decision why) const;
 
     HzbOptions options_;
     PreparedView view_;

@@ -18,6 +18,7 @@ void MaskedCuller::reset(const BspTree& tree) {
     drawn_last_.clear();
     drawn_now_.clear();
     rasterised_in_.assign(tree.objectCount(), 0);
+    occluder_in_.assign(tree.objectCount(), 0);
     stamp_ = 0;
     neighbours_.clear();
     has_neighbours_.clear();
@@ -43,6 +44,7 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
     if (buffer_.screenExtent(tree.objectBox(object)) < options_.occluder_size) return;
     budget_ -= triangles;
     ++occluders_;
+    occluder_in_[object] = stamp_;
     const std::span<const uint32_t> indices = meshes.indices.subspan(r.first_index, r.index_count);
     if (has_neighbours_.size() != meshes.meshes.size()) {
         has_neighbours_.assign(meshes.meshes.size(), 0);
@@ -58,8 +60,11 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
 
 void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                  RenderDevice& device) {
-    view_ = prepareView(frame.view);
-    if (rasterised_in_.size() != tree.objectCount()) rasterised_in_.assign(tree.objectCount(), 0);
+    view_ = prepareView(frame);
+    if (rasterised_in_.size() != tree.objectCount()) {
+        rasterised_in_.assign(tree.objectCount(), 0);
+        occluder_in_.assign(tree.objectCount(), 0);
+    }
     ++stamp_;
     occluders_ = 0;
     budget_ = options_.occluder_triangles;
@@ -79,14 +84,29 @@ void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     }
     drawn_now_.clear();
     traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
-        if (!mayBeVisible(tree.bounds(visit.node), frame.view)) return false;
-        forEachObjectInFrustum(tree, visit.node, view_.frustum, visit.inside_frustum,
-                               [&](uint32_t o) {
-                                   if (!mayBeVisible(tree.objectBox(o), frame.view)) return;
-                                   device.drawObject(o);
-                                   drawn_now_.push_back(o);
-                                   if (have_meshes) tryOccluder(tree, meshes, o);
-                               });
+        if (!mayBeVisible(tree.bounds(visit.node), frame.view)) {
+            recordDecision(view_.decisions, QueryTag::node(visit.node),
+                           decisionOf(DecisionKind::CulledOnTiles));
+            return false;
+        }
+        forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum, [&](uint32_t o) {
+            const Aabb& box = tree.objectBox(o);
+            const bool near = nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius);
+            if (!near && !buffer_.testBox(box)) {
+                recordDecision(view_.decisions, QueryTag::object(o),
+                               decisionOf(DecisionKind::CulledOnTiles));
+                return;
+            }
+            device.drawObject(o);
+            drawn_now_.push_back(o);
+            if (have_meshes) tryOccluder(tree, meshes, o);
+            if (view_.decisions) {
+                Decision why =
+                    decisionOf(near ? DecisionKind::DrawnNearPlane : DecisionKind::DrawnOnTiles);
+                if (occluder_in_[o] == stamp_) why.flags |= kDecisionOccluder;
+                view_.decisions->add(QueryTag::object(o), why);
+            }
+        });
         return true;
     });
     std::swap(drawn_last_, drawn_now_);

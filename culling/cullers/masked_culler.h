@@ -52,7 +52,8 @@ class MaskedCuller final : public Culler {
     PreparedView view_;
     std::vector<NodeVisit> stack_;
     std::vector<uint32_t> drawn_last_, drawn_now_;  // in draw order (front to back)
-    std::vector<uint64_t> rasterised_in_;           // per object: frame stamp it was rasterised in
+    std::vector<uint64_t> rasterised_in_;           // per object: frame stamp it was tried in
+    std::vector<uint64_t> occluder_in_;             // per object: frame stamp it was rasterised in
     // Per mesh, its edges' neighbours (edgeNeighbours), built the first time it occludes.
     std::vector<std::vector<uint32_t>> neighbours_;
     std::vector<uint8_t> has_neighbours_;

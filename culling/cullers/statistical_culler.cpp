@@ -30,32 +30,43 @@ struct LaterRank {
 
 }  // namespace
 
+RequeryInterval requeryInterval(const StatisticalOptions& options, const NodeStatistics& stats,
+                                NodeMotion motion) {
+    const uint32_t mask =
+        options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
+    RequeryInterval r;
+    r.visible_results = std::popcount(stats.history & mask);
+    const double decay = options.decay_a - std::pow(options.decay_b, r.visible_results);
+    // The interval runs from the last query, or from the last time the cost model put the query
+    // off (improvement 3), whichever is later.
+    if (options.requery_distance_m > 0.0 || options.requery_parallax > 0.0) {
+        r.distance = true;
+        r.since = std::max(stats.travel_at_query_m, stats.deferred_travel_m);
+        if (options.requery_distance_m > 0.0) {
+            r.interval = options.requery_distance_m * decay;
+        } else {
+            const double distance = std::max(motion.distance_m, kMinParallaxDistanceM);
+            r.interval = options.requery_parallax * decay * distance;
+        }
+        return r;
+    }
+    r.since = std::max(stats.last_query_time_s, stats.deferred_time_s);
+    r.interval = options.base_time_s * decay;
+    return r;
+}
+
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
                             bool near_plane_touches_box, double now_s, NodeMotion motion) {
     if (near_plane_touches_box) return NodeAction::Render;
     if (stats.results == 0) return NodeAction::Query;
     if (now_s - stats.last_query_time_s > options.max_statistics_age_s) return NodeAction::Query;
     if ((stats.history & 1u) == 0) return NodeAction::Query;  // last result: occluded
-    const uint32_t mask =
-        options.history_length >= 32 ? ~0u : ((1u << options.history_length) - 1u);
-    const int occ_num = std::popcount(stats.history & mask);
-    const double decay = options.decay_a - std::pow(options.decay_b, occ_num);
-    // The interval runs from the last query, or from the last time the cost model put the query
-    // off (improvement 3), whichever is later.
-    const double since_travel_m = std::max(stats.travel_at_query_m, stats.deferred_travel_m);
-    const double since_s = std::max(stats.last_query_time_s, stats.deferred_time_s);
-    if (options.requery_distance_m > 0.0) {
-        const double travelled = motion.travel_m - since_travel_m;
-        return travelled > options.requery_distance_m * decay ? NodeAction::Query
-                                                              : NodeAction::Render;
+    const RequeryInterval r = requeryInterval(options, stats, motion);
+    if (r.distance) {
+        const double travelled = motion.travel_m - r.since;
+        return travelled > r.interval ? NodeAction::Query : NodeAction::Render;
     }
-    if (options.requery_parallax > 0.0) {
-        const double travelled = motion.travel_m - since_travel_m;
-        const double distance = std::max(motion.distance_m, kMinParallaxDistanceM);
-        return travelled > options.requery_parallax * decay * distance ? NodeAction::Query
-                                                                       : NodeAction::Render;
-    }
-    const double not_query_time = since_s + options.base_time_s * decay;
+    const double not_query_time = r.since + r.interval;
     return now_s > not_query_time ? NodeAction::Query : NodeAction::Render;
 }
 
@@ -257,10 +268,10 @@ StatisticalCuller::Entry StatisticalCuller::pop() {
 // their own statistics, between the nearer and the farther child), and its children take its
 // place in the queue, nearer child first. Empty children are left out (the paper's SKIP).
 void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
-                                   RenderDevice& device) {
+                                   RenderDevice& device, const Decision& why) {
     const BspNode& n = tree.node(entry.index);
     if (n.isLeaf()) {
-        renderObjects(tree, frame, entry.index, entry.inside_frustum, device);
+        renderObjects(tree, frame, entry.index, entry.inside_frustum, device, why);
         return;
     }
     const bool eye_below = frame.view.eye[n.axis] < n.split;
@@ -273,7 +284,7 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
         }
     } else {
         // Without virtual leaves, objects in inner nodes have no decisions of their own.
-        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+        drawNodeObjects(tree, entry.index, view_, entry.inside_frustum, device, why);
     }
     if (!isEmpty(tree.bounds(near_child))) {
         push({entry.rank + 1, near_child, Subject::Node, entry.inside_frustum});
@@ -285,17 +296,23 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
 
 NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
                                      double travel_m, double draw_ms, uint32_t query_boxes,
-                                     bool object_query, Decision* decision) {
+                                     bool object_query, QueryContext* context, Decision* why) {
     const CullView& view = frame.view;
     const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
     const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
     const NodeAction action = decideNodeAction(options_, stats, near, frame.time_s, motion);
-    decision->prior = priorResultOf(stats);
+    context->prior = priorResultOf(stats);
     if (action == NodeAction::Render) {
         ++counters_.renders_without_query;
+        if (near) {
+            *why = decisionOf(DecisionKind::DrawnNearPlane);
+        } else if (view_.decisions) {
+            *why = statisticsDecision(stats, motion);
+        }
         return action;
     }
     if (!costs_active_) return NodeAction::Query;
+    *why = decisionOf(DecisionKind::DrawnOnCostModel);
     // Rule 1 (Guthe et al.): a subject cheaper to draw than to query is drawn without one,
     // statistics or not.
     if (!queryPays(costs_, draw_ms, query_boxes, 1.0)) {
@@ -306,7 +323,7 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
     // pay. Without them the answer is worth more than one frame's saving (later decisions go on
     // it), so the query is issued.
     if (!statisticsUsable(options_, stats, frame.time_s)) return NodeAction::Query;
-    OcclusionEstimate& estimate = estimates_[estimateIndex(decision->prior, object_query)];
+    OcclusionEstimate& estimate = estimates_[estimateIndex(context->prior, object_query)];
     if (queryPays(costs_, draw_ms, query_boxes, estimate.occluded)) return NodeAction::Query;
     if (++estimate.vetoes >= OcclusionEstimate::kExploreEvery) {
         estimate.vetoes = 0;  // asked anyway, so that the estimate stays measured
@@ -320,12 +337,25 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
     return NodeAction::Render;
 }
 
+Decision StatisticalCuller::statisticsDecision(const NodeStatistics& stats,
+                                               const NodeMotion& motion) const {
+    const RequeryInterval r = requeryInterval(options_, stats, motion);
+    Decision d = decisionOf(DecisionKind::DrawnOnStatistics);
+    d.query_frame = stats.last_query_frame;
+    d.count = static_cast<uint8_t>(r.visible_results);
+    d.history = stats.results;
+    d.interval = static_cast<float>(r.interval);
+    d.next_query = static_cast<float>(r.since + r.interval);
+    if (r.distance) d.flags |= kDecisionDistance;
+    return d;
+}
+
 uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& frame,
-                                          uint32_t node, bool inside_frustum,
-                                          RenderDevice& device) {
+                                          uint32_t node, bool inside_frustum, RenderDevice& device,
+                                          const Decision& why) {
     const FrustumPlanes& frustum = view_.frustum;
     if (!options_.object_queries) {
-        drawNodeObjects(tree, node, frustum, inside_frustum, device);
+        drawNodeObjects(tree, node, view_, inside_frustum, device, why);
         return 0;
     }
     // A leaf with one object in view: the leaf's own decision (its statistics, its query on
@@ -334,28 +364,31 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
         uint32_t in_view = 0;
         forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t) { ++in_view; });
         if (in_view <= 1) {
-            drawNodeObjects(tree, node, frustum, inside_frustum, device);
+            drawNodeObjects(tree, node, view_, inside_frustum, device, why);
             return 0;
         }
     }
     uint32_t queries = 0;
-    forEachObjectInFrustum(tree, node, frustum, inside_frustum, [&](uint32_t o) {
+    forEachObjectInFrustum(tree, node, view_, inside_frustum, [&](uint32_t o) {
         const Entry entry{0, o, Subject::Object, inside_frustum};
         const Aabb& box = tree.objectBox(o);
         const double draw_ms = costs_active_ ? costs_.drawMs(frame.object_triangles[o]) : 0.0;
-        Decision decision;
-        if (decide(frame, object_stats_[o], box, travelOf(entry), draw_ms, 1, true, &decision) ==
-            NodeAction::Render) {
+        QueryContext context;
+        Decision object_why;
+        if (decide(frame, object_stats_[o], box, travelOf(entry), draw_ms, 1, true, &context,
+                   &object_why) == NodeAction::Render) {
+            recordFor(entry, object_why);
             device.drawObject(o);
             return;
         }
         const QueryTag tag = QueryTag::object(o);
-        if (drawsWhileRequerying(decision)) {
-            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), tag, decision, device);
+        if (drawsWhileRequerying(context)) {
+            issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1), tag, context, device);
+            recordFor(entry, inFlightDecision(frame.frame_index));
             device.drawObject(o);
             return;
         }
-        enqueue(device.issueQuery(box, tag), entry, decision);
+        enqueue(device.issueQuery(box, tag), entry, context);
         ++queries;
     });
     return queries;
@@ -366,83 +399,92 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
     if (entry.subject == Subject::Node) {
         NodeVisit visit{entry.index, entry.inside_frustum};
         bool inside = false;
-        if (!nodeInFrustum(tree, visit, view_.frustum, &inside)) return false;  // SKIP
+        if (!nodeInFrustum(tree, visit, view_.frustum, &inside)) {  // SKIP
+            recordFor(entry, decisionOf(DecisionKind::FrustumCulled));
+            return false;
+        }
         entry.inside_frustum = inside;
         const Aabb& box = tree.bounds(entry.index);
         const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
-        Decision decision;
-        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false,
-                   &decision) == NodeAction::Render) {
-            renderNode(tree, frame, entry, device);
+        QueryContext context;
+        Decision why;
+        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &context,
+                   &why) == NodeAction::Render) {
+            renderNode(tree, frame, entry, device, why);
             return false;
         }
-        if (options_.descend_visible_inner_nodes && decision.prior == PriorResult::LastVisible &&
+        if (options_.descend_visible_inner_nodes && context.prior == PriorResult::LastVisible &&
             !tree.node(entry.index).isLeaf()) {
             // Improvement 8: its children decide; the interval runs again from now, as when the
             // cost model puts a query off, and the statistics keep their age.
             stats_[entry.index].deferred_time_s = frame.time_s;
             stats_[entry.index].deferred_travel_m = travelOf(entry);
             ++counters_.inner_descents;
-            renderNode(tree, frame, entry, device);
+            renderNode(tree, frame, entry, device, decisionOf(DecisionKind::DrawnNoTest));
             return false;
         }
-        if (drawsWhileRequerying(decision)) {
+        if (drawsWhileRequerying(context)) {
             issueUpdate(tree, frame, entry, std::span<const Aabb>(&box, 1),
-                        QueryTag::node(entry.index), decision, device);
-            renderNode(tree, frame, entry, device);
+                        QueryTag::node(entry.index), context, device);
+            renderNode(tree, frame, entry, device, inFlightDecision(frame.frame_index));
             return false;
         }
-        enqueue(device.issueQuery(box, QueryTag::node(entry.index)), entry, decision);
+        enqueue(device.issueQuery(box, QueryTag::node(entry.index)), entry, context);
         return true;
     }
     // A virtual leaf: the objects stored in the node itself that pass the frustum.
     if (options_.object_queries) {
-        return renderObjects(tree, frame, entry.index, entry.inside_frustum, device) > 0;
+        return renderObjects(tree, frame, entry.index, entry.inside_frustum, device,
+                             decisionOf(DecisionKind::NoReasonGiven)) > 0;
     }
     boxes_.clear();
     Aabb box;
     double draw_ms = 0.0;
-    forEachObjectInFrustum(tree, entry.index, view_.frustum, entry.inside_frustum, [&](uint32_t o) {
+    forEachObjectInFrustum(tree, entry.index, view_, entry.inside_frustum, [&](uint32_t o) {
         boxes_.push_back(tree.objectBox(o));
         extend(box, tree.objectBox(o));
         if (costs_active_) draw_ms += costs_.drawMs(frame.object_triangles[o]);
     });
     if (boxes_.empty()) return false;
     const uint32_t query_boxes = static_cast<uint32_t>(boxes_.size());
-    Decision decision;
+    QueryContext context;
+    Decision why;
     if (decide(frame, own_stats_[entry.index], box, travelOf(entry), draw_ms, query_boxes, false,
-               &decision) == NodeAction::Render) {
-        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+               &context, &why) == NodeAction::Render) {
+        drawNodeObjects(tree, entry.index, view_, entry.inside_frustum, device, why);
         return false;
     }
     const QueryTag tag = QueryTag::nodeObjects(entry.index);
-    if (drawsWhileRequerying(decision)) {
-        issueUpdate(tree, frame, entry, std::span<const Aabb>(boxes_), tag, decision, device);
-        drawNodeObjects(tree, entry.index, view_.frustum, entry.inside_frustum, device);
+    if (drawsWhileRequerying(context)) {
+        issueUpdate(tree, frame, entry, std::span<const Aabb>(boxes_), tag, context, device);
+        drawNodeObjects(tree, entry.index, view_, entry.inside_frustum, device,
+                        inFlightDecision(frame.frame_index));
         return false;
     }
     enqueue(device.issueQuery(std::span<const Aabb>(boxes_), std::span<const QueryTag>(&tag, 1)),
-            entry, decision);
+            entry, context);
     return true;
 }
 
-void StatisticalCuller::record(const Entry& e, const Decision& decision, bool visible,
-                               double time_s, double travel_m) {
-    recordQueryResult(options_, statsOf(e), visible, time_s, travel_m);
-    estimates_[estimateIndex(decision.prior, e.subject == Subject::Object)].add(!visible);
+void StatisticalCuller::record(const Entry& e, const QueryContext& context, bool visible,
+                               double time_s, double travel_m, uint64_t frame) {
+    NodeStatistics& stats = statsOf(e);
+    recordQueryResult(options_, stats, visible, time_s, travel_m);
+    stats.last_query_frame = static_cast<uint32_t>(frame);
+    estimates_[estimateIndex(context.prior, e.subject == Subject::Object)].add(!visible);
     ++counters_.answers;
     counters_.visible_answers += visible ? 1 : 0;
 }
 
-void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const Decision& decision) {
+void StatisticalCuller::enqueue(QueryId id, const Entry& entry, const QueryContext& context) {
     double weight = 1.0;
     if (options_.weigh_in_flight) {
         const double visible =
             1.0 -
-            estimates_[estimateIndex(decision.prior, entry.subject == Subject::Object)].occluded;
+            estimates_[estimateIndex(context.prior, entry.subject == Subject::Object)].occluded;
         weight = std::max(visible, 1.0 / StatisticalOptions::kMaxRunAhead);
     }
-    pending_.push_back({id, entry, decision, weight});
+    pending_.push_back({id, entry, context, weight});
     in_flight_weight_ += weight;
     waited_weight_ += weight;
     ++counters_.queries;
@@ -452,16 +494,21 @@ bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
                                RenderDevice& device) {
     const Entry& e = pending.entry;
     const QueryAnswer a = device.takeAnswer(pending.id);
-    record(e, pending.decision, a.visible, frame.time_s, travelOf(e));
-    if (!a.visible) return a.waited;
+    record(e, pending.context, a.visible, frame.time_s, travelOf(e), frame.frame_index);
+    const Decision why = answeredDecision(frame.frame_index, a);
+    if (!a.visible) {
+        recordFor(e, why);
+        return a.waited;
+    }
     switch (e.subject) {
         case Subject::Node:
-            renderNode(tree, frame, e, device);
+            renderNode(tree, frame, e, device, why);
             break;
         case Subject::NodeObjects:
-            drawNodeObjects(tree, e.index, view_.frustum, e.inside_frustum, device);
+            drawNodeObjects(tree, e.index, view_, e.inside_frustum, device, why);
             break;
         case Subject::Object:
+            recordFor(e, why);
             device.drawObject(e.index);
             break;
     }
@@ -470,11 +517,11 @@ bool StatisticalCuller::answer(const BspTree& tree, const CullFrame& frame, cons
 
 void StatisticalCuller::issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
                                     std::span<const Aabb> boxes, const QueryTag& tag,
-                                    const Decision& decision, RenderDevice& device) {
+                                    const QueryContext& context, RenderDevice& device) {
     const uint32_t generation =
         entry.subject == Subject::Object ? 0 : tree.node(entry.index).generation;
     updates_.push_back({device.issueQuery(boxes, std::span<const QueryTag>(&tag, 1)), entry,
-                        decision, frame.time_s, travelOf(entry), generation, frame.frame_index});
+                        context, frame.time_s, travelOf(entry), generation, frame.frame_index});
     ++counters_.queries;
     ++counters_.update_queries;
 }
@@ -489,7 +536,7 @@ void StatisticalCuller::collectUpdates(const BspTree& tree, RenderDevice& device
                                       ? u.entry.index < object_stats_.size()
                                       : u.entry.index < tree.nodeCount() &&
                                             tree.node(u.entry.index).generation == u.generation;
-        if (same_subject) record(u.entry, u.decision, visible, u.time_s, u.travel_m);
+        if (same_subject) record(u.entry, u.context, visible, u.time_s, u.travel_m, u.frame);
         ++updates_head_;
     }
     if (updates_head_ == updates_.size()) {
@@ -500,8 +547,10 @@ void StatisticalCuller::collectUpdates(const BspTree& tree, RenderDevice& device
 
 void StatisticalCuller::frustumOnlyFrame(const BspTree& tree, RenderDevice& device) {
     counters_.frustum_only = true;
+    Decision why = decisionOf(DecisionKind::DrawnNoTest);
+    why.flags = kDecisionFallback;
     traverseFrontToBack(tree, view_, vfc_stack_, [&](const NodeVisit& visit) {
-        drawNodeObjects(tree, visit.node, view_.frustum, visit.inside_frustum, device);
+        drawNodeObjects(tree, visit.node, view_, visit.inside_frustum, device, why);
         return true;
     });
 }
@@ -541,7 +590,7 @@ double StatisticalCuller::inFlightBound() const {
 void StatisticalCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                       RenderDevice& device) {
     counters_ = {};
-    view_ = prepareView(frame.view);
+    view_ = prepareView(frame);
     prepareFrame(tree, frame);
     if (frustum_only_) {
         if (frame.time_s < frustum_only_until_s_) {

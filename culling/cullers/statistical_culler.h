@@ -57,8 +57,9 @@ struct NodeStatistics {
     // for: the interval runs again from there. 0 = never (both clocks start at 0).
     double deferred_time_s = 0.0;
     double deferred_travel_m = 0.0;
-    uint32_t history = 0;  // bit i = result of the i-th most recent query (1 = visible)
-    uint8_t results = 0;   // how many results the history holds (<= history_length)
+    uint32_t history = 0;           // bit i = result of the i-th most recent query (1 = visible)
+    uint8_t results = 0;            // how many results the history holds (<= history_length)
+    uint32_t last_query_frame = 0;  // the frame its last answered query was issued in
 };
 
 // Where a node is, for the distance rules of CalcNodeAction (improvement 4): its travel counter
@@ -71,6 +72,18 @@ struct NodeMotion {
 // The options table of "statistical" and "statistical+" (statistical_registration.cpp): its
 // read() turns either culler's option values into StatisticalOptions.
 const OptionTable<StatisticalOptions>& statisticalOptionTable();
+
+// CalcNodeAction's re-query interval for statistics whose last result was visible: the decay
+// curve's BASE_TIME * (a - b^occ_num) (seconds), or with the distance rules the distance to
+// travel (metres), counted from `since` (a time, or the node's travel counter).
+struct RequeryInterval {
+    double interval = 0.0;
+    double since = 0.0;
+    bool distance = false;    // interval and since are metres
+    int visible_results = 0;  // occ_num
+};
+RequeryInterval requeryInterval(const StatisticalOptions& options, const NodeStatistics& stats,
+                                NodeMotion motion = {});
 
 // CalcNodeAction for a node that passed the frustum test; exposed for tests and the tuner.
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
@@ -164,13 +177,13 @@ class StatisticalCuller final : public Culler {
         bool inside_frustum;
     };
     // What decide() found besides the action, kept with a query until its answer.
-    struct Decision {
+    struct QueryContext {
         PriorResult prior = PriorResult::Fresh;
     };
     struct Pending {
         QueryId id;
         Entry entry;
-        Decision decision;
+        QueryContext context;
         double weight;  // what it counts against the bound on queries in flight (weigh_in_flight)
     };
     // A query whose answer only updates statistics (draw_while_requerying): the subject was
@@ -179,7 +192,7 @@ class StatisticalCuller final : public Culler {
     struct Update {
         QueryId id;
         Entry entry;
-        Decision decision;
+        QueryContext context;
         double time_s;
         double travel_m;
         uint32_t generation;
@@ -204,32 +217,41 @@ class StatisticalCuller final : public Culler {
     // Draws the objects stored in `node` itself that pass the frustum, or, with object_queries,
     // decides each on its own statistics. Returns the number of queries issued.
     uint32_t renderObjects(const BspTree& tree, const CullFrame& frame, uint32_t node,
-                           bool inside_frustum, RenderDevice& device);
-    // CalcNodeAction and the cost model for one subject; counts the decision.
+                           bool inside_frustum, RenderDevice& device, const Decision& why);
+    // CalcNodeAction and the cost model for one subject; counts the decision. When it says Render,
+    // `why` says on what (the near plane, the statistics, the cost model).
     NodeAction decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
                       double travel_m, double draw_ms, uint32_t query_boxes, bool object_query,
-                      Decision* decision);
+                      QueryContext* context, Decision* why);
     // Takes the pending query's answer and acts on it; returns whether the device waited for it.
     bool answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
                 RenderDevice& device);
     double inFlightBound() const;
     // Puts an issued query into the query queue with its weight against the in-flight bound.
-    void enqueue(QueryId id, const Entry& entry, const Decision& decision);
+    void enqueue(QueryId id, const Entry& entry, const QueryContext& context);
     // Draw-while-requerying: issues the query whose answer only updates statistics.
     void issueUpdate(const BspTree& tree, const CullFrame& frame, const Entry& entry,
-                     std::span<const Aabb> boxes, const QueryTag& tag, const Decision& decision,
+                     std::span<const Aabb> boxes, const QueryTag& tag, const QueryContext& context,
                      RenderDevice& device);
     // Takes the ready update answers in issue order; with `older_than_frame`, also waits for
     // those issued before that frame.
     void collectUpdates(const BspTree& tree, RenderDevice& device, uint64_t older_than_frame);
-    void record(const Entry& e, const Decision& decision, bool visible, double time_s,
-                double travel_m);
+    void record(const Entry& e, const QueryContext& context, bool visible, double time_s,
+                double travel_m, uint64_t frame);
+    // A rendered node (its own objects drawn for `why`, or queued as a virtual leaf) and its
+    // children queued.
     void renderNode(const BspTree& tree, const CullFrame& frame, const Entry& entry,
-                    RenderDevice& device);
+                    RenderDevice& device, const Decision& why);
+    // DrawnOnStatistics with what the statistics said (the last query, the interval).
+    Decision statisticsDecision(const NodeStatistics& stats, const NodeMotion& motion) const;
+    // A decision on a queue entry's subject: a node's subtree, a virtual leaf, or an object.
+    void recordFor(const Entry& e, const Decision& why) const {
+        recordDecision(view_.decisions, QueryTag{e.subject, e.index}, why);
+    }
     NodeStatistics& statsOf(const Entry& e);
     double travelOf(const Entry& e) const;
-    bool drawsWhileRequerying(const Decision& decision) const {
-        return options_.draw_while_requerying && decision.prior == PriorResult::LastVisible;
+    bool drawsWhileRequerying(const QueryContext& context) const {
+        return options_.draw_while_requerying && context.prior == PriorResult::LastVisible;
     }
     static size_t estimateIndex(PriorResult prior, bool object_query) {
         return static_cast<size_t>(prior) + (object_query ? 3 : 0);

@@ -140,6 +140,13 @@ void DepthRasterDevice::build() {
     pyramid_.build(depth_, width_, height_);
 }
 
+uint32_t DepthRasterDevice::levelOf(const Aabb& box, PyramidBound shape) const {
+    if (!pyramid_.built()) return kNoLevel;
+    const Card c = shape == PyramidBound::Sphere ? cardOfSphere(box) : cardOf(box);
+    if (c.x0 >= c.x1 || c.y0 >= c.y1) return kNoLevel;
+    return pyramid_.levelFor({c.x0, c.y0, c.x1 - 1, c.y1 - 1});
+}
+
 void DepthRasterDevice::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                                    std::span<uint8_t> visible) {
     assert(visible.size() == boxes.size());

@@ -64,6 +64,18 @@ void checkOutputFile(const std::string& flag, const std::string& path, bool give
 
 // --algos as given: every name registered, none twice, none empty (a trailing comma).
 // The names come comma-separated, space-separated or both ("vfc,chc" or "vfc chc").
+bool recordsObjects(const std::vector<std::string>& values) {
+    bool objects = false;
+    for (const std::string& v : values) {
+        if (v != "objects") {
+            throw occsim::InputError("--record: '" + v +
+                                     "' is not something a run records; expected: objects");
+        }
+        objects = true;
+    }
+    return objects;
+}
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -25,6 +25,14 @@ const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std
 void checkOutputFolder(const std::string& flag, const std::string& path, bool given);
 void checkOutputFile(const std::string& flag, const std::string& path, bool given);
 
+// --record as given (comma-separated, repeatable): true when it asks for objects (the only kind
+// there is); an empty list is false. Throws occsim::InputError for a value not listed.
+bool recordsObjects(const std::vector<std::string>& values);
+// --record's help text: what it takes and does.
+inline constexpr const char* kRecordHelp =
+    "Record more of the run: 'objects' writes objects.sqlite into the run folder (every object's "
+    "decision per frame and configuration, the culler's reason and ground truth's pixels; "
+    "measures error as --error does; occsim why reads it)";
 // A file or folder the command will write at its end, checked before any work (symlinks followed):
 // it, or the nearest folder above it that exists, can be written by this process. Throws
 // InputError starting with the flag.

@@ -45,6 +45,7 @@ CLI::App* addRegress(CLI::App& app, RegressFlags& flags) {
     regress->add_flag("--quiet", flags.quiet,
                       "No progress on stderr (default: [i/n] and a bar on a terminal, else a "
                       "line every 10 s)");
+    regress->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     regress->add_option(
         "--history", flags.history,
         "Append this run's figures to a history folder (occsim history DIR reports it)");
@@ -66,6 +67,7 @@ int regressCommand(const RegressFlags& flags) {
         }
     }
     occsim_cli::checkHistoryFlag(flags.history);
+    const bool record_objects = recordsObjects(flags.record);
     checkWritableFolder("--history", flags.history);
     // Each scenario's folder under --out is one unit with its own lock (runRegression); this
     // lock keeps two regress runs out of the folder's shard.json and junit.xml.
@@ -80,6 +82,8 @@ int regressCommand(const RegressFlags& flags) {
         options.rerun_flags.insert(options.rerun_flags.end(), {"--culling", flags.culling_file});
     if (flags.backend.backend != "auto")
         options.rerun_flags.insert(options.rerun_flags.end(), {"--backend", flags.backend.backend});
+    if (record_objects)
+        options.rerun_flags.insert(options.rerun_flags.end(), {"--record", "objects"});
     if (flags.backend.device >= 0) {
         options.rerun_flags.insert(options.rerun_flags.end(),
                                    {"--device", std::to_string(flags.backend.device)});
@@ -98,6 +102,7 @@ int regressCommand(const RegressFlags& flags) {
         throw occsim::InputError(std::string("--shard: ") + e.what());
     }
     options.update = flags.update;
+    options.record_objects = record_objects;
     options.out_dir = flags.out;
     options.wait_lock = flags.wait_lock;
     options.progress = occsim::stderrProgressStyle(flags.quiet);

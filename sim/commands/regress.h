@@ -19,7 +19,8 @@ struct RegressFlags {
     std::vector<std::string> plugins;
     BackendFlags backend;
     std::string history, commit;
-    bool quiet = false;  // no progress on stderr
+    bool quiet = false;               // no progress on stderr
+    std::vector<std::string> record;  // --record: "objects"
 };
 
 CLI::App* addRegress(CLI::App& app, RegressFlags& flags);

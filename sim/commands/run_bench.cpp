@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
@@ -14,6 +16,8 @@
 #include "sim/output/report.h"
 #include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
+#include "sim/record/object_recorder.h"
+#include "sim/record/object_schema.h"
 #include "sim/run/run_config.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
@@ -58,6 +62,7 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     addPluginFlag(cmd, flags.plugins);
     cmd->add_flag("--quiet", flags.quiet,
                   "No progress on stderr (default: a bar on a terminal, else a line every 10 s)");
+    cmd->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -125,7 +130,9 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     }
     o.command = request.command;
     o.command_line = request.command_line;
-    o.measure_error = flags.error;
+    // Objects need ground truth's pixels: recording them measures error, as --error does.
+    o.record_objects = recordsObjects(flags.record);
+    o.measure_error = flags.error || o.record_objects;
     o.backend = backendChoice(flags.backend);
     if (flags.frames > 0) o.frames = flags.frames;
     o.repetitions = flags.repetitions;
@@ -201,15 +208,23 @@ int runAndReport(const RunRequest& request) {
     const occsim::FolderLock lock(out_dir, flags.wait_lock);
     occsim::StagedRunFolder folder(out_dir);
     occsim::PictureRecorder pictures(folder.staging(), flags.capture, options.trace_frame);
-    options.on_frame = [&pictures](const occsim::FrameEvent& e) { pictures.onFrame(e); };
+    std::unique_ptr<occsim::ObjectRecorder> objects;
+    if (options.record_objects)
+        objects = std::make_unique<occsim::ObjectRecorder>(folder.staging());
+    options.on_frame = [&pictures, &objects](const occsim::FrameEvent& e) {
+        pictures.onFrame(e);
+        if (objects) objects->onFrame(e);
+    };
     options.on_window_frame = [&pictures](const occsim::ReplayedFrame& f) {
         pictures.onWindowFrame(f);
     };
 
     watchFrames();
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);
+    std::optional<occsim::ObjectHighlights> highlights;
+    if (objects) highlights = objects->finish(result);
     const occsim::OutputFiles files = occsim::writeRunOutputs(
-        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}});
+        result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}, highlights});
     folder.publish();
 
     std::printf("%s\n", occsim::runHeadline(result).c_str());
@@ -220,6 +235,11 @@ int runAndReport(const RunRequest& request) {
     std::printf("%s", occsim::segmentTablesText(result).c_str());
     std::printf("%s", occsim::worstWindowsText(result).c_str());
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
+    if (objects) {
+        std::printf("objects: %s/%s (occsim why %s --object ID|NAME, --overdraw, --missed)\n",
+                    out_dir.string().c_str(), occsim::kObjectsDatabaseFile,
+                    out_dir.string().c_str());
+    }
     if (!pictures.birdsEyeFiles().empty()) {
         std::printf("bird's-eye pictures: %zu (birds-eye-*.png)\n",
                     pictures.birdsEyeFiles().size());

@@ -30,8 +30,9 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
+    std::vector<std::string> record;    // --record: "objects"
     std::vector<std::string> segments;  // --segments, each as given (joined by ',')
-    bool quiet = false;  // no progress on stderr
+    bool quiet = false;                 // no progress on stderr
 };
 
 struct RunFlags {

@@ -88,7 +88,7 @@ std::vector<PixelCluster> errorClusters(const std::vector<uint8_t>& differences,
     return clusters;
 }
 
-std::vector<MissedObject> missedObjects(const ErrorFrame& frame, uint32_t width, uint32_t height) {
+std::vector<MissedInFrame> missedObjects(const ErrorFrame& frame, uint32_t width, uint32_t height) {
     std::map<uint32_t, PixelCluster> by_object;
     const size_t pixels = size_t{width} * height;
     if (frame.differences.size() != pixels || frame.truth_ids.size() != pixels) return {};
@@ -103,9 +103,9 @@ std::vector<MissedObject> missedObjects(const ErrorFrame& frame, uint32_t width,
         c.y0 = std::min(c.y0, y), c.y1 = std::max(c.y1, y);
         ++c.pixels;
     }
-    std::vector<MissedObject> out;
+    std::vector<MissedInFrame> out;
     for (const auto& [object, where] : by_object) out.push_back({object, where});
-    std::stable_sort(out.begin(), out.end(), [](const MissedObject& a, const MissedObject& b) {
+    std::stable_sort(out.begin(), out.end(), [](const MissedInFrame& a, const MissedInFrame& b) {
         return a.where.pixels > b.where.pixels;
     });
     return out;
@@ -194,7 +194,7 @@ LabelledPicture labelledErrorPicture(const ErrorFrame& frame, uint32_t width, ui
     const std::vector<uint8_t> panels = composeErrorPicture(frame, width, height);
     const uint32_t scale = errorPictureScale(width);
     const std::vector<PixelCluster> clusters = errorClusters(frame.differences, width, height);
-    const std::vector<MissedObject> missed = missedObjects(frame, width, height);
+    const std::vector<MissedInFrame> missed = missedObjects(frame, width, height);
     const int text_scale = 2, margin = 6;
     const int band = RasterCanvas::textHeight(text_scale) + 2 * margin;  // a label's strip
     const int panel_w = static_cast<int>(width * scale), panel_h = static_cast<int>(height * scale);

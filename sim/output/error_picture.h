@@ -31,11 +31,11 @@ std::vector<PixelCluster> errorClusters(const std::vector<uint8_t>& differences,
 
 // An object ground truth shows where the culled frame is in error: missed (or left out behind
 // another), with its error pixels and their bounds, most pixels first.
-struct MissedObject {
+struct MissedInFrame {
     uint32_t object = 0;  // index (ground truth's ID - 1)
     PixelCluster where;   // its error pixels' bounds and count
 };
-std::vector<MissedObject> missedObjects(const ErrorFrame& frame, uint32_t width, uint32_t height);
+std::vector<MissedInFrame> missedObjects(const ErrorFrame& frame, uint32_t width, uint32_t height);
 
 // RGBA8, (3 * width) x height, rows bottom-up (encode with encodePngBottomUp): culled | ground
 // truth | ground truth dimmed with every error pixel in magenta, every tie pixel in yellow, every

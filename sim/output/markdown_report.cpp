@@ -254,6 +254,7 @@ std::string markdownReport(const BenchResult& result, const ReportFiles& files) 
     segments(out, result);
     worstWindows(out, result, files);
     out << files.extra_markdown;
+    if (files.objects) out << objectHighlightsMarkdown(*files.objects);
     pictures(out, files);
     howToRead(out);
     return out.str();

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/output/object_highlights.h"
 #include "sim/run/results.h"
 
 namespace occsim {
@@ -30,6 +31,8 @@ struct ReportFiles {
     std::vector<std::string> window_pictures;
     std::string plots_note;      // why plots are missing or incomplete, if so
     std::string extra_markdown;  // a whole section, after the table (regress: the checks)
+    // The objects section, when the run recorded objects.sqlite (`--record objects`).
+    std::optional<ObjectHighlights> objects;
 };
 
 std::string markdownReport(const BenchResult& result, const ReportFiles& files);

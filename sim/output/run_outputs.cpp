@@ -26,6 +26,7 @@ OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& requ
         }
     }
     report.extra_markdown = request.extra_markdown;
+    report.objects = request.objects;
     if (request.plots) {
         const PlotResult plots = writePlots(result.runs, request.out_dir);
         report.plot_files = plots.files;

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "sim/output/object_highlights.h"
 #include "sim/run/results.h"
 
 namespace occsim {
@@ -17,6 +19,8 @@ struct OutputRequest {
     bool plots = false;                        // gnuplot charts (plots.h), when gnuplot is there
     std::vector<std::string> birds_eye_files;  // pictures already in out_dir, linked from report.md
     std::string extra_markdown;  // a section for report.md after the table (regress: its checks)
+    // report.md's objects section, when objects.sqlite was recorded (sim/record/).
+    std::optional<ObjectHighlights> objects;
 };
 
 struct OutputFiles {

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -13,6 +15,7 @@
 #include "sim/output/run_folder.h"
 #include "sim/output/run_outputs.h"
 #include "sim/output/shell_quote.h"
+#include "sim/record/object_recorder.h"
 #include "sim/regress/baseline_places.h"
 #include "sim/regress/run_checks.h"
 #include "sim/run/runner.h"
@@ -148,7 +151,15 @@ ScenarioOutcome runOne(const ReadScenario& read, const RegressOptions& options) 
     BenchOptions bench = regressBenchOptions(file, expect, options);
     bench.scenario_id = read.file.id;
     bench.segments = regressSegments(scenario, expect);
+    std::unique_ptr<ObjectRecorder> objects;
+    if (options.record_objects) {
+        objects = std::make_unique<ObjectRecorder>(folder.staging());
+        bench.record_objects = true;
+        bench.on_frame = [&objects](const FrameEvent& e) { objects->onFrame(e); };
+    }
     const BenchResult result = runBenchmark(scenario, bench);
+    std::optional<ObjectHighlights> highlights;
+    if (objects) highlights = objects->finish(result);
 
     if (result.partial) {
         // Checks of frames that were never run would pass or fail by accident, and an update
@@ -157,8 +168,9 @@ ScenarioOutcome runOne(const ReadScenario& read, const RegressOptions& options) 
             {kEveryFrameCheck,
              std::to_string(result.metadata.frames) + " frames of every configuration",
              partialLine(result), false});
-        writeRunOutputs(result,
-                        OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+        writeRunOutputs(
+            result,
+            OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome), highlights});
         folder.publish();
         outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         return outcome;
@@ -166,7 +178,8 @@ ScenarioOutcome runOne(const ReadScenario& read, const RegressOptions& options) 
     ResultChecks checks{result, folder.staging(), folder.target(), outcome};
     checkRun(checks, scenario, expect, options.update);
 
-    writeRunOutputs(result, OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome)});
+    writeRunOutputs(
+        result, OutputRequest{folder.staging(), false, {}, checksMarkdown(outcome), highlights});
     folder.publish();
     outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return outcome;

@@ -130,6 +130,8 @@ struct RegressOptions {
     // The flags that shaped each scenario's run (--culling FILE, --backend, --plugin, ...), for
     // the command its report.md and summary.json give to rerun that one scenario.
     std::vector<std::string> rerun_flags;
+    // Each scenario's folder also gets objects.sqlite (sim/record/object_recorder.h).
+    bool record_objects = false;
 };
 
 struct RegressReport {

@@ -41,4 +41,38 @@ PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
     return counts;
 }
 
+void attributePixels(std::span<const uint32_t> truth_ids, std::span<const uint8_t> truth_stray,
+                     std::span<const uint32_t> culled_ids, std::span<const uint8_t> marks,
+                     uint32_t objects, std::vector<ObjectPixels>& per_object) {
+    const size_t n = truth_ids.size();
+    if (culled_ids.size() != n || marks.size() != n ||
+        (!truth_stray.empty() && truth_stray.size() != n)) {
+        throw std::invalid_argument("attributePixels: the buffers differ in size");
+    }
+    per_object.assign(objects, ObjectPixels{});
+    const auto at = [&](uint32_t id) -> ObjectPixels* {
+        return id != 0 && id <= objects ? &per_object[id - 1] : nullptr;
+    };
+    for (size_t i = 0; i < n; ++i) {
+        const bool stray = !truth_stray.empty() && truth_stray[i];
+        ObjectPixels* truth = at(truth_ids[i]);
+        if (truth && !stray) ++truth->truth;
+        switch (static_cast<PixelDifference>(marks[i])) {
+            case PixelDifference::Error:
+                if (truth) {
+                    ++truth->error;
+                } else if (ObjectPixels* culled = at(culled_ids[i])) {
+                    ++culled->error;
+                }
+                break;
+            case PixelDifference::Tie:
+                if (truth) ++truth->tie;
+                break;
+            case PixelDifference::Same:
+            case PixelDifference::Stray:
+                break;
+        }
+    }
+}
+
 }  // namespace occsim

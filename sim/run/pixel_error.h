@@ -45,4 +45,20 @@ PixelCounts comparePixels(std::span<const uint32_t> truth_ids,
                           std::span<const uint8_t> truth_stray = {},
                           std::vector<uint8_t>* marks = nullptr);
 
+// One object's pixels in a frame.
+struct ObjectPixels {
+    uint32_t truth = 0;  // ground truth shows it there (stray fragments left out)
+    uint32_t error = 0;  // error pixels it accounts for
+    uint32_t tie = 0;    // tie pixels where ground truth shows it
+};
+
+// The frame's pixels per object, from comparePixels()'s marks: an error or tie pixel belongs to
+// the object ground truth shows there (what the culled frame lacks), an error pixel where ground
+// truth shows background to the object the culled frame shows (something nearer than ground
+// truth, which no subset of the same fragments can be). per_object is resized to `objects`
+// (IDs past it are ignored); the sum of `error` over objects is the frame's error count.
+void attributePixels(std::span<const uint32_t> truth_ids, std::span<const uint8_t> truth_stray,
+                     std::span<const uint32_t> culled_ids, std::span<const uint8_t> marks,
+                     uint32_t objects, std::vector<ObjectPixels>& per_object);
+
 }  // namespace occsim

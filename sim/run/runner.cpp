@@ -123,6 +123,7 @@ std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, Sha
         sim_options.keep_worst_error_frame =
             options.keep_worst_error_frame && options.measure_error && rep == 0;
         if (rep == 0) sim_options.trace_frame = options.trace_frame;
+        sim_options.record_objects = options.record_objects && options.measure_error && rep == 0;
         sim_options.measure_gpu_time = stage.context.info().gpu_time_meaningful;
         sim_options.segments = options.segments;
         auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)

@@ -50,13 +50,17 @@ struct BenchOptions {
     std::vector<RunConfig> configs;
     bool measure_error = false;
     LatencyMode latency;
-    BackendChoice backend;                         // --backend, --device
-    std::optional<uint32_t> frames;                // overrides the scenario's frame count
-    std::string command = "bench";                 // recorded in the metadata
-    std::string command_line;                      // recorded in the metadata
-    std::string scenario_id;  // a regression run's id of the scenario (metadata)
+    BackendChoice backend;           // --backend, --device
+    std::optional<uint32_t> frames;  // overrides the scenario's frame count
+    std::string command = "bench";   // recorded in the metadata
+    std::string command_line;        // recorded in the metadata
+    std::string scenario_id;         // a regression run's id of the scenario (metadata)
     ProgressStyle progress = ProgressStyle::None;  // on stderr (sim/run/progress.h)
     bool keep_worst_error_frame = false;           // see SimulationOptions; needs measure_error
+    // Every object's decision, reason and pixels per frame of the first repetition, for on_frame
+    // to read (Simulation::objectFrames(); SimulationOptions::record_objects); needs
+    // measure_error.
+    bool record_objects = false;
     uint32_t repetitions = 1;  // each configuration runs this often; medians reported
     // Frame f renders configuration (f + k) mod n as its k-th, so that every configuration takes
     // every place within a frame equally often. A place has its own cost (the first

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "occsim/culling/tree/decision_resolution.h"
+
 namespace occsim {
 namespace {
 
@@ -56,6 +58,13 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       tracer_(*device_) {
     // Before any frame: a culler that needs what this device lacks is refused with one line.
     requireDeviceFeatures(algorithm_, device_->features());
+    if (options_.record_objects && !options_.measure_error) {
+        throw std::logic_error("Simulation: record_objects needs measure_error");
+    }
+    if (options_.record_objects) {
+        // A record or two per node and object a frame: room enough that a frame allocates nothing.
+        decisions_.reserve(4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
+    }
     if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
     segment_tallies_.reset(options_.segments, world_->scenario().warmup_frames);
     culler_->reset(world_->tree());
@@ -87,6 +96,10 @@ FrameStats Simulation::renderFrame() {
     // The meshes and this frame's transforms, outside the timing (an engine keeps its transforms
     // anyway), for a culler that rasterises triangles itself.
     if (algorithm_.needs_meshes) cull_frame.meshes = world_->cullMeshes();
+    if (options_.record_objects) {
+        decisions_.clear();
+        cull_frame.decisions = &decisions_;
+    }
 
     // The measured frame: culled render to glFinish.
     renderer_.setView(world_->view().render, world_->modelViews());
@@ -150,7 +163,8 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     renderer_.readDepthRanks(culled_depth_);
     ++error_read_backs_;
     const PixelCounts pixels =
-        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, truth.stray);
+        comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, truth.stray,
+                      options_.record_objects ? &marks_ : nullptr);
     culled_visible_.assign(objects, 0);
     for (uint32_t id : culled_ids_) {
         if (id != 0) culled_visible_[id - 1] = 1;
@@ -180,6 +194,7 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     }
     popping_.addFrame(missing_);
     segment_tallies_.addMissing(stats.frame, missing_);
+    if (options_.record_objects) recordObjects(truth);
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;
     stats.stray_pixels = pixels.stray;
@@ -198,6 +213,21 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         comparePixels(truth.ids, truth.depth, culled_ids_, culled_depth_, truth.stray,
                       &worst_.differences);
         renderer_.readColor(worst_.culled_rgba);
+    }
+}
+
+// Each object's decision, reason and pixels, after the frame: the log resolved on the tree as the
+// culler left it (no configuration changes it), the drawn set as the device resolved it.
+void Simulation::recordObjects(const GroundTruthFrame& truth) {
+    const uint32_t objects = world_->scene().objectCount();
+    resolveDecisions(world_->tree(), decisions_.records(), reasons_, resolve_stack_);
+    attributePixels(truth.ids, truth.stray, culled_ids_, marks_, objects, object_pixels_);
+    object_frames_.resize(objects);
+    for (uint32_t o = 0; o < objects; ++o) {
+        ObjectFrame& f = object_frames_[o];
+        f.why = o < reasons_.size() ? reasons_[o] : Decision{};
+        f.drawn = gl_device_.drew(o);
+        f.pixels = object_pixels_[o];
     }
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/contract/decision_log.h"
 #include "occsim/culling/devices/approximate_device.h"
 #include "occsim/culling/devices/tracing_device.h"
 #include "occsim/culling/registry/registry.h"
@@ -43,9 +44,20 @@ struct SimulationOptions {
     // Time the culled render on the GPU (GL_TIME_ELAPSED): only where the figure means
     // something (ContextInfo::gpu_time_meaningful; not on llvmpipe).
     bool measure_gpu_time = false;
+    // Keep every object's decision, its reason and its pixels of each frame (objectFrames(), for
+    // objects.sqlite): the culler's decision log is on (its appends sit inside the frame's
+    // timing), everything else is worked out after the frame. Needs measure_error.
+    bool record_objects = false;
     // The run's segments: popping and answer latencies are also counted per segment
     // (segmentTallies()).
     std::vector<Segment> segments;
+};
+
+// One object's part of a frame (SimulationOptions::record_objects).
+struct ObjectFrame {
+    Decision why;        // the culler's reason (occsim/culling/contract/decision_log.h)
+    bool drawn = false;  // the device drew it (a conditional draw: it executed)
+    ObjectPixels pixels;
 };
 
 // The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them),
@@ -112,6 +124,8 @@ class Simulation {
     // that frame was rendered; null before. The tree, the world and view() stay as the culler
     // saw them until the world's next advance().
     const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
+    // Per object, the last frame rendered (SimulationOptions::record_objects; empty otherwise).
+    const std::vector<ObjectFrame>& objectFrames() const { return object_frames_; }
 
     SharedWorld& world() { return *world_; }
     const SharedWorld& world() const { return *world_; }
@@ -127,6 +141,7 @@ class Simulation {
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
+    void recordObjects(const GroundTruthFrame& truth);
     void recordAnswerLatencies(uint32_t frame, FrameStats& stats);
 
     std::unique_ptr<SharedWorld> own_world_;  // only for a simulation alone
@@ -158,6 +173,13 @@ class Simulation {
     std::vector<uint32_t> culled_ids_;
     std::vector<uint32_t> culled_depth_;
     std::vector<uint8_t> culled_visible_;
+    // record_objects: the culler's log, and what it and the pixels say per object.
+    DecisionLog decisions_;
+    std::vector<Decision> reasons_;
+    std::vector<uint32_t> resolve_stack_;
+    std::vector<uint8_t> marks_;
+    std::vector<ObjectPixels> object_pixels_;
+    std::vector<ObjectFrame> object_frames_;
 };
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).

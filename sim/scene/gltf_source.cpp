@@ -505,6 +505,15 @@ void warnAboutIgnoredParts(const Context& c, const SceneContent& content) {
 
 bool isMirrored(const glm::dmat4& world) { return glm::determinant(glm::dmat3(world)) < 0.0; }
 
+// An object's name: its node's, else its mesh's, else the node's index.
+std::string nodeLabel(const Context& c, uint32_t node, size_t mesh) {
+    if (node < c.model.nodes.size() && !c.model.nodes[node].name.empty())
+        return c.model.nodes[node].name;
+    if (mesh < c.model.meshes.size() && !c.model.meshes[mesh].name.empty())
+        return c.model.meshes[mesh].name;
+    return "node " + std::to_string(node);
+}
+
 // One object per mesh node; each glTF mesh is converted once however many nodes use it, and
 // output in the variants (as is, mirrored) that nodes use. Object transforms include the spec's
 // scale but not its offset.
@@ -536,6 +545,7 @@ SourceOutput placeModel(const Context& c, const SceneContent& content, double sc
         if (mesh == kNone) continue;
         PlacedObject object;
         object.mesh = mesh;
+        object.name = nodeLabel(c, content.visits[instance.visit].node, instance.mesh);
         object.position = scale * glm::dvec3(instance.world[3]);
         object.linear = glm::mat3(glm::dmat3(instance.world) * scale);
         out.objects.push_back(object);
@@ -620,9 +630,12 @@ SourceOutput replicate(SourceOutput model, const GltfSourceSpec& spec, uint64_t 
     model.objects.reserve(copies.size() * one_copy.size());
     model.model_copies.reserve(copies.size());
     for (const Copy& copy : copies) {
+        const size_t k = model.model_copies.size();
         model.model_copies.push_back({spec.offset + copy.origin, copy.yaw});
         const glm::dmat3 yaw(glm::rotate(glm::dmat4(1.0), copy.yaw, glm::dvec3(0, 1, 0)));
         for (PlacedObject object : one_copy) {
+            // Copies share their nodes' names: the copy's number tells them apart.
+            if (copies.size() > 1) object.name += " #" + std::to_string(k);
             object.position = spec.offset + copy.origin + yaw * object.position;
             object.linear = glm::mat3(yaw) * object.linear;
             model.objects.push_back(object);

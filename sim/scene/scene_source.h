@@ -22,6 +22,9 @@ struct PlacedObject {
     uint32_t mesh = 0;
     glm::dvec3 position{0.0};
     glm::mat3 linear{1.0f};
+    // What a person calls it: the glTF node's name; empty for generated objects (the scene
+    // builder names those after their source, Scene::object_names).
+    std::string name;
 };
 
 // Where one copy of a glTF model went: T(origin) · R_y(yaw) places the model (its scale is in

@@ -39,14 +39,32 @@ struct SourceRange {
     std::vector<int32_t> copy_state;
 };
 
+// What a generated object is called, after its source: "teapot 17".
+std::string sourceKindName(SourceType type) {
+    switch (type) {
+        case SourceType::Teapots:
+            return "teapot";
+        case SourceType::Gltf:
+            return "gltf object";
+        case SourceType::City:
+            return "city part";
+        case SourceType::Library:
+            return "library part";
+        case SourceType::Plant:
+            return "plant part";
+    }
+    return "object";
+}
+
 uint32_t addMesh(Scene& scene, MeshData mesh) {
     scene.mesh_bounds.push_back(meshBounds(mesh));
     scene.meshes.push_back(std::move(mesh));
     return static_cast<uint32_t>(scene.meshes.size() - 1);
 }
 
-uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose) {
+uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::string name) {
     scene.object_mesh.push_back(mesh);
+    scene.object_names.push_back(std::move(name));
     scene.initial_poses.push_back(pose);
     scene.triangle_count += scene.meshes[mesh].triangleCount();
     return scene.objectCount() - 1;
@@ -55,12 +73,18 @@ uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose) {
 // A source's meshes and objects into the scene; a glTF source with "place": false adds its meshes
 // only (its model is placed by spawning movers). `copy_meshes` gets the meshes of one copy's
 // objects, for spawning.
-SourceRange addSource(Scene& scene, SourceOutput source, bool place,
-                      std::vector<uint32_t>& copy_meshes) {
+SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::string& kind,
+                      std::vector<uint32_t>& copy_meshes, std::vector<std::string>& copy_names) {
     const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
     const size_t per_copy = source.model ? source.model->object_visit.size() : 0;
     for (size_t j = 0; j < per_copy && j < source.objects.size(); ++j) {
         copy_meshes.push_back(first_mesh + source.objects[j].mesh);
+        // Copy 0's names carry " #0" when the model was replicated: spawned copies get theirs.
+        const std::string& name = source.objects[j].name;
+        const size_t mark = name.rfind(" #");
+        copy_names.push_back(per_copy < source.objects.size() && mark != std::string::npos
+                                 ? name.substr(0, mark)
+                                 : name);
     }
     if (!place) {
         source.objects.clear();
@@ -77,11 +101,13 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place,
     range.placements = std::move(source.model_copies);
     range.copy_state.assign(range.placements.size(), -1);
     for (MeshData& mesh : source.meshes) addMesh(scene, std::move(mesh));
-    for (const PlacedObject& o : source.objects) {
+    for (size_t i = 0; i < source.objects.size(); ++i) {
+        const PlacedObject& o = source.objects[i];
         ObjectPose pose;
         pose.position = o.position;
         pose.linear = o.linear;
-        addObject(scene, first_mesh + o.mesh, pose);
+        addObject(scene, first_mesh + o.mesh, pose,
+                  o.name.empty() ? kind + " " + std::to_string(i) : o.name);
     }
     if (isEmpty(range.region)) {
         for (uint32_t i = range.first; i < scene.objectCount(); ++i) {
@@ -355,11 +381,15 @@ std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
         std::shared_ptr<const AnimatedModel> model = source.model;
         const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
         std::vector<uint32_t> copy_meshes;
-        ranges.push_back(addSource(scene, std::move(source), place, copy_meshes));
+        std::vector<std::string> copy_names;
+        ranges.push_back(addSource(scene, std::move(source), place,
+                                   sourceKindName(scenario.sources[s].type), copy_meshes,
+                                   copy_names));
         if (model) {
             ranges.back().model = static_cast<int32_t>(scene.models.size());
             scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
             scene.models.back().object_mesh = std::move(copy_meshes);
+            scene.models.back().object_names = std::move(copy_names);
             animateCopies(scene, scenario, s, ranges.back());
         }
     }
@@ -436,8 +466,12 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
         copy.animated = animates;
         copy.rigid = true;
         if (play.random_phase) copy.phase_s = spawn.uniform(0.0, longest);
-        for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j)
-            addObject(scene, sm.object_mesh[j], ObjectPose{});
+        for (uint32_t j = 0; j < sm.objectsPerCopy(); ++j) {
+            addObject(
+                scene, sm.object_mesh[j], ObjectPose{},
+                (j < sm.object_names.size() ? sm.object_names[j] : "object " + std::to_string(j)) +
+                    " (mover " + std::to_string(m) + " copy " + std::to_string(i) + ")");
+        }
         out.objects.push_back(copy.first_object);
         out.copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
         scene.initial_copies.push_back(copy);
@@ -457,7 +491,9 @@ std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t
         pose.position = randomPointIn(region, spawn);
         pose.linear = glm::mat3(
             static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
-        objects.push_back(addObject(scene, mesh, pose));
+        objects.push_back(
+            addObject(scene, mesh, pose,
+                      "spawned " + std::to_string(i) + " (mover " + std::to_string(m) + ")"));
     }
     flags.grow(scene.objectCount(), 0);
     return objects;

@@ -83,10 +83,11 @@ struct Mover {
 // objects of a copy they move.
 struct SceneModel {
     std::shared_ptr<const AnimatedModel> model;
-    uint32_t source = 0;                   // index into Scenario::sources
-    std::vector<uint8_t> playing;          // per animation of the model
-    std::vector<uint8_t> object_animated;  // per object of a copy: moved by a playing animation
-    std::vector<uint32_t> object_mesh;     // per object of a copy: its mesh in Scene::meshes
+    uint32_t source = 0;                    // index into Scenario::sources
+    std::vector<uint8_t> playing;           // per animation of the model
+    std::vector<uint8_t> object_animated;   // per object of a copy: moved by a playing animation
+    std::vector<uint32_t> object_mesh;      // per object of a copy: its mesh in Scene::meshes
+    std::vector<std::string> object_names;  // per object of a copy: its node's name
     double speed = 1.0;
     AnimationMode mode = AnimationMode::Loop;
     double time_offset_s = 0.0;
@@ -124,6 +125,10 @@ struct Scene {
     std::vector<MeshData> meshes;
     std::vector<Aabb> mesh_bounds;      // model space, per mesh
     std::vector<uint32_t> object_mesh;  // per object
+    // Per object, what a person calls it (objects.sqlite, `occsim why`): the glTF node's name
+    // ("statue.042", "#k" added for copy k of a replicated model), or its source's kind and its
+    // place in the source ("teapot 17"), or the mover that spawned it.
+    std::vector<std::string> object_names;
     std::vector<ObjectPose> initial_poses;
     std::vector<Mover> initial_movers;
     std::vector<MotionPath> paths;

@@ -26,6 +26,7 @@
 
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/contract/decision_log.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/aabb.h"
 #include "occsim/culling/geometry/frustum.h"
@@ -35,12 +36,15 @@
 #include "occsim/culling/registration/option_table.h"
 #include "occsim/culling/registration/options.h"
 #include "occsim/culling/tree/bsp_tree.h"
+#include "occsim/culling/tree/decision_resolution.h"
 #include "occsim/culling/tree/node_state.h"
 #include "occsim/culling/tree/traversal.h"
 
 // 3: this header (the registry's row apart from the registry, the tree no longer reached through
 // the culler contract), CullView's view-projection and viewport, AlgorithmTraits::device_needs.
-#define OCCSIM_PLUGIN_ABI_VERSION 3u
+// 4: the decision log (CullFrame::decisions, PreparedView::decisions, contract/decision_log.h)
+// and DepthPyramid::levelOf.
+#define OCCSIM_PLUGIN_ABI_VERSION 4u
 
 namespace occsim {
 

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "occsim/culling/contract/decision_log.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
 
@@ -42,10 +43,13 @@ struct PreparedView {
     glm::vec3 eye{0.0f};
     FrustumPlanes frustum{};
     float near_radius = 0.0f;
+    // The frame's decision log (CullFrame::decisions), or null: the traversal helpers
+    // (tree/traversal.h) record the frustum's decisions in it.
+    DecisionLog* decisions = nullptr;
 };
 
 inline PreparedView prepareView(const CullView& view) {
-    return PreparedView{view.eye, planeTableOf(view.frustum), view.near_radius};
+    return PreparedView{view.eye, planeTableOf(view.frustum), view.near_radius, nullptr};
 }
 
 // One mesh of CullMeshes' flat arrays: its triangles are indices[first_index, first_index +
@@ -91,7 +95,19 @@ struct CullFrame {
     // The meshes and this frame's object transforms: filled only for cullers whose traits ask
     // (AlgorithmTraits::needs_meshes), so that no other culler pays for the transforms.
     CullMeshes meshes;
+    // Where the culler may say why it drew or left out each object (decision_log.h): null when
+    // nobody records, which is every frame but those of `occsim run|bench|regress --record
+    // objects`. The log is cleared by the host before the frame.
+    DecisionLog* decisions = nullptr;
 };
+
+// The frame's view with its plane table and the frame's decision log: what a culler that
+// records its reasons prepares (the traversal helpers then record the frustum's decisions).
+inline PreparedView prepareView(const CullFrame& frame) {
+    PreparedView view = prepareView(frame.view);
+    view.decisions = frame.decisions;
+    return view;
+}
 
 class Culler {
   public:

@@ -41,6 +41,12 @@ class DepthPyramid {
     // `visible` has one entry per box (visible.size() == boxes.size()).
     virtual void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                             std::span<uint8_t> visible) = 0;
+
+    static constexpr uint32_t kNoLevel = UINT32_MAX;
+    // The level testBounds() reads for this bound against the last pyramid built (rule 3), or
+    // kNoLevel when it passes without a test (no pyramid, the near plane) or the device cannot
+    // say. For decision logs (decision_log.h): asked outside the batch, only when someone records.
+    virtual uint32_t levelOf(const Aabb&, PyramidBound) const { return kNoLevel; }
 };
 
 }  // namespace occsim

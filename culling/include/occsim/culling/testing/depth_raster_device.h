@@ -88,6 +88,7 @@ class DepthRasterDevice final : public RenderDevice,
     Card cardOfSphere(const Aabb& box) const;
     // DepthPyramid
     void build() override;
+    uint32_t levelOf(const Aabb& box, PyramidBound shape) const override;
     void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                     std::span<uint8_t> visible) override;
 

@@ -2,7 +2,8 @@
 // that is inherited by the children of a node fully inside, and drawing one node's own objects
 // with a per-object frustum test. Every test here reads the plane table of the frame's
 // PreparedView (culler.h): there is no overload taking a Frustum, so no culler can rebuild the
-// table per box by accident.
+// table per box by accident. The helpers that take the PreparedView record the frustum's
+// decisions (a node or an object culled by it) in its decision log, when it has one.
 #pragma once
 
 #include <cstdint>
@@ -57,7 +58,11 @@ void traverseFrontToBack(const BspTree& tree, const PreparedView& view,
         NodeVisit node = stack.back();
         stack.pop_back();
         bool inside = false;
-        if (!nodeInFrustum(tree, node, view.frustum, &inside)) continue;
+        if (!nodeInFrustum(tree, node, view.frustum, &inside)) {
+            recordDecision(view.decisions, QueryTag::node(node.node),
+                           decisionOf(DecisionKind::FrustumCulled));
+            continue;
+        }
         node.inside_frustum = inside;
         if (visit(node)) pushChildrenFrontToBack(tree, node.node, view.eye, inside, stack);
     }
@@ -74,10 +79,32 @@ void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const FrustumPla
     }
 }
 
+// The same, recording each object the frustum culls in the view's decision log.
+template <class Fn>
+void forEachObjectInFrustum(const BspTree& tree, uint32_t node, const PreparedView& view,
+                            bool inside_frustum, Fn&& fn) {
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        if (inside_frustum || classify(view.frustum, tree.objectBox(o)) != FrustumTest::Outside) {
+            fn(o);
+        } else {
+            recordDecision(view.decisions, QueryTag::object(o),
+                           decisionOf(DecisionKind::FrustumCulled));
+        }
+    }
+}
+
 // Draws the objects stored in `node` itself (not its children) that pass the frustum.
 inline void drawNodeObjects(const BspTree& tree, uint32_t node, const FrustumPlanes& frustum,
                             bool inside_frustum, RenderDevice& device) {
     forEachObjectInFrustum(tree, node, frustum, inside_frustum,
+                           [&device](uint32_t o) { device.drawObject(o); });
+}
+
+// The same, recording `why` for the node's objects and the frustum's decision for each it culls.
+inline void drawNodeObjects(const BspTree& tree, uint32_t node, const PreparedView& view,
+                            bool inside_frustum, RenderDevice& device, const Decision& why) {
+    recordDecision(view.decisions, QueryTag::nodeObjects(node), why);
+    forEachObjectInFrustum(tree, node, view, inside_frustum,
                            [&device](uint32_t o) { device.drawObject(o); });
 }
 

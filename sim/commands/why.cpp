@@ -1,0 +1,44 @@
+#include "sim/commands/why.h"
+
+#include <cstdio>
+
+#include "sim/commands/flag_checks.h"
+#include "sim/record/why.h"
+
+namespace occsim_cli {
+
+CLI::App* addWhy(CLI::App& app, WhyFlags& flags) {
+    CLI::App* why = app.add_subcommand(
+        "why", "Say why objects were drawn or left out, from a run recorded with --record objects");
+    why->add_option("run", flags.run, "Run folder (the --out of run, bench or regress)")
+        ->required();
+    why->add_option("--object", flags.object,
+                    "The object, by index or name: each configuration's decision and reason");
+    why->add_option("--frame", flags.frame, "Only this frame (with --object)")
+        ->check(integerIn(0, 9999999));
+    why->add_option("--algo", flags.algo,
+                    "Only this configuration (its label), or every configuration of this "
+                    "algorithm");
+    why->add_flag("--overdraw", flags.overdraw,
+                  "The objects each configuration drew while ground truth saw none of them");
+    why->add_flag("--missed", flags.missed,
+                  "Every object ground truth saw that a configuration did not draw");
+    why->add_option("--limit", flags.limit, "Over-drawn objects listed per configuration (20)")
+        ->check(integerIn(1, 1000000));
+    return why;
+}
+
+int whyCommand(const WhyFlags& flags) {
+    occsim::WhyRequest request;
+    request.run = flags.run;
+    request.object = flags.object;
+    if (flags.frame >= 0) request.frame = static_cast<uint32_t>(flags.frame);
+    request.algo = flags.algo;
+    request.overdraw = flags.overdraw;
+    request.missed = flags.missed;
+    request.limit = flags.limit;
+    std::fputs(occsim::answerWhy(request).c_str(), stdout);
+    return 0;
+}
+
+}  // namespace occsim_cli

@@ -1,0 +1,68 @@
+#include "sim/output/object_highlights.h"
+
+#include <sstream>
+
+namespace occsim {
+namespace {
+
+std::string cell(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '|') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string frameRanges(const std::vector<uint32_t>& frames) {
+    std::string out;
+    for (size_t i = 0; i < frames.size();) {
+        size_t j = i;
+        while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+        if (!out.empty()) out.append(", ");
+        out.append(std::to_string(frames[i]));
+        if (j > i) {
+            out.push_back('-');
+            out.append(std::to_string(frames[j]));
+        }
+        i = j + 1;
+    }
+    return out;
+}
+
+std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
+    std::ostringstream out;
+    out << "## Objects\n\n"
+        << "From `objects.sqlite` (docs/objects.md; `occsim why` answers for any object).\n\n";
+    out << "**Drawn while hidden** (ground truth saw none of its pixels), the "
+        << h.overdrawn_per_config
+        << " objects with the most triangles drawn that way per configuration:\n\n";
+    if (h.overdrawn.empty()) {
+        out << "none.\n\n";
+    } else {
+        out << "| configuration | object | triangles | frames | longest streak |\n"
+            << "|---|---|---:|---:|---|\n";
+        for (const OverdrawnObject& o : h.overdrawn) {
+            out << "| " << cell(o.config) << " | " << o.object << " " << cell(o.name) << " | "
+                << o.triangles << " | " << o.frames << " | " << o.longest_streak << " (from frame "
+                << o.streak_first << ") |\n";
+        }
+        out << "\n";
+    }
+    out << "**Missed** (ground truth saw it, the configuration did not draw it), every one:\n\n";
+    if (h.missed.empty()) {
+        out << "none.\n\n";
+    } else {
+        out << "| configuration | object | frames | error px |\n|---|---|---|---:|\n";
+        for (const MissedObject& m : h.missed) {
+            out << "| " << cell(m.config) << " | " << m.object << " " << cell(m.name) << " | "
+                << frameRanges(m.frames) << " | " << m.error_pixels << " |\n";
+        }
+        out << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace occsim

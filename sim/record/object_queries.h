@@ -1,0 +1,55 @@
+// Reading objects.sqlite back: the configurations and objects of a run, one object's decisions,
+// and the over-drawn and missed objects of a configuration. Shared by the recorder (report.md's
+// highlights, read from the file it just wrote) and `occsim why`.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "occsim/culling/contract/decision_log.h"
+#include "sim/output/object_highlights.h"
+#include "sim/record/sqlite.h"
+
+namespace occsim {
+
+struct RecordedConfig {
+    uint32_t id = 0;
+    std::string label;
+    std::string algorithm;
+};
+
+struct RecordedObject {
+    uint32_t index = 0;
+    std::string name;
+    uint32_t triangles = 0;
+    bool moving = false;
+};
+
+// One row of `decisions`: a configuration's decision on an object in a frame.
+struct RecordedDecision {
+    uint32_t frame = 0;
+    uint32_t config = 0;
+    bool drawn = false;
+    Decision why;
+    uint32_t truth_pixels = 0, error_pixels = 0, tie_pixels = 0;
+};
+
+std::vector<RecordedConfig> recordedConfigs(sql::Database& db);
+std::optional<RecordedObject> recordedObject(sql::Database& db, uint32_t index);
+// The objects of that name, by index.
+std::vector<RecordedObject> recordedObjectsNamed(sql::Database& db, const std::string& name);
+uint32_t recordedObjectCount(sql::Database& db);
+
+// The object's rows for one configuration, by frame; `frame` limits them to that frame.
+std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t object, uint32_t config,
+                                                std::optional<uint32_t> frame = {});
+
+// Every object the configuration drew while ground truth saw none of it, the most triangles drawn
+// that way (triangles x frames) first.
+std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config);
+// Every object ground truth saw that the configuration did not draw, by index.
+std::vector<MissedObject> missedObjects(sql::Database& db, const RecordedConfig& config);
+
+}  // namespace occsim

@@ -1,0 +1,85 @@
+// objects.sqlite, the objects database of a run (`--record objects`): its file name, format
+// version and schema. docs/objects.md documents every table and column, with example queries;
+// a test checks that page against the schema here.
+#pragma once
+
+#include <cstdint>
+
+namespace occsim {
+
+inline constexpr const char* kObjectsDatabaseFile = "objects.sqlite";
+// 1: run, configurations, objects, reasons, decisions.
+inline constexpr int kObjectsFormatVersion = 1;
+
+// The tables. `decisions` holds a row per frame, configuration and object except the rows that
+// say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
+// no tie). Every drawn object, every visible one and every missed one has its row.
+inline constexpr const char* kObjectsSchema = R"sql(
+CREATE TABLE run (
+  format_version INTEGER NOT NULL,
+  occsim_version TEXT NOT NULL,
+  command TEXT NOT NULL,
+  command_line TEXT NOT NULL,
+  scenario TEXT NOT NULL,
+  scenario_file TEXT NOT NULL,
+  frames INTEGER NOT NULL,
+  frames_recorded INTEGER NOT NULL,
+  partial INTEGER NOT NULL,
+  partial_reason TEXT NOT NULL,
+  dt_s REAL NOT NULL,
+  seed INTEGER NOT NULL,
+  width INTEGER NOT NULL,
+  height INTEGER NOT NULL,
+  deterministic_latency INTEGER
+);
+CREATE TABLE configurations (
+  config INTEGER PRIMARY KEY,
+  label TEXT NOT NULL UNIQUE,
+  algorithm TEXT NOT NULL
+);
+CREATE TABLE objects (
+  object INTEGER PRIMARY KEY,
+  name TEXT NOT NULL,
+  triangles INTEGER NOT NULL,
+  moving INTEGER NOT NULL
+);
+CREATE TABLE reasons (
+  reason INTEGER PRIMARY KEY,
+  name TEXT NOT NULL UNIQUE,
+  draws INTEGER
+);
+CREATE TABLE decisions (
+  frame INTEGER NOT NULL,
+  config INTEGER NOT NULL REFERENCES configurations(config),
+  object INTEGER NOT NULL REFERENCES objects(object),
+  drawn INTEGER NOT NULL,
+  reason INTEGER NOT NULL REFERENCES reasons(reason),
+  query_frame INTEGER,
+  query_age INTEGER GENERATED ALWAYS AS (frame - query_frame) VIRTUAL,
+  samples INTEGER,
+  flags INTEGER NOT NULL,
+  phase INTEGER,
+  level INTEGER,
+  interval REAL,
+  next_query REAL,
+  next_query_frame INTEGER,
+  visible_answers INTEGER,
+  history INTEGER,
+  truth_pixels INTEGER NOT NULL,
+  error_pixels INTEGER NOT NULL,
+  tie_pixels INTEGER NOT NULL,
+  PRIMARY KEY (config, frame, object)
+) WITHOUT ROWID;
+)sql";
+
+// Made once the rows are in (faster than keeping them up to date row by row): one object's
+// history, a culler's misses and its over-draw.
+inline constexpr const char* kObjectsIndexes = R"sql(
+CREATE INDEX decisions_by_object ON decisions(object, config, frame);
+CREATE INDEX decisions_missed ON decisions(config, object, frame)
+  WHERE drawn = 0 AND truth_pixels > 0;
+CREATE INDEX decisions_overdrawn ON decisions(config, object, frame)
+  WHERE drawn = 1 AND truth_pixels = 0;
+)sql";
+
+}  // namespace occsim

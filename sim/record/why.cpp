@@ -1,0 +1,336 @@
+#include "sim/record/why.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "occsim/culling/contract/input_error.h"
+#include "sim/output/object_highlights.h"
+#include "sim/record/object_database.h"
+#include "sim/scenario/json_reader.h"
+
+namespace occsim {
+namespace {
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+// "at frame 176 (2 frames before)", "this frame".
+std::string queryFrame(uint32_t query_frame, uint32_t frame) {
+    if (query_frame == frame) return "this frame";
+    std::string s = "at frame " + std::to_string(query_frame);
+    if (query_frame < frame) {
+        const uint32_t age = frame - query_frame;
+        s += " (" + std::to_string(age) + (age == 1 ? " frame" : " frames") + " before)";
+    }
+    return s;
+}
+
+std::string samples(const Decision& d) {
+    return " (" + std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples") +
+           ((d.flags & kDecisionWaited) ? ", waited for" : "") + ")";
+}
+
+// The reason's words, after "drawn: " or "not drawn: ".
+std::string reasonWords(const Decision& d, uint32_t frame, bool drawn) {
+    const std::string q = queryFrame(d.query_frame, frame);
+    std::string s;
+    switch (d.kind) {
+        case DecisionKind::NoReasonGiven:
+            s = "its culler gave no reason";
+            break;
+        case DecisionKind::FrustumCulled:
+            s = "its box is outside the view frustum";
+            break;
+        case DecisionKind::CulledOnQuery:
+        case DecisionKind::DrawnOnQuery:
+            s = std::string((d.flags & kDecisionMultiquery) ? "the multiquery" : "the query") +
+                " issued " + q + " answered " +
+                (d.kind == DecisionKind::CulledOnQuery ? "occluded" : "visible") + samples(d);
+            if (d.next_query_frame != Decision::kNoFrame && d.next_query_frame > frame)
+                s += "; next query at frame " + std::to_string(d.next_query_frame);
+            break;
+        case DecisionKind::DrawnOnStatistics: {
+            const bool metres = (d.flags & kDecisionDistance) != 0;
+            s = "no query: its last query, issued " + q + ", found it visible (" +
+                std::to_string(d.count) + " of its last " + std::to_string(d.history) +
+                " answers visible); the decay curve gives " + number(d.interval) +
+                (metres ? " m of travel" : " s") + ", so it is queried again after " +
+                number(d.next_query) + (metres ? " m" : " s");
+            break;
+        }
+        case DecisionKind::DrawnOnCostModel:
+            s = "the cost model put its query off (drawing it was estimated to cost less than "
+                "querying it)";
+            break;
+        case DecisionKind::DrawnNearPlane:
+            s = "the near plane may cut its box, so it is never tested";
+            break;
+        case DecisionKind::DrawnNoTest:
+            s = (d.flags & kDecisionFallback)
+                    ? "with no test (a fallback frame: frustum culling only)"
+                    : "with no test";
+            break;
+        case DecisionKind::DrawnQueryInFlight:
+            s = "while its query issued " + q + " is in flight";
+            break;
+        case DecisionKind::DrawnAssumedVisible:
+            s = "assumed visible since its query issued " + q + " found it visible";
+            if (d.next_query_frame != Decision::kNoFrame)
+                s += "; tested again at frame " + std::to_string(d.next_query_frame);
+            break;
+        case DecisionKind::CulledOnPyramid:
+            s = "the depth pyramid hides it (phase 2, level " + std::to_string(d.level) + ")";
+            break;
+        case DecisionKind::DrawnOnPyramid:
+            if (d.phase == 1) {
+                s = "in phase 1: it was visible last frame";
+            } else if (d.flags & kDecisionNoPyramid) {
+                s = "untested: phase 1 drew nothing, so no pyramid was built";
+            } else if (d.level == Decision::kNoLevel) {
+                s = "in phase 2: the pyramid could not test its bound";
+            } else {
+                s = "its bound passed the depth pyramid (phase 2, level " +
+                    std::to_string(d.level) + ")";
+            }
+            break;
+        case DecisionKind::CulledOnTiles:
+            s = "its box failed the software depth buffer's tile test";
+            break;
+        case DecisionKind::DrawnOnTiles:
+            s = "its box passed the software depth buffer's tile test";
+            if (d.flags & kDecisionOccluder) s += ", and it was rasterised as an occluder";
+            break;
+        case DecisionKind::DrawnConditional:
+            s = "submitted under the condition of its query issued " + q + ": the device " +
+                (drawn ? "executed the draw" : "skipped it");
+            break;
+        case DecisionKind::DrawnByOracle:
+            s = "ground truth saw it (the oracle draws exactly that)";
+            break;
+        case DecisionKind::CulledByOracle:
+            s = "ground truth did not see it (the oracle draws only what it saw)";
+            break;
+    }
+    if (d.flags & kDecisionNodeUnit) s += " (decided for its node)";
+    return s;
+}
+
+std::string plural(uint64_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+bool allDigits(const std::string& s) {
+    return !s.empty() &&
+           std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string objectLabel(const RecordedObject& o) {
+    return "object " + std::to_string(o.index) + " '" + o.name + "' (" +
+           plural(o.triangles, "triangle", "triangles") + (o.moving ? ", moving" : "") + ")";
+}
+
+// --algo: a configuration's label, or every configuration of that algorithm.
+std::vector<RecordedConfig> chosenConfigs(sql::Database& db, const std::string& algo) {
+    const std::vector<RecordedConfig> all = recordedConfigs(db);
+    if (algo.empty()) return all;
+    std::vector<RecordedConfig> out;
+    for (const RecordedConfig& c : all) {
+        if (c.label == algo) return {c};
+    }
+    for (const RecordedConfig& c : all) {
+        if (c.algorithm == algo) out.push_back(c);
+    }
+    if (out.empty()) {
+        std::string names;
+        for (const RecordedConfig& c : all) names += (names.empty() ? "" : ", ") + c.label;
+        throw InputError("--algo " + algo + ": not in this run; expected one of: " +
+                         (names.empty() ? "(none recorded)" : names));
+    }
+    return out;
+}
+
+RecordedObject chosenObject(sql::Database& db, const std::string& text) {
+    if (allDigits(text)) {
+        const uint32_t count = recordedObjectCount(db);
+        const unsigned long long index = text.size() > 10 ? ~0ull : std::stoull(text);
+        if (index < count) {
+            if (auto o = recordedObject(db, static_cast<uint32_t>(index))) return *o;
+        }
+        throw InputError("--object " + text + ": no such object; the run has " +
+                         plural(count, "object", "objects") +
+                         (count > 0 ? " (0-" + std::to_string(count - 1) + ")" : ""));
+    }
+    const std::vector<RecordedObject> named = recordedObjectsNamed(db, text);
+    if (named.size() == 1) return named.front();
+    if (named.empty()) {
+        std::vector<std::string> names;
+        sql::Statement s = db.prepare("SELECT name FROM objects");
+        while (s.step()) names.push_back(s.text(0));
+        const auto near = closestMatch(text, names);
+        throw InputError("--object '" + text + "': no object of that name" +
+                         (near ? "; did you mean '" + *near + "'?"
+                               : "; expected an object's index or its name"));
+    }
+    std::string some;
+    for (size_t i = 0; i < named.size() && i < 8; ++i)
+        some += (i ? ", " : "") + std::to_string(named[i].index);
+    if (named.size() > 8) some += ", ...";
+    throw InputError("--object '" + text + "': names " + std::to_string(named.size()) +
+                     " objects (" + some + "); expected one: give its index");
+}
+
+// The decision at `frame`: its row, or the row that was left out (frustum culled, unseen).
+RecordedDecision decisionAt(sql::Database& db, uint32_t object, uint32_t config, uint32_t frame) {
+    std::vector<RecordedDecision> rows = recordedDecisions(db, object, config, frame);
+    if (!rows.empty()) return rows.front();
+    RecordedDecision d;
+    d.frame = frame;
+    d.config = config;
+    d.why.kind = DecisionKind::FrustumCulled;
+    return d;
+}
+
+std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
+                      const std::vector<RecordedConfig>& configs, const RecordedObject& object) {
+    sql::Database& db = base.db();
+    std::ostringstream out;
+    out << objectLabel(object) << "\n";
+    if (r.frame) {
+        for (const RecordedConfig& c : configs) {
+            out << "frame " << *r.frame << ", " << c.label << ": "
+                << describeDecision(decisionAt(db, object.index, c.id, *r.frame)) << "\n";
+        }
+        return out.str();
+    }
+    const uint32_t frames = base.run().frames_recorded;
+    for (const RecordedConfig& c : configs) {
+        const std::vector<RecordedDecision> rows = recordedDecisions(db, object.index, c.id);
+        std::vector<uint32_t> missed, hidden;
+        uint32_t drawn = 0, seen = 0;
+        uint64_t error = 0;
+        for (const RecordedDecision& d : rows) {
+            drawn += d.drawn;
+            seen += d.truth_pixels > 0;
+            if (!d.drawn && d.truth_pixels > 0) {
+                missed.push_back(d.frame);
+                error += d.error_pixels;
+            }
+            if (d.drawn && d.truth_pixels == 0) hidden.push_back(d.frame);
+        }
+        out << c.label << ": drawn on " << drawn << " of " << frames
+            << " frames; ground truth saw it on " << seen << "; ";
+        out << (missed.empty() ? "never missed"
+                               : "missed on frames " + frameRanges(missed) + " (" +
+                                     plural(error, "error pixel", "error pixels") + ")");
+        out << "; "
+            << (hidden.empty()
+                    ? "never drawn while hidden"
+                    : "drawn while hidden on " + plural(hidden.size(), "frame", "frames") + " (" +
+                          frameRanges(hidden) + ")")
+            << "\n";
+        constexpr size_t kShown = 10;
+        for (size_t i = 0; i < missed.size() && i < kShown; ++i) {
+            const auto row = std::find_if(rows.begin(), rows.end(), [&](const RecordedDecision& d) {
+                return d.frame == missed[i];
+            });
+            out << "  frame " << missed[i] << ", " << c.label << ": " << describeDecision(*row)
+                << "\n";
+        }
+        if (missed.size() > kShown)
+            out << "  ... and " << missed.size() - kShown << " more missed frames (--frame N)\n";
+    }
+    return out.str();
+}
+
+std::string overdrawList(sql::Database& db, const std::vector<RecordedConfig>& configs,
+                         uint32_t limit) {
+    std::ostringstream out;
+    for (const RecordedConfig& c : configs) {
+        const std::vector<OverdrawnObject> over = overdrawnObjects(db, c);
+        out << c.label << ": " << plural(over.size(), "object", "objects")
+            << " drawn while ground truth saw none of it";
+        if (over.size() > limit) out << " (the " << limit << " with the most triangles drawn so)";
+        out << "\n";
+        for (size_t i = 0; i < over.size() && i < limit; ++i) {
+            const OverdrawnObject& o = over[i];
+            out << "  object " << o.object << " '" << o.name << "' ("
+                << plural(o.triangles, "triangle", "triangles")
+                << "): " << plural(o.frames, "frame", "frames") << ", longest streak "
+                << o.longest_streak << " (frames " << o.streak_first << "-"
+                << o.streak_first + o.longest_streak - 1 << "), "
+                << uint64_t{o.triangles} * o.frames << " triangles in all\n";
+        }
+    }
+    return out.str();
+}
+
+std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& configs) {
+    std::ostringstream out;
+    for (const RecordedConfig& c : configs) {
+        const std::vector<MissedObject> missed = missedObjects(db, c);
+        out << c.label << ": " << plural(missed.size(), "object", "objects") << " missed\n";
+        for (const MissedObject& m : missed) {
+            out << "  object " << m.object << " '" << m.name << "': frames "
+                << frameRanges(m.frames) << " ("
+                << plural(m.error_pixels, "error pixel", "error pixels") << ")\n";
+        }
+    }
+    return out.str();
+}
+
+}  // namespace
+
+std::string describeDecision(const RecordedDecision& d) {
+    std::string s = d.drawn ? "drawn: " : "not drawn: ";
+    s += reasonWords(d.why, d.frame, d.drawn);
+    s += "; ground truth sees " + std::to_string(d.truth_pixels) + " px";
+    if (!d.drawn && d.truth_pixels > 0) {
+        s += " (missed: " + plural(d.error_pixels, "error pixel", "error pixels") + ")";
+    } else if (d.drawn && d.truth_pixels == 0) {
+        s += " (drawn while hidden)";
+    }
+    return s;
+}
+
+std::string answerWhy(const WhyRequest& r) {
+    const int modes = (!r.object.empty()) + r.overdraw + r.missed;
+    if (modes != 1) {
+        throw InputError(
+            "occsim why: expected one of --object ID|NAME, --overdraw or --missed, got " +
+            std::to_string(modes));
+    }
+    if (r.frame && r.object.empty())
+        throw InputError("--frame: goes with --object; expected --object ID|NAME beside it");
+    ObjectDatabase base(r.run);
+    sql::Database& db = base.db();
+    try {
+        const std::vector<RecordedConfig> configs = chosenConfigs(db, r.algo);
+        std::string head;
+        if (base.run().partial) {
+            head = "(partial run: " +
+                   (base.run().partial_reason.empty() ? std::string("it did not finish")
+                                                      : base.run().partial_reason) +
+                   "; " + plural(base.run().frames_recorded, "frame", "frames") + " recorded)\n";
+        }
+        if (r.overdraw) return head + overdrawList(db, configs, r.limit);
+        if (r.missed) return head + missedList(db, configs);
+        const RecordedObject object = chosenObject(db, r.object);
+        if (r.frame && *r.frame >= base.run().frames_recorded) {
+            const uint32_t n = base.run().frames_recorded;
+            throw InputError("--frame " + std::to_string(*r.frame) + ": outside the run; " +
+                             (n == 0 ? std::string("no frame was recorded")
+                                     : "frames 0-" + std::to_string(n - 1) + " were recorded") +
+                             (base.run().partial ? " (the run stopped early)" : ""));
+        }
+        return head + oneObject(base, r, configs, object);
+    } catch (const sql::Error& e) {
+        throw ObjectsDatabaseError(base.file().string() + ": unreadable (" + e.what() +
+                                   "); record the run again with --record objects");
+    }
+}
+
+}  // namespace occsim

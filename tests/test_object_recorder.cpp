@@ -1,0 +1,234 @@
+// objects.sqlite through the executable, with real OpenGL (`--record objects`): on a small
+// scenario and on a glTF level built here, the database's missed objects per frame are
+// frames.csv's for every configuration and its visible-but-not-drawn objects account for every
+// error pixel; `why` names the object async missed and the frame of the query that hid it; a
+// stopped run keeps a readable database of its whole frames, marked partial; regress records too.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "objects_fixtures.h"
+#include "occsim/culling/contract/decision_log.h"
+#include "signalled_run.h"
+#include "sim/record/object_schema.h"
+
+namespace occsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kExe = OCCSIM_EXE;
+const std::string kSmall = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/teapots-small.json";
+
+Outcome occsim(const std::string& args) { return shell(kExe + " " + args); }
+
+// Per configuration and frame, the database against frames.csv: its missed objects (ground truth
+// saw them, not drawn), its visible objects, the error pixels its missed objects account for,
+// the error and tie pixels of all its rows, and its drawn objects (but for conditional draws,
+// which frames.csv counts as submitted). Every row's reason agrees with the drawing, and no row
+// says nothing (frustum culled, no pixel).
+void expectDatabaseMatchesFramesCsv(const fs::path& out) {
+    const FramesCsv csv(out / "frames.csv");
+    ASSERT_FALSE(csv.rows.empty());
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    const auto count = [&](const std::string& where, const std::string& label, int64_t frame) {
+        return queryInteger(db,
+                            "SELECT COUNT(*) FROM decisions d JOIN configurations c ON "
+                            "c.config = d.config WHERE c.label = ? AND d.frame = ? AND " +
+                                where,
+                            {label}, {frame});
+    };
+    const auto sum = [&](const std::string& what, const std::string& where,
+                         const std::string& label, int64_t frame) {
+        return queryInteger(db,
+                            "SELECT COALESCE(SUM(" + what +
+                                "), 0) FROM decisions d JOIN configurations c ON c.config = "
+                                "d.config WHERE c.label = ? AND d.frame = ? AND " +
+                                where,
+                            {label}, {frame});
+    };
+    for (const auto& row : csv.rows) {
+        const std::string label = row.at("configuration");
+        const int64_t frame = std::stoll(row.at("frame"));
+        const std::string where = label + " frame " + std::to_string(frame);
+        EXPECT_EQ(count("d.drawn = 0 AND d.truth_pixels > 0", label, frame),
+                  std::stoll(row.at("missed_objects")))
+            << where;
+        EXPECT_EQ(count("d.truth_pixels > 0", label, frame), std::stoll(row.at("visible_objects")))
+            << where;
+        EXPECT_EQ(sum("d.error_pixels", "d.drawn = 0 AND d.truth_pixels > 0", label, frame),
+                  std::stoll(row.at("error_pixels")))
+            << where << ": the missed objects account for every error pixel";
+        EXPECT_EQ(sum("d.error_pixels", "1", label, frame), std::stoll(row.at("error_pixels")))
+            << where;
+        EXPECT_EQ(sum("d.tie_pixels", "1", label, frame), std::stoll(row.at("tie_pixels")))
+            << where;
+        if (label != "conditional") {
+            EXPECT_EQ(count("d.drawn = 1", label, frame), std::stoll(row.at("objects_drawn")))
+                << where;
+        }
+    }
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM decisions WHERE reason = 0"), 0)
+        << "every built-in culler gives a reason";
+    EXPECT_EQ(queryInteger(db,
+                           "SELECT COUNT(*) FROM decisions d JOIN reasons r ON r.reason = d.reason "
+                           "WHERE r.draws IS NOT NULL AND r.draws != d.drawn"),
+              0)
+        << "a reason that says drawn is a drawn object, and one that says culled is not";
+    EXPECT_EQ(queryInteger(db,
+                           "SELECT COUNT(*) FROM decisions WHERE reason = 1 AND drawn = 0 AND "
+                           "truth_pixels = 0 AND error_pixels = 0 AND tie_pixels = 0"),
+              0)
+        << "rows that say nothing are left out";
+    EXPECT_EQ(queryInteger(db, "SELECT frames_recorded FROM run"),
+              queryInteger(db, "SELECT frames FROM run"));
+    EXPECT_EQ(queryInteger(db, "SELECT partial FROM run"), 0);
+}
+
+TEST(ObjectsDatabase, OnTheSmallScenarioItsMissesAndErrorPixelsAreFramesCsvsForEveryCuller) {
+    TempDir dir;
+    const fs::path out = dir.path() / "out";
+    const Outcome o = occsim("bench " + kSmall + " --frames 12 --deterministic-latency 8 " +
+                             "--record objects --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("objects: " + (out / "objects.sqlite").string()), std::string::npos)
+        << o.output;
+    expectDatabaseMatchesFramesCsv(out);
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM configurations"), 11);
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects"), 300);
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects WHERE name = 'teapot 17'"), 1);
+    EXPECT_GT(queryInteger(db, "SELECT COUNT(*) FROM objects WHERE moving = 1"), 0);
+    EXPECT_EQ(queryInteger(db, "SELECT deterministic_latency FROM run"), 8);
+    // The frustum culls something every frame, and those rows are left out: fewer rows than
+    // frames x configurations x objects.
+    EXPECT_LT(queryInteger(db, "SELECT COUNT(*) FROM decisions"), 12 * 11 * 300);
+    const std::string report = fileText(out / "report.md");
+    EXPECT_NE(report.find("## Objects"), std::string::npos) << report;
+    EXPECT_NE(report.find("**Drawn while hidden**"), std::string::npos) << report;
+}
+
+TEST(ObjectsDatabase, OnAGltfLevelAsyncMissesTheTruckAndWhyNamesTheQueryThatHidIt) {
+    TempDir dir;
+    const fs::path scenario = writeWalledYard(dir);
+    const fs::path out = dir.path() / "out";
+    // Answers 20 commands later: a few frames, in a scene of eight objects.
+    const Outcome o = occsim("bench " + scenario.string() +
+                             " --deterministic-latency 20 --record objects --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    expectDatabaseMatchesFramesCsv(out);
+
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects"), 7);
+    EXPECT_EQ(queryInteger(db, "SELECT moving FROM objects WHERE name = 'truck'"), 1);
+    EXPECT_EQ(queryInteger(db, "SELECT moving FROM objects WHERE name = 'wall'"), 0);
+    EXPECT_EQ(queryInteger(db, "SELECT triangles FROM objects WHERE name = 'crate.1'"), 12);
+    // Only async misses anything, and it misses the truck as it comes out from behind the wall.
+    EXPECT_EQ(queryInteger(db,
+                           "SELECT COUNT(*) FROM decisions d JOIN configurations c ON c.config = "
+                           "d.config WHERE c.label != 'async' AND d.drawn = 0 AND "
+                           "d.truth_pixels > 0"),
+              0);
+    sql::Statement miss = db.prepare(
+        "SELECT d.frame, d.query_frame, d.reason, d.truth_pixels FROM decisions d "
+        "JOIN configurations c ON c.config = d.config JOIN objects o ON o.object = d.object "
+        "WHERE c.label = 'async' AND o.name = 'truck' AND d.drawn = 0 AND d.truth_pixels > 0 "
+        "ORDER BY d.frame LIMIT 1");
+    ASSERT_TRUE(miss.step()) << "async must miss the truck once at least";
+    const int64_t frame = miss.integer(0), query_frame = miss.integer(1);
+    EXPECT_EQ(miss.integer(2), static_cast<int64_t>(DecisionKind::CulledOnQuery));
+    EXPECT_LT(query_frame, frame) << "the answer that hid it came from an earlier frame's query";
+    const int64_t pixels = miss.integer(3);
+
+    const Outcome why = occsim("why " + out.string() + " --object truck --frame " +
+                               std::to_string(frame) + " --algo async");
+    ASSERT_EQ(why.exit_code, 0) << why.output;
+    EXPECT_NE(why.output.find("'truck'"), std::string::npos) << why.output;
+    const std::string line = "frame " + std::to_string(frame) +
+                             ", async: not drawn: the query issued at frame " +
+                             std::to_string(query_frame) + " (";
+    EXPECT_NE(why.output.find(line), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("answered occluded"), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("ground truth sees " + std::to_string(pixels) + " px"),
+              std::string::npos)
+        << why.output;
+
+    const Outcome missed = occsim("why " + out.string() + " --missed");
+    ASSERT_EQ(missed.exit_code, 0) << missed.output;
+    EXPECT_NE(missed.output.find("async: 1 object missed\n  object 6 'truck': frames " +
+                                 std::to_string(frame)),
+              std::string::npos)
+        << missed.output;
+    EXPECT_NE(missed.output.find("chc: 0 objects missed"), std::string::npos) << missed.output;
+    // Over the run: how often it was drawn, seen and missed, and each missed frame in words.
+    const Outcome history = occsim("why " + out.string() + " --object 6 --algo async");
+    ASSERT_EQ(history.exit_code, 0) << history.output;
+    EXPECT_NE(history.output.find("async: drawn on "), std::string::npos) << history.output;
+    EXPECT_NE(history.output.find("missed on frames " + std::to_string(frame)), std::string::npos)
+        << history.output;
+
+    const std::string report = fileText(out / "report.md");
+    EXPECT_NE(report.find("| async | 6 truck | " + std::to_string(frame)), std::string::npos)
+        << report;
+}
+
+TEST(ObjectsDatabase, AStoppedRunKeepsAReadableDatabaseOfItsWholeFramesMarkedPartial) {
+    TempDir dir;
+    const fs::path out = dir.path() / "out";
+    const SignalledRun r = runAndSignal({kExe, "bench", kSmall, "--frames", "20000", "--algos",
+                                         "vfc,async", "--record", "objects", "--out", out.string()},
+                                        "frame ", SIGINT, (dir.path() / "stdout.txt").string());
+    ASSERT_TRUE(r.signal_sent) << r.terminal;
+    ASSERT_TRUE(r.exited) << r.terminal;
+    EXPECT_EQ(r.exit_code, 128 + SIGINT) << r.terminal;
+    const nlohmann::json summary = nlohmann::json::parse(fileText(out / "summary.json"));
+    const int64_t reached = summary["partial"]["frames_reached"].get<int64_t>();
+    ASSERT_GE(reached, 1);
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    EXPECT_EQ(queryInteger(db, "SELECT partial FROM run"), 1);
+    EXPECT_EQ(queryInteger(db, "SELECT frames_recorded FROM run"), reached);
+    EXPECT_EQ(queryInteger(db, "SELECT MAX(frame) FROM decisions"), reached - 1);
+    const Outcome why = occsim("why " + out.string() + " --missed");
+    EXPECT_EQ(why.exit_code, 0) << why.output;
+    EXPECT_NE(why.output.find("(partial run: partial: interrupted by SIGINT"), std::string::npos)
+        << why.output;
+    EXPECT_FALSE(fs::exists(out / "objects.sqlite-journal"));
+}
+
+TEST(ObjectsDatabase, RegressRecordsItInEachScenarioFolderAndARunWithoutRecordWritesNone) {
+    TempDir dir;
+    const fs::path scenario = writeWalledYard(dir, 10);
+    // The level with an expect block: regress runs it (its baseline is written by --update).
+    nlohmann::json s = nlohmann::json::parse(fileText(scenario));
+    s["expect"] = {{"algorithms", {"vfc", "chc"}}, {"deterministic_latency", 8}};
+    const fs::path file = dir.write("yard-regress.json", s.dump());
+    const fs::path out = dir.path() / "regress";
+    Outcome o =
+        occsim("regress " + file.string() + " --update --record objects --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    const fs::path folder = out / "yard-regress";
+    ASSERT_TRUE(fs::exists(folder / kObjectsDatabaseFile)) << o.output;
+    {
+        sql::Database db(folder / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+        sql::Statement command = db.prepare("SELECT command FROM run");
+        ASSERT_TRUE(command.step());
+        EXPECT_EQ(command.text(0), "regress");
+        EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM configurations"), 2);
+        EXPECT_EQ(queryInteger(db, "SELECT frames_recorded FROM run"), 10);
+    }
+    expectDatabaseMatchesFramesCsv(folder);
+    EXPECT_NE(fileText(folder / "summary.json").find("--record objects"), std::string::npos)
+        << "the command to rerun the scenario records too";
+
+    o = occsim("bench " + file.string() + " --algos vfc --out " + (dir.path() / "plain").string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_FALSE(fs::exists(dir.path() / "plain" / kObjectsDatabaseFile));
+    EXPECT_EQ(fileText(dir.path() / "plain/report.md").find("## Objects"), std::string::npos);
+    EXPECT_EQ(o.output.find("objects: "), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace occsim::testing
