@@ -8,6 +8,7 @@
 
 #include "culling/cullers/basic_cullers.h"
 #include "culling_fixtures.h"
+#include "occsim/culling/geometry/query_box.h"
 #include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 
@@ -85,6 +86,48 @@ TEST(IdealCuller, DrawsOnlyGroundTruthVisibleObjectsAndIssuesNoQueries) {
     }
     EXPECT_EQ(drawn, expected);
     EXPECT_EQ(device.counters().queries_issued, 0u);
+}
+
+// The limit of box tests: what ground truth saw, then every other box in the frustum queried
+// against it; on the scripted device a box shows samples when it overlaps a visible object's.
+TEST(IdealBoxCuller, DrawsWhatGroundTruthSawAndEveryObjectWhoseBoxShows) {
+    std::vector<Aabb> boxes = randomBoxes(500, 4);
+    // Hidden objects whose boxes overlap a visible one's: their boxes show samples.
+    for (uint32_t o = 0; o < 500; o += 7) {
+        const glm::vec3 shift = 0.25f * extent(boxes[o]);
+        boxes.push_back({boxes[o].min + shift, boxes[o].max + shift});
+    }
+    const BspTree tree = buildTree(boxes);
+    const CullView view = makeView({0, 5, 0}, {0, 0, -100});
+    const std::set<uint32_t> frustum = inFrustum(boxes, view.frustum);
+    std::vector<uint8_t> truth(boxes.size());
+    for (uint32_t o : frustum) truth[o] = o < 500 && o % 7 == 0;
+    CullFrame frame = makeFrame(view, 0, 0.0);
+    frame.ground_truth_visible = truth;
+    ScriptedQueryDevice device(3);
+    device.setVisibility(truth, boxes);
+    IdealBoxCuller culler;
+    EXPECT_TRUE(findAlgorithm(culler.name())->oracle);
+    EXPECT_FALSE(findAlgorithm(culler.name())->issues_queries) << "exact queries: no knobs";
+    culler.cullAndRender(tree, frame, device);
+    const std::set<uint32_t> drawn(device.drawnObjects().begin(), device.drawnObjects().end());
+    EXPECT_EQ(drawn.size(), device.drawnObjects().size()) << "each object drawn once";
+    size_t hidden = 0, box_visible = 0;
+    for (uint32_t o : frustum) {
+        bool overlaps = false;
+        for (uint32_t v : frustum) overlaps |= truth[v] && occsim::overlaps(boxes[o], boxes[v]);
+        if (truth[o]) {
+            EXPECT_TRUE(drawn.count(o)) << "visible object " << o << " missed";
+        } else if (!nearPlaneTouchesBox(boxes[o], view.eye, view.near_radius)) {
+            EXPECT_EQ(drawn.count(o) != 0, overlaps) << "object " << o;
+            hidden += !overlaps;
+            box_visible += overlaps;
+        }
+    }
+    for (uint32_t o : drawn) EXPECT_TRUE(frustum.count(o)) << o;
+    EXPECT_GT(hidden, 0u);
+    EXPECT_GT(box_visible, 0u) << "the scene tests both ways";
+    EXPECT_EQ(device.counters().queries_issued, hidden + box_visible);
 }
 
 }  // namespace

@@ -151,6 +151,7 @@ TEST(Junit, AFailedChecksEntryListsOnlyItsOwnCullersPictures) {
     ShardResult r;
     r.set = sixScenarios();
     r.set.scenarios = {"scenarios/a.json"};
+    r.set.ids = {"a"};
     r.shard = {0, 1};
     ScenarioOutcome o = outcomeOf("scenarios/a.json");
     o.checks = {

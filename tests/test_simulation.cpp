@@ -67,6 +67,33 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
     }
 }
 
+// ideal-box is the limit of culling by boxes: Ideal draws no more than it, and no conservative
+// culler that decides by boxes against the depth so far (which is never nearer than the frame's
+// final depth) draws less, frame by frame.
+TEST(Simulation, IdealBoxLiesBetweenIdealAndEveryConservativeCuller) {
+    const std::vector<std::string> names = {"vfc", "stop-and-wait", "statistical", "statistical+",
+                                            "chc", "chc++",         "hzb",         "masked",
+                                            "ideal", "ideal-box"};
+    const BenchResult result = benchSmall(true, LatencyMode{true, 8}, names);
+    const RunRecord& box = result.runs.back();
+    ASSERT_EQ(box.summary.label, "ideal-box");
+    uint64_t beyond_ideal = 0;
+    for (const RunRecord& run : result.runs) {
+        for (size_t f = 0; f < run.frames.size(); ++f) {
+            const uint64_t limit = box.frames[f].objects_drawn;
+            if (run.summary.label == "ideal") {
+                EXPECT_LE(run.frames[f].objects_drawn, limit) << "frame " << f;
+                beyond_ideal += limit - run.frames[f].objects_drawn;
+            } else {
+                EXPECT_GE(run.frames[f].objects_drawn, limit) << run.summary.label << " frame " << f;
+            }
+        }
+    }
+    EXPECT_GT(beyond_ideal, 0u) << "boxes cost something on the teapots";
+    EXPECT_EQ(box.summary.error_pixels_total, 0);
+    EXPECT_EQ(box.summary.missed_objects_total, 0);
+}
+
 TEST(Simulation, GroundTruthIsIndependentOfTheCullersFrustumTest) {
     BenchOptions options;
     options.algorithms = traitsOf({"vfc"});

@@ -52,6 +52,49 @@ void IdealCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Ren
     });
 }
 
+void IdealBoxCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
+                                   RenderDevice& device) {
+    view_ = prepareView(frame);
+    tested_.clear();
+    queries_.clear();
+    const auto seen = [&](uint32_t o) {
+        return o < frame.ground_truth_visible.size() && frame.ground_truth_visible[o] != 0;
+    };
+    // The visible objects first: their depth is the frame's final depth.
+    traverseFrontToBack(tree, view_, stack_, [&](const NodeVisit& visit) {
+        forEachObjectInFrustum(tree, visit.node, view_, visit.inside_frustum, [&](uint32_t o) {
+            if (seen(o)) {
+                recordDecision(view_.decisions, QueryTag::object(o),
+                               decisionOf(DecisionKind::DrawnByOracle));
+                device.drawObject(o);
+            } else {
+                tested_.push_back(o);
+            }
+        });
+        return true;
+    });
+    // Every other box against it; a box the near plane may cut is drawn, as every culler must.
+    size_t kept = 0;
+    for (const uint32_t o : tested_) {
+        const Aabb& box = tree.objectBox(o);
+        if (nearPlaneTouchesBox(box, frame.view.eye, frame.view.near_radius)) {
+            recordDecision(view_.decisions, QueryTag::object(o),
+                           decisionOf(DecisionKind::DrawnNearPlane));
+            device.drawObject(o);
+            continue;
+        }
+        tested_[kept++] = o;
+        queries_.push_back(device.issueQuery(box, QueryTag::object(o)));
+    }
+    tested_.resize(kept);
+    for (size_t i = 0; i < tested_.size(); ++i) {
+        const QueryAnswer answer = device.takeAnswer(queries_[i]);
+        recordDecision(view_.decisions, QueryTag::object(tested_[i]),
+                       answeredDecision(frame.frame_index, answer));
+        if (answer.visible) device.drawObject(tested_[i]);
+    }
+}
+
 // --- Registration -------------------------------------------------------------------------------
 
 AlgorithmTraits vfcRegistration() {
@@ -83,6 +126,21 @@ AlgorithmTraits idealRegistration() {
     t.oracle = true;
     t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> {
         return std::make_unique<IdealCuller>();
+    };
+    return t;
+}
+
+AlgorithmTraits idealBoxRegistration() {
+    AlgorithmTraits t;
+    t.name = "ideal-box";
+    t.summary =
+        "draws every object whose box is visible against the visible objects' depth (the limit "
+        "of box tests; an oracle)";
+    // Its queries are exact: the approximation knobs, which issues_queries would let in, do not
+    // apply to a bound.
+    t.oracle = true;
+    t.factory = [](const CullerContext&) -> std::unique_ptr<Culler> {
+        return std::make_unique<IdealBoxCuller>();
     };
     return t;
 }

@@ -48,4 +48,23 @@ class IdealCuller final : public Culler {
     PreparedView view_;  // this frame's view with its plane table (prepareView)
 };
 
+// The limit of a culler that tests boxes (issue 42): every object ground truth saw is drawn first,
+// which leaves the frame's final depth (the visible surfaces), then every other object in the
+// frustum is queried by its box against that depth, all queries issued before any answer is
+// taken, and those whose box shows a sample are drawn. What it draws beyond Ideal is what boxes
+// cost; what a query culler draws beyond it is what scheduling costs. An oracle: its counts are
+// the figure, its time (it waits for every answer) is not a culler's.
+class IdealBoxCuller final : public Culler {
+  public:
+    std::string_view name() const override { return "ideal-box"; }
+    void reset(const BspTree&) override {}
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
+
+  private:
+    std::vector<NodeVisit> stack_;
+    PreparedView view_;
+    std::vector<uint32_t> tested_;  // objects queried this frame, in issue order
+    std::vector<QueryId> queries_;  // their queries
+};
+
 }  // namespace occsim

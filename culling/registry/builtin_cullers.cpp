@@ -14,13 +14,15 @@ AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
 AlgorithmTraits conditionalRegistration();      // cullers/conditional_culler.cpp
 AlgorithmTraits hzbRegistration();              // cullers/hzb_culler.cpp
 AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
+AlgorithmTraits idealBoxRegistration();         // cullers/basic_cullers.cpp
 AlgorithmTraits maskedRegistration();           // cullers/masked_culler.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
     for (AlgorithmTraits (*row)() :
          {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
           statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          conditionalRegistration, hzbRegistration, maskedRegistration, idealRegistration}) {
+          conditionalRegistration, hzbRegistration, maskedRegistration, idealRegistration,
+          idealBoxRegistration}) {
         registry.add(row());
     }
 }

@@ -65,7 +65,7 @@ namespace {
     // A scale (a glTF animation's, a node's) can overflow the box as surely as a position: the
     // largest stretch of the pose's linear part says which it was.
     double scale = 0.0;
-    for (int c = 0; c < 3; ++c) scale = std::max(scale, double(glm::length(pose.linear[c])));
+    for (int c = 0; c < 3; ++c) scale = std::max(scale, glm::length(glm::dvec3(pose.linear[c])));
     char figures[240];
     std::snprintf(figures, sizeof figures, "its position is (%g, %g, %g), its scale %g", p.x, p.y,
                   p.z, scale);
