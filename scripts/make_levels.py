@@ -35,7 +35,7 @@ TARGET_Y = 1.6  # the camera looks slightly down
 FLOOR_GAP = 0.01  # everything static floats this far above the floor (no two objects touch)
 LANE_Y = 0.02  # path movers' base height above the floor top (y = 0)
 CAMERA_CLEARANCE = 0.3  # the eye stays this far from every object's box (near plane 0.1 m)
-PLANE_CLEARANCE = 0.002  # no box face's plane passes closer than this to the eye on a frame
+PLANE_CLEARANCE = 0.001  # no box face's plane passes closer than this to the eye on a frame
 
 
 class ParameterError(Exception):
@@ -1089,10 +1089,10 @@ CAR_LANE = 2.3  # a car's centre from the kerb (the block's wall or facade)
 PERSON_LANE = 0.95  # a walker's centre from the wall
 
 
-def car_reach():
+def car_reach(lane=CAR_LANE):
     """How far from its block's wall a car rounding the block's corner reaches (its outer corners
-    on the arc of radius CAR_LANE about the corner)."""
-    return math.hypot(CAR_LANE + CAR.half_width, CAR.half_length)
+    on the arc of radius `lane` about the corner)."""
+    return math.hypot(lane + CAR.half_width, CAR.half_length)
 
 
 def ring(x0, z0, x1, z1, d, arc_segments=6):
@@ -1107,53 +1107,80 @@ def ring(x0, z0, x1, z1, d, arc_segments=6):
 
 
 class Vehicle:
-    """A vehicle driven by a glTF animation along a straight line at constant speed: a group node
-    with translation keys, its wheels child nodes with rotation keys."""
+    """A vehicle moved by a glTF animation: a group node whose translation follows keys (LINEAR,
+    its heading fixed), wheels that roll with it and parts that spin, each a child node with
+    rotation keys."""
 
     def __init__(self, level, name, shape, heading_yaw):
         self.level, self.name, self.shape, self.yaw = level, name, shape, heading_yaw
         self.node = Node(name, None, (0, 0, 0), heading_yaw)
         level.doc.roots.append(self.node)
         self.wheels = []  # (node, radius)
-        self.start = self.end = (0, 0, 0)
+        self.spinners = []  # (node, radians per second about the node's y)
+        self.keys = [(0.0, (0, 0, 0))]  # (time, position of the group node)
         self.direction = (math.cos(heading_yaw), 0.0, -math.sin(heading_yaw))
 
     def part(self, name, mesh, t, s=None):
         return self.node.add(Node(f"{self.name}/{name}", mesh, t, 0.0, s))
 
     def wheel(self, name, mesh, t, radius):
-        node = self.node.add(Node(f"{self.name}/{name}", mesh, t))
-        self.wheels.append((node, radius))
+        self.wheels.append((self.node.add(Node(f"{self.name}/{name}", mesh, t)), radius))
 
-    def drive(self, start, end):
-        self.start, self.end = start, end
-        self.node.t = start
+    def spinner(self, name, mesh, t, rate):
+        self.spinners.append((self.node.add(Node(f"{self.name}/{name}", mesh, t)), rate))
+
+    def drive(self, keys):
+        """keys: [(time, position)], times increasing from 0."""
+        self.keys = keys
+        self.node.t = keys[0][1]
+
+    def position(self, t):
+        keys = self.keys
+        if t <= keys[0][0]:
+            return keys[0][1]
+        for (t0, p0), (t1, p1) in zip(keys, keys[1:]):
+            if t <= t1:
+                u = (t - t0) / (t1 - t0)
+                return tuple(p0[k] + (p1[k] - p0[k]) * u for k in range(3))
+        return keys[-1][1]
 
     def at(self, t):
-        u = min(max(t / self.level.run_time(), 0.0), 1.0)
-        p = tuple(self.start[k] + (self.end[k] - self.start[k]) * u for k in range(3))
-        return Footprint(self.name, p, self.direction, self.shape)
+        return Footprint(self.name, self.position(t), self.direction, self.shape)
 
     def line(self, step=0.5):
-        """Where it can be: its footprint every `step` m from start to end."""
-        length = math.dist(self.start, self.end)
-        n = int(length / step) + 1
-        return [Footprint(self.name, tuple(self.start[k] + (self.end[k] - self.start[k]) * i / n for k in range(3)),
-                          self.direction, self.shape) for i in range(n + 1)]
+        """Where it can be: its footprint every `step` m along its way."""
+        out = []
+        for (_, p0), (_, p1) in zip(self.keys, self.keys[1:]):
+            n = int(math.dist(p0, p1) / step) + 1
+            for i in range(n + 1):
+                out.append(Footprint(self.name, tuple(p0[k] + (p1[k] - p0[k]) * i / n for k in range(3)),
+                                     self.direction, self.shape))
+        return out
 
     def animate(self):
-        """The animation: the translation from start to end over the run, each wheel turning as it
-        rolls (keys a third of a turn apart, so that LINEAR's shorter arc is the wheel's way)."""
+        """The animation: the group node's translation keys; each wheel turning as far as the
+        vehicle rolled, each spinner at its rate (rotation keys a third of a turn apart, so that
+        LINEAR's shorter arc turns the right way)."""
         run = self.level.run_time()
-        channels = [(self.node, "translation", [0.0, run], [list(self.start), list(self.end)])]
-        speed = math.dist(self.start, self.end) / run
+        channels = [(self.node, "translation", [t for t, _ in self.keys], [list(p) for _, p in self.keys])]
         for node, radius in self.wheels:
-            rate = speed / radius  # radians per second, turning about local -z as it rolls to +x
-            step = (2 * math.pi / 3) / rate
-            times = [min(k * step, run) for k in range(int(run / step) + 2)]
-            times = sorted(set(times))
-            values = [list(quat_z(-rate * t)) for t in times]
+            # Rolling towards local +x turns a wheel about local -z by distance / radius.
+            times, values, angle = [], [], 0.0
+            for (t0, p0), (t1, p1) in zip(self.keys, self.keys[1:]):
+                forward = sum((p1[k] - p0[k]) * self.direction[k] for k in range(3))
+                turn = forward / radius
+                steps = max(1, math.ceil(abs(turn) / (2 * math.pi / 3)))
+                first = 0 if not times else 1  # a segment after the first starts at its last key
+                for i in range(first, steps + 1):
+                    u = i / steps
+                    times.append(t0 + (t1 - t0) * u)
+                    values.append(list(quat_z(-(angle + turn * u))))
+                angle += turn
             channels.append((node, "rotation", times, values))
+        for node, rate in self.spinners:
+            steps = max(1, math.ceil(abs(rate) * run / (2 * math.pi / 3)))
+            times = [run * i / steps for i in range(steps + 1)]
+            channels.append((node, "rotation", times, [list(quat_y(rate * t)) for t in times]))
         self.level.doc.animations.append((f"{self.name}_drive", channels))
 
 
@@ -1163,10 +1190,8 @@ def find_timing(level, route, place_vehicle):
     the same path, sampled at another phase. Sets level.keys and places the vehicle."""
     problems = []
     for k in range(48):
-        delay = k * level.dt / 48
-        level.keys = [(t + delay if i else 0.0, p, q) for i, (t, p, q) in enumerate(route)]
-        if delay:
-            level.keys.insert(1, (delay, route[0][1], route[0][2]))
+        delay = k * level.dt / 48  # before its first keyframe's time the camera holds it
+        level.keys = [(t + delay, p, q) for t, p, q in route]
         place_vehicle()
         problems = level.frame_problems()
         if not problems:
@@ -1396,7 +1421,8 @@ def courtyards(args):
         t_pass = level.keys[-2][0] + 0.3
         x_pass = camera_at(level.keys, t_pass)[0][0]
         run = level.run_time()
-        truck.drive((x_pass + speed * t_pass, LANE_Y, truck_z), (x_pass - speed * (run - t_pass), LANE_Y, truck_z))
+        truck.drive([(0.0, (x_pass + speed * t_pass, LANE_Y, truck_z)),
+                     (run, (x_pass - speed * (run - t_pass), LANE_Y, truck_z))])
 
     level.vehicle = truck.at
     find_timing(level, route, place_truck)
@@ -1421,25 +1447,474 @@ def courtyards(args):
     return level, (1280, 720)
 
 
-def fill_lanes(level, rng, traffic, blocks, extent, cars, people):
-    """Cars (up to 3 a block, 9 m apart) and walkers (up to 6 a block, 3 m apart) on the lanes
-    round the blocks, in the order given; ParameterError when the blocks cannot hold them."""
+def fill_lanes(level, rng, traffic, blocks, extent, cars, people, car_lane=CAR_LANE, per_block=(3, 6)):
+    """Cars (up to per_block[0] a block, 9 m apart) and walkers (up to per_block[1], 3 m apart) on
+    the lanes round the blocks, in the order given; ParameterError when they cannot hold them."""
     left_cars, left_people = cars, people
     for ij in blocks:
         x0, z0, x1, z1 = extent(ij)
         if left_cars:
-            placed = level.lane(ring(x0, z0, x1, z1, CAR_LANE), min(3, left_cars), 9.0,
+            placed = level.lane(ring(x0, z0, x1, z1, car_lane), min(per_block[0], left_cars), 9.0,
                                 round(rng.uniform(6, 10), 1), "car", "car", traffic, CAR, rng)
             left_cars -= placed
         if left_people:
-            placed = level.lane(ring(x0, z0, x1, z1, PERSON_LANE), min(6, left_people), 3.0,
+            placed = level.lane(ring(x0, z0, x1, z1, PERSON_LANE), min(per_block[1], left_people), 3.0,
                                 round(rng.uniform(1.1, 1.6), 2), "person", "person", traffic, PERSON, rng)
             left_people -= placed
     if left_cars:
-        raise ParameterError(f"--cars: expected at most {cars - left_cars} cars for these blocks (3 a block), got {cars}")
+        raise ParameterError(f"--cars: expected at most {cars - left_cars} cars for these blocks "
+                             f"({per_block[0]} a block), got {cars}")
     if left_people:
         raise ParameterError(f"--people: expected at most {people - left_people} people for these blocks "
-                             f"(6 a block), got {people}")
+                             f"({per_block[1]} a block), got {people}")
+
+
+# ---- Level 2: an interior of rooms joined by doors and corridors -------------------------------
+
+CART = Shape(1.2, 0.7, 1.76, planes_x=(-1.2, -1.15, 0.5, 0.6, 1.15, 1.2), planes_z=(-0.7, -0.65, -0.6, 0.6, 0.65, 0.7))
+PEOPLE_SIDE = 0.45  # walkers in a corridor keep this close to one wall (their centres)
+
+
+def interior_minimums(args):
+    """The smallest rooms the camera's walk and the cart fit in: (width, depth)."""
+    t, dw = args.wall_thickness, args.door_width
+    width = max(t + 2 * (dw / 2 + 0.3) + 2.5, t + 0.7 + 2 * CART.half_length + 2.0)
+    depth = t / 2 + 0.35 + 2 * CART.half_width + 0.9 + 1.9 + max(1.9, t / 2 + 0.3 + dw / 2)
+    return width, depth
+
+
+def door_span(rng, lo, hi, width):
+    """A door's centre along a wall between lo and hi (the wall's clear span), 0.3 m from its ends."""
+    return rng.uniform(lo + width / 2 + 0.3, hi - width / 2 - 0.3)
+
+
+def wall_with_door(level, parent, name, along_x, line, span, door, args, thickness):
+    """A wall on `line` (its centre, in z for a wall along x, else in x) over span (u0, u1),
+    with a door centred at `door` (or none): the pieces beside the gap and a lintel over it."""
+    h = FLOOR_GAP + args.wall_height
+    top = FLOOR_GAP + args.door_height
+    pieces = [("", span[0], span[1], FLOOR_GAP, h)]
+    if door is not None:
+        a, b = door - args.door_width / 2, door + args.door_width / 2
+        # The lintel stops 1 cm short of the pieces beside it (no two objects touch).
+        pieces = [("_0", span[0], a, FLOOR_GAP, h), ("_1", b, span[1], FLOOR_GAP, h),
+                  ("_lintel", a + 0.01, b - 0.01, top, h)]
+    for suffix, u0, u1, y0, y1 in pieces:
+        if along_x:
+            level.slab(parent, name + suffix, (u0, y0, line - thickness / 2), (u1, y1, line + thickness / 2))
+        else:
+            level.slab(parent, name + suffix, (line - thickness / 2, y0, u0), (line + thickness / 2, y1, u1))
+
+
+def interior(args):
+    level = Level("interior", args)
+    doc = level.doc
+    rng = Rng(args.seed)
+    nx, nz = args.rooms
+    W, D = args.room_size
+    t, Wc, dw = args.wall_thickness, args.corridor_width, args.door_width
+    if nx < 2 or nz < 2:
+        raise ParameterError(f"--rooms: expected at least 2x2 (the camera walks from a corridor through two rooms "
+                             f"side by side), got {nx}x{nz}")
+    min_w, min_d = interior_minimums(args)
+    if dw > min(W, D) - t - 0.6:
+        raise ParameterError(f"--door-width: expected a door narrower than its wall (at most {min(W, D) - t - 0.6:g} m "
+                             f"in {W:g} x {D:g} m rooms with {t:g} m walls), got {dw:g}")
+    if W < min_w or D < min_d:
+        raise ParameterError(f"--room-size: expected rooms at least {min_w:.1f} x {min_d:.1f} m (the camera's walk "
+                             f"through two doors beside the cart's way), got {W:g}x{D:g}")
+    if Wc < 2 * (PEOPLE_SIDE + PERSON.half_width) + 2 * 0.45:
+        raise ParameterError(f"--corridor-width: expected at least {2 * (PEOPLE_SIDE + PERSON.half_width) + 0.9:.2f} m "
+                             f"(walkers along one wall, the camera beside them), got {Wc:g}")
+    if not (EYE + 0.3 <= args.door_height <= args.wall_height - 0.1):
+        raise ParameterError(f"--door-height: expected a door from {EYE + 0.3:g} m (the camera's eye and 0.3 m) up to "
+                             f"the walls' height less 0.1 m ({args.wall_height - 0.1:g} m), got {args.door_height:g}")
+    doc.parameters = parameters_of(args)
+    for name, make in (("table", lambda: table_mesh(args.detail)), ("chair", lambda: chair_mesh(args.detail)),
+                       ("bookshelf", lambda: bookshelf_mesh(args.detail, Rng(args.seed + 7))),
+                       ("sofa", lambda: sofa_mesh(args.detail)), ("vase", lambda: vase_mesh(args.detail)),
+                       ("person", lambda: person_mesh(args.detail)), ("cart", lambda: cart_mesh(args.detail)),
+                       ("beacon", lambda: beacon_mesh(args.detail))):
+        doc.mesh(name, make)
+    level.box()
+
+    # Wall centre lines: room column i between x[i] and x[i + 1]; room row j between z0[j] and
+    # z1[j]; corridor j between z1[j] and z0[j + 1] (Wc clear between the walls' faces).
+    xs = [(i - nx / 2) * W for i in range(nx + 1)]
+    z0 = [j * (D + Wc + t) - (nz * D + (nz - 1) * (Wc + t)) / 2 for j in range(nz)]
+    z1 = [z + D for z in z0]
+    level.slab(None, "floor", (xs[0] - t / 2 - 1, -0.2, z0[0] - t / 2 - 1), (xs[-1] + t / 2 + 1, 0.0, z1[-1] + t / 2 + 1))
+    ceiling_y = (FLOOR_GAP + args.wall_height + 0.01, FLOOR_GAP + args.wall_height + 0.21)
+
+    # The route: along corridor 0 (on its row-1 side), into room A = (a, 1) by its north door,
+    # east through the door into room B = (a + 1, 1), out of B's south door into corridor 1 (or
+    # back into corridor 0 by its north door when there is no corridor 1), then along it.
+    a = max(0, nx // 2 - 1)
+    A, B = (a, 1), (a + 1, 1)
+    doors = {}  # (i, j, side) -> centre along the wall
+    for j in range(nz):
+        for i in range(nx):
+            lo_x, hi_x = xs[i] + t / 2, xs[i + 1] - t / 2
+            lo_z, hi_z = z0[j] + t / 2, z1[j] - t / 2
+            if j > 0:
+                doors[(i, j, "n")] = door_span(rng, lo_x, hi_x, dw)
+            if j < nz - 1:
+                doors[(i, j, "s")] = door_span(rng, lo_x, hi_x, dw)
+            if i < nx - 1:
+                doors[(i, j, "e")] = door_span(rng, lo_z, hi_z, dw)
+    # The doors on the route are where the walk needs them.
+    cart_z = z0[1] + t / 2 + 0.35 + CART.half_width
+    zE_lo = cart_z + CART.half_width + 0.9
+    zE_hi = z1[1] - t / 2 - 0.3 - dw / 2
+    doors[(a, 1, "e")] = rng.uniform(max(zE_lo, z0[1] + 1.9), min(zE_hi, z1[1] - 1.9))
+    doors[(a, 1, "n")] = rng.uniform(xs[a] + t / 2 + 0.3 + dw / 2, xs[a + 1] - 2.5)
+    exit_side = "s" if nz > 2 else "n"
+    doors[(a + 1, 1, exit_side)] = rng.uniform(xs[a + 1] + 2.5, xs[a + 2] - t / 2 - 0.3 - dw / 2)
+
+    for j in range(nz):
+        for i in range(nx):
+            g = level.group(f"room_{i}_{j}")
+            # Walls along x span the room, to the outer faces at the building's ends and 1 cm
+            # short of the neighbour's elsewhere; walls along z stop 1 cm short of them.
+            x_lo = xs[i] - t / 2 if i == 0 else xs[i] + 0.01
+            x_hi = xs[i + 1] + t / 2 if i == nx - 1 else xs[i + 1] - 0.01
+            wall_with_door(level, g, f"room_{i}_{j}/wall_n", True, z0[j], (x_lo, x_hi), doors.get((i, j, "n")), args, t)
+            wall_with_door(level, g, f"room_{i}_{j}/wall_s", True, z1[j], (x_lo, x_hi), doors.get((i, j, "s")), args, t)
+            span_z = (z0[j] + t / 2 + 0.01, z1[j] - t / 2 - 0.01)
+            if i == 0:
+                wall_with_door(level, g, f"room_{i}_{j}/wall_w", False, xs[0], span_z, None, args, t)
+            wall_with_door(level, g, f"room_{i}_{j}/wall_e", False, xs[i + 1], span_z, doors.get((i, j, "e")), args, t)
+            level.slab(g, f"room_{i}_{j}/ceiling", (xs[i] + 0.005 if i else xs[i] - t / 2, ceiling_y[0], z0[j] - t / 2),
+                       (xs[i + 1] - 0.005 if i < nx - 1 else xs[i + 1] + t / 2, ceiling_y[1], z1[j] + t / 2))
+    for j in range(nz - 1):
+        g = level.group(f"corridor_{j}")
+        span_z = (z1[j] + t / 2 + 0.01, z0[j + 1] - t / 2 - 0.01)
+        wall_with_door(level, g, f"corridor_{j}/wall_w", False, xs[0], span_z, None, args, t)
+        wall_with_door(level, g, f"corridor_{j}/wall_e", False, xs[-1], span_z, None, args, t)
+        level.slab(g, f"corridor_{j}/ceiling", (xs[0] - t / 2, ceiling_y[0], z1[j] + t / 2 + 0.01),
+                   (xs[-1] + t / 2, ceiling_y[1], z0[j + 1] - t / 2 - 0.01))
+
+    # The camera's plan points: each door crossed on its axis from 0.9 m before to 0.9 m after
+    # the wall, each corner cut 1 m before and after.
+    c0 = z0[1] - t / 2 - Wc / 2 + 0.4  # corridor 0, on the side of row 1 (walkers keep to row 0's)
+    xa, zE = doors[(a, 1, "n")], doors[(a, 1, "e")]
+    xb = doors[(a + 1, 1, exit_side)]
+    if exit_side == "s":
+        c1, exit_line, sign = z1[1] + t / 2 + Wc / 2 - 0.4, z1[1], 1
+    else:
+        c1, exit_line, sign = c0, z0[1], -1
+    x_end = xs[-1] - t / 2 - 1.0
+    points = [(xs[0] + 1.0, c0), (xa - 1.6, c0), (xa, z0[1] - 0.9), (xa, z0[1] + 0.9), (xa, zE - 1.0),
+              (xa + 1.0, zE), (xs[a + 1] - 0.9, zE), (xs[a + 1] + 0.9, zE), (xb - 1.0, zE),
+              (xb, zE + sign * 1.0), (xb, exit_line - sign * 0.9), (xb, exit_line + sign * 0.9),
+              (xb + 1.6, c1), (x_end, c1)]
+    speeds = [0, 5, 3, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 3, 5]
+    route = fit_walk(level, walk(points, speeds, look=12.0))
+
+    # Furniture, clear of the doors, the camera's walk and the cart's way.
+    def keep_outs(i, j):
+        boxes = []
+        for (di, dj, side), u in doors.items():
+            if side in ("n", "s"):
+                line = z0[dj] if side == "n" else z1[dj]
+                boxes.append((u - dw / 2 - 0.3, line - 1.3, u + dw / 2 + 0.3, line + 1.3))
+            else:
+                boxes.append((xs[di + 1] - 1.3, u - dw / 2 - 0.3, xs[di + 1] + 1.3, u + dw / 2 + 0.3))
+        if (i, j) in (A, B):
+            for p, q in zip(points, points[1:]):
+                boxes.append((min(p[0], q[0]) - 0.9, min(p[1], q[1]) - 0.9, max(p[0], q[0]) + 0.9, max(p[1], q[1]) + 0.9))
+        if (i, j) == B:
+            boxes.append((xs[i], cart_z - CART.half_width - 0.3, xs[i + 1], cart_z + CART.half_width + 0.3))
+        return boxes
+
+    kinds = ["bookshelf", "table", "sofa", "vase", "chair", "bookshelf", "vase", "table", "chair", "sofa"]
+    for j in range(nz):
+        for i in range(nx):
+            g = next(n for n in doc.roots if n.name == f"room_{i}_{j}")
+            cx, cz = (xs[i] + xs[i + 1]) / 2, (z0[j] + z1[j]) / 2
+            zones = [(x0 - cx, zz0 - cz, x1 - cx, zz1 - cz) for x0, zz0, x1, zz1 in keep_outs(i, j)]
+            chosen = []
+            for k in range(args.furniture):
+                kind = kinds[(k + i + 2 * j) % len(kinds)]
+                yaw = (math.pi / 2) * rng.below(4)
+                chosen.append((kind, yaw, plan_box(doc.meshes[kind], yaw)))
+            half = min(W, D) / 2 - t / 2 - 0.05
+            # Rooms are not square: place in the square of the shorter side, then stretch along the
+            # longer one.
+            what = (f"--furniture: {args.furniture} pieces do not fit in a {W:g} x {D:g} m room ({i}, {j}) beside its doors "
+                    f"and the camera's walk; expected fewer pieces or a larger --room-size")
+            # The rooms the camera walks through hold what fits beside its walk (and the cart's way).
+            spots = place_props_rect(rng, [c[2] for c in chosen], (W - t) / 2 - 0.05, (D - t) / 2 - 0.05, zones,
+                                     what, partial=(i, j) in (A, B))
+            counts = {}
+            for (kind, yaw, _), (x, z) in zip(chosen, spots):
+                n = counts.get(kind, 0)
+                counts[kind] = n + 1
+                level.add_static(g, f"room_{i}_{j}/{kind}_{n}", kind, (cx + x, FLOOR_GAP, cz + z), yaw)
+
+    # Walkers in the corridors, along one wall (a long thin loop), away from the camera's side.
+    people = level.group("people")
+    left = args.people
+    for j in range(nz - 1):
+        if not left:
+            break
+        near_row = 0 if j == 0 else 1  # corridor 0: along row 0's wall; the others along the far row's
+        wall_face = z1[j] + t / 2 if near_row == 0 else z0[j + 1] - t / 2
+        inward = 1 if near_row == 0 else -1
+        za, zb = wall_face + inward * PEOPLE_SIDE, wall_face + inward * (PEOPLE_SIDE + 0.55)
+        xa_, xb_ = xs[0] + t / 2 + 0.5, xs[-1] - t / 2 - 0.5
+        loop = [(xa_, za), (xb_, za), (xb_, zb), (xa_, zb)]
+        left -= level.lane(loop, min(left, 8), 2.5, round(rng.uniform(1.1, 1.5), 2), "person", "person", people,
+                           PERSON, rng)
+    if left:
+        raise ParameterError(f"--people: expected at most {args.people - left} people for these corridors "
+                             f"(8 a corridor), got {args.people}")
+
+    # The cart: back and forth across room B, north of the camera's way through it, with a
+    # turning beacon.
+    cart = Vehicle(level, "cart", CART, 0.0)
+    cart.part("body", "cart", (0, 0, 0))
+    cart.spinner("beacon", "beacon", (0.85, 1.5 + 0.01, 0), 4.0)
+    x_lo = xs[a + 1] + t / 2 + 0.35 + CART.half_length
+    x_hi = xs[a + 2] - t / 2 - 0.35 - CART.half_length
+    run = level.run_time()
+
+    def place_cart():
+        # It crosses the room (1.4 m/s) and back, at the far end when the camera walks in, so
+        # that it comes towards the camera.
+        t_in = time_of(level, lambda e: e[0] >= xs[a + 1]) or run / 2
+        speed = 1.4
+        leg = (x_hi - x_lo) / speed
+        keys, time, at_hi = [], t_in, True
+        while time > 0:
+            time -= leg
+            at_hi = not at_hi
+        while time < run + leg:
+            keys.append((time, (x_hi if at_hi else x_lo, LANE_Y, cart_z)))
+            time += leg
+            at_hi = not at_hi
+        # From time 0 to the run's end: the key before 0 and after the end cut at them.
+        cut = []
+        for (t0, p0), (t1, p1) in zip(keys, keys[1:]):
+            if t1 <= 0 or t0 >= run:
+                continue
+            u0, u1 = max(0.0, -t0) / (t1 - t0), min(1.0, (run - t0) / (t1 - t0))
+            q0 = tuple(p0[k] + (p1[k] - p0[k]) * u0 for k in range(3))
+            q1 = tuple(p0[k] + (p1[k] - p0[k]) * u1 for k in range(3))
+            if not cut:
+                cut.append((max(t0, 0.0), q0))
+            cut.append((min(t1, run), q1))
+        cart.drive(cut)
+
+    level.vehicle = cart.at
+    find_timing(level, route, place_cart)
+    level.check(cart.line())
+    cart.animate()
+
+    # Segments: the corridor, each door crossed or passed, each room, the cart's crossing.
+    segs = [segment("corridor", 0.0, time_of(level, lambda e: e[2] >= z0[1] - t / 2) or run, run)]
+    crossings = [(f"door-{a}-1-n", lambda e: e[2] >= z0[1]), (f"door-{a}-1-e", lambda e: e[0] >= xs[a + 1]),
+                 (f"door-{a + 1}-1-{exit_side}", (lambda e: e[2] >= z1[1]) if sign > 0 else (lambda e: e[2] <= z0[1]))]
+    for name, crossed in crossings:
+        when = time_of(level, crossed)
+        if when is not None:
+            segs.append(segment(name, when - 0.4, when + 0.4, run))
+    t_a = time_of(level, lambda e: e[2] >= z0[1])
+    t_b = time_of(level, lambda e: e[0] >= xs[a + 1])
+    t_out = time_of(level, lambda e: (e[2] >= z1[1] + t / 2) if sign > 0 else (e[2] <= z0[1] - t / 2))
+    segs.append(segment(f"room-{a}-1", t_a, t_b, run))
+    segs.append(segment("cart", t_b - 0.5, t_out, run))
+    segs.append(segment(f"room-{a + 1}-1", t_b, t_out, run))
+    segs.append(segment("corridor-after", t_out, run, run))
+    for (i, j, side), u in sorted(doors.items()):
+        # The doors passed in the corridors: the camera level with them.
+        if side == "s" and j == 0 and xs[0] + 1.0 < u < xa - 1.6:
+            when = time_of(level, lambda e, u=u: e[0] >= u)
+        elif exit_side == "s" and side == "n" and j == 2 and xb + 1.6 < u < x_end:
+            when = time_of(level, lambda e, u=u: e[0] >= u and e[2] > z1[1])
+        else:
+            continue
+        if when is not None:
+            segs.append(segment(f"door-{i}-{j}-{side}", when - 0.4, when + 0.4, run))
+    level.segments = segs
+    return level, (960, 540)
+
+
+def place_props_rect(rng, props, half_x, half_z, keep_out, what, partial=False):
+    """place_props in the rectangle |x| <= half_x, |z| <= half_z; `partial`: the props that fit,
+    in order, the rest left out."""
+    placed = list(keep_out)
+    out = []
+    for x0, z0, x1, z1 in props:
+        for _ in range(800):
+            x, z = rng.uniform(-half_x - x0, half_x - x1), rng.uniform(-half_z - z0, half_z - z1)
+            box2 = (x + x0, z + z0, x + x1, z + z1)
+            if all(max(b[0] - box2[2], box2[0] - b[2], b[1] - box2[3], box2[1] - b[3]) >= 0.3 for b in placed):
+                break
+        else:
+            if partial:
+                return out
+            raise ParameterError(what)
+        placed.append(box2)
+        out.append((x, z))
+    return out
+
+
+# ---- Level 3: a street canyon with traffic --------------------------------------------------------
+
+BUS = Shape(5.5, 1.25, 3.12, planes_x=(-5.5, -5.3, 4.5, 5.5), planes_z=(-1.25, -1.1, 1.1, 1.25))
+BUS_LANE = 1.0  # the bus's centre line, this far from the main street's centre, away from the camera
+CANYON_CAR_LANE = 6.9  # cars drive this far from the facades (pavement, props and parked cars between)
+
+
+def canyon_min_street():
+    """The narrowest street for the pavement, props, parked cars, a car lane each side, the bus's
+    lane and the camera's."""
+    return 2 * (car_reach(CANYON_CAR_LANE) + 0.1 + BUS_LANE + BUS.half_width)
+
+
+def street_tree_parts(height=6.0, crown=1.5):
+    """The tree as the checks see it: the trunk, and the crown above people and cars."""
+    return [((-0.22, 0.0, -0.22), (0.22, height * 0.72, 0.22)),
+            ((-crown * 1.16, height - 2 * crown, -crown * 1.16), (crown * 1.16, height + 0.01, crown * 1.16))]
+
+
+def canyon(args):
+    level = Level("canyon", args)
+    doc = level.doc
+    rng = Rng(args.seed)
+    nx, nz = args.blocks
+    bw, bd = args.block_size
+    street = args.street_width
+    lo_h, hi_h = args.building_height
+    if street < canyon_min_street():
+        raise ParameterError(f"--street-width: expected at least {canyon_min_street():.1f} m (pavement, props, parked "
+                             f"cars, a car lane each side, the bus's lane and the camera's), got {street:g}")
+    if nx < 2 or nz < 2:
+        raise ParameterError(f"--blocks: expected at least 2x2 (the camera walks the street between two rows and turns "
+                             f"into a side street), got {nx}x{nz}")
+    if lo_h > hi_h:
+        raise ParameterError(f"--building-height: expected MINxMAX with MIN <= MAX, got {lo_h:g}x{hi_h:g}")
+    if args.building_width[0] > args.building_width[1]:
+        raise ParameterError(f"--building-width: expected MINxMAX with MIN <= MAX, got "
+                             f"{args.building_width[0]:g}x{args.building_width[1]:g}")
+    if args.building_width[0] > bw:
+        raise ParameterError(f"--building-width: expected buildings narrower than their block ({bw:g} m), got "
+                             f"{args.building_width[0]:g}")
+    if min(bw, bd) < 2 * 4.0 + 3.6:
+        raise ParameterError(f"--block-size: expected blocks at least 11.6 m on a side (props 4 m from the corners), "
+                             f"got {bw:g}x{bd:g}")
+    doc.parameters = parameters_of(args)
+    for name, make in (("tree", lambda: tree_mesh(args.detail, 6.0, 1.5)), ("lamp", lambda: lamp_mesh(args.detail)),
+                       ("kiosk", lambda: kiosk_mesh(args.detail)), ("bus_stop", lambda: bus_stop_mesh(args.detail)),
+                       ("car", lambda: car_mesh(args.detail)), ("person", lambda: person_mesh(args.detail)),
+                       ("bus", lambda: bus_mesh(args.detail))):
+        doc.mesh(name, make)
+    doc.parts["lamp"] = lamp_parts()
+    doc.parts["tree"] = street_tree_parts()
+    level.box()
+    pitch_x, pitch_z = bw + street, bd + street
+
+    def block_x(i):
+        return (i - (nx - 1) / 2) * pitch_x
+
+    def block_z(j):
+        return (j - (nz - 1) / 2) * pitch_z
+
+    half_x, half_z = nx * pitch_x / 2 + street, nz * pitch_z / 2 + street
+    level.slab(None, "floor", (-half_x, -0.2, -half_z), (half_x, 0.0, half_z))
+
+    # The route: along the main street (the one before row b) heading +x, a right turn into the
+    # side street before column c, then along it heading +z.
+    b, c = nz // 2, nx // 2 + 1 if nx > 2 else 1
+    zs = block_z(b) - pitch_z / 2
+    xs = block_x(c) - pitch_x / 2
+    cam_z, cam_x = zs + CAMERA_LANE, xs - CAMERA_LANE
+    x_start = xs - pitch_x
+    z_end = zs + min(0.9 * pitch_z, nz * pitch_z / 2 + street * 0.4 - zs)
+
+    for j in range(nz):
+        for i in range(nx):
+            cx, cz = block_x(i), block_z(j)
+            g = level.group(f"block_{i}_{j}", (cx, 0, cz))
+            # Buildings side by side along x, each the block's depth, 2 cm apart.
+            x, k = -bw / 2, 0
+            while x < bw / 2 - 0.01:
+                width = rng.uniform(*args.building_width)
+                if bw / 2 - (x + width) < args.building_width[0]:
+                    width = bw / 2 - x
+                height = rng.uniform(lo_h, hi_h)
+                if abs(height - EYE) < 0.05:
+                    height = EYE + 0.1
+                x1 = min(bw / 2, x + width)
+                level.slab(g, f"block_{i}_{j}/building_{k}", (x + (0.01 if k else 0), FLOOR_GAP, -bd / 2),
+                           (x1 - (0.01 if x1 < bw / 2 else 0), FLOOR_GAP + height, bd / 2))
+                x, k = x1, k + 1
+            # The pavement round the block: props in slots along each side, parked cars beside
+            # them, none within 4 m of a corner.
+            main_side = {(j == b): "n", (j == b - 1): "s"}.get(True)
+            for side, (length, sign, along_x) in enumerate(((bw, -1, True), (bd, 1, False), (bw, 1, True),
+                                                           (bd, -1, False))):
+                name = "nesw"[side]
+                slots = max(1, int((length - 8.0) // args.prop_spacing) + 1)
+                for s in range(slots):
+                    u = 0.0 if slots == 1 else -(length - 8.0) / 2 + s * (length - 8.0) / (slots - 1)
+                    roll = rng.random()
+                    if s % 2 == 1:
+                        kind = "lamp"
+                    elif name == main_side and roll < 0.3:
+                        kind = "bus_stop"
+                    elif roll < 0.7:
+                        kind = "tree"
+                    else:
+                        kind = "kiosk"
+                    d = {"lamp": 0.3, "tree": 2.2, "kiosk": 2.5, "bus_stop": 2.3}[kind]
+                    # Facing out from the block: +x local towards the street for the lamp's arm,
+                    # the shelter's open side (local -z) towards the street.
+                    out_yaw = {0: math.pi / 2, 1: 0.0, 2: -math.pi / 2, 3: math.pi}[side]
+                    yaw = {"lamp": out_yaw, "bus_stop": out_yaw + math.pi / 2}.get(kind, 0.0)  # round ones unturned
+                    p = (u, FLOOR_GAP, sign * (bd / 2 + d)) if along_x else (sign * (bw / 2 + d), FLOOR_GAP, u)
+                    level.add_static(g, f"block_{i}_{j}/{kind}_{name}_{s}", kind, p, yaw)
+                    if rng.random() < args.parked / 100.0 and s % 2 == 0:
+                        car_yaw = 0.0 if along_x else math.pi / 2
+                        q = (u, FLOOR_GAP, sign * (bd / 2 + 4.8)) if along_x else (sign * (bw / 2 + 4.8), FLOOR_GAP, u)
+                        level.add_static(g, f"block_{i}_{j}/parked_car_{name}_{s}", "car", q, car_yaw)
+
+    traffic = level.group("traffic")
+    blocks = sorted(((i, j) for j in range(nz) for i in range(nx)),
+                    key=lambda ij: (math.hypot(block_x(ij[0]) - xs, block_z(ij[1]) - zs), ij))
+    fill_lanes(level, rng, traffic, blocks, lambda ij: (block_x(ij[0]) - bw / 2, block_z(ij[1]) - bd / 2,
+                                                       block_x(ij[0]) + bw / 2, block_z(ij[1]) + bd / 2),
+               args.cars, args.people, CANYON_CAR_LANE, (5, 6))
+
+    # The bus: along the main street heading -x, on the far side of its centre, passing the camera
+    # before the turn.
+    bus = Vehicle(level, "bus", BUS, math.pi)
+    bus.part("body", "bus", (0, 0, 0))
+    points = [(x_start, cam_z), (xs - 12.0, cam_z), (xs - 4.0, cam_z + 0.6), (cam_x - 0.6, zs + 4.0),
+              (cam_x, zs + 12.0), (cam_x, z_end)]
+    route = fit_walk(level, walk(points, [0, 9, 6, 5, 6, 9], look=25.0))
+    bus_z = zs - BUS_LANE
+    speed = 11.0
+
+    def place_bus():
+        t_pass = level.keys[1][0] - 1.2
+        x_pass = camera_at(level.keys, t_pass)[0][0]
+        run = level.run_time()
+        bus.drive([(0.0, (x_pass + speed * t_pass, LANE_Y, bus_z)), (run, (x_pass - speed * (run - t_pass), LANE_Y, bus_z))])
+
+    level.vehicle = bus.at
+    find_timing(level, route, place_bus)
+    level.check(bus.line())
+    bus.animate()
+
+    run = level.run_time()
+    t_pass = level.keys[1][0] - 1.2
+    level.segments = [segment("main-street", 0.0, level.keys[1][0], run),
+                      segment("bus", t_pass - 1.0, t_pass + 1.0, run),
+                      segment("corner", level.keys[1][0], level.keys[4][0], run),
+                      segment("side-street", level.keys[4][0], run, run)]
+    return level, (960, 540)
 
 
 # ---- The command line --------------------------------------------------------------------------
@@ -1483,6 +1958,19 @@ def expected_range(low, high, low_open):
     return f"in {'(' if low_open else '['}{low:g}, {high:g}]"
 
 
+def size_pair(low, high):
+    def parse(text):
+        parts = text.lower().split("x")
+        try:
+            w, d = (float(p) for p in parts)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected WIDTHxDEPTH in metres (e.g. 8x7), got '{text}'")
+        if not (low <= w <= high and low <= d <= high):
+            raise argparse.ArgumentTypeError(f"expected WIDTHxDEPTH, each in [{low:g}, {high:g}] m, got '{text}'")
+        return w, d
+    return parse
+
+
 def grid(high):
     def parse(text):
         parts = text.lower().split("x")
@@ -1502,9 +1990,10 @@ COMMON = [
     ("--seed", integer(0, 2**32 - 1), 1, "–", "random placement (gates, props, lanes, speeds); also the scenario's seed"),
     ("--frames", integer(60, 100000), 300, "frames", "run length at dt 1/30 s; the camera walks its path in that time"),
     ("--detail", number(0.25, 4), 1.0, "–", "tessellation of the props (segments round a lathe, books on a shelf)"),
-    ("--cars", integer(0, 10000), 14, "–", "cars driving the lanes round the blocks (up to 3 a block)"),
-    ("--people", integer(0, 10000), 40, "–", "people walking the pavements round the blocks (up to 6 a block)"),
+    ("--people", integer(0, 10000), 40, "–", "people walking the pavements (up to 6 a block) or corridors (8 each)"),
 ]
+CARS = ("--cars", integer(0, 10000), 14, "–", "cars driving the lanes round the blocks (up to 3 a block in the courtyards, "
+                                               "5 in the canyon)")
 LEVELS = {
     "courtyards": {
         "help": "a grid of walled courtyards with gates, seen from the streets between them",
@@ -1524,8 +2013,41 @@ LEVELS = {
             ("--prop-size", number(0, 100, True), 3.0, "m", "the fountain's diameter; statues are half as wide, 1.2 times "
                                                             "as tall"),
             ("--lamp-spacing", number(1, 100), 13.0, "m", "street lamps along the walls, outside"),
+            CARS,
         ],
         "common": {},
+    },
+    "interior": {
+        "help": "rooms joined by doors and corridors, walked through from a corridor",
+        "build": interior,
+        "flags": [
+            ("--rooms", grid(40), (4, 3), "–", "rooms along x and z, COLUMNSxROWS (at least 2x2); a corridor between "
+                                               "each two rows"),
+            ("--room-size", size_pair(2, 100), (8.0, 7.0), "m", "room WIDTHxDEPTH between the walls' centre lines"),
+            ("--corridor-width", number(0.5, 50), 3.0, "m", "clear width of a corridor"),
+            ("--wall-height", number(2.2, 20), 3.0, "m", "walls; ceilings rest 1 cm above them"),
+            ("--wall-thickness", number(0.05, 2), 0.2, "m", "walls"),
+            ("--door-width", number(0, 20, True), 1.2, "m", "doors (in every wall between two rooms and between a room "
+                                                            "and a corridor)"),
+            ("--door-height", number(0.5, 20), 2.2, "m", "doors; a lintel fills the wall above"),
+            ("--furniture", integer(0, 100), 6, "–", "pieces per room (shelves of books, tables, chairs, sofas, vases)"),
+        ],
+        "common": {"--people": 12},
+    },
+    "canyon": {
+        "help": "a street canyon: tall buildings along streets full of props, traffic and people",
+        "build": canyon,
+        "flags": [
+            ("--blocks", grid(40), (5, 3), "–", "blocks along x and z, COLUMNSxROWS (at least 2x2)"),
+            ("--block-size", size_pair(4, 500), (36.0, 28.0), "m", "block WIDTHxDEPTH (facade to facade)"),
+            ("--street-width", number(1, 200), 22.0, "m", "every street, facade to facade (at least 20.9)"),
+            ("--building-height", size_pair(1, 500), (12.0, 40.0), "m", "MINxMAX of the buildings (one box each)"),
+            ("--building-width", size_pair(1, 500), (8.0, 14.0), "m", "MINxMAX of a building's frontage"),
+            ("--prop-spacing", number(1, 100), 6.0, "m", "slots along a pavement: trees, kiosks, bus shelters, lamps"),
+            ("--parked", number(0, 100), 50.0, "%", "share of the prop slots (not the lamps') with a car parked beside them"),
+            CARS,
+        ],
+        "common": {"--cars": 30, "--people": 60},
     },
 }
 
@@ -1535,7 +2057,7 @@ def parameters_of(args):
     out = {}
     for flag, _, _, _, _ in COMMON + LEVELS[args.level]["flags"]:
         v = getattr(args, flag[2:].replace("-", "_"))
-        out[flag[2:]] = "x".join(str(c) for c in v) if isinstance(v, tuple) else v
+        out[flag[2:]] = show(v) if isinstance(v, tuple) else v
     return out
 
 
@@ -1555,8 +2077,9 @@ def make_parser():
 
 
 def show(v):
+    """A parameter's value as a flag takes it: 4x4, 8x7, 0.4."""
     if isinstance(v, tuple):
-        return "x".join(str(c) for c in v)
+        return "x".join(show(c) for c in v)
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
