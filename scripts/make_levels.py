@@ -2091,7 +2091,7 @@ def markdown():
             default = level["common"].get(flag, default)
             lines.append(f"| `{flag}` | {unit} | `{show(default)}` | {what} |")
         lines.append("")
-    return "\n".join(lines)
+    return "\n".join(lines).rstrip("\n")
 
 
 def build(args):
