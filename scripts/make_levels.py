@@ -13,11 +13,12 @@ scenario's path movers, one large vehicle moved by a glTF animation past the cam
 path that walks, turns corners and passes gates or doors, its moments named as segments.
 
 Deterministic: the same parameters (and --seed) give byte-identical files (its own random number
-generator, no dict or set order, fixed float formatting). Python 3 standard library only.
+generator, nodes and keys in a fixed order, coordinates rounded before they are written). Python 3
+standard library only.
 
 Before anything is written the level is checked: no two static objects touch or cut into each
 other (their depths would tie), no mover's lane runs into a static object, the camera keeps clear
-of everything on every frame, and no face plane passes within millimetres of the eye on any frame
+of everything on every frame, and no box face's plane passes within 1 mm of the eye on any frame
 (such a face rasterises as a sliver of wrong depth, docs/scenario-generators.md). Impossible
 parameters are refused with one line naming the parameter and what was expected, exit status 2.
 """
@@ -343,7 +344,8 @@ def wheel_mesh(radius, width, detail):
     """A wheel turning about z, its axle at the origin."""
     s = detail_count(20, detail, 8)
     w = width / 2
-    m = lathe([(0, -w), (radius * 0.6, -w), (radius, -w * 0.8), (radius, w * 0.8), (radius * 0.6, w), (0, w)], s)
+    m = lathe([(0, -w), (radius * 0.6, -w), (radius, -w * 0.8), (radius, w * 0.8), (radius * 0.6, w),
+               (0, w)], s)
     return Mesh().extend(m, m=rot_x(math.radians(90)))
 
 
@@ -424,7 +426,8 @@ def sofa_mesh(detail):
         m.extend(roll, m=rot_x(math.radians(90)), offset=(x, 0.5, -0.45))
     for x in (-0.9, 0.9):
         for z in (-0.35, 0.35):
-            m.extend(lathe([(0.03, 0.0), (0.04, 0.05), (0, 0.06)], detail_count(8, detail, 4)), offset=(x, 0, z))
+            foot = lathe([(0.03, 0.0), (0.04, 0.05), (0, 0.06)], detail_count(8, detail, 4))
+            m.extend(foot, offset=(x, 0, z))
     return m
 
 
@@ -573,7 +576,8 @@ class Document:
                 view["target"] = target
             buffer.extend(data)
             views.append(view)
-            accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": kind}
+            accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count,
+                        "type": kind}
             if lo is not None:
                 accessor["min"], accessor["max"] = lo, hi
             accessors.append(accessor)
@@ -744,7 +748,7 @@ class Grid2:
         return out
 
 
-def check_static_overlaps(boxes, level):
+def check_static_overlaps(boxes):
     """No two static objects touch or cut into each other (their depths would tie on the line
     where they meet, docs/scenario-generators.md); sweep along x."""
     order = sorted(boxes, key=lambda b: b.lo[0])
@@ -753,7 +757,7 @@ def check_static_overlaps(boxes, level):
         active = [a for a in active if a.hi[0] >= b.lo[0] - 0.005]
         for a in active:
             if a.owner != b.owner and b.gap(a) < 0.005:
-                raise AssertionError(f"{level}: {a.name} and {b.name} touch or overlap")
+                raise AssertionError(f"{a.name} and {b.name} touch or overlap")
         active.append(b)
 
 
@@ -783,7 +787,8 @@ class Footprint:
     def distance(self, q):
         lx, ly, lz = self.local(q)
         s = self.shape
-        d = (max(abs(lx) - s.half_length, 0.0), max(-ly, 0.0, ly - s.height), max(abs(lz) - s.half_width, 0.0))
+        d = (max(abs(lx) - s.half_length, 0.0), max(-ly, 0.0, ly - s.height),
+             max(abs(lz) - s.half_width, 0.0))
         return math.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
 
     def plane_distance(self, q):
@@ -880,6 +885,9 @@ def camera_at(keys, t):
 
 
 class Level:
+    """One level as it is built: its glTF document, what the checks need to know of its objects
+    and movers, its camera keyframes and segments."""
+
     def __init__(self, name, args):
         self.name = name
         self.args = args
@@ -887,8 +895,8 @@ class Level:
         self.static_boxes = []  # every static object's box, for the checks
         self.plane_boxes = []  # boxes whose faces are real faces (box meshes): their planes
         self.heights = []  # heights of static horizontal faces
-        self.lanes = []  # (Path2, [car nodes], speed, half width, height, what)
-        self.vehicle = None  # (name, callable t -> Box) the animated vehicle
+        self.lanes = []  # (Path2, [mover nodes], speed in m/s, Shape)
+        self.vehicle = None  # t -> Footprint: the vehicle its animation moves
         self.keys = []  # camera keyframes (time, position, target)
         self.segments = []
         self.frames = args.frames
@@ -952,7 +960,8 @@ class Level:
         entries = []
         for path, nodes, speed, _ in self.lanes:
             entries.append({"source": 0, "objects": [n.object for n in nodes], "motion": "path",
-                            "waypoints": [rvec(p, 3) for p in path.points], "speed": [rnd(speed, 2), rnd(speed, 2)]})
+                            "waypoints": [rvec(p, 3) for p in path.points],
+                            "speed": [rnd(speed, 2), rnd(speed, 2)]})
         return entries
 
     # Checks ----------------------------------------------------------------------------------
@@ -974,7 +983,7 @@ class Level:
 
     def check(self, vehicle_line=()):
         """The level's invariants; an AssertionError names what collides."""
-        check_static_overlaps(self.static_boxes, self.name)
+        check_static_overlaps(self.static_boxes)
         for b in self.static_boxes:
             if b.lo[1] < FLOOR_GAP - 1e-6 and b.name != "floor":
                 raise AssertionError(f"{b.name} reaches into the floor")
@@ -1034,10 +1043,10 @@ class Level:
                 gap = m.distance(eye)
                 if gap < CAMERA_CLEARANCE:
                     problems.append((f, f"the eye is {gap:.2f} m from {m.name}"))
-                # Only the vehicle's faces: a car or walker crosses the eye's planes too, but
-                # rarely near enough, and a timing that avoids every one of them rarely exists.
-                if m is movers[0] and self.vehicle is not None and m.plane_distance(eye) < PLANE_CLEARANCE:
-                    problems.append((f, f"a face of {m.name} is in the eye's plane"))
+            # Only the vehicle's faces: cars and walkers cross the eye's planes too, but rarely
+            # near enough, and a timing that avoids every one of them rarely exists.
+            if self.vehicle is not None and movers[0].plane_distance(eye) < PLANE_CLEARANCE:
+                problems.append((f, f"a face of {movers[0].name} is in the eye's plane"))
         return problems
 
     # Output ----------------------------------------------------------------------------------
@@ -1053,9 +1062,10 @@ class Level:
             "warmup_frames": 10,
             "viewport": {"width": viewport[0], "height": viewport[1]},
             "camera": {"fov_y": 60, "near": 0.1, "far": 600, "keyframes": keys},
-            "segments": self.segments,
+            "segments": [seg for seg in self.segments if seg is not None],
             "scene": {"sources": [
-                {"type": "gltf", "path": f"../assets/levels/{self.name}.gltf", "animation": {"mode": "clamp"}},
+                {"type": "gltf", "path": f"../assets/levels/{self.name}.gltf",
+                 "animation": {"mode": "clamp"}},
                 *extra_sources]},
             "movers": self.mover_entries(),
             "culling": {"algorithm": "statistical+"},
@@ -1200,11 +1210,11 @@ def find_timing(level, route, place_vehicle):
     raise AssertionError(f"the camera path has no safe timing: at frame {frame}, {what}")
 
 
-def time_of(level, predicate):
-    """The first frame time at which predicate(eye) holds, or None."""
+def time_of(level, predicate, after=0.0):
+    """The first frame time from `after` on at which predicate(eye) holds, or None."""
     for f in range(level.frames):
         t = f * level.dt
-        if predicate(camera_at(level.keys, t)[0]):
+        if t >= after and predicate(camera_at(level.keys, t)[0]):
             return t
     return None
 
@@ -1213,6 +1223,8 @@ def segment(name, start, end, run):
     """A named stretch of the run, in seconds (3 decimals, the end rounded down into the run)."""
     start, end = max(0.0, start), min(run, end)
     to = round(end, 3) if round(end, 3) <= run else math.floor(end * 1000) / 1000
+    if rnd(to, 3) <= rnd(start, 3):
+        return None  # an empty stretch (a moment the walk does not reach): no segment
     return {"name": name, "from": rnd(start, 3), "to": rnd(to, 3)}
 
 
@@ -1237,19 +1249,23 @@ def fit_walk(level, keys):
     return [(t * scale, p, q) for t, p, q in keys]
 
 
-def place_props(rng, props, half, keep_out, what):
-    """Positions for props inside the square |x|, |z| <= half: props are plan boxes relative to
-    their origin [(x0, z0, x1, z1)], each placed 0.3 m clear of the others and of the keep_out
-    boxes; ParameterError `what` when they do not fit."""
+def place_props(rng, props, half_x, half_z, keep_out, what, partial=False):
+    """Positions for props inside the rectangle |x| <= half_x, |z| <= half_z: props are plan boxes
+    relative to their origin [(x0, z0, x1, z1)], each placed 0.3 m clear of the others and of the
+    keep_out boxes, drawn at random until one fits; ParameterError `what` when one does not
+    (`partial`: the props that fit, in order, the rest left out)."""
     placed = list(keep_out)
     out = []
     for x0, z0, x1, z1 in props:
         for _ in range(800):
-            x, z = rng.uniform(-half - x0, half - x1), rng.uniform(-half - z0, half - z1)
+            x, z = rng.uniform(-half_x - x0, half_x - x1), rng.uniform(-half_z - z0, half_z - z1)
             box2 = (x + x0, z + z0, x + x1, z + z1)
-            if all(max(b[0] - box2[2], box2[0] - b[2], b[1] - box2[3], box2[1] - b[3]) >= 0.3 for b in placed):
+            gaps = (max(b[0] - box2[2], box2[0] - b[2], b[1] - box2[3], box2[1] - b[3]) for b in placed)
+            if all(gap >= 0.3 for gap in gaps):
                 break
         else:
+            if partial:
+                return out
             raise ParameterError(what)
         placed.append(box2)
         out.append((x, z))
@@ -1284,13 +1300,16 @@ def courtyards(args):
     pitch = size + street
     inside = size - 2 * t
     if street < courtyards_min_street(args):
-        raise ParameterError(f"--street-width: expected at least {courtyards_min_street(args):.1f} m (a car lane on "
+        raise ParameterError(f"--street-width: expected at least {courtyards_min_street(args):.1f} m (a "
+                             f"car lane on "
                              f"each side, the truck's lane and the camera's), got {street:g}")
     if args.door_width > inside - 2.0:
-        raise ParameterError(f"--door-width: expected a gate narrower than its wall (at most {inside - 2.0:g} m "
+        raise ParameterError(f"--door-width: expected a gate narrower than its wall (at most "
+                             f"{inside - 2.0:g} m "
                              f"inside a {size:g} m courtyard with {t:g} m walls), got {args.door_width:g}")
     if args.prop_size > inside - 1.0:
-        raise ParameterError(f"--prop-size: expected a prop smaller than its courtyard (at most {inside - 1.0:g} m "
+        raise ParameterError(f"--prop-size: expected a prop smaller than its courtyard (at most "
+                             f"{inside - 1.0:g} m "
                              f"inside a {size:g} m courtyard), got {args.prop_size:g}")
     if abs(args.wall_height - EYE) < 0.05:
         raise ParameterError(f"--wall-height: expected a height away from the camera's eye ({EYE} m), "
@@ -1348,7 +1367,8 @@ def courtyards(args):
                     gate_at = rng.uniform(-room, room)
                 pieces = [(-length / 2, length / 2)]
                 if gate_at is not None:
-                    pieces = [(-length / 2, gate_at - args.door_width / 2), (gate_at + args.door_width / 2, length / 2)]
+                    pieces = [(-length / 2, gate_at - args.door_width / 2),
+                              (gate_at + args.door_width / 2, length / 2)]
                     gx, gz = (gate_at, sign * (h - t / 2)) if along_x else (sign * (h - t / 2), gate_at)
                     gates.append((f"gate-{i}-{j}-{sides[side]}", cx + gx, cz + gz, 0 if along_x else 2))
                     inner = sign * (half_in - 1.0)
@@ -1383,11 +1403,13 @@ def courtyards(args):
                 if kind == "statue":
                     mesh, s = ("statue_figure" if rng.below(2) == 0 else "statue_urn"), (k, k, k)
                 chosen.append((kind, mesh, yaw, s, plan_box(doc.meshes[mesh], yaw, s)))
-            what = (f"--statues: {args.trees} trees, {args.statues} statues and {args.benches} benches do not fit "
-                    f"in a {size:g} m courtyard beside a {args.prop_size:g} m fountain; expected fewer props, "
+            what = (f"--statues: {args.trees} trees, {args.statues} statues and {args.benches} benches do "
+                    f"not fit "
+                    f"in a {size:g} m courtyard beside a {args.prop_size:g} m fountain; expected fewer "
+                    f"props, "
                     f"a smaller --prop-size or a larger --courtyard-size")
             zones = [fountain_box] + [(x - r, z - r, x + r, z + r) for x, z, r in gate_zones]
-            spots = place_props(rng, [c[4] for c in chosen], half_in, zones, what)
+            spots = place_props(rng, [c[4] for c in chosen], half_in, half_in, zones, what)
             level.add_static(g, f"courtyard_{i}_{j}/fountain", "fountain", (0, FLOOR_GAP, 0), 0.0, (k, k, k))
             counts = {}
             for (kind, mesh, yaw, s, _), (x, z) in zip(chosen, spots):
@@ -1400,9 +1422,11 @@ def courtyards(args):
     traffic = level.group("traffic")
     blocks = sorted(((i, j) for j in range(nz) for i in range(nx)),
                     key=lambda ij: (math.hypot(centre(ij[0], nx) - xs, centre(ij[1], nz) - zs), ij))
-    fill_lanes(level, rng, traffic, blocks, lambda ij: (centre(ij[0], nx) - size / 2, centre(ij[1], nz) - size / 2,
-                                                       centre(ij[0], nx) + size / 2, centre(ij[1], nz) + size / 2),
-               args.cars, args.people)
+    def extent(ij):
+        x, z = centre(ij[0], nx), centre(ij[1], nz)
+        return x - size / 2, z - size / 2, x + size / 2, z + size / 2
+
+    fill_lanes(level, rng, traffic, blocks, extent, args.cars, args.people)
 
     # The truck: along the street before row b, heading -x, passing the camera just after the turn.
     truck = Vehicle(level, "truck", TRUCK, math.pi)
@@ -1433,7 +1457,8 @@ def courtyards(args):
     turn_from, turn_to = level.keys[-5][0], level.keys[-2][0]
     t_pass = level.keys[-2][0] + 0.3
     level.segments = [segment("street", 0.0, turn_from, run), segment("corner", turn_from, turn_to, run),
-                      segment("truck", t_pass - 1.0, t_pass + 1.0, run), segment("after-corner", turn_to, run, run)]
+                      segment("truck", t_pass - 1.0, t_pass + 1.0, run),
+                      segment("after-corner", turn_to, run, run)]
     for name, gx, gz, axis in gates:
         # A gate in a wall beside the route, passed when the camera is level with it.
         if axis == 2 and abs(abs(gx - xs) - street / 2) < t and zs < gz < z_start:
@@ -1471,7 +1496,8 @@ def fill_lanes(level, rng, traffic, blocks, extent, cars, people, car_lane=CAR_L
 
 # ---- Level 2: an interior of rooms joined by doors and corridors -------------------------------
 
-CART = Shape(1.2, 0.7, 1.76, planes_x=(-1.2, -1.15, 0.5, 0.6, 1.15, 1.2), planes_z=(-0.7, -0.65, -0.6, 0.6, 0.65, 0.7))
+CART = Shape(1.2, 0.7, 1.76, planes_x=(-1.2, -1.15, 0.5, 0.6, 1.15, 1.2),
+             planes_z=(-0.7, -0.65, -0.6, 0.6, 0.65, 0.7))
 PEOPLE_SIDE = 0.45  # walkers in a corridor keep this close to one wall (their centres)
 
 
@@ -1514,21 +1540,27 @@ def interior(args):
     W, D = args.room_size
     t, Wc, dw = args.wall_thickness, args.corridor_width, args.door_width
     if nx < 2 or nz < 2:
-        raise ParameterError(f"--rooms: expected at least 2x2 (the camera walks from a corridor through two rooms "
+        raise ParameterError(f"--rooms: expected at least 2x2 (the camera walks from a corridor through "
+                             f"two rooms "
                              f"side by side), got {nx}x{nz}")
     min_w, min_d = interior_minimums(args)
     if dw > min(W, D) - t - 0.6:
-        raise ParameterError(f"--door-width: expected a door narrower than its wall (at most {min(W, D) - t - 0.6:g} m "
+        raise ParameterError(f"--door-width: expected a door narrower than its wall (at most "
+                             f"{min(W, D) - t - 0.6:g} m "
                              f"in {W:g} x {D:g} m rooms with {t:g} m walls), got {dw:g}")
     if W < min_w or D < min_d:
-        raise ParameterError(f"--room-size: expected rooms at least {min_w:.1f} x {min_d:.1f} m (the camera's walk "
+        raise ParameterError(f"--room-size: expected rooms at least {min_w:.1f} x {min_d:.1f} m (the "
+                             f"camera's walk "
                              f"through two doors beside the cart's way), got {W:g}x{D:g}")
     if Wc < 2 * (PEOPLE_SIDE + PERSON.half_width) + 2 * 0.45:
-        raise ParameterError(f"--corridor-width: expected at least {2 * (PEOPLE_SIDE + PERSON.half_width) + 0.9:.2f} m "
+        raise ParameterError(f"--corridor-width: expected at least "
+                             f"{2 * (PEOPLE_SIDE + PERSON.half_width) + 0.9:.2f} m "
                              f"(walkers along one wall, the camera beside them), got {Wc:g}")
     if not (EYE + 0.3 <= args.door_height <= args.wall_height - 0.1):
-        raise ParameterError(f"--door-height: expected a door from {EYE + 0.3:g} m (the camera's eye and 0.3 m) up to "
-                             f"the walls' height less 0.1 m ({args.wall_height - 0.1:g} m), got {args.door_height:g}")
+        raise ParameterError(f"--door-height: expected a door from {EYE + 0.3:g} m (the camera's eye and "
+                             f"0.3 m) up to "
+                             f"the walls' height less 0.1 m ({args.wall_height - 0.1:g} m), got "
+                             f"{args.door_height:g}")
     doc.parameters = parameters_of(args)
     for name, make in (("table", lambda: table_mesh(args.detail)), ("chair", lambda: chair_mesh(args.detail)),
                        ("bookshelf", lambda: bookshelf_mesh(args.detail, Rng(args.seed + 7))),
@@ -1543,7 +1575,8 @@ def interior(args):
     xs = [(i - nx / 2) * W for i in range(nx + 1)]
     z0 = [j * (D + Wc + t) - (nz * D + (nz - 1) * (Wc + t)) / 2 for j in range(nz)]
     z1 = [z + D for z in z0]
-    level.slab(None, "floor", (xs[0] - t / 2 - 1, -0.2, z0[0] - t / 2 - 1), (xs[-1] + t / 2 + 1, 0.0, z1[-1] + t / 2 + 1))
+    level.slab(None, "floor", (xs[0] - t / 2 - 1, -0.2, z0[0] - t / 2 - 1),
+               (xs[-1] + t / 2 + 1, 0.0, z1[-1] + t / 2 + 1))
     ceiling_y = (FLOOR_GAP + args.wall_height + 0.01, FLOOR_GAP + args.wall_height + 0.21)
 
     # The route: along corridor 0 (on its row-1 side), into room A = (a, 1) by its north door,
@@ -1563,12 +1596,19 @@ def interior(args):
             if i < nx - 1:
                 doors[(i, j, "e")] = door_span(rng, lo_z, hi_z, dw)
     # The doors on the route are where the walk needs them.
-    cart_z = z0[1] + t / 2 + 0.35 + CART.half_width
-    zE_lo = cart_z + CART.half_width + 0.9
-    zE_hi = z1[1] - t / 2 - 0.3 - dw / 2
-    doors[(a, 1, "e")] = rng.uniform(max(zE_lo, z0[1] + 1.9), min(zE_hi, z1[1] - 1.9))
-    doors[(a, 1, "n")] = rng.uniform(xs[a] + t / 2 + 0.3 + dw / 2, xs[a + 1] - 2.5)
+    # The cart runs along B's wall away from the camera's exit: the north wall when the camera
+    # leaves by the south door, the south wall when it goes back north (no second corridor).
     exit_side = "s" if nz > 2 else "n"
+    zE_lo = max(z0[1] + 1.9, z0[1] + t / 2 + 0.3 + dw / 2)
+    zE_hi = min(z1[1] - 1.9, z1[1] - t / 2 - 0.3 - dw / 2)
+    if exit_side == "s":
+        cart_z = z0[1] + t / 2 + 0.35 + CART.half_width
+        zE_lo = max(zE_lo, cart_z + CART.half_width + 0.9)
+    else:
+        cart_z = z1[1] - t / 2 - 0.35 - CART.half_width
+        zE_hi = min(zE_hi, cart_z - CART.half_width - 0.9)
+    doors[(a, 1, "e")] = rng.uniform(zE_lo, zE_hi)
+    doors[(a, 1, "n")] = rng.uniform(xs[a] + t / 2 + 0.3 + dw / 2, xs[a + 1] - 2.5)
     doors[(a + 1, 1, exit_side)] = rng.uniform(xs[a + 1] + 2.5, xs[a + 2] - t / 2 - 0.3 - dw / 2)
 
     for j in range(nz):
@@ -1578,13 +1618,16 @@ def interior(args):
             # short of the neighbour's elsewhere; walls along z stop 1 cm short of them.
             x_lo = xs[i] - t / 2 if i == 0 else xs[i] + 0.01
             x_hi = xs[i + 1] + t / 2 if i == nx - 1 else xs[i + 1] - 0.01
-            wall_with_door(level, g, f"room_{i}_{j}/wall_n", True, z0[j], (x_lo, x_hi), doors.get((i, j, "n")), args, t)
-            wall_with_door(level, g, f"room_{i}_{j}/wall_s", True, z1[j], (x_lo, x_hi), doors.get((i, j, "s")), args, t)
+            room = f"room_{i}_{j}"
+            door = {side: doors.get((i, j, side)) for side in "nse"}
+            wall_with_door(level, g, f"{room}/wall_n", True, z0[j], (x_lo, x_hi), door["n"], args, t)
+            wall_with_door(level, g, f"{room}/wall_s", True, z1[j], (x_lo, x_hi), door["s"], args, t)
             span_z = (z0[j] + t / 2 + 0.01, z1[j] - t / 2 - 0.01)
             if i == 0:
                 wall_with_door(level, g, f"room_{i}_{j}/wall_w", False, xs[0], span_z, None, args, t)
-            wall_with_door(level, g, f"room_{i}_{j}/wall_e", False, xs[i + 1], span_z, doors.get((i, j, "e")), args, t)
-            level.slab(g, f"room_{i}_{j}/ceiling", (xs[i] + 0.005 if i else xs[i] - t / 2, ceiling_y[0], z0[j] - t / 2),
+            wall_with_door(level, g, f"{room}/wall_e", False, xs[i + 1], span_z, door["e"], args, t)
+            level.slab(g, f"{room}/ceiling",
+                       (xs[i] + 0.005 if i else xs[i] - t / 2, ceiling_y[0], z0[j] - t / 2),
                        (xs[i + 1] - 0.005 if i < nx - 1 else xs[i + 1] + t / 2, ceiling_y[1], z1[j] + t / 2))
     for j in range(nz - 1):
         g = level.group(f"corridor_{j}")
@@ -1622,7 +1665,8 @@ def interior(args):
                 boxes.append((xs[di + 1] - 1.3, u - dw / 2 - 0.3, xs[di + 1] + 1.3, u + dw / 2 + 0.3))
         if (i, j) in (A, B):
             for p, q in zip(points, points[1:]):
-                boxes.append((min(p[0], q[0]) - 0.9, min(p[1], q[1]) - 0.9, max(p[0], q[0]) + 0.9, max(p[1], q[1]) + 0.9))
+                boxes.append((min(p[0], q[0]) - 0.9, min(p[1], q[1]) - 0.9,
+                              max(p[0], q[0]) + 0.9, max(p[1], q[1]) + 0.9))
         if (i, j) == B:
             boxes.append((xs[i], cart_z - CART.half_width - 0.3, xs[i + 1], cart_z + CART.half_width + 0.3))
         return boxes
@@ -1638,13 +1682,11 @@ def interior(args):
                 kind = kinds[(k + i + 2 * j) % len(kinds)]
                 yaw = (math.pi / 2) * rng.below(4)
                 chosen.append((kind, yaw, plan_box(doc.meshes[kind], yaw)))
-            half = min(W, D) / 2 - t / 2 - 0.05
-            # Rooms are not square: place in the square of the shorter side, then stretch along the
-            # longer one.
-            what = (f"--furniture: {args.furniture} pieces do not fit in a {W:g} x {D:g} m room ({i}, {j}) beside its doors "
+            what = (f"--furniture: {args.furniture} pieces do not fit in a {W:g} x {D:g} m room ({i}, {j}) "
+                    f"beside its doors "
                     f"and the camera's walk; expected fewer pieces or a larger --room-size")
             # The rooms the camera walks through hold what fits beside its walk (and the cart's way).
-            spots = place_props_rect(rng, [c[2] for c in chosen], (W - t) / 2 - 0.05, (D - t) / 2 - 0.05, zones,
+            spots = place_props(rng, [c[2] for c in chosen], (W - t) / 2 - 0.05, (D - t) / 2 - 0.05, zones,
                                      what, partial=(i, j) in (A, B))
             counts = {}
             for (kind, yaw, _), (x, z) in zip(chosen, spots):
@@ -1664,8 +1706,8 @@ def interior(args):
         za, zb = wall_face + inward * PEOPLE_SIDE, wall_face + inward * (PEOPLE_SIDE + 0.55)
         xa_, xb_ = xs[0] + t / 2 + 0.5, xs[-1] - t / 2 - 0.5
         loop = [(xa_, za), (xb_, za), (xb_, zb), (xa_, zb)]
-        left -= level.lane(loop, min(left, 8), 2.5, round(rng.uniform(1.1, 1.5), 2), "person", "person", people,
-                           PERSON, rng)
+        speed = round(rng.uniform(1.1, 1.5), 2)
+        left -= level.lane(loop, min(left, 8), 2.5, speed, "person", "person", people, PERSON, rng)
     if left:
         raise ParameterError(f"--people: expected at most {args.people - left} people for these corridors "
                              f"(8 a corridor), got {args.people}")
@@ -1711,53 +1753,35 @@ def interior(args):
     level.check(cart.line())
     cart.animate()
 
-    # Segments: the corridor, each door crossed or passed, each room, the cart's crossing.
+    # Segments: the corridor, each door crossed or passed, each room, the cart's crossing; each
+    # moment looked for after the one before it.
+    t_a = time_of(level, lambda e: e[2] >= z0[1]) or 0.0
+    t_b = time_of(level, lambda e: e[0] >= xs[a + 1], after=t_a) or t_a
+    # The exit: B's wall line crossed (t_out), then its face on the corridor's side (t_left).
+    t_out = time_of(level, lambda e: sign * (e[2] - exit_line) >= 0, after=t_b) or t_b
+    t_left = time_of(level, lambda e: sign * (e[2] - exit_line) >= t / 2, after=t_b) or t_out
     segs = [segment("corridor", 0.0, time_of(level, lambda e: e[2] >= z0[1] - t / 2) or run, run)]
-    crossings = [(f"door-{a}-1-n", lambda e: e[2] >= z0[1]), (f"door-{a}-1-e", lambda e: e[0] >= xs[a + 1]),
-                 (f"door-{a + 1}-1-{exit_side}", (lambda e: e[2] >= z1[1]) if sign > 0 else (lambda e: e[2] <= z0[1]))]
-    for name, crossed in crossings:
-        when = time_of(level, crossed)
-        if when is not None:
-            segs.append(segment(name, when - 0.4, when + 0.4, run))
-    t_a = time_of(level, lambda e: e[2] >= z0[1])
-    t_b = time_of(level, lambda e: e[0] >= xs[a + 1])
-    t_out = time_of(level, lambda e: (e[2] >= z1[1] + t / 2) if sign > 0 else (e[2] <= z0[1] - t / 2))
+    exit_door = f"door-{a + 1}-1-{exit_side}"
+    for name, when in ((f"door-{a}-1-n", t_a), (f"door-{a}-1-e", t_b), (exit_door, t_out)):
+        segs.append(segment(name, when - 0.4, when + 0.4, run))
     segs.append(segment(f"room-{a}-1", t_a, t_b, run))
-    segs.append(segment("cart", t_b - 0.5, t_out, run))
-    segs.append(segment(f"room-{a + 1}-1", t_b, t_out, run))
-    segs.append(segment("corridor-after", t_out, run, run))
+    segs.append(segment("cart", t_b - 0.5, t_left, run))
+    segs.append(segment(f"room-{a + 1}-1", t_b, t_left, run))
+    segs.append(segment("corridor-after", t_left, run, run))
     for (i, j, side), u in sorted(doors.items()):
         # The doors passed in the corridors: the camera level with them.
         if side == "s" and j == 0 and xs[0] + 1.0 < u < xa - 1.6:
             when = time_of(level, lambda e, u=u: e[0] >= u)
         elif exit_side == "s" and side == "n" and j == 2 and xb + 1.6 < u < x_end:
-            when = time_of(level, lambda e, u=u: e[0] >= u and e[2] > z1[1])
+            when = time_of(level, lambda e, u=u: e[0] >= u, after=t_left)
+        elif exit_side == "n" and side == "s" and j == 0 and xb + 1.6 < u < x_end:
+            when = time_of(level, lambda e, u=u: e[0] >= u, after=t_left)
         else:
             continue
         if when is not None:
             segs.append(segment(f"door-{i}-{j}-{side}", when - 0.4, when + 0.4, run))
     level.segments = segs
     return level, (960, 540)
-
-
-def place_props_rect(rng, props, half_x, half_z, keep_out, what, partial=False):
-    """place_props in the rectangle |x| <= half_x, |z| <= half_z; `partial`: the props that fit,
-    in order, the rest left out."""
-    placed = list(keep_out)
-    out = []
-    for x0, z0, x1, z1 in props:
-        for _ in range(800):
-            x, z = rng.uniform(-half_x - x0, half_x - x1), rng.uniform(-half_z - z0, half_z - z1)
-            box2 = (x + x0, z + z0, x + x1, z + z1)
-            if all(max(b[0] - box2[2], box2[0] - b[2], b[1] - box2[3], box2[1] - b[3]) >= 0.3 for b in placed):
-                break
-        else:
-            if partial:
-                return out
-            raise ParameterError(what)
-        placed.append(box2)
-        out.append((x, z))
-    return out
 
 
 # ---- Level 3: a street canyon with traffic --------------------------------------------------------
@@ -1788,10 +1812,12 @@ def canyon(args):
     street = args.street_width
     lo_h, hi_h = args.building_height
     if street < canyon_min_street():
-        raise ParameterError(f"--street-width: expected at least {canyon_min_street():.1f} m (pavement, props, parked "
+        raise ParameterError(f"--street-width: expected at least {canyon_min_street():.1f} m (pavement, "
+                             f"props, parked "
                              f"cars, a car lane each side, the bus's lane and the camera's), got {street:g}")
     if nx < 2 or nz < 2:
-        raise ParameterError(f"--blocks: expected at least 2x2 (the camera walks the street between two rows and turns "
+        raise ParameterError(f"--blocks: expected at least 2x2 (the camera walks the street between two "
+                             f"rows and turns "
                              f"into a side street), got {nx}x{nz}")
     if lo_h > hi_h:
         raise ParameterError(f"--building-height: expected MINxMAX with MIN <= MAX, got {lo_h:g}x{hi_h:g}")
@@ -1799,14 +1825,18 @@ def canyon(args):
         raise ParameterError(f"--building-width: expected MINxMAX with MIN <= MAX, got "
                              f"{args.building_width[0]:g}x{args.building_width[1]:g}")
     if args.building_width[0] > bw:
-        raise ParameterError(f"--building-width: expected buildings narrower than their block ({bw:g} m), got "
+        raise ParameterError(f"--building-width: expected buildings narrower than their block ({bw:g} m), "
+                             f"got "
                              f"{args.building_width[0]:g}")
     if min(bw, bd) < 2 * 4.0 + 3.6:
-        raise ParameterError(f"--block-size: expected blocks at least 11.6 m on a side (props 4 m from the corners), "
+        raise ParameterError(f"--block-size: expected blocks at least 11.6 m on a side (props 4 m from the "
+                             f"corners), "
                              f"got {bw:g}x{bd:g}")
     doc.parameters = parameters_of(args)
-    for name, make in (("tree", lambda: tree_mesh(args.detail, 6.0, 1.5)), ("lamp", lambda: lamp_mesh(args.detail)),
-                       ("kiosk", lambda: kiosk_mesh(args.detail)), ("bus_stop", lambda: bus_stop_mesh(args.detail)),
+    for name, make in (("tree", lambda: tree_mesh(args.detail, 6.0, 1.5)),
+                       ("lamp", lambda: lamp_mesh(args.detail)),
+                       ("kiosk", lambda: kiosk_mesh(args.detail)),
+                       ("bus_stop", lambda: bus_stop_mesh(args.detail)),
                        ("car", lambda: car_mesh(args.detail)), ("person", lambda: person_mesh(args.detail)),
                        ("bus", lambda: bus_mesh(args.detail))):
         doc.mesh(name, make)
@@ -1872,12 +1902,18 @@ def canyon(args):
                     # Facing out from the block: +x local towards the street for the lamp's arm,
                     # the shelter's open side (local -z) towards the street.
                     out_yaw = {0: math.pi / 2, 1: 0.0, 2: -math.pi / 2, 3: math.pi}[side]
-                    yaw = {"lamp": out_yaw, "bus_stop": out_yaw + math.pi / 2}.get(kind, 0.0)  # round ones unturned
-                    p = (u, FLOOR_GAP, sign * (bd / 2 + d)) if along_x else (sign * (bw / 2 + d), FLOOR_GAP, u)
+                    yaw = {"lamp": out_yaw, "bus_stop": out_yaw + math.pi / 2}.get(kind, 0.0)  # round: 0
+
+                    def beside(distance):  # the point `distance` from the facade at slot u
+                        if along_x:
+                            return (u, FLOOR_GAP, sign * (bd / 2 + distance))
+                        return (sign * (bw / 2 + distance), FLOOR_GAP, u)
+
+                    p = beside(d)
                     level.add_static(g, f"block_{i}_{j}/{kind}_{name}_{s}", kind, p, yaw)
                     if rng.random() < args.parked / 100.0 and s % 2 == 0:
                         car_yaw = 0.0 if along_x else math.pi / 2
-                        q = (u, FLOOR_GAP, sign * (bd / 2 + 4.8)) if along_x else (sign * (bw / 2 + 4.8), FLOOR_GAP, u)
+                        q = beside(4.8)
                         level.add_static(g, f"block_{i}_{j}/parked_car_{name}_{s}", "car", q, car_yaw)
 
     traffic = level.group("traffic")
@@ -1901,7 +1937,8 @@ def canyon(args):
         t_pass = level.keys[1][0] - 1.2
         x_pass = camera_at(level.keys, t_pass)[0][0]
         run = level.run_time()
-        bus.drive([(0.0, (x_pass + speed * t_pass, LANE_Y, bus_z)), (run, (x_pass - speed * (run - t_pass), LANE_Y, bus_z))])
+        bus.drive([(0.0, (x_pass + speed * t_pass, LANE_Y, bus_z)),
+                   (run, (x_pass - speed * (run - t_pass), LANE_Y, bus_z))])
 
     level.vehicle = bus.at
     find_timing(level, route, place_bus)
@@ -1935,7 +1972,8 @@ def number(low=None, high=None, low_open=False):
             raise argparse.ArgumentTypeError(f"expected a number, got '{text}'")
         if not math.isfinite(v) or (low is not None and (v <= low if low_open else v < low)) or \
                 (high is not None and v > high):
-            raise argparse.ArgumentTypeError(f"expected a number {expected_range(low, high, low_open)}, got {text}")
+            raise argparse.ArgumentTypeError(f"expected a number {expected_range(low, high, low_open)}, "
+                                             f"got {text}")
         return v
     return parse
 
@@ -1966,7 +2004,8 @@ def size_pair(low, high):
         except ValueError:
             raise argparse.ArgumentTypeError(f"expected WIDTHxDEPTH in metres (e.g. 8x7), got '{text}'")
         if not (low <= w <= high and low <= d <= high):
-            raise argparse.ArgumentTypeError(f"expected WIDTHxDEPTH, each in [{low:g}, {high:g}] m, got '{text}'")
+            raise argparse.ArgumentTypeError(f"expected WIDTHxDEPTH, each in [{low:g}, {high:g}] m, got "
+                                             f"'{text}'")
         return w, d
     return parse
 
@@ -1987,12 +2026,17 @@ def grid(high):
 # (flag, type, default, unit, what it controls) per level; the one table of each level's
 # parameters, printed by --markdown for docs/scenario-generators.md.
 COMMON = [
-    ("--seed", integer(0, 2**32 - 1), 1, "–", "random placement (gates, props, lanes, speeds); also the scenario's seed"),
-    ("--frames", integer(60, 100000), 300, "frames", "run length at dt 1/30 s; the camera walks its path in that time"),
-    ("--detail", number(0.25, 4), 1.0, "–", "tessellation of the props (segments round a lathe, books on a shelf)"),
-    ("--people", integer(0, 10000), 40, "–", "people walking the pavements (up to 6 a block) or corridors (8 each)"),
+    ("--seed", integer(0, 2**32 - 1), 1, "–", "random placement (gates, props, lanes, speeds); also the "
+                                              "scenario's seed"),
+    ("--frames", integer(60, 100000), 300, "frames", "run length at dt 1/30 s; the camera walks its path "
+                                                     "in that time"),
+    ("--detail", number(0.25, 4), 1.0, "–", "tessellation of the props (segments round a lathe, books on a "
+                                            "shelf)"),
+    ("--people", integer(0, 10000), 40, "–", "people walking the pavements (up to 6 a block) or corridors "
+                                             "(8 each)"),
 ]
-CARS = ("--cars", integer(0, 10000), 14, "–", "cars driving the lanes round the blocks (up to 3 a block in the courtyards, "
+CARS = ("--cars", integer(0, 10000), 14, "–", "cars driving the lanes round the blocks (up to 3 a block in "
+                                              "the courtyards, "
                                                "5 in the canyon)")
 LEVELS = {
     "courtyards": {
@@ -2001,16 +2045,21 @@ LEVELS = {
         "flags": [
             ("--courtyards", grid(40), (4, 4), "–", "courtyards along x and z, COLUMNSxROWS"),
             ("--courtyard-size", number(8, 200), 26.0, "m", "side of a courtyard, walls included"),
-            ("--street-width", number(1, 200), 13.0, "m", "streets between the courtyards (at least 12.8: a car lane each "
+            ("--street-width", number(1, 200), 13.0, "m", "streets between the courtyards (at least 12.8: "
+                                                          "a car lane each "
                                                           "side, the truck's lane and the camera's)"),
             ("--wall-height", number(0.5, 50), 4.0, "m", "courtyard walls"),
             ("--wall-thickness", number(0.05, 5), 0.4, "m", "courtyard walls"),
-            ("--door-width", number(0, 100, True), 3.2, "m", "gate width; a gate is at least 1 m from a wall's ends"),
+            ("--door-width", number(0, 100, True), 3.2, "m", "gate width; a gate is at least 1 m from a "
+                                                             "wall's ends"),
             ("--gates", integer(1, 4), 2, "–", "walls with a gate, per courtyard (drawn at random)"),
-            ("--statues", integer(0, 100), 4, "–", "statues per courtyard (a figure or an urn on a plinth)"),
+            ("--statues", integer(0, 100), 4, "–",
+             "statues per courtyard (a figure or an urn on a plinth)"),
             ("--benches", integer(0, 100), 4, "–", "benches per courtyard"),
-            ("--trees", integer(0, 100), 1, "–", "trees per courtyard (7 m tall: their crowns show over the walls)"),
-            ("--prop-size", number(0, 100, True), 3.0, "m", "the fountain's diameter; statues are half as wide, 1.2 times "
+            ("--trees", integer(0, 100), 1, "–", "trees per courtyard (7 m tall: their crowns show over "
+                                                 "the walls)"),
+            ("--prop-size", number(0, 100, True), 3.0, "m", "the fountain's diameter; statues are half as "
+                                                            "wide, 1.2 times "
                                                             "as tall"),
             ("--lamp-spacing", number(1, 100), 13.0, "m", "street lamps along the walls, outside"),
             CARS,
@@ -2021,16 +2070,20 @@ LEVELS = {
         "help": "rooms joined by doors and corridors, walked through from a corridor",
         "build": interior,
         "flags": [
-            ("--rooms", grid(40), (4, 3), "–", "rooms along x and z, COLUMNSxROWS (at least 2x2); a corridor between "
+            ("--rooms", grid(40), (4, 3), "–", "rooms along x and z, COLUMNSxROWS (at least 2x2); a "
+                                               "corridor between "
                                                "each two rows"),
-            ("--room-size", size_pair(2, 100), (8.0, 7.0), "m", "room WIDTHxDEPTH between the walls' centre lines"),
+            ("--room-size", size_pair(2, 100), (8.0, 7.0), "m", "room WIDTHxDEPTH between the walls' "
+                                                                "centre lines"),
             ("--corridor-width", number(0.5, 50), 3.0, "m", "clear width of a corridor"),
             ("--wall-height", number(2.2, 20), 3.0, "m", "walls; ceilings rest 1 cm above them"),
             ("--wall-thickness", number(0.05, 2), 0.2, "m", "walls"),
-            ("--door-width", number(0, 20, True), 1.2, "m", "doors (in every wall between two rooms and between a room "
+            ("--door-width", number(0, 20, True), 1.2, "m", "doors (in every wall between two rooms and "
+                                                            "between a room "
                                                             "and a corridor)"),
             ("--door-height", number(0.5, 20), 2.2, "m", "doors; a lintel fills the wall above"),
-            ("--furniture", integer(0, 100), 6, "–", "pieces per room (shelves of books, tables, chairs, sofas, vases)"),
+            ("--furniture", integer(0, 100), 6, "–", "pieces per room (shelves of books, tables, chairs, "
+                                                     "sofas, vases)"),
         ],
         "common": {"--people": 12},
     },
@@ -2041,10 +2094,13 @@ LEVELS = {
             ("--blocks", grid(40), (5, 3), "–", "blocks along x and z, COLUMNSxROWS (at least 2x2)"),
             ("--block-size", size_pair(4, 500), (36.0, 28.0), "m", "block WIDTHxDEPTH (facade to facade)"),
             ("--street-width", number(1, 200), 22.0, "m", "every street, facade to facade (at least 20.9)"),
-            ("--building-height", size_pair(1, 500), (12.0, 40.0), "m", "MINxMAX of the buildings (one box each)"),
+            ("--building-height", size_pair(1, 500), (12.0, 40.0), "m", "MINxMAX of the buildings (one box "
+                                                                        "each)"),
             ("--building-width", size_pair(1, 500), (8.0, 14.0), "m", "MINxMAX of a building's frontage"),
-            ("--prop-spacing", number(1, 100), 6.0, "m", "slots along a pavement: trees, kiosks, bus shelters, lamps"),
-            ("--parked", number(0, 100), 50.0, "%", "share of the prop slots (not the lamps') with a car parked beside them"),
+            ("--prop-spacing", number(1, 100), 6.0, "m", "slots along a pavement: trees, kiosks, bus "
+                                                         "shelters, lamps"),
+            ("--parked", number(0, 100), 50.0, "%", "share of the prop slots (not the lamps') with a car "
+                                                    "parked beside them"),
             CARS,
         ],
         "common": {"--cars": 30, "--people": 60},
@@ -2067,12 +2123,14 @@ def make_parser():
     sub = parser.add_subparsers(dest="level")
     for name, level in LEVELS.items():
         p = sub.add_parser(name, help=level["help"])
-        for flag, kind, default, unit, what in level["flags"] + COMMON:
+        for flag, kind, default, _, what in level["flags"] + COMMON:
             default = level["common"].get(flag, default)
             p.add_argument(flag, type=kind, default=default, help=f"{what} (default {show(default)})")
-        p.add_argument("--out", type=Path, default=None, help="scenarios folder to write into (default: the repository's)")
+        p.add_argument("--out", type=Path, default=None, help="scenarios folder to write into (default: "
+                                                              "the repository's)")
     p = sub.add_parser("all", help="every level with its defaults (the committed files)")
-    p.add_argument("--out", type=Path, default=None, help="scenarios folder to write into (default: the repository's)")
+    p.add_argument("--out", type=Path, default=None, help="scenarios folder to write into (default: the "
+                                                          "repository's)")
     return parser
 
 
@@ -2086,7 +2144,8 @@ def show(v):
 def markdown():
     lines = []
     for name, level in LEVELS.items():
-        lines += [f"`{name}`: {level['help']}.", "", "| Flag | Unit | Default | What it controls |", "|---|---|---|---|"]
+        lines += [f"`{name}`: {level['help']}.", "", "| Flag | Unit | Default | What it controls |",
+                  "|---|---|---|---|"]
         for flag, _, default, unit, what in level["flags"] + COMMON:
             default = level["common"].get(flag, default)
             lines.append(f"| `{flag}` | {unit} | `{show(default)}` | {what} |")
@@ -2103,12 +2162,26 @@ def build(args):
     return level, files
 
 
+def check_writable(folder):
+    """ParameterError unless `folder` is, or can be made, a writable folder (checked before any
+    level is made, so that nothing is half written)."""
+    existing = folder
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir() or not os.access(existing, os.W_OK | os.X_OK):
+        raise ParameterError(f"--out: expected a folder this user can write, but {existing} is not one "
+                             f"(for {folder})")
+
+
 def write_files(files):
-    for path, data in files.items():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        temp = path.with_name(path.name + ".part")
-        temp.write_bytes(data)
-        os.replace(temp, path)
+    try:
+        for path, data in files.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            temp = path.with_name(path.name + ".part")
+            temp.write_bytes(data)
+            os.replace(temp, path)
+    except OSError as e:
+        raise ParameterError(f"--out: cannot write {e.filename}: {e.strerror}")
 
 
 def main(argv):
@@ -2121,7 +2194,9 @@ def main(argv):
         raise ParameterError("expected a level (" + ", ".join(list(LEVELS) + ["all"]) + ")")
     out = args.out if args.out is not None else Path(__file__).resolve().parent.parent / "scenarios"
     names = list(LEVELS) if args.level == "all" else [args.level]
-    files = {}
+    for folder in (out / "levels", out / "assets" / "levels"):
+        check_writable(folder)
+    files, summaries = {}, []
     for name in names:
         level_args = args if args.level != "all" else parser.parse_args([name])
         level_args.level, level_args.out = name, out
@@ -2132,9 +2207,11 @@ def main(argv):
         files.update(made)
         triangles = sum(level.doc.meshes[n.mesh].triangles() for n in iterate(level.doc.roots) if n.mesh)
         objects = sum(1 for n in iterate(level.doc.roots) if n.mesh)
-        print(f"{name}: {objects} objects, {triangles} triangles, {len(level.doc.meshes)} meshes, "
-              f"{sum(len(n) for _, n, _, _ in level.lanes)} path movers, {len(level.segments)} segments")
+        summaries.append(f"{name}: {objects} objects, {triangles} triangles, {len(level.doc.meshes)} meshes, "
+                         f"{sum(len(n) for _, n, _, _ in level.lanes)} path movers, "
+                         f"{sum(1 for seg in level.segments if seg)} segments")
     write_files(files)  # only once every level was made and checked
+    print("\n".join(summaries))
     for path in files:
         print(f"wrote {path}")
     return 0

@@ -126,6 +126,17 @@ TEST(LevelScript, RefusesImpossibleParametersWithOneLineNamingThem) {
             << arguments << ": expected \"" << expected << "\" in " << run.output;
         EXPECT_FALSE(fs::exists(out.path() / "made")) << arguments << ": wrote files";
     }
+    TempDir out;
+    fs::create_directories(out.path() / "file");
+    std::ofstream(out.path() / "file" / "levels") << "not a folder";
+    const Outcome unwritable = script("interior --out '" + (out.path() / "file").string() + "'");
+    EXPECT_EQ(unwritable.exit_code, 2) << unwritable.output;
+    EXPECT_EQ(std::count(unwritable.output.begin(), unwritable.output.end(), '\n'), 1)
+        << unwritable.output;
+    EXPECT_NE(unwritable.output.find("--out: expected a folder this user can write"),
+              std::string::npos)
+        << unwritable.output;
+    EXPECT_FALSE(fs::exists(out.path() / "file" / "assets")) << "wrote files";
 }
 
 TEST(LevelScript, TheDocsShowTheParameterTablesTheScriptPrints) {
