@@ -18,6 +18,7 @@ packages=(
   xvfb xauth                                    # window test under a virtual X server
   gnuplot-nox                                   # charts (occsim bench --plots)
   clang-format                                  # the format check (scripts/format.sh)
+  python3                                       # scripts/make_levels.py (its tests), the tables
 )
 if [ "${1:-}" = cluster ]; then
   packages=(slurm-wlm munge)

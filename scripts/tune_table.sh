@@ -5,7 +5,7 @@
 # conservative peer in the same run). Every scene twice: two separate sessions (sampling seeds 1
 # and 2), so the run-to-run spread stands beside the means. The load average before and after each
 # step is logged; run this on a quiet machine (no build, test or other benchmark beside it).
-# Usage: scripts/tune_table.sh [default|paper|general|all] [occtune options...]
+# Usage: scripts/tune_table.sh [default|paper|general|levels|all] [occtune options...]
 #   e.g. scripts/tune_table.sh all --frames 120 --budget 17
 # Output: out/tuning/<set>/<scene>/run-<n>/{tune/,peers/,load.txt}, then the tables
 # (scripts/tune_table.py out/tuning/<set>). Rerun with the same flags to resume a stopped table:
@@ -18,8 +18,9 @@ case "$set_name" in
   default) sets=(default) ;;
   paper) sets=(paper) ;;
   general) sets=(general) ;;
-  all) sets=(default paper general) ;;
-  *) echo "tune_table.sh: unknown set '$set_name'; expected default, paper, general or all" >&2; exit 2 ;;
+  levels) sets=(levels) ;;
+  all) sets=(default paper general levels) ;;
+  *) echo "tune_table.sh: unknown set '$set_name'; expected default, paper, general, levels or all" >&2; exit 2 ;;
 esac
 scenes_of() {
   case "$1" in
@@ -27,6 +28,7 @@ scenes_of() {
     paper) echo scenarios/paper/teapots.json scenarios/paper/city.json scenarios/paper/library.json \
                 scenarios/paper/plant.json ;;
     general) echo scenarios/general/*.json ;;
+    levels) echo scenarios/levels/*.json ;;
   esac
 }
 # The occsim bench flags that match occtune's --frames, when given.
