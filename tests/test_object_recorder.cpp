@@ -12,6 +12,7 @@
 
 #include "objects_fixtures.h"
 #include "occsim/culling/contract/decision_log.h"
+#include "occsim/culling/registry/registry.h"
 #include "signalled_run.h"
 #include "sim/record/object_schema.h"
 
@@ -98,14 +99,15 @@ TEST(ObjectsDatabase, OnTheSmallScenarioItsMissesAndErrorPixelsAreFramesCsvsForE
         << o.output;
     expectDatabaseMatchesFramesCsv(out);
     sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
-    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM configurations"), 11);
+    const int64_t configurations = static_cast<int64_t>(algorithms().size());  // every culler
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM configurations"), configurations);
     EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects"), 300);
     EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects WHERE name = 'teapot 17'"), 1);
     EXPECT_GT(queryInteger(db, "SELECT COUNT(*) FROM objects WHERE moving = 1"), 0);
     EXPECT_EQ(queryInteger(db, "SELECT deterministic_latency FROM run"), 8);
     // The frustum culls something every frame, and those rows are left out: fewer rows than
     // frames x configurations x objects.
-    EXPECT_LT(queryInteger(db, "SELECT COUNT(*) FROM decisions"), 12 * 11 * 300);
+    EXPECT_LT(queryInteger(db, "SELECT COUNT(*) FROM decisions"), 12 * configurations * 300);
     const std::string report = fileText(out / "report.md");
     EXPECT_NE(report.find("## Objects"), std::string::npos) << report;
     EXPECT_NE(report.find("**Drawn while hidden**"), std::string::npos) << report;

@@ -71,8 +71,8 @@ TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) 
 // culler that decides by boxes against the depth so far (which is never nearer than the frame's
 // final depth) draws less, frame by frame.
 TEST(Simulation, IdealBoxLiesBetweenIdealAndEveryConservativeCuller) {
-    const std::vector<std::string> names = {"vfc", "stop-and-wait", "statistical", "statistical+",
-                                            "chc", "chc++",         "hzb",         "masked",
+    const std::vector<std::string> names = {"vfc",   "stop-and-wait", "statistical", "statistical+",
+                                            "chc",   "chc++",         "hzb",         "masked",
                                             "ideal", "ideal-box"};
     const BenchResult result = benchSmall(true, LatencyMode{true, 8}, names);
     const RunRecord& box = result.runs.back();
@@ -85,7 +85,8 @@ TEST(Simulation, IdealBoxLiesBetweenIdealAndEveryConservativeCuller) {
                 EXPECT_LE(run.frames[f].objects_drawn, limit) << "frame " << f;
                 beyond_ideal += limit - run.frames[f].objects_drawn;
             } else {
-                EXPECT_GE(run.frames[f].objects_drawn, limit) << run.summary.label << " frame " << f;
+                EXPECT_GE(run.frames[f].objects_drawn, limit)
+                    << run.summary.label << " frame " << f;
             }
         }
     }
