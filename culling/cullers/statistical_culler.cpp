@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace occsim {
 namespace {
@@ -19,6 +20,13 @@ constexpr double kRateWeight = 1.0 / 16.0;
 // The fallback looks at the share of visible answers only once the window holds at least this
 // many answers per frame on average, so that a handful of answers decides nothing.
 constexpr uint32_t kFallbackMinAnswersPerFrame = 2;
+
+// distance_order's rank: the squared distance from the eye to a box. Non-negative floats order
+// as their bit patterns do, so the rank stays an integer and the heap is the same.
+uint32_t distanceRank(const Aabb& box, glm::vec3 eye) {
+    const float d2 = distanceSquared(box, eye);
+    return std::bit_cast<uint32_t>(d2 >= 0.0f ? d2 : 0.0f);  // a NaN box: nearest, never lost
+}
 
 // Orders the main queue's heap so that the lowest rank comes out first.
 struct LaterRank {
@@ -53,6 +61,18 @@ RequeryInterval requeryInterval(const StatisticalOptions& options, const NodeSta
     r.since = std::max(stats.last_query_time_s, stats.deferred_time_s);
     r.interval = options.base_time_s * decay;
     return r;
+}
+
+double requeryHorizonFrames(const StatisticalOptions& options, const RequeryInterval& r,
+                            double step_m, double dt_s) {
+    if (!(dt_s > 0.0)) return 1.0;
+    const double most = std::max(1.0, options.max_statistics_age_s / dt_s);
+    // The rate the interval is spent at: metres of travel per frame, or seconds per frame. A
+    // subject that did not advance (camera and movers still) keeps its answer until its
+    // statistics are too old.
+    const double per_frame = r.distance ? step_m : dt_s;
+    if (!(per_frame > 0.0)) return most;
+    return std::clamp(r.interval / per_frame, 1.0, most);
 }
 
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
@@ -123,9 +143,13 @@ void StatisticalCuller::reset(const BspTree& tree) {
     last_center_.clear();
     have_last_frame_ = false;
     camera_path_m_ = 0.0;
+    camera_step_m_ = 0.0;
+    last_time_s_ = std::numeric_limits<double>::quiet_NaN();  // no frame yet: dt_s_ is NaN
+    dt_s_ = 0.0;
     estimates_.fill(OcclusionEstimate{});
     object_stats_.assign(tree.objectCount(), NodeStatistics{});
     object_motion_m_.assign(tree.objectCount(), 0.0);
+    object_step_m_.assign(tree.objectCount(), 0.0f);
     window_answers_.assign(options_.fallback_window_frames, 0);
     window_visible_.assign(options_.fallback_window_frames, 0);
     window_next_ = 0;
@@ -172,6 +196,8 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
     own_stats_.sync(tree);
     motion_.sync(tree);
     syncStructure(tree);
+    dt_s_ = frame.time_s - last_time_s_;
+    last_time_s_ = frame.time_s;
 
     // Cost model: what drawing each subtree would cost, bottom-up over the tree as it is now.
     costs_active_ = options_.cost_model && costs_.known() &&
@@ -196,12 +222,14 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
     // knows boxes, not movers); a static object's step is 0.
     if (options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0) {
         const bool first = !have_last_frame_ || last_center_.size() != tree.objectCount();
+        camera_step_m_ = 0.0;
         if (first) {
             last_center_.resize(tree.objectCount());
             for (uint32_t o = 0; o < tree.objectCount(); ++o)
                 last_center_[o] = center(tree.objectBox(o));
         } else {
-            camera_path_m_ += glm::length(frame.view.eye - last_eye_);
+            camera_step_m_ = glm::length(frame.view.eye - last_eye_);
+            camera_path_m_ += camera_step_m_;
         }
         last_eye_ = frame.view.eye;
         have_last_frame_ = true;
@@ -213,7 +241,9 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
                 const glm::vec3 c = center(tree.objectBox(o));
                 const float step = glm::length(c - last_center_[o]);
                 last_center_[o] = c;
+                object_step_m_[o] = 0.0f;
                 if (!(step <= 1e30f)) continue;  // a non-finite box adds nothing
+                object_step_m_[o] = step;
                 own = std::max(own, step);
                 object_motion_m_[o] += step;
             }
@@ -226,6 +256,19 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
             motion_[n].subtree_m += subtree;
         }
     }
+}
+
+double StatisticalCuller::stepOf(const Entry& e) const {
+    // Only the distance rules count steps (prepareFrame fills them for those only).
+    if (!(options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0)) return 0.0;
+    switch (e.subject) {
+        case Subject::Node:
+        case Subject::NodeObjects:
+            return camera_step_m_ + step_m_[e.index];
+        case Subject::Object:
+            return camera_step_m_ + object_step_m_[e.index];
+    }
+    return camera_step_m_;
 }
 
 double StatisticalCuller::travelOf(const Entry& e) const {
@@ -277,7 +320,19 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
     const bool eye_below = frame.view.eye[n.axis] < n.split;
     const uint32_t near_child = n.child[eye_below ? 0 : 1];
     const uint32_t far_child = n.child[eye_below ? 1 : 0];
-    const uint32_t own_rank = entry.rank + 1 + subtree_ranks_[near_child];
+    // Ranks: the node's place in the depth-first order (itself, its virtual leaf after the nearer
+    // child's subtree, then the farther child), or with distance_order the distance from the eye
+    // to each subject's bounds (a virtual leaf: its node's bounds, so before its children).
+    const uint32_t near_size = subtree_ranks_[near_child];
+    uint32_t own_rank = entry.rank + 1 + near_size;
+    uint32_t near_rank = entry.rank + 1;
+    uint32_t far_rank = own_rank + 1;
+    if (options_.distance_order) {
+        const glm::vec3 eye = frame.view.eye;
+        own_rank = distanceRank(tree.bounds(entry.index), eye);
+        near_rank = distanceRank(tree.bounds(near_child), eye);
+        far_rank = distanceRank(tree.bounds(far_child), eye);
+    }
     if (options_.virtual_leaves) {
         if (n.object_count > 0) {
             push({own_rank, entry.index, Subject::NodeObjects, entry.inside_frustum});
@@ -287,16 +342,18 @@ void StatisticalCuller::renderNode(const BspTree& tree, const CullFrame& frame, 
         drawNodeObjects(tree, entry.index, view_, entry.inside_frustum, device, why);
     }
     if (!isEmpty(tree.bounds(near_child))) {
-        push({entry.rank + 1, near_child, Subject::Node, entry.inside_frustum});
+        push({near_rank, near_child, Subject::Node, entry.inside_frustum});
     }
     if (!isEmpty(tree.bounds(far_child))) {
-        push({own_rank + 1, far_child, Subject::Node, entry.inside_frustum});
+        push({far_rank, far_child, Subject::Node, entry.inside_frustum});
     }
 }
 
 NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
-                                     double travel_m, double draw_ms, uint32_t query_boxes,
-                                     bool object_query, QueryContext* context, Decision* why) {
+                                     const Entry& subject, double draw_ms, uint32_t query_boxes,
+                                     QueryContext* context, Decision* why) {
+    const bool object_query = subject.subject == Subject::Object;
+    const double travel_m = travelOf(subject);
     const CullView& view = frame.view;
     const bool near = nearPlaneTouchesBox(box, view.eye, view.near_radius);
     const NodeMotion motion{travel_m, glm::length(center(box) - view.eye)};
@@ -324,7 +381,15 @@ NodeAction StatisticalCuller::decide(const CullFrame& frame, NodeStatistics& sta
     // it), so the query is issued.
     if (!statisticsUsable(options_, stats, frame.time_s)) return NodeAction::Query;
     OcclusionEstimate& estimate = estimates_[estimateIndex(context->prior, object_query)];
-    if (queryPays(costs_, draw_ms, query_boxes, estimate.occluded)) return NodeAction::Query;
+    // Improvement (10): a re-query of what was visible decides every frame until the next one.
+    double saving_frames = 1.0;
+    if (options_.requery_horizon && context->prior == PriorResult::LastVisible) {
+        saving_frames = requeryHorizonFrames(options_, requeryInterval(options_, stats, motion),
+                                             stepOf(subject), dt_s_);
+    }
+    if (queryPays(costs_, draw_ms * saving_frames, query_boxes, estimate.occluded)) {
+        return NodeAction::Query;
+    }
     if (++estimate.vetoes >= OcclusionEstimate::kExploreEvery) {
         estimate.vetoes = 0;  // asked anyway, so that the estimate stays measured
         return NodeAction::Query;
@@ -375,8 +440,8 @@ uint32_t StatisticalCuller::renderObjects(const BspTree& tree, const CullFrame& 
         const double draw_ms = costs_active_ ? costs_.drawMs(frame.object_triangles[o]) : 0.0;
         QueryContext context;
         Decision object_why;
-        if (decide(frame, object_stats_[o], box, travelOf(entry), draw_ms, 1, true, &context,
-                   &object_why) == NodeAction::Render) {
+        if (decide(frame, object_stats_[o], box, entry, draw_ms, 1, &context, &object_why) ==
+            NodeAction::Render) {
             recordFor(entry, object_why);
             device.drawObject(o);
             return;
@@ -408,8 +473,8 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
         const double draw_ms = costs_active_ ? subtree_draw_ms_[entry.index] : 0.0;
         QueryContext context;
         Decision why;
-        if (decide(frame, stats_[entry.index], box, travelOf(entry), draw_ms, 1, false, &context,
-                   &why) == NodeAction::Render) {
+        if (decide(frame, stats_[entry.index], box, entry, draw_ms, 1, &context, &why) ==
+            NodeAction::Render) {
             renderNode(tree, frame, entry, device, why);
             return false;
         }
@@ -449,8 +514,8 @@ bool StatisticalCuller::process(const BspTree& tree, const CullFrame& frame, Ent
     const uint32_t query_boxes = static_cast<uint32_t>(boxes_.size());
     QueryContext context;
     Decision why;
-    if (decide(frame, own_stats_[entry.index], box, travelOf(entry), draw_ms, query_boxes, false,
-               &context, &why) == NodeAction::Render) {
+    if (decide(frame, own_stats_[entry.index], box, entry, draw_ms, query_boxes, &context, &why) ==
+        NodeAction::Render) {
         drawNodeObjects(tree, entry.index, view_, entry.inside_frustum, device, why);
         return false;
     }

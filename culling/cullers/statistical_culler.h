@@ -85,6 +85,13 @@ struct RequeryInterval {
 RequeryInterval requeryInterval(const StatisticalOptions& options, const NodeStatistics& stats,
                                 NodeMotion motion = {});
 
+// Improvement (10): the frames a re-query's answer decides, for a subject last found visible
+// whose interval is `r`: the interval at this frame's rate of advance (`step` metres of travel
+// with the distance rules, `dt_s` seconds otherwise), at least 1 and at most the frames before
+// statistics grow too old (max_statistics_age_s). dt_s <= 0 (the first frame) gives 1.
+double requeryHorizonFrames(const StatisticalOptions& options, const RequeryInterval& r,
+                            double step_m, double dt_s);
+
 // CalcNodeAction for a node that passed the frustum test; exposed for tests and the tuner.
 NodeAction decideNodeAction(const StatisticalOptions& options, const NodeStatistics& stats,
                             bool near_plane_touches_box, double now_s, NodeMotion motion = {});
@@ -221,7 +228,7 @@ class StatisticalCuller final : public Culler {
     // CalcNodeAction and the cost model for one subject; counts the decision. When it says Render,
     // `why` says on what (the near plane, the statistics, the cost model).
     NodeAction decide(const CullFrame& frame, NodeStatistics& stats, const Aabb& box,
-                      double travel_m, double draw_ms, uint32_t query_boxes, bool object_query,
+                      const Entry& subject, double draw_ms, uint32_t query_boxes,
                       QueryContext* context, Decision* why);
     // Takes the pending query's answer and acts on it; returns whether the device waited for it.
     bool answer(const BspTree& tree, const CullFrame& frame, const Pending& pending,
@@ -250,6 +257,9 @@ class StatisticalCuller final : public Culler {
     }
     NodeStatistics& statsOf(const Entry& e);
     double travelOf(const Entry& e) const;
+    // How far the subject's travel counter advanced this frame (distance rules): the camera's
+    // step plus the largest step of its movers.
+    double stepOf(const Entry& e) const;
     bool drawsWhileRequerying(const QueryContext& context) const {
         return options_.draw_while_requerying && context.prior == PriorResult::LastVisible;
     }
@@ -267,6 +277,7 @@ class StatisticalCuller final : public Culler {
     NodeStateArray<Motion> motion_;
     std::vector<NodeStatistics> object_stats_;  // per object (object_queries)
     std::vector<double> object_motion_m_;       // per object, cumulative (distance rules)
+    std::vector<float> object_step_m_;          // per object, this frame's step (distance rules)
 
     // The tree's structure as last seen: nodes in depth-first order and the number of ranks each
     // subtree spans (a node, its virtual leaf if inner, and its children's subtrees).
@@ -284,6 +295,9 @@ class StatisticalCuller final : public Culler {
     glm::vec3 last_eye_{0.0f};
     bool have_last_frame_ = false;
     double camera_path_m_ = 0.0;
+    double camera_step_m_ = 0.0;  // this frame's part of camera_path_m_
+    double last_time_s_ = 0.0;    // the last frame's time, for dt_s_ (requery_horizon)
+    double dt_s_ = 0.0;           // simulation time since the last frame; NaN in the first
 
     std::vector<Entry> heap_;       // the main queue (min-heap on rank)
     std::vector<Pending> pending_;  // the query queue: [pending_head_, size) in flight

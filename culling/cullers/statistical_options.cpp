@@ -25,6 +25,8 @@ StatisticalOptions StatisticalOptions::plus() {
     // instead of every 4 in flight: 1.79x -> 1.99x and 1.07x -> 1.16x over VFC there, no scene
     // of the paper or generalisation sets slower beyond the spread (docs/statistical.md, (9)).
     o.waits_per_frame = 8;
+    o.requery_horizon = true;
+    o.distance_order = true;
     return o;
 }
 

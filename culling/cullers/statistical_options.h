@@ -83,6 +83,22 @@ struct StatisticalOptions {
     // queries_before_restart. A count, not a time: decisions stay deterministic. 0 = off: the
     // bound is queries_before_restart.
     uint32_t waits_per_frame = 0;
+    // (10) With cost_model, the re-query of a subject last found visible is weighed over the
+    // frames its answer decides, not one: the saving of finding it hidden is its draw cost over
+    // the frames until its interval would come due again (the interval in frames at the rate the
+    // subject's travel counter, or time, advanced this frame; at most the frames before its
+    // statistics grow too old). A heavy prop hidden behind a wall is drawn for every one of those
+    // frames when its re-query is put off, so one frame's saving undervalues the query by that
+    // many times. Off: rule 2 weighs one frame's draw cost, as for every other query.
+    bool requery_horizon = false;
+    // (11) The main queue takes its entries nearest first by the distance from the eye to their
+    // bounds (as CHC's traversal does), instead of in the tree's depth-first order. The tree's
+    // cells are loose: an object belongs to the side of a split its centre is on, and its box
+    // reaches across. So a building filed beyond a split can hide a prop filed before it, and in
+    // the depth-first order that prop is queried before the building is drawn, against a depth
+    // buffer without it: the answer says visible, and the prop is drawn for a whole re-query
+    // interval while hidden. Off: the paper's order (children placed where their parent was).
+    bool distance_order = false;
 
     // The paper as published (the default).
     static StatisticalOptions paper() { return {}; }

@@ -122,6 +122,14 @@ OptionTable<O> statisticalTable(bool plus) {
                                  "coming back visible against queries_before_restart"),
                    0.0),
         waits,
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, requery_horizon),
+                                 "with cost_model, a re-query of a subject last found visible is "
+                                 "weighed over the frames until it would come due again"),
+                   0.0),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, distance_order),
+                                 "the main queue takes its entries nearest first by the distance "
+                                 "from the eye to their bounds, not in the tree's order"),
+                   0.0),
     };
 }
 
