@@ -573,6 +573,63 @@ TEST(StatisticalCostModel, QueriesThatDoNotPayAreDroppedAndThoseThatPayAreKept) 
     }
 }
 
+// (10) The frames a re-query's answer decides: the interval at this frame's rate (metres of
+// travel per frame with the distance rules, seconds otherwise), between 1 and the frames before
+// the statistics grow too old.
+TEST(StatisticalRequeryHorizon, TheFramesAnAnswerDecidesAreTheIntervalAtThisFramesRate) {
+    StatisticalOptions o;  // max_statistics_age_s = 2
+    RequeryInterval seconds;
+    seconds.interval = 0.5;
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, seconds, 0.0, 0.1), 5.0);
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, seconds, 0.0, 1.0), 1.0) << "at least one frame";
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, seconds, 0.0, 0.0), 1.0) << "the first frame";
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, seconds, 0.0, std::nan("")), 1.0);
+    RequeryInterval metres;
+    metres.distance = true;
+    metres.interval = 3.0;
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, metres, 0.5, 0.1), 6.0);
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, metres, 0.001, 0.1), 20.0) << "2 s of 0.1 s frames";
+    EXPECT_DOUBLE_EQ(requeryHorizonFrames(o, metres, 0.0, 0.1), 20.0) << "nothing moved";
+}
+
+// (10) A field of single-object leaves, each a little dearer to draw than to query, all visible.
+// The cost model's estimate starts at even odds, so one frame's saving of a re-query (half the
+// draw cost) is less than the query and the re-queries are put off; weighed over the 4.5 frames
+// each answer decides, they pay and are issued. Either way nothing visible is left out.
+TEST(StatisticalRequeryHorizon, AReQueryThatDecidesSeveralFramesPaysWhereOneFrameWouldNot) {
+    const std::vector<Aabb> boxes = gridBoxes(8, 8);
+    const BspTree tree = buildTree(boxes, 1, BspSplitRule::Sah);
+    const std::vector<uint32_t> triangles(boxes.size(), 600);
+    const CostModel costs{0.05, 1e-4, 0.0};  // an object: 0.06 ms; a query: 0.05 ms
+    const CullView view = overview(boxes);
+    const std::vector<uint8_t> visible(boxes.size(), 1);
+    uint64_t leaf_requeries[2] = {0, 0};
+    for (const bool horizon : {false, true}) {
+        StatisticalOptions o;
+        o.base_time_s = 0.1;  // one visible result: 0.15 s, 4.5 frames at 30 a second
+        o.cost_model = true;
+        o.draw_while_requerying = true;
+        o.requery_horizon = horizon;
+        StatisticalCuller culler(o, costs);
+        culler.reset(tree);
+        ScriptedQueryDevice device(4);
+        for (uint64_t f = 0; f < 8; ++f) {
+            CullFrame frame = makeFrame(view, f, f / 30.0);
+            frame.object_triangles = triangles;
+            const ScriptedFrame r = runScripted(culler, tree, device, boxes, visible, frame);
+            expectConservative(r, boxes, visible, view, "frame " + std::to_string(f));
+            if (f == 0) continue;  // the first queries, on fresh statistics
+            for (const QueryTag& t : r.queries) {
+                if (t.subject == QueryTag::Subject::Node && tree.node(t.index).isLeaf()) {
+                    ++leaf_requeries[horizon];
+                }
+            }
+        }
+    }
+    EXPECT_LT(leaf_requeries[0], 16u) << "over one frame: at most every 8th is asked anyway";
+    EXPECT_GE(leaf_requeries[1], 48u) << "over the horizon: the re-queries pay";
+}
+
 // (4) Re-query by distance: CalcNodeAction's interval counted in metres travelled (the camera's
 // and the node's movers'), or in travel relative to the node's distance (parallax).
 TEST(CalcNodeAction, RequeryDistanceReplacesBaseTime) {
