@@ -778,6 +778,15 @@ StatisticalOptions optionsNamed(const std::string& name) {
         o.weigh_in_flight = true;
         o.waits_per_frame = 2;
     }
+    if (name == "horizon") {
+        o.cost_model = true;
+        o.draw_while_requerying = true;
+        o.requery_horizon = true;
+    }
+    if (name == "nearest") {
+        o.virtual_leaves = true;
+        o.distance_order = true;
+    }
     return o;
 }
 
@@ -840,9 +849,48 @@ TEST_P(StatisticalConservative, DrawsEverythingGroundTruthSeesAndDecidesTheSameT
 INSTANTIATE_TEST_SUITE_P(Options, StatisticalConservative,
                          ::testing::Values("paper", "ready", "leaves", "objects", "costs",
                                            "distance", "parallax", "fallback", "draw", "weigh",
-                                           "descend", "waits", "plus"));
+                                           "descend", "waits", "horizon", "nearest", "plus"));
 
 StatisticalOptions paperOptions() { return StatisticalOptions{}; }
+
+// (11) A wall too wide for either child of the root's split stays in the root (a virtual leaf),
+// and a field of boxes behind it fills both children. In the tree's depth-first order the root's
+// virtual leaf comes after its nearer child, so the nearer half of the field is queried before
+// the wall is drawn, comes back visible and is drawn while hidden until its re-query; nearest
+// first, the wall (the root's bounds hold the eye: distance 0) is drawn before anything behind it
+// is queried.
+TEST(StatisticalDistanceOrder, AWallStoredInAnInnerNodeIsDrawnBeforeTheFieldItHides) {
+    std::vector<Aabb> boxes = {{glm::vec3(-30, 0, -1), glm::vec3(30, 12, 0)}};  // the wall
+    for (int z = 0; z < 12; ++z) {
+        for (int x = 0; x < 16; ++x) {
+            const glm::vec3 lo(-24.0f + 3.0f * static_cast<float>(x), 0.0f,
+                               -6.0f - 3.0f * static_cast<float>(z));
+            boxes.push_back({lo, lo + glm::vec3(1.0f, 1.5f, 1.0f)});
+        }
+    }
+    boxes.push_back({glm::vec3(-30, 0, 14), glm::vec3(30, 0.1f, 15)});  // the eye inside the root
+    const BspTree tree = buildTree(boxes, 4, BspSplitRule::Sah);
+    ASSERT_NE(tree.firstObject(tree.root()), BspTree::kNone) << "the wall straddles the root's split";
+    uint64_t hidden_drawn[2] = {0, 0};
+    for (const bool nearest : {false, true}) {
+        StatisticalOptions o;
+        o.virtual_leaves = true;
+        o.distance_order = nearest;
+        StatisticalCuller culler(o);
+        culler.reset(tree);
+        DepthRasterDevice device(64, 48, 8);
+        for (uint64_t f = 0; f < 30; ++f) {
+            const Camera cam = makeCamera({-6.0f + 0.1f * static_cast<float>(f), 3, 12}, {0, 2, -40});
+            const DepthFrame d = runDepthFrame(culler, tree, device, boxes, cam, f);
+            EXPECT_EQ(d.missed, 0u) << "frame " << f;
+            ASSERT_GT(d.hidden_in_frustum, 100u) << "the field behind the wall is in view";
+            if (f > 0) hidden_drawn[nearest] += d.hidden_drawn;  // frame 0: everything fresh
+        }
+    }
+    EXPECT_LT(hidden_drawn[1] * 4, hidden_drawn[0])
+        << "hidden boxes drawn over frames 1 to 29, in the tree's order " << hidden_drawn[0]
+        << ", nearest first " << hidden_drawn[1];
+}
 
 TEST(CalcNodeAction, RendersWithoutQueryWhenTheNearPlaneMayCutTheBox) {
     NodeStatistics stats;  // even with no statistics at all

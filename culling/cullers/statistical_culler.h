@@ -24,8 +24,10 @@
 // published) and all on in "statistical+": answers taken as they become ready (with a bound on
 // the queries in flight), virtual leaves for the objects stored in inner nodes, decisions per
 // object, a cost model, re-query after a distance travelled, a fallback to frustum culling when
-// little is occluded, CHC's treatment of what was visible, and a bound on queries in flight that
-// weighs each by its chance of coming back visible and grows with the frame's queries.
+// little is occluded, CHC's treatment of what was visible, a bound on queries in flight that
+// weighs each by its chance of coming back visible and grows with the frame's queries, re-queries
+// of what was visible weighed over the frames their answers decide, and the main queue taken
+// nearest first by distance (the loose tree's depth-first order is not a visibility order).
 // docs/statistical.md describes them and why.
 #pragma once
 
@@ -176,7 +178,8 @@ class StatisticalCuller final : public Culler {
     using Subject = QueryTag::Subject;
     // An entry of the main queue, or what a pending query is about. `index` is a node, or an
     // object for Subject::Object. `rank` is the entry's place in the front-to-back depth-first
-    // order of the tree for this frame's eye.
+    // order of the tree for this frame's eye, or with distance_order the bit pattern of the
+    // squared distance from the eye to its bounds (which orders as the distance does).
     struct Entry {
         uint32_t rank;
         uint32_t index;

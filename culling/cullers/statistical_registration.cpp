@@ -188,8 +188,8 @@ AlgorithmTraits statisticalRegistration() {
 AlgorithmTraits statisticalPlusRegistration() {
     return statisticalRow("statistical+",
                           "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
-                          "re-query by distance, a frustum fallback, and CHC's treatment of what "
-                          "was visible",
+                          "re-query by distance, a frustum fallback, CHC's treatment of what was "
+                          "visible, and a nearest-first queue",
                           true);
 }
 
