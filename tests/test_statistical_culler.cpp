@@ -870,7 +870,8 @@ TEST(StatisticalDistanceOrder, AWallStoredInAnInnerNodeIsDrawnBeforeTheFieldItHi
     }
     boxes.push_back({glm::vec3(-30, 0, 14), glm::vec3(30, 0.1f, 15)});  // the eye inside the root
     const BspTree tree = buildTree(boxes, 4, BspSplitRule::Sah);
-    ASSERT_NE(tree.firstObject(tree.root()), BspTree::kNone) << "the wall straddles the root's split";
+    ASSERT_NE(tree.firstObject(tree.root()), BspTree::kNone)
+        << "the wall straddles the root's split";
     uint64_t hidden_drawn[2] = {0, 0};
     for (const bool nearest : {false, true}) {
         StatisticalOptions o;
@@ -880,7 +881,8 @@ TEST(StatisticalDistanceOrder, AWallStoredInAnInnerNodeIsDrawnBeforeTheFieldItHi
         culler.reset(tree);
         DepthRasterDevice device(64, 48, 8);
         for (uint64_t f = 0; f < 30; ++f) {
-            const Camera cam = makeCamera({-6.0f + 0.1f * static_cast<float>(f), 3, 12}, {0, 2, -40});
+            const Camera cam =
+                makeCamera({-6.0f + 0.1f * static_cast<float>(f), 3, 12}, {0, 2, -40});
             const DepthFrame d = runDepthFrame(culler, tree, device, boxes, cam, f);
             EXPECT_EQ(d.missed, 0u) << "frame " << f;
             ASSERT_GT(d.hidden_in_frustum, 100u) << "the field behind the wall is in view";
