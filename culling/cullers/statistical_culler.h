@@ -21,14 +21,14 @@
 // entry's rank in that order: nodes are taken nearest first, however answers arrive.
 //
 // StatisticalOptions holds improvements beyond the paper, each off by default (the paper as
-// published) and all on in "statistical+": answers taken as they become ready (with a bound on
-// the queries in flight), virtual leaves for the objects stored in inner nodes, decisions per
-// object, a cost model, re-query after a distance travelled, a fallback to frustum culling when
-// little is occluded, CHC's treatment of what was visible, a bound on queries in flight that
-// weighs each by its chance of coming back visible and grows with the frame's queries, re-queries
-// of what was visible weighed over the frames their answers decide, and the main queue taken
-// nearest first by distance (the loose tree's depth-first order is not a visibility order).
-// docs/statistical.md describes them and why.
+// published) and, but for the last, on in "statistical+": answers taken as they become ready (with
+// a bound on the queries in flight), virtual leaves for the objects stored in inner nodes,
+// decisions per object, a cost model, re-query after a distance travelled, a fallback to frustum
+// culling when little is occluded, CHC's treatment of what was visible, a bound on queries in
+// flight that weighs each by its chance of coming back visible and grows with the frame's queries,
+// the main queue taken nearest first by distance (the loose tree's depth-first order is not a
+// visibility order), and re-queries of what was visible weighed over the frames their answers
+// decide. docs/statistical.md describes them and why.
 #pragma once
 
 #include <array>

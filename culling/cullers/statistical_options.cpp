@@ -28,6 +28,8 @@ StatisticalOptions StatisticalOptions::plus() {
     // requery_horizon (10) stays off: on the default teapots it cost 3 to 5 % (the ablation of
     // 2026-12-04, docs/statistical.md), on the levels it saved 2 to 5 % of the triangles at equal
     // times.
+    // Nearest first: on the street canyon 37.8K -> 22.8K triangles a frame (ideal-box 21.9K), the
+    // props behind the buildings no longer queried before them (docs/statistical.md, (11)).
     o.distance_order = true;
     return o;
 }

@@ -10,8 +10,9 @@ namespace occsim {
 // Kovalčík & Sochor, "Occlusion Culling with Statistically Optimized Occlusion Queries", WSCG
 // 2005, section 3: BASE_TIME and the decay curve of CalcNodeAction, and the two-queue traversal.
 // The first block is the paper; the second holds improvements beyond it, each off by default (so
-// that StatisticalOptions{} is the paper as published) and all on in plus() (the "statistical+"
-// algorithm). docs/statistical.md says what each does and why.
+// that StatisticalOptions{} is the paper as published) and on in plus() (the "statistical+"
+// algorithm) but for requery_horizon, measured not to pay. docs/statistical.md says what each
+// does and why.
 struct StatisticalOptions {
     double base_time_s = 2.0 / 3.0;        // BASE_TIME
     double decay_a = 2.0;                  // a in BASE_TIME * (a - b^occ_num)
