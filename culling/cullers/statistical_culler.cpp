@@ -47,7 +47,7 @@ RequeryInterval requeryInterval(const StatisticalOptions& options, const NodeSta
     const double decay = options.decay_a - std::pow(options.decay_b, r.visible_results);
     // The interval runs from the last query, or from the last time the cost model put the query
     // off (improvement 3), whichever is later.
-    if (options.requery_distance_m > 0.0 || options.requery_parallax > 0.0) {
+    if (options.requeriesByDistance()) {
         r.distance = true;
         r.since = std::max(stats.travel_at_query_m, stats.deferred_travel_m);
         if (options.requery_distance_m > 0.0) {
@@ -220,7 +220,7 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
     // Distance rules: the camera's path, and per node the largest step any object below it took
     // this frame, summed over frames. Object centres stand for the movers (the culling layer
     // knows boxes, not movers); a static object's step is 0.
-    if (options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0) {
+    if (options_.requeriesByDistance()) {
         const bool first = !have_last_frame_ || last_center_.size() != tree.objectCount();
         camera_step_m_ = 0.0;
         if (first) {
@@ -234,6 +234,7 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
         last_eye_ = frame.view.eye;
         have_last_frame_ = true;
         step_m_.resize(tree.nodeCount());
+        own_step_m_.resize(tree.nodeCount());
         for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
             const uint32_t n = *it;
             float own = 0.0f;
@@ -252,6 +253,7 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
             if (!node.isLeaf())
                 subtree = std::max({subtree, step_m_[node.child[0]], step_m_[node.child[1]]});
             step_m_[n] = subtree;
+            own_step_m_[n] = own;
             motion_[n].own_m += own;
             motion_[n].subtree_m += subtree;
         }
@@ -260,11 +262,12 @@ void StatisticalCuller::prepareFrame(const BspTree& tree, const CullFrame& frame
 
 double StatisticalCuller::stepOf(const Entry& e) const {
     // Only the distance rules count steps (prepareFrame fills them for those only).
-    if (!(options_.requery_distance_m > 0.0 || options_.requery_parallax > 0.0)) return 0.0;
+    if (!options_.requeriesByDistance()) return 0.0;
     switch (e.subject) {
         case Subject::Node:
-        case Subject::NodeObjects:
             return camera_step_m_ + step_m_[e.index];
+        case Subject::NodeObjects:
+            return camera_step_m_ + own_step_m_[e.index];
         case Subject::Object:
             return camera_step_m_ + object_step_m_[e.index];
     }

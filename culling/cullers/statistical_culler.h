@@ -294,6 +294,7 @@ class StatisticalCuller final : public Culler {
     bool costs_active_ = false;
     std::vector<double> subtree_draw_ms_;  // cost model: drawing every object of the subtree
     std::vector<float> step_m_;            // distance rules: this frame's largest mover step
+    std::vector<float> own_step_m_;        // ... of the objects stored in the node itself
     std::vector<glm::vec3> last_center_;   // distance rules: object centres last frame
     glm::vec3 last_eye_{0.0f};
     bool have_last_frame_ = false;

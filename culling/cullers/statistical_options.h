@@ -108,6 +108,9 @@ struct StatisticalOptions {
 
     bool operator==(const StatisticalOptions&) const = default;
 
+    // A distance rule (4) replaces BASE_TIME seconds.
+    bool requeriesByDistance() const { return requery_distance_m > 0.0 || requery_parallax > 0.0; }
+
     // The rule that ties options together (each option's own range is the descriptor's,
     // statisticalDescriptor()): at most one of the two re-query distances.
     bool isValid(std::string* error) const;
