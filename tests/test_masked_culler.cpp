@@ -69,9 +69,20 @@ Aabb card(const Screen& s, double x0, double x1, double y0, double y1, double d)
                     glm::vec3(s.x(x1, d), s.y(y1, d), static_cast<float>(-d)));
 }
 
+// The rule tests about coverage look at single pixels: their buffer lets the working layer hide
+// boxes, so that a pixel's own coverage shows without a whole cell filling.
+MaskedLayout everyPixel(uint32_t cell_width = 8, uint32_t cell_height = 4) {
+    MaskedLayout layout;
+    layout.cell_width = cell_width;
+    layout.cell_height = cell_height;
+    layout.test_working_layer = true;
+    return layout;
+}
+
 MaskedDepthBuffer beginBuffer(const Screen& s, uint32_t max_width,
-                              MaskedKernel kernel = MaskedKernel::Plain, double near = 0.1) {
-    MaskedDepthBuffer buffer(kernel);
+                              MaskedKernel kernel = MaskedKernel::Plain, double near = 0.1,
+                              const MaskedLayout& layout = {}) {
+    MaskedDepthBuffer buffer(kernel, layout);
     const CullView v = s.view(near);
     buffer.beginFrame(v.view_projection, v.eye, s.width, s.height, max_width);
     return buffer;
@@ -90,7 +101,7 @@ TEST(MaskedDepthBuffer, AWallHidesWhatIsBehindItAndNotWhatIsBeside) {
 // (kCoverageMarginPx): a rasteriser's snapping may leave a centre 0.01 pixel inside uncovered.
 TEST(MaskedDepthBuffer, AnEdgeBarelyPastAPixelCentreDoesNotCoverIt) {
     const Screen s{64, 16};
-    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    MaskedDepthBuffer buffer = beginBuffer(s, 64, MaskedKernel::Plain, 0.1, everyPixel());
     wall(buffer, s, -100, 20.51, -100, 100, 10.0);  // pixel 20's centre (20.5) 0.01 inside
     EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 4.4, 4.6, 20.0)));
     EXPECT_FALSE(buffer.testBox(card(s, 18.4, 18.6, 4.4, 4.6, 20.0)));
@@ -100,7 +111,7 @@ TEST(MaskedDepthBuffer, AnEdgeBarelyPastAPixelCentreDoesNotCoverIt) {
 // in its k x k block is covered, not its own centre alone.
 TEST(MaskedDepthBuffer, ACoarsePixelIsCoveredOnlyWhenEveryPixelCentreInItIs) {
     const Screen s{64, 16};
-    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, everyPixel());
     ASSERT_EQ(buffer.pixelSize(), 2u);
     // Buffer pixel 10 holds viewport columns 20 and 21 (centres 20.5, 21.5; block centre 21):
     // the wall's edge at 21.3 covers the block's centre and column 20, not column 21.
@@ -126,7 +137,7 @@ TEST(MaskedDepthBuffer, ASlopedOccludersTileDepthIsItsFarthestPoint) {
 // full mask makes that depth the tile's reference.
 TEST(MaskedDepthBuffer, MergingKeepsTheFartherDepth) {
     const Screen s{32, 8};
-    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, everyPixel(32, 8));
     wall(buffer, s, -10, 16.0, -10, 20, 10.0);  // left half at 10
     wall(buffer, s, 16.0, 50, -10, 20, 20.0);   // right half at 20: the tile is full
     EXPECT_TRUE(buffer.testBox(card(s, 2, 30, 1, 7, 15.0)));
@@ -137,7 +148,7 @@ TEST(MaskedDepthBuffer, MergingKeepsTheFartherDepth) {
 // to the reference depth; they keep no claim to the new, nearer depth.
 TEST(MaskedDepthBuffer, ReplacingTheWorkingLayerDropsTheOldPixelsToTheReference) {
     const Screen s{32, 8};
-    MaskedDepthBuffer buffer = beginBuffer(s, 32);
+    MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, everyPixel(32, 8));
     wall(buffer, s, -10, 16.0, -10, 20, 20.0);                  // left half at 20
     wall(buffer, s, 16.0, 50, -10, 20, 2.0);                    // right half much nearer, at 2
     EXPECT_TRUE(buffer.testBox(card(s, 2, 12, 1, 7, 10.0)));    // in front of the wall at 20
@@ -184,7 +195,7 @@ TEST(MaskedDepthBuffer, ABoxOnTheOccludersSurfaceIsVisible) {
 // own triangles, snapped, may reach a centre 0.002 pixel outside it.
 TEST(MaskedDepthBuffer, ABoxsRectangleIsGrownBeforeRounding) {
     const Screen s{64, 16};
-    MaskedDepthBuffer buffer = beginBuffer(s, 64);
+    MaskedDepthBuffer buffer = beginBuffer(s, 64, MaskedKernel::Plain, 0.1, everyPixel());
     wall(buffer, s, 21.0, 100, -100, 100, 10.0);  // covers column 21 on, not column 20
     EXPECT_TRUE(buffer.testBox(card(s, 20.502, 22, 4.4, 4.6, 20.0)));
     EXPECT_FALSE(buffer.testBox(card(s, 21.3, 22, 4.4, 4.6, 20.0)));
@@ -224,6 +235,87 @@ TEST(MaskedDepthBuffer, AFoldedEdgeKeepsItsMargin) {
     buffer.rasteriseMesh(corners, folded, glm::mat4(1.0f), edgeNeighbours(folded));
     EXPECT_TRUE(buffer.testBox(card(s, 20.4, 20.6, 8.4, 8.6, 20.0)));
     EXPECT_FALSE(buffer.testBox(card(s, 15.4, 15.6, 8.4, 8.6, 20.0)));
+}
+
+// Rule: each cell keeps its own two depths. Two walls at 10 m and 30 m share a 32x8 tile: with
+// 8x4 cells the near wall's cells hide what lies at 20 m behind it; one cell per tile (32x8) can
+// only keep the farther wall's depth once the tile is full.
+TEST(MaskedDepthBuffer, EachCellKeepsItsOwnDepths) {
+    const Screen s{32, 8};
+    for (const uint32_t cell_width : {8u, 32u}) {
+        MaskedLayout layout;
+        layout.cell_width = cell_width;
+        layout.cell_height = cell_width == 8 ? 4 : 8;
+        MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, layout);
+        wall(buffer, s, -10, 8.0, -10, 20, 10.0);  // columns 0-7
+        wall(buffer, s, 8.0, 50, -10, 20, 30.0);   // columns 8-31
+        EXPECT_EQ(buffer.testBox(card(s, 1, 6, 1, 7, 20.0)), cell_width == 32) << cell_width;
+        EXPECT_FALSE(buffer.testBox(card(s, 1, 30, 1, 7, 40.0))) << cell_width;
+        EXPECT_TRUE(buffer.testBox(card(s, 10, 30, 1, 7, 20.0))) << cell_width;
+    }
+}
+
+// Rule: boxes are tested against the reference layer only unless asked otherwise: a wall that
+// covers part of a cell hides nothing there until the cell is full.
+TEST(MaskedDepthBuffer, OnlyTheReferenceLayerHidesUnlessTheWorkingLayerIsAsked) {
+    const Screen s{32, 8};
+    for (const bool working : {false, true}) {
+        MaskedLayout layout;
+        layout.test_working_layer = working;
+        MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, layout);
+        wall(buffer, s, -10, 4.0, -10, 20, 10.0);  // columns 0-3: half of each left cell
+        EXPECT_EQ(buffer.testBox(card(s, 1, 3, 1, 3, 20.0)), !working) << working;
+        EXPECT_TRUE(buffer.testBox(card(s, 1, 6, 1, 3, 20.0))) << working;
+    }
+}
+
+// Rule (the paper's quick merge): a triangle much nearer than the working layer discards it; the
+// old pixels fall back to the reference depth. Within one 8x4 cell: columns 0-3 at 20 m, then
+// columns 4-7 at 2 m; what lies at 10 m behind columns 0-3 stays visible, behind 4-7 hidden.
+TEST(MaskedDepthBuffer, ANearTriangleDiscardsTheWorkingLayerOfItsCell) {
+    const Screen s{32, 8};
+    for (const bool accurate : {false, true}) {
+        MaskedLayout layout = everyPixel();
+        layout.merge = accurate ? MaskedMerge::Accurate : MaskedMerge::Quick;
+        MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, layout);
+        wall(buffer, s, -10, 4.0, -10, 4.0, 20.0);
+        wall(buffer, s, 4.0, 8.0, -10, 4.0, 2.0);
+        EXPECT_TRUE(buffer.testBox(card(s, 1, 3, 1, 3, 10.0))) << accurate;
+        EXPECT_FALSE(buffer.testBox(card(s, 5, 7, 1, 3, 10.0))) << accurate;
+    }
+}
+
+// Rule (the accurate merge): of merging, replacing and dropping, the cell keeps the outcome with
+// the nearest bounds in sum. A wall at 10 m over half a 32x8 cell, then a wall at 100 m over
+// the other half: the quick rule merges (the cell's reference becomes 100 m everywhere); the
+// accurate merge drops the far wall and keeps 10 m over the near half.
+TEST(MaskedDepthBuffer, TheAccurateMergeKeepsANearLayerAFarTriangleWouldDragBack) {
+    const Screen s{32, 8};
+    for (const bool accurate : {false, true}) {
+        MaskedLayout layout = everyPixel(32, 8);
+        layout.merge = accurate ? MaskedMerge::Accurate : MaskedMerge::Quick;
+        MaskedDepthBuffer buffer = beginBuffer(s, 32, MaskedKernel::Plain, 0.1, layout);
+        wall(buffer, s, -10, 16.0, -10, 20, 10.0);
+        wall(buffer, s, 16.0, 50, -10, 20, 100.0);
+        EXPECT_EQ(buffer.testBox(card(s, 2, 12, 1, 7, 50.0)), !accurate) << accurate;
+        EXPECT_EQ(buffer.testBox(card(s, 20, 30, 1, 7, 150.0)), accurate) << accurate;
+    }
+}
+
+TEST(MaskedDepthBuffer, RefusesACellItCannotKeep) {
+    EXPECT_EQ(validMaskedLayout(MaskedLayout{}), "");
+    for (const auto& [w, h] : {std::pair{12u, 4u}, {8u, 2u}, {64u, 8u}, {4u, 4u}}) {
+        MaskedLayout layout;
+        layout.cell_width = w;
+        layout.cell_height = h;
+        EXPECT_NE(validMaskedLayout(layout), "") << w << "x" << h;
+        EXPECT_THROW(MaskedDepthBuffer(MaskedKernel::Plain, layout), std::invalid_argument);
+    }
+    const AlgorithmTraits* t = findAlgorithm("masked");
+    ASSERT_NE(t, nullptr);
+    OptionValues values(t->options);
+    values.set("cell_width", 12);
+    EXPECT_NE(checkOptionValues(*t, values).find("cell_width"), std::string::npos);
 }
 
 TEST(MaskedDepthBuffer, WithoutAPerspectiveCameraEverythingIsVisible) {
@@ -301,7 +393,7 @@ struct RandomCase {
 // Objects (cubes, walls, thin slabs, single triangles) in a 40 m region, a camera somewhere in
 // it (sometimes inside an object or against a surface), odd viewport sizes, deep depth ranges,
 // and sometimes the whole thing a million metres from the culling frame's origin.
-RandomCase randomCase(uint32_t seed, bool large_viewport = false) {
+RandomCase randomCase(uint32_t seed, bool large_viewport = false, bool full_hd = false) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     RandomCase c;
@@ -336,10 +428,14 @@ RandomCase randomCase(uint32_t seed, bool large_viewport = false) {
         eye = offset + glm::dvec3(b.min) + (glm::dvec3(b.max) - glm::dvec3(b.min)) * u(rng);
     }
     const glm::dvec3 target = eye + glm::dvec3(u(rng) - 0.5, u(rng) * 0.6 - 0.3, u(rng) - 0.5);
-    const uint32_t width = large_viewport ? 301 + static_cast<uint32_t>(u(rng) * 700)
-                                          : 17 + static_cast<uint32_t>(u(rng) * 180);
-    const uint32_t height = large_viewport ? 171 + static_cast<uint32_t>(u(rng) * 400)
-                                           : 9 + static_cast<uint32_t>(u(rng) * 120);
+    uint32_t width = large_viewport ? 301 + static_cast<uint32_t>(u(rng) * 700)
+                                    : 17 + static_cast<uint32_t>(u(rng) * 180);
+    uint32_t height = large_viewport ? 171 + static_cast<uint32_t>(u(rng) * 400)
+                                     : 9 + static_cast<uint32_t>(u(rng) * 120);
+    if (full_hd) {
+        width = 1920;
+        height = 1080;
+    }
     const double near = u(rng) < 0.3 ? 1e-3 : 0.05 + u(rng) * 0.3;
     const double far = u(rng) < 0.3 ? 1e6 : 200.0;
     c.view =
@@ -363,10 +459,40 @@ double viewDepth(const CullView& v, const Aabb& b) {
     return c.w;
 }
 
-TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
-    uint64_t exact_hidden = 0, both_hidden = 0, exact_hidden_coarse = 0, both_hidden_coarse = 0;
-    for (uint32_t seed = 1; seed <= 300; ++seed) {
-        RandomCase c = randomCase(seed, seed % 3 == 0);
+// The layouts the property tests compare: the default (8x4 cells, the paper's merge, the
+// reference layer only), this project's old tile (one 32x8 cell, the working layer tested) and
+// the options beside the default.
+struct NamedLayout {
+    const char* name;
+    MaskedLayout layout;
+};
+std::vector<NamedLayout> propertyLayouts() {
+    MaskedLayout accurate, working, tile32x4, tile32x8 = everyPixel(32, 8);
+    accurate.merge = MaskedMerge::Accurate;
+    working.test_working_layer = true;
+    tile32x4.cell_width = 32;
+    return {{"8x4", {}},
+            {"8x4-accurate", accurate},
+            {"8x4-working-layer", working},
+            {"32x4", tile32x4},
+            {"32x8-old", tile32x8}};
+}
+
+// Per layout: boxes the exact buffer hides, and of those the ones masked hides too.
+struct HiddenShare {
+    uint64_t exact = 0, both = 0;
+    double share() const { return static_cast<double>(both) / std::max<uint64_t>(exact, 1); }
+};
+
+// Draws `seeds` random scenes, rasterises every object as an occluder near to far into masked's
+// buffer (every layout, at `max_width`) and into the exact reference, and checks that no box
+// masked hides is seen by the reference. Returns the shares per layout.
+std::vector<HiddenShare> hiddenShares(uint32_t first_seed, uint32_t seeds, uint32_t max_width,
+                                      bool full_hd) {
+    const std::vector<NamedLayout> layouts = propertyLayouts();
+    std::vector<HiddenShare> shares(layouts.size());
+    for (uint32_t seed = first_seed; seed < first_seed + seeds; ++seed) {
+        const RandomCase c = randomCase(seed, !full_hd && seed % 3 == 0, full_hd);
         const CullMeshes meshes = c.scene.view();
         const uint32_t objects = static_cast<uint32_t>(c.scene.boxes.size());
         TriangleRasterDevice reference(c.view.viewport_width, c.view.viewport_height);
@@ -378,8 +504,9 @@ TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
         std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
             return viewDepth(c.view, c.scene.boxes[a]) < viewDepth(c.view, c.scene.boxes[b]);
         });
-        for (const uint32_t max_width : {4096u, 64u}) {
-            MaskedDepthBuffer buffer(seed % 2 ? MaskedKernel::Avx2 : MaskedKernel::Plain);
+        for (size_t l = 0; l < layouts.size(); ++l) {
+            MaskedDepthBuffer buffer(seed % 2 ? MaskedKernel::Avx2 : MaskedKernel::Plain,
+                                     layouts[l].layout);
             buffer.beginFrame(c.view.view_projection, c.view.eye, c.view.viewport_width,
                               c.view.viewport_height, max_width);
             for (const uint32_t o : order) {
@@ -394,31 +521,53 @@ TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
                 const Aabb& box = c.scene.boxes[o];
                 if (classify(planeTableOf(c.view.frustum), box) == FrustumTest::Outside) continue;
                 const bool hidden = !buffer.testBox(box);
-                ASSERT_FALSE(hidden && visible[o])
-                    << "seed " << seed << " object " << o << " max_width " << max_width;
-                ASSERT_FALSE(hidden && !reference.boxHiddenInTruth(box))
-                    << "seed " << seed << " object " << o << " max_width " << max_width;
-                if (reference.boxHiddenInTruth(box)) {
-                    (max_width == 64 ? exact_hidden_coarse : exact_hidden) += 1;
-                    (max_width == 64 ? both_hidden_coarse : both_hidden) += hidden ? 1 : 0;
+                const bool hidden_in_truth = reference.boxHiddenInTruth(box);
+                EXPECT_FALSE(hidden && visible[o])
+                    << "seed " << seed << " object " << o << " " << layouts[l].name;
+                EXPECT_FALSE(hidden && !hidden_in_truth)
+                    << "seed " << seed << " object " << o << " " << layouts[l].name;
+                if (hidden_in_truth) {
+                    ++shares[l].exact;
+                    shares[l].both += hidden ? 1 : 0;
                 }
             }
         }
     }
-    const double share = static_cast<double>(both_hidden) / std::max<uint64_t>(exact_hidden, 1);
-    const double share_coarse =
-        static_cast<double>(both_hidden_coarse) / std::max<uint64_t>(exact_hidden_coarse, 1);
-    std::cout << "masked hides " << both_hidden << " of the " << exact_hidden
-              << " boxes an exact full-resolution buffer hides (" << 100.0 * share
-              << " %) at the viewport's resolution, " << both_hidden_coarse << " of "
-              << exact_hidden_coarse << " (" << 100.0 * share_coarse << " %) at most 64 wide\n";
-    RecordProperty("hidden_share_full_resolution", std::to_string(share));
-    RecordProperty("hidden_share_64_wide", std::to_string(share_coarse));
-    EXPECT_GT(exact_hidden, 500u);  // the scenes do hide things
-    // The aim is 90 % (the paper reports 98 % on game scenes at 1920x1080); these random
-    // scenes with many small occluders at scattered depths and small viewports reach about 48 %
-    // (docs/masked.md). The floor keeps a regression in effectiveness from passing unnoticed.
-    EXPECT_GE(share, 0.4);
+    return shares;
+}
+
+void reportShares(const char* what, const std::vector<HiddenShare>& shares) {
+    const std::vector<NamedLayout> layouts = propertyLayouts();
+    for (size_t l = 0; l < layouts.size(); ++l) {
+        std::cout << what << " " << layouts[l].name << ": masked hides " << shares[l].both
+                  << " of the " << shares[l].exact
+                  << " boxes an exact full-resolution buffer hides (" << 100.0 * shares[l].share()
+                  << " %)\n";
+        ::testing::Test::RecordProperty(std::string(what) + "_" + layouts[l].name,
+                                        std::to_string(shares[l].share()));
+    }
+}
+
+TEST(MaskedProperty, NothingTheExactBufferSeesIsHiddenAndMostOfWhatItHidesIs) {
+    const std::vector<HiddenShare> full = hiddenShares(1, 300, 0, false);
+    const std::vector<HiddenShare> coarse = hiddenShares(1, 300, 64, false);
+    reportShares("viewport-resolution", full);
+    reportShares("at-most-64-wide", coarse);
+    EXPECT_GT(full[0].exact, 500u);  // the scenes do hide things
+    // These random scenes of many small occluders at scattered depths, through viewports of at
+    // most 1000x570, are not the paper's game scenes (docs/masked.md gives the shares); the
+    // floor keeps a loss of effectiveness from passing unnoticed.
+    EXPECT_GE(full[0].share(), 0.5);
+    // 8x4 cells hide more than one cell per 32x8 tile.
+    EXPECT_GT(full[0].share(), full.back().share());
+}
+
+// The same at 1920x1080 (the paper's resolution): cameras from the random scenes, 60 degrees.
+TEST(MaskedProperty, AtFullHdTooNothingTheExactBufferSeesIsHidden) {
+    const std::vector<HiddenShare> shares = hiddenShares(2000, 60, 0, true);
+    reportShares("1920x1080", shares);
+    EXPECT_GT(shares[0].exact, 50u);
+    EXPECT_GE(shares[0].share(), 0.6);
 }
 
 TEST(MaskedProperty, TheCullerDrawsEverythingTheReferenceSees) {

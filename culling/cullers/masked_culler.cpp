@@ -11,8 +11,22 @@
 
 namespace occsim {
 
+namespace {
+
+MaskedLayout layoutOf(const MaskedOptions& o) {
+    MaskedLayout layout;
+    layout.cell_width = o.cell_width;
+    layout.cell_height = o.cell_height;
+    layout.merge = o.accurate_merge ? MaskedMerge::Accurate : MaskedMerge::Quick;
+    layout.test_working_layer = o.working_layer_test;
+    return layout;
+}
+
+}  // namespace
+
 MaskedCuller::MaskedCuller(const MaskedOptions& options)
-    : options_(options), buffer_(options.simd ? MaskedKernel::Avx2 : MaskedKernel::Plain) {}
+    : options_(options),
+      buffer_(options.simd ? MaskedKernel::Avx2 : MaskedKernel::Plain, layoutOf(options)) {}
 
 void MaskedCuller::reset(const BspTree& tree) {
     drawn_last_.clear();
@@ -119,10 +133,19 @@ namespace {
 const OptionTable<MaskedOptions>& maskedOptionTable() {
     using O = MaskedOptions;
     static const OptionTable<O> table = {
-        tunable(integerOption(OCCSIM_OPTION_MEMBER(O, width), "pixels", 32, 8192,
-                              "the software depth buffer's width at most: the viewport divided "
-                              "by the smallest whole number that fits"),
-                64, 1024),
+        integerOption(OCCSIM_OPTION_MEMBER(O, width), "pixels", 0, 8192,
+                      "the software depth buffer's width at most: the viewport divided by the "
+                      "smallest whole number that fits; 0 = the viewport's"),
+        integerOption(OCCSIM_OPTION_MEMBER(O, cell_width), "pixels", 8, 32,
+                      "a depth cell's width (8, 16 or 32): two depths per cell"),
+        integerOption(OCCSIM_OPTION_MEMBER(O, cell_height), "pixels", 4, 8,
+                      "a depth cell's height (4 or 8)"),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, accurate_merge),
+                      "cells keep whichever of merging, replacing and dropping a triangle leaves "
+                      "the nearest bounds; off = the paper's quick rule"),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, working_layer_test),
+                      "boxes may be hidden by the working layer where its mask holds them; off "
+                      "= the reference layer only, as in the paper"),
         tunable(numberOption(OCCSIM_OPTION_MEMBER(O, occluder_size), "viewport heights", 0.0,
                              std::numeric_limits<double>::infinity(),
                              "an object occludes when its box's projection is at least this "
@@ -150,6 +173,10 @@ AlgorithmTraits maskedRegistration() {
     t.options = maskedOptionTable().descriptor(MaskedOptions{});
     t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
         return std::make_unique<MaskedCuller>(maskedOptionTable().read(c.options));
+    };
+    t.validate = [](const OptionValues& values) -> std::string {
+        const std::string problem = validMaskedLayout(layoutOf(maskedOptionTable().read(values)));
+        return problem.empty() ? problem : "cell_width, cell_height: " + problem;
     };
     return t;
 }

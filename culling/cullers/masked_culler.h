@@ -16,8 +16,17 @@ namespace occsim {
 
 struct MaskedOptions {
     // The software buffer's width at most (pixels): the viewport is divided by the smallest
-    // whole number that makes it fit.
-    uint32_t width = 1024;
+    // whole number that makes it fit; 0: the viewport's own resolution.
+    uint32_t width = 0;
+    // A depth cell (two depths and the mask's pixels): 8×4 as in the reference implementation;
+    // 32×8 is one cell per tile (this project's buffer before 2026-12-04).
+    uint32_t cell_width = 8;
+    uint32_t cell_height = 4;
+    // The accurate merge instead of the paper's quick rule (masked_depth_buffer.h).
+    bool accurate_merge = false;
+    // Boxes tested against the working layer too where its mask holds them (the paper tests the
+    // reference layer only).
+    bool working_layer_test = false;
     // An object occludes when the larger side of its box's projection is at least this fraction
     // of the viewport's height.
     double occluder_size = 0.1;

@@ -4,9 +4,11 @@
 #include "culling/raster/masked_depth_buffer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
 
 #include "culling/raster/masked_kernels.h"
 
@@ -64,8 +66,28 @@ bool maskedKernelAvailable(MaskedKernel kernel) {
     return kernel == MaskedKernel::Plain || masked_kernels::avx2Available();
 }
 
-MaskedDepthBuffer::MaskedDepthBuffer(MaskedKernel kernel)
-    : kernel_(maskedKernelAvailable(kernel) ? kernel : MaskedKernel::Plain) {}
+std::string validMaskedLayout(const MaskedLayout& layout) {
+    const uint32_t w = layout.cell_width, h = layout.cell_height;
+    if (w != 8 && w != 16 && w != 32) {
+        return "a depth cell's width must be 8, 16 or 32 pixels, not " + std::to_string(w);
+    }
+    if (h != 4 && h != 8) {
+        return "a depth cell's height must be 4 or 8 pixels, not " + std::to_string(h);
+    }
+    return {};
+}
+
+MaskedDepthBuffer::MaskedDepthBuffer(MaskedKernel kernel, const MaskedLayout& layout)
+    : kernel_(maskedKernelAvailable(kernel) ? kernel : MaskedKernel::Plain), layout_(layout) {
+    if (const std::string problem = validMaskedLayout(layout); !problem.empty()) {
+        throw std::invalid_argument(problem);
+    }
+    cells_across_ = kTileWidth / layout.cell_width;
+    cells_down_ = kTileHeight / layout.cell_height;
+    const uint32_t one_cell = layout.cell_width == 32 ? ~0u : (1u << layout.cell_width) - 1u;
+    for (uint32_t c = 0; c < cells_across_; ++c)
+        cell_columns_[c] = one_cell << (c * layout.cell_width);
+}
 
 void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
                                    uint32_t viewport_width, uint32_t viewport_height,
@@ -78,13 +100,13 @@ void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 e
     tiles_.clear();
     if (viewport_width == 0 || viewport_height == 0) return;
 
-    max_width = std::max<uint32_t>(max_width, 1);
+    if (max_width == 0) max_width = viewport_width;
     k_ = (viewport_width + max_width - 1) / max_width;
     width_ = (viewport_width + k_ - 1) / k_;
     height_ = (viewport_height + k_ - 1) / k_;
     tiles_x_ = (width_ + kTileWidth - 1) / kTileWidth;
     tiles_y_ = (height_ + kTileHeight - 1) / kTileHeight;
-    tiles_.assign(static_cast<size_t>(tiles_x_) * tiles_y_, Tile{{}, 0.0f, 0.0f});
+    tiles_.assign(static_cast<size_t>(tiles_x_) * tiles_y_, Tile{});
     const uint32_t columns_in_last = width_ - (tiles_x_ - 1) * kTileWidth;
     const uint32_t outside_columns = columns_in_last == kTileWidth ? 0u : ~0u << columns_in_last;
     std::fill(std::begin(right_outside_), std::end(right_outside_), outside_columns);
@@ -274,7 +296,7 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
     edges.x_lo = x_lo;
     edges.x_hi = x_hi;
 
-    // Depth: 1/w is affine in screen space. Per tile, the plane's farthest value over the covered
+    // Depth: 1/w is affine in screen space. Per cell, the plane's farthest value over the covered
     // part (widened by the position margin), never farther than the triangle's farthest vertex.
     // A sliver (less than a viewport pixel high) gets its farthest vertex: a rasteriser's plane
     // through snapped vertices may tilt far from the true one there.
@@ -298,13 +320,11 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
         } else {
             masked_kernels::spansPlain(edges, row0, y_lo, y_hi, xl, xr);
         }
-        int32_t span_lo = INT32_MAX, span_hi = INT32_MIN, rows_lo = INT32_MAX, rows_hi = -1;
+        int32_t span_lo = INT32_MAX, span_hi = INT32_MIN;
         for (uint32_t r = 0; r < kTileHeight; ++r) {
             if (xl[r] > xr[r]) continue;
             span_lo = std::min(span_lo, xl[r]);
             span_hi = std::max(span_hi, xr[r]);
-            rows_lo = std::min(rows_lo, row0 + static_cast<int32_t>(r));
-            rows_hi = row0 + static_cast<int32_t>(r);
         }
         if (span_lo > span_hi) continue;
         for (uint32_t tx = static_cast<uint32_t>(span_lo) / kTileWidth;
@@ -318,73 +338,128 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
             uint32_t any = 0;
             for (uint32_t r = 0; r < kTileHeight; ++r) any |= coverage[r];
             if (any == 0) continue;
-            double far = inv_w_min;
-            if (!sliver) {
-                const double x0 = std::max(span_lo, col0) - 0.5;
-                const double x1 =
-                    std::min(span_hi, col0 + static_cast<int32_t>(kTileWidth) - 1) + 0.5;
-                const double plane_far = plane_c + plane_a * (plane_a > 0.0 ? x0 : x1) +
-                                         plane_b * (plane_b > 0.0 ? rows_lo - 0.5 : rows_hi + 0.5) -
-                                         (std::abs(plane_a) + std::abs(plane_b)) * margin;
-                far = std::max(far, plane_far);
+            const uint32_t tile = ty * tiles_x_ + tx;
+            for (uint32_t cy = 0; cy < cells_down_; ++cy) {
+                const uint32_t r0 = cy * layout_.cell_height, r1 = r0 + layout_.cell_height;
+                for (uint32_t cx = 0; cx < cells_across_; ++cx) {
+                    uint32_t cell_coverage[kTileHeight] = {};
+                    uint32_t columns = 0;
+                    int32_t row_lo = -1, row_hi = -1;
+                    for (uint32_t r = r0; r < r1; ++r) {
+                        cell_coverage[r] = coverage[r] & cell_columns_[cx];
+                        if (cell_coverage[r] == 0) continue;
+                        columns |= cell_coverage[r];
+                        if (row_lo < 0) row_lo = static_cast<int32_t>(r);
+                        row_hi = static_cast<int32_t>(r);
+                    }
+                    if (columns == 0) continue;
+                    double far = inv_w_min;
+                    if (!sliver) {
+                        // The plane's farthest value over the covered pixels of the cell.
+                        const double x0 = col0 + std::countr_zero(columns) - 0.5;
+                        const double x1 = col0 + (31 - std::countl_zero(columns)) + 0.5;
+                        const double y0 = row0 + row_lo - 0.5, y1 = row0 + row_hi + 0.5;
+                        const double plane_far = plane_c + plane_a * (plane_a > 0.0 ? x0 : x1) +
+                                                 plane_b * (plane_b > 0.0 ? y0 : y1) -
+                                                 (std::abs(plane_a) + std::abs(plane_b)) * margin;
+                        far = std::max(far, plane_far);
+                    }
+                    updateCell(tile, cy * cells_across_ + cx, cell_coverage,
+                               static_cast<float>(far * depth_scale));
+                }
             }
-            updateTile(ty * tiles_x_ + tx, coverage, static_cast<float>(far * depth_scale));
         }
     }
 }
 
-bool MaskedDepthBuffer::tileFull(uint32_t tile, const uint32_t (&mask)[kTileHeight]) const {
+bool MaskedDepthBuffer::cellFull(uint32_t tile, uint32_t cell,
+                                 const uint32_t (&mask)[kTileHeight]) const {
     const bool last_column = tile % tiles_x_ == tiles_x_ - 1;
     const bool last_row = tile / tiles_x_ == tiles_y_ - 1;
-    for (uint32_t r = 0; r < kTileHeight; ++r) {
+    const uint32_t columns = cell_columns_[cell % cells_across_];
+    const uint32_t r0 = (cell / cells_across_) * layout_.cell_height;
+    for (uint32_t r = r0; r < r0 + layout_.cell_height; ++r) {
         if (last_row && r >= kTileHeight - top_outside_rows_) continue;  // past the top edge
         const uint32_t outside = last_column ? right_outside_[r] : 0u;
-        if ((mask[r] | outside) != ~0u) return false;
+        if (((mask[r] | outside) & columns) != columns) return false;
     }
     return true;
 }
 
-void MaskedDepthBuffer::updateTile(uint32_t tile, const uint32_t (&coverage)[kTileHeight],
-                                   float depth) {
+void MaskedDepthBuffer::updateCell(uint32_t tile, uint32_t cell,
+                                   const uint32_t (&coverage)[kTileHeight], float depth) {
     Tile& t = tiles_[tile];
+    float& z0 = t.z0[cell];
+    float& z1 = t.z1[cell];
     // Rounding to float must not make the triangle nearer than computed.
-    if (!(depth > t.z0)) return;  // nothing the tile does not know already (or NaN)
+    if (!(depth > z0)) return;  // nothing the cell does not know already (or NaN)
     ++stats_.tile_updates;
-    uint32_t any = 0, fresh = 0;
-    uint32_t merged[kTileHeight];
-    for (uint32_t r = 0; r < kTileHeight; ++r) {
-        any |= t.mask[r];
-        fresh |= coverage[r] & ~t.mask[r];
-        merged[r] = t.mask[r] | coverage[r];
+    const uint32_t columns = cell_columns_[cell % cells_across_];
+    const uint32_t r0 = (cell / cells_across_) * layout_.cell_height;
+    const uint32_t r1 = r0 + layout_.cell_height;
+    uint32_t held = 0;  // pixels of the cell in the working layer
+    uint32_t merged[kTileHeight] = {};
+    for (uint32_t r = r0; r < r1; ++r) {
+        held += static_cast<uint32_t>(std::popcount(t.mask[r] & columns));
+        merged[r] = (t.mask[r] & columns) | coverage[r];
     }
-    if (any != 0 && depth < t.z1) {
-        // Farther than the working layer: merging would move the layer's depth back to the
-        // triangle's. Worth it only for new pixels, and only when the triangle is nearer to the
-        // working layer than to z0 (by a factor of 2) or completes the tile. Skipping an
-        // occluder is always safe.
-        if (fresh == 0) return;
-        if (t.z1 - depth > 2.0f * (depth - t.z0) && !tileFull(tile, merged)) return;
-    }
-    if (any == 0 || depth - t.z1 > t.z1 - t.z0) {
-        // An empty working layer, or a triangle much nearer than it: the triangle becomes the
-        // working layer; the pixels it leaves fall back to z0, which bounds them already.
-        for (uint32_t r = 0; r < kTileHeight; ++r) t.mask[r] = coverage[r];
-        t.z1 = depth;
+    const bool covers_cell = cellFull(tile, cell, coverage);
+    bool discard = false;
+    if (layout_.merge == MaskedMerge::Quick) {
+        // The paper's rule: a triangle covering the cell, or one the working layer lies nearer
+        // to z0 than to, replaces the working layer.
+        discard = covers_cell || held == 0 || 2.0f * z1 - (depth + z0) < 0.0f;
     } else {
-        for (uint32_t r = 0; r < kTileHeight; ++r) t.mask[r] |= coverage[r];
-        t.z1 = std::min(t.z1, depth);
+        // Of the three outcomes, the one that leaves the cell the nearest bounds where boxes
+        // are tested: first the reference depth (a full mask promoted), then, where boxes are
+        // tested against the working layer too, the sum of every pixel's bound. Ties go to
+        // merging, then to replacing. Dropping an occluder is always safe.
+        const double n = layout_.cell_width * layout_.cell_height;
+        struct Outcome {
+            double z0, sum;
+        };
+        auto outcome = [&](double in_mask, double mask_depth, bool full) {
+            if (full) return Outcome{mask_depth, n * mask_depth};
+            return Outcome{z0, in_mask * mask_depth + (n - in_mask) * z0};
+        };
+        const bool by_sum = layout_.test_working_layer;
+        auto better = [by_sum](const Outcome& a, const Outcome& b) {
+            if (a.z0 != b.z0) return a.z0 > b.z0;
+            return by_sum && a.sum > b.sum;
+        };
+        uint32_t merged_count = 0, coverage_count = 0;
+        for (uint32_t r = r0; r < r1; ++r) {
+            merged_count += static_cast<uint32_t>(std::popcount(merged[r]));
+            coverage_count += static_cast<uint32_t>(std::popcount(coverage[r]));
+        }
+        const Outcome keep = outcome(held, held ? z1 : z0, false);
+        const Outcome merge =
+            outcome(merged_count, held ? std::min(z1, depth) : depth, cellFull(tile, cell, merged));
+        const Outcome replace = outcome(coverage_count, depth, covers_cell);
+        if (better(keep, merge) && better(keep, replace)) return;
+        discard = held == 0 || better(replace, merge);
     }
-    if (tileFull(tile, t.mask)) {
-        t.z0 = t.z1;  // every pixel is bounded by z1 > z0 now
-        for (uint32_t r = 0; r < kTileHeight; ++r) t.mask[r] = 0;
-        t.z1 = 0.0f;
+    if (discard) {
+        // The pixels the working layer leaves fall back to z0, which bounds them already.
+        for (uint32_t r = r0; r < r1; ++r) t.mask[r] = (t.mask[r] & ~columns) | coverage[r];
+        z1 = depth;
+    } else {
+        for (uint32_t r = r0; r < r1; ++r) t.mask[r] |= coverage[r];
+        z1 = std::min(z1, depth);
+    }
+    if (cellFull(tile, cell, t.mask)) {
+        z0 = z1;  // every pixel of the cell is bounded by z1 > z0 now
+        for (uint32_t r = r0; r < r1; ++r) t.mask[r] &= ~columns;
+        z1 = 0.0f;
     }
 }
 
 float MaskedDepthBuffer::pixelBound(uint32_t x, uint32_t y) const {
     if (x >= width_ || y >= height_) return 0.0f;
     const Tile& t = tiles_[(y / kTileHeight) * tiles_x_ + x / kTileWidth];
-    return (t.mask[y % kTileHeight] >> (x % kTileWidth)) & 1u ? t.z1 : t.z0;
+    const uint32_t cell = cellIndex(x % kTileWidth, y % kTileHeight);
+    const bool in_mask = (t.mask[y % kTileHeight] >> (x % kTileWidth)) & 1u;
+    return in_mask && layout_.test_working_layer ? t.z1[cell] : t.z0[cell];
 }
 
 namespace {
@@ -447,19 +522,21 @@ bool MaskedDepthBuffer::testBox(const Aabb& box) {
     const double nearest = (1.0 + kDepthMargin) / (p.w_min - p.error);
     const uint32_t x0 = static_cast<uint32_t>(j0) / k_, x1 = static_cast<uint32_t>(j1) / k_;
     const uint32_t y0 = static_cast<uint32_t>(i0) / k_, y1 = static_cast<uint32_t>(i1) / k_;
-    for (uint32_t ty = y0 / kTileHeight; ty <= y1 / kTileHeight; ++ty) {
-        for (uint32_t tx = x0 / kTileWidth; tx <= x1 / kTileWidth; ++tx) {
+    // Cell by cell over the rectangle, in buffer pixels.
+    const uint32_t cw = layout_.cell_width, ch = layout_.cell_height;
+    for (uint32_t cy = y0 / ch; cy <= y1 / ch; ++cy) {
+        for (uint32_t cx = x0 / cw; cx <= x1 / cw; ++cx) {
+            const uint32_t tx = cx * cw / kTileWidth, ty = cy * ch / kTileHeight;
             const Tile& t = tiles_[ty * tiles_x_ + tx];
-            if (nearest < t.z0) continue;  // behind every pixel of the tile
-            if (nearest < t.z1) {
+            const uint32_t cell = cellIndex(cx * cw % kTileWidth, cy * ch % kTileHeight);
+            if (nearest < t.z0[cell]) continue;  // behind every pixel of the cell
+            if (layout_.test_working_layer && nearest < t.z1[cell]) {
                 // Hidden where the mask is set: visible if the rectangle has a pixel outside it.
-                const uint32_t c0 = std::max(x0, tx * kTileWidth) - tx * kTileWidth;
-                const uint32_t c1 =
-                    std::min(x1, tx * kTileWidth + kTileWidth - 1) - tx * kTileWidth;
+                const uint32_t c0 = std::max(x0, cx * cw) - tx * kTileWidth;
+                const uint32_t c1 = std::min(x1, cx * cw + cw - 1) - tx * kTileWidth;
                 const uint32_t columns = (~0u >> (kTileWidth - 1 - c1)) & (~0u << c0);
-                const uint32_t r0 = std::max(y0, ty * kTileHeight) - ty * kTileHeight;
-                const uint32_t r1 =
-                    std::min(y1, ty * kTileHeight + kTileHeight - 1) - ty * kTileHeight;
+                const uint32_t r0 = std::max(y0, cy * ch) - ty * kTileHeight;
+                const uint32_t r1 = std::min(y1, cy * ch + ch - 1) - ty * kTileHeight;
                 bool covered = true;
                 for (uint32_t r = r0; r <= r1 && covered; ++r) {
                     covered = (columns & ~t.mask[r]) == 0;

@@ -13,16 +13,26 @@
 //   by a triangle only when the triangle covers the centre of every viewport pixel in it, with
 //   room to spare (kCoverageMarginPx, plus the projection's rounding): never more than the
 //   triangle covers in a real rasteriser's image.
-// - Tiles of 32×8 buffer pixels; per tile a 256-bit coverage mask and two depths: z0, which bounds
-//   every pixel of the tile (the nearest depth anything there can hide behind is at least as near
-//   as z0), and z1, which bounds the pixels whose mask bit is set (z1 > z0). A triangle is merged
-//   into the working layer (mask |= coverage, z1 = the farther of z1 and the triangle) or, when it
-//   is much nearer, replaces it (the old working pixels fall back to z0); a full mask becomes the
-//   new z0. Every step keeps: a pixel's true occluder depth is at least as near as its bound.
-// - A box is hidden only when its nearest depth is strictly farther than the bound of every
-//   buffer pixel its projection may touch (its projected rectangle rounded outward and grown by
-//   the margin); a box whose nearest point is at or behind the eye, or that is not finite, is
-//   visible. Ties are visible.
+// - Tiles of 32×8 buffer pixels, each cut into depth cells (MaskedLayout: 8×4 by default, the
+//   subtile of Intel's reference implementation, eight per tile as in its AVX2 build; its SSE
+//   build's 32×4 tiles hold the same 8×4 subtiles). Per tile a 256-bit coverage mask; per cell
+//   two depths: z0, which bounds every pixel of the cell (the nearest depth anything there can
+//   hide behind is at least as near as z0), and z1, which bounds the cell's pixels whose mask bit
+//   is set (z1 > z0). A triangle's depth in a cell is the farthest value of its plane over what it
+//   covers there, never farther than its farthest vertex. It updates the cell by the paper's rule
+//   (MaskedMerge::Quick): a triangle not nearer than z0 changes nothing; the working layer is
+//   discarded (its pixels fall back to z0) when the triangle covers the whole cell or when the
+//   working layer lies nearer to z0 than to the triangle (2·z1 − (z + z0) < 0), else merged
+//   (mask |= coverage, z1 = the farther of z1 and the triangle); a full mask becomes the new z0.
+//   MaskedMerge::Accurate keeps, of merging, discarding and dropping the triangle, the one that
+//   leaves the nearest reference depth, then (where boxes are tested against the working layer
+//   too) the nearest bounds in sum over the cell's pixels. Every step keeps: a pixel's true
+//   occluder depth is at least as near as its bound.
+// - A box is hidden only when its nearest depth is strictly farther than z0 of every cell its
+//   projection may touch (its projected rectangle rounded outward and grown by the margin), as in
+//   the paper, where only the reference layer culls; MaskedLayout::test_working_layer also lets
+//   z1 hide it in a cell where every pixel it touches is in the mask. A box whose nearest point
+//   is at or behind the eye, or that is not finite, is visible. Ties are visible.
 // Triangles are clipped against a plane a little beyond the near plane (what a real rasteriser
 // clips away is never an occluder here), both faces occlude (the renderer does not cull back
 // faces), and a degenerate or non-finite triangle is skipped. Skipping an occluder is always safe.
@@ -33,6 +43,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "occsim/culling/geometry/aabb.h"
@@ -44,6 +55,20 @@ namespace occsim {
 enum class MaskedKernel : uint8_t { Plain, Avx2 };
 // Whether this build and this CPU can run `kernel` (Plain: always).
 bool maskedKernelAvailable(MaskedKernel kernel);
+
+// How a cell takes a triangle (see the conventions above).
+enum class MaskedMerge : uint8_t { Quick, Accurate };
+
+// The buffer's depth resolution and rules. A cell is cell_width × cell_height buffer pixels,
+// cell_width one of 8, 16, 32 and cell_height one of 4, 8 (validMaskedLayout).
+struct MaskedLayout {
+    uint32_t cell_width = 8;
+    uint32_t cell_height = 4;
+    MaskedMerge merge = MaskedMerge::Quick;
+    bool test_working_layer = false;
+};
+// Empty when `layout` is one the buffer can keep, else what is wrong with it (one line).
+std::string validMaskedLayout(const MaskedLayout& layout);
 
 // What one frame of the buffer did: triangles given, rasterised (after clipping and skipping),
 // tile updates, and boxes tested and found hidden.
@@ -77,13 +102,17 @@ class MaskedDepthBuffer {
     // 1/w this much nearer (a float depth buffer rounds by about 6·10^-8).
     static constexpr double kDepthMargin = 1e-5;
 
-    explicit MaskedDepthBuffer(MaskedKernel kernel = MaskedKernel::Plain);
+    static constexpr uint32_t kMaxCellsPerTile = 8;  // 8×4 cells in a 32×8 tile
+
+    // std::invalid_argument when `layout` is not valid (validMaskedLayout).
+    explicit MaskedDepthBuffer(MaskedKernel kernel = MaskedKernel::Plain,
+                               const MaskedLayout& layout = {});
 
     // Starts a frame: clears the buffer. `view_projection` in the culling frame (OpenGL clip
     // convention), `eye` the camera there, the viewport in pixels, `max_width` the buffer's
-    // widest (>= 1). A camera whose near plane cannot be read from the matrix (not a perspective
-    // projection) or an empty viewport leave the buffer off: nothing is rasterised, every box is
-    // visible.
+    // widest (0: the viewport's width, one buffer pixel per viewport pixel). A camera whose near
+    // plane cannot be read from the matrix (not a perspective projection) or an empty viewport
+    // leave the buffer off: nothing is rasterised, every box is visible.
     void beginFrame(const glm::mat4& view_projection, glm::vec3 eye, uint32_t viewport_width,
                     uint32_t viewport_height, uint32_t max_width);
 
@@ -111,16 +140,19 @@ class MaskedDepthBuffer {
     uint32_t height() const { return height_; }
     uint32_t pixelSize() const { return k_; }  // viewport pixels per buffer pixel, each way
     MaskedKernel kernel() const { return kernel_; }
+    const MaskedLayout& layout() const { return layout_; }
     const MaskedBufferStats& stats() const { return stats_; }
 
     // The depth (1/w) below which a box at buffer pixel (x, y) is hidden: the pixel's bound; 0
     // where nothing is known. For tests and pictures.
     float pixelBound(uint32_t x, uint32_t y) const;
 
+    // Cell c of a tile covers columns (c % cellsAcross) · cell_width on and rows
+    // (c / cellsAcross) · cell_height on; cells past kMaxCellsPerTile's count are unused (0).
     struct Tile {
         uint32_t mask[kTileHeight];  // bit x of row y: buffer pixel (x0 + x, y0 + y) is in layer 1
-        float z0;                    // bounds every pixel of the tile (1/w; 0: unknown)
-        float z1;                    // bounds the pixels in the mask (> z0 while the mask is set)
+        float z0[kMaxCellsPerTile];  // bounds every pixel of the cell (1/w; 0: unknown)
+        float z1[kMaxCellsPerTile];  // bounds the cell's pixels in the mask (> z0 while set)
     };
     std::span<const Tile> tiles() const { return tiles_; }
     uint32_t tilesAcross() const { return tiles_x_; }
@@ -134,10 +166,19 @@ class MaskedDepthBuffer {
                                  const glm::dvec4* const* opposite);
     // >0: skip triangles clockwise on screen, <0: counter-clockwise ones, 0: none (this mesh).
     int skip_facing_ = 0;
-    void updateTile(uint32_t tile, const uint32_t (&coverage)[kTileHeight], float depth);
-    bool tileFull(uint32_t tile, const uint32_t (&mask)[kTileHeight]) const;
+    // The cell's coverage (`coverage` holds bits of this cell only) merged at `depth`.
+    void updateCell(uint32_t tile, uint32_t cell, const uint32_t (&coverage)[kTileHeight],
+                    float depth);
+    // Whether `mask` sets every pixel of the cell (pixels past the buffer's edge count as set).
+    bool cellFull(uint32_t tile, uint32_t cell, const uint32_t (&mask)[kTileHeight]) const;
+    uint32_t cellIndex(uint32_t column, uint32_t row) const {  // within a tile
+        return (row / layout_.cell_height) * cells_across_ + column / layout_.cell_width;
+    }
 
     MaskedKernel kernel_;
+    MaskedLayout layout_;
+    uint32_t cells_across_ = 4, cells_down_ = 2;    // per tile
+    uint32_t cell_columns_[kMaxCellsPerTile] = {};  // per cell column: its bits of a row
     bool active_ = false;
     glm::dmat4 view_projection_{1.0};  // the frame's, in double
     glm::dvec3 eye_{0.0};
