@@ -7,6 +7,7 @@ find_package(CLI11 CONFIG REQUIRED)               # libcli11-dev
 find_package(TinyGLTF CONFIG REQUIRED)            # libtinygltf-dev
 find_package(Threads REQUIRED)
 find_package(SQLite3 REQUIRED)                    # libsqlite3-dev: objects.sqlite (sim/record/)
+find_package(meshoptimizer CONFIG REQUIRED)       # libmeshoptimizer-dev: occluder meshes (sim/scene/)
 # EGL is opened with dlopen at run time (render/egl_context.cpp); only its headers are needed here.
 find_path(EGL_INCLUDE_DIR EGL/egl.h REQUIRED)               # libegl-dev
 # OSMesa is optional (Mesa removed it in 25.1): AUTO uses it when installed, ON requires it, OFF

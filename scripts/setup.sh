@@ -13,6 +13,7 @@ packages=(
   libglfw3-dev                                  # window (occsim view)
   libglm-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
   libsqlite3-dev                                # objects.sqlite (--record objects, occsim why)
+  libmeshoptimizer-dev                          # simplified occluder meshes (masked)
   libceres-dev                                  # the tuner
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and micro-benchmarks
   xvfb xauth                                    # window test under a virtual X server

@@ -72,6 +72,30 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
                           meshes.object_to_culling[object], neighbours_[mesh]);
 }
 
+void MaskedCuller::rasteriseOccluders(const BspTree& tree, const CullFrame& frame) {
+    candidates_.clear();
+    const glm::vec3 eye = frame.view.eye;
+    for (uint32_t o = 0; o < tree.objectCount(); ++o) {
+        const Aabb& box = tree.objectBox(o);
+        if (classify(view_.frustum, box) == FrustumTest::Outside) continue;
+        if (buffer_.screenExtent(box) < options_.occluder_size) continue;
+        const glm::vec3 nearest = glm::clamp(eye, box.min, box.max);
+        const glm::vec3 d = nearest - eye;
+        candidates_.push_back({glm::dot(d, d), o});
+    }
+    // Nearest first; the object index breaks ties, so that the order is the same on every run.
+    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+        return a.distance2 < b.distance2 || (a.distance2 == b.distance2 && a.object < b.object);
+    });
+    for (const Candidate& c : candidates_) {
+        if (budget_ == 0) break;
+        // An occluder the buffer already hides would change nothing: every cell it reaches holds
+        // a reference nearer than all of it.
+        if (!mayBeVisible(tree.objectBox(c.object), frame.view)) continue;
+        tryOccluder(tree, frame.meshes, c.object);
+    }
+}
+
 void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                  RenderDevice& device) {
     view_ = prepareView(frame);
@@ -88,7 +112,8 @@ void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     const CullMeshes& meshes = frame.meshes;
     const bool have_meshes = meshes.object_mesh.size() == tree.objectCount();
 
-    if (have_meshes && options_.last_drawn_first) {
+    if (have_meshes && !options_.drawn_occluders) rasteriseOccluders(tree, frame);
+    if (have_meshes && options_.drawn_occluders && options_.last_drawn_first) {
         for (const uint32_t o : drawn_last_) {
             if (o < tree.objectCount() &&
                 classify(view_.frustum, tree.objectBox(o)) != FrustumTest::Outside) {
@@ -113,7 +138,7 @@ void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
             }
             device.drawObject(o);
             drawn_now_.push_back(o);
-            if (have_meshes) tryOccluder(tree, meshes, o);
+            if (have_meshes && options_.drawn_occluders) tryOccluder(tree, meshes, o);
             if (view_.decisions) {
                 Decision why =
                     decisionOf(near ? DecisionKind::DrawnNearPlane : DecisionKind::DrawnOnTiles);
@@ -151,9 +176,12 @@ const OptionTable<MaskedOptions>& maskedOptionTable() {
                              "an object occludes when its box's projection is at least this "
                              "large (its larger side)"),
                 0.0, 0.5),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, drawn_occluders),
+                      "the drawn objects are the occluders, each as it is drawn; off = an "
+                      "occluder pass first over every large object in the frustum, nearest first"),
         switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, last_drawn_first),
-                                 "last frame's drawn occluders are rasterised before the "
-                                 "traversal; off = each as it is drawn"),
+                                 "with drawn_occluders: last frame's drawn occluders are "
+                                 "rasterised before the traversal; off = each as it is drawn"),
                    0.0),
         integerOption(OCCSIM_OPTION_MEMBER(O, occluder_triangles), "triangles", 0, 4294967295.0,
                       "occluder triangles rasterised per frame at most"),

@@ -30,8 +30,14 @@ struct MaskedOptions {
     // An object occludes when the larger side of its box's projection is at least this fraction
     // of the viewport's height.
     double occluder_size = 0.1;
-    // Last frame's drawn objects that qualify as occluders are rasterised first, before the
-    // traversal (a depth pre-pass from coherence); the others as they are drawn.
+    // How occluders are chosen. Off (the default, as engines do): an occluder pass before any box
+    // is tested, over every object in the frustum that is large enough on screen, nearest first,
+    // each skipped when the buffer already hides its box; the test pass then only tests and
+    // draws. On: the drawn objects are the occluders, each rasterised right after it is drawn
+    // (this project's masked before 2026-12-04).
+    bool drawn_occluders = false;
+    // With drawn_occluders: last frame's drawn objects that qualify are rasterised first, before
+    // the traversal (a depth pre-pass from coherence); the others as they are drawn.
     bool last_drawn_first = true;
     // Occluder triangles rasterised per frame at most; an object whose triangles no longer fit
     // is not an occluder this frame.
@@ -55,6 +61,8 @@ class MaskedCuller final : public Culler {
   private:
     bool mayBeVisible(const Aabb& box, const CullView& view);
     void tryOccluder(const BspTree& tree, const CullMeshes& meshes, uint32_t object);
+    // The occluder pass (drawn_occluders off): every large object in the frustum, nearest first.
+    void rasteriseOccluders(const BspTree& tree, const CullFrame& frame);
 
     MaskedOptions options_;
     MaskedDepthBuffer buffer_;
@@ -63,6 +71,11 @@ class MaskedCuller final : public Culler {
     std::vector<uint32_t> drawn_last_, drawn_now_;  // in draw order (front to back)
     std::vector<uint64_t> rasterised_in_;           // per object: frame stamp it was tried in
     std::vector<uint64_t> occluder_in_;             // per object: frame stamp it was rasterised in
+    struct Candidate {
+        float distance2;  // from the eye to the object's box, squared
+        uint32_t object;
+    };
+    std::vector<Candidate> candidates_;  // the occluder pass's, reused
     // Per mesh, its edges' neighbours (edgeNeighbours), built the first time it occludes.
     std::vector<std::vector<uint32_t>> neighbours_;
     std::vector<uint8_t> has_neighbours_;

@@ -1,0 +1,341 @@
+// Inscribed occluder meshes: see occluder_mesh.h. meshoptimizer simplifies; everything that makes
+// the result safe (welding, the closedness check, the inward step, the inside and gap checks) is
+// here.
+#include "sim/scene/occluder_mesh.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace occsim {
+namespace {
+
+struct Welded {
+    std::vector<glm::dvec3> positions;
+    std::vector<uint32_t> indices;  // degenerate triangles (a repeated vertex) left out
+};
+
+// Vertices within `tolerance` of one another become one (a sphere's seam, computed twice, rarely
+// lands on the same float); the welded surface is within `tolerance` of the mesh.
+Welded weld(const MeshData& mesh, double tolerance) {
+    Welded w;
+    std::map<std::tuple<int64_t, int64_t, int64_t>, std::vector<uint32_t>> cells;
+    std::vector<uint32_t> remap(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const glm::dvec3 p(mesh.positions[i]);
+        const glm::dvec3 q = glm::floor(p / tolerance);
+        const int64_t cx = static_cast<int64_t>(q.x), cy = static_cast<int64_t>(q.y),
+                      cz = static_cast<int64_t>(q.z);
+        uint32_t found = UINT32_MAX;
+        for (int64_t dx = -1; dx <= 1 && found == UINT32_MAX; ++dx) {
+            for (int64_t dy = -1; dy <= 1 && found == UINT32_MAX; ++dy) {
+                for (int64_t dz = -1; dz <= 1 && found == UINT32_MAX; ++dz) {
+                    const auto it = cells.find({cx + dx, cy + dy, cz + dz});
+                    if (it == cells.end()) continue;
+                    for (const uint32_t k : it->second) {
+                        if (glm::length(w.positions[k] - p) <= tolerance) {
+                            found = k;
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        if (found == UINT32_MAX) {
+            found = static_cast<uint32_t>(w.positions.size());
+            w.positions.push_back(p);
+            cells[{cx, cy, cz}].push_back(found);
+        }
+        remap[i] = found;
+    }
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1], i2 = mesh.indices[t + 2];
+        if (i0 >= remap.size() || i1 >= remap.size() || i2 >= remap.size()) continue;
+        const uint32_t a = remap[i0], b = remap[i1], c = remap[i2];
+        if (a == b || b == c || a == c) continue;
+        w.indices.insert(w.indices.end(), {a, b, c});
+    }
+    return w;
+}
+
+// Empty when every edge is used exactly once each way, else what is wrong.
+std::string closedAndOriented(const std::vector<uint32_t>& indices) {
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    for (size_t t = 0; t < indices.size(); t += 3) {
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t p = indices[t + i], q = indices[t + (i + 1) % 3];
+            if (++directed[{p, q}] > 1) return "the mesh is not consistently oriented";
+        }
+    }
+    size_t open = 0;
+    for (const auto& [edge, count] : directed) {
+        if (!directed.count({edge.second, edge.first})) ++open;
+    }
+    if (open > 0) return "the mesh is not closed (" + std::to_string(open) + " open edges)";
+    return {};
+}
+
+double signedVolume(const std::vector<glm::dvec3>& p, const std::vector<uint32_t>& idx) {
+    double v = 0.0;
+    for (size_t t = 0; t < idx.size(); t += 3) {
+        v += glm::dot(p[idx[t]], glm::cross(p[idx[t + 1]], p[idx[t + 2]]));
+    }
+    return v / 6.0;
+}
+
+// Crossings of the ray from `o` along `d` with the mesh: the count, or -1 when the ray passes
+// too near an edge or a vertex, or lies in a triangle's plane, to tell.
+int crossings(const glm::dvec3& o, const glm::dvec3& d, const std::vector<glm::dvec3>& p,
+              const std::vector<uint32_t>& idx) {
+    constexpr double kGraze = 1e-9;
+    int count = 0;
+    for (size_t t = 0; t < idx.size(); t += 3) {
+        const glm::dvec3 &a = p[idx[t]], &b = p[idx[t + 1]], &c = p[idx[t + 2]];
+        const glm::dvec3 e1 = b - a, e2 = c - a;
+        const glm::dvec3 h = glm::cross(d, e2);
+        const double det = glm::dot(e1, h);
+        const double scale = glm::length(e1) * glm::length(e2);
+        if (std::abs(det) <= 1e-12 * scale) {
+            // Parallel to the triangle's plane: a problem only when the ray lies in it.
+            const glm::dvec3 n = glm::cross(e1, e2);
+            if (std::abs(glm::dot(o - a, n)) <=
+                kGraze * glm::length(n) * (1.0 + glm::length(o - a)))
+                return -1;
+            continue;
+        }
+        const double f = 1.0 / det;
+        const glm::dvec3 s = o - a;
+        const double u = f * glm::dot(s, h);
+        const glm::dvec3 q = glm::cross(s, e1);
+        const double v = f * glm::dot(d, q);
+        const double dist = f * glm::dot(e2, q);
+        if (u < -kGraze || v < -kGraze || u + v > 1.0 + kGraze) continue;  // clearly outside
+        if (std::abs(dist) <= kGraze * (1.0 + glm::length(s))) return -1;  // starts on the surface
+        if (dist < 0.0) continue;
+        if (u <= kGraze || v <= kGraze || u + v >= 1.0 - kGraze) return -1;  // grazes an edge
+        ++count;
+    }
+    return count;
+}
+
+// The interval of the triangle's vertices projected on `axis`.
+std::pair<double, double> project(const glm::dvec3 (&t)[3], const glm::dvec3& axis) {
+    const double a = glm::dot(t[0], axis), b = glm::dot(t[1], axis), c = glm::dot(t[2], axis);
+    return {std::min({a, b, c}), std::max({a, b, c})};
+}
+
+}  // namespace
+
+bool pointInsideClosedMesh(const glm::dvec3& point, const std::vector<glm::dvec3>& positions,
+                           const std::vector<uint32_t>& welded) {
+    // Three unrelated directions must each cross an odd number of times, cleanly.
+    static const glm::dvec3 kDirections[3] = {glm::normalize(glm::dvec3(0.5773, 0.5822, 0.5721)),
+                                              glm::normalize(glm::dvec3(-0.8124, 0.2431, 0.5301)),
+                                              glm::normalize(glm::dvec3(0.1379, -0.9012, 0.4108))};
+    for (const glm::dvec3& d : kDirections) {
+        const int n = crossings(point, d, positions, welded);
+        if (n < 0 || n % 2 == 0) return false;
+    }
+    return true;
+}
+
+bool trianglesWithinGap(const glm::dvec3 (&a)[3], const glm::dvec3 (&b)[3], double gap) {
+    const glm::dvec3 ea[3] = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
+    const glm::dvec3 eb[3] = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
+    const glm::dvec3 na = glm::cross(ea[0], ea[1]), nb = glm::cross(eb[0], eb[1]);
+    glm::dvec3 axes[17];
+    int n = 0;
+    axes[n++] = na;
+    axes[n++] = nb;
+    for (const glm::dvec3& x : ea) {
+        for (const glm::dvec3& y : eb) axes[n++] = glm::cross(x, y);
+    }
+    for (int i = 0; i < 3; ++i) {
+        axes[n++] = glm::cross(na, ea[i]);  // in-plane edge normals: coplanar pairs
+        axes[n++] = glm::cross(nb, eb[i]);
+    }
+    for (const glm::dvec3& axis : axes) {
+        const double len = glm::length(axis);
+        if (!(len > 1e-300)) continue;
+        const glm::dvec3 u = axis / len;
+        const auto [a_lo, a_hi] = project(a, u);
+        const auto [b_lo, b_hi] = project(b, u);
+        if (a_hi + gap < b_lo || b_hi + gap < a_lo) return false;  // separated by more than gap
+    }
+    return true;
+}
+
+OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSettings& settings) {
+    OccluderMesh out;
+    out.source_triangles = source.triangleCount();
+    if (out.source_triangles < settings.min_triangles) {
+        out.refusal = "too few triangles to gain from a simpler occluder (" +
+                      std::to_string(out.source_triangles) + ")";
+        return out;
+    }
+    if (out.source_triangles > settings.max_triangles) {
+        out.refusal = "too many triangles to check an occluder against (" +
+                      std::to_string(out.source_triangles) + ", at most " +
+                      std::to_string(settings.max_triangles) + ")";
+        return out;
+    }
+    const Aabb bounds = meshBounds(source);
+    if (!isFiniteAndOrdered(bounds)) {
+        out.refusal = "its vertices are not finite";
+        return out;
+    }
+    const double extent = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    const double weld_tolerance = 1e-6 * extent;
+    const Welded w = weld(source, weld_tolerance);
+    if (w.indices.empty()) {
+        out.refusal = "no triangles with three distinct vertices";
+        return out;
+    }
+    if (std::string problem = closedAndOriented(w.indices); !problem.empty()) {
+        out.refusal = std::move(problem);
+        return out;
+    }
+    const double volume = signedVolume(w.positions, w.indices);
+    if (!(std::abs(volume) > 0.0) || !std::isfinite(volume)) {
+        out.refusal = "the mesh encloses no volume";
+        return out;
+    }
+    const double outward = volume > 0.0 ? 1.0 : -1.0;  // counter-clockwise faces face out
+
+    // Simplify (meshoptimizer works in float).
+    std::vector<float> flat(3 * w.positions.size());
+    for (size_t i = 0; i < w.positions.size(); ++i) {
+        for (int k = 0; k < 3; ++k) flat[3 * i + k] = static_cast<float>(w.positions[i][k]);
+    }
+    const size_t target =
+        std::max<size_t>(3 * 4, 3 * static_cast<size_t>(settings.triangle_share *
+                                                        static_cast<double>(w.indices.size() / 3)));
+    std::vector<uint32_t> simple(w.indices.size());
+    float error = 0.0f;
+    simple.resize(meshopt_simplify(simple.data(), w.indices.data(), w.indices.size(), flat.data(),
+                                   w.positions.size(), 3 * sizeof(float), target, 0.05f, 0,
+                                   &error));
+    if (simple.size() < 3 || simple.size() >= w.indices.size()) {
+        out.refusal = "meshoptimizer could not simplify it";
+        return out;
+    }
+
+    // Vertex normals of the simplified surface, outward, area-weighted.
+    std::vector<glm::dvec3> normals(w.positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t < simple.size(); t += 3) {
+        const glm::dvec3 &a = w.positions[simple[t]], &b = w.positions[simple[t + 1]],
+                         &c = w.positions[simple[t + 2]];
+        const glm::dvec3 n = outward * glm::cross(b - a, c - a);
+        for (int i = 0; i < 3; ++i) normals[simple[t + i]] += n;
+    }
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::dvec3& p : w.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const double size = glm::length(hi - lo);
+    // Room between the occluder and the surface: float rounding of the vertices (the result is
+    // stored in float) and of the transforms, many times over.
+    const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
+                                       std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+    const double gap = std::max(1e-5 * size, 64.0 * FLT_EPSILON * magnitude) + 2.0 * weld_tolerance;
+    double total_area = 0.0;
+    for (size_t t = 0; t < simple.size(); t += 3) {
+        total_area +=
+            0.5 * glm::length(glm::cross(w.positions[simple[t + 1]] - w.positions[simple[t]],
+                                         w.positions[simple[t + 2]] - w.positions[simple[t]]));
+    }
+
+    // Triangle bounds of the source, for a quick rejection before the separating-axis test.
+    const size_t source_count = w.indices.size() / 3;
+    std::vector<glm::dvec3> tri_lo(source_count), tri_hi(source_count);
+    for (size_t t = 0; t < source_count; ++t) {
+        tri_lo[t] = tri_hi[t] = w.positions[w.indices[3 * t]];
+        for (int i = 1; i < 3; ++i) {
+            tri_lo[t] = glm::min(tri_lo[t], w.positions[w.indices[3 * t + i]]);
+            tri_hi[t] = glm::max(tri_hi[t], w.positions[w.indices[3 * t + i]]);
+        }
+    }
+
+    std::vector<uint32_t> best;
+    std::vector<glm::dvec3> best_positions;
+    double best_area = 0.0, best_step = 0.0;
+    for (const double step_share : {0.0, 0.002, 0.005, 0.01, 0.02, 0.04, 0.08}) {
+        const double step = step_share * size;
+        std::vector<glm::dvec3> moved(w.positions.size());
+        std::vector<int8_t> inside(w.positions.size(), -1);  // -1: not yet checked
+        for (size_t i = 0; i < w.positions.size(); ++i) {
+            const double len = glm::length(normals[i]);
+            moved[i] = len > 0.0 ? w.positions[i] - (step / len) * normals[i] : w.positions[i];
+        }
+        std::vector<uint32_t> kept;
+        double area = 0.0;
+        for (size_t t = 0; t < simple.size(); t += 3) {
+            bool ok = true;
+            for (int i = 0; i < 3 && ok; ++i) {
+                int8_t& in = inside[simple[t + i]];
+                if (in < 0)
+                    in = pointInsideClosedMesh(moved[simple[t + i]], w.positions, w.indices);
+                ok = in == 1;
+            }
+            if (!ok) continue;
+            const glm::dvec3 tri[3] = {moved[simple[t]], moved[simple[t + 1]],
+                                       moved[simple[t + 2]]};
+            const glm::dvec3 t_lo = glm::min(tri[0], glm::min(tri[1], tri[2])) - gap;
+            const glm::dvec3 t_hi = glm::max(tri[0], glm::max(tri[1], tri[2])) + gap;
+            for (size_t s = 0; s < source_count && ok; ++s) {
+                if (glm::any(glm::lessThan(tri_hi[s], t_lo)) ||
+                    glm::any(glm::greaterThan(tri_lo[s], t_hi))) {
+                    continue;
+                }
+                const glm::dvec3 other[3] = {w.positions[w.indices[3 * s]],
+                                             w.positions[w.indices[3 * s + 1]],
+                                             w.positions[w.indices[3 * s + 2]]};
+                ok = !trianglesWithinGap(tri, other, gap);
+            }
+            if (!ok) continue;
+            kept.insert(kept.end(), {simple[t], simple[t + 1], simple[t + 2]});
+            area += 0.5 * glm::length(glm::cross(tri[1] - tri[0], tri[2] - tri[0]));
+        }
+        if (area > best_area) {
+            best_area = area;
+            best = std::move(kept);
+            best_positions = std::move(moved);
+            best_step = step;
+        }
+        if (best_area >= settings.kept_area_share * total_area) break;
+    }
+    if (best.empty()) {
+        out.refusal = "no triangle of the simplified mesh could be made to lie inside it";
+        return out;
+    }
+
+    // Compact: only the vertices the kept triangles use, back in float. Rounding to float moves a
+    // vertex by far less than the gap the checks kept.
+    std::vector<uint32_t> remap(best_positions.size(), UINT32_MAX);
+    for (uint32_t& i : best) {
+        if (remap[i] == UINT32_MAX) {
+            remap[i] = static_cast<uint32_t>(out.mesh.positions.size());
+            out.mesh.positions.emplace_back(best_positions[i]);
+            const double len = glm::length(normals[i]);
+            out.mesh.normals.emplace_back(len > 0.0 ? glm::vec3(normals[i] / len)
+                                                    : glm::vec3(0, 1, 0));
+        }
+        i = remap[i];
+    }
+    out.mesh.indices = std::move(best);
+    if (outward < 0.0) {
+        for (size_t t = 0; t < out.mesh.indices.size(); t += 3) {
+            std::swap(out.mesh.indices[t + 1], out.mesh.indices[t + 2]);
+        }
+    }
+    out.inward_step_m = best_step;
+    out.kept_area_share = best_area / total_area;
+    return out;
+}
+
+}  // namespace occsim
