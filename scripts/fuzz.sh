@@ -1,22 +1,24 @@
 #!/usr/bin/env bash
 # Fuzzes every reader of outside input with libFuzzer (clang, ASan + UBSan): scenarios, glTF,
 # viewer scripts, regression baselines, the tuner's sample log, --sweep and --segments strings,
-# --culling files (a plugin culler's options included) and plugin option descriptors
-# (tests/fuzz/fuzz_inputs.h).
+# --culling files (a plugin culler's options included), plugin option descriptors and Masked
+# Occlusion Culling's recorded frames (.mocrec) (tests/fuzz/fuzz_inputs.h).
 # Usage: scripts/fuzz.sh [seconds per target, default 60] [target...]
 #   targets: scenario gltf view_script baseline sample_log sweep segments culling_file
-#            plugin_descriptor
+#            plugin_descriptor mocrec
 # Seeds: the regression inputs in tests/fuzz/regressions/<target>/ (each holds a valid-* seed),
 # plus every scenario under scenarios/ (scenario), the bundled glTF models (gltf) and the
-# committed baselines (baseline). Findings land in out/fuzz/<target>/ as crash-*, leak-*,
-# timeout-* files: fix the bug, then copy the file into tests/fuzz/regressions/<target>/ so the
-# normal suite replays it (test_fuzz_regressions).
+# committed baselines (baseline); mocrec starts from its small seed alone (every record type in
+# 489 bytes: the real frames exceed -max_len). Findings land in out/fuzz/<target>/ as crash-*,
+# leak-*, timeout-* files: fix the bug, then copy the file into tests/fuzz/regressions/<target>/
+# so the normal suite replays it (test_fuzz_regressions).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-all_targets=(scenario gltf view_script baseline sample_log sweep segments culling_file plugin_descriptor)
+all_targets=(scenario gltf view_script baseline sample_log sweep segments culling_file plugin_descriptor
+             mocrec)
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 for target in "${targets[@]}"; do
   [[ " ${all_targets[*]} " == *" $target "* ]] ||

@@ -23,4 +23,11 @@ class GltfError : public InputError {
     using InputError::InputError;
 };
 
+// A Masked Occlusion Culling recording (.mocrec) that cannot be read: one line naming the file,
+// the byte offset and what was expected there (sim/scene/mocrec.h).
+class MocrecError : public InputError {
+  public:
+    using InputError::InputError;
+};
+
 }  // namespace occsim

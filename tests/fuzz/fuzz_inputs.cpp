@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/segments.h"
 #include "sim/scene/gltf_source.h"
+#include "sim/scene/mocrec.h"
 #include "sim/view/view_script.h"
 #include "tune/errors.h"
 #include "tune/sample_log.h"
@@ -241,6 +243,35 @@ bool pluginDescriptorInput(const uint8_t* data, size_t size) {
     return true;
 }
 
+bool mocrecInput(const uint8_t* data, size_t size) {
+    MocFrame frame;
+    try {
+        frame = parseMocrec(std::span<const uint8_t>(data, size), "fuzz/input.mocrec");
+    } catch (const MocrecError&) {
+        return false;
+    }
+    auto check = [](const MocBatch& b) {
+        if (b.indices.size() % 3 != 0) brokenPromise("a batch with a partial triangle");
+        for (const uint32_t i : b.indices) {
+            if (i >= b.clip.size()) brokenPromise("an index past its batch's vertices");
+        }
+        for (const glm::dvec4& c : b.clip) {
+            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+                !std::isfinite(c.w))
+                brokenPromise("a clip coordinate that is not finite");
+        }
+    };
+    for (const MocBatch& b : frame.occluders) check(b);
+    for (const MocTriangleTest& t : frame.triangle_tests) {
+        check(t.batch);
+        if (t.occluders_before > frame.occluders.size()) brokenPromise("a test after no occluder");
+    }
+    for (const MocRectTest& r : frame.rect_tests) {
+        if (r.occluders_before > frame.occluders.size()) brokenPromise("a test after no occluder");
+    }
+    return true;
+}
+
 const std::vector<FuzzTarget>& fuzzTargets() {
     static const std::vector<FuzzTarget> targets{
         {"scenario", scenarioInput,
@@ -254,6 +285,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
         {"culling_file", cullingFileInput, "--culling files, a plugin culler's options included"},
         {"plugin_descriptor", pluginDescriptorInput,
          "a plugin's options descriptor, as registered"},
+        {"mocrec", mocrecInput, "Masked Occlusion Culling's recorded frames (.mocrec)"},
     };
     return targets;
 }

@@ -2,8 +2,9 @@
 // fuzz_<name>, built from fuzz_target.cpp; scripts/fuzz.sh) and by the regression test that
 // replays every input a fuzzer ever found (tests/fuzz/regressions/<name>/). Bad input must end in
 // the documented error of its reader (ScenarioError, GltfError, ScriptError, BaselineError,
-// TuneInputError, std::invalid_argument, RegistryError); anything else (a crash, a hang, a
-// sanitizer report, another exception escaping, a broken promise of the reader) is a finding.
+// TuneInputError, std::invalid_argument, RegistryError, MocrecError); anything else (a crash, a
+// hang, a sanitizer report, another exception escaping, a broken promise of the reader) is a
+// finding.
 #pragma once
 
 #include <cstddef>
@@ -52,5 +53,8 @@ bool cullingFileInput(const uint8_t* data, size_t size);
 // max, default, tune, off, alternative_to) and offers it to a registry as a plugin would: refused
 // with a RegistryError or accepted, and then its defaults and off values must be valid options.
 bool pluginDescriptorInput(const uint8_t* data, size_t size);
+// Reads the bytes as a Masked Occlusion Culling recording (.mocrec); an accepted frame must keep
+// the header's promises: finite clip coordinates, every index below its batch's vertex count.
+bool mocrecInput(const uint8_t* data, size_t size);
 
 }  // namespace occsim::fuzz
