@@ -41,7 +41,7 @@ set(room_raster geometry raster)
 set(room_cullers geometry contract tree registration raster cullers)
 set(room_plugin geometry contract tree registration plugin)
 set(room_registry geometry contract devices registration plugin registry)
-set(room_testing geometry contract testing)
+set(room_testing geometry contract raster testing)
 
 set(violations "")
 

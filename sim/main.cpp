@@ -1,10 +1,10 @@
 // occsim: the simulator executable. Commands: run, bench, regress, merge, history, info, devices,
-// cullers, view, why, each in sim/commands/ with its flags; this file reads the command line, runs
-// the command given and turns what it ends in into an exit code (sim/commands/exit_codes.h). Bad
-// input (flags, scenario and script files, plugins, a headless backend or device that is missing or
-// falls short: an occsim::InputError, whichever module found it) ends with one line on stderr and
-// exit code 2, and so does `view` where no window can be opened; runtime failures (OpenGL, output)
-// with exit 1.
+// cullers, view, why, masked-replay, each in sim/commands/ with its flags; this file reads the
+// command line, runs the command given and turns what it ends in into an exit code
+// (sim/commands/exit_codes.h). Bad input (flags, scenario and script files, plugins, a headless
+// backend or device that is missing or falls short: an occsim::InputError, whichever module found
+// it) ends with one line on stderr and exit code 2, and so does `view` where no window can be
+// opened; runtime failures (OpenGL, output) with exit 1.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -16,6 +16,7 @@
 #include "sim/commands/exit_codes.h"
 #include "sim/commands/history.h"
 #include "sim/commands/listings.h"
+#include "sim/commands/masked_replay.h"
 #include "sim/commands/merge.h"
 #include "sim/commands/regress.h"
 #include "sim/commands/run_bench.h"
@@ -54,6 +55,8 @@ struct Commands {
     ViewFlags view_flags;
     CLI::App* why = nullptr;
     WhyFlags why_flags;
+    CLI::App* masked_replay = nullptr;
+    MaskedReplayFlags masked_replay_flags;
 };
 
 // The commands in the order --help lists them.
@@ -68,6 +71,7 @@ void addCommands(CLI::App& app, Commands& c) {
     c.info = addInfo(app, c.info_scenario);
     c.view = addView(app, c.view_flags);
     c.why = addWhy(app, c.why_flags);
+    c.masked_replay = addMaskedReplay(app, c.masked_replay_flags);
 }
 
 // Which flags were given (CLI11 knows once it has parsed): an empty one given is refused.
@@ -133,6 +137,7 @@ int runGivenCommand(const Commands& c, const std::string& command) {
     if (*c.info) return infoCommand(c.info_scenario);
     if (*c.view) return viewCommand(c.view_flags);
     if (*c.why) return whyCommand(c.why_flags);
+    if (*c.masked_replay) return maskedReplayCommand(c.masked_replay_flags);
     return kExitFailure;
 }
 

@@ -34,6 +34,7 @@ void MaskedCuller::reset(const BspTree& tree) {
     rasterised_in_.assign(tree.objectCount(), 0);
     occluder_in_.assign(tree.objectCount(), 0);
     stamp_ = 0;
+    welded_.clear();
     neighbours_.clear();
     has_neighbours_.clear();
 }
@@ -60,16 +61,21 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
     ++occluders_;
     occluder_in_[object] = stamp_;
     const std::span<const uint32_t> indices = meshes.indices.subspan(r.first_index, r.index_count);
+    const std::span<const glm::vec3> positions =
+        meshes.positions.subspan(r.first_vertex, r.vertex_count);
     if (has_neighbours_.size() != meshes.meshes.size()) {
         has_neighbours_.assign(meshes.meshes.size(), 0);
+        welded_.assign(meshes.meshes.size(), {});
         neighbours_.assign(meshes.meshes.size(), {});
     }
     if (!has_neighbours_[mesh]) {
-        neighbours_[mesh] = edgeNeighbours(indices);  // once per mesh and run
+        // Once per mesh and run.
+        welded_[mesh] = weldedIndices(positions, indices);
+        neighbours_[mesh] = edgeNeighbours(welded_[mesh]);
         has_neighbours_[mesh] = 1;
     }
-    buffer_.rasteriseMesh(meshes.positions.subspan(r.first_vertex, r.vertex_count), indices,
-                          meshes.object_to_culling[object], neighbours_[mesh]);
+    buffer_.rasteriseMesh(positions, welded_[mesh], meshes.object_to_culling[object],
+                          neighbours_[mesh]);
 }
 
 void MaskedCuller::rasteriseOccluders(const BspTree& tree, const CullFrame& frame) {

@@ -1,5 +1,5 @@
 // Masked software occlusion culling on the CPU (Hasselgren, Andersson & Akenine-Möller, HPG 2016):
-// a coarse software depth buffer (culling/raster/masked_depth_buffer.h) filled with the real
+// a coarse software depth buffer (occsim/culling/raster/masked_depth_buffer.h) filled with the real
 // triangles of chosen occluders, near to far, and tested with node and object boxes while the
 // BSP tree is traversed front to back. No occlusion queries: the device only draws. How it
 // works here and what differs from the paper: docs/masked.md.
@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "culling/raster/masked_depth_buffer.h"
 #include "occsim/culling/contract/culler.h"
+#include "occsim/culling/raster/masked_depth_buffer.h"
 #include "occsim/culling/tree/traversal.h"
 
 namespace occsim {
@@ -76,7 +76,9 @@ class MaskedCuller final : public Culler {
         uint32_t object;
     };
     std::vector<Candidate> candidates_;  // the occluder pass's, reused
-    // Per mesh, its edges' neighbours (edgeNeighbours), built the first time it occludes.
+    // Per mesh, built the first time it occludes: its indices welded by position
+    // (weldedIndices), and their edges' neighbours (edgeNeighbours).
+    std::vector<std::vector<uint32_t>> welded_;
     std::vector<std::vector<uint32_t>> neighbours_;
     std::vector<uint8_t> has_neighbours_;
     uint64_t stamp_ = 0;

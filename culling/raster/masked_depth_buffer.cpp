@@ -1,9 +1,10 @@
 // Hasselgren, Andersson & Akenine-Möller, "Masked Software Occlusion Culling", HPG 2016: tiles
 // with a coverage mask and two depth layers, merged conservatively. Written here from the paper;
 // docs/masked.md lists what differs from it. The conventions and the rules are in the header.
-#include "culling/raster/masked_depth_buffer.h"
+#include "occsim/culling/raster/masked_depth_buffer.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cfloat>
 #include <cmath>
@@ -19,6 +20,9 @@ namespace {
 // an ulp each; a few of them add up in one coordinate. This many ulps of the coordinates'
 // magnitude bound the distance between where we put a point and where the exact inputs put it.
 constexpr double kRoundingUlps = 8.0 * FLT_EPSILON;
+// A rasteriser snaps vertices to this grid (viewport pixels; 8 sub-pixel bits, the fewest OpenGL
+// implementations use).
+constexpr double kSnapPx = 1.0 / 256.0;
 // Triangles are clipped this far (relative) beyond the near plane: what a rasteriser keeps of a
 // triangle crossing the near plane always contains what we keep.
 constexpr double kNearClipMargin = 1e-4;
@@ -62,6 +66,48 @@ std::vector<uint32_t> edgeNeighbours(std::span<const uint32_t> indices) {
     return out;
 }
 
+namespace {
+
+// Vertices compare by the bits of their coordinates: a total order even for NaN (which then
+// welds only with its own bits), and -0 apart from +0 (not welding is always safe).
+template <class Bits, int N, class Vertex>
+std::vector<uint32_t> weldBy(std::span<const Vertex> positions, std::span<const uint32_t> indices) {
+    auto key = [&](uint32_t v) {
+        std::array<Bits, N> k;
+        for (int c = 0; c < N; ++c) k[c] = std::bit_cast<Bits>(positions[v][c]);
+        return k;
+    };
+    std::vector<uint32_t> order(positions.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const auto ka = key(a), kb = key(b);
+        return ka < kb || (ka == kb && a < b);
+    });
+    // The first of each run of equal positions is its smallest index.
+    std::vector<uint32_t> first(positions.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        const bool same = i > 0 && key(order[i - 1]) == key(order[i]);
+        first[order[i]] = same ? first[order[i - 1]] : order[i];
+    }
+    std::vector<uint32_t> out(indices.begin(), indices.end());
+    for (uint32_t& i : out) {
+        if (i < first.size()) i = first[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<uint32_t> weldedIndices(std::span<const glm::vec3> positions,
+                                    std::span<const uint32_t> indices) {
+    return weldBy<uint32_t, 3>(positions, indices);
+}
+
+std::vector<uint32_t> weldedIndices(std::span<const glm::dvec4> positions,
+                                    std::span<const uint32_t> indices) {
+    return weldBy<uint64_t, 4>(positions, indices);
+}
+
 bool maskedKernelAvailable(MaskedKernel kernel) {
     return kernel == MaskedKernel::Plain || masked_kernels::avx2Available();
 }
@@ -89,16 +135,15 @@ MaskedDepthBuffer::MaskedDepthBuffer(MaskedKernel kernel, const MaskedLayout& la
         cell_columns_[c] = one_cell << (c * layout.cell_width);
 }
 
-void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
-                                   uint32_t viewport_width, uint32_t viewport_height,
-                                   uint32_t max_width) {
+bool MaskedDepthBuffer::layOut(uint32_t viewport_width, uint32_t viewport_height,
+                               uint32_t max_width) {
     active_ = false;
     stats_ = MaskedBufferStats{};
     viewport_width_ = viewport_width;
     viewport_height_ = viewport_height;
     width_ = height_ = tiles_x_ = tiles_y_ = 0;
     tiles_.clear();
-    if (viewport_width == 0 || viewport_height == 0) return;
+    if (viewport_width == 0 || viewport_height == 0) return false;
 
     if (max_width == 0) max_width = viewport_width;
     k_ = (viewport_width + max_width - 1) / max_width;
@@ -111,7 +156,47 @@ void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 e
     const uint32_t outside_columns = columns_in_last == kTileWidth ? 0u : ~0u << columns_in_last;
     std::fill(std::begin(right_outside_), std::end(right_outside_), outside_columns);
     top_outside_rows_ = tiles_y_ * kTileHeight - height_;
+    return true;
+}
 
+void MaskedDepthBuffer::beginClipFrame(uint32_t viewport_width, uint32_t viewport_height,
+                                       double near_w, uint32_t max_width) {
+    if (!layOut(viewport_width, viewport_height, max_width)) return;
+    view_projection_ = glm::dmat4(1.0);
+    eye_ = glm::dvec3(0.0);
+    near_ = near_w;
+    frame_error_ = 0.0;
+    focal_px_ = 0.5 * std::max(viewport_width, viewport_height);  // only scales a zero error
+    active_ = std::isfinite(near_) && near_ > 0.0;
+}
+
+void MaskedDepthBuffer::rasteriseClipMesh(std::span<const glm::dvec4> clip,
+                                          std::span<const uint32_t> indices,
+                                          std::span<const uint32_t> neighbours) {
+    const size_t triangles = indices.size() / 3;
+    stats_.triangles += triangles;
+    if (!active_ || triangles == 0) return;
+    const bool have_neighbours = neighbours.size() == 3 * triangles;
+    const bool closed = have_neighbours && std::find(neighbours.begin(), neighbours.end(),
+                                                     kNoNeighbour) == neighbours.end();
+    skip_facing_ = closed ? 1 : 0;
+    for (size_t t = 0; t < triangles; ++t) {
+        const uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
+        if (i0 >= clip.size() || i1 >= clip.size() || i2 >= clip.size()) continue;
+        const glm::dvec4* opposite[3] = {nullptr, nullptr, nullptr};
+        for (uint32_t i = 0; i < 3 && have_neighbours; ++i) {
+            const uint32_t n = neighbours[3 * t + i];
+            if (n < clip.size()) opposite[i] = &clip[n];
+        }
+        rasteriseClipTriangle(clip[i0], clip[i1], clip[i2], 0.0, opposite);
+    }
+    skip_facing_ = 0;
+}
+
+void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
+                                   uint32_t viewport_width, uint32_t viewport_height,
+                                   uint32_t max_width) {
+    if (!layOut(viewport_width, viewport_height, max_width)) return;
     view_projection_ = glm::dmat4(view_projection);
     eye_ = glm::dvec3(eye);
     // The near plane from the matrix: with z = a·w + t at the eye (a = (f+n)/(f-n) and
@@ -297,14 +382,18 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
     edges.x_hi = x_hi;
 
     // Depth: 1/w is affine in screen space. Per cell, the plane's farthest value over the covered
-    // part (widened by the position margin), never farther than the triangle's farthest vertex.
-    // A sliver (less than a viewport pixel high) gets its farthest vertex: a rasteriser's plane
-    // through snapped vertices may tilt far from the true one there.
+    // pixel centres, reached out by `depth_reach`, never farther than the triangle's farthest
+    // vertex. The reach is the coverage margin (the block's half extent, snapping, rounding)
+    // plus how far a rasteriser's plane through vertices snapped by 1/256 pixel may tilt: by the
+    // snapping times the triangle's length over its height. A sliver (less than a viewport pixel
+    // high) gets its farthest vertex.
     const double dz1 = inv_w[1] - inv_w[0], dz2 = inv_w[2] - inv_w[0];
     const double plane_a = (dz1 * (vv[2] - vv[0]) - dz2 * (vv[1] - vv[0])) / area2;
     const double plane_b = ((u[1] - u[0]) * dz2 - (u[2] - u[0]) * dz1) / area2;
     const double plane_c = inv_w[0] - plane_a * u[0] - plane_b * vv[0];
-    const bool sliver = std::abs(area2) / longest * k_ < 1.0;
+    const double height = std::abs(area2) / longest;  // buffer pixels
+    const bool sliver = height * k_ < 1.0;
+    const double depth_reach = margin + 2.0 * (kSnapPx / k_) * (longest / height);
     const double depth_scale =
         (1.0 - kDepthMargin) * (1.0 - 2.0 * position_error / std::max(w_min, 1e-300));
     if (!(depth_scale > 0.0)) return;
@@ -356,12 +445,13 @@ void MaskedDepthBuffer::rasteriseScreenTriangle(const glm::dvec4* v, double posi
                     double far = inv_w_min;
                     if (!sliver) {
                         // The plane's farthest value over the covered pixels of the cell.
-                        const double x0 = col0 + std::countr_zero(columns) - 0.5;
-                        const double x1 = col0 + (31 - std::countl_zero(columns)) + 0.5;
-                        const double y0 = row0 + row_lo - 0.5, y1 = row0 + row_hi + 0.5;
-                        const double plane_far = plane_c + plane_a * (plane_a > 0.0 ? x0 : x1) +
-                                                 plane_b * (plane_b > 0.0 ? y0 : y1) -
-                                                 (std::abs(plane_a) + std::abs(plane_b)) * margin;
+                        const double x0 = col0 + std::countr_zero(columns);
+                        const double x1 = col0 + (31 - std::countl_zero(columns));
+                        const double y0 = row0 + row_lo, y1 = row0 + row_hi;
+                        const double plane_far =
+                            plane_c + plane_a * (plane_a > 0.0 ? x0 : x1) +
+                            plane_b * (plane_b > 0.0 ? y0 : y1) -
+                            (std::abs(plane_a) + std::abs(plane_b)) * depth_reach;
                         far = std::max(far, plane_far);
                     }
                     updateCell(tile, cy * cells_across_ + cx, cell_coverage,
@@ -509,17 +599,29 @@ bool MaskedDepthBuffer::testBox(const Aabb& box) {
     const ProjectedBox p =
         projectBox(view_projection_, box, frame_error_, near_, viewport_width_, viewport_height_);
     if (!p.valid) return true;
+    return testProjected(p.x_lo, p.x_hi, p.y_lo, p.y_hi, p.w_min, p.error);
+}
+
+bool MaskedDepthBuffer::testRect(double x_lo, double x_hi, double y_lo, double y_hi, double w_min) {
+    ++stats_.boxes_tested;
+    if (!active_) return true;
+    if (!(w_min > 0.5 * near_) || !std::isfinite(x_lo + x_hi + y_lo + y_hi)) return true;
+    return testProjected(x_lo, x_hi, y_lo, y_hi, w_min, 0.0);
+}
+
+bool MaskedDepthBuffer::testProjected(double x_lo, double x_hi, double y_lo, double y_hi,
+                                      double w_min, double error) {
     // The viewport pixels whose centres the box's contents may cover, rounded outward.
-    const double margin = kBoxMarginPx + 2.0 * p.error * focal_px_ / (p.w_min - p.error);
-    const double j0 = std::max(0.0, std::ceil(p.x_lo - margin - 0.5));
-    const double j1 = std::min(viewport_width_ - 1.0, std::floor(p.x_hi + margin - 0.5));
-    const double i0 = std::max(0.0, std::ceil(p.y_lo - margin - 0.5));
-    const double i1 = std::min(viewport_height_ - 1.0, std::floor(p.y_hi + margin - 0.5));
+    const double margin = kBoxMarginPx + 2.0 * error * focal_px_ / (w_min - error);
+    const double j0 = std::max(0.0, std::ceil(x_lo - margin - 0.5));
+    const double j1 = std::min(viewport_width_ - 1.0, std::floor(x_hi + margin - 0.5));
+    const double i0 = std::max(0.0, std::ceil(y_lo - margin - 0.5));
+    const double i1 = std::min(viewport_height_ - 1.0, std::floor(y_hi + margin - 0.5));
     if (j0 > j1 || i0 > i1) {
         ++stats_.boxes_hidden;  // between pixel centres or off screen: no pixel to show in
         return false;
     }
-    const double nearest = (1.0 + kDepthMargin) / (p.w_min - p.error);
+    const double nearest = (1.0 + kDepthMargin) / (w_min - error);
     const uint32_t x0 = static_cast<uint32_t>(j0) / k_, x1 = static_cast<uint32_t>(j1) / k_;
     const uint32_t y0 = static_cast<uint32_t>(i0) / k_, y1 = static_cast<uint32_t>(i1) / k_;
     // Cell by cell over the rectangle, in buffer pixels.

@@ -4,23 +4,9 @@
 #include <cassert>
 #include <cmath>
 
+#include "occsim/culling/raster/exact_triangle_raster.h"
+
 namespace occsim {
-namespace {
-
-// Clips a polygon (clip coordinates) to the half-space dot(plane, v) >= 0.
-std::vector<glm::dvec4> clipPolygon(const std::vector<glm::dvec4>& in, const glm::dvec4& plane) {
-    std::vector<glm::dvec4> out;
-    for (size_t i = 0; i < in.size(); ++i) {
-        const glm::dvec4& p = in[i];
-        const glm::dvec4& q = in[(i + 1) % in.size()];
-        const double dp = glm::dot(plane, p), dq = glm::dot(plane, q);
-        if (dp >= 0.0) out.push_back(p);
-        if ((dp >= 0.0) != (dq >= 0.0)) out.push_back(p + (dp / (dp - dq)) * (q - p));
-    }
-    return out;
-}
-
-}  // namespace
 
 TriangleRasterDevice::TriangleRasterDevice(uint32_t width, uint32_t height,
                                            uint32_t latency_commands)
@@ -39,49 +25,13 @@ void TriangleRasterDevice::rasteriseObject(uint32_t object, Fragment&& fragment)
     const MeshRange& r = meshes_.meshes[meshes_.object_mesh[object]];
     const glm::dmat4 to_clip = view_projection_ * glm::dmat4(meshes_.object_to_culling[object]);
     for (uint32_t t = 0; t + 2 < r.index_count; t += 3) {
-        std::vector<glm::dvec4> polygon;
+        glm::dvec4 v[3];
         for (uint32_t k = 0; k < 3; ++k) {
             const glm::vec3 p =
                 meshes_.positions[r.first_vertex + meshes_.indices[r.first_index + t + k]];
-            polygon.push_back(to_clip * glm::dvec4(glm::dvec3(p), 1.0));
+            v[k] = to_clip * glm::dvec4(glm::dvec3(p), 1.0);
         }
-        polygon = clipPolygon(polygon, glm::dvec4(0, 0, 1, 1));   // near: z >= -w
-        polygon = clipPolygon(polygon, glm::dvec4(0, 0, -1, 1));  // far: z <= w
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-            const glm::dvec4 v[3] = {polygon[0], polygon[k], polygon[k + 1]};
-            double x[3], y[3], iw[3];
-            for (int i = 0; i < 3; ++i) {
-                iw[i] = 1.0 / v[i].w;
-                x[i] = (v[i].x * iw[i] + 1.0) * 0.5 * width_;
-                y[i] = (v[i].y * iw[i] + 1.0) * 0.5 * height_;
-            }
-            const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-            if (!(std::abs(area) > 0.0)) continue;
-            const int j0 =
-                std::max(0, static_cast<int>(std::ceil(std::min({x[0], x[1], x[2]}) - 0.5)));
-            const int j1 =
-                std::min(static_cast<int>(width_) - 1,
-                         static_cast<int>(std::floor(std::max({x[0], x[1], x[2]}) - 0.5)));
-            const int i0 =
-                std::max(0, static_cast<int>(std::ceil(std::min({y[0], y[1], y[2]}) - 0.5)));
-            const int i1 =
-                std::min(static_cast<int>(height_) - 1,
-                         static_cast<int>(std::floor(std::max({y[0], y[1], y[2]}) - 0.5)));
-            for (int i = i0; i <= i1; ++i) {
-                for (int j = j0; j <= j1; ++j) {
-                    const double px = j + 0.5, py = i + 0.5;
-                    // Barycentric weights of the sample; all >= 0 inside (or on an edge).
-                    const double b0 =
-                        ((x[1] - px) * (y[2] - py) - (x[2] - px) * (y[1] - py)) / area;
-                    const double b1 =
-                        ((x[2] - px) * (y[0] - py) - (x[0] - px) * (y[2] - py)) / area;
-                    const double b2 = 1.0 - b0 - b1;
-                    if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0) continue;
-                    fragment(static_cast<size_t>(i) * width_ + j,
-                             b0 * iw[0] + b1 * iw[1] + b2 * iw[2]);
-                }
-            }
-        }
+        rasteriseExactTriangle(v[0], v[1], v[2], width_, height_, fragment);
     }
 }
 

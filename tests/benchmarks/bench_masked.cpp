@@ -1,4 +1,4 @@
-// The masked software depth buffer's cost (culling/raster/masked_depth_buffer.h): one frame
+// The masked software depth buffer's cost (occsim/culling/raster/masked_depth_buffer.h): one frame
 // (clear, rasterise the occluders, test boxes) at its default resolution, and how that grows with
 // occluder triangles and with resolution, for the plain and the AVX2 kernels. Figures only; the
 // machine's load moves them (docs/masked.md).
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "culling/cullers/masked_culler.h"
-#include "culling/raster/masked_depth_buffer.h"
+#include "occsim/culling/raster/masked_depth_buffer.h"
 
 namespace occsim {
 namespace {

@@ -86,6 +86,15 @@ struct MaskedBufferStats {
 // mesh.
 inline constexpr uint32_t kNoNeighbour = 0xffffffffu;
 std::vector<uint32_t> edgeNeighbours(std::span<const uint32_t> indices);
+// `indices` with every vertex replaced by the first one at exactly the same position, so that
+// triangles meeting at an edge share it by index (meshes repeat a vertex where its normal or
+// texture coordinates differ, and recorded frames repeat them between batches' parts): what
+// edgeNeighbours needs to find the edges a rasteriser leaves no gap along. An index past the end
+// stays as it is.
+std::vector<uint32_t> weldedIndices(std::span<const glm::vec3> positions,
+                                    std::span<const uint32_t> indices);
+std::vector<uint32_t> weldedIndices(std::span<const glm::dvec4> positions,
+                                    std::span<const uint32_t> indices);
 
 class MaskedDepthBuffer {
   public:
@@ -128,8 +137,24 @@ class MaskedDepthBuffer {
     // One triangle, in the culling frame (for tests).
     void rasteriseTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c);
 
+    // Starts a frame whose triangles come in clip coordinates (a recorded frame, such as those of
+    // Intel's frame recorder): no camera; `near_w` is the w of the near plane. The inputs are
+    // taken as exact: no rounding bound is added to the margins.
+    void beginClipFrame(uint32_t viewport_width, uint32_t viewport_height, double near_w,
+                        uint32_t max_width);
+    // Occluder triangles in clip coordinates: x, y and w as OpenGL's (x/w and y/w from -1 to 1
+    // across the viewport, w the view depth); z is not read. `indices` three per triangle into
+    // `clip`; `neighbours` as for rasteriseMesh.
+    void rasteriseClipMesh(std::span<const glm::dvec4> clip, std::span<const uint32_t> indices,
+                           std::span<const uint32_t> neighbours = {});
+
     // False only when every pixel `box` (culling frame) may show in lies behind the occluders.
     bool testBox(const Aabb& box);
+    // The same for a rectangle of the viewport whose content lies nowhere nearer than `w_min`:
+    // x from x_lo to x_hi, y from y_lo to y_hi in viewport pixels (pixel (j, i) has its centre at
+    // (j + 0.5, i + 0.5), row 0 at the bottom). A rectangle reaching within half the near
+    // distance of the eye is visible.
+    bool testRect(double x_lo, double x_hi, double y_lo, double y_hi, double w_min);
 
     // The larger side of the box's projected rectangle as a fraction of the viewport's height;
     // +inf when its nearest point is at or behind the eye (or the buffer is off), 0 when empty.
@@ -164,6 +189,12 @@ class MaskedDepthBuffer {
                                double position_error, const glm::dvec4* const* opposite = nullptr);
     void rasteriseScreenTriangle(const glm::dvec4* v, double position_error,
                                  const glm::dvec4* const* opposite);
+    // The box test from the projected rectangle on; `error` (metres) bounds the rounding of
+    // its corners.
+    bool testProjected(double x_lo, double x_hi, double y_lo, double y_hi, double w_min,
+                       double error);
+    // Works out k and the tiles for the viewport; false when it is empty.
+    bool layOut(uint32_t viewport_width, uint32_t viewport_height, uint32_t max_width);
     // >0: skip triangles clockwise on screen, <0: counter-clockwise ones, 0: none (this mesh).
     int skip_facing_ = 0;
     // The cell's coverage (`coverage` holds bits of this cell only) merged at `depth`.
