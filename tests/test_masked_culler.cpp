@@ -389,7 +389,7 @@ struct TestScene {
         boxes.push_back(box);
     }
     CullMeshes view() const {
-        return CullMeshes{positions, indices, meshes, object_mesh, transforms};
+        return CullMeshes{positions, indices, meshes, object_mesh, transforms, {}, {}};
     }
 };
 

@@ -72,7 +72,7 @@ uint64_t checkInscribed(const MeshData& object, const MeshData& occluder, uint32
                              static_cast<double>(width) / height, 0.01 * size, 100.0 * size) *
             glm::lookAt(eye, centre + glm::dvec3(u(rng), u(rng), u(rng)) * 0.2 * size, up);
         const std::vector<glm::mat4> transforms = {glm::mat4(1.0f), glm::mat4(1.0f)};
-        const CullMeshes meshes{positions, indices, ranges, object_mesh, transforms};
+        const CullMeshes meshes{positions, indices, ranges, object_mesh, transforms, {}, {}};
         TriangleRasterDevice object_raster(width, height), occluder_raster(width, height);
         object_raster.beginFrame(glm::mat4(vp), meshes);
         occluder_raster.beginFrame(glm::mat4(vp), meshes);

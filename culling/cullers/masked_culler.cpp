@@ -47,7 +47,18 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
     if (rasterised_in_[object] == stamp_) return;
     rasterised_in_[object] = stamp_;
     if (object >= meshes.object_mesh.size() || object >= meshes.object_to_culling.size()) return;
-    const uint32_t mesh = meshes.object_mesh[object];
+    const uint8_t role =
+        object < meshes.object_occluder.size() ? meshes.object_occluder[object] : kOccluderBySize;
+    if (role == kOccluderNever) return;
+    const Aabb& box = tree.objectBox(object);
+    uint32_t mesh = meshes.object_mesh[object];
+    // Its inscribed occluder mesh where it has one, unless the eye may be inside its box: from
+    // there the object's surface need not lie in front of what is inside it.
+    if (options_.simplified_occluders && object < meshes.object_occluder_mesh.size() &&
+        meshes.object_occluder_mesh[object] != kNoOccluderMesh &&
+        !nearPlaneTouchesBox(box, view_eye_, view_near_radius_) && !contains(box, view_eye_)) {
+        mesh = meshes.object_occluder_mesh[object];
+    }
     if (mesh >= meshes.meshes.size()) return;
     const MeshRange& r = meshes.meshes[mesh];
     if (uint64_t{r.first_vertex} + r.vertex_count > meshes.positions.size() ||
@@ -56,7 +67,7 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
     }
     const uint32_t triangles = r.index_count / 3;
     if (triangles == 0 || triangles > budget_) return;
-    if (buffer_.screenExtent(tree.objectBox(object)) < options_.occluder_size) return;
+    if (role != kOccluderAlways && buffer_.screenExtent(box) < options_.occluder_size) return;
     budget_ -= triangles;
     ++occluders_;
     occluder_in_[object] = stamp_;
@@ -84,7 +95,11 @@ void MaskedCuller::rasteriseOccluders(const BspTree& tree, const CullFrame& fram
     for (uint32_t o = 0; o < tree.objectCount(); ++o) {
         const Aabb& box = tree.objectBox(o);
         if (classify(view_.frustum, box) == FrustumTest::Outside) continue;
-        if (buffer_.screenExtent(box) < options_.occluder_size) continue;
+        const uint8_t role = o < frame.meshes.object_occluder.size()
+                                 ? frame.meshes.object_occluder[o]
+                                 : kOccluderBySize;
+        if (role == kOccluderNever) continue;
+        if (role != kOccluderAlways && buffer_.screenExtent(box) < options_.occluder_size) continue;
         const glm::vec3 nearest = glm::clamp(eye, box.min, box.max);
         const glm::vec3 d = nearest - eye;
         candidates_.push_back({glm::dot(d, d), o});
@@ -105,6 +120,8 @@ void MaskedCuller::rasteriseOccluders(const BspTree& tree, const CullFrame& fram
 void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
                                  RenderDevice& device) {
     view_ = prepareView(frame);
+    view_eye_ = frame.view.eye;
+    view_near_radius_ = frame.view.near_radius;
     if (rasterised_in_.size() != tree.objectCount()) {
         rasterised_in_.assign(tree.objectCount(), 0);
         occluder_in_.assign(tree.objectCount(), 0);
@@ -182,6 +199,9 @@ const OptionTable<MaskedOptions>& maskedOptionTable() {
                              "an object occludes when its box's projection is at least this "
                              "large (its larger side)"),
                 0.0, 0.5),
+        booleanOption(OCCSIM_OPTION_MEMBER(O, simplified_occluders),
+                      "an object with an inscribed occluder mesh (fewer triangles) occludes with "
+                      "it, when the eye is outside its box; off = every object with its own mesh"),
         booleanOption(OCCSIM_OPTION_MEMBER(O, drawn_occluders),
                       "the drawn objects are the occluders, each as it is drawn; off = an "
                       "occluder pass first over every large object in the frustum, nearest first"),

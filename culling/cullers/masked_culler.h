@@ -36,6 +36,9 @@ struct MaskedOptions {
     // draws. On: the drawn objects are the occluders, each rasterised right after it is drawn
     // (this project's masked before 2026-12-04).
     bool drawn_occluders = false;
+    // Objects occlude with their inscribed occluder meshes (CullMeshes::object_occluder_mesh)
+    // where they have one and the eye is outside their box; off: always with their own.
+    bool simplified_occluders = true;
     // With drawn_occluders: last frame's drawn objects that qualify are rasterised first, before
     // the traversal (a depth pre-pass from coherence); the others as they are drawn.
     bool last_drawn_first = true;
@@ -81,6 +84,8 @@ class MaskedCuller final : public Culler {
     std::vector<std::vector<uint32_t>> welded_;
     std::vector<std::vector<uint32_t>> neighbours_;
     std::vector<uint8_t> has_neighbours_;
+    glm::vec3 view_eye_{0.0f};
+    float view_near_radius_ = 0.0f;
     uint64_t stamp_ = 0;
     uint64_t budget_ = 0;
     uint32_t occluders_ = 0;

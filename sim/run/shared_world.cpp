@@ -4,6 +4,8 @@
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sim/scene/occluder_mesh.h"
+
 namespace occsim {
 namespace {
 
@@ -54,7 +56,46 @@ const CullMeshes& SharedWorld::cullMeshes() {
             f.indices.insert(f.indices.end(), mesh.indices.begin(), mesh.indices.end());
             f.meshes.push_back(range);
         }
+        // Inscribed occluder meshes, once per mesh some object may occlude with, after the
+        // scene's meshes; and every object's role.
+        const auto start = Clock::now();
+        const auto scene_meshes = static_cast<uint32_t>(scene_.meshes.size());
+        std::vector<uint32_t> occluder_of(scene_meshes, kNoOccluderMesh);
+        std::vector<uint8_t> wanted(scene_meshes, 0);
+        f.object_occluder.assign(scene_.objectCount(), kOccluderBySize);
+        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+            const OccluderRole role = o < scene_.object_occluder.size() ? scene_.object_occluder[o]
+                                                                        : OccluderRole::BySize;
+            f.object_occluder[o] = role == OccluderRole::Always  ? kOccluderAlways
+                                   : role == OccluderRole::Never ? kOccluderNever
+                                                                 : kOccluderBySize;
+            if (role != OccluderRole::Never) wanted[scene_.object_mesh[o]] = 1;
+        }
+        for (uint32_t m = 0; m < scene_meshes; ++m) {
+            if (!wanted[m]) continue;
+            ++occluder_cost_.tried;
+            const OccluderMesh made = makeInscribedOccluder(scene_.meshes[m]);
+            if (made.mesh.indices.empty()) continue;
+            ++occluder_cost_.made;
+            occluder_of[m] = static_cast<uint32_t>(f.meshes.size());
+            MeshRange range;
+            range.first_index = static_cast<uint32_t>(f.indices.size());
+            range.index_count = static_cast<uint32_t>(made.mesh.indices.size());
+            range.first_vertex = static_cast<uint32_t>(f.positions.size());
+            range.vertex_count = static_cast<uint32_t>(made.mesh.positions.size());
+            f.positions.insert(f.positions.end(), made.mesh.positions.begin(),
+                               made.mesh.positions.end());
+            f.indices.insert(f.indices.end(), made.mesh.indices.begin(), made.mesh.indices.end());
+            f.meshes.push_back(range);
+        }
+        f.object_occluder_mesh.resize(scene_.objectCount());
+        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+            f.object_occluder_mesh[o] = occluder_of[scene_.object_mesh[o]];
+        }
+        occluder_cost_.ms = msSince(start);
         f.object_to_culling.resize(scene_.objectCount());
+        f.view.object_occluder = f.object_occluder;
+        f.view.object_occluder_mesh = f.object_occluder_mesh;
         f.view.positions = f.positions;
         f.view.indices = f.indices;
         f.view.meshes = f.meshes;

@@ -75,6 +75,13 @@ class SharedWorld {
     // with AlgorithmTraits::needs_meshes gets in CullFrame::meshes. Runs without such a culler
     // never call it, so neither the copy nor the per-frame transforms cost them anything.
     const CullMeshes& cullMeshes();
+    // What making the inscribed occluder meshes cost (on the first cullMeshes() call, outside
+    // any frame's timing): meshes tried, made, and the milliseconds.
+    struct OccluderMeshCost {
+        uint32_t tried = 0, made = 0;
+        double ms = 0.0;
+    };
+    OccluderMeshCost occluderMeshCost() const { return occluder_cost_; }
 
     const Scene& scene() const { return scene_; }
     const Scenario& scenario() const { return scenario_; }
@@ -116,10 +123,13 @@ class SharedWorld {
         std::vector<uint32_t> indices;
         std::vector<MeshRange> meshes;
         std::vector<glm::mat4> object_to_culling;
+        std::vector<uint8_t> object_occluder;
+        std::vector<uint32_t> object_occluder_mesh;
         uint64_t transforms_serial = 0;  // the frame serial object_to_culling is for
         CullMeshes view;
     };
     std::unique_ptr<FlatMeshes> flat_meshes_;
+    OccluderMeshCost occluder_cost_;
 };
 
 }  // namespace occsim

@@ -197,6 +197,11 @@ SceneSourceSpec readSource(const JsonValueReader& value, const std::filesystem::
         spec.type = SourceType::Plant;
         spec.spec = readPlant(source);
     }
+    static const std::vector<std::string> kRoles = {"by_size", "always", "never"};
+    const std::string role = source.enumeration("occluders", kRoles, "by_size");
+    spec.occluders = role == "always"  ? OccluderRole::Always
+                     : role == "never" ? OccluderRole::Never
+                                       : OccluderRole::BySize;
     source.finish();
     return spec;
 }

@@ -127,8 +127,14 @@ struct GltfSourceSpec {
 
 enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };
 
+// Whether a software depth buffer (the `masked` culler) may rasterise an object as an occluder:
+// when it is large enough on screen (the default), always, or never. A source's "occluders" key
+// sets it for its objects; a glTF node's extras ("occsim_occluder") for that node's.
+enum class OccluderRole : uint8_t { BySize, Always, Never };
+
 struct SceneSourceSpec {
     SourceType type = SourceType::Teapots;
+    OccluderRole occluders = OccluderRole::BySize;
     std::variant<TeapotFieldSpec, GltfSourceSpec, CitySpec, LibrarySpec, PlantSpec> spec;
 };
 

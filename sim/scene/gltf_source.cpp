@@ -505,6 +505,22 @@ void warnAboutIgnoredParts(const Context& c, const SceneContent& content) {
 
 bool isMirrored(const glm::dmat4& world) { return glm::determinant(glm::dmat3(world)) < 0.0; }
 
+// A node's own occluder role, from its extras: {"occsim_occluder": "always" | "never" |
+// "by_size"} (docs/scenario-gltf.md); none when it says nothing. Anything else there is an error
+// naming the file and the node.
+std::optional<OccluderRole> nodeOccluderRole(const Context& c, uint32_t node) {
+    if (node >= c.model.nodes.size()) return std::nullopt;
+    const tg::Value& extras = c.model.nodes[node].extras;
+    if (!extras.IsObject() || !extras.Has("occsim_occluder")) return std::nullopt;
+    const tg::Value& v = extras.Get("occsim_occluder");
+    const std::string role = v.IsString() ? v.Get<std::string>() : std::string();
+    if (role == "always") return OccluderRole::Always;
+    if (role == "never") return OccluderRole::Never;
+    if (role == "by_size") return OccluderRole::BySize;
+    throw GltfError(c.file + ": node " + std::to_string(node) +
+                    ": extras.occsim_occluder: expected \"always\", \"never\" or \"by_size\"");
+}
+
 // An object's name: its node's, else its mesh's, else the node's index.
 std::string nodeLabel(const Context& c, uint32_t node, size_t mesh) {
     if (node < c.model.nodes.size() && !c.model.nodes[node].name.empty())
@@ -546,6 +562,7 @@ SourceOutput placeModel(const Context& c, const SceneContent& content, double sc
         PlacedObject object;
         object.mesh = mesh;
         object.name = nodeLabel(c, content.visits[instance.visit].node, instance.mesh);
+        object.occluder = nodeOccluderRole(c, content.visits[instance.visit].node);
         object.position = scale * glm::dvec3(instance.world[3]);
         object.linear = glm::mat3(glm::dmat3(instance.world) * scale);
         out.objects.push_back(object);

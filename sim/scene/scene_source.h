@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct PlacedObject {
     // What a person calls it: the glTF node's name; empty for generated objects (the scene
     // builder names those after their source, Scene::object_names).
     std::string name;
+    // The glTF node's own "occsim_occluder" (extras), else empty: the source's role holds.
+    std::optional<OccluderRole> occluder;
 };
 
 // Where one copy of a glTF model went: T(origin) · R_y(yaw) places the model (its scale is in

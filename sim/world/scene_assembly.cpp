@@ -62,9 +62,11 @@ uint32_t addMesh(Scene& scene, MeshData mesh) {
     return static_cast<uint32_t>(scene.meshes.size() - 1);
 }
 
-uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::string name) {
+uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::string name,
+                   OccluderRole occluder) {
     scene.object_mesh.push_back(mesh);
     scene.object_names.push_back(std::move(name));
+    scene.object_occluder.push_back(occluder);
     scene.initial_poses.push_back(pose);
     scene.triangle_count += scene.meshes[mesh].triangleCount();
     return scene.objectCount() - 1;
@@ -74,7 +76,9 @@ uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::str
 // only (its model is placed by spawning movers). `copy_meshes` gets the meshes of one copy's
 // objects, for spawning.
 SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::string& kind,
-                      std::vector<uint32_t>& copy_meshes, std::vector<std::string>& copy_names) {
+                      OccluderRole occluders, std::vector<uint32_t>& copy_meshes,
+                      std::vector<std::string>& copy_names,
+                      std::vector<OccluderRole>& copy_occluders) {
     const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
     const size_t per_copy = source.model ? source.model->object_visit.size() : 0;
     for (size_t j = 0; j < per_copy && j < source.objects.size(); ++j) {
@@ -85,6 +89,7 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::
         copy_names.push_back(per_copy < source.objects.size() && mark != std::string::npos
                                  ? name.substr(0, mark)
                                  : name);
+        copy_occluders.push_back(source.objects[j].occluder.value_or(occluders));
     }
     if (!place) {
         source.objects.clear();
@@ -107,7 +112,8 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::
         pose.position = o.position;
         pose.linear = o.linear;
         addObject(scene, first_mesh + o.mesh, pose,
-                  o.name.empty() ? kind + " " + std::to_string(i) : o.name);
+                  o.name.empty() ? kind + " " + std::to_string(i) : o.name,
+                  o.occluder.value_or(occluders));
     }
     if (isEmpty(range.region)) {
         for (uint32_t i = range.first; i < scene.objectCount(); ++i) {
@@ -382,14 +388,16 @@ std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
         const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
         std::vector<uint32_t> copy_meshes;
         std::vector<std::string> copy_names;
-        ranges.push_back(addSource(scene, std::move(source), place,
-                                   sourceKindName(scenario.sources[s].type), copy_meshes,
-                                   copy_names));
+        std::vector<OccluderRole> copy_occluders;
+        ranges.push_back(
+            addSource(scene, std::move(source), place, sourceKindName(scenario.sources[s].type),
+                      scenario.sources[s].occluders, copy_meshes, copy_names, copy_occluders));
         if (model) {
             ranges.back().model = static_cast<int32_t>(scene.models.size());
             scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
             scene.models.back().object_mesh = std::move(copy_meshes);
             scene.models.back().object_names = std::move(copy_names);
+            scene.models.back().object_occluder = std::move(copy_occluders);
             animateCopies(scene, scenario, s, ranges.back());
         }
     }
@@ -470,7 +478,8 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
             addObject(
                 scene, sm.object_mesh[j], ObjectPose{},
                 (j < sm.object_names.size() ? sm.object_names[j] : "object " + std::to_string(j)) +
-                    " (mover " + std::to_string(m) + " copy " + std::to_string(i) + ")");
+                    " (mover " + std::to_string(m) + " copy " + std::to_string(i) + ")",
+                j < sm.object_occluder.size() ? sm.object_occluder[j] : OccluderRole::BySize);
         }
         out.objects.push_back(copy.first_object);
         out.copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));
@@ -493,7 +502,8 @@ std::vector<uint32_t> spawnShapes(Scene& scene, const Scenario& scenario, size_t
             static_cast<float>(spawn.uniform(spec.spawn.size_min_m, spec.spawn.size_max_m)));
         objects.push_back(
             addObject(scene, mesh, pose,
-                      "spawned " + std::to_string(i) + " (mover " + std::to_string(m) + ")"));
+                      "spawned " + std::to_string(i) + " (mover " + std::to_string(m) + ")",
+                      OccluderRole::BySize));
     }
     flags.grow(scene.objectCount(), 0);
     return objects;

@@ -88,6 +88,7 @@ struct SceneModel {
     std::vector<uint8_t> object_animated;   // per object of a copy: moved by a playing animation
     std::vector<uint32_t> object_mesh;      // per object of a copy: its mesh in Scene::meshes
     std::vector<std::string> object_names;  // per object of a copy: its node's name
+    std::vector<OccluderRole> object_occluder;  // per object of a copy
     double speed = 1.0;
     AnimationMode mode = AnimationMode::Loop;
     double time_offset_s = 0.0;
@@ -129,6 +130,8 @@ struct Scene {
     // ("statue.042", "#k" added for copy k of a replicated model), or its source's kind and its
     // place in the source ("teapot 17"), or the mover that spawned it.
     std::vector<std::string> object_names;
+    // Per object, whether a software depth buffer may use it as an occluder (OccluderRole).
+    std::vector<OccluderRole> object_occluder;
     std::vector<ObjectPose> initial_poses;
     std::vector<Mover> initial_movers;
     std::vector<MotionPath> paths;

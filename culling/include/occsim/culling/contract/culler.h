@@ -75,9 +75,20 @@ struct CullMeshes {
     // relative to the scene's culling origin), composed in double and then rounded to float, so
     // that a scene far from the world origin keeps its precision.
     std::span<const glm::mat4> object_to_culling;
+    // Per object, whether a software depth buffer may rasterise it as an occluder:
+    // kOccluderBySize (when large enough on screen), kOccluderAlways, kOccluderNever. Empty:
+    // every object by size.
+    std::span<const uint8_t> object_occluder;
+    // Per object, a mesh (into meshes) to rasterise in its place as an occluder: one inscribed
+    // in its own, with fewer triangles, that covers no pixel the object does not and lies behind
+    // it, seen from any eye outside the object's box; kNoOccluderMesh where it has none. Empty:
+    // none has one.
+    std::span<const uint32_t> object_occluder_mesh;
 
     bool empty() const { return object_mesh.empty(); }
 };
+inline constexpr uint8_t kOccluderBySize = 0, kOccluderAlways = 1, kOccluderNever = 2;
+inline constexpr uint32_t kNoOccluderMesh = 0xffffffffu;
 
 struct CullFrame {
     uint64_t frame_index = 0;
