@@ -354,7 +354,9 @@ struct BoxMeshes {
                 glm::scale(glm::translate(glm::mat4(1.0f), b.min + size * 5e-4f), size));
         }
     }
-    CullMeshes view() const { return {positions, indices, meshes, object_mesh, transforms, {}, {}}; }
+    CullMeshes view() const {
+        return {positions, indices, meshes, object_mesh, transforms, {}, {}};
+    }
 };
 
 TEST(CullerReasons, MaskedCullsTheFieldOnItsTilesOnceTheWallIsRasterised) {

@@ -1,6 +1,6 @@
 // A RenderDevice that rasterises the objects' real triangles into an exact per-pixel depth buffer
-// on the CPU: the reference a software depth buffer (occsim/culling/raster/masked_depth_buffer.h) is
-// checked against. Written to be obviously right rather than fast: double precision throughout,
+// on the CPU: the reference a software depth buffer (occsim/culling/raster/masked_depth_buffer.h)
+// is checked against. Written to be obviously right rather than fast: double precision throughout,
 // one sample at each pixel centre, triangles clipped to the near and far planes (z = -w, z = w,
 // OpenGL's clip convention), both faces drawn, depth as 1/w interpolated across the screen, and
 // a sample exactly on an edge counted as covered (so the reference sees at least as much as any
