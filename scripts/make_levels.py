@@ -7,10 +7,11 @@ street canyon with traffic (docs/scenario-generators.md#game-levels-scriptsmake_
     python3 scripts/make_levels.py courtyards --courtyards 5x5 --door-width 3 --out /tmp/x
 
 Each level is one glTF 2.0 file (JSON beside its .bin buffer) and one scenario: cheap, large
-occluders (walls, buildings, the floor; marked "extras": {"occluder": true}) hiding heavy props
-that share their meshes (hundreds to thousands of triangles each), cars and people as the
-scenario's path movers, one large vehicle moved by a glTF animation past the camera, and a camera
-path that walks, turns corners and passes gates or doors, its moments named as segments.
+occluders (walls, buildings, the floor; marked "extras": {"occsim_occluder": "always"}, which
+makes masked rasterise them whatever their size on screen) hiding heavy props that share their
+meshes (hundreds to thousands of triangles each), cars and people as the scenario's path movers,
+one large vehicle moved by a glTF animation past the camera, and a camera path that walks, turns
+corners and passes gates or doors, its moments named as segments.
 
 Deterministic: the same parameters (and --seed) give byte-identical files (its own random number
 generator, nodes and keys in a fixed order, coordinates rounded before they are written). Python 3
@@ -661,7 +662,7 @@ class Document:
             "asset": {"version": "2.0", "generator": GENERATOR,
                       "extras": {"parameters": self.parameters,
                                  "note": "made by the occsim project (scripts/make_levels.py); "
-                                         "nodes with extras.occluder are the level's large occluders"}},
+                                         "nodes with extras.occsim_occluder \"always\" are the level's large occluders"}},
             "scene": 0,
             "scenes": [{"name": gltf_path.stem, "nodes": scene_nodes}],
             "nodes": nodes,
@@ -909,7 +910,7 @@ class Level:
 
     def add_static(self, parent, name, mesh, t, yaw=0.0, s=None, occluder=False, exact_box=False):
         """A static object below `parent` (a group with translation only, or None)."""
-        node = Node(name, mesh, t, yaw, s, {"occluder": True} if occluder else None)
+        node = Node(name, mesh, t, yaw, s, {"occsim_occluder": "always"} if occluder else None)
         (parent.add(node) if parent is not None else self.doc.roots.append(node))
         origin = parent.t if parent is not None else (0, 0, 0)
         parts = self.doc.parts.get(mesh) or [None]

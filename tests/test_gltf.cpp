@@ -253,6 +253,34 @@ TEST(GltfScene, UsesTheDefaultSceneElseAllRootNodes) {
     EXPECT_EQ(loadText(b.text()).objects.size(), 3u);
 }
 
+TEST(GltfScene, ANodesExtrasGiveItsOccluderRole) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}, {"extras", {{"occsim_occluder", "never"}}}});
+    b.node({{"mesh", mesh}, {"extras", {{"occsim_occluder", "always"}, {"note", 1}}}});
+    b.node({{"mesh", mesh}, {"extras", {{"other", "always"}}}});
+    b.node({{"mesh", mesh}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.objects.size(), 4u);
+    EXPECT_EQ(out.objects[0].occluder, OccluderRole::Never);
+    EXPECT_EQ(out.objects[1].occluder, OccluderRole::Always);
+    EXPECT_EQ(out.objects[2].occluder, std::nullopt);  // the source's role holds
+    EXPECT_EQ(out.objects[3].occluder, std::nullopt);
+}
+
+TEST(GltfErrors, AnOccluderRoleThatIsNotOneOfTheThreeNamesTheNode) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}});
+    b.node({{"mesh", mesh}, {"name", "Wall"}, {"extras", {{"occsim_occluder", "yes"}}}});
+    const std::string message = errorOfText(b.text());
+    EXPECT_NE(message.find("model.gltf: node 1 ('Wall'): extras.occsim_occluder: expected "
+                           "\"always\", \"never\" or \"by_size\", got \"yes\""),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0);
+}
+
 // ---- Primitives ----------------------------------------------------------------------------
 
 TEST(GltfPrimitives, IndicesOfEveryWidthAndNonIndexedGiveTheSameTriangles) {
@@ -602,6 +630,31 @@ TEST(GltfScenario, WarningsReachTheScene) {
     EXPECT_EQ(scene.objectCount(), 1u);
     ASSERT_EQ(scene.warnings.size(), 1u);
     EXPECT_NE(scene.warnings[0].find("mode POINTS in mesh 'Fence'"), std::string::npos);
+}
+
+// A source's role reaches each of its objects; a node's own extras win over it.
+TEST(GltfScenario, OccluderRolesReachTheScenePerObject) {
+    GltfBuilder b;
+    const int mesh = b.triangleMesh("Tri");
+    b.node({{"mesh", mesh}});
+    b.node({{"mesh", mesh}, {"extras", {{"occsim_occluder", "always"}}}});
+    TempDir dir;
+    dir.write("model.gltf", b.text());
+    const json scenario = {
+        {"format_version", 1},
+        {"camera",
+         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
+        {"scene",
+         {{"sources",
+           {{{"type", "gltf"}, {"path", "model.gltf"}, {"occluders", "never"}},
+            {{"type", "teapots"}, {"count", 2}}}}}}};
+    const Scene scene = buildScene(parseScenarioFile(dir.write("scenario.json", scenario.dump())));
+    ASSERT_EQ(scene.objectCount(), 4u);
+    ASSERT_EQ(scene.object_occluder.size(), 4u);
+    EXPECT_EQ(scene.object_occluder[0], OccluderRole::Never);
+    EXPECT_EQ(scene.object_occluder[1], OccluderRole::Always);
+    EXPECT_EQ(scene.object_occluder[2], OccluderRole::BySize);
+    EXPECT_EQ(scene.object_occluder[3], OccluderRole::BySize);
 }
 
 // A path that names a folder is not "no such file": the message says what it found.

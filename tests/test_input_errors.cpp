@@ -30,6 +30,7 @@ TEST(InputError, EveryBadInputErrorIsAnInputError) {
     EXPECT_TRUE(isBadInput<RegistryError>) << "a culler row refused, a factory that throws";
     EXPECT_TRUE(isBadInput<ScenarioError>) << "a scenario or --culling file";
     EXPECT_TRUE(isBadInput<GltfError>) << "a glTF file";
+    EXPECT_TRUE(isBadInput<MocrecError>) << "a recorded MOC frame (masked-replay)";
     EXPECT_TRUE(isBadInput<BackendUnavailable>) << "--backend, --device";
     EXPECT_TRUE(isBadInput<WindowUnavailable>) << "no window for occsim view";
     EXPECT_TRUE(isBadInput<ScriptError>) << "a view script";

@@ -196,12 +196,19 @@ TEST(LevelScenarios, EachLoadsItsNamedObjectsSharingMeshesWithTheOccludersMarked
         uint32_t heavy = 0;
         for (const MeshData& mesh : scene.meshes) heavy += mesh.triangleCount() >= 300 ? 1 : 0;
         EXPECT_GE(heavy, 4u);
-        // The floor and the walls or buildings are marked as occluders, nothing else is.
+        // The floor and the walls or buildings are marked as occluders, nothing else is; the
+        // scene reads the mark as those objects' role.
         uint32_t occluders = 0;
         bool floor_marked = false;
-        for (const json* node : level.mesh_nodes) {
-            const bool marked =
-                node->contains("extras") && (*node)["extras"].value("occluder", false);
+        ASSERT_EQ(scene.models.size(), 1u);
+        ASSERT_EQ(scene.models[0].object_occluder.size(), level.mesh_nodes.size());
+        for (uint32_t i = 0; i < level.mesh_nodes.size(); ++i) {
+            const json* node = level.mesh_nodes[i];
+            const bool marked = node->contains("extras") &&
+                                (*node)["extras"].value("occsim_occluder", "") == "always";
+            EXPECT_EQ(scene.models[0].object_occluder[i],
+                      marked ? OccluderRole::Always : OccluderRole::BySize)
+                << (*node)["name"];
             occluders += marked ? 1 : 0;
             if ((*node)["name"] == "floor") floor_marked = marked;
             if (marked) {

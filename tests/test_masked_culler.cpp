@@ -359,6 +359,8 @@ struct TestScene {
     std::vector<uint32_t> object_mesh;
     std::vector<glm::mat4> transforms;
     std::vector<Aabb> boxes;
+    std::vector<uint8_t> occluder;        // per object, kOccluder*; empty: every one by size
+    std::vector<uint32_t> occluder_mesh;  // per object, kNoOccluderMesh or a mesh; may be empty
 
     uint32_t addMesh(std::vector<glm::vec3> p, std::vector<uint32_t> i) {
         meshes.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(i.size()),
@@ -389,7 +391,8 @@ struct TestScene {
         boxes.push_back(box);
     }
     CullMeshes view() const {
-        return CullMeshes{positions, indices, meshes, object_mesh, transforms, {}, {}};
+        return CullMeshes{positions,  indices,  meshes,       object_mesh,
+                          transforms, occluder, occluder_mesh};
     }
 };
 
@@ -591,21 +594,47 @@ TEST(MaskedProperty, AtFullHdTooNothingTheExactBufferSeesIsHidden) {
     EXPECT_GE(shares[0].share(), 0.6);
 }
 
+// Every choice of occluders and layout: the pass or the drawn objects, cells, merge, the
+// working layer, roles, and cubes with an inscribed occluder mesh (a smaller cube), which the
+// culler may use only with the eye outside the object's box.
 TEST(MaskedProperty, TheCullerDrawsEverythingTheReferenceSees) {
     for (uint32_t seed = 1000; seed < 1100; ++seed) {
         RandomCase c = randomCase(seed);
-        const BspTree tree = testing::buildTree(c.scene.boxes);
+        TestScene& s = c.scene;
+        std::vector<glm::vec3> inner;
+        for (int i = 0; i < 8; ++i)
+            inner.emplace_back(i & 1 ? 0.4f : -0.4f, i & 2 ? 0.4f : -0.4f, i & 4 ? 0.4f : -0.4f);
+        const MeshRange& cube = s.meshes[0];  // randomCase's first mesh is the unit cube
+        const std::vector<uint32_t> cube_indices(
+            s.indices.begin() + cube.first_index,
+            s.indices.begin() + cube.first_index + cube.index_count);
+        const uint32_t inscribed = s.addMesh(inner, cube_indices);
+        std::mt19937 rng(seed);
+        for (uint32_t o = 0; o < s.boxes.size(); ++o) {
+            s.occluder.push_back(static_cast<uint8_t>(rng() % 5 == 0   ? kOccluderNever
+                                                      : rng() % 4 == 0 ? kOccluderAlways
+                                                                       : kOccluderBySize));
+            s.occluder_mesh.push_back(s.object_mesh[o] == 0 && rng() % 2 ? inscribed
+                                                                         : kNoOccluderMesh);
+        }
+        const BspTree tree = testing::buildTree(s.boxes);
         MaskedOptions options;
-        options.width = 64 + seed % 300;
+        options.width = seed % 5 == 0 ? 0 : 64 + seed % 300;
         options.occluder_size = (seed % 4) * 0.05;
+        options.drawn_occluders = seed % 3 == 1;
         options.last_drawn_first = seed % 2 == 0;
         options.simd = seed % 3 == 0;
+        options.cell_width = seed % 7 == 0 ? 32 : 8;
+        options.cell_height = seed % 11 == 0 ? 8 : 4;
+        options.accurate_merge = seed % 4 == 1;
+        options.working_layer_test = seed % 6 == 5;
+        options.simplified_occluders = seed % 8 != 3;
         MaskedCuller culler(options);
         culler.reset(tree);
         TriangleRasterDevice device(c.view.viewport_width, c.view.viewport_height);
         for (uint64_t frame = 0; frame < 2; ++frame) {
             CullFrame f = testing::makeFrame(c.view, frame, frame / 60.0);
-            f.meshes = c.scene.view();
+            f.meshes = s.view();
             device.beginFrame(c.view.view_projection, f.meshes);
             culler.cullAndRender(tree, f, device);
             const std::vector<uint8_t> visible = device.groundTruth();
@@ -616,6 +645,92 @@ TEST(MaskedProperty, TheCullerDrawsEverythingTheReferenceSees) {
             }
         }
     }
+}
+
+// A wall (object 0) in front of a small cube (object 1), seen from the origin down -z.
+struct WallAndCube {
+    TestScene scene;
+    CullView view = cameraView({0, 0, 0}, {0, 0, -1}, 128, 96, 0.1, 100.0, 60.0);
+    WallAndCube() {
+        const uint32_t quad = quadMesh(scene), cube = cubeMesh(scene);
+        scene.addObject(quad, glm::scale(glm::translate(glm::dmat4(1.0), {0, 0, -5}), {20, 20, 1}));
+        scene.addObject(cube, glm::translate(glm::dmat4(1.0), {0, 0, -10}));
+    }
+    // Whether the cube is drawn, culled by `options` from `eye` (looking down -z).
+    bool cubeDrawn(const MaskedOptions& options, glm::dvec3 eye = glm::dvec3(0.0),
+                   uint32_t* occluders = nullptr) {
+        const CullView v = cameraView(eye, eye + glm::dvec3(0, 0, -1), 128, 96, 0.1, 100.0, 60.0);
+        const BspTree tree = testing::buildTree(scene.boxes);
+        MaskedCuller culler(options);
+        culler.reset(tree);
+        TriangleRasterDevice device(v.viewport_width, v.viewport_height);
+        CullFrame f = testing::makeFrame(v, 0, 0.0);
+        f.meshes = scene.view();
+        device.beginFrame(v.view_projection, f.meshes);
+        culler.cullAndRender(tree, f, device);
+        if (occluders) *occluders = culler.occluders();
+        const auto& drawn = device.drawnObjects();
+        return std::find(drawn.begin(), drawn.end(), 1u) != drawn.end();
+    }
+};
+
+// A role "never" keeps a wall out of the buffer; "always" puts it in however small the size
+// threshold makes it; "by size" follows the threshold.
+TEST(MaskedCuller, AnObjectsOccluderRoleDecidesWhetherItIsRasterised) {
+    WallAndCube w;
+    MaskedOptions options;
+    uint32_t occluders = 0;
+    EXPECT_FALSE(w.cubeDrawn(options, {}, &occluders));
+    EXPECT_EQ(occluders, 1u);
+    w.scene.occluder = {kOccluderNever, kOccluderBySize};
+    EXPECT_TRUE(w.cubeDrawn(options, {}, &occluders));
+    EXPECT_EQ(occluders, 0u);
+    options.occluder_size = 10.0;  // larger than anything on screen
+    w.scene.occluder = {kOccluderBySize, kOccluderBySize};
+    EXPECT_TRUE(w.cubeDrawn(options));
+    w.scene.occluder = {kOccluderAlways, kOccluderBySize};
+    EXPECT_FALSE(w.cubeDrawn(options));
+    options.drawn_occluders = true;  // the same roles when the drawn objects are the occluders
+    EXPECT_FALSE(w.cubeDrawn(options));
+    w.scene.occluder = {kOccluderNever, kOccluderBySize};
+    options.occluder_size = 0.0;
+    EXPECT_TRUE(w.cubeDrawn(options));
+}
+
+// An occluder mesh stands in for the object's own only with the eye outside the object's box:
+// here a sliver off to the side (so that whether it was used shows), the wall's own mesh
+// hiding the cube. From inside the box, or with simplified_occluders off, the own mesh occludes.
+TEST(MaskedCuller, AnOccluderMeshStandsInOnlyWithTheEyeOutsideTheObjectsBox) {
+    WallAndCube w;
+    TestScene& s = w.scene;
+    const uint32_t sliver =
+        s.addMesh({{-0.5f, -0.5f, 0}, {-0.45f, -0.5f, 0}, {-0.45f, -0.45f, 0}}, {0, 1, 2});
+    s.occluder_mesh = {sliver, kNoOccluderMesh};
+    MaskedOptions options;
+    EXPECT_TRUE(w.cubeDrawn(options, {0, 0, 1}));  // outside: the sliver occludes
+    options.simplified_occluders = false;
+    EXPECT_FALSE(w.cubeDrawn(options, {0, 0, 1}));
+    options.simplified_occluders = true;
+    // The wall's box grown to hold the eye: a second, tiny triangle of its mesh behind the eye
+    // (local z 5.5 is world z 0.5).
+    const uint32_t wall_and_speck = s.addMesh({{-0.5f, -0.5f, 0},
+                                               {0.5f, -0.5f, 0},
+                                               {0.5f, 0.5f, 0},
+                                               {-0.5f, 0.5f, 0},
+                                               {0, 0, 5.5f},
+                                               {0.001f, 0, 5.5f},
+                                               {0, 0.001f, 5.5f}},
+                                              {0, 1, 2, 0, 2, 3, 4, 5, 6});
+    s.object_mesh[0] = wall_and_speck;
+    s.boxes.clear();
+    const std::vector<glm::mat4> transforms = s.transforms;
+    const std::vector<uint32_t> meshes = s.object_mesh;
+    s.transforms.clear();
+    s.object_mesh.clear();
+    for (size_t o = 0; o < meshes.size(); ++o) s.addObject(meshes[o], glm::dmat4(transforms[o]));
+    ASSERT_TRUE(contains(s.boxes[0], glm::vec3(0, 0, 0)));
+    EXPECT_FALSE(w.cubeDrawn(options, {0, 0, 0}));  // inside: its own mesh occludes
+    EXPECT_TRUE(w.cubeDrawn(options, {0, 0, 1}));   // outside again: the sliver
 }
 
 // The AVX2 kernels give the plain path's buffer bit for bit.

@@ -479,6 +479,23 @@ TEST(ScenarioRanges, InvalidBspOptionsReportIsValidMessage) {
 
 // --- Enumerations and movers ---------------------------------------------------------------
 
+TEST(ScenarioSources, OccludersSaysWhetherASourcesObjectsOccludeInMasked) {
+    json scenario = minimalScenario();
+    EXPECT_EQ(parseScenarioText(scenario.dump(), kFile).sources.at(0).occluders,
+              OccluderRole::BySize);
+    scenario["scene"]["sources"][0]["occluders"] = "never";
+    EXPECT_EQ(parseScenarioText(scenario.dump(), kFile).sources.at(0).occluders,
+              OccluderRole::Never);
+    scenario["scene"]["sources"][0]["occluders"] = "always";
+    EXPECT_EQ(parseScenarioText(scenario.dump(), kFile).sources.at(0).occluders,
+              OccluderRole::Always);
+    scenario["scene"]["sources"][0]["occluders"] = "sometimes";
+    expectError(scenario, "/scene/sources/0/occluders",
+                "expected one of \"by_size\", \"always\", \"never\"");
+    scenario["scene"]["sources"][0]["occluders"] = true;
+    expectError(scenario, "/scene/sources/0/occluders", "expected one of");
+}
+
 TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     json scenario = minimalScenario();
     scenario["culling"] = {{"algorithm", "statstical"}};

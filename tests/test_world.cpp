@@ -591,5 +591,27 @@ TEST(SharedWorld, MeshesForCullersAreFlatArraysAndTransformsFollowTheMovers) {
     }
 }
 
+// The teapot's mesh is open, so it gets no inscribed occluder mesh: one line says which mesh,
+// whose objects, and why; made once, before any frame's timing.
+TEST(SharedWorld, AMeshWithoutAnInscribedOccluderIsNamedWithWhyInOneLine) {
+    Scenario s = smallScenario();
+    const Scene scene = buildScene(s);
+    SharedWorld world(scene, s);
+    world.advance();
+    const CullMeshes& m = world.cullMeshes();
+    const SharedWorld::OccluderMeshCost& cost = world.occluderMeshCost();
+    EXPECT_EQ(cost.tried, 1u);
+    EXPECT_EQ(cost.made, 0u);
+    ASSERT_EQ(cost.refusals.size(), 1u);
+    const std::string& line = cost.refusals[0];
+    EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+    EXPECT_EQ(line.rfind("mesh 0 (of '", 0), 0u) << line;
+    EXPECT_NE(line.find("has no inscribed occluder mesh: "), std::string::npos) << line;
+    EXPECT_NE(line.find("not closed"), std::string::npos) << line;
+    EXPECT_NE(line.find("own mesh in masked"), std::string::npos) << line;
+    for (uint32_t o = 0; o < scene.objectCount(); ++o)
+        EXPECT_EQ(m.object_occluder_mesh[o], kNoOccluderMesh) << o;
+}
+
 }  // namespace
 }  // namespace occsim

@@ -271,7 +271,10 @@ nlohmann::json simulatorCostsJson(const RunCosts& c) {
             {"ground_truth_ms_total", c.ground_truth_ms_total},
             {"error_read_backs", c.error_read_backs},
             {"window_frames_replayed", c.window_frames_replayed},
-            {"window_replay_ms", c.window_replay_ms}};
+            {"window_replay_ms", c.window_replay_ms},
+            {"occluder_meshes_tried", c.occluder_meshes_tried},
+            {"occluder_meshes_made", c.occluder_meshes_made},
+            {"occluder_meshes_ms", c.occluder_meshes_ms}};
 }
 
 // null for a complete run; else why it ended early, how far it got, and the console's line.
@@ -353,6 +356,11 @@ std::string costsLine(const BenchResult& result) {
         line += "; ground truth " + std::to_string(c.ground_truth_renders) + " renders, " +
                 fixed(c.ground_truth_ms_total, 1) +
                 " ms (render and read-back, outside the frame timing)";
+    }
+    if (c.occluder_meshes_tried > 0) {
+        line += "; inscribed occluder meshes " + std::to_string(c.occluder_meshes_made) + " of " +
+                std::to_string(c.occluder_meshes_tried) + " made, " +
+                fixed(c.occluder_meshes_ms, 1) + " ms (before the first frame, outside its timing)";
     }
     return line;
 }

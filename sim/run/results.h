@@ -110,6 +110,12 @@ struct RunCosts {
     // (BenchOptions::on_window_frame); 0 when none was asked for.
     uint32_t window_frames_replayed = 0;
     double window_replay_ms = 0.0;
+    // Inscribed occluder meshes (sim/scene/occluder_mesh.h) for a culler that rasterises
+    // occluders (masked): scene meshes tried and made, and the time, once per repetition's world
+    // before its first culled frame, outside every frame timing; 0 when no culler needs meshes.
+    uint32_t occluder_meshes_tried = 0;
+    uint32_t occluder_meshes_made = 0;
+    double occluder_meshes_ms = 0.0;
 };
 
 // A run that ended before its last frame: stopped by a signal (SIGINT, SIGTERM), or by a

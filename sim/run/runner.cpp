@@ -234,6 +234,10 @@ void addWorldCosts(RunCosts& spent, const SharedWorld& world, const GroundTruth&
     spent.world_update_ms_total += world.updateMsTotal();
     spent.ground_truth_renders += truth.renders();
     spent.ground_truth_ms_total += truth.msTotal();
+    const SharedWorld::OccluderMeshCost& occluders = world.occluderMeshCost();
+    spent.occluder_meshes_tried += occluders.tried;
+    spent.occluder_meshes_made += occluders.made;
+    spent.occluder_meshes_ms += occluders.ms;
 }
 
 // Each configuration's summary of the repetition; the first repetition keeps its frames whole.
@@ -281,6 +285,13 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
     result.costs.wall_ms +=
         std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
     addWorldCosts(result.costs, world, truth);
+    if (rep == 0) {
+        for (const std::string& line : world.occluderMeshCost().refusals) {
+            if (stage.options.warnings_shown && !stage.options.warnings_shown->insert(line).second)
+                continue;
+            std::fprintf(stderr, "note: %s\n", line.c_str());
+        }
+    }
     if (!result.partial || rep == 0) recordRepetition(result, stage, sims, frames, rep);
 }
 

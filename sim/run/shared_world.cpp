@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "sim/scene/occluder_mesh.h"
 
@@ -18,6 +19,30 @@ double msSince(Clock::time_point start) {
 // Frame serials are handed out process-wide (see SharedWorld::frameSerial()); atomic because
 // tests may run worlds on several threads.
 std::atomic<uint64_t> g_next_serial{1};
+
+// "mesh 3 (of 'Crate' and 11 other objects) has no inscribed occluder mesh: <why>; they occlude
+// with their own mesh"
+std::string occluderRefusalLine(const Scene& scene, uint32_t mesh, const std::string& why) {
+    uint32_t users = 0, first = 0;
+    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
+        if (scene.object_mesh[o] != mesh) continue;
+        if (users++ == 0) first = o;
+    }
+    std::string line = "mesh " + std::to_string(mesh);
+    if (users > 0) {
+        const std::string name =
+            first < scene.object_names.size() && !scene.object_names[first].empty()
+                ? scene.object_names[first]
+                : "object " + std::to_string(first);
+        line += " (of '" + name + "'";
+        if (users > 1) line += " and " + std::to_string(users - 1) + " other objects";
+        line += ")";
+    }
+    line += " has no inscribed occluder mesh: " + why + "; " +
+            (users > 1 ? "they occlude with their" : "it occludes with its") +
+            " own mesh in masked";
+    return line;
+}
 
 }  // namespace
 
@@ -72,10 +97,16 @@ const CullMeshes& SharedWorld::cullMeshes() {
             if (role != OccluderRole::Never) wanted[scene_.object_mesh[o]] = 1;
         }
         for (uint32_t m = 0; m < scene_meshes; ++m) {
-            if (!wanted[m]) continue;
+            // A mesh too small to gain (a box) is its own occluder: neither tried nor noted.
+            if (!wanted[m] ||
+                scene_.meshes[m].triangleCount() < OccluderMeshSettings{}.min_triangles)
+                continue;
             ++occluder_cost_.tried;
             const OccluderMesh made = makeInscribedOccluder(scene_.meshes[m]);
-            if (made.mesh.indices.empty()) continue;
+            if (made.mesh.indices.empty()) {
+                occluder_cost_.refusals.push_back(occluderRefusalLine(scene_, m, made.refusal));
+                continue;
+            }
             ++occluder_cost_.made;
             occluder_of[m] = static_cast<uint32_t>(f.meshes.size());
             MeshRange range;

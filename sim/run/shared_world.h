@@ -76,12 +76,14 @@ class SharedWorld {
     // never call it, so neither the copy nor the per-frame transforms cost them anything.
     const CullMeshes& cullMeshes();
     // What making the inscribed occluder meshes cost (on the first cullMeshes() call, outside
-    // any frame's timing): meshes tried, made, and the milliseconds.
+    // any frame's timing): meshes tried, made, and the milliseconds; per mesh refused, one line
+    // naming it and why (its objects then occlude with their own mesh).
     struct OccluderMeshCost {
         uint32_t tried = 0, made = 0;
         double ms = 0.0;
+        std::vector<std::string> refusals;
     };
-    OccluderMeshCost occluderMeshCost() const { return occluder_cost_; }
+    const OccluderMeshCost& occluderMeshCost() const { return occluder_cost_; }
 
     const Scene& scene() const { return scene_; }
     const Scenario& scenario() const { return scenario_; }

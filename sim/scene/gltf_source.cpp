@@ -517,8 +517,18 @@ std::optional<OccluderRole> nodeOccluderRole(const Context& c, uint32_t node) {
     if (role == "always") return OccluderRole::Always;
     if (role == "never") return OccluderRole::Never;
     if (role == "by_size") return OccluderRole::BySize;
+    const std::string& name = c.model.nodes[node].name;
+    const std::string got = v.IsString()   ? "\"" + role + "\""
+                            : v.IsBool()   ? std::string("a boolean")
+                            : v.IsNumber() ? std::string("a number")
+                            : v.IsObject() ? std::string("an object")
+                            : v.IsArray()  ? std::string("an array")
+                                           : std::string("null");
     throw GltfError(c.file + ": node " + std::to_string(node) +
-                    ": extras.occsim_occluder: expected \"always\", \"never\" or \"by_size\"");
+                    (name.empty() ? "" : " ('" + name + "')") +
+                    ": extras.occsim_occluder: expected \"always\", \"never\" or \"by_size\", "
+                    "got " +
+                    got);
 }
 
 // An object's name: its node's, else its mesh's, else the node's index.
