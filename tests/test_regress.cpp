@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -72,6 +71,13 @@ class DroppingDevice final : public RenderDevice {
 
 enum class Sabotage { DropDraws, Slow, ExtraQuery, DropFromFrame10, SlowFromFrame10 };
 
+// The clock these regression runs time their frames with (RegressOptions::frame_clock_ms): each
+// reading is 1 ms after the one before, so that every culler's frame takes the same scripted
+// time whatever the machine's load, and a slowed culler adds 60 ms to it.
+double g_scripted_ms = 0.0;
+double scriptedClockMs() { return g_scripted_ms += 1.0; }
+void scriptedSlowDown() { g_scripted_ms += 60.0; }
+
 // The statistical culler, deliberately broken in one way.
 class SabotagedCuller final : public Culler {
   public:
@@ -85,12 +91,9 @@ class SabotagedCuller final : public Culler {
                 inner_.cullAndRender(tree, frame, dropping);
                 return;
             }
-            case Sabotage::Slow: {
-                const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
-                while (std::chrono::steady_clock::now() < until) {
-                }
+            case Sabotage::Slow:
+                scriptedSlowDown();
                 break;
-            }
             case Sabotage::ExtraQuery:
                 device.takeAnswer(device.issueQuery(tree.bounds(tree.root())));
                 break;
@@ -102,12 +105,7 @@ class SabotagedCuller final : public Culler {
                 }
                 break;
             case Sabotage::SlowFromFrame10:
-                if (frame.frame_index >= 10) {
-                    const auto until =
-                        std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
-                    while (std::chrono::steady_clock::now() < until) {
-                    }
-                }
+                if (frame.frame_index >= 10) scriptedSlowDown();
                 break;
         }
         inner_.cullAndRender(tree, frame, device);
@@ -123,6 +121,7 @@ RegressOptions optionsFor(const fs::path& scenario,
     RegressOptions o;
     o.inputs = {scenario};
     o.out_dir = scenario.parent_path() / "out";
+    o.frame_clock_ms = scriptedClockMs;
     if (sabotage) {
         o.make_culler = [how = *sabotage](const AlgorithmTraits& algorithm,
                                           const CullerOptions& options) {

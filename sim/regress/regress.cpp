@@ -128,6 +128,7 @@ BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expect
     bench.command_line = shellCommand(rerun);
     bench.keep_worst_error_frame = true;
     bench.make_culler = options.make_culler;
+    bench.frame_clock_ms = options.frame_clock_ms;
     bench.backend = options.backend;
     bench.progress = options.progress;
     return bench;

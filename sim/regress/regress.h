@@ -125,6 +125,9 @@ struct RegressOptions {
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
         make_culler;
+    // The clock frames are timed with (BenchOptions::frame_clock_ms); empty: the steady clock.
+    // Tests script it, so that a ratio check sees the same times whatever the machine's load.
+    std::function<double()> frame_clock_ms;
     // Applied to each scenario after it is parsed (occsim regress --culling FILE).
     std::function<void(Scenario&)> adjust_scenario;
     // The flags that shaped each scenario's run (--culling FILE, --backend, --plugin, ...), for

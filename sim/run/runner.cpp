@@ -126,6 +126,7 @@ std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, Sha
         sim_options.record_objects = options.record_objects && options.measure_error && rep == 0;
         sim_options.measure_gpu_time = stage.context.info().gpu_time_meaningful;
         sim_options.segments = options.segments;
+        sim_options.frame_clock_ms = options.frame_clock_ms;
         auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                           : makeConfiguredCuller(config);
         sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,

@@ -83,6 +83,9 @@ struct BenchOptions {
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
         make_culler;
+    // The clock frames are timed with (SimulationOptions::frame_clock_ms); empty: the steady
+    // clock. Tests script it.
+    std::function<double()> frame_clock_ms;
     // The scene warnings a session of several runs (the tuner's batches) has printed: a warning
     // already in it is not printed again, and each one printed is added. Without it (nullptr)
     // every run prints its scene's warnings.

@@ -10,10 +10,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 }  // namespace
 
 void uploadScene(const Scene& scene, GlRenderer& renderer) {
@@ -70,6 +66,11 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
     culler_->reset(world_->tree());
 }
 
+double Simulation::nowMs() const {
+    if (options_.frame_clock_ms) return options_.frame_clock_ms();
+    return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
+}
+
 bool Simulation::needsGroundTruth() const { return options_.measure_error || algorithm_.oracle; }
 
 FrameStats Simulation::renderFrame() {
@@ -105,20 +106,20 @@ FrameStats Simulation::renderFrame() {
     renderer_.setView(world_->view().render, world_->modelViews());
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
-    const auto frame_start = Clock::now();
+    const double frame_start = nowMs();
     if (gpu_timer_) gpu_timer_->begin();
     renderer_.beginFrame();
-    const auto cull_start = Clock::now();
+    const double cull_start = nowMs();
     const bool trace = world_->liveControls().trace_every_frame ||
                        (options_.trace_frame && *options_.trace_frame == frame);
     if (trace) tracer_.beginTrace(frame);
     culler_->cullAndRender(world_->tree(), cull_frame, trace ? tracer_ : *device_);
     tracer_.endTrace();
     traced_ |= trace;
-    const double cull_ms = msSince(cull_start);
+    const double cull_ms = nowMs() - cull_start;
     if (gpu_timer_) gpu_timer_->end();
     renderer_.finish();
-    stats.frame_ms = msSince(frame_start);
+    stats.frame_ms = nowMs() - frame_start;
     if (gpu_timer_) stats.gpu_ms = gpu_timer_->resultMs();
     recordAnswerLatencies(frame, stats);
 

@@ -7,6 +7,7 @@
 // A Simulation built from a scene alone owns a world and ground truth of its own.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -51,6 +52,10 @@ struct SimulationOptions {
     // The run's segments: popping and answer latencies are also counted per segment
     // (segmentTallies()).
     std::vector<Segment> segments;
+    // The clock the measured frame is timed with (frame_ms and the culler's CPU time), in
+    // milliseconds from any fixed point; empty: the steady clock. Tests script it, so that a
+    // check on frame times sees the same times whatever else the machine is doing.
+    std::function<double()> frame_clock_ms;
 };
 
 // One object's part of a frame (SimulationOptions::record_objects).
@@ -143,6 +148,7 @@ class Simulation {
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
     void recordObjects(const GroundTruthFrame& truth);
     void recordAnswerLatencies(uint32_t frame, FrameStats& stats);
+    double nowMs() const;  // SimulationOptions::frame_clock_ms, else the steady clock
 
     std::unique_ptr<SharedWorld> own_world_;  // only for a simulation alone
     std::unique_ptr<GroundTruth> own_truth_;
