@@ -5,12 +5,16 @@
 # machine (no build, test or other benchmark beside it): a run on a busy one says so and is not a
 # result. About 5 minutes per scene and run on a 2-core machine with --frames 100.
 # Usage: scripts/results.sh [paper|general|levels|default|all] [occsim bench options...]
+#   With --algos among the options, each run is one process of those cullers alone (e.g.
+#   `scripts/results.sh all --algos vfc,masked --sweep masked:drawn_occluders=false,true`, the
+#   masked tables of docs/results.md); without, every registered culler as below.
 #   paper:   scenarios/paper/{teapots,city,library,plant}.json (the default set)
 #   general: scenarios/general/*.json (the generalisation set)
 #   levels:  scenarios/levels/*.json (game levels: courtyards, interior, street canyon; generalisation)
 #   default: scenarios/teapots.json
 #   all:     default, paper, general and levels, one table each
-# Output: out/results/<set>/<scene>/run-<n>/{summary.json,frames.csv,report.md}, then each set's
+# Output: out/results/<set>/<scene>/run-<n>/{summary.json,frames.csv,report.md} (with --algos:
+# out/results-own-algos/...), then each set's
 # table (scripts/results_table.py: means, spreads, the fastest conservative culler, loads).
 # `conditional` runs in a process of its own, beside VFC (run-<n>/conditional/): on llvmpipe its
 # GL_QUERY_NO_WAIT draws make the driver flush a scene per batch of queries, and the scenes it
@@ -39,17 +43,25 @@ bash scripts/build.sh release occsim
 source scripts/core_dumps.sh  # a crash leaves a core (and says where)
 source scripts/cullers_apart.sh  # $cullers_together; conditional runs apart (see above)
 command -v python3 >/dev/null || { echo "results.sh: the table needs python3 (apt-get install python3)" >&2; exit 1; }
+own_algos=false
+for arg in "$@"; do [[ $arg == --algos || $arg == --algos=* ]] && own_algos=true; done
+results=out/results
+$own_algos && results=out/results-own-algos
 for set in "${sets[@]}"; do
   for scene in $(scenes_of "$set"); do
     name=$(basename "$scene" .json)
     for run in 1 2; do
       echo "== $scene, run $run ($(uptime))"
+      if $own_algos; then
+        ./build/release/sim/occsim bench "$scene" --error --out "$results/$set/$name/run-$run" "$@"
+        continue
+      fi
       ./build/release/sim/occsim bench "$scene" --error --algos "$cullers_together" \
-        --out "out/results/$set/$name/run-$run" "$@"
+        --out "$results/$set/$name/run-$run" "$@"
       ./build/release/sim/occsim bench "$scene" --error --algos "vfc,$cullers_apart" \
-        --out "out/results/$set/$name/run-$run/$cullers_apart" "$@"
+        --out "$results/$set/$name/run-$run/$cullers_apart" "$@"
     done
   done
   # The table of this set (docs/results.md's format): means of the two runs, their spread, loads.
-  python3 scripts/results_table.py "out/results/$set"
+  python3 scripts/results_table.py "$results/$set"
 done
