@@ -20,10 +20,12 @@ runs=(
   "hzb-node_units|--algos vfc,hzb --sweep hzb:node_units=false,true"
   "conditional-wait|--algos vfc,conditional --sweep conditional:wait=false,true"
   "conditional-node_queries|--algos vfc,conditional --sweep conditional:node_queries=false,true"
-  "masked-width|--algos vfc,masked --sweep masked:width=256,512,1024"
+  "masked-width|--algos vfc,masked --sweep masked:width=320,0"
+  "masked-cell_width|--algos vfc,masked --sweep masked:cell_width=8,32"
+  "masked-drawn_occluders|--algos vfc,masked --sweep masked:drawn_occluders=false,true"
+  "masked-simplified_occluders|--algos vfc,masked --sweep masked:simplified_occluders=false,true"
   "masked-occluder_triangles|--algos vfc,masked --sweep masked:occluder_triangles=20000,50000,200000"
   "masked-simd|--algos vfc,masked --sweep masked:simd=false,true"
-  "masked-ablate|--algos vfc,masked --ablate masked"
 )
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
