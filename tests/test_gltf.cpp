@@ -613,6 +613,14 @@ TEST(GltfScenario, TheGltfHouseScenarioBuildsItsGridAndMovers) {
     EXPECT_TRUE(scene.warnings.empty());
 }
 
+// A scenario of these sources seen from (0, 0, 5), as a file's JSON.
+json scenarioOfSources(const json& sources) {
+    return {{"format_version", 1},
+            {"camera",
+             {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
+            {"scene", {{"sources", sources}}}};
+}
+
 TEST(GltfScenario, WarningsReachTheScene) {
     GltfBuilder b;
     const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
@@ -620,11 +628,7 @@ TEST(GltfScenario, WarningsReachTheScene) {
                                                   GltfBuilder::primitive(p, -1, kPoints)}))}});
     TempDir dir;
     dir.write("model.gltf", b.text());
-    const json scenario = {
-        {"format_version", 1},
-        {"camera",
-         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
-        {"scene", {{"sources", {{{"type", "gltf"}, {"path", "model.gltf"}}}}}}};
+    const json scenario = scenarioOfSources({{{"type", "gltf"}, {"path", "model.gltf"}}});
     const std::filesystem::path file = dir.write("scenario.json", scenario.dump());
     const Scene scene = buildScene(parseScenarioFile(file));
     EXPECT_EQ(scene.objectCount(), 1u);
@@ -640,14 +644,9 @@ TEST(GltfScenario, OccluderRolesReachTheScenePerObject) {
     b.node({{"mesh", mesh}, {"extras", {{"occsim_occluder", "always"}}}});
     TempDir dir;
     dir.write("model.gltf", b.text());
-    const json scenario = {
-        {"format_version", 1},
-        {"camera",
-         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
-        {"scene",
-         {{"sources",
-           {{{"type", "gltf"}, {"path", "model.gltf"}, {"occluders", "never"}},
-            {{"type", "teapots"}, {"count", 2}}}}}}};
+    const json scenario =
+        scenarioOfSources({{{"type", "gltf"}, {"path", "model.gltf"}, {"occluders", "never"}},
+                           {{"type", "teapots"}, {"count", 2}}});
     const Scene scene = buildScene(parseScenarioFile(dir.write("scenario.json", scenario.dump())));
     ASSERT_EQ(scene.objectCount(), 4u);
     ASSERT_EQ(scene.object_occluder.size(), 4u);
@@ -661,11 +660,7 @@ TEST(GltfScenario, OccluderRolesReachTheScenePerObject) {
 TEST(GltfScenario, APathThatIsAFolderSaysSo) {
     TempDir dir;
     std::filesystem::create_directories(dir.path() / "models.gltf");
-    const json scenario = {
-        {"format_version", 1},
-        {"camera",
-         {{"keyframes", {{{"time", 0}, {"position", {0, 0, 5}}, {"target", {0, 0, 0}}}}}}},
-        {"scene", {{"sources", {{{"type", "gltf"}, {"path", "models.gltf"}}}}}}};
+    const json scenario = scenarioOfSources({{{"type", "gltf"}, {"path", "models.gltf"}}});
     const std::filesystem::path file = dir.write("scenario.json", scenario.dump());
     try {
         parseScenarioFile(file);

@@ -390,6 +390,16 @@ struct TestScene {
         }
         boxes.push_back(box);
     }
+    // Every object's box again from its mesh and transform, after either changed.
+    void recomputeBoxes() {
+        boxes.clear();
+        const std::vector<glm::mat4> old_transforms = transforms;
+        const std::vector<uint32_t> old_meshes = object_mesh;
+        transforms.clear();
+        object_mesh.clear();
+        for (size_t o = 0; o < old_meshes.size(); ++o)
+            addObject(old_meshes[o], glm::dmat4(old_transforms[o]));
+    }
     CullMeshes view() const {
         return CullMeshes{positions,  indices,  meshes,       object_mesh,
                           transforms, occluder, occluder_mesh};
@@ -468,12 +478,7 @@ RandomCase randomCase(uint32_t seed, bool large_viewport = false, bool full_hd =
     for (glm::mat4& t : s.transforms) {
         t = glm::mat4(glm::translate(glm::dmat4(1.0), -offset) * glm::dmat4(t));
     }
-    s.boxes.clear();
-    const std::vector<glm::mat4> transforms = s.transforms;
-    const std::vector<uint32_t> meshes = s.object_mesh;
-    s.transforms.clear();
-    s.object_mesh.clear();
-    for (size_t o = 0; o < meshes.size(); ++o) s.addObject(meshes[o], glm::dmat4(transforms[o]));
+    s.recomputeBoxes();
     return c;
 }
 
@@ -722,12 +727,7 @@ TEST(MaskedCuller, AnOccluderMeshStandsInOnlyWithTheEyeOutsideTheObjectsBox) {
                                                {0, 0.001f, 5.5f}},
                                               {0, 1, 2, 0, 2, 3, 4, 5, 6});
     s.object_mesh[0] = wall_and_speck;
-    s.boxes.clear();
-    const std::vector<glm::mat4> transforms = s.transforms;
-    const std::vector<uint32_t> meshes = s.object_mesh;
-    s.transforms.clear();
-    s.object_mesh.clear();
-    for (size_t o = 0; o < meshes.size(); ++o) s.addObject(meshes[o], glm::dmat4(transforms[o]));
+    s.recomputeBoxes();
     ASSERT_TRUE(contains(s.boxes[0], glm::vec3(0, 0, 0)));
     EXPECT_FALSE(w.cubeDrawn(options, {0, 0, 0}));  // inside: its own mesh occludes
     EXPECT_TRUE(w.cubeDrawn(options, {0, 0, 1}));   // outside again: the sliver
