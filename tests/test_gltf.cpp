@@ -281,6 +281,47 @@ TEST(GltfErrors, AnOccluderRoleThatIsNotOneOfTheThreeNamesTheNode) {
     EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0);
 }
 
+// A node names a mesh of the file as its occluder: that mesh is output (here only for that; as
+// is, or mirrored where the node is) and the object points at it.
+TEST(GltfScene, ANodesExtrasNameItsOccluderMesh) {
+    GltfBuilder b;
+    const int tri = b.triangleMesh("Tri");
+    const int inner = b.triangleMesh("Inner");
+    b.node({{"mesh", tri}, {"extras", {{"occsim_occluder_mesh", inner}}}});
+    b.node({{"mesh", tri}});
+    b.node({{"mesh", tri}, {"scale", {-1, 1, 1}}, {"extras", {{"occsim_occluder_mesh", inner}}}});
+    const SourceOutput out = loadText(b.text());
+    ASSERT_EQ(out.objects.size(), 3u);
+    ASSERT_TRUE(out.objects[0].occluder_mesh.has_value());
+    EXPECT_NE(*out.objects[0].occluder_mesh, out.objects[0].mesh);
+    EXPECT_LT(*out.objects[0].occluder_mesh, out.meshes.size());
+    EXPECT_EQ(out.objects[1].occluder_mesh, std::nullopt);
+    ASSERT_TRUE(out.objects[2].occluder_mesh.has_value());
+    // The mirrored node's occluder is the mirrored output of the same mesh.
+    EXPECT_NE(*out.objects[2].occluder_mesh, *out.objects[0].occluder_mesh);
+    EXPECT_EQ(out.meshes.size(), 4u);  // Tri and Inner, each as is and mirrored
+}
+
+TEST(GltfErrors, AnOccluderMeshThatIsNoMeshOfTheFileNamesTheNode) {
+    for (const json& bad : {json(5), json(-1), json(0.5), json("Inner")}) {
+        GltfBuilder b;
+        const int mesh = b.triangleMesh("Tri");
+        b.node({{"mesh", mesh}, {"name", "Wall"}, {"extras", {{"occsim_occluder_mesh", bad}}}});
+        const std::string message = errorOfText(b.text());
+        EXPECT_NE(message.find("model.gltf: node 0 ('Wall'): extras.occsim_occluder_mesh: expected "
+                               "the index of one of the file's 1 mesh, got "),
+                  std::string::npos)
+            << message;
+        EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0);
+        if (bad == json(5)) {
+            EXPECT_NE(message.find("got 5"), std::string::npos) << message;
+        }
+        if (bad.is_string()) {
+            EXPECT_NE(message.find("got \"Inner\""), std::string::npos) << message;
+        }
+    }
+}
+
 // ---- Primitives ----------------------------------------------------------------------------
 
 TEST(GltfPrimitives, IndicesOfEveryWidthAndNonIndexedGiveTheSameTriangles) {

@@ -159,6 +159,48 @@ TEST(OccluderMesh, RandomClosedMeshesGetInscribedOccluders) {
     EXPECT_GE(made, 10u);
 }
 
+// A mesh someone made keeps only its triangles inside the object: a box half as large inside a
+// sphere is kept whole; one that reaches out of it keeps what lies inside, and those cover no
+// pixel the sphere does not; one wholly outside, or any against an open mesh, is refused.
+TEST(OccluderMesh, AnAuthoredOccluderKeepsOnlyWhatLiesInsideItsObject) {
+    const MeshData sphere = makeSphere(1.0f, 32, 24);
+    const glm::vec3 centre = (meshBounds(sphere).min + meshBounds(sphere).max) * 0.5f;
+    auto boxAt = [&](glm::vec3 size, glm::vec3 offset) {
+        MeshData box = makeBox(size);
+        const glm::vec3 mid = (meshBounds(box).min + meshBounds(box).max) * 0.5f;
+        for (glm::vec3& p : box.positions) p += centre + offset - mid;
+        return box;
+    };
+    const OccluderMesh inside = checkAuthoredOccluder(sphere, boxAt({1, 1, 1}, {0, 0, 0}));
+    ASSERT_EQ(inside.refusal, "");
+    EXPECT_EQ(inside.mesh.triangleCount(), 12u);
+    EXPECT_EQ(inside.dropped_triangles, 0u);
+    EXPECT_GT(checkInscribed(sphere, inside.mesh, 40, 2, "box in sphere"), 1000u);
+
+    MeshData ball = makeSphere(0.6f, 16, 12);  // half out of the sphere
+    const glm::vec3 ball_mid = (meshBounds(ball).min + meshBounds(ball).max) * 0.5f;
+    for (glm::vec3& p : ball.positions) p += centre + glm::vec3(0.7f, 0, 0) - ball_mid;
+    const OccluderMesh partly = checkAuthoredOccluder(sphere, ball);
+    ASSERT_EQ(partly.refusal, "");
+    EXPECT_GT(partly.dropped_triangles, ball.triangleCount() / 4);
+    EXPECT_GT(partly.mesh.triangleCount(), ball.triangleCount() / 4);
+    checkInscribed(sphere, partly.mesh, 40, 3, "ball half out of the sphere");
+
+    const OccluderMesh outside = checkAuthoredOccluder(sphere, boxAt({1, 1, 1}, {3, 0, 0}));
+    EXPECT_NE(outside.refusal.find("none of its 12 triangles lies inside its object"),
+              std::string::npos)
+        << outside.refusal;
+    EXPECT_EQ(outside.mesh.triangleCount(), 0u);
+
+    MeshData quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.normals.assign(4, {0, 0, 1});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    const OccluderMesh open = checkAuthoredOccluder(quad, boxAt({0.1f, 0.1f, 0.1f}, {0, 0, 0}));
+    EXPECT_NE(open.refusal.find("encloses no solid to check it against"), std::string::npos)
+        << open.refusal;
+}
+
 TEST(OccluderMesh, AnOpenOrTinyMeshIsRefused) {
     MeshData quad;
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};

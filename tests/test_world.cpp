@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gltf_builder.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
@@ -611,6 +612,67 @@ TEST(SharedWorld, AMeshWithoutAnInscribedOccluderIsNamedWithWhyInOneLine) {
     EXPECT_NE(line.find("own mesh in masked"), std::string::npos) << line;
     for (uint32_t o = 0; o < scene.objectCount(); ++o)
         EXPECT_EQ(m.object_occluder_mesh[o], kNoOccluderMesh) << o;
+}
+
+// A glTF node's own occluder mesh reaches the culler once checked against its object: a box
+// inside the node's box stands in for it; one beside it is refused with a line naming the object,
+// which then occludes with its own mesh.
+TEST(SharedWorld, AGltfNodesOccluderMeshIsCheckedAgainstItsObject) {
+    using nlohmann::json;
+    using testing_gltf::GltfBuilder;
+    using testing_gltf::TempDir;
+    GltfBuilder b;
+    auto box = [&](const std::string& name, float half, float dx) {
+        std::vector<glm::vec3> corners;
+        for (int i = 0; i < 8; ++i) {
+            corners.emplace_back(dx + (i & 1 ? half : -half), i & 2 ? half : -half,
+                                 i & 4 ? half : -half);
+        }
+        // Each face counter-clockwise seen from outside.
+        const uint32_t quads[] = {0, 4, 6, 2, 1, 3, 7, 5, 0, 1, 5, 4,
+                                  2, 6, 7, 3, 0, 2, 3, 1, 4, 5, 7, 6};
+        std::vector<uint32_t> triangles;
+        for (int q = 0; q < 24; q += 4) {
+            triangles.insert(triangles.end(), {quads[q], quads[q + 1], quads[q + 2], quads[q],
+                                               quads[q + 2], quads[q + 3]});
+        }
+        return b.mesh(name,
+                      json::array({GltfBuilder::primitive(b.vec3(corners), b.indices(triangles))}));
+    };
+    const int outer = box("Outer", 1.0f, 0.0f), inner = box("Inner", 0.5f, 0.0f),
+              beside = box("Beside", 0.5f, 3.0f);
+    b.node({{"mesh", outer}, {"name", "Kept"}, {"extras", {{"occsim_occluder_mesh", inner}}}});
+    b.node({{"mesh", outer},
+            {"name", "Refused"},
+            {"translation", {10, 0, 0}},
+            {"extras", {{"occsim_occluder_mesh", beside}}}});
+    TempDir dir;
+    Scenario s = smallScenario();
+    s.sources.clear();
+    SceneSourceSpec& source = s.sources.emplace_back();
+    source.type = SourceType::Gltf;
+    GltfSourceSpec gltf;
+    gltf.path = dir.write("model.gltf", b.text());
+    source.spec.emplace<GltfSourceSpec>(gltf);
+    s.movers.clear();
+    const Scene scene = buildScene(s);
+    ASSERT_EQ(scene.objectCount(), 2u);
+    SharedWorld world(scene, s);
+    world.advance();
+    const CullMeshes& m = world.cullMeshes();
+    ASSERT_NE(m.object_occluder_mesh[0], kNoOccluderMesh);
+    EXPECT_EQ(m.meshes[m.object_occluder_mesh[0]].index_count, 36u);  // the inner box, whole
+    EXPECT_EQ(m.object_occluder_mesh[1], kNoOccluderMesh);
+    const SharedWorld::OccluderMeshCost& cost = world.occluderMeshCost();
+    EXPECT_EQ(cost.tried, 2u);
+    EXPECT_EQ(cost.made, 1u);
+    ASSERT_EQ(cost.refusals.size(), 1u);
+    EXPECT_NE(cost.refusals[0].find("the occluder mesh of 'Refused' (mesh "), std::string::npos)
+        << cost.refusals[0];
+    EXPECT_NE(cost.refusals[0].find("none of its 12 triangles lies inside its object; it "
+                                    "occludes with its own mesh"),
+              std::string::npos)
+        << cost.refusals[0];
 }
 
 }  // namespace

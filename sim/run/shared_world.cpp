@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <string>
 
 #include "sim/scene/occluder_mesh.h"
@@ -44,7 +45,30 @@ std::string occluderRefusalLine(const Scene& scene, uint32_t mesh, const std::st
     return line;
 }
 
+// "the occluder mesh 5 of 'Wall' (mesh 2): <what>"
+std::string authoredRefusalLine(const Scene& scene, uint32_t object, uint32_t mesh,
+                                const std::string& what) {
+    const std::string name =
+        object < scene.object_names.size() && !scene.object_names[object].empty()
+            ? scene.object_names[object]
+            : "object " + std::to_string(object);
+    return "the occluder mesh of '" + name + "' (mesh " + std::to_string(mesh) + "): " + what;
+}
+
 }  // namespace
+
+// The mesh appended to the flat arrays after what they hold; its range's index.
+uint32_t SharedWorld::appendCullMesh(FlatMeshes& f, const MeshData& mesh) {
+    MeshRange range;
+    range.first_index = static_cast<uint32_t>(f.indices.size());
+    range.index_count = static_cast<uint32_t>(mesh.indices.size());
+    range.first_vertex = static_cast<uint32_t>(f.positions.size());
+    range.vertex_count = static_cast<uint32_t>(mesh.positions.size());
+    f.positions.insert(f.positions.end(), mesh.positions.begin(), mesh.positions.end());
+    f.indices.insert(f.indices.end(), mesh.indices.begin(), mesh.indices.end());
+    f.meshes.push_back(range);
+    return static_cast<uint32_t>(f.meshes.size() - 1);
+}
 
 SharedWorld::SharedWorld(const Scene& scene, const Scenario& scenario)
     : scene_(scene), scenario_(scenario), state_(initialState(scene)) {
@@ -71,16 +95,7 @@ const CullMeshes& SharedWorld::cullMeshes() {
     if (!flat_meshes_) {
         flat_meshes_ = std::make_unique<FlatMeshes>();
         FlatMeshes& f = *flat_meshes_;
-        for (const MeshData& mesh : scene_.meshes) {
-            MeshRange range;
-            range.first_index = static_cast<uint32_t>(f.indices.size());
-            range.index_count = static_cast<uint32_t>(mesh.indices.size());
-            range.first_vertex = static_cast<uint32_t>(f.positions.size());
-            range.vertex_count = static_cast<uint32_t>(mesh.positions.size());
-            f.positions.insert(f.positions.end(), mesh.positions.begin(), mesh.positions.end());
-            f.indices.insert(f.indices.end(), mesh.indices.begin(), mesh.indices.end());
-            f.meshes.push_back(range);
-        }
+        for (const MeshData& mesh : scene_.meshes) appendCullMesh(f, mesh);
         // Inscribed occluder meshes, once per mesh some object may occlude with, after the
         // scene's meshes; and every object's role.
         const auto start = Clock::now();
@@ -108,20 +123,47 @@ const CullMeshes& SharedWorld::cullMeshes() {
                 continue;
             }
             ++occluder_cost_.made;
-            occluder_of[m] = static_cast<uint32_t>(f.meshes.size());
-            MeshRange range;
-            range.first_index = static_cast<uint32_t>(f.indices.size());
-            range.index_count = static_cast<uint32_t>(made.mesh.indices.size());
-            range.first_vertex = static_cast<uint32_t>(f.positions.size());
-            range.vertex_count = static_cast<uint32_t>(made.mesh.positions.size());
-            f.positions.insert(f.positions.end(), made.mesh.positions.begin(),
-                               made.mesh.positions.end());
-            f.indices.insert(f.indices.end(), made.mesh.indices.begin(), made.mesh.indices.end());
-            f.meshes.push_back(range);
+            occluder_of[m] = appendCullMesh(f, made.mesh);
         }
         f.object_occluder_mesh.resize(scene_.objectCount());
         for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
             f.object_occluder_mesh[o] = occluder_of[scene_.object_mesh[o]];
+        }
+        // Occluder meshes someone made (glTF extras.occsim_occluder_mesh), checked against their
+        // object's solid once per pair of meshes; they stand in for a made one.
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> authored;  // (object's, its) -> range
+        for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+            const uint32_t a = o < scene_.object_occluder_mesh.size()
+                                   ? scene_.object_occluder_mesh[o]
+                                   : kNoAuthoredOccluder;
+            if (a >= scene_meshes || f.object_occluder[o] == kOccluderNever) continue;
+            const std::pair<uint32_t, uint32_t> key{scene_.object_mesh[o], a};
+            auto it = authored.find(key);
+            if (it == authored.end()) {
+                ++occluder_cost_.tried;
+                const OccluderMesh checked =
+                    checkAuthoredOccluder(scene_.meshes[key.first], scene_.meshes[a]);
+                uint32_t range = kNoOccluderMesh;
+                if (checked.mesh.indices.empty()) {
+                    occluder_cost_.refusals.push_back(authoredRefusalLine(scene_, o, a,
+                                                                          checked.refusal +
+                                                                              "; it occludes with "
+                                                                              "its own mesh"));
+                } else {
+                    ++occluder_cost_.made;
+                    range = appendCullMesh(f, checked.mesh);
+                    if (checked.dropped_triangles > 0) {
+                        const uint32_t all = scene_.meshes[a].triangleCount();
+                        occluder_cost_.refusals.push_back(authoredRefusalLine(
+                            scene_, o, a,
+                            std::to_string(checked.dropped_triangles) + " of its " +
+                                std::to_string(all) +
+                                " triangles do not lie inside its object and are left out"));
+                    }
+                }
+                it = authored.emplace(key, range).first;
+            }
+            if (it->second != kNoOccluderMesh) f.object_occluder_mesh[o] = it->second;
         }
         occluder_cost_.ms = msSince(start);
         f.object_to_culling.resize(scene_.objectCount());

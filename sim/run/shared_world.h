@@ -130,6 +130,7 @@ class SharedWorld {
         uint64_t transforms_serial = 0;  // the frame serial object_to_culling is for
         CullMeshes view;
     };
+    static uint32_t appendCullMesh(FlatMeshes& f, const MeshData& mesh);
     std::unique_ptr<FlatMeshes> flat_meshes_;
     OccluderMeshCost occluder_cost_;
 };

@@ -531,6 +531,35 @@ std::optional<OccluderRole> nodeOccluderRole(const Context& c, uint32_t node) {
                     got);
 }
 
+// A node's own occluder mesh, from its extras: {"occsim_occluder_mesh": <index of a mesh of the
+// file>} (docs/scenario-gltf.md); none when it says nothing. Anything else there is an error
+// naming the file and the node.
+std::optional<uint32_t> nodeOccluderMesh(const Context& c, uint32_t node) {
+    if (node >= c.model.nodes.size()) return std::nullopt;
+    const tg::Value& extras = c.model.nodes[node].extras;
+    if (!extras.IsObject() || !extras.Has("occsim_occluder_mesh")) return std::nullopt;
+    const tg::Value& v = extras.Get("occsim_occluder_mesh");
+    const size_t meshes = c.model.meshes.size();
+    if (v.IsNumber()) {
+        const double index = v.GetNumberAsDouble();
+        if (index >= 0.0 && index < static_cast<double>(meshes) && index == std::floor(index))
+            return static_cast<uint32_t>(index);
+    }
+    const std::string& name = c.model.nodes[node].name;
+    std::string got = "no number";
+    if (v.IsString()) got = "\"" + v.Get<std::string>() + "\"";
+    if (v.IsNumber()) {
+        const double number = v.GetNumberAsDouble();
+        got = number == std::floor(number) && std::abs(number) < 1e15
+                  ? std::to_string(static_cast<int64_t>(number))
+                  : std::to_string(number);
+    }
+    throw GltfError(c.file + ": node " + std::to_string(node) +
+                    (name.empty() ? "" : " ('" + name + "')") +
+                    ": extras.occsim_occluder_mesh: expected the index of one of the file's " +
+                    std::to_string(meshes) + (meshes == 1 ? " mesh" : " meshes") + ", got " + got);
+}
+
 // An object's name: its node's, else its mesh's, else the node's index.
 std::string nodeLabel(const Context& c, uint32_t node, size_t mesh) {
     if (node < c.model.nodes.size() && !c.model.nodes[node].name.empty())
@@ -547,8 +576,15 @@ SourceOutput placeModel(const Context& c, const SceneContent& content, double sc
                         std::vector<uint32_t>& object_visit) {
     const size_t mesh_count = c.model.meshes.size();
     std::vector<uint8_t> used(mesh_count * 2, 0);  // [mesh * 2 + mirrored]
-    for (const MeshInstance& instance : content.instances) {
-        used[instance.mesh * 2 + (isMirrored(instance.world) ? 1 : 0)] = 1;
+    // Per instance, the mesh its node names as its occluder (output like a drawn mesh, mirrored
+    // where the node is).
+    std::vector<std::optional<uint32_t>> occluder_of(content.instances.size());
+    for (size_t i = 0; i < content.instances.size(); ++i) {
+        const MeshInstance& instance = content.instances[i];
+        const size_t mirrored = isMirrored(instance.world) ? 1 : 0;
+        used[instance.mesh * 2 + mirrored] = 1;
+        occluder_of[i] = nodeOccluderMesh(c, content.visits[instance.visit].node);
+        if (occluder_of[i]) used[*occluder_of[i] * 2 + mirrored] = 1;
     }
     SourceOutput out;
     constexpr uint32_t kNone = UINT32_MAX;
@@ -566,13 +602,17 @@ SourceOutput placeModel(const Context& c, const SceneContent& content, double sc
             out.meshes.push_back(std::move(converted));
         }
     }
-    for (const MeshInstance& instance : content.instances) {
-        const uint32_t mesh = output_mesh[instance.mesh * 2 + (isMirrored(instance.world) ? 1 : 0)];
+    for (size_t i = 0; i < content.instances.size(); ++i) {
+        const MeshInstance& instance = content.instances[i];
+        const size_t mirrored = isMirrored(instance.world) ? 1 : 0;
+        const uint32_t mesh = output_mesh[instance.mesh * 2 + mirrored];
         if (mesh == kNone) continue;
         PlacedObject object;
         object.mesh = mesh;
         object.name = nodeLabel(c, content.visits[instance.visit].node, instance.mesh);
         object.occluder = nodeOccluderRole(c, content.visits[instance.visit].node);
+        if (occluder_of[i] && output_mesh[*occluder_of[i] * 2 + mirrored] != kNone)
+            object.occluder_mesh = output_mesh[*occluder_of[i] * 2 + mirrored];
         object.position = scale * glm::dvec3(instance.world[3]);
         object.linear = glm::mat3(glm::dmat3(instance.world) * scale);
         out.objects.push_back(object);

@@ -169,6 +169,92 @@ bool trianglesWithinGap(const glm::dvec3 (&a)[3], const glm::dvec3 (&b)[3], doub
     return true;
 }
 
+namespace {
+
+// The object's solid as the checks need it: welded, closed and oriented, the room an occluder
+// keeps from its surface, and its triangles' bounds for a quick rejection.
+struct Solid {
+    Welded w;
+    double weld_tolerance = 0.0;
+    double outward = 1.0;  // +1: counter-clockwise faces face out
+    glm::dvec3 lo{INFINITY}, hi{-INFINITY};
+    double size = 0.0;
+    double gap = 0.0;
+    std::vector<glm::dvec3> tri_lo, tri_hi;
+    std::string refusal;  // why it is no solid; empty when it is one
+};
+
+Solid prepareSolid(const MeshData& source) {
+    Solid s;
+    const Aabb bounds = meshBounds(source);
+    if (!isFiniteAndOrdered(bounds)) {
+        s.refusal = "its vertices are not finite";
+        return s;
+    }
+    const double extent = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    s.weld_tolerance = 1e-6 * extent;
+    s.w = weld(source, s.weld_tolerance);
+    if (s.w.indices.empty()) {
+        s.refusal = "no triangles with three distinct vertices";
+        return s;
+    }
+    if (std::string problem = closedAndOriented(s.w.indices); !problem.empty()) {
+        s.refusal = std::move(problem);
+        return s;
+    }
+    const double volume = signedVolume(s.w.positions, s.w.indices);
+    if (!(std::abs(volume) > 0.0) || !std::isfinite(volume)) {
+        s.refusal = "the mesh encloses no volume";
+        return s;
+    }
+    s.outward = volume > 0.0 ? 1.0 : -1.0;
+    for (const glm::dvec3& p : s.w.positions) {
+        s.lo = glm::min(s.lo, p);
+        s.hi = glm::max(s.hi, p);
+    }
+    s.size = glm::length(s.hi - s.lo);
+    // Room between the occluder and the surface: float rounding of the vertices (the result is
+    // stored in float) and of the transforms, many times over.
+    const double magnitude = std::max({std::abs(s.lo.x), std::abs(s.lo.y), std::abs(s.lo.z),
+                                       std::abs(s.hi.x), std::abs(s.hi.y), std::abs(s.hi.z)});
+    s.gap = std::max(1e-5 * s.size, 64.0 * FLT_EPSILON * magnitude) + 2.0 * s.weld_tolerance;
+    const size_t count = s.w.indices.size() / 3;
+    s.tri_lo.resize(count);
+    s.tri_hi.resize(count);
+    for (size_t t = 0; t < count; ++t) {
+        s.tri_lo[t] = s.tri_hi[t] = s.w.positions[s.w.indices[3 * t]];
+        for (int i = 1; i < 3; ++i) {
+            s.tri_lo[t] = glm::min(s.tri_lo[t], s.w.positions[s.w.indices[3 * t + i]]);
+            s.tri_hi[t] = glm::max(s.tri_hi[t], s.w.positions[s.w.indices[3 * t + i]]);
+        }
+    }
+    return s;
+}
+
+// Whether the triangle neither meets nor comes within the solid's gap of its surface (its
+// vertices' insideness is checked apart, once per vertex).
+bool clearOfSurface(const Solid& s, const glm::dvec3 (&tri)[3]) {
+    const glm::dvec3 t_lo = glm::min(tri[0], glm::min(tri[1], tri[2])) - s.gap;
+    const glm::dvec3 t_hi = glm::max(tri[0], glm::max(tri[1], tri[2])) + s.gap;
+    for (size_t t = 0; t < s.tri_lo.size(); ++t) {
+        if (glm::any(glm::lessThan(s.tri_hi[t], t_lo)) ||
+            glm::any(glm::greaterThan(s.tri_lo[t], t_hi))) {
+            continue;
+        }
+        const glm::dvec3 other[3] = {s.w.positions[s.w.indices[3 * t]],
+                                     s.w.positions[s.w.indices[3 * t + 1]],
+                                     s.w.positions[s.w.indices[3 * t + 2]]};
+        if (trianglesWithinGap(tri, other, s.gap)) return false;
+    }
+    return true;
+}
+
+double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+}  // namespace
+
 OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSettings& settings) {
     OccluderMesh out;
     out.source_triangles = source.triangleCount();
@@ -183,28 +269,12 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
                       std::to_string(settings.max_triangles) + ")";
         return out;
     }
-    const Aabb bounds = meshBounds(source);
-    if (!isFiniteAndOrdered(bounds)) {
-        out.refusal = "its vertices are not finite";
+    const Solid solid = prepareSolid(source);
+    if (!solid.refusal.empty()) {
+        out.refusal = solid.refusal;
         return out;
     }
-    const double extent = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
-    const double weld_tolerance = 1e-6 * extent;
-    const Welded w = weld(source, weld_tolerance);
-    if (w.indices.empty()) {
-        out.refusal = "no triangles with three distinct vertices";
-        return out;
-    }
-    if (std::string problem = closedAndOriented(w.indices); !problem.empty()) {
-        out.refusal = std::move(problem);
-        return out;
-    }
-    const double volume = signedVolume(w.positions, w.indices);
-    if (!(std::abs(volume) > 0.0) || !std::isfinite(volume)) {
-        out.refusal = "the mesh encloses no volume";
-        return out;
-    }
-    const double outward = volume > 0.0 ? 1.0 : -1.0;  // counter-clockwise faces face out
+    const Welded& w = solid.w;
 
     // Simplify (meshoptimizer works in float).
     std::vector<float> flat(3 * w.positions.size());
@@ -229,43 +299,20 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
     for (size_t t = 0; t < simple.size(); t += 3) {
         const glm::dvec3 &a = w.positions[simple[t]], &b = w.positions[simple[t + 1]],
                          &c = w.positions[simple[t + 2]];
-        const glm::dvec3 n = outward * glm::cross(b - a, c - a);
+        const glm::dvec3 n = solid.outward * glm::cross(b - a, c - a);
         for (int i = 0; i < 3; ++i) normals[simple[t + i]] += n;
     }
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const glm::dvec3& p : w.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    const double size = glm::length(hi - lo);
-    // Room between the occluder and the surface: float rounding of the vertices (the result is
-    // stored in float) and of the transforms, many times over.
-    const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
-                                       std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
-    const double gap = std::max(1e-5 * size, 64.0 * FLT_EPSILON * magnitude) + 2.0 * weld_tolerance;
     double total_area = 0.0;
     for (size_t t = 0; t < simple.size(); t += 3) {
-        total_area +=
-            0.5 * glm::length(glm::cross(w.positions[simple[t + 1]] - w.positions[simple[t]],
-                                         w.positions[simple[t + 2]] - w.positions[simple[t]]));
-    }
-
-    // Triangle bounds of the source, for a quick rejection before the separating-axis test.
-    const size_t source_count = w.indices.size() / 3;
-    std::vector<glm::dvec3> tri_lo(source_count), tri_hi(source_count);
-    for (size_t t = 0; t < source_count; ++t) {
-        tri_lo[t] = tri_hi[t] = w.positions[w.indices[3 * t]];
-        for (int i = 1; i < 3; ++i) {
-            tri_lo[t] = glm::min(tri_lo[t], w.positions[w.indices[3 * t + i]]);
-            tri_hi[t] = glm::max(tri_hi[t], w.positions[w.indices[3 * t + i]]);
-        }
+        total_area += triangleArea(w.positions[simple[t]], w.positions[simple[t + 1]],
+                                   w.positions[simple[t + 2]]);
     }
 
     std::vector<uint32_t> best;
     std::vector<glm::dvec3> best_positions;
     double best_area = 0.0, best_step = 0.0;
     for (const double step_share : {0.0, 0.002, 0.005, 0.01, 0.02, 0.04, 0.08}) {
-        const double step = step_share * size;
+        const double step = step_share * solid.size;
         std::vector<glm::dvec3> moved(w.positions.size());
         std::vector<int8_t> inside(w.positions.size(), -1);  // -1: not yet checked
         for (size_t i = 0; i < w.positions.size(); ++i) {
@@ -285,21 +332,9 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
             if (!ok) continue;
             const glm::dvec3 tri[3] = {moved[simple[t]], moved[simple[t + 1]],
                                        moved[simple[t + 2]]};
-            const glm::dvec3 t_lo = glm::min(tri[0], glm::min(tri[1], tri[2])) - gap;
-            const glm::dvec3 t_hi = glm::max(tri[0], glm::max(tri[1], tri[2])) + gap;
-            for (size_t s = 0; s < source_count && ok; ++s) {
-                if (glm::any(glm::lessThan(tri_hi[s], t_lo)) ||
-                    glm::any(glm::greaterThan(tri_lo[s], t_hi))) {
-                    continue;
-                }
-                const glm::dvec3 other[3] = {w.positions[w.indices[3 * s]],
-                                             w.positions[w.indices[3 * s + 1]],
-                                             w.positions[w.indices[3 * s + 2]]};
-                ok = !trianglesWithinGap(tri, other, gap);
-            }
-            if (!ok) continue;
+            if (!clearOfSurface(solid, tri)) continue;
             kept.insert(kept.end(), {simple[t], simple[t + 1], simple[t + 2]});
-            area += 0.5 * glm::length(glm::cross(tri[1] - tri[0], tri[2] - tri[0]));
+            area += triangleArea(tri[0], tri[1], tri[2]);
         }
         if (area > best_area) {
             best_area = area;
@@ -328,13 +363,72 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
         i = remap[i];
     }
     out.mesh.indices = std::move(best);
-    if (outward < 0.0) {
+    if (solid.outward < 0.0) {
         for (size_t t = 0; t < out.mesh.indices.size(); t += 3) {
             std::swap(out.mesh.indices[t + 1], out.mesh.indices[t + 2]);
         }
     }
     out.inward_step_m = best_step;
     out.kept_area_share = best_area / total_area;
+    return out;
+}
+
+OccluderMesh checkAuthoredOccluder(const MeshData& object, const MeshData& occluder,
+                                   const OccluderMeshSettings& settings) {
+    OccluderMesh out;
+    out.source_triangles = object.triangleCount();
+    if (out.source_triangles > settings.max_triangles) {
+        out.refusal = "its object's mesh has too many triangles to check it against (" +
+                      std::to_string(out.source_triangles) + ", at most " +
+                      std::to_string(settings.max_triangles) + ")";
+        return out;
+    }
+    const Solid solid = prepareSolid(object);
+    if (!solid.refusal.empty()) {
+        out.refusal = "its object's mesh encloses no solid to check it against: " + solid.refusal;
+        return out;
+    }
+    const size_t triangles = occluder.indices.size() / 3;
+    std::vector<int8_t> inside(occluder.positions.size(), -1);  // -1: not yet checked
+    std::vector<uint32_t> remap(occluder.positions.size(), UINT32_MAX);
+    double total_area = 0.0, kept_area = 0.0;
+    for (size_t t = 0; t < triangles; ++t) {
+        const uint32_t* idx = &occluder.indices[3 * t];
+        if (idx[0] >= occluder.positions.size() || idx[1] >= occluder.positions.size() ||
+            idx[2] >= occluder.positions.size()) {
+            continue;
+        }
+        const glm::dvec3 tri[3] = {glm::dvec3(occluder.positions[idx[0]]),
+                                   glm::dvec3(occluder.positions[idx[1]]),
+                                   glm::dvec3(occluder.positions[idx[2]])};
+        const double area = triangleArea(tri[0], tri[1], tri[2]);
+        if (!std::isfinite(area)) continue;
+        total_area += area;
+        bool ok = true;
+        for (int i = 0; i < 3 && ok; ++i) {
+            int8_t& in = inside[idx[i]];
+            if (in < 0) in = pointInsideClosedMesh(tri[i], solid.w.positions, solid.w.indices);
+            ok = in == 1;
+        }
+        if (!ok || !clearOfSurface(solid, tri)) continue;
+        kept_area += area;
+        for (int i = 0; i < 3; ++i) {
+            if (remap[idx[i]] == UINT32_MAX) {
+                remap[idx[i]] = static_cast<uint32_t>(out.mesh.positions.size());
+                out.mesh.positions.push_back(occluder.positions[idx[i]]);
+                out.mesh.normals.push_back(idx[i] < occluder.normals.size()
+                                               ? occluder.normals[idx[i]]
+                                               : glm::vec3(0, 1, 0));
+            }
+            out.mesh.indices.push_back(remap[idx[i]]);
+        }
+    }
+    out.dropped_triangles = static_cast<uint32_t>(triangles - out.mesh.indices.size() / 3);
+    out.kept_area_share = total_area > 0.0 ? kept_area / total_area : 0.0;
+    if (out.mesh.indices.empty()) {
+        out.refusal =
+            "none of its " + std::to_string(triangles) + " triangles lies inside its object";
+    }
     return out;
 }
 

@@ -41,10 +41,19 @@ struct OccluderMesh {
     uint32_t source_triangles = 0;
     double inward_step_m = 0.0;  // how far the simplified surface was moved in
     double kept_area_share = 0.0;
+    uint32_t dropped_triangles = 0;  // checkAuthoredOccluder: its triangles left out
 };
 
 // The occluder mesh for `source`; never throws for bad geometry (it refuses instead).
 OccluderMesh makeInscribedOccluder(const MeshData& source,
+                                   const OccluderMeshSettings& settings = {});
+
+// An occluder mesh someone made for `object` (a glTF node's extras.occsim_occluder_mesh), in
+// the object's space, checked as a made one is: only its triangles that lie strictly inside the
+// object's solid are kept (dropped_triangles counts the others). Refused, with the reason, when
+// the object's mesh is not a closed solid (nothing to check it against) or none of its triangles
+// lies inside.
+OccluderMesh checkAuthoredOccluder(const MeshData& object, const MeshData& occluder,
                                    const OccluderMeshSettings& settings = {});
 
 // The checks, for tests. `welded` indices into `positions`, closed and oriented.

@@ -28,6 +28,9 @@ struct PlacedObject {
     std::string name;
     // The glTF node's own "occsim_occluder" (extras), else empty: the source's role holds.
     std::optional<OccluderRole> occluder;
+    // The glTF node's "occsim_occluder_mesh" (extras): a mesh of this source (an index into
+    // SourceOutput::meshes) made to occlude for it; empty: none.
+    std::optional<uint32_t> occluder_mesh;
 };
 
 // Where one copy of a glTF model went: T(origin) · R_y(yaw) places the model (its scale is in

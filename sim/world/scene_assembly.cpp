@@ -63,10 +63,11 @@ uint32_t addMesh(Scene& scene, MeshData mesh) {
 }
 
 uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::string name,
-                   OccluderRole occluder) {
+                   OccluderRole occluder, uint32_t occluder_mesh = kNoAuthoredOccluder) {
     scene.object_mesh.push_back(mesh);
     scene.object_names.push_back(std::move(name));
     scene.object_occluder.push_back(occluder);
+    scene.object_occluder_mesh.push_back(occluder_mesh);
     scene.initial_poses.push_back(pose);
     scene.triangle_count += scene.meshes[mesh].triangleCount();
     return scene.objectCount() - 1;
@@ -78,7 +79,8 @@ uint32_t addObject(Scene& scene, uint32_t mesh, const ObjectPose& pose, std::str
 SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::string& kind,
                       OccluderRole occluders, std::vector<uint32_t>& copy_meshes,
                       std::vector<std::string>& copy_names,
-                      std::vector<OccluderRole>& copy_occluders) {
+                      std::vector<OccluderRole>& copy_occluders,
+                      std::vector<uint32_t>& copy_occluder_meshes) {
     const auto first_mesh = static_cast<uint32_t>(scene.meshes.size());
     const size_t per_copy = source.model ? source.model->object_visit.size() : 0;
     for (size_t j = 0; j < per_copy && j < source.objects.size(); ++j) {
@@ -90,6 +92,8 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::
                                  ? name.substr(0, mark)
                                  : name);
         copy_occluders.push_back(source.objects[j].occluder.value_or(occluders));
+        const std::optional<uint32_t>& authored = source.objects[j].occluder_mesh;
+        copy_occluder_meshes.push_back(authored ? first_mesh + *authored : kNoAuthoredOccluder);
     }
     if (!place) {
         source.objects.clear();
@@ -113,7 +117,8 @@ SourceRange addSource(Scene& scene, SourceOutput source, bool place, const std::
         pose.linear = o.linear;
         addObject(scene, first_mesh + o.mesh, pose,
                   o.name.empty() ? kind + " " + std::to_string(i) : o.name,
-                  o.occluder.value_or(occluders));
+                  o.occluder.value_or(occluders),
+                  o.occluder_mesh ? first_mesh + *o.occluder_mesh : kNoAuthoredOccluder);
     }
     if (isEmpty(range.region)) {
         for (uint32_t i = range.first; i < scene.objectCount(); ++i) {
@@ -389,15 +394,18 @@ std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
         std::vector<uint32_t> copy_meshes;
         std::vector<std::string> copy_names;
         std::vector<OccluderRole> copy_occluders;
-        ranges.push_back(
-            addSource(scene, std::move(source), place, sourceKindName(scenario.sources[s].type),
-                      scenario.sources[s].occluders, copy_meshes, copy_names, copy_occluders));
+        std::vector<uint32_t> copy_occluder_meshes;
+        ranges.push_back(addSource(scene, std::move(source), place,
+                                   sourceKindName(scenario.sources[s].type),
+                                   scenario.sources[s].occluders, copy_meshes, copy_names,
+                                   copy_occluders, copy_occluder_meshes));
         if (model) {
             ranges.back().model = static_cast<int32_t>(scene.models.size());
             scene.models.push_back(makeSceneModel(scenario, s, std::move(model)));
             scene.models.back().object_mesh = std::move(copy_meshes);
             scene.models.back().object_names = std::move(copy_names);
             scene.models.back().object_occluder = std::move(copy_occluders);
+            scene.models.back().object_occluder_mesh = std::move(copy_occluder_meshes);
             animateCopies(scene, scenario, s, ranges.back());
         }
     }
@@ -479,7 +487,9 @@ void spawnModelCopies(Scene& scene, const Scenario& scenario, size_t m,
                 scene, sm.object_mesh[j], ObjectPose{},
                 (j < sm.object_names.size() ? sm.object_names[j] : "object " + std::to_string(j)) +
                     " (mover " + std::to_string(m) + " copy " + std::to_string(i) + ")",
-                j < sm.object_occluder.size() ? sm.object_occluder[j] : OccluderRole::BySize);
+                j < sm.object_occluder.size() ? sm.object_occluder[j] : OccluderRole::BySize,
+                j < sm.object_occluder_mesh.size() ? sm.object_occluder_mesh[j]
+                                                   : kNoAuthoredOccluder);
         }
         out.objects.push_back(copy.first_object);
         out.copy.push_back(static_cast<int32_t>(scene.initial_copies.size()));

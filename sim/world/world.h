@@ -81,6 +81,8 @@ struct Mover {
 
 // A glTF source's model as the scene plays it: which of its animations play and how, and which
 // objects of a copy they move.
+inline constexpr uint32_t kNoAuthoredOccluder = 0xffffffffu;
+
 struct SceneModel {
     std::shared_ptr<const AnimatedModel> model;
     uint32_t source = 0;                    // index into Scenario::sources
@@ -89,6 +91,8 @@ struct SceneModel {
     std::vector<uint32_t> object_mesh;      // per object of a copy: its mesh in Scene::meshes
     std::vector<std::string> object_names;  // per object of a copy: its node's name
     std::vector<OccluderRole> object_occluder;  // per object of a copy
+    std::vector<uint32_t>
+        object_occluder_mesh;  // per object of a copy (Scene's), or kNoAuthoredOccluder
     double speed = 1.0;
     AnimationMode mode = AnimationMode::Loop;
     double time_offset_s = 0.0;
@@ -132,6 +136,10 @@ struct Scene {
     std::vector<std::string> object_names;
     // Per object, whether a software depth buffer may use it as an occluder (OccluderRole).
     std::vector<OccluderRole> object_occluder;
+    // Per object, the occluder mesh someone made for it (a glTF node's
+    // extras.occsim_occluder_mesh): a mesh of `meshes` in the object's space, or
+    // kNoAuthoredOccluder; checked against the object's solid before use (SharedWorld).
+    std::vector<uint32_t> object_occluder_mesh;
     std::vector<ObjectPose> initial_poses;
     std::vector<Mover> initial_movers;
     std::vector<MotionPath> paths;
