@@ -28,6 +28,7 @@
 #include "sim/output/report.h"
 #include "sim/output/version.h"
 #include "tune/measure.h"
+#include "tune/options.h"
 #include "tune/parameters.h"
 #include "tune/report.h"
 #include "tune/sample_log.h"
@@ -81,17 +82,29 @@ std::string text(const fs::path& file) {
 // samples); 12 frames (7 timed after the scenario's 5 warm-up) keep every run short.
 const std::string kQuick = " --params base_time --budget 5 --batch 3 --frames 12 --repetitions 1";
 
+// Whether a session finished: exit 0 (tuned.json: accepted or no change) or kExitRejected
+// (tuned.rejected.json). Which of them depends on measured frame times, so on the machine's load:
+// a test of anything but the verdict takes either (the verdict's rules have tests of their own
+// on given ratios, test_tune_models.cpp).
+bool finished(const Outcome& o) { return o.exit_code == 0 || o.exit_code == kExitRejected; }
+fs::path tunedFileIn(const fs::path& dir) {
+    return fs::exists(dir / "tuned.json") ? dir / "tuned.json" : dir / "tuned.rejected.json";
+}
+
 TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValues) {
     const fs::path dir = tempDir("session");
     const Outcome o = occtune(kSmall + kQuick + " --out " + dir.string());
-    ASSERT_EQ(o.exit_code, 0) << o.output;
-    // The verdict is on the console (one repetition can reject only for error, never here).
+    ASSERT_TRUE(finished(o)) << o.output;
+    // The verdict is on the console.
     EXPECT_TRUE(o.output.find("verdict: accepted: ") != std::string::npos ||
-                o.output.find("verdict: no change: ") != std::string::npos)
+                o.output.find("verdict: no change: ") != std::string::npos ||
+                o.output.find("verdict: REJECTED: ") != std::string::npos)
         << o.output;
 
-    // tuned.json: the scenario's culling form, the tuned value within its bounds.
-    const nlohmann::json tuned = nlohmann::json::parse(text(dir / "tuned.json"));
+    // tuned.json (or tuned.rejected.json): the scenario's culling form, the tuned value within
+    // its bounds.
+    const fs::path tuned_file = tunedFileIn(dir);
+    const nlohmann::json tuned = nlohmann::json::parse(text(tuned_file));
     EXPECT_EQ(tuned["format_version"], 1);
     EXPECT_EQ(tuned["culling"]["algorithm"], "statistical");
     const double base_time = tuned["culling"]["statistical"]["base_time"].get<double>();
@@ -137,7 +150,9 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
         EXPECT_LE(v["mean_ratio"]["min"].get<double>(), v["mean_ratio"]["max"].get<double>());
         EXPECT_EQ(v["tuned_error_pixels"], 0);
     }
-    EXPECT_TRUE(conf["verdict"] == "accepted" || conf["verdict"] == "no change") << conf["verdict"];
+    EXPECT_TRUE(conf["verdict"] == "accepted" || conf["verdict"] == "no change" ||
+                conf["verdict"] == "REJECTED")
+        << conf["verdict"];
 
     const std::string report = text(dir / "report.md");
     for (const char* part : {"## Choice", "## Confirmation", "Measurement noise", "fitted (seed 7)",
@@ -155,9 +170,8 @@ TEST(Occtune, ASessionOnASmallScenarioWritesEveryFileAndOccsimReadsTheTunedValue
     }
 
     // occsim runs the scenario with the tuned values.
-    const Outcome r =
-        run(OCCSIM_EXE, "run " + kSmall + " --frames 6 --culling " + (dir / "tuned.json").string() +
-                            " --out " + (dir / "run").string());
+    const Outcome r = run(OCCSIM_EXE, "run " + kSmall + " --frames 6 --culling " +
+                                          tuned_file.string() + " --out " + (dir / "run").string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("statistical"), std::string::npos) << r.output;
 
@@ -227,7 +241,7 @@ TEST(Occtune, ASessionPrintsEachSceneWarningOnce) {
     std::ofstream(scenario) << city.dump(1);
 
     const Outcome o = occtune(scenario.string() + kQuick + " --out " + (dir / "out").string());
-    ASSERT_EQ(o.exit_code, 0) << o.output;
+    ASSERT_TRUE(finished(o)) << o.output;
     std::istringstream out(o.output);
     std::vector<std::string> warnings;
     for (std::string line; std::getline(out, line);) {
@@ -402,9 +416,11 @@ TEST(Occtune, CtrlCKeepsTheLogWholeWritesNoTunedJsonAndResumeFinishes) {
     std::string command;
     for (const std::string& a : args) command += " " + a;
     const Outcome o = occtune(command + " --resume");
-    EXPECT_EQ(o.exit_code, 0) << o.output;
+    // Finished: the whole budget logged and a verdict written, whichever (finished()).
+    EXPECT_TRUE(finished(o)) << o.output;
     EXPECT_EQ(SampleLog::read(log_file).samples().size(), 6u);
-    EXPECT_TRUE(fs::exists(dir / "out" / "tuned.json"));
+    EXPECT_TRUE(fs::exists(tunedFileIn(dir / "out")));
+    EXPECT_NE(o.output.find("verdict: "), std::string::npos) << o.output;
     fs::remove_all(dir);
 }
 
