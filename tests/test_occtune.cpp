@@ -241,7 +241,9 @@ TEST(Occtune, ASessionPrintsEachSceneWarningOnce) {
     std::ofstream(scenario) << city.dump(1);
 
     const Outcome o = occtune(scenario.string() + kQuick + " --out " + (dir / "out").string());
-    ASSERT_TRUE(finished(o)) << o.output;
+    // Warnings come before any fit: a fit that does not converge on noisy timings (exit 1) says
+    // them too.
+    ASSERT_TRUE(finished(o) || o.exit_code == kExitFitFailed) << o.output;
     std::istringstream out(o.output);
     std::vector<std::string> warnings;
     for (std::string line; std::getline(out, line);) {
