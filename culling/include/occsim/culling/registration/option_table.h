@@ -37,6 +37,9 @@ struct OptionMember {
     T Options::*member;
     const char* key;
 };
+// Spelled out for compilers without deduction for aggregates (clang before 17: the fuzz preset).
+template <class Options, class T>
+OptionMember(T Options::*, const char*) -> OptionMember<Options, T>;
 
 // The member `name` of `Options`, keyed by its own name.
 #define OCCSIM_OPTION_MEMBER(Options, name) (::occsim::OptionMember{&Options::name, #name})
