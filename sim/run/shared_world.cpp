@@ -21,38 +21,27 @@ double msSince(Clock::time_point start) {
 // tests may run worlds on several threads.
 std::atomic<uint64_t> g_next_serial{1};
 
-// "mesh 3 (of 'Crate' and 11 other objects) has no inscribed occluder mesh: <why>; they occlude
-// with their own mesh"
-std::string occluderRefusalLine(const Scene& scene, uint32_t mesh, const std::string& why) {
-    uint32_t users = 0, first = 0;
-    for (uint32_t o = 0; o < scene.objectCount(); ++o) {
-        if (scene.object_mesh[o] != mesh) continue;
-        if (users++ == 0) first = o;
-    }
-    std::string line = "mesh " + std::to_string(mesh);
-    if (users > 0) {
-        const std::string name =
-            first < scene.object_names.size() && !scene.object_names[first].empty()
-                ? scene.object_names[first]
-                : "object " + std::to_string(first);
-        line += " (of '" + name + "'";
-        if (users > 1) line += " and " + std::to_string(users - 1) + " other objects";
-        line += ")";
-    }
-    line += " has no inscribed occluder mesh: " + why + "; " +
-            (users > 1 ? "they occlude with their" : "it occludes with its") +
-            " own mesh in masked";
-    return line;
+std::string objectName(const Scene& scene, uint32_t object) {
+    return object < scene.object_names.size() && !scene.object_names[object].empty()
+               ? scene.object_names[object]
+               : "object " + std::to_string(object);
 }
 
-// "the occluder mesh 5 of 'Wall' (mesh 2): <what>"
+// "mesh 3 (of 'Crate' and 11 other objects) has no inscribed occluder mesh: <why>; they occlude
+// with their own mesh in masked"; `first` and `users`: the objects that would occlude with it.
+std::string occluderRefusalLine(const Scene& scene, uint32_t mesh, uint32_t first, uint32_t users,
+                                const std::string& why) {
+    std::string line = "mesh " + std::to_string(mesh) + " (of '" + objectName(scene, first) + "'";
+    if (users > 1) line += " and " + std::to_string(users - 1) + " other objects";
+    return line + ") has no inscribed occluder mesh: " + why + "; " +
+           (users > 1 ? "they occlude with their" : "it occludes with its") + " own mesh in masked";
+}
+
+// "the occluder mesh of 'Wall' (mesh 5): <what>"
 std::string authoredRefusalLine(const Scene& scene, uint32_t object, uint32_t mesh,
                                 const std::string& what) {
-    const std::string name =
-        object < scene.object_names.size() && !scene.object_names[object].empty()
-            ? scene.object_names[object]
-            : "object " + std::to_string(object);
-    return "the occluder mesh of '" + name + "' (mesh " + std::to_string(mesh) + "): " + what;
+    return "the occluder mesh of '" + objectName(scene, object) + "' (mesh " +
+           std::to_string(mesh) + "): " + what;
 }
 
 }  // namespace
@@ -101,7 +90,9 @@ const CullMeshes& SharedWorld::cullMeshes() {
         const auto start = Clock::now();
         const auto scene_meshes = static_cast<uint32_t>(scene_.meshes.size());
         std::vector<uint32_t> occluder_of(scene_meshes, kNoOccluderMesh);
-        std::vector<uint8_t> wanted(scene_meshes, 0);
+        // Per mesh, the objects that may occlude with a made occluder of it (those with an
+        // authored one are checked below instead): how many, and the first.
+        std::vector<uint32_t> users(scene_meshes, 0), first_user(scene_meshes, 0);
         f.object_occluder.assign(scene_.objectCount(), kOccluderBySize);
         for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
             const OccluderRole role = o < scene_.object_occluder.size() ? scene_.object_occluder[o]
@@ -109,17 +100,22 @@ const CullMeshes& SharedWorld::cullMeshes() {
             f.object_occluder[o] = role == OccluderRole::Always  ? kOccluderAlways
                                    : role == OccluderRole::Never ? kOccluderNever
                                                                  : kOccluderBySize;
-            if (role != OccluderRole::Never) wanted[scene_.object_mesh[o]] = 1;
+            const bool authored_mesh = o < scene_.object_occluder_mesh.size() &&
+                                       scene_.object_occluder_mesh[o] < scene_meshes;
+            if (role == OccluderRole::Never || authored_mesh) continue;
+            const uint32_t m = scene_.object_mesh[o];
+            if (users[m]++ == 0) first_user[m] = o;
         }
         for (uint32_t m = 0; m < scene_meshes; ++m) {
             // A mesh too small to gain (a box) is its own occluder: neither tried nor noted.
-            if (!wanted[m] ||
+            if (users[m] == 0 ||
                 scene_.meshes[m].triangleCount() < OccluderMeshSettings{}.min_triangles)
                 continue;
             ++occluder_cost_.tried;
             const OccluderMesh made = makeInscribedOccluder(scene_.meshes[m]);
             if (made.mesh.indices.empty()) {
-                occluder_cost_.refusals.push_back(occluderRefusalLine(scene_, m, made.refusal));
+                occluder_cost_.refusals.push_back(
+                    occluderRefusalLine(scene_, m, first_user[m], users[m], made.refusal));
                 continue;
             }
             ++occluder_cost_.made;

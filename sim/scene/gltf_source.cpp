@@ -505,6 +505,12 @@ void warnAboutIgnoredParts(const Context& c, const SceneContent& content) {
 
 bool isMirrored(const glm::dmat4& world) { return glm::determinant(glm::dmat3(world)) < 0.0; }
 
+// "model.gltf: node 1 ('Wall')", the name when it has one: where an error in a node's extras is.
+std::string nodeWhere(const Context& c, uint32_t node) {
+    const std::string& name = c.model.nodes[node].name;
+    return c.file + ": node " + std::to_string(node) + (name.empty() ? "" : " ('" + name + "')");
+}
+
 // A node's own occluder role, from its extras: {"occsim_occluder": "always" | "never" |
 // "by_size"} (docs/scenario-gltf.md); none when it says nothing. Anything else there is an error
 // naming the file and the node.
@@ -517,15 +523,13 @@ std::optional<OccluderRole> nodeOccluderRole(const Context& c, uint32_t node) {
     if (role == "always") return OccluderRole::Always;
     if (role == "never") return OccluderRole::Never;
     if (role == "by_size") return OccluderRole::BySize;
-    const std::string& name = c.model.nodes[node].name;
     const std::string got = v.IsString()   ? "\"" + role + "\""
                             : v.IsBool()   ? std::string("a boolean")
                             : v.IsNumber() ? std::string("a number")
                             : v.IsObject() ? std::string("an object")
                             : v.IsArray()  ? std::string("an array")
                                            : std::string("null");
-    throw GltfError(c.file + ": node " + std::to_string(node) +
-                    (name.empty() ? "" : " ('" + name + "')") +
+    throw GltfError(nodeWhere(c, node) +
                     ": extras.occsim_occluder: expected \"always\", \"never\" or \"by_size\", "
                     "got " +
                     got);
@@ -545,7 +549,6 @@ std::optional<uint32_t> nodeOccluderMesh(const Context& c, uint32_t node) {
         if (index >= 0.0 && index < static_cast<double>(meshes) && index == std::floor(index))
             return static_cast<uint32_t>(index);
     }
-    const std::string& name = c.model.nodes[node].name;
     std::string got = "no number";
     if (v.IsString()) got = "\"" + v.Get<std::string>() + "\"";
     if (v.IsNumber()) {
@@ -554,8 +557,7 @@ std::optional<uint32_t> nodeOccluderMesh(const Context& c, uint32_t node) {
                   ? std::to_string(static_cast<int64_t>(number))
                   : std::to_string(number);
     }
-    throw GltfError(c.file + ": node " + std::to_string(node) +
-                    (name.empty() ? "" : " ('" + name + "')") +
+    throw GltfError(nodeWhere(c, node) +
                     ": extras.occsim_occluder_mesh: expected the index of one of the file's " +
                     std::to_string(meshes) + (meshes == 1 ? " mesh" : " meshes") + ", got " + got);
 }
