@@ -20,7 +20,9 @@ struct Welded {
 };
 
 // Vertices within `tolerance` of one another become one (a sphere's seam, computed twice, rarely
-// lands on the same float); the welded surface is within `tolerance` of the mesh.
+// lands on the same float); the welded surface is within `tolerance` of the mesh. A hole or slit
+// narrower than the tolerance is closed by the weld (its walls become degenerate): the welded
+// mesh serves the closedness and inside tests only, never the clearance check (prepareSolid).
 Welded weld(const MeshData& mesh, double tolerance) {
     Welded w;
     std::map<std::tuple<int64_t, int64_t, int64_t>, std::vector<uint32_t>> cells;
@@ -171,10 +173,12 @@ bool trianglesWithinGap(const glm::dvec3 (&a)[3], const glm::dvec3 (&b)[3], doub
 
 namespace {
 
-// The object's solid as the checks need it: welded, closed and oriented, the room an occluder
-// keeps from its surface, and its triangles' bounds for a quick rejection.
+// The object's solid as the checks need it: welded, closed and oriented (for the inside test), the
+// room an occluder keeps from its surface, and the triangles as drawn (the float positions, not
+// the welded ones, every triangle of nonzero extent) with their bounds, for the clearance check.
 struct Solid {
     Welded w;
+    std::vector<glm::dvec3> drawn;  // three corners a triangle
     double weld_tolerance = 0.0;
     double outward = 1.0;  // +1: counter-clockwise faces face out
     glm::dvec3 lo{INFINITY}, hi{-INFINITY};
@@ -191,8 +195,12 @@ Solid prepareSolid(const MeshData& source) {
         s.refusal = "its vertices are not finite";
         return s;
     }
+    // Weld what float rounding of one position computed twice can separate (a seam computed
+    // twice through sin and cos, or through a deformation, lands a few to a dozen units in the
+    // last place of the largest coordinate apart). Holes and slits narrower than this still
+    // count: the clearance check below runs against the triangles as drawn.
     const double extent = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
-    s.weld_tolerance = 1e-6 * extent;
+    s.weld_tolerance = std::max(1e-6 * extent, double(FLT_MIN));  // never 0: weld() divides
     s.w = weld(source, s.weld_tolerance);
     if (s.w.indices.empty()) {
         s.refusal = "no triangles with three distinct vertices";
@@ -218,20 +226,29 @@ Solid prepareSolid(const MeshData& source) {
     const double magnitude = std::max({std::abs(s.lo.x), std::abs(s.lo.y), std::abs(s.lo.z),
                                        std::abs(s.hi.x), std::abs(s.hi.y), std::abs(s.hi.z)});
     s.gap = std::max(1e-5 * s.size, 64.0 * FLT_EPSILON * magnitude) + 2.0 * s.weld_tolerance;
-    const size_t count = s.w.indices.size() / 3;
-    s.tri_lo.resize(count);
-    s.tri_hi.resize(count);
-    for (size_t t = 0; t < count; ++t) {
-        s.tri_lo[t] = s.tri_hi[t] = s.w.positions[s.w.indices[3 * t]];
-        for (int i = 1; i < 3; ++i) {
-            s.tri_lo[t] = glm::min(s.tri_lo[t], s.w.positions[s.w.indices[3 * t + i]]);
-            s.tri_hi[t] = glm::max(s.tri_hi[t], s.w.positions[s.w.indices[3 * t + i]]);
+    // The clearance check runs against the triangles as drawn, those the weld made degenerate
+    // included: the walls of a hole narrower than the weld are drawn, and an occluder crossing
+    // them would cover what is seen through it. The weld moves no vertex by more than its
+    // tolerance and the gap exceeds twice that, so an occluder clear of the drawn surface and
+    // inside the welded solid is inside the drawn one.
+    const size_t triangles = source.indices.size() / 3;
+    for (size_t t = 0; t < triangles; ++t) {
+        const uint32_t* idx = &source.indices[3 * t];
+        if (idx[0] >= source.positions.size() || idx[1] >= source.positions.size() ||
+            idx[2] >= source.positions.size()) {
+            continue;
         }
+        const glm::vec3 &a = source.positions[idx[0]], &b = source.positions[idx[1]],
+                        &c = source.positions[idx[2]];
+        if (a == b || b == c || a == c) continue;  // a point or a segment: draws nothing
+        s.drawn.insert(s.drawn.end(), {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)});
+        s.tri_lo.push_back(glm::min(glm::dvec3(a), glm::min(glm::dvec3(b), glm::dvec3(c))));
+        s.tri_hi.push_back(glm::max(glm::dvec3(a), glm::max(glm::dvec3(b), glm::dvec3(c))));
     }
     return s;
 }
 
-// Whether the triangle neither meets nor comes within the solid's gap of its surface (its
+// Whether the triangle neither meets nor comes within the solid's gap of its drawn surface (its
 // vertices' insideness is checked apart, once per vertex).
 bool clearOfSurface(const Solid& s, const glm::dvec3 (&tri)[3]) {
     const glm::dvec3 t_lo = glm::min(tri[0], glm::min(tri[1], tri[2])) - s.gap;
@@ -241,9 +258,7 @@ bool clearOfSurface(const Solid& s, const glm::dvec3 (&tri)[3]) {
             glm::any(glm::greaterThan(s.tri_lo[t], t_hi))) {
             continue;
         }
-        const glm::dvec3 other[3] = {s.w.positions[s.w.indices[3 * t]],
-                                     s.w.positions[s.w.indices[3 * t + 1]],
-                                     s.w.positions[s.w.indices[3 * t + 2]]};
+        const glm::dvec3 other[3] = {s.drawn[3 * t], s.drawn[3 * t + 1], s.drawn[3 * t + 2]};
         if (trianglesWithinGap(tri, other, s.gap)) return false;
     }
     return true;

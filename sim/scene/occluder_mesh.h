@@ -2,19 +2,21 @@
 // it, so that a software depth buffer (the `masked` culler) may rasterise them instead of the
 // object at a fraction of the cost and still hide nothing the object does not.
 //
-// How: the mesh is welded (vertices at the same position made one) and must then be closed and
+// How: the mesh is welded (vertices at the same position, up to float rounding, made one: never
+// wider, so that no hole or slit of the drawn mesh is closed) and must then be closed and
 // consistently oriented (every edge shared by exactly two triangles, once each way); it is
 // simplified with meshoptimizer (meshopt_simplify, about `triangle_share` of its triangles), and
 // the simplified surface is moved inward along its vertex normals by the smallest of a few steps
 // that keeps enough of it inside. Inscribed means here: every kept triangle lies strictly inside
 // the object's solid, checked, not assumed: its three vertices are inside (a ray cast in three
 // directions crosses the surface an odd number of times in each, with no ray grazing an edge)
-// and it neither meets nor comes within `gap` of any triangle of the object (the separating-axis
-// test on triangle pairs). A triangle failing either check is dropped; dropping occluder
-// triangles is always safe. So, seen from any eye outside the object's solid, every ray that
-// reaches a kept triangle crosses the object's surface first: the occluder covers no pixel the
-// object does not cover, and lies behind it where both do. From an eye inside the solid this
-// does not hold: the culler uses the object's own mesh when the eye may be inside its box.
+// and it neither meets nor comes within `gap` of any triangle of the object as drawn, those the
+// weld made degenerate included (the separating-axis test on triangle pairs). A triangle failing
+// either check is dropped; dropping occluder triangles is always safe. So, seen from any eye
+// outside the object's solid, every ray that reaches a kept triangle crosses the object's surface
+// first: the occluder covers no pixel the object does not cover, and lies behind it where both do.
+// From an eye inside the solid this does not hold: the culler uses the object's own mesh when the
+// eye may be inside its box.
 //
 // Meshes that are not closed (a plane, an open teapot, most glTF scans), too small to gain
 // (`min_triangles`), or too large to check here (`max_triangles`, the check is quadratic) get no
