@@ -4,7 +4,7 @@
 #   scripts/test.sh         the README's test command: the release build and every test but the
 #                           cluster test, then the `unit` and `gl` tests under ASan + UBSan
 #   scripts/test.sh ci      what .ci/run runs: the README's test command, then the no-osmesa
-#                           build's backend tests (`gl`, `scenario`) and the Slurm cluster test
+#                           build's backend tests (`gl`, `system`) and the Slurm cluster test
 #   scripts/test.sh PRESET  one preset's whole suite (release, asan, no-osmesa, debug), as before
 # Each suite prints its wall time and its test counts when it ends, and the stage its total.
 set -euo pipefail
@@ -47,7 +47,7 @@ finish() {
 
 readme_stage() {
   suite "release, all but cluster" release -LE '^cluster$'
-  suite "asan, unit and gl" asan -L '^(unit|gl)$'
+  suite "asan, unit and gl" asan -L '^(unit|gl)$' -LE '^slow$'
 }
 
 # Every argument checked before anything is installed, built or run.
@@ -69,7 +69,7 @@ bash scripts/setup.sh
 case "${1:-}" in
   quick)
     stage=quick
-    suite "release, unit" release -L '^unit$'
+    suite "release, unit" release -L '^unit$' -LE '^slow$'
     ;;
   "")
     stage=test
@@ -78,7 +78,7 @@ case "${1:-}" in
   ci)
     stage=ci
     readme_stage
-    suite "no-osmesa, gl and scenario" no-osmesa -L '^(gl|scenario)$'
+    suite "no-osmesa, gl and system" no-osmesa -L '^(gl|system)$' -LE '^slow$'
     # The cluster test installs slurm-wlm and munge itself when missing (as root).
     suite "release, cluster" release -L '^cluster$'
     ;;
