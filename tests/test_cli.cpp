@@ -97,6 +97,8 @@ TEST(Cli, BadValuesSayWhatWasExpectedAndWhatWasGiven) {
          "--capture: frame 40 is past the last frame (40 frames"},
         {"run " + kSmall + " --birds-eye 40", "--birds-eye: frame 40 is past the last frame"},
         {"bench " + kSmall + " --repetitions 0", "--repetitions: expected an integer in [1, 1000]"},
+        {"bench " + kSmall + " --frame-order random",
+         "--frame-order: expected balanced, rotated or fixed, got 'random'"},
     };
     for (const auto& c : cases) {
         const Outcome o = runOccsim(c.args);
@@ -592,8 +594,8 @@ TEST(Cli, SummaryJsonRecordsTheVersionTheOptionsAndACommandThatPastesBack) {
                            std::istreambuf_iterator<char>()};
     EXPECT_NE(json.find("\"occsim\": {\n    \"commit\": \""), std::string::npos) << json;
     EXPECT_NE(json.find("\"version\": \"0."), std::string::npos) << json;
-    for (const char* option :
-         {"\"options\": {", "\"base_time\": ", "\"cost_model\": ", "\"threshold_pixels\": 0"}) {
+    for (const char* option : {"\"options\": {", "\"base_time\": ", "\"cost_model\": ",
+                               "\"threshold_pixels\": 0", "\"frame_order\": \"balanced\""}) {
         EXPECT_NE(json.find(option), std::string::npos) << option << " in " << json;
     }
     std::string quoted = (dir / "it'\\\\''s a folder").string();

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <tuple>
@@ -134,7 +136,7 @@ TEST(Simulation, AConfigurationThatThrowsEndsTheRunWithTheWholeFramesBeforeItNam
     options.algorithms = traitsOf({"vfc", "chc", "statistical"});
     options.frames = 12;
     options.repetitions = 2;
-    options.rotate_order = true;
+    options.frame_order = FrameOrder::rotated;
     options.make_culler = [](const AlgorithmTraits& algorithm, const CullerOptions& culler) {
         std::unique_ptr<Culler> made = makeCuller(algorithm, culler);
         if (algorithm.name == "chc")
@@ -358,25 +360,35 @@ TEST(FrameStats, AnswerLatencyRanksAreNearestRankOverTheHistogram) {
     EXPECT_EQ(medianLatency(frame), 4.0);
 }
 
-// rotate_order: frame f renders configuration (f + k) mod n k-th; every configuration keeps its
-// own figures, the same as without rotation (decisions made reproducible).
-TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures) {
+// Frame orders (sim/run/frame_order.h): rotated renders configuration (f + k) mod n k-th,
+// balanced a Williams design's row f; every configuration keeps its own figures whatever the
+// order (decisions made reproducible).
+TEST(Simulation, EveryFrameOrderGivesEveryConfigurationItsPlacesAndTheSameFigures) {
     std::vector<std::vector<std::vector<std::pair<uint64_t, uint64_t>>>>
-        counts;  // [rotated][config][frame]
-    for (bool rotate : {false, true}) {
+        counts;  // [order][config][frame]
+    for (const FrameOrder frame_order :
+         {FrameOrder::fixed, FrameOrder::rotated, FrameOrder::balanced}) {
         BenchOptions options;
         options.algorithms = traitsOf({"vfc", "statistical", "chc"});
         options.latency = LatencyMode{true, 6};
         options.frames = 6;
-        options.rotate_order = rotate;
+        options.frame_order = frame_order;
         std::vector<std::string> order;
         options.on_frame = [&order](const FrameEvent& e) { order.push_back(e.config.label); };
         const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
-        if (rotate) {
+        ASSERT_EQ(order.size(), 18u);
+        if (frame_order == FrameOrder::rotated) {
             const std::vector<std::string> expected = {
                 "vfc", "statistical", "chc",         "statistical", "chc",         "vfc",
                 "chc", "vfc",         "statistical", "vfc",         "statistical", "chc"};
             EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 12), expected);
+        }
+        if (frame_order == FrameOrder::balanced) {
+            const std::vector<std::string> expected = {
+                "vfc", "statistical", "chc",         "statistical", "chc",         "vfc",
+                "chc", "vfc",         "statistical", "chc",         "statistical", "vfc",
+                "vfc", "chc",         "statistical", "statistical", "vfc",         "chc"};
+            EXPECT_EQ(order, expected);
         }
         counts.emplace_back();
         for (const RunRecord& run : r.runs) {
@@ -386,6 +398,100 @@ TEST(Simulation, RotatedOrderGivesEveryConfigurationEveryPlaceAndTheSameFigures)
         }
     }
     EXPECT_EQ(counts[0], counts[1]);
+    EXPECT_EQ(counts[0], counts[2]);
+}
+
+// Each of the six orders of three configurations, rendered fixed (so that each order puts every
+// configuration after another one), gives each configuration the same decisions frame by frame
+// in deterministic-latency mode: which culler follows which changes no decision.
+TEST(Simulation, EveryPermutationOfThreeConfigurationsGivesEachTheSameDecisions) {
+    std::vector<std::string> names = {"chc", "statistical", "vfc"};  // sorted
+    std::map<std::string, std::vector<std::pair<uint64_t, uint64_t>>> first;
+    do {
+        BenchOptions options;
+        options.algorithms = traitsOf(names);
+        options.latency = LatencyMode{true, 6};
+        options.frames = 6;
+        options.frame_order = FrameOrder::fixed;
+        const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+        for (const RunRecord& run : r.runs) {
+            std::vector<std::pair<uint64_t, uint64_t>> counts;
+            for (const FrameStats& f : run.frames) counts.push_back({f.queries, f.objects_drawn});
+            const auto [it, inserted] = first.emplace(run.summary.label, counts);
+            if (!inserted) {
+                EXPECT_EQ(counts, it->second) << run.summary.label << " in the order " << names[0]
+                                              << "," << names[1] << "," << names[2];
+            }
+        }
+    } while (std::next_permutation(names.begin(), names.end()));
+    EXPECT_EQ(first.size(), 3u);
+}
+
+// A culler that leaves work behind for whichever configuration renders next in the same frame
+// (as vfc's heavy frame did on llvmpipe): the scripted clock charges that one 50 ms. Each reading
+// of the clock is 1 ms after the one before, so that frame times are the same whatever the load.
+double g_frame_clock_ms = 0.0;
+double g_left_behind_ms = 0.0;
+uint64_t g_left_in_frame = UINT64_MAX;
+double scriptedFrameClockMs() { return g_frame_clock_ms += 1.0; }
+
+class LeavingWorkCuller final : public Culler {
+  public:
+    LeavingWorkCuller(std::unique_ptr<Culler> inner, bool leaves)
+        : inner_(std::move(inner)), leaves_(leaves) {}
+    std::string_view name() const override { return inner_->name(); }
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        if (g_left_in_frame == frame.frame_index) g_frame_clock_ms += g_left_behind_ms;
+        g_left_behind_ms = 0.0;
+        inner_->cullAndRender(tree, frame, device);
+        if (leaves_) {
+            g_left_behind_ms = 50.0;
+            g_left_in_frame = frame.frame_index;
+        }
+    }
+
+  private:
+    std::unique_ptr<Culler> inner_;
+    bool leaves_;
+};
+
+// Mean frame time per configuration of a 12-frame run of `algos` in `order`, on the scripted clock
+// with vfc leaving work behind.
+std::map<std::string, double> meansWithVfcLeavingWork(const std::vector<std::string>& algos,
+                                                      FrameOrder order) {
+    g_frame_clock_ms = 0.0;
+    g_left_behind_ms = 0.0;
+    g_left_in_frame = UINT64_MAX;
+    BenchOptions options;
+    options.algorithms = traitsOf(algos);
+    options.latency = LatencyMode{true, 6};
+    // Two periods of the balanced order of three measured, after the warm-up frames.
+    options.frames = parseScenarioFile(kSmall).warmup_frames + 12;
+    options.frame_order = order;
+    options.frame_clock_ms = scriptedFrameClockMs;
+    options.make_culler = [](const AlgorithmTraits& algorithm, const CullerOptions& culler) {
+        return std::unique_ptr<Culler>(
+            new LeavingWorkCuller(makeCuller(algorithm, culler), algorithm.name == "vfc"));
+    };
+    const BenchResult r = runBenchmark(parseScenarioFile(kSmall), options);
+    std::map<std::string, double> means;
+    for (const RunRecord& run : r.runs) means[run.summary.label] = run.summary.frame_ms.mean;
+    return means;
+}
+
+// Swapping two configurations in --algos changes neither's mean frame time in the default order;
+// in the fixed order the one typed after vfc pays for vfc's work every frame.
+TEST(Simulation, AConfigurationsFrameTimeDoesNotDependOnItsPlaceInAlgos) {
+    const auto a = meansWithVfcLeavingWork({"vfc", "chc", "statistical"}, FrameOrder::balanced);
+    const auto b = meansWithVfcLeavingWork({"vfc", "statistical", "chc"}, FrameOrder::balanced);
+    for (const char* name : {"vfc", "chc", "statistical"}) {
+        EXPECT_DOUBLE_EQ(a.at(name), b.at(name)) << name;
+    }
+    const auto fixed_a = meansWithVfcLeavingWork({"vfc", "chc", "statistical"}, FrameOrder::fixed);
+    const auto fixed_b = meansWithVfcLeavingWork({"vfc", "statistical", "chc"}, FrameOrder::fixed);
+    EXPECT_NEAR(fixed_a.at("chc") - fixed_b.at("chc"), 50.0, 1e-9);
+    EXPECT_NEAR(fixed_b.at("statistical") - fixed_a.at("statistical"), 50.0, 1e-9);
 }
 
 // The world is shared by every configuration of a run: advanced (movers stepped, tree refit)

@@ -31,8 +31,9 @@ BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algo
     options.repetitions = repetitions;
     // Every setting takes every place within a frame equally often: measured on library (docs/
     // tuning.md), the first place is a few per cent slower, which would otherwise flatter every
-    // sample against the reference.
-    options.rotate_order = true;
+    // sample against the reference. Rotated, as the tuner's figures were measured (balanced
+    // would also give each setting every predecessor equally often).
+    options.frame_order = FrameOrder::rotated;
     options.command = "tune";
     options.on_frame = on_frame;
     BenchResult result = runBenchmark(scenario, options);

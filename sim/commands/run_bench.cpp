@@ -136,6 +136,12 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.backend = backendChoice(flags.backend);
     if (flags.frames > 0) o.frames = flags.frames;
     o.repetitions = flags.repetitions;
+    const std::optional<occsim::FrameOrder> order = occsim::parseFrameOrder(flags.frame_order);
+    if (!order) {
+        throw occsim::InputError("--frame-order: expected balanced, rotated or fixed, got '" +
+                                 flags.frame_order + "'");
+    }
+    o.frame_order = *order;
     if (!flags.sweep.empty()) {
         try {
             o.sweep = occsim::parseSweep(flags.sweep, request.algorithms);
@@ -289,6 +295,11 @@ CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
         "--ablate", flags.common.ablate,
         "Run this algorithm also once with each mechanism its options switch on turned "
         "off (the ablation; occsim cullers marks them)");
+    bench->add_option("--frame-order", flags.common.frame_order,
+                      "The order each frame renders the configurations in: balanced (the "
+                      "default: each after each other equally often), rotated, or fixed (as "
+                      "--algos gives them; biased: the one after a heavy configuration pays for "
+                      "it)");
     return bench;
 }
 

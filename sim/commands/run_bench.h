@@ -30,9 +30,10 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
-    std::vector<std::string> record;    // --record: "objects"
-    std::vector<std::string> segments;  // --segments, each as given (joined by ',')
-    bool quiet = false;                 // no progress on stderr
+    std::vector<std::string> record;       // --record: "objects"
+    std::vector<std::string> segments;     // --segments, each as given (joined by ',')
+    bool quiet = false;                    // no progress on stderr
+    std::string frame_order = "balanced";  // --frame-order (bench)
 };
 
 struct RunFlags {

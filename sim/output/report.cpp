@@ -303,6 +303,7 @@ nlohmann::json summaryJson(const BenchResult& result) {
     summary["nothing_in_view"] =
         nothingInView(runs);  // true: no speedup is given, none means anything
     summary["repetitions"] = m.repetitions;
+    summary["frame_order"] = m.frame_order;
     // How each figure joins the repetitions (aggregateRepetitions), so no reader takes a sum for
     // a median or the other way round.
     summary["aggregation"] = {

@@ -58,6 +58,7 @@ struct RunMetadata {
     uint32_t movers = 0;
     // The run.
     uint32_t repetitions = 1;
+    std::string frame_order = "balanced";  // sim/run/frame_order.h
     bool error_measured = false;
     std::optional<uint32_t> deterministic_latency;  // commands, when the mode was on
     std::optional<Sweep> sweep;

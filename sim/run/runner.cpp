@@ -53,6 +53,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.triangles = scene.triangle_count;
     m.movers = static_cast<uint32_t>(scene.initial_movers.size());
     m.repetitions = repetitions;
+    m.frame_order = std::string(frameOrderName(options.frame_order));
     m.error_measured = options.measure_error;
     if (options.latency.deterministic) m.deterministic_latency = options.latency.latency_commands;
     m.sweep = options.sweep;
@@ -196,7 +197,7 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
         }
         if (any_needs_truth) truth.of(world, truth_colour);
         for (size_t k = 0; k < sims.size(); ++k) {
-            const size_t c = options.rotate_order ? (k + f) % sims.size() : k;
+            const size_t c = configurationAt(options.frame_order, sims.size(), f, k);
             noteRendering(stage.configs[c].label.c_str(), f);
             try {
                 frames[c].push_back(sims[c]->renderFrame());

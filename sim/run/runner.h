@@ -14,6 +14,7 @@
 
 #include "occsim/culling/registry/registry.h"
 #include "render/headless_context.h"
+#include "sim/run/frame_order.h"
 #include "sim/run/progress.h"
 #include "sim/run/results.h"
 #include "sim/run/run_config.h"
@@ -62,11 +63,11 @@ struct BenchOptions {
     // measure_error.
     bool record_objects = false;
     uint32_t repetitions = 1;  // each configuration runs this often; medians reported
-    // Frame f renders configuration (f + k) mod n as its k-th, so that every configuration takes
-    // every place within a frame equally often. A place has its own cost (the first
-    // configuration's world was advanced longest before it renders, and it renders right after
-    // ground truth): without rotation that cost lands on the same configuration every frame.
-    bool rotate_order = false;
+    // The order each frame renders the configurations in (sim/run/frame_order.h). A place has
+    // its own cost (the first renders right after ground truth, each other right after the one
+    // before it, which may have left work behind): balanced spreads both over every
+    // configuration; fixed lands them on the same configurations every frame.
+    FrameOrder frame_order = FrameOrder::balanced;
     std::optional<Sweep> sweep;  // one configuration per value (run_config.h)
     std::string ablate;          // an algorithm to run with each mechanism off (run_config.h)
     // Record this frame's draws and queries for every configuration (first repetition), so that
