@@ -24,12 +24,26 @@ bool inside(const fs::path& file, const fs::path& folder) {
 
 }  // namespace
 
-bool isOccsimBaselineFile(const fs::path& file) {
+namespace {
+
+// The file's JSON when it is an occsim baseline; null otherwise.
+nlohmann::json baselineJson(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
+    if (!in) return nullptr;
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    return j.is_object() && j.contains("format") && j["format"] == "occsim-baseline";
+    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.contains("format") && j["format"] == "occsim-baseline") return j;
+    return nullptr;
+}
+
+}  // namespace
+
+bool isOccsimBaselineFile(const fs::path& file) { return !baselineJson(file).is_null(); }
+
+std::string baselineScenarioName(const fs::path& file) {
+    const nlohmann::json j = baselineJson(file);
+    if (j.is_null() || !j.contains("scenario") || !j["scenario"].is_string()) return {};
+    return j["scenario"].get<std::string>();
 }
 
 std::vector<std::string> baselinePlaceProblems(const std::vector<BaselinePlace>& places,
@@ -60,11 +74,23 @@ std::vector<std::string> baselinePlaceProblems(const std::vector<BaselinePlace>&
             problems.push_back(where + " is also the baseline of " +
                                it->second->scenario_file.string() +
                                "; expected one baseline file per scenario");
+        } else if (fs::is_directory(file, ec)) {
+            problems.push_back(where +
+                               " is a folder; expected a file (default <name>.baseline.json "
+                               "beside the scenario)");
         } else if (update && fs::exists(file, ec) && !isOccsimBaselineFile(file)) {
             problems.push_back(where +
                                " exists and is not an occsim baseline file (no \"format\": "
                                "\"occsim-baseline\"); --update overwrites only baselines: "
                                "move it, or name another file");
+        } else if (update && !p.scenario_name.empty() && fs::exists(file, ec)) {
+            const std::string recorded = baselineScenarioName(file);
+            if (!recorded.empty() && recorded != p.scenario_name) {
+                problems.push_back(where + " is the baseline of the scenario '" + recorded +
+                                   "', not '" + p.scenario_name +
+                                   "'; --update never writes over another scenario's "
+                                   "baseline: name another file");
+            }
         }
     }
     return problems;

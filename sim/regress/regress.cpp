@@ -101,7 +101,8 @@ std::vector<ReadScenario> readAndCheck(const std::vector<ScenarioFile>& all,
         read.push_back(readRegressScenario(f, options));
         files.push_back(f.file);
         if (read.back().scenario)
-            places.push_back({f.file, read.back().scenario->expect->baseline});
+            places.push_back(
+                {f.file, read.back().scenario->expect->baseline, read.back().scenario->name});
     }
     const std::vector<std::string> problems = baselinePlaceProblems(places, files, options.update);
     if (!problems.empty()) {
