@@ -8,8 +8,9 @@
 #            plugin_descriptor mocrec
 # Seeds: the regression inputs in tests/fuzz/regressions/<target>/ (each holds a valid-* seed),
 # plus every scenario under scenarios/ (scenario), the bundled glTF models (gltf) and the
-# committed baselines (baseline); mocrec starts from its small seed alone (every record type in
-# 489 bytes: the real frames exceed -max_len). Findings land in out/fuzz/<target>/ as crash-*,
+# committed baselines (baseline); mocrec starts from its small seed (every record type in 489
+# bytes: the real frames exceed -max_len) and its hand-made inputs (resolutions past the replay's
+# memory budget and at its edge among them). Findings land in out/fuzz/<target>/ as crash-*,
 # leak-*, timeout-* files: fix the bug, then copy the file into tests/fuzz/regressions/<target>/
 # so the normal suite replays it (test_fuzz_regressions).
 set -euo pipefail

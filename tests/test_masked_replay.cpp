@@ -101,5 +101,32 @@ TEST(MaskedReplayCommand, ABrokenFileIsOneLineAndExitTwo) {
     std::filesystem::remove(bad);
 }
 
+// The case: a valid-looking header asking for 32768 × 32768 pixels (within each side's
+// range) ended in "occsim: std::bad_alloc", exit 1; now one line naming the file and the byte.
+TEST(MaskedReplayCommand, AFramePastTheMemoryBudgetIsOneLineAndExitTwo) {
+    const std::filesystem::path huge = tempPath("huge.mocrec");
+    {
+        std::ofstream file(huge, std::ios::binary);
+        const uint32_t magic = kMocrecMagic, side = 32768;
+        const float near_clip = 0.1f;
+        const uint8_t end = 0x7F;
+        file.write(reinterpret_cast<const char*>(&magic), 4);
+        file.write(reinterpret_cast<const char*>(&near_clip), 4);
+        file.write(reinterpret_cast<const char*>(&side), 4);
+        file.write(reinterpret_cast<const char*>(&side), 4);
+        file.write(reinterpret_cast<const char*>(&end), 1);
+    }
+    const std::filesystem::path out = tempPath("huge-out");
+    const testing::Outcome o = testing::shell(std::string(OCCSIM_EXE) + " masked-replay " +
+                                              huge.string() + " --out " + out.string());
+    EXPECT_EQ(o.exit_code, 2);
+    EXPECT_NE(o.output.find(huge.string() + ": byte 8: expected at most 33554432 pixels"),
+              std::string::npos)
+        << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+    std::filesystem::remove(huge);
+}
+
 }  // namespace
 }  // namespace occsim

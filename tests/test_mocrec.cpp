@@ -353,6 +353,33 @@ TEST(Mocrec, BadHeaderValuesNameTheirByte) {
               at(12) + "expected a height from 1 to 32768 pixels, found 4294967295");
 }
 
+// The 179-byte file asked for 32768 × 32768 and ended in std::bad_alloc; the replay's
+// memory budget (kMocrecMaxPixels) is refused at the width's byte, the budget's edge accepted.
+TEST(Mocrec, AResolutionPastTheReplaysMemoryBudgetIsRefusedAtTheWidth) {
+    const auto header = [](uint32_t width, uint32_t height) {
+        Writer w;
+        w.header(0.1f, width, height);
+        w.batch(quad());
+        w.end();
+        return w.bytes;
+    };
+    EXPECT_EQ(errorOf(header(32768, 32768)),
+              at(8) +
+                  "expected at most 33554432 pixels (width × height, the replay's memory "
+                  "budget), found 32768 × 32768 = 1073741824");
+    EXPECT_EQ(errorOf(header(32768, 1025)),
+              at(8) +
+                  "expected at most 33554432 pixels (width × height, the replay's memory "
+                  "budget), found 32768 × 1025 = 33587200");
+    EXPECT_EQ(errorOf(header(16384, 16384)).substr(0, at(8).size()), at(8));
+    for (const auto& [width, height] :
+         {std::pair<uint32_t, uint32_t>{8192, 4096}, {32768, 1024}, {7680, 4320}, {1, 32768}}) {
+        const MocFrame f = parseMocrec(header(width, height), "edge.mocrec");
+        EXPECT_EQ(f.width, width);
+        EXPECT_EQ(f.height, height);
+    }
+}
+
 // In withBatch(quad()) the record starts at byte 16: its vertices at 29, the triangle count at
 // 77, the indices at 81, the matrix flag at 105, the matrix at 106, the clip plane mask at 170,
 // the winding at 174, the layout at 178; the file is 191 bytes.

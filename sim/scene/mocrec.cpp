@@ -275,6 +275,7 @@ MocFrame parseMocrec(std::span<const uint8_t> bytes, const std::string& file_nam
         c.fail(near_at, "expected a finite near clip plane of 0 or more, found " +
                             floatText(frame.near_clip));
     }
+    const uint64_t width_at = c.offset();
     for (uint32_t* side : {&frame.width, &frame.height}) {
         const uint64_t at = c.offset();
         const char* name = side == &frame.width ? "width" : "height";
@@ -284,6 +285,13 @@ MocFrame parseMocrec(std::span<const uint8_t> bytes, const std::string& file_nam
                            std::to_string(kMocrecMaxResolution) + " pixels, found " +
                            std::to_string(*side));
         }
+    }
+    const uint64_t pixels = uint64_t{frame.width} * frame.height;
+    if (pixels > kMocrecMaxPixels) {
+        c.fail(width_at, "expected at most " + std::to_string(kMocrecMaxPixels) +
+                             " pixels (width × height, the replay's memory budget), found " +
+                             std::to_string(frame.width) + " × " + std::to_string(frame.height) +
+                             " = " + std::to_string(pixels));
     }
 
     for (uint64_t record = 0;; ++record) {

@@ -52,6 +52,11 @@ namespace occsim {
 inline constexpr uint32_t kMocrecMagic = 0xA701B600;
 // A width or height beyond this is no view MOC buffered but a number from a broken file.
 inline constexpr uint32_t kMocrecMaxResolution = 32768;
+// `masked-replay` holds about 26 bytes a pixel (the exact buffer's depth, each layout's bounds
+// and buffer, the picture): a frame of more pixels than this is refused before anything is
+// allocated (docs/masked.md: 0.87 GB resident for an empty 8192 × 4096 frame; an 8K frame,
+// 7680 × 4320, fits; 16384 × 16384 took 6.4 GB).
+inline constexpr uint64_t kMocrecMaxPixels = uint64_t{1} << 25;
 
 // MOC's enums, as recorded.
 enum class MocResult : int32_t { Visible = 0, Occluded = 1, ViewCulled = 3 };
@@ -88,7 +93,8 @@ struct MocTriangleTest {
 
 struct MocFrame {
     float near_clip = 0;              // MOC's near clip plane as clip-space w (finite, >= 0)
-    uint32_t width = 0, height = 0;   // MOC's depth buffer in pixels, 1 to kMocrecMaxResolution
+    uint32_t width = 0, height = 0;   // MOC's depth buffer in pixels, 1 to kMocrecMaxResolution,
+                                      // at most kMocrecMaxPixels in all
     std::vector<MocBatch> occluders;  // type 0 records after the last clear, in file order
     std::vector<MocRectTest> rect_tests;
     std::vector<MocTriangleTest> triangle_tests;

@@ -250,6 +250,10 @@ bool mocrecInput(const uint8_t* data, size_t size) {
     } catch (const MocrecError&) {
         return false;
     }
+    // masked-replay allocates per pixel: an accepted frame must be one its budget holds.
+    if (frame.width == 0 || frame.height == 0 ||
+        uint64_t{frame.width} * frame.height > kMocrecMaxPixels)
+        brokenPromise("an accepted frame past the replay's memory budget");
     auto check = [](const MocBatch& b) {
         if (b.indices.size() % 3 != 0) brokenPromise("a batch with a partial triangle");
         for (const uint32_t i : b.indices) {
