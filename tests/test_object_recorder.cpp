@@ -177,6 +177,63 @@ TEST(ObjectsDatabase, OnAGltfLevelAsyncMissesTheTruckAndWhyNamesTheQueryThatHidI
         << report;
 }
 
+// The case: with --repetitions 3 summary.json counted the later repetitions' misses and
+// `why --missed` and report.md's Missed section, reading the first repetition's rows, said none.
+// Here every repetition makes the same decisions (deterministic latency): the file, why and the
+// report must add up to summary.json, and say which repetition the rows are.
+TEST(ObjectsDatabase, WithRepetitionsTheFileWhyAndTheReportAddUpToTheSummarysMisses) {
+    TempDir dir;
+    const fs::path scenario = writeWalledYard(dir);
+    const fs::path out = dir.path() / "out";
+    const Outcome o = occsim("bench " + scenario.string() +
+                             " --algos vfc,async --deterministic-latency 20 --repetitions 3 "
+                             "--record objects --out " +
+                             out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    EXPECT_EQ(queryInteger(db, "SELECT repetitions FROM run"), 3);
+    const nlohmann::json summary = nlohmann::json::parse(fileText(out / "summary.json"));
+    for (const std::string label : {"vfc", "async"}) {
+        int64_t total = -1;
+        for (const nlohmann::json& a : summary["algorithms"]) {
+            if (a["configuration"] == label) total = a["error"]["missed_objects_total"];
+        }
+        const int64_t recorded = queryInteger(db,
+                                              "SELECT COUNT(*) FROM decisions d JOIN "
+                                              "configurations c ON c.config = d.config WHERE "
+                                              "c.label = ? AND d.drawn = 0 AND d.truth_pixels > 0",
+                                              {label});
+        const int64_t later = queryInteger(
+            db, "SELECT missed_in_later_repetitions FROM configurations WHERE label = ?", {label});
+        EXPECT_EQ(recorded + later, total) << label;
+        EXPECT_EQ(later, 2 * recorded) << label << ": the same decisions in every repetition";
+    }
+    const int64_t async_later = queryInteger(
+        db, "SELECT missed_in_later_repetitions FROM configurations WHERE label = 'async'");
+    ASSERT_GT(async_later, 0) << "async must miss the truck in every repetition";
+
+    const Outcome missed = occsim("why " + out.string() + " --missed");
+    ASSERT_EQ(missed.exit_code, 0) << missed.output;
+    EXPECT_NE(missed.output.find("(repetition 1 of 3 recorded: "), std::string::npos)
+        << missed.output;
+    EXPECT_NE(missed.output.find("async: 1 object missed in repetition 1; repetitions 2-3, not "
+                                 "recorded, missed " +
+                                 std::to_string(async_later) + " more (objects × frames)\n"),
+              std::string::npos)
+        << missed.output;
+    EXPECT_NE(missed.output.find("vfc: 0 objects missed in repetition 1; repetitions 2-3, not "
+                                 "recorded, missed none\n"),
+              std::string::npos)
+        << missed.output;
+    const std::string report = fileText(out / "report.md");
+    EXPECT_NE(report.find("every one in the first of the 3 repetitions"), std::string::npos)
+        << report;
+    EXPECT_NE(report.find("- async: repetitions 2-3, not recorded, missed " +
+                          std::to_string(async_later) + " more"),
+              std::string::npos)
+        << report;
+}
+
 TEST(ObjectsDatabase, AStoppedRunKeepsAReadableDatabaseOfItsWholeFramesMarkedPartial) {
     TempDir dir;
     const fs::path out = dir.path() / "out";

@@ -110,8 +110,8 @@ TEST_F(WhyBadInput, ADatabaseFromAnotherVersionATruncatedOrACorruptOneIsRefused)
         db.exec("UPDATE run SET occsim_version = '0.0.1'");
         db.close();
         expectBadInput(occsim("why " + other.string() + " --missed"),
-                       "objects.sqlite: written by occsim 0.0.1 (database format 1); this is "
-                       "occsim ",
+                       "objects.sqlite: written by occsim 0.0.1 (database format " +
+                           std::to_string(kObjectsFormatVersion) + "); this is occsim ",
                        "another version");
     }
     {

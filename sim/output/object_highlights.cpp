@@ -32,6 +32,15 @@ std::string frameRanges(const std::vector<uint32_t>& frames) {
     return out;
 }
 
+std::string laterRepetitionsNote(uint32_t repetitions, uint64_t missed_in_later) {
+    if (repetitions <= 1) return "";
+    const std::string later =
+        repetitions == 2 ? "repetition 2" : "repetitions 2-" + std::to_string(repetitions);
+    return later + ", not recorded, missed " +
+           (missed_in_later == 0 ? std::string("none")
+                                 : std::to_string(missed_in_later) + " more (objects × frames)");
+}
+
 std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
     std::ostringstream out;
     out << "## Objects\n\n"
@@ -51,7 +60,12 @@ std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
         }
         out << "\n";
     }
-    out << "**Missed** (ground truth saw it, the configuration did not draw it), every one:\n\n";
+    out << "**Missed** (ground truth saw it, the configuration did not draw it), every one";
+    if (h.repetitions > 1) {
+        out << " in the first of the " << h.repetitions
+            << " repetitions (the one recorded; summary.json's missed objects count them all)";
+    }
+    out << ":\n\n";
     if (h.missed.empty()) {
         out << "none.\n\n";
     } else {
@@ -62,6 +76,11 @@ std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
         }
         out << "\n";
     }
+    for (const LaterMisses& l : h.later_misses) {
+        out << "- " << cell(l.config) << ": " << laterRepetitionsNote(h.repetitions, l.objects)
+            << "\n";
+    }
+    if (!h.later_misses.empty()) out << "\n";
     return out.str();
 }
 

@@ -29,11 +29,24 @@ struct MissedObject {
     uint64_t error_pixels = 0;  // over those frames
 };
 
+// What the repetitions after the first, which are not recorded, missed: objects ground truth
+// saw and the configuration did not draw, summed over their frames.
+struct LaterMisses {
+    std::string config;
+    uint64_t objects = 0;
+};
+
 struct ObjectHighlights {
     std::vector<OverdrawnObject> overdrawn;  // per configuration, the most triangles first
-    std::vector<MissedObject> missed;        // every one, per configuration
+    std::vector<MissedObject> missed;        // every one, per configuration (first repetition)
     uint32_t overdrawn_per_config = 0;       // how many over-drawn objects each lists at most
+    uint32_t repetitions = 1;                // the run's; only the first is recorded
+    std::vector<LaterMisses> later_misses;   // per configuration, with repetitions > 1
 };
+
+// With repetitions: which one the record covers and what the others missed, a sentence
+// ("" with one repetition).
+std::string laterRepetitionsNote(uint32_t repetitions, uint64_t missed_in_later);
 
 // "3-5, 9, 12-14": sorted frames as ranges.
 std::string frameRanges(const std::vector<uint32_t>& frames);

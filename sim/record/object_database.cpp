@@ -101,7 +101,7 @@ ObjectDatabase::ObjectDatabase(const std::filesystem::path& run_folder)
         }
         sql::Statement r = db_->prepare(
             "SELECT command, scenario, frames, frames_recorded, partial, partial_reason, "
-            "deterministic_latency FROM run");
+            "deterministic_latency, repetitions FROM run");
         r.step();
         run_.command = r.text(0);
         run_.scenario = r.text(1);
@@ -110,6 +110,7 @@ ObjectDatabase::ObjectDatabase(const std::filesystem::path& run_folder)
         run_.partial = r.integer(4) != 0;
         run_.partial_reason = r.text(5);
         if (!r.isNull(6)) run_.deterministic_latency = static_cast<uint32_t>(r.integer(6));
+        run_.repetitions = static_cast<uint32_t>(r.integer(7));
     } catch (const sql::Error& e) {
         std::string why = e.what();
         if (why.rfind(name + ": ", 0) == 0) why = why.substr(name.size() + 2);

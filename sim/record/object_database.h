@@ -30,6 +30,7 @@ struct RecordedRun {
     bool partial = false;
     std::string partial_reason;
     std::optional<uint32_t> deterministic_latency;
+    uint32_t repetitions = 1;  // the run's; the rows are the first one's
 };
 
 class ObjectDatabase {

@@ -24,10 +24,13 @@ uint32_t optionalInteger(const sql::Statement& s, int column, uint32_t none) {
 
 std::vector<RecordedConfig> recordedConfigs(sql::Database& db) {
     sql::Statement s = db.prepare(
-        "SELECT config, label, algorithm FROM configurations "
+        "SELECT config, label, algorithm, missed_in_later_repetitions FROM configurations "
         "ORDER BY config");
     std::vector<RecordedConfig> out;
-    while (s.step()) out.push_back({static_cast<uint32_t>(s.integer(0)), s.text(1), s.text(2)});
+    while (s.step()) {
+        out.push_back({static_cast<uint32_t>(s.integer(0)), s.text(1), s.text(2),
+                       static_cast<uint64_t>(s.integer(3))});
+    }
     return out;
 }
 

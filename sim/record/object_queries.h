@@ -18,6 +18,9 @@ struct RecordedConfig {
     uint32_t id = 0;
     std::string label;
     std::string algorithm;
+    // Objects ground truth saw and this configuration did not draw, summed over the frames of
+    // the repetitions after the first (which have no rows).
+    uint64_t missed_in_later_repetitions = 0;
 };
 
 struct RecordedObject {

@@ -192,12 +192,30 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
         .bind(6, std::string_view(result.partial ? partialLine(result) : std::string()))
         .bind(7, m.deterministic_latency)
         .run();
+    db_->prepare("UPDATE run SET repetitions = ?").bind(1, m.repetitions).run();
+    {  // finalised before the file is closed
+        sql::Statement later = db_->prepare(
+            "UPDATE configurations SET missed_in_later_repetitions = ? WHERE label = ?");
+        for (const RunRecord& r : result.runs) {
+            int64_t missed = 0;
+            for (const std::vector<FrameStats>& repetition : r.later_repetitions) {
+                for (const FrameStats& f : repetition) {
+                    if (f.error_pixels >= 0) missed += f.missed_objects;
+                }
+            }
+            later.bind(1, missed).bind(2, std::string_view(r.summary.label));
+            later.run();
+            later.reset();
+        }
+    }
     db_->exec(kObjectsIndexes);
     db_->exec("COMMIT");
 
     ObjectHighlights h;
     h.overdrawn_per_config = overdrawn_per_config;
+    h.repetitions = m.repetitions;
     for (const RecordedConfig& c : recordedConfigs(*db_)) {
+        if (m.repetitions > 1) h.later_misses.push_back({c.label, c.missed_in_later_repetitions});
         std::vector<OverdrawnObject> over = overdrawnObjects(*db_, c);
         if (over.size() > overdrawn_per_config) over.resize(overdrawn_per_config);
         h.overdrawn.insert(h.overdrawn.end(), over.begin(), over.end());

@@ -6,7 +6,10 @@
 // Contract
 // - The file is created in the run's staging folder (sim/output/run_folder.h), so it is
 //   published with the run's other files as one unit, or not at all.
-// - Only the first repetition is recorded (as frames.csv keeps it).
+// - Only the first repetition has rows; finish() writes how many repetitions the run made and,
+//   per configuration, how many objects the later ones missed (summed over their frames, as
+//   summary.json's missed_objects_total sums every repetition), so no reader takes the first
+//   repetition's misses for the run's.
 // - Until finish(), the run table says partial, and frames_recorded counts the frames whose every
 //   configuration's rows are committed: a run that dies leaves a readable database of the frames
 //   it finished. finish() on a run that stopped early removes the rows of the frame it dropped

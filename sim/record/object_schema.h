@@ -9,7 +9,9 @@ namespace occsim {
 
 inline constexpr const char* kObjectsDatabaseFile = "objects.sqlite";
 // 1: run, configurations, objects, reasons, decisions.
-inline constexpr int kObjectsFormatVersion = 1;
+// 2: run.repetitions and configurations.missed_in_later_repetitions (only the first repetition
+//    has rows; what the later ones missed is counted, so the file agrees with summary.json).
+inline constexpr int kObjectsFormatVersion = 2;
 
 // The tables. `decisions` holds a row per frame, configuration and object except the rows that
 // say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
@@ -30,12 +32,14 @@ CREATE TABLE run (
   seed INTEGER NOT NULL,
   width INTEGER NOT NULL,
   height INTEGER NOT NULL,
-  deterministic_latency INTEGER
+  deterministic_latency INTEGER,
+  repetitions INTEGER NOT NULL DEFAULT 1
 );
 CREATE TABLE configurations (
   config INTEGER PRIMARY KEY,
   label TEXT NOT NULL UNIQUE,
-  algorithm TEXT NOT NULL
+  algorithm TEXT NOT NULL,
+  missed_in_later_repetitions INTEGER NOT NULL DEFAULT 0
 );
 CREATE TABLE objects (
   object INTEGER PRIMARY KEY,

@@ -268,11 +268,17 @@ std::string overdrawList(sql::Database& db, const std::vector<RecordedConfig>& c
     return out.str();
 }
 
-std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& configs) {
+std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& configs,
+                       uint32_t repetitions) {
     std::ostringstream out;
     for (const RecordedConfig& c : configs) {
         const std::vector<MissedObject> missed = missedObjects(db, c);
-        out << c.label << ": " << plural(missed.size(), "object", "objects") << " missed\n";
+        out << c.label << ": " << plural(missed.size(), "object", "objects") << " missed";
+        if (repetitions > 1) {
+            out << " in repetition 1; "
+                << laterRepetitionsNote(repetitions, c.missed_in_later_repetitions);
+        }
+        out << "\n";
         for (const MissedObject& m : missed) {
             out << "  object " << m.object << " '" << m.name << "': frames "
                 << frameRanges(m.frames) << " ("
@@ -317,7 +323,11 @@ std::string answerWhy(const WhyRequest& r) {
                    "; " + plural(base.run().frames_recorded, "frame", "frames") + " recorded)\n";
         }
         if (r.overdraw) return head + overdrawList(db, configs, r.limit);
-        if (r.missed) return head + missedList(db, configs);
+        if (base.run().repetitions > 1) {
+            head += "(repetition 1 of " + std::to_string(base.run().repetitions) +
+                    " recorded: --record objects keeps the first repetition's decisions)\n";
+        }
+        if (r.missed) return head + missedList(db, configs, base.run().repetitions);
         const RecordedObject object = chosenObject(db, r.object);
         if (r.frame && *r.frame >= base.run().frames_recorded) {
             const uint32_t n = base.run().frames_recorded;
