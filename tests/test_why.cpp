@@ -91,6 +91,43 @@ TEST_F(WhyBadInput, AnUnknownObjectFrameOrConfigurationIsNamedWithWhatWasExpecte
     expectBadInput(occsim(r + " --missed --frame 2"), "--frame: goes with --object", "frame");
 }
 
+// The case: `--object 3` answered for index 3 while another object was named "3", with no
+// note. Digits that are both are refused; "#3" is always the index; digits past the last index
+// that name one object are that object.
+TEST_F(WhyBadInput, DigitsThatAreAnIndexAndAnotherObjectsNameAreRefusedNotGuessed) {
+    const fs::path renamed = copyOfRun("numeric-names");
+    {
+        sql::Database db(renamed / kObjectsDatabaseFile, sql::Database::Mode::Create);
+        db.exec("UPDATE objects SET name = '3' WHERE object = 5");
+        db.exec("UPDATE objects SET name = '9' WHERE object = 4");
+        db.close();
+    }
+    std::string name3;
+    {
+        sql::Database db(renamed / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+        sql::Statement s = db.prepare("SELECT name FROM objects WHERE object = 3");
+        ASSERT_TRUE(s.step());
+        name3 = s.text(0);
+    }
+    const std::string r = "why " + renamed.string();
+    expectBadInput(occsim(r + " --object 3 --frame 2"),
+                   "--object 3: both object 3 ('" + name3 +
+                       "') and the name of object 5; expected #3 for the index, or the named "
+                       "object's index",
+                   "ambiguous");
+    const Outcome by_index = occsim(r + " --object '#3' --frame 2");
+    EXPECT_EQ(by_index.exit_code, 0) << by_index.output;
+    EXPECT_EQ(by_index.output.rfind("object 3 '" + name3 + "'", 0), 0) << by_index.output;
+    const Outcome by_name = occsim(r + " --object 5 --frame 2");
+    EXPECT_EQ(by_name.exit_code, 0) << by_name.output;
+    EXPECT_EQ(by_name.output.rfind("object 5 '3'", 0), 0) << by_name.output;
+    const Outcome past_the_last = occsim(r + " --object 9 --frame 2");
+    EXPECT_EQ(past_the_last.exit_code, 0) << past_the_last.output;
+    EXPECT_EQ(past_the_last.output.rfind("object 4 '9'", 0), 0) << past_the_last.output;
+    expectBadInput(occsim(r + " --object '#9'"),
+                   "--object #9: no such object; the run has 7 objects (0-6)", "#9 is an index");
+}
+
 TEST_F(WhyBadInput, AFolderWithoutADatabaseOrWithoutAFolderIsNamed) {
     const fs::path plain = dir_->path() / "plain";
     fs::create_directories(plain);

@@ -153,18 +153,43 @@ std::vector<RecordedConfig> chosenConfigs(sql::Database& db, const std::string& 
     return out;
 }
 
+// "5" or "5, 9, 12": the indices of objects, at most eight, then "...".
+std::string someIndices(const std::vector<RecordedObject>& objects) {
+    std::string some;
+    for (size_t i = 0; i < objects.size() && i < 8; ++i)
+        some += (i ? ", " : "") + std::to_string(objects[i].index);
+    if (objects.size() > 8) some += ", ...";
+    return some;
+}
+
+// --object: an index ("17", or "#17", which is never a name), else a name that one object has.
+// Digits that are an index and also another object's name are refused, not guessed.
 RecordedObject chosenObject(sql::Database& db, const std::string& text) {
-    if (allDigits(text)) {
+    const bool marked = text.size() > 1 && text[0] == '#' && allDigits(text.substr(1));
+    std::vector<RecordedObject> named;
+    if (marked || allDigits(text)) {
+        const std::string digits = marked ? text.substr(1) : text;
         const uint32_t count = recordedObjectCount(db);
-        const unsigned long long index = text.size() > 10 ? ~0ull : std::stoull(text);
-        if (index < count) {
-            if (auto o = recordedObject(db, static_cast<uint32_t>(index))) return *o;
+        const unsigned long long index = digits.size() > 10 ? ~0ull : std::stoull(digits);
+        std::optional<RecordedObject> indexed;
+        if (index < count) indexed = recordedObject(db, static_cast<uint32_t>(index));
+        if (!marked) named = recordedObjectsNamed(db, text);
+        if (indexed && !named.empty() && !(named.size() == 1 && named[0].index == indexed->index)) {
+            throw InputError("--object " + text + ": both object " + digits + " ('" +
+                             indexed->name + "') and the name of " +
+                             (named.size() == 1 ? "object " : "objects ") + someIndices(named) +
+                             "; expected #" + digits + " for the index, or the named object's " +
+                             "index");
         }
-        throw InputError("--object " + text + ": no such object; the run has " +
-                         plural(count, "object", "objects") +
-                         (count > 0 ? " (0-" + std::to_string(count - 1) + ")" : ""));
+        if (indexed) return *indexed;
+        if (named.empty()) {
+            throw InputError("--object " + text + ": no such object; the run has " +
+                             plural(count, "object", "objects") +
+                             (count > 0 ? " (0-" + std::to_string(count - 1) + ")" : ""));
+        }
+    } else {
+        named = recordedObjectsNamed(db, text);
     }
-    const std::vector<RecordedObject> named = recordedObjectsNamed(db, text);
     if (named.size() == 1) return named.front();
     if (named.empty()) {
         std::vector<std::string> names;
@@ -175,12 +200,8 @@ RecordedObject chosenObject(sql::Database& db, const std::string& text) {
                          (near ? "; did you mean '" + *near + "'?"
                                : "; expected an object's index or its name"));
     }
-    std::string some;
-    for (size_t i = 0; i < named.size() && i < 8; ++i)
-        some += (i ? ", " : "") + std::to_string(named[i].index);
-    if (named.size() > 8) some += ", ...";
     throw InputError("--object '" + text + "': names " + std::to_string(named.size()) +
-                     " objects (" + some + "); expected one: give its index");
+                     " objects (" + someIndices(named) + "); expected one: give its index");
 }
 
 // The decision at `frame`: its row, or the row that was left out (frustum culled, unseen).
