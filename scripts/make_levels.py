@@ -1304,6 +1304,10 @@ def courtyards(args):
         raise ParameterError(f"--street-width: expected at least {courtyards_min_street(args):.1f} m (a "
                              f"car lane on "
                              f"each side, the truck's lane and the camera's), got {street:g}")
+    if inside <= 2.0:  # no gate fits whatever its width: the walls are to blame, not --door-width
+        raise ParameterError(f"--courtyard-size {size:g}, --wall-thickness {t:g}: expected a courtyard "
+                             f"more than 2 m wider inside than its two walls (a gate is at least 1 m "
+                             f"from a wall's ends), got {inside:g} m inside")
     if args.door_width > inside - 2.0:
         raise ParameterError(f"--door-width: expected a gate narrower than its wall (at most "
                              f"{inside - 2.0:g} m "
@@ -1545,7 +1549,8 @@ def interior(args):
                              f"two rooms "
                              f"side by side), got {nx}x{nz}")
     min_w, min_d = interior_minimums(args)
-    if dw > min(W, D) - t - 0.6:
+    # A room too small for any door is --room-size's to say (below), not --door-width's.
+    if 0 < min(W, D) - t - 0.6 < dw:
         raise ParameterError(f"--door-width: expected a door narrower than its wall (at most "
                              f"{min(W, D) - t - 0.6:g} m "
                              f"in {W:g} x {D:g} m rooms with {t:g} m walls), got {dw:g}")

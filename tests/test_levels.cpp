@@ -102,6 +102,14 @@ TEST(LevelScript, RefusesImpossibleParametersWithOneLineNamingThem) {
         {"courtyards --street-width 5", "--street-width: expected at least 12.8 m"},
         {"courtyards --cars 1000", "--cars: expected at most 48 cars"},
         {"courtyards --seed x", "--seed: expected an integer, got 'x'"},
+        // Walls that fill the courtyard or the room: the flags given are named, not the door's
+        // (it said "--door-width: ... at most -2 m").
+        {"courtyards --courtyard-size 8 --wall-thickness 4",
+         "--courtyard-size 8, --wall-thickness 4: expected a courtyard more than 2 m wider inside "
+         "than its two walls"},
+        {"courtyards --courtyard-size 10 --wall-thickness 4 --door-width 1",
+         "--courtyard-size 10, --wall-thickness 4: expected"},
+        {"interior --room-size 2x2 --wall-thickness 2", "--room-size: expected rooms at least"},
         {"interior --rooms 1x3", "--rooms: expected at least 2x2"},
         {"interior --door-width 9", "--door-width: expected a door narrower than its wall"},
         {"interior --room-size 3x3", "--room-size: expected rooms at least"},
