@@ -225,6 +225,32 @@ TEST(OccluderMesh, AnAuthoredOccluderKeepsOnlyWhatLiesInsideItsObject) {
         << open.refusal;
 }
 
+// The case: an authored occluder mesh had no size cap, and a million triangles would hold
+// the run for hours before frame 0 (the check is the product of both meshes' triangles). One with
+// more triangles than its object is refused at once, and one of as many is checked.
+TEST(OccluderMesh, AnAuthoredOccluderWithMoreTrianglesThanItsObjectIsRefused) {
+    const MeshData sphere = makeSphere(1.0f, 32, 24);
+    const glm::vec3 centre = (meshBounds(sphere).min + meshBounds(sphere).max) * 0.5f;
+    MeshData fine = makeSphere(0.5f, 800, 640);  // over a million triangles
+    ASSERT_GT(fine.triangleCount(), 1000000u);
+    const glm::vec3 mid = (meshBounds(fine).min + meshBounds(fine).max) * 0.5f;
+    for (glm::vec3& p : fine.positions) p += centre - mid;
+    const OccluderMesh refused = checkAuthoredOccluder(sphere, fine);
+    EXPECT_EQ(refused.refusal, "it has more triangles (" + std::to_string(fine.triangleCount()) +
+                                   ") than its object's mesh (" +
+                                   std::to_string(sphere.triangleCount()) +
+                                   "): masked would rasterise more than the object itself");
+    EXPECT_EQ(refused.mesh.triangleCount(), 0u);
+
+    MeshData as_many = makeSphere(0.5f, 32, 24);
+    ASSERT_EQ(as_many.triangleCount(), sphere.triangleCount());
+    const glm::vec3 as_many_mid = (meshBounds(as_many).min + meshBounds(as_many).max) * 0.5f;
+    for (glm::vec3& p : as_many.positions) p += centre - as_many_mid;
+    const OccluderMesh kept = checkAuthoredOccluder(sphere, as_many);
+    EXPECT_EQ(kept.refusal, "");
+    EXPECT_EQ(kept.mesh.triangleCount(), as_many.triangleCount());
+}
+
 TEST(OccluderMesh, AnOpenOrTinyMeshIsRefused) {
     MeshData quad;
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};

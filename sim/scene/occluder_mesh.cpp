@@ -403,6 +403,15 @@ OccluderMesh checkAuthoredOccluder(const MeshData& object, const MeshData& occlu
         out.refusal = "its object's mesh encloses no solid to check it against: " + solid.refusal;
         return out;
     }
+    // Checking costs the product of both meshes' triangles; an occluder with more triangles than
+    // its object would also cost masked more than the object's own mesh. So the object's mesh cap
+    // bounds both, and a million-triangle occluder is refused before a single check.
+    if (occluder.triangleCount() > out.source_triangles) {
+        out.refusal = "it has more triangles (" + std::to_string(occluder.triangleCount()) +
+                      ") than its object's mesh (" + std::to_string(out.source_triangles) +
+                      "): masked would rasterise more than the object itself";
+        return out;
+    }
     const size_t triangles = occluder.indices.size() / 3;
     std::vector<int8_t> inside(occluder.positions.size(), -1);  // -1: not yet checked
     std::vector<uint32_t> remap(occluder.positions.size(), UINT32_MAX);

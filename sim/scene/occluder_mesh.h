@@ -54,7 +54,8 @@ OccluderMesh makeInscribedOccluder(const MeshData& source,
 // the object's space, checked as a made one is: only its triangles that lie strictly inside the
 // object's solid are kept (dropped_triangles counts the others). Refused, with the reason, when
 // the object's mesh is not a closed solid (nothing to check it against) or none of its triangles
-// lies inside.
+// lies inside, or when it has more triangles than the object's mesh (it would cost more than
+// the mesh it stands in for; so max_triangles bounds both meshes and the check's cost).
 OccluderMesh checkAuthoredOccluder(const MeshData& object, const MeshData& occluder,
                                    const OccluderMeshSettings& settings = {});
 
