@@ -8,8 +8,11 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <tuple>
+
+#include "sim/scene/outline_coverage.h"
 
 namespace occsim {
 namespace {
@@ -323,9 +326,17 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
                                    w.positions[simple[t + 2]]);
     }
 
+    // The step: the smallest that keeps `kept_area_share` of the area and `min_outline_share` of
+    // the outline from every side; else, of those keeping that outline, the one keeping the most
+    // area; else none. (Before the outline was weighed the first rule was area alone: where that
+    // step keeps the outline too, the choice is the same.)
+    const ObjectOutlines outlines(w.positions, w.indices, settings.outline_resolution);
     std::vector<uint32_t> best;
     std::vector<glm::dvec3> best_positions;
     double best_area = 0.0, best_step = 0.0;
+    OutlineShare best_share{0.0, "x"}, most_outline{0.0, "x"};
+    double most_outline_step = 0.0;
+    bool any_kept = false;
     for (const double step_share : {0.0, 0.002, 0.005, 0.01, 0.02, 0.04, 0.08}) {
         const double step = step_share * solid.size;
         std::vector<glm::dvec3> moved(w.positions.size());
@@ -351,18 +362,36 @@ OccluderMesh makeInscribedOccluder(const MeshData& source, const OccluderMeshSet
             kept.insert(kept.end(), {simple[t], simple[t + 1], simple[t + 2]});
             area += triangleArea(tri[0], tri[1], tri[2]);
         }
-        if (area > best_area) {
-            best_area = area;
-            best = std::move(kept);
-            best_positions = std::move(moved);
-            best_step = step;
+        if (kept.empty()) continue;
+        any_kept = true;
+        const OutlineShare share = outlines.worst(moved, kept);
+        if (share.share > most_outline.share) {
+            most_outline = share;
+            most_outline_step = step;
         }
+        if (share.share < settings.min_outline_share || area <= best_area) continue;
+        best_area = area;
+        best = std::move(kept);
+        best_positions = std::move(moved);
+        best_step = step;
+        best_share = share;
         if (best_area >= settings.kept_area_share * total_area) break;
     }
-    if (best.empty()) {
+    if (!any_kept) {
         out.refusal = "no triangle of the simplified mesh could be made to lie inside it";
         return out;
     }
+    if (best.empty()) {
+        out.outline_share = most_outline.share;
+        char line[240];
+        std::snprintf(line, sizeof line,
+                      "the occluder it could make covers at most %.0f %% of its outline seen along "
+                      "%s (inward step %.3g m; parts thinner than twice the step vanish)",
+                      100.0 * most_outline.share, most_outline.side, most_outline_step);
+        out.refusal = line;
+        return out;
+    }
+    out.outline_share = best_share.share;
 
     // Compact: only the vertices the kept triangles use, back in float. Rounding to float moves a
     // vertex by far less than the gap the checks kept.

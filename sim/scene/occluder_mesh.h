@@ -19,8 +19,10 @@
 // eye may be inside its box.
 //
 // Meshes that are not closed (a plane, an open teapot, most glTF scans), too small to gain
-// (`min_triangles`), or too large to check here (`max_triangles`, the check is quadratic) get no
-// occluder mesh: a one-line reason says why, and the object occludes with its own mesh.
+// (`min_triangles`), too large to check here (`max_triangles`, the check is quadratic), or whose
+// occluder would cover too little of their outline from some side (`min_outline_share`: thin
+// slats, fins, blades) get no occluder mesh: a one-line reason says why, and the object occludes
+// with its own mesh.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +37,12 @@ struct OccluderMeshSettings {
     uint32_t min_triangles = 64;  // smaller meshes are their own occluders (a box: 12)
     uint32_t max_triangles = 60000;
     double kept_area_share = 0.9;  // the smallest inward step keeping this much area wins
+    // A made occluder must cover this much of its object's outline seen along each of the three
+    // axes and the four diagonals (sim/scene/outline_coverage.h), or it is refused: parts thinner
+    // than twice the inward step become sheets that hide next to nothing edge-on. (A simplified
+    // sphere covers 0.84 of its outline; 4 mm slats on two rails 0.12; docs/masked.md.)
+    double min_outline_share = 0.25;
+    uint32_t outline_resolution = 128;  // cells along each side of the outline's grid
 };
 
 struct OccluderMesh {
@@ -44,6 +52,7 @@ struct OccluderMesh {
     double inward_step_m = 0.0;  // how far the simplified surface was moved in
     double kept_area_share = 0.0;
     uint32_t dropped_triangles = 0;  // checkAuthoredOccluder: its triangles left out
+    double outline_share = 0.0;      // made: the least share of the outline it covers (above)
 };
 
 // The occluder mesh for `source`; never throws for bad geometry (it refuses instead).
