@@ -46,8 +46,8 @@ void header(std::ostringstream& out, const BenchResult& result) {
     std::snprintf(load, sizeof load, ", load average %.2f before the run and %.2f after",
                   c.load_before[0], c.load_after[0]);
     out << "| machine | " << c.hardware_threads
-        << " hardware threads, LP_NUM_THREADS=" << cell(c.lp_num_threads) << ", renderer "
-        << cell(c.renderer) << load
+        << " hardware threads, LP_NUM_THREADS=" << cell(c.lp_num_threads) << ", freed memory "
+        << cell(c.heap) << ", renderer " << cell(c.renderer) << load
         << (c.busyMachine() ? " (**busy: other work ran beside this run; timings are not results**)"
                             : "")
         << " |\n";

@@ -248,6 +248,7 @@ nlohmann::json machineJson(const RunMetadata& m) {
             {"load_average_after", m.load_after},
             {"busy", m.busyMachine()},
             {"llvmpipe_threads", m.lp_num_threads},
+            {"freed_memory", m.heap},
             {"renderer", m.renderer},
             {"backend", m.backend},
             {"device", m.device ? nlohmann::json(*m.device) : nlohmann::json(nullptr)},

@@ -76,6 +76,7 @@ struct RunMetadata {
     // it above twice that (the run's own threads count in the figure after it).
     bool busyMachine() const;
     std::string lp_num_threads = "default";  // LP_NUM_THREADS as set, or "default"
+    std::string heap = "kept";               // keepFreedMemory() (sim/run/heap_policy.h)
     std::string renderer;                    // "GL_RENDERER, OpenGL GL_VERSION"
     // The headless context (render/headless_context.h): which backend and device made it, and
     // what it says it is.

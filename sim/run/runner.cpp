@@ -12,6 +12,7 @@
 #include "sim/run/crash_note.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
+#include "sim/run/heap_policy.h"
 #include "sim/run/segment_summaries.h"
 #include "sim/run/shared_world.h"
 #include "sim/run/stop_request.h"
@@ -329,6 +330,7 @@ void replayWindowFrames(BenchResult& result, const Scene& scene, const Scenario&
 
 BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const std::array<double, 3> load_before = loadAverage();
+    const std::string heap = keepFreedMemory();
     Scenario scenario = input;
     if (options.frames) scenario.frames = *options.frames;
     std::vector<RunConfig> configs =
@@ -349,6 +351,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     BenchResult result;
     result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
+    result.metadata.heap = heap;
     if (costs) {
         result.metadata.cost_model = costs->costs;
         result.metadata.cost_model_source = costs->source;
