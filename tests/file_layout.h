@@ -1,6 +1,7 @@
-// The rule that tests are laid out like the sources: every culling/**/*.cpp has a test file named
-// after it, tests/test_<stem>.cpp, so that the test of a file is found by its name. A source may
-// be excepted, with the reason, where its tests live elsewhere.
+// The rule that tests are laid out like the sources: every culling/<room>/**/*.cpp has a test file
+// named after it in its room's test folder, tests/culling/<room>/test_<stem>.cpp, so that the test
+// of a file is found by its name and place. A source may be excepted, with the reason, where its
+// tests live elsewhere.
 #pragma once
 
 #include <algorithm>
@@ -11,8 +12,17 @@
 
 namespace occsim::testing {
 
-// The sources under `root`/culling without their test file `root`/tests/test_<stem>.cpp, as paths
-// relative to `root`, sorted; `excepted` (paths relative to `root`) are left out.
+// Where the test file of `source` (a path relative to `root`, culling/<room>/...) belongs.
+inline std::filesystem::path testFileOf(const std::filesystem::path& root,
+                                        const std::filesystem::path& source) {
+    const std::filesystem::path in_culling = source.lexically_relative("culling");
+    std::string name = "test_";
+    name.append(source.stem().string()).append(".cpp");
+    return root / "tests" / "culling" / *in_culling.begin() / name;
+}
+
+// The sources under `root`/culling without their test file (testFileOf), as paths relative to
+// `root`, sorted; `excepted` (paths relative to `root`) are left out.
 inline std::vector<std::string> sourcesWithoutTestFile(
     const std::filesystem::path& root, const std::map<std::string, std::string>& excepted) {
     namespace fs = std::filesystem;
@@ -21,9 +31,7 @@ inline std::vector<std::string> sourcesWithoutTestFile(
         if (!e.is_regular_file() || e.path().extension() != ".cpp") continue;
         const std::string relative = e.path().lexically_relative(root).generic_string();
         if (excepted.count(relative)) continue;
-        std::string name = "test_";
-        name.append(e.path().stem().string()).append(".cpp");
-        if (!fs::exists(root / "tests" / name)) missing.push_back(relative);
+        if (!fs::exists(testFileOf(root, relative))) missing.push_back(relative);
     }
     std::sort(missing.begin(), missing.end());
     return missing;

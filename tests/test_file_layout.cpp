@@ -1,6 +1,7 @@
-// Tests are laid out like the sources (issue 31): every culling/**/*.cpp has tests/test_<stem>.cpp
-// holding its tests, so that the test of a file is found by its name. The exceptions below are
-// the sources whose behaviour is tested elsewhere, each with where and why.
+// Tests are laid out like the sources (issues 31 and 54): every culling/<room>/**/*.cpp has
+// tests/culling/<room>/test_<stem>.cpp holding its tests, so that the test of a file is found by
+// its name and place. The exceptions below are the sources whose behaviour is tested elsewhere,
+// each with where and why.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -40,8 +41,9 @@ TEST(FileLayout, EveryCullingSourceHasATestFileNamedAfterIt) {
     const std::vector<std::string> missing =
         testing::sourcesWithoutTestFile(OCCSIM_SOURCE_DIR, exceptions());
     for (const std::string& source : missing) {
-        ADD_FAILURE() << source << " has no tests/test_" << fs::path(source).stem().string()
-                      << ".cpp (write one, or add it to the exceptions with the reason)";
+        ADD_FAILURE() << source << " has no "
+                      << testing::testFileOf("", source).relative_path().generic_string()
+                      << " (write one, or add it to the exceptions with the reason)";
     }
 }
 
@@ -49,9 +51,7 @@ TEST(FileLayout, EachExceptionIsASourceThatStillLacksItsTestFile) {
     const fs::path root(OCCSIM_SOURCE_DIR);
     for (const auto& [source, why] : exceptions()) {
         EXPECT_TRUE(fs::exists(root / source)) << source << " is gone: drop its exception";
-        std::string name = "test_";
-        name.append(fs::path(source).stem().string()).append(".cpp");
-        EXPECT_FALSE(fs::exists(root / "tests" / name))
+        EXPECT_FALSE(fs::exists(testing::testFileOf(root, source)))
             << source << " has its test file now: drop its exception";
         EXPECT_FALSE(why.empty()) << source;
     }
@@ -63,15 +63,21 @@ TEST(FileLayout, TheCheckNamesASourceWithoutItsTestFile) {
         fs::temp_directory_path() / ("occsim-file-layout-" + std::to_string(::getpid()));
     fs::remove_all(root);
     fs::create_directories(root / "culling" / "cullers");
-    fs::create_directories(root / "tests");
+    fs::create_directories(root / "culling" / "tree");
+    fs::create_directories(root / "tests" / "culling" / "cullers");
     std::ofstream(root / "culling" / "cullers" / "a_culler.cpp") << "\n";
     std::ofstream(root / "culling" / "cullers" / "b_culler.cpp") << "\n";
     std::ofstream(root / "culling" / "cullers" / "b_culler.h") << "\n";
-    std::ofstream(root / "tests" / "test_b_culler.cpp") << "\n";
-    EXPECT_EQ(testing::sourcesWithoutTestFile(root, {}),
-              (std::vector<std::string>{"culling/cullers/a_culler.cpp"}));
-    EXPECT_TRUE(
-        testing::sourcesWithoutTestFile(root, {{"culling/cullers/a_culler.cpp", "why"}}).empty());
+    std::ofstream(root / "tests" / "culling" / "cullers" / "test_b_culler.cpp") << "\n";
+    // A test file in another room's folder, or at the old flat place, does not count.
+    std::ofstream(root / "culling" / "tree" / "c_tree.cpp") << "\n";
+    std::ofstream(root / "tests" / "culling" / "cullers" / "test_c_tree.cpp") << "\n";
+    std::ofstream(root / "tests" / "test_a_culler.cpp") << "\n";
+    EXPECT_EQ(
+        testing::sourcesWithoutTestFile(root, {}),
+        (std::vector<std::string>{"culling/cullers/a_culler.cpp", "culling/tree/c_tree.cpp"}));
+    EXPECT_EQ(testing::sourcesWithoutTestFile(root, {{"culling/cullers/a_culler.cpp", "why"}}),
+              (std::vector<std::string>{"culling/tree/c_tree.cpp"}));
     fs::remove_all(root);
 }
 

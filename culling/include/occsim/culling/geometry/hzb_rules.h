@@ -2,7 +2,7 @@
 // functions, so that the GPU pyramid (render/gl_depth_pyramid.cpp, whose shaders use the same
 // integer formulas) and the software one (occsim/culling/testing/software_depth_pyramid.h) cannot
 // drift apart, and each rule has a unit test that fails when it is broken
-// (tests/test_software_depth_pyramid.cpp).
+// (tests/culling/testing/test_software_depth_pyramid.cpp).
 //
 // 1. The base. Level 0 is the largest power of two no larger than the viewport on each axis, so
 //    that every later level halves it exactly and each of their texels reduces at most 2x2 texels
