@@ -148,7 +148,9 @@ int windowReference(const std::vector<RunRecord>& runs) {
 int markWorstWindows(std::vector<RunRecord>& runs, uint32_t warmup_frames) {
     const int ref = windowReference(runs);
     for (RunRecord& r : runs) r.worst_windows.clear();
-    if (ref < 0) return ref;
+    // A camera that sees nothing gives frame times of empty frames: their ratios are noise, as
+    // speedups are then (nothingInView).
+    if (ref < 0 || nothingInView(runs)) return ref;
     const std::vector<FrameStats> reference = medianFrames(runs[static_cast<size_t>(ref)]);
     for (size_t c = 0; c < runs.size(); ++c) {
         if (static_cast<int>(c) == ref || (runs[c].algorithm && runs[c].algorithm->oracle))

@@ -57,7 +57,8 @@ std::vector<FrameStats> medianFrames(const RunRecord& record);
 int windowReference(const std::vector<RunRecord>& runs);
 
 // Fills RunRecord::worst_windows of every configuration but the reference and the oracles, over
-// medianFrames(); returns windowReference(runs).
+// medianFrames(), and none when nothing was in view on any frame (nothingInView); returns
+// windowReference(runs).
 int markWorstWindows(std::vector<RunRecord>& runs, uint32_t warmup_frames);
 
 }  // namespace occsim
