@@ -18,8 +18,8 @@
 namespace occsim {
 namespace {
 
-// The repository, found from this file's path (CMake compiles sources by absolute path).
-const std::filesystem::path kRepo = std::filesystem::path(__FILE__).parent_path().parent_path();
+// The repository (OCCSIM_SOURCE_DIR, as every test folder's executable is given it).
+const std::filesystem::path kRepo = OCCSIM_SOURCE_DIR;
 const std::filesystem::path kSmall = kRepo / "scenarios/small";
 const std::filesystem::path kPaper = kRepo / "scenarios/paper";
 
