@@ -197,11 +197,9 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
         sql::Statement later = db_->prepare(
             "UPDATE configurations SET missed_in_later_repetitions = ? WHERE label = ?");
         for (const RunRecord& r : result.runs) {
-            int64_t missed = 0;
-            for (const std::vector<FrameStats>& repetition : r.later_repetitions) {
-                for (const FrameStats& f : repetition) {
-                    if (f.error_pixels >= 0) missed += f.missed_objects;
-                }
+            int64_t missed = 0;  // each later repetition's summary, as summary.json sums them
+            for (size_t k = 1; k < r.repetitions.size(); ++k) {
+                missed += r.repetitions[k].missed_objects_total;
             }
             later.bind(1, missed).bind(2, std::string_view(r.summary.label));
             later.run();
