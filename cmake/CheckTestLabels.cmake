@@ -3,8 +3,9 @@
 #   -DMANIFEST=<file>     one line per test executable: name|label|links render (0/1)|sources
 #                         (written when the build is configured: tests/CMakeLists.txt)
 #   -DSOURCE_DIR=<dir>    where the sources' relative paths start
-# A source starts a process when it, or a header of its own folder or of SOURCE_DIR it includes, calls popen,
-# std::system, fork, an exec or posix_spawn function, or names the occsim or occtune executable.
+# A source starts a process when it, or a header of its own folder or of SOURCE_DIR/support that
+# it includes, calls popen, std::system, fork, an exec or posix_spawn function, or names the occsim
+# or occtune executable.
 # Every broken rule is one line; the check fails when there is one.
 cmake_minimum_required(VERSION 3.25)
 if(NOT EXISTS "${MANIFEST}")
@@ -46,8 +47,8 @@ foreach(entry ${entries})
       string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" header "${line}")
       if(EXISTS "${folder}/${header}")
         list(APPEND files "${folder}/${header}")
-      elseif(EXISTS "${SOURCE_DIR}/${header}")  # the shared helpers of tests/, on the include path
-        list(APPEND files "${SOURCE_DIR}/${header}")
+      elseif(EXISTS "${SOURCE_DIR}/support/${header}")  # the shared helpers, on the include path
+        list(APPEND files "${SOURCE_DIR}/support/${header}")
       endif()
     endforeach()
     foreach(file ${files})

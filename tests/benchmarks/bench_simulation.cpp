@@ -18,7 +18,7 @@
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
-#include "tests/culling_fixtures.h"
+#include "tests/support/culling_fixtures.h"
 
 namespace occsim {
 namespace {

@@ -50,11 +50,19 @@ sed -n '/"algorithm": "trust-visible"/,/"worst_frame"/p' "$summary" | grep -q '"
   || fail "trust-visible's error is not measured (or not zero) in summary.json"
 grep -q 'trust-visible' "$work/bench/report.md" || fail "trust-visible is not in report.md"
 
+# Whether occtune's own confirmation keeps the fit (exit 0, tuned.json) or rejects it (exit 3,
+# tuned.rejected.json) rests on measured frame times, so on the machine's load: either is a
+# tuning that ran; the file it wrote is checked and benched.
+status=0
 "$prefix/bin/occtune" "$scenario" --plugin "$plugin" --algo trust-visible --budget 5 --batch 3 \
-  --frames 12 --repetitions 1 --out "$work/tune" >"$work/tune.log" 2>&1 || {
-  cat "$work/tune.log"; fail "occtune --algo trust-visible failed"; }
-grep -q '"algorithm": "trust-visible"' "$work/tune/tuned.json" || fail "tuned.json is not for trust-visible"
-"$prefix/bin/occsim" bench "$scenario" --plugin "$plugin" --culling "$work/tune/tuned.json" \
+  --frames 12 --repetitions 1 --out "$work/tune" >"$work/tune.log" 2>&1 || status=$?
+case $status in
+  0) tuned=$work/tune/tuned.json ;;
+  3) tuned=$work/tune/tuned.rejected.json ;;
+  *) cat "$work/tune.log"; fail "occtune --algo trust-visible failed (exit $status)" ;;
+esac
+grep -q '"algorithm": "trust-visible"' "$tuned" || fail "$(basename "$tuned") is not for trust-visible"
+"$prefix/bin/occsim" bench "$scenario" --plugin "$plugin" --culling "$tuned" \
   --algos trust-visible,vfc --frames 8 --out "$work/tuned-bench" >"$work/tuned.log" 2>&1 || {
-  cat "$work/tuned.log"; fail "occsim bench --culling tuned.json refused the tuned file"; }
+  cat "$work/tuned.log"; fail "occsim bench --culling $(basename "$tuned") refused the tuned file"; }
 echo "check_install: installed, built the example against the prefix, benched and tuned its culler"

@@ -115,7 +115,7 @@ TEST(ViewWindow, BadScriptsAndSizesAreOneLineWithExitCode2BeforeAnyWindow) {
 // flight's last frame can be compared with a headless capture pixel for pixel; record a short
 // flight (12 frames) and take a screenshot of its last frame with the panel off; stop; resize;
 // screenshot again. A screenshot shows the frame after the input before it, hence the waits.
-constexpr const char* kSession = R"(# scripted viewer session (tests/test_view_window.cpp)
+constexpr const char* kSession = R"(# scripted viewer session (tests/system/test_view_window.cpp)
 wait 3
 press 4            # statistical+
 press b            # node boxes

@@ -1,6 +1,6 @@
 // Every repository path the docs, the READMEs and the code comments name exists, and every link
 // between pages lands on a heading that exists: a file moved or renamed leaves no page or comment
-// pointing at where it used to be (tests/repo_paths.h says what counts as a path).
+// pointing at where it used to be (tests/support/repo_paths.h says what counts as a path).
 #include <gtest/gtest.h>
 
 #include <filesystem>

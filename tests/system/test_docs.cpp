@@ -1,5 +1,5 @@
-// The docs keep their promises: every command block marked runnable (tests/doc_blocks.h) runs as
-// written, under the shell it names, and exits as documented; the recipes of
+// The docs keep their promises: every command block marked runnable (tests/support/doc_blocks.h)
+// runs as written, under the shell it names, and exits as documented; the recipes of
 // docs/regression.md (shards merged, a Slurm job array, a Kubernetes Indexed Job) among them.
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
