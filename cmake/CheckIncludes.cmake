@@ -31,16 +31,16 @@ set(allowed_tune occsim/culling render sim/scenario sim/scene sim/world sim/run 
 # culling/include/occsim/culling/<room>/ (public headers); occsim/culling/plugin.h, the plugin
 # header, is the room `plugin`. The registry reaches the cullers only through the declarations of
 # their registration functions (registry/builtin_cullers.cpp), never by an include.
-set(rooms geometry contract tree devices registration raster cullers plugin registry testing)
+set(rooms geometry contract tree devices declaration raster cullers plugin registry testing)
 set(room_geometry geometry)
 set(room_contract geometry contract)
 set(room_tree geometry contract tree)
 set(room_devices geometry contract devices)
-set(room_registration geometry contract registration)
+set(room_declaration geometry contract declaration)
 set(room_raster geometry raster)
-set(room_cullers geometry contract tree registration raster cullers)
-set(room_plugin geometry contract tree registration plugin)
-set(room_registry geometry contract devices registration plugin registry)
+set(room_cullers geometry contract tree declaration raster cullers)
+set(room_plugin geometry contract tree declaration plugin)
+set(room_registry geometry contract devices declaration plugin registry)
 set(room_testing geometry contract raster testing)
 
 set(violations "")

@@ -102,7 +102,7 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_n
             "faster than " + reference + " beyond the noise on every variant, no more error"};
 }
 
-ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
+ConfirmationRow confirm(const Scenario& scenario, const CullerRow& algorithm,
                         const std::string& variant, const Setting& tuned, const Setting& reference,
                         uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame) {

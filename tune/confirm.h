@@ -69,7 +69,7 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_n
                           const std::string& reference = "the paper's values");
 
 // `reference` first, then `tuned`: the same order as every sampling batch.
-ConfirmationRow confirm(const Scenario& scenario, const AlgorithmTraits& algorithm,
+ConfirmationRow confirm(const Scenario& scenario, const CullerRow& algorithm,
                         const std::string& variant, const Setting& tuned, const Setting& reference,
                         uint32_t repetitions, SessionRuns& session,
                         const std::function<void(const FrameEvent&)>& on_frame);

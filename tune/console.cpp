@@ -8,7 +8,7 @@ namespace occsim::tune {
 namespace {
 
 // The tuned values beside the reference's, one parameter a line, and any on a bound.
-void printChoice(const TuneResult& r, const AlgorithmTraits& algorithm) {
+void printChoice(const TuneResult& r, const CullerRow& algorithm) {
     const std::string ref = referenceName(algorithm);  // "the paper's values", "the defaults"
     std::printf("%s, %s: %zu samples, %s frame-time ratio to %s\n", r.scenario_name.c_str(),
                 algorithm.name.c_str(), r.samples.size(), objectiveName(r.options->objective),

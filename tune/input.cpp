@@ -42,10 +42,10 @@ CheckedInput checkInput(const TuneOptions& o) {
     }
     // The scenario first: it may load plugins of its own ("plugins"), whose cullers --algo names.
     c.scenario = parseScenarioFile(o.scenario);
-    const AlgorithmTraits* algorithm = findAlgorithm(o.algorithm);
+    const CullerRow* algorithm = findCuller(o.algorithm);
     if (!algorithm) {
         throw TuneInputError("--algo: unknown algorithm '" + o.algorithm +
-                             "'; expected one of: " + algorithmNameList());
+                             "'; expected one of: " + cullerNameList());
     }
     c.space = parseParameterSpace(*algorithm, o.params, o.bounds);
     const size_t needed = minimumSamples(c.space.size());

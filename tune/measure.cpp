@@ -6,8 +6,7 @@
 #include "tune/errors.h"
 
 namespace occsim::tune {
-RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
-                   const Setting& setting) {
+RunConfig configOf(const Scenario& scenario, const CullerRow& algorithm, const Setting& setting) {
     RunConfig config;
     config.label = setting.label;
     config.algorithm = &algorithm;
@@ -18,7 +17,7 @@ RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
     return config;
 }
 
-BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
+BenchResult runInterleaved(const Scenario& scenario, const CullerRow& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
                            SessionRuns& session,
                            const std::function<void(const FrameEvent&)>& on_frame) {

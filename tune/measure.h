@@ -47,12 +47,11 @@ bool noteMachineLoad(SessionRuns& session, const RunMetadata& metadata);
 
 // The scenario's own culling options with the setting's values (and cost model, if any) for
 // `algorithm` swapped in.
-RunConfig configOf(const Scenario& scenario, const AlgorithmTraits& algorithm,
-                   const Setting& setting);
+RunConfig configOf(const Scenario& scenario, const CullerRow& algorithm, const Setting& setting);
 
 // Runs every setting interleaved (`repetitions` times) with error measured. `on_frame` is called
 // after every configuration's frame, outside the timing (progress, interruption).
-BenchResult runInterleaved(const Scenario& scenario, const AlgorithmTraits& algorithm,
+BenchResult runInterleaved(const Scenario& scenario, const CullerRow& algorithm,
                            const std::vector<Setting>& settings, uint32_t repetitions,
                            SessionRuns& session,
                            const std::function<void(const FrameEvent&)>& on_frame);

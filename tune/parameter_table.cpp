@@ -21,7 +21,7 @@ std::string tunableParametersMarkdown() {
            "default) | valid range | what |\n"
         << "|---|---|---|---|---|---|---|\n";
     std::ostringstream budgets;
-    for (const AlgorithmTraits* a : algorithms()) {
+    for (const CullerRow* a : cullerRows()) {
         size_t count = 0;
         for (const OptionSpec& s : a->options) {
             if (!s.tunable) continue;
@@ -42,7 +42,7 @@ std::string tunableParametersMarkdown() {
 
 std::string tunableParametersText() {
     std::ostringstream out;
-    for (const AlgorithmTraits* a : algorithms()) {
+    for (const CullerRow* a : cullerRows()) {
         for (const OptionSpec& s : a->options) {
             if (!s.tunable) continue;
             out << a->name << " " << s.key << ": default " << formatOptionValue(s, s.default_value)

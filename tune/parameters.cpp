@@ -45,7 +45,7 @@ void checkEndsValid(const std::string& flag, const TunableParameter& p, const Bo
 
 }  // namespace
 
-std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm) {
+std::vector<TunableParameter> tunableParameters(const CullerRow& algorithm) {
     std::vector<TunableParameter> out;
     for (const OptionSpec& spec : algorithm.options) {
         if (!spec.tunable) continue;
@@ -55,18 +55,18 @@ std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm
     return out;
 }
 
-std::string tunableParameterNames(const AlgorithmTraits& algorithm) {
+std::string tunableParameterNames(const CullerRow& algorithm) {
     std::string names;
     for (const TunableParameter& p : tunableParameters(algorithm))
         names += (names.empty() ? "" : ", ") + p.name;
     return names;
 }
 
-std::string referenceName(const AlgorithmTraits& algorithm) {
+std::string referenceName(const CullerRow& algorithm) {
     return algorithm.name == "statistical" ? "the paper's values" : "the defaults";
 }
 
-std::string referenceLabel(const AlgorithmTraits& algorithm) {
+std::string referenceLabel(const CullerRow& algorithm) {
     return algorithm.name == "statistical" ? "paper" : "default";
 }
 
@@ -130,7 +130,7 @@ std::string ParameterSpace::describe(const std::vector<double>& values) const {
     return text;
 }
 
-ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::string& params,
+ParameterSpace parseParameterSpace(const CullerRow& algorithm, const std::string& params,
                                    const std::vector<std::string>& bounds) {
     ParameterSpace all;
     all.parameters = tunableParameters(algorithm);

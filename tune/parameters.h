@@ -23,15 +23,15 @@ struct TunableParameter {
 };
 
 // The tunable options of `algorithm`, in descriptor order.
-std::vector<TunableParameter> tunableParameters(const AlgorithmTraits& algorithm);
-std::string tunableParameterNames(const AlgorithmTraits& algorithm);  // "base_time, decay_a, ..."
+std::vector<TunableParameter> tunableParameters(const CullerRow& algorithm);
+std::string tunableParameterNames(const CullerRow& algorithm);  // "base_time, decay_a, ..."
 
 // What the reference values are called in reports and on the console: "the paper's values" for
 // `statistical` (Kovalčík & Sochor's BASE_TIME and decay curve), "the defaults" (its descriptor's)
 // for any other culler; referenceLabel() is the short form for table columns ("paper",
 // "default").
-std::string referenceName(const AlgorithmTraits& algorithm);
-std::string referenceLabel(const AlgorithmTraits& algorithm);
+std::string referenceName(const CullerRow& algorithm);
+std::string referenceLabel(const CullerRow& algorithm);
 
 struct Bounds {
     double lo = 0.0, hi = 1.0;
@@ -40,7 +40,7 @@ struct Bounds {
 // The tuned parameters and their search box. Samples live in the unit cube [0, 1]^d; value()
 // maps a coordinate to the parameter's own unit.
 struct ParameterSpace {
-    const AlgorithmTraits* algorithm = nullptr;
+    const CullerRow* algorithm = nullptr;
     std::vector<TunableParameter> parameters;
     std::vector<Bounds> bounds;
 
@@ -67,7 +67,7 @@ struct ParameterSpace {
 // "base_time=0.1:2" ... Throws TuneInputError with one line: an algorithm with nothing tunable,
 // an unknown or repeated parameter, a malformed, empty or inverted range, a range for a parameter
 // that is not tuned, or a range outside the option's valid range.
-ParameterSpace parseParameterSpace(const AlgorithmTraits& algorithm, const std::string& params,
+ParameterSpace parseParameterSpace(const CullerRow& algorithm, const std::string& params,
                                    const std::vector<std::string>& bounds);
 
 }  // namespace occsim::tune

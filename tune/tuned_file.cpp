@@ -23,7 +23,7 @@ void addCostOption(nlohmann::json& culling, const CostModel& model, const std::s
                              {"cullers", {culler}}};
 }
 
-Setting tunedSetting(const AlgorithmTraits& algorithm, const OptionValues& tuned,
+Setting tunedSetting(const CullerRow& algorithm, const OptionValues& tuned,
                      const FrameTimeModelFit& cost, bool apply_cost_model, std::string* why) {
     Setting setting{"tuned", tuned, std::nullopt};
     why->clear();
@@ -61,7 +61,7 @@ const Setting& writtenSetting(const Verdict& verdict, const Setting& tuned,
     return verdict.kind == Verdict::Kind::NoChange ? reference : tuned;
 }
 
-TunedFile tunedFile(const AlgorithmTraits& algorithm, const Setting& setting) {
+TunedFile tunedFile(const CullerRow& algorithm, const Setting& setting) {
     // Ordered, so that the file reads in the order of the culler's descriptor.
     nlohmann::ordered_json culling = {{"algorithm", algorithm.name},
                                       {algorithm.name, optionValuesJson(setting.options)}};

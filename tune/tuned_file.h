@@ -32,10 +32,10 @@ void addCostOption(nlohmann::json& culling, const CostModel& model, const std::s
 
 // The tuned setting the confirmation runs: the tuned options, with the fitted cost model for the
 // culler alone when it was asked for (`apply_cost_model`, occtune --apply-cost-model), the culler,
-// so configured, weighs costs (AlgorithmTraits::cost_model_use), the fit converged, its residual
+// so configured, weighs costs (CullerRow::cost_model_use), the fit converged, its residual
 // RMS is at most kMaxCostModelResidualShare of the mean frame, and it has a figure > 0. `why` says,
 // in one line, why a culler that weighs costs runs without it (empty otherwise).
-Setting tunedSetting(const AlgorithmTraits& algorithm, const OptionValues& tuned,
+Setting tunedSetting(const CullerRow& algorithm, const OptionValues& tuned,
                      const FrameTimeModelFit& cost, bool apply_cost_model, std::string* why);
 
 // What tuned.json holds for a verdict: "no change" writes the reference setting (it changes no
@@ -54,6 +54,6 @@ struct TunedFile {
 // (addCostOption); `note` says so. Checked by reading it back through the scenario layer (as
 // --culling does); throws std::runtime_error with that reader's one line when it would be refused,
 // or when it does not read back as the setting.
-TunedFile tunedFile(const AlgorithmTraits& algorithm, const Setting& setting);
+TunedFile tunedFile(const CullerRow& algorithm, const Setting& setting);
 
 }  // namespace occsim::tune

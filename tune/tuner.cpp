@@ -93,7 +93,7 @@ std::pair<const char*, const RobustFit*> unconvergedFit(const TuneResult& r) {
 // never saw (another seed). Throws Interrupted on Ctrl-C.
 void confirmChoice(TuneResult& r, const CheckedInput& c, const TuneOptions& o, const Setting& tuned,
                    const Setting& reference, SessionRuns& session, Progress& progress) {
-    const AlgorithmTraits& algorithm = *c.space.algorithm;
+    const CullerRow& algorithm = *c.space.algorithm;
     Scenario held_out = c.scenario;
     held_out.seed = c.held_out_seed;
     for (const auto& run :
@@ -167,7 +167,7 @@ TuneSession runTuner(const TuneOptions& o) {
 
     // What is confirmed is what tuned.json will carry: the tuned options, and the fitted cost
     // model when asked for, the culler weighs costs and the model fits well enough (tunedSetting).
-    const AlgorithmTraits& algorithm = *c.space.algorithm;
+    const CullerRow& algorithm = *c.space.algorithm;
     const OptionValues base = c.scenario.culler.of(algorithm);
     const Setting reference{"paper", c.space.paper(base), std::nullopt};
     const Setting tuned = tunedSetting(algorithm, c.space.apply(base, r.tuned_values), r.cost,

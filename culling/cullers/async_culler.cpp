@@ -3,8 +3,8 @@
 // async_culler.h for the rules.
 #include "culling/cullers/async_culler.h"
 
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 namespace occsim {
 
 AsyncCuller::AsyncCuller(const AsyncOptions& options) : options_(options) {}
@@ -135,8 +135,8 @@ const OptionTable<AsyncOptions>& asyncOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits asyncRegistration() {
-    AlgorithmTraits t;
+CullerRow asyncRegistration() {
+    CullerRow t;
     t.name = "async";
     t.summary = "one asynchronous query per object (not conservative)";
     t.conservative = false;

@@ -46,7 +46,6 @@ struct AsyncOptions {
 class AsyncCuller final : public Culler {
   public:
     explicit AsyncCuller(const AsyncOptions& options = {});
-    std::string_view name() const override { return "async"; }
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

@@ -1,6 +1,6 @@
 #include "culling/cullers/basic_cullers.h"
 
-#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/declaration/culler_row.h"
 namespace occsim {
 
 void VfcCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) {
@@ -97,8 +97,8 @@ void IdealBoxCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
 
 // --- Registration -------------------------------------------------------------------------------
 
-AlgorithmTraits vfcRegistration() {
-    AlgorithmTraits t;
+CullerRow vfcRegistration() {
+    CullerRow t;
     t.name = "vfc";
     t.summary = "view-frustum culling only (the reference)";
     t.speedup_reference = true;
@@ -108,8 +108,8 @@ AlgorithmTraits vfcRegistration() {
     return t;
 }
 
-AlgorithmTraits stopAndWaitRegistration() {
-    AlgorithmTraits t;
+CullerRow stopAndWaitRegistration() {
+    CullerRow t;
     t.name = "stop-and-wait";
     t.summary = "hierarchical queries, each result awaited";
     t.issues_queries = true;
@@ -119,8 +119,8 @@ AlgorithmTraits stopAndWaitRegistration() {
     return t;
 }
 
-AlgorithmTraits idealRegistration() {
-    AlgorithmTraits t;
+CullerRow idealRegistration() {
+    CullerRow t;
     t.name = "ideal";
     t.summary = "draws what ground truth saw (the oracle)";
     t.oracle = true;
@@ -130,8 +130,8 @@ AlgorithmTraits idealRegistration() {
     return t;
 }
 
-AlgorithmTraits idealBoxRegistration() {
-    AlgorithmTraits t;
+CullerRow idealBoxRegistration() {
+    CullerRow t;
     t.name = "ideal-box";
     t.summary =
         "draws every object whose box is visible against the visible objects' depth (the limit "

@@ -12,7 +12,6 @@ namespace occsim {
 // Draws every object whose box passes the frustum, in front-to-back tree order.
 class VfcCuller final : public Culler {
   public:
-    std::string_view name() const override { return "vfc"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 
@@ -26,7 +25,6 @@ class VfcCuller final : public Culler {
 // rendered without a query.
 class StopAndWaitCuller final : public Culler {
   public:
-    std::string_view name() const override { return "stop-and-wait"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 
@@ -39,7 +37,6 @@ class StopAndWaitCuller final : public Culler {
 // lower bound of what any culler can draw.
 class IdealCuller final : public Culler {
   public:
-    std::string_view name() const override { return "ideal"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 
@@ -56,7 +53,6 @@ class IdealCuller final : public Culler {
 // the figure, its time (it waits for every answer) is not a culler's.
 class IdealBoxCuller final : public Culler {
   public:
-    std::string_view name() const override { return "ideal-box"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

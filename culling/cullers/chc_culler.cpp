@@ -4,8 +4,8 @@
 // visibility testing, approximate visibility). See chc_culler.h for the rules.
 #include "culling/cullers/chc_culler.h"
 
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 namespace occsim {
 
 ChcCuller::ChcCuller(const ChcOptions& options) : options_(options) {}
@@ -132,8 +132,8 @@ const OptionTable<ChcOptions>& chcOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits chcRegistration() {
-    AlgorithmTraits t;
+CullerRow chcRegistration() {
+    CullerRow t;
     t.name = "chc";
     t.summary = "coherent hierarchical culling (Bittner et al. 2004)";
     t.issues_queries = true;

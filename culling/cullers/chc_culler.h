@@ -54,7 +54,6 @@ struct ChcOptions {
 class ChcCuller final : public Culler {
   public:
     explicit ChcCuller(const ChcOptions& options = {});
-    std::string_view name() const override { return "chc"; }
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

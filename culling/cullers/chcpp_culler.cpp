@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/geometry/random.h"
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 
@@ -348,8 +348,8 @@ const OptionTable<ChcppOptions>& chcppOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits chcppRegistration() {
-    AlgorithmTraits t;
+CullerRow chcppRegistration() {
+    CullerRow t;
     t.name = "chc++";
     t.summary = "CHC++ (Mattausch et al. 2008)";
     t.issues_queries = true;

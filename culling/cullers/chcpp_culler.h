@@ -67,7 +67,6 @@ struct ChcppFrameStats {
 class ChcppCuller final : public Culler {
   public:
     explicit ChcppCuller(const ChcppOptions& options = {});
-    std::string_view name() const override { return "chc++"; }
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

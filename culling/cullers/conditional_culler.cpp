@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/geometry/query_box.h"
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 
@@ -103,8 +103,8 @@ const OptionTable<ConditionalOptions>& conditionalOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits conditionalRegistration() {
-    AlgorithmTraits t;
+CullerRow conditionalRegistration() {
+    CullerRow t;
     t.name = "conditional";
     t.summary =
         "conditional rendering: a query per object (or node), drawn under its condition; the "

@@ -19,7 +19,7 @@
 // conservative: depth only gets nearer during a frame, so a box that passed no samples then
 // passes none at the end, and the object inside it cannot show.
 //
-// Needs the device's ConditionalRendering (AlgorithmTraits::device_needs): a run on a device
+// Needs the device's ConditionalRendering (CullerRow::device_needs): a run on a device
 // without it refuses this culler before any work; cullAndRender() on such a device throws
 // std::logic_error.
 #pragma once
@@ -43,7 +43,6 @@ struct ConditionalOptions {
 class ConditionalCuller final : public Culler {
   public:
     explicit ConditionalCuller(const ConditionalOptions& options = {}) : options_(options) {}
-    std::string_view name() const override { return "conditional"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

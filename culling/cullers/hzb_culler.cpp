@@ -1,8 +1,8 @@
 // Two-phase hierarchical-Z culling; see hzb_culler.h and docs/hzb.md.
 #include "culling/cullers/hzb_culler.h"
 
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 
 namespace occsim {
 
@@ -73,7 +73,7 @@ void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
     node_visible_.sync(tree);
     view_ = prepareView(frame);
     ++pass_;
-    // A run refuses this culler on a device without the capability (AlgorithmTraits::
+    // A run refuses this culler on a device without the capability (CullerRow::
     // device_needs); called on one anyway (a test looping over every culler), it draws
     // everything in the frustum.
     DepthPyramid* pyramid = device.depthPyramid();
@@ -155,8 +155,8 @@ const OptionTable<HzbOptions>& hzbOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits hzbRegistration() {
-    AlgorithmTraits t;
+CullerRow hzbRegistration() {
+    CullerRow t;
     t.name = "hzb";
     t.summary =
         "two-phase hierarchical-Z culling: last frame's visible set, a depth pyramid, "

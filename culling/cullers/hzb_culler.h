@@ -43,7 +43,6 @@ struct HzbOptions {
 class HzbCuller final : public Culler {
   public:
     explicit HzbCuller(const HzbOptions& options = {});
-    std::string_view name() const override { return "hzb"; }
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <limits>
 
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/geometry/query_box.h"
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
 
 namespace occsim {
 
@@ -219,8 +219,8 @@ const OptionTable<MaskedOptions>& maskedOptionTable() {
 
 }  // namespace
 
-AlgorithmTraits maskedRegistration() {
-    AlgorithmTraits t;
+CullerRow maskedRegistration() {
+    CullerRow t;
     t.name = "masked";
     t.summary = "masked software occlusion culling on the CPU (Hasselgren et al. 2016)";
     t.needs_meshes = true;

@@ -52,7 +52,6 @@ struct MaskedOptions {
 class MaskedCuller final : public Culler {
   public:
     explicit MaskedCuller(const MaskedOptions& options = {});
-    std::string_view name() const override { return "masked"; }
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 

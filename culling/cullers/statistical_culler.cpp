@@ -117,9 +117,8 @@ bool queryPays(const CostModel& costs, double draw_ms, uint32_t query_boxes,
     return occlusion_rate * draw_ms > static_cast<double>(query_boxes) * costs.query_box_ms;
 }
 
-StatisticalCuller::StatisticalCuller(const StatisticalOptions& options, const CostModel& costs,
-                                     std::string_view name)
-    : options_(options), costs_(costs), name_(name) {}
+StatisticalCuller::StatisticalCuller(const StatisticalOptions& options, const CostModel& costs)
+    : options_(options), costs_(costs) {}
 
 void StatisticalCuller::reset(const BspTree& tree) {
     stats_.reset(tree);

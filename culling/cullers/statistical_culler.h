@@ -40,7 +40,7 @@
 #include "culling/cullers/statistical_options.h"
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/tree/node_state.h"
 #include "occsim/culling/tree/traversal.h"
 
@@ -151,9 +151,7 @@ struct StatisticalFrameCounters {
 
 class StatisticalCuller final : public Culler {
   public:
-    explicit StatisticalCuller(const StatisticalOptions& options = {}, const CostModel& costs = {},
-                               std::string_view name = "statistical");
-    std::string_view name() const override { return name_; }
+    explicit StatisticalCuller(const StatisticalOptions& options = {}, const CostModel& costs = {});
     void reset(const BspTree& tree) override;
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override;
 
@@ -273,7 +271,6 @@ class StatisticalCuller final : public Culler {
     StatisticalOptions options_;
     PreparedView view_;  // this frame's view with its plane table (prepareView)
     CostModel costs_;
-    std::string name_;
 
     NodeStateArray<NodeStatistics> stats_;
     NodeStateArray<NodeStatistics> own_stats_;

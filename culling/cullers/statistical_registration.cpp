@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "culling/cullers/statistical_culler.h"
-#include "occsim/culling/registration/algorithm_traits.h"
+#include "occsim/culling/declaration/culler_row.h"
 
 namespace occsim {
 namespace {
@@ -157,11 +157,11 @@ CostModelUse statisticalCostModelUse(const OptionValues& values) {
 
 std::unique_ptr<Culler> makeStatistical(const CullerContext& c) {
     return std::make_unique<StatisticalCuller>(statisticalOptionTable().read(c.options),
-                                               c.cost_model, c.name);
+                                               c.cost_model);
 }
 
-AlgorithmTraits statisticalRow(std::string name, std::string summary, bool plus) {
-    AlgorithmTraits t;
+CullerRow statisticalRow(std::string name, std::string summary, bool plus) {
+    CullerRow t;
     t.name = std::move(name);
     t.summary = std::move(summary);
     t.conservative = true;
@@ -181,11 +181,11 @@ const OptionTable<StatisticalOptions>& statisticalOptionTable() {
     return table;
 }
 
-AlgorithmTraits statisticalRegistration() {
+CullerRow statisticalRegistration() {
     return statisticalRow("statistical", "Kovalcik & Sochor 2005, as published", false);
 }
 
-AlgorithmTraits statisticalPlusRegistration() {
+CullerRow statisticalPlusRegistration() {
     return statisticalRow("statistical+",
                           "Kovalcik & Sochor with ready answers, virtual leaves, a cost model, "
                           "re-query by distance, a frustum fallback, CHC's treatment of what was "

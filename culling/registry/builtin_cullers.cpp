@@ -4,25 +4,24 @@
 
 namespace occsim {
 
-AlgorithmTraits vfcRegistration();              // cullers/basic_cullers.cpp
-AlgorithmTraits stopAndWaitRegistration();      // cullers/basic_cullers.cpp
-AlgorithmTraits statisticalRegistration();      // cullers/statistical_registration.cpp
-AlgorithmTraits statisticalPlusRegistration();  // cullers/statistical_registration.cpp
-AlgorithmTraits chcRegistration();              // cullers/chc_culler.cpp
-AlgorithmTraits chcppRegistration();            // cullers/chcpp_culler.cpp
-AlgorithmTraits asyncRegistration();            // cullers/async_culler.cpp
-AlgorithmTraits conditionalRegistration();      // cullers/conditional_culler.cpp
-AlgorithmTraits hzbRegistration();              // cullers/hzb_culler.cpp
-AlgorithmTraits idealRegistration();            // cullers/basic_cullers.cpp
-AlgorithmTraits idealBoxRegistration();         // cullers/basic_cullers.cpp
-AlgorithmTraits maskedRegistration();           // cullers/masked_culler.cpp
+CullerRow vfcRegistration();              // cullers/basic_cullers.cpp
+CullerRow stopAndWaitRegistration();      // cullers/basic_cullers.cpp
+CullerRow statisticalRegistration();      // cullers/statistical_registration.cpp
+CullerRow statisticalPlusRegistration();  // cullers/statistical_registration.cpp
+CullerRow chcRegistration();              // cullers/chc_culler.cpp
+CullerRow chcppRegistration();            // cullers/chcpp_culler.cpp
+CullerRow asyncRegistration();            // cullers/async_culler.cpp
+CullerRow conditionalRegistration();      // cullers/conditional_culler.cpp
+CullerRow hzbRegistration();              // cullers/hzb_culler.cpp
+CullerRow idealRegistration();            // cullers/basic_cullers.cpp
+CullerRow idealBoxRegistration();         // cullers/basic_cullers.cpp
+CullerRow maskedRegistration();           // cullers/masked_culler.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
-    for (AlgorithmTraits (*row)() :
-         {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
-          statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
-          conditionalRegistration, hzbRegistration, maskedRegistration, idealRegistration,
-          idealBoxRegistration}) {
+    for (CullerRow (*row)() : {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
+                               statisticalPlusRegistration, chcRegistration, chcppRegistration,
+                               asyncRegistration, conditionalRegistration, hzbRegistration,
+                               maskedRegistration, idealRegistration, idealBoxRegistration}) {
         registry.add(row());
     }
 }

@@ -4,12 +4,12 @@
 
 namespace occsim {
 
-OptionValues CullerOptions::of(const AlgorithmTraits& culler) const {
+OptionValues CullerOptions::of(const CullerRow& culler) const {
     if (auto it = given.find(culler.name); it != given.end()) return it->second;
     return OptionValues(culler.options);
 }
 
-OptionValues& CullerOptions::edit(const AlgorithmTraits& culler) {
+OptionValues& CullerOptions::edit(const CullerRow& culler) {
     auto it = given.find(culler.name);
     if (it == given.end()) it = given.emplace(culler.name, OptionValues(culler.options)).first;
     return it->second;
@@ -21,7 +21,7 @@ bool CullerOptions::isValid(std::string* error) const {
         if (!model.isValid(error)) return false;
     }
     for (const auto& [name, values] : given) {
-        const AlgorithmTraits* culler = findAlgorithm(name);
+        const CullerRow* culler = findCuller(name);
         const std::string why = culler ? checkOptionValues(*culler, values)
                                        : std::string("no culler of this name is registered");
         if (!why.empty()) {

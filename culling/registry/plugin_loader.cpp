@@ -15,8 +15,8 @@ namespace {
 // Collects a plugin's rows, so that they are checked together before any is registered.
 class CollectingRegistrar final : public PluginRegistrar {
   public:
-    void add(AlgorithmTraits traits) override { rows.push_back(std::move(traits)); }
-    std::vector<AlgorithmTraits> rows;
+    void add(CullerRow traits) override { rows.push_back(std::move(traits)); }
+    std::vector<CullerRow> rows;
 };
 
 // The files each registry has loaded (tests use registries of their own).
@@ -68,7 +68,7 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
         plugin->register_cullers(registrar);
         if (registrar.rows.empty()) throw RegistryError("it registers no culler");
         for (size_t i = 0; i < registrar.rows.size(); ++i) {
-            AlgorithmTraits& row = registrar.rows[i];
+            CullerRow& row = registrar.rows[i];
             row.source = name;
             if (row.speedup_reference) {
                 throw RegistryError("culler '" + row.name +
@@ -89,7 +89,7 @@ std::vector<std::string> loadPlugin(const std::filesystem::path& file, CullerReg
     } catch (const std::exception& e) {
         throw PluginError(name + ": registering its cullers threw: " + e.what());
     }
-    for (AlgorithmTraits& row : registrar.rows) names.push_back(registry.add(std::move(row)).name);
+    for (CullerRow& row : registrar.rows) names.push_back(registry.add(std::move(row)).name);
     loadedFiles(registry).insert(canonical);
     return names;
 }

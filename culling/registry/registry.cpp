@@ -37,14 +37,14 @@ std::string deviceFeatureNames(uint32_t features) {
     return out;
 }
 
-void requireDeviceFeatures(const AlgorithmTraits& culler, uint32_t available) {
+void requireDeviceFeatures(const CullerRow& culler, uint32_t available) {
     const uint32_t missing = culler.device_needs & ~available;
     if (missing == 0) return;
     throw RegistryError("culler '" + culler.name + "' needs " + deviceFeatureNames(missing) +
                         ", which this device does not offer");
 }
 
-std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues& values) {
+std::string checkOptionValues(const CullerRow& culler, const OptionValues& values) {
     const OptionsDescriptor& d = culler.options;
     if (values.values().size() != d.size()) {
         return culler.name + ": option values do not match its descriptor";
@@ -58,13 +58,13 @@ std::string checkOptionValues(const AlgorithmTraits& culler, const OptionValues&
     return {};
 }
 
-void CullerRegistry::check(const AlgorithmTraits& traits) const {
+void CullerRegistry::check(const CullerRow& traits) const {
     const std::string who = "culler '" + traits.name + "'";
     if (!validName(traits.name)) {
         throw RegistryError(who + ": a name is 1 to 64 characters of a-z 0-9 _ + -");
     }
     if (find(traits.name)) {
-        const AlgorithmTraits& taken = *find(traits.name);
+        const CullerRow& taken = *find(traits.name);
         throw RegistryError(who + ": the name is already taken (by " +
                             (taken.source.empty() ? std::string("a built-in culler")
                                                   : "the plugin " + taken.source) +
@@ -76,7 +76,7 @@ void CullerRegistry::check(const AlgorithmTraits& traits) const {
         throw RegistryError(who + ": an oracle decides from ground truth and issues no queries");
     }
     if (traits.speedup_reference) {
-        for (const AlgorithmTraits* a : order_) {
+        for (const CullerRow* a : order_) {
             if (a->speedup_reference) {
                 throw RegistryError(who + ": '" + a->name + "' is already the speedup reference");
             }
@@ -92,15 +92,15 @@ void CullerRegistry::check(const AlgorithmTraits& traits) const {
     }
 }
 
-const AlgorithmTraits& CullerRegistry::add(AlgorithmTraits traits) {
+const CullerRow& CullerRegistry::add(CullerRow traits) {
     check(traits);
     rows_.push_back(std::move(traits));
     order_.push_back(&rows_.back());
     return rows_.back();
 }
 
-const AlgorithmTraits* CullerRegistry::find(std::string_view name) const {
-    for (const AlgorithmTraits* a : order_) {
+const CullerRow* CullerRegistry::find(std::string_view name) const {
+    for (const CullerRow* a : order_) {
         if (a->name == name) return a;
     }
     return nullptr;
@@ -115,31 +115,31 @@ CullerRegistry& cullerRegistry() {
     return *registry;
 }
 
-const std::vector<const AlgorithmTraits*>& algorithms() { return cullerRegistry().all(); }
+const std::vector<const CullerRow*>& cullerRows() { return cullerRegistry().all(); }
 
-std::vector<std::string> algorithmNames() {
+std::vector<std::string> cullerNames() {
     std::vector<std::string> out;
-    for (const AlgorithmTraits* a : algorithms()) out.push_back(a->name);
+    for (const CullerRow* a : cullerRows()) out.push_back(a->name);
     return out;
 }
 
-const AlgorithmTraits* findAlgorithm(std::string_view name) { return cullerRegistry().find(name); }
+const CullerRow* findCuller(std::string_view name) { return cullerRegistry().find(name); }
 
-const AlgorithmTraits& speedupReference() {
-    for (const AlgorithmTraits* a : algorithms()) {
+const CullerRow& speedupReference() {
+    for (const CullerRow* a : cullerRows()) {
         if (a->speedup_reference) return *a;
     }
-    return *algorithms().front();
+    return *cullerRows().front();
 }
 
-std::string algorithmNameList() {
+std::string cullerNameList() {
     std::string out;
-    for (const AlgorithmTraits* a : algorithms()) out += (out.empty() ? "" : ", ") + a->name;
+    for (const CullerRow* a : cullerRows()) out += (out.empty() ? "" : ", ") + a->name;
     return out;
 }
 
-std::unique_ptr<Culler> makeCheckedCuller(const AlgorithmTraits& algorithm,
-                                          const OptionValues& values, const CostModel& costs) {
+std::unique_ptr<Culler> makeCheckedCuller(const CullerRow& algorithm, const OptionValues& values,
+                                          const CostModel& costs) {
     const std::string who = "culler '" + algorithm.name + "': its factory";
     std::unique_ptr<Culler> culler;
     try {
@@ -153,7 +153,7 @@ std::unique_ptr<Culler> makeCheckedCuller(const AlgorithmTraits& algorithm,
     return culler;
 }
 
-std::unique_ptr<Culler> makeCuller(const AlgorithmTraits& algorithm, const CullerOptions& options) {
+std::unique_ptr<Culler> makeCuller(const CullerRow& algorithm, const CullerOptions& options) {
     const OptionValues values = options.of(algorithm);
     if (algorithm.source.empty()) {
         return algorithm.factory(CullerContext{algorithm.name, values, options.cost_model});

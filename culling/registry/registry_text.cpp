@@ -8,7 +8,7 @@
 namespace occsim {
 namespace {
 
-std::string traitsOf(const AlgorithmTraits& a) {
+std::string traitsOf(const CullerRow& a) {
     std::string t = a.conservative ? "conservative" : "not conservative";
     if (a.issues_queries) t += ", issues queries";
     if (a.oracle) t += ", oracle";
@@ -39,7 +39,7 @@ std::string tuningOf(const OptionSpec& s) {
 
 std::string cullersText() {
     std::ostringstream out;
-    for (const AlgorithmTraits* a : algorithms()) {
+    for (const CullerRow* a : cullerRows()) {
         out << a->name << ": " << a->summary << " (" << traitsOf(*a) << ")\n";
         for (const OptionSpec& s : a->options) {
             out << "  " << s.key << " = " << formatOptionValue(s, s.default_value) << "  "
@@ -56,13 +56,13 @@ std::string cullersMarkdown() {
     std::ostringstream out;
     out << "| `algorithm` | what | conservative | issues queries | oracle | options |\n"
         << "|---|---|---|---|---|---|\n";
-    for (const AlgorithmTraits* a : algorithms()) {
+    for (const CullerRow* a : cullerRows()) {
         out << "| `" << a->name << "` | " << a->summary << " | "
             << (a->conservative ? "yes" : "**no**") << " | " << (a->issues_queries ? "yes" : "no")
             << " | " << (a->oracle ? "yes" : "no") << " | "
             << (a->options.empty() ? std::string("–") : "`culling[\"" + a->name + "\"]`") << " |\n";
     }
-    for (const AlgorithmTraits* a : algorithms()) {
+    for (const CullerRow* a : cullerRows()) {
         if (a->options.empty()) continue;
         out << "\n### `" << a->name << "`\n\n"
             << "| Key | Type | Unit | Default | Valid values | Tuning, ablation | What |\n"

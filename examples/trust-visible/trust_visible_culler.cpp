@@ -32,7 +32,7 @@ std::unique_ptr<occsim::Culler> makeTrustVisible(const occsim::CullerContext& co
 }
 
 void registerCullers(occsim::PluginRegistrar& registrar) {
-    occsim::AlgorithmTraits t;
+    occsim::CullerRow t;
     t.name = "trust-visible";
     t.summary =
         "stop-and-wait queries; a node found visible is trusted for a while (example plugin)";

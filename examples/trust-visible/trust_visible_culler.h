@@ -15,7 +15,6 @@ namespace example {
 class TrustVisibleCuller final : public occsim::Culler {
   public:
     explicit TrustVisibleCuller(double trust_s) : trust_s_(trust_s) {}
-    std::string_view name() const override { return "trust-visible"; }
     void reset(const occsim::BspTree& tree) override { last_visible_s_.reset(tree); }
     void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
                        occsim::RenderDevice& device) override;

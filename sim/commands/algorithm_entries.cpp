@@ -86,9 +86,8 @@ std::vector<AlgorithmEntry> algorithmEntries(const std::string& flag,
     return out;
 }
 
-std::vector<const occsim::AlgorithmTraits*> plainAlgorithms(
-    const std::vector<AlgorithmEntry>& entries) {
-    std::vector<const occsim::AlgorithmTraits*> out;
+std::vector<const occsim::CullerRow*> plainAlgorithms(const std::vector<AlgorithmEntry>& entries) {
+    std::vector<const occsim::CullerRow*> out;
     for (const AlgorithmEntry& e : entries) {
         if (!e.culling) out.push_back(e.algorithm);
     }
@@ -104,7 +103,7 @@ std::vector<occsim::RunConfig> entryConfigs(const std::vector<AlgorithmEntry>& e
                                             const occsim::Scenario& scenario,
                                             const std::optional<occsim::Sweep>& sweep,
                                             const std::string& ablate) {
-    const std::vector<const occsim::AlgorithmTraits*> plain = plainAlgorithms(entries);
+    const std::vector<const occsim::CullerRow*> plain = plainAlgorithms(entries);
     const std::vector<occsim::RunConfig> planned =
         plain.empty() ? std::vector<occsim::RunConfig>{}
                       : occsim::planConfigs(plain, scenario.culler, sweep, ablate);

@@ -20,7 +20,7 @@
 namespace occsim_cli {
 
 struct AlgorithmEntry {
-    const occsim::AlgorithmTraits* algorithm = nullptr;
+    const occsim::CullerRow* algorithm = nullptr;
     std::string label;                           // "statistical+", or "statistical+@tuned"
     std::optional<occsim::CullingFile> culling;  // NAME@FILE: the file, read and checked
 };
@@ -31,8 +31,7 @@ std::vector<AlgorithmEntry> algorithmEntries(const std::string& flag,
                                              const std::vector<std::string>& lists);
 
 // The plain cullers among the entries, each once: what a sweep and an ablation apply to.
-std::vector<const occsim::AlgorithmTraits*> plainAlgorithms(
-    const std::vector<AlgorithmEntry>& entries);
+std::vector<const occsim::CullerRow*> plainAlgorithms(const std::vector<AlgorithmEntry>& entries);
 
 bool anyCullingFile(const std::vector<AlgorithmEntry>& entries);
 

@@ -12,10 +12,10 @@
 namespace occsim_cli {
 
 // The one place a command-line algorithm name is checked.
-const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name) {
-    if (const occsim::AlgorithmTraits* a = occsim::findAlgorithm(name)) return *a;
+const occsim::CullerRow& algorithmNamed(const std::string& flag, const std::string& name) {
+    if (const occsim::CullerRow* a = occsim::findCuller(name)) return *a;
     throw occsim::InputError(flag + ": unknown algorithm '" + name +
-                             "'; expected one of: " + occsim::algorithmNameList());
+                             "'; expected one of: " + occsim::cullerNameList());
 }
 
 // A whole number in [lo, hi], checked on the text before CLI11 converts it, so a bad value gets

@@ -17,7 +17,7 @@ namespace occsim_cli {
 CLI::Validator integerIn(long long lo, long long hi);
 
 // The registered algorithm `name`, given by `flag`.
-const occsim::AlgorithmTraits& algorithmNamed(const std::string& flag, const std::string& name);
+const occsim::CullerRow& algorithmNamed(const std::string& flag, const std::string& name);
 
 // An output path is checked before any work, so that a run never ends on a path it cannot
 // write: a folder flag must not name a file, a file flag not a folder, and neither may be empty

@@ -85,8 +85,8 @@ struct RunRequest {
     std::string command_line;
     const CommonFlags& flags;
     occsim::Scenario scenario;
-    std::vector<AlgorithmEntry> entries;                     // as given: cullers, and NAME@FILE
-    std::vector<const occsim::AlgorithmTraits*> algorithms;  // the plain cullers among them
+    std::vector<AlgorithmEntry> entries;               // as given: cullers, and NAME@FILE
+    std::vector<const occsim::CullerRow*> algorithms;  // the plain cullers among them
     std::string default_subdir;
 };
 
@@ -274,7 +274,7 @@ CLI::App* addRun(CLI::App& app, RunFlags& flags) {
     run->add_option("--algo", flags.algorithm,
                     "Culling algorithm (default: the scenario's), or NAME@FILE with a culling "
                     "file's options (occtune's tuned.json): " +
-                        occsim::algorithmNameList());
+                        occsim::cullerNameList());
     return run;
 }
 
@@ -306,7 +306,7 @@ CLI::App* addBench(CLI::App& app, BenchFlags& flags) {
 int runCommand(const RunFlags& flags, const std::string& command_line) {
     RunRequest request = requestOf("run", command_line, flags.common);
     if (flags.algorithm.empty()) {
-        request.entries = {{occsim::findAlgorithm(request.scenario.algorithm),
+        request.entries = {{occsim::findCuller(request.scenario.algorithm),
                             request.scenario.algorithm, std::nullopt}};
     } else {
         request.entries = algorithmEntries("--algo", {flags.algorithm});
@@ -323,7 +323,7 @@ int benchCommand(const BenchFlags& flags, const std::string& command_line) {
     if (flags.algorithms_given) {
         request.entries = algorithmEntries("--algos", flags.algorithms);
     } else {
-        for (const occsim::AlgorithmTraits* a : occsim::algorithms())
+        for (const occsim::CullerRow* a : occsim::cullerRows())
             request.entries.push_back({a, a->name, std::nullopt});
     }
     request.algorithms = plainAlgorithms(request.entries);

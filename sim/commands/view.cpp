@@ -22,9 +22,9 @@ CLI::App* addView(CLI::App& app, ViewFlags& flags) {
                                         "algorithms live, record a camera path "
                                         "(docs/viewer.md)");
     view->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
-    view->add_option("--algo", flags.algorithm,
-                     "Culling algorithm to start with (default: the scenario's): " +
-                         occsim::algorithmNameList());
+    view->add_option(
+        "--algo", flags.algorithm,
+        "Culling algorithm to start with (default: the scenario's): " + occsim::cullerNameList());
     view->add_flag("--error", flags.error,
                    "Render ground truth every frame and show error pixels (key g)");
     view->add_option(

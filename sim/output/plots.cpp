@@ -55,8 +55,8 @@ std::vector<Style> stylesOf(const std::vector<RunRecord>& runs) {
     static const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                                            "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
     static const int kPoints[] = {7, 5, 9, 11, 13, 15};
-    std::vector<const AlgorithmTraits*> algorithms;  // in order of first appearance
-    std::vector<int> seen;                           // configurations so far per algorithm
+    std::vector<const CullerRow*> algorithms;  // in order of first appearance
+    std::vector<int> seen;                     // configurations so far per algorithm
     std::vector<Style> styles;
     size_t next_colour = 0;
     std::vector<std::string> colours;

@@ -117,8 +117,7 @@ std::vector<ReadScenario> readAndCheck(const std::vector<ScenarioFile>& all,
 BenchOptions regressBenchOptions(const std::filesystem::path& file, const Expectations& expect,
                                  const RegressOptions& options) {
     BenchOptions bench;
-    for (const std::string& name : expect.algorithms)
-        bench.algorithms.push_back(findAlgorithm(name));
+    for (const std::string& name : expect.algorithms) bench.algorithms.push_back(findCuller(name));
     bench.measure_error = true;
     bench.latency = {true, expect.deterministic_latency};
     bench.frames = expect.frames;

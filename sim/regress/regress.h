@@ -123,8 +123,7 @@ struct RegressOptions {
     ProgressStyle progress = ProgressStyle::None;
     BackendChoice backend;  // --backend, --device
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
-    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
-        make_culler;
+    std::function<std::unique_ptr<Culler>(const CullerRow&, const CullerOptions&)> make_culler;
     // The clock frames are timed with (BenchOptions::frame_clock_ms); empty: the steady clock.
     // Tests script it, so that a ratio check sees the same times whatever the machine's load.
     std::function<double()> frame_clock_ms;

@@ -13,10 +13,26 @@
 
 namespace occsim {
 
-// Where a run's cost model came from.
+// Where a run's cost model came from: given by the scenario, measured before the first frame, or
+// the fixed reference figures of deterministic-latency runs (referenceCostModel()).
+enum class CostModelSource { Scenario, Calibrated, Reference };
+
+// The word summary.json and report.md write for it: "scenario", "calibrated" or "reference".
+inline const char* costModelSourceName(CostModelSource source) {
+    switch (source) {
+        case CostModelSource::Scenario:
+            return "scenario";
+        case CostModelSource::Calibrated:
+            return "calibrated";
+        case CostModelSource::Reference:
+            return "reference";
+    }
+    return "unknown";
+}
+
 struct CostModelChoice {
     CostModel costs;
-    std::string source;  // "scenario", "calibrated" or "reference"
+    CostModelSource source = CostModelSource::Scenario;
 };
 
 // Fixed figures for runs whose decisions must not depend on the machine (deterministic latency)

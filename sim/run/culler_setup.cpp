@@ -10,7 +10,7 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
                                                const LatencyMode& latency) {
     std::optional<CostModelChoice> choice;
     for (RunConfig& config : configs) {
-        const AlgorithmTraits& algorithm = *config.algorithm;
+        const CullerRow& algorithm = *config.algorithm;
         if (!algorithm.cost_model_use) continue;
         const CostModelUse use = algorithm.cost_model_use(config.culler.of(algorithm));
         if (!use.wanted) continue;
@@ -20,16 +20,17 @@ std::optional<CostModelChoice> chooseCostModel(std::vector<RunConfig>& configs, 
             config.culler.cost_model = it->second;
         }
         if (config.culler.cost_model.known()) {
-            if (!choice) choice = CostModelChoice{config.culler.cost_model, "scenario"};
+            if (!choice)
+                choice = CostModelChoice{config.culler.cost_model, CostModelSource::Scenario};
             continue;
         }
-        if (!choice || choice->source == "scenario") {
+        if (!choice || choice->source == CostModelSource::Scenario) {
             // Queries are timed with as many in flight as this culler keeps.
             choice = latency.deterministic
-                         ? CostModelChoice{referenceCostModel(), "reference"}
+                         ? CostModelChoice{referenceCostModel(), CostModelSource::Reference}
                          : CostModelChoice{
                                calibrateCostModel(scene, scenario, renderer, use.queries_in_flight),
-                               "calibrated"};
+                               CostModelSource::Calibrated};
         }
         config.culler.cost_model = choice->costs;
     }

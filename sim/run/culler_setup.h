@@ -18,7 +18,7 @@ class GlRenderer;
 struct LatencyMode;
 struct Scene;
 
-// Gives every configuration whose culler weighs costs (AlgorithmTraits::cost_model_use) and has no
+// Gives every configuration whose culler weighs costs (CullerRow::cost_model_use) and has no
 // cost model one: measured on this renderer before the first frame, or, when decisions must be
 // reproducible (deterministic latency), the reference figures. A cost model given by the scenario
 // is kept as it is; one given for a culler alone (CullerOptions::cost_model_of) goes to that culler

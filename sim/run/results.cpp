@@ -67,14 +67,13 @@ bool nothingInView(const std::vector<RunRecord>& runs) {
 
 double speedupOverReference(const std::vector<RunRecord>& runs, const RunSummary& s) {
     if (nothingInView(runs)) return 0.0;
-    const RunSummary* ref =
-        findRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
+    const RunSummary* ref = findRun(runs, [](const CullerRow& a) { return a.speedup_reference; });
     return ref && s.frame_ms.mean > 0 ? ref->frame_ms.mean / s.frame_ms.mean : 0.0;
 }
 
 double ratioToOracle(const std::vector<RunRecord>& runs, const RunSummary& s) {
     if (nothingInView(runs)) return 0.0;
-    const RunSummary* oracle = findRun(runs, [](const AlgorithmTraits& a) { return a.oracle; });
+    const RunSummary* oracle = findRun(runs, [](const CullerRow& a) { return a.oracle; });
     return oracle && oracle->frame_ms.mean > 0 ? s.frame_ms.mean / oracle->frame_ms.mean : 0.0;
 }
 

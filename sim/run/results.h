@@ -23,8 +23,8 @@ struct RunRecord {
     RunSummary summary;
     std::vector<FrameStats> frames;  // first repetition
     std::vector<std::vector<FrameStats>> later_repetitions;
-    std::vector<RunSummary> repetitions;         // one per repetition
-    const AlgorithmTraits* algorithm = nullptr;  // the culler
+    std::vector<RunSummary> repetitions;   // one per repetition
+    const CullerRow* algorithm = nullptr;  // the culler
     // What the culler was configured with: every option after defaults, sweeps and --culling
     // (summary.json records them), and the shared approximation knobs.
     OptionValues options;

@@ -23,7 +23,7 @@ const OptionSpec* sharedOption(const std::string& key) {
 }
 
 // The row of `key` for `algorithm`: its own option, or a shared query knob when it issues queries.
-const OptionSpec* specFor(const AlgorithmTraits& algorithm, const std::string& key) {
+const OptionSpec* specFor(const CullerRow& algorithm, const std::string& key) {
     for (const OptionSpec& s : algorithm.options) {
         if (s.key == key) return &s;
     }
@@ -31,12 +31,12 @@ const OptionSpec* specFor(const AlgorithmTraits& algorithm, const std::string& k
     return nullptr;
 }
 
-bool applies(const Sweep& sweep, const AlgorithmTraits& algorithm) {
+bool applies(const Sweep& sweep, const CullerRow& algorithm) {
     if (!sweep.algorithm.empty() && sweep.algorithm != algorithm.name) return false;
     return specFor(algorithm, sweep.parameter) != nullptr;
 }
 
-void setValue(CullerOptions& options, const AlgorithmTraits& algorithm, const std::string& key,
+void setValue(CullerOptions& options, const CullerRow& algorithm, const std::string& key,
               double v) {
     if (key == "threshold_pixels") {
         options.approximation.threshold_pixels = static_cast<uint32_t>(v);
@@ -82,7 +82,7 @@ const std::vector<OptionSpec>& sharedQueryOptions() {
     return options;
 }
 
-Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTraits*>& algorithms) {
+Sweep parseSweep(const std::string& text, const std::vector<const CullerRow*>& algorithms) {
     const auto eq = text.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
         throw std::invalid_argument("expected [ALGORITHM:]KEY=V1,V2,..., got '" + text + "'");
@@ -93,7 +93,7 @@ Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTrait
         sweep.algorithm = name.substr(0, colon);
         name = name.substr(colon + 1);
         bool listed = false;
-        for (const AlgorithmTraits* a : algorithms) listed |= a->name == sweep.algorithm;
+        for (const CullerRow* a : algorithms) listed |= a->name == sweep.algorithm;
         if (!listed) {
             throw std::invalid_argument("'" + sweep.algorithm +
                                         "' is not among the algorithms run (--algos)");
@@ -102,12 +102,12 @@ Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTrait
     sweep.parameter = name;
     // Every algorithm it applies to reads the same row: a key means one thing wherever it is.
     const OptionSpec* spec = nullptr;
-    for (const AlgorithmTraits* a : algorithms) {
+    for (const CullerRow* a : algorithms) {
         if (applies(sweep, *a)) spec = specFor(*a, name);
     }
     if (!spec) {
         std::string keys;
-        for (const AlgorithmTraits* a : algorithms) {
+        for (const CullerRow* a : algorithms) {
             if (!sweep.algorithm.empty() && a->name != sweep.algorithm) continue;
             for (const OptionSpec& s : a->options) {
                 if (keys.find(" " + s.key + ",") == std::string::npos) keys += " " + s.key + ",";
@@ -141,12 +141,12 @@ Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTrait
     return sweep;
 }
 
-std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& algorithms,
+std::vector<RunConfig> planConfigs(const std::vector<const CullerRow*>& algorithms,
                                    const CullerOptions& base, const std::optional<Sweep>& sweep,
                                    const std::string& ablate) {
     std::vector<RunConfig> configs;
     bool ablated = ablate.empty();
-    for (const AlgorithmTraits* algorithm : algorithms) {
+    for (const CullerRow* algorithm : algorithms) {
         const RunConfig plain{algorithm->name, algorithm, base};
         if (!sweep || !applies(*sweep, *algorithm)) {
             configs.push_back(plain);

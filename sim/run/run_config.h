@@ -18,9 +18,9 @@
 namespace occsim {
 
 struct RunConfig {
-    std::string label;                           // "statistical", or "statistical base_time=0.3"
-    const AlgorithmTraits* algorithm = nullptr;  // a registered culler
-    CullerOptions culler;                        // with the approximation knobs
+    std::string label;                     // "statistical", or "statistical base_time=0.3"
+    const CullerRow* algorithm = nullptr;  // a registered culler
+    CullerOptions culler;                  // with the approximation knobs
     // The culling file its options came from (bench --algos NAME@FILE), recorded in summary.json;
     // empty for the scenario's own.
     std::string culling_file = {};
@@ -39,13 +39,13 @@ const std::vector<OptionSpec>& sharedQueryOptions();
 // Throws std::invalid_argument with a one-line reason: malformed text, an unknown algorithm, a key
 // no listed algorithm has, a value of the wrong type or out of its range, a value listed twice
 // (booleans compare as values: true and 1 are the same value).
-Sweep parseSweep(const std::string& text, const std::vector<const AlgorithmTraits*>& algorithms);
+Sweep parseSweep(const std::string& text, const std::vector<const CullerRow*>& algorithms);
 
 // Throws std::invalid_argument when a swept value makes an algorithm's options invalid, or when
 // `ablate` names an algorithm not listed or one with no mechanism to switch off, or when two
 // configurations would be the same culler with the same option values (a sweep value that the
 // ablation also switches off): every configuration is unique.
-std::vector<RunConfig> planConfigs(const std::vector<const AlgorithmTraits*>& algorithms,
+std::vector<RunConfig> planConfigs(const std::vector<const CullerRow*>& algorithms,
                                    const CullerOptions& base, const std::optional<Sweep>& sweep,
                                    const std::string& ablate = {});
 

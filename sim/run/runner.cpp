@@ -81,7 +81,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
 
 // The start-up measurement of drawing and querying, when one was made.
 void printCalibratedCosts(const std::optional<CostModelChoice>& costs) {
-    if (costs && costs->source == "calibrated") {
+    if (costs && costs->source == CostModelSource::Calibrated) {
         std::fprintf(stderr,
                      "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f "
                      "ms per draw call\n",
@@ -98,7 +98,7 @@ void prepareRecords(BenchResult& result, const std::vector<RunConfig>& configs) 
         result.runs[c].options = configs[c].culler.of(*configs[c].algorithm);
         result.runs[c].approximation = configs[c].culler.approximation;
         result.runs[c].culling_file = configs[c].culling_file;
-        const AlgorithmTraits& a = *configs[c].algorithm;
+        const CullerRow& a = *configs[c].algorithm;
         if (a.cost_model_use && a.cost_model_use(result.runs[c].options).wanted) {
             result.runs[c].cost_model = configs[c].culler.cost_model;
         }
@@ -354,7 +354,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     result.metadata.heap = heap;
     if (costs) {
         result.metadata.cost_model = costs->costs;
-        result.metadata.cost_model_source = costs->source;
+        result.metadata.cost_model_source = costModelSourceName(costs->source);
     }
     prepareRecords(result, configs);
 

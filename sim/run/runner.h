@@ -45,7 +45,7 @@ struct ReplayedFrame {
 };
 
 struct BenchOptions {
-    std::vector<const AlgorithmTraits*> algorithms;  // from algorithms(); at least one
+    std::vector<const CullerRow*> algorithms;  // from cullerRows(); at least one
     // Explicit configurations (label, algorithm, options), e.g. a tuner's samples beside its
     // reference; when given, `algorithms` and `sweep` are not used. Labels must differ.
     std::vector<RunConfig> configs;
@@ -82,8 +82,7 @@ struct BenchOptions {
     // every repetition did, so the frame is the one measured; its cost is RunCosts::window_*.
     std::function<void(const ReplayedFrame&)> on_window_frame;
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
-    std::function<std::unique_ptr<Culler>(const AlgorithmTraits&, const CullerOptions&)>
-        make_culler;
+    std::function<std::unique_ptr<Culler>(const CullerRow&, const CullerOptions&)> make_culler;
     // The clock frames are timed with (SimulationOptions::frame_clock_ms); empty: the steady
     // clock. Tests script it.
     std::function<double()> frame_clock_ms;

@@ -72,7 +72,7 @@ class SharedWorld {
     std::span<const glm::mat4> modelViews() const { return model_view_; }
     // The scene's meshes as flat arrays (built on the first call) and the current frame's object
     // transforms into the culling frame (computed on the first call of each frame): what a culler
-    // with AlgorithmTraits::needs_meshes gets in CullFrame::meshes. Runs without such a culler
+    // with CullerRow::needs_meshes gets in CullFrame::meshes. Runs without such a culler
     // never call it, so neither the copy nor the per-frame transforms cost them anything.
     const CullMeshes& cullMeshes();
     // What making the inscribed occluder meshes cost (on the first cullMeshes() call, outside

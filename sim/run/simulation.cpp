@@ -17,23 +17,22 @@ void uploadScene(const Scene& scene, GlRenderer& renderer) {
     renderer.setObjectMeshes(scene.object_mesh);
 }
 
-Simulation::Simulation(SharedWorld& world, GroundTruth& truth, const AlgorithmTraits& algorithm,
+Simulation::Simulation(SharedWorld& world, GroundTruth& truth, const CullerRow& algorithm,
                        std::unique_ptr<Culler> culler, const CullerOptions& options,
                        GlRenderer& renderer, const SimulationOptions& sim_options)
     : Simulation(nullptr, nullptr, &world, &truth, algorithm, std::move(culler), options, renderer,
                  sim_options) {}
 
-Simulation::Simulation(const Scene& scene, const Scenario& scenario,
-                       const AlgorithmTraits& algorithm, std::unique_ptr<Culler> culler,
-                       const CullerOptions& options, GlRenderer& renderer,
-                       const SimulationOptions& sim_options)
+Simulation::Simulation(const Scene& scene, const Scenario& scenario, const CullerRow& algorithm,
+                       std::unique_ptr<Culler> culler, const CullerOptions& options,
+                       GlRenderer& renderer, const SimulationOptions& sim_options)
     : Simulation(std::make_unique<SharedWorld>(scene, scenario),
                  std::make_unique<GroundTruth>(renderer), nullptr, nullptr, algorithm,
                  std::move(culler), options, renderer, sim_options) {}
 
 Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
                        std::unique_ptr<GroundTruth> own_truth, SharedWorld* world,
-                       GroundTruth* truth, const AlgorithmTraits& algorithm,
+                       GroundTruth* truth, const CullerRow& algorithm,
                        std::unique_ptr<Culler> culler, const CullerOptions& options,
                        GlRenderer& renderer, const SimulationOptions& sim_options)
     : own_world_(std::move(own_world)),

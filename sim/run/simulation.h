@@ -94,11 +94,11 @@ class Simulation {
     // `options` are the culler's (its approximation knobs apply when the algorithm issues
     // queries). The culler starts with fresh per-node state on the world as it is now, so a
     // configuration can join a world in the middle of its frames (the viewer switching algorithm).
-    Simulation(SharedWorld& world, GroundTruth& truth, const AlgorithmTraits& algorithm,
+    Simulation(SharedWorld& world, GroundTruth& truth, const CullerRow& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
     // A configuration alone, on a world and ground truth of its own that renderFrame() advances.
-    Simulation(const Scene& scene, const Scenario& scenario, const AlgorithmTraits& algorithm,
+    Simulation(const Scene& scene, const Scenario& scenario, const CullerRow& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
 
@@ -137,12 +137,12 @@ class Simulation {
     const FrameView& view() const { return world_->view(); }
     const BspTree& tree() const { return world_->tree(); }
     const WorldState& state() const { return world_->state(); }
-    const AlgorithmTraits& algorithm() const { return algorithm_; }
+    const CullerRow& algorithm() const { return algorithm_; }
     const Culler& culler() const { return *culler_; }
 
   private:
     Simulation(std::unique_ptr<SharedWorld> own_world, std::unique_ptr<GroundTruth> own_truth,
-               SharedWorld* world, GroundTruth* truth, const AlgorithmTraits& algorithm,
+               SharedWorld* world, GroundTruth* truth, const CullerRow& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
@@ -154,7 +154,7 @@ class Simulation {
     std::unique_ptr<GroundTruth> own_truth_;
     SharedWorld* world_;
     GroundTruth* truth_;
-    const AlgorithmTraits& algorithm_;
+    const CullerRow& algorithm_;
     std::unique_ptr<Culler> culler_;
     GlRenderer& renderer_;
     SimulationOptions options_;

@@ -140,9 +140,9 @@ std::vector<FrameStats> medianFrames(const RunRecord& record) {
 }
 
 int windowReference(const std::vector<RunRecord>& runs) {
-    const int oracle = firstRun(runs, [](const AlgorithmTraits& a) { return a.oracle; });
+    const int oracle = firstRun(runs, [](const CullerRow& a) { return a.oracle; });
     if (oracle >= 0) return oracle;
-    return firstRun(runs, [](const AlgorithmTraits& a) { return a.speedup_reference; });
+    return firstRun(runs, [](const CullerRow& a) { return a.speedup_reference; });
 }
 
 int markWorstWindows(std::vector<RunRecord>& runs, uint32_t warmup_frames) {

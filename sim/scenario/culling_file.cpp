@@ -18,8 +18,8 @@ void checkTunedFor(JsonObjectReader& top) {
     if (!marker) return;
     if (!marker->json().is_string()) marker->failExpected("the name of the culler tuned");
     const std::string culler = marker->asString();
-    if (!findAlgorithm(culler)) {
-        marker->failExpected("a loaded culler (" + algorithmNameList() +
+    if (!findCuller(culler)) {
+        marker->failExpected("a loaded culler (" + cullerNameList() +
                              "; a plugin's culler needs its --plugin FILE)");
     }
     JsonObjectReader section = top.required("culling").asObject();
@@ -36,7 +36,7 @@ void checkTunedFor(JsonObjectReader& top) {
                        "in the scenario or a culling file without tuned_for)");
         }
     }
-    for (const AlgorithmTraits* other : algorithms()) {
+    for (const CullerRow* other : cullerRows()) {
         if (other->name == culler) continue;
         if (const auto options = section.optional(other->name)) {
             options->fail("expected the options of " + tuned + " only, not " + other->name + "'s");

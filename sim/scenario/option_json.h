@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "occsim/culling/registration/options.h"
+#include "occsim/culling/declaration/options.h"
 #include "sim/scenario/json_reader.h"
 
 namespace occsim {

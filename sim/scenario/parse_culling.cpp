@@ -1,6 +1,6 @@
 // The "culling" section of a scenario: the algorithm, the knobs every query-based culler shares,
 // the cost model, and each registered culler's options object under its own name, read through
-// its descriptor (occsim/culling/registration/options.h). A plugin's culler is read exactly as a
+// its descriptor (occsim/culling/declaration/options.h). A plugin's culler is read exactly as a
 // built-in: the same types, ranges and one-line errors at the key's JSON pointer.
 #include <cmath>
 #include <limits>
@@ -16,7 +16,7 @@ constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 
 // A culler's options object: keys it omits keep `defaults` (its descriptor's defaults, or what
 // the scenario gave before a --culling file is applied over it).
-OptionValues readCullerOptions(JsonObjectReader reader, const AlgorithmTraits& culler) {
+OptionValues readCullerOptions(JsonObjectReader reader, const CullerRow& culler) {
     OptionValues values(culler.options);
     for (const OptionSpec& spec : culler.options) {
         if (const auto value = reader.optional(spec.key)) {
@@ -40,7 +40,7 @@ CostModel readCostModel(JsonObjectReader reader, std::vector<std::string>* culle
     if (auto names = reader.optionalArray("cullers")) {
         names->requireAtLeast(1, "culler");
         for (size_t i = 0; i < names->size(); ++i)
-            cullers->push_back(names->at(i).asEnum(algorithmNames()));
+            cullers->push_back(names->at(i).asEnum(cullerNames()));
     }
     reader.finish();
     std::string why;
@@ -54,7 +54,7 @@ CostModel readCostModel(JsonObjectReader reader, std::vector<std::string>* culle
 void readCulling(JsonObjectReader& top, Scenario& s) {
     auto culling = top.optionalObject("culling");
     if (!culling) return;
-    s.algorithm = culling->enumeration("algorithm", algorithmNames(), s.algorithm);
+    s.algorithm = culling->enumeration("algorithm", cullerNames(), s.algorithm);
     // The approximation knobs, shared by every query-based algorithm (approximation_options.h).
     s.culler.approximation.threshold_pixels = static_cast<uint32_t>(culling->unsignedInteger(
         "threshold_pixels", s.culler.approximation.threshold_pixels, 0, kMaxUint32));
@@ -67,7 +67,7 @@ void readCulling(JsonObjectReader& top, Scenario& s) {
         for (const std::string& name : cullers)
             s.culler.cost_model_of.insert_or_assign(name, model);
     }
-    for (const AlgorithmTraits* culler : algorithms()) {
+    for (const CullerRow* culler : cullerRows()) {
         if (auto options = culling->optionalObject(culler->name)) {
             s.culler.given.insert_or_assign(culler->name,
                                             readCullerOptions(std::move(*options), *culler));

@@ -106,7 +106,7 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
     if (auto algorithms = expect.optionalArray("algorithms")) {
         algorithms->requireAtLeast(1, "algorithm");
         for (size_t i = 0; i < algorithms->size(); ++i) {
-            const std::string name = algorithms->at(i).asEnum(algorithmNames());
+            const std::string name = algorithms->at(i).asEnum(cullerNames());
             if (std::find(e.algorithms.begin(), e.algorithms.end(), name) != e.algorithms.end()) {
                 algorithms->at(i).fail("'" + name + "' is listed twice");
             }
@@ -130,7 +130,7 @@ Expectations readExpectations(JsonObjectReader expect, const Scenario& scenario)
         // Algorithms that must never drop a visible pixel: zero error is expected of them unless
         // the scenario says otherwise.
         for (const std::string& name : e.algorithms) {
-            if (findAlgorithm(name)->conservative) e.zero_error.push_back(name);
+            if (findCuller(name)->conservative) e.zero_error.push_back(name);
         }
     }
     if (const auto value = expect.optional("max_error_pixels"))

@@ -37,7 +37,7 @@ std::pair<uint32_t, uint32_t> initialWindowSize(const Scenario& s, const ViewOpt
 }
 
 size_t algorithmIndex(std::string_view name) {
-    const auto& all = algorithms();
+    const auto& all = cullerRows();
     for (size_t i = 0; i < all.size(); ++i) {
         if (all[i]->name == name) return i;
     }
@@ -96,7 +96,7 @@ class Viewer {
     void run();
 
   private:
-    const AlgorithmTraits& algorithm() const { return *algorithms()[algorithm_]; }
+    const CullerRow& algorithm() const { return *cullerRows()[algorithm_]; }
     std::unique_ptr<Simulation> makeSimulation(SharedWorld& world);
     void replaceSimulation(bool keep_world);
     void restart();
@@ -294,7 +294,7 @@ void Viewer::handle(const WindowEvent& e) {
 
 void Viewer::onKey(std::string_view key) {
     uint32_t index = 0;
-    const size_t count = algorithms().size();
+    const size_t count = cullerRows().size();
     switch (actionForKey(key, &index)) {
         case ViewAction::None:
             return;
@@ -444,7 +444,7 @@ HudState Viewer::hudState() const {
     h.scenario = scenario_.name;
     h.algorithm = std::string(algorithm().name);
     h.algorithm_place = static_cast<uint32_t>(algorithm_ + 1);
-    h.algorithm_count = static_cast<uint32_t>(algorithms().size());
+    h.algorithm_count = static_cast<uint32_t>(cullerRows().size());
     h.frame = next_played_ > 0 ? next_played_ - 1 : 0;
     h.time_s = shown_time_;
     h.paused = paused_;

@@ -158,7 +158,7 @@ class InstantDevice final : public RenderDevice {
 // One culler's frame over a 30,000-object tree with answers that cost nothing: the CPU the
 // traversal and its decisions cost, per node whose bounds pass the frustum.
 void BM_CullerTraversal(benchmark::State& state) {
-    const AlgorithmTraits& algorithm = *algorithms()[static_cast<size_t>(state.range(0))];
+    const CullerRow& algorithm = *cullerRows()[static_cast<size_t>(state.range(0))];
     state.SetLabel(std::string(algorithm.name));
     const std::vector<Aabb> boxes = bigField(30000, 3);
     BspTree tree;
@@ -197,7 +197,7 @@ void BM_CullerTraversal(benchmark::State& state) {
         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_CullerTraversal)
-    ->DenseRange(0, static_cast<int64_t>(algorithms().size()) - 1)
+    ->DenseRange(0, static_cast<int64_t>(cullerRows().size()) - 1)
     ->Unit(benchmark::kMicrosecond);
 
 // The movers' own update: every kind of motion stepping one frame, per object.

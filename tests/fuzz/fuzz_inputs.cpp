@@ -55,7 +55,7 @@ fs::path inputFile(const std::string& name, const std::string& bytes) {
 // an unbounded number, an alternative pair and a validate hook, registered once per process.
 void registerFuzzPlugin() {
     static const bool registered = [] {
-        AlgorithmTraits t;
+        CullerRow t;
         t.name = "fuzz-plugin";
         t.summary = "a plugin culler for the fuzz targets";
         t.source = "fuzz_inputs.cpp";
@@ -170,8 +170,8 @@ bool sampleLogInput(const uint8_t* data, size_t size) {
 
 bool sweepInput(const uint8_t* data, size_t size) {
     try {
-        const Sweep sweep = parseSweep(textOf(data, size), algorithms());
-        return !planConfigs(algorithms(), CullerOptions{}, sweep).empty();
+        const Sweep sweep = parseSweep(textOf(data, size), cullerRows());
+        return !planConfigs(cullerRows(), CullerOptions{}, sweep).empty();
     } catch (const std::invalid_argument&) {
         return false;
     }
@@ -209,7 +209,7 @@ bool cullingFileInput(const uint8_t* data, size_t size) {
 }
 
 bool pluginDescriptorInput(const uint8_t* data, size_t size) {
-    AlgorithmTraits traits;
+    CullerRow traits;
     traits.name = "fuzz-descriptor";
     traits.summary = "a descriptor from the fuzzer";
     traits.factory = [](const CullerContext&) -> std::unique_ptr<Culler> { return nullptr; };

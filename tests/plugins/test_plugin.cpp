@@ -21,7 +21,6 @@ namespace {
 
 class FrustumOnly final : public occsim::Culler {
   public:
-    std::string_view name() const override { return "test-frustum"; }
     void reset(const occsim::BspTree&) override {}
     void cullAndRender(const occsim::BspTree& tree, const occsim::CullFrame& frame,
                        occsim::RenderDevice& device) override {
@@ -56,7 +55,7 @@ class FrustumOnly final : public occsim::Culler {
 }
 
 [[maybe_unused]] void registerCullers(occsim::PluginRegistrar& registrar) {
-    occsim::AlgorithmTraits t;
+    occsim::CullerRow t;
     t.name = "test-frustum";
     t.summary = "frustum culling, from a plugin (tests)";
     t.options = {

@@ -133,7 +133,7 @@ struct TwoObjects {
 
 // The registered algorithm of that name (the test fails loudly on a typo).
 inline std::unique_ptr<Culler> cullerNamed(std::string_view name, const CullerOptions& options) {
-    const AlgorithmTraits* algorithm = findAlgorithm(name);
+    const CullerRow* algorithm = findCuller(name);
     if (algorithm == nullptr) throw std::invalid_argument("no algorithm " + std::string(name));
     return makeCuller(*algorithm, options);
 }
@@ -151,7 +151,6 @@ inline CullFrame makeFrame(const CullView& view, uint64_t index, double time_s) 
 // this mistake: an error metric that works shows it.
 class ShrunkenFrustumCuller final : public Culler {
   public:
-    std::string_view name() const override { return "vfc"; }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         CullFrame shrunk = frame;
@@ -160,7 +159,7 @@ class ShrunkenFrustumCuller final : public Culler {
     }
 
   private:
-    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
+    std::unique_ptr<Culler> inner_ = makeCuller(*findCuller("vfc"), CullerOptions{});
 };
 
 }  // namespace occsim::testing

@@ -31,9 +31,9 @@ int cubeMesh(GltfBuilder& b, const std::string& name) {
     return b.mesh(name, json::array({GltfBuilder::primitive(p, i)}));
 }
 
-std::vector<const AlgorithmTraits*> conservativeAlgorithms() {
-    std::vector<const AlgorithmTraits*> out;
-    for (const AlgorithmTraits* a : algorithms()) {
+std::vector<const CullerRow*> conservativeAlgorithms() {
+    std::vector<const CullerRow*> out;
+    for (const CullerRow* a : cullerRows()) {
         if (a->conservative) out.push_back(a);
     }
     return out;

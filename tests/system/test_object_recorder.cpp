@@ -99,7 +99,7 @@ TEST(ObjectsDatabase, OnTheSmallScenarioItsMissesAndErrorPixelsAreFramesCsvsForE
         << o.output;
     expectDatabaseMatchesFramesCsv(out);
     sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
-    const int64_t configurations = static_cast<int64_t>(algorithms().size());  // every culler
+    const int64_t configurations = static_cast<int64_t>(cullerRows().size());  // every culler
     EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM configurations"), configurations);
     EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects"), 300);
     EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM objects WHERE name = 'teapot 17'"), 1);

@@ -505,7 +505,7 @@ TEST(Occtune, ANoChangeTunedJsonChangesNoDecision) {
     cost.mean_frame_ms = 10.0;
     cost.residual_rms_ms = 1.0;
     for (const std::string name : {"statistical", "statistical+", "test-frustum"}) {
-        const AlgorithmTraits& algorithm = *findAlgorithm(name);
+        const CullerRow& algorithm = *findCuller(name);
         const ParameterSpace space = parseParameterSpace(algorithm, "", {});
         const OptionValues defaults(algorithm.options);
         const Setting reference{"paper", space.paper(defaults), std::nullopt};

@@ -260,12 +260,12 @@ TEST(Design, NextBatchStartsAtTheOptimumAndKeepsItsDistance) {
 
 // ---- parameters ----------------------------------------------------------------------------
 
-const AlgorithmTraits& statistical() { return *findAlgorithm("statistical"); }
+const CullerRow& statistical() { return *findCuller("statistical"); }
 
 std::string inputError(const std::string& params, const std::vector<std::string>& bounds,
                        const char* algorithm = "statistical") {
     try {
-        parseParameterSpace(*findAlgorithm(algorithm), params, bounds);
+        parseParameterSpace(*findCuller(algorithm), params, bounds);
     } catch (const TuneInputError& e) {
         return e.what();
     }
@@ -301,7 +301,7 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     const ParameterSpace every = parseParameterSpace(statistical(), "", {});
     ASSERT_EQ(every.size(), 3u);
     EXPECT_EQ(every.parameters[0].name, "base_time");
-    const ParameterSpace plus = parseParameterSpace(*findAlgorithm("statistical+"), "", {});
+    const ParameterSpace plus = parseParameterSpace(*findCuller("statistical+"), "", {});
     ASSERT_EQ(plus.size(), 3u);
     EXPECT_EQ(plus.parameters[0].name, "queries_before_restart");
     EXPECT_TRUE(plus.parameters[0].integer);
@@ -310,7 +310,7 @@ TEST(Parameters, BoundsAndNamesAreCheckedWithOneLineEach) {
     EXPECT_TRUE(plus.parameters[2].integer);
     EXPECT_EQ(plus.parameters[2].default_lo, 1.0) << "0 switches the growing bound off";
     const OptionValues applied =
-        plus.apply(OptionValues(findAlgorithm("statistical+")->options), {7.6, 0.01, 3.4});
+        plus.apply(OptionValues(findCuller("statistical+")->options), {7.6, 0.01, 3.4});
     EXPECT_EQ(applied.number("queries_before_restart"), 8.0);
     EXPECT_EQ(applied.number("waits_per_frame"), 3.0);
     EXPECT_EQ(applied.number("requery_parallax"), 0.01);
@@ -443,7 +443,7 @@ TEST(TunedFile, ReadsBackThroughTheScenarioReadersAsTheTunedValues) {
 
     // A setting with a cost model: the file carries it for statistical+ alone, read back as that
     // culler's cost model; the shared one, which other cullers read, stays unknown.
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     const std::optional<CostModel> model = costModelOf(FrameTimeModel{1.0, 0.02, 0.1, 0.01, 1.0});
     ASSERT_TRUE(model);
     const TunedFile plus_file =
@@ -476,7 +476,7 @@ FrameTimeModelFit fittedCosts(double mean_ms, double residual_ms) {
 // costs and only when it fits well enough: a residual RMS at most 25 % of the mean frame. The
 // issue's session had 123 %: its file carried a model that changed every decision.
 TEST(TunedFile, TheCostModelIsConfirmedAndWrittenOnlyWhenItFitsWell) {
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     const OptionValues options(plus.options);
     std::string why;
     const Setting poor = tunedSetting(plus, options, fittedCosts(10.0, 12.3), true, &why);
@@ -512,7 +512,7 @@ TEST(TunedFile, TheCostModelIsConfirmedAndWrittenOnlyWhenItFitsWell) {
 // confirmed setting: the samples ran with the culler's start-up calibration, and the
 // confirmation measures what they measured. The line says so and how to ask for it.
 TEST(TunedFile, AWellFittingCostModelIsAppliedOnlyWhenAskedFor) {
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     const OptionValues options(plus.options);
     std::string why;
     const Setting unasked = tunedSetting(plus, options, fittedCosts(10.0, 1.0), false, &why);
@@ -527,7 +527,7 @@ TEST(TunedFile, AWellFittingCostModelIsAppliedOnlyWhenAskedFor) {
 // "no change" writes the reference setting (no cost model), so that the file changes no
 // decision; the other verdicts write what was confirmed.
 TEST(TunedFile, NoChangeWritesTheReferenceSettingAndTheOthersTheConfirmedOne) {
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     const Setting reference{"paper", OptionValues(plus.options), std::nullopt};
     std::string why;
     const Setting tuned =
@@ -641,8 +641,7 @@ TEST(Confirmation, TheConsoleTableShowsErrorTiesAndMissedObjectsOfBoth) {
 // ---- words and bounds ----------------------------------------------------------------------
 
 // A finished session's result with every parameter kept at the reference, enough to format.
-TuneResult keptResult(const AlgorithmTraits& algorithm, const TuneOptions& o,
-                      const SampleLog& log) {
+TuneResult keptResult(const CullerRow& algorithm, const TuneOptions& o, const SampleLog& log) {
     TuneResult r;
     r.options = &o;
     r.log = &log;
@@ -665,14 +664,14 @@ TEST(Report, NamesTheCullerTunedAndCallsOnlyTheStatisticalCullersValuesThePapers
     const TuneOptions o;
     const SampleLog log(std::filesystem::temp_directory_path() / "unused-samples.jsonl",
                         settings());
-    const std::string plus = reportMarkdown(keptResult(*findAlgorithm("statistical+"), o, log));
+    const std::string plus = reportMarkdown(keptResult(*findCuller("statistical+"), o, log));
     EXPECT_NE(plus.find("# Tuning the statistical+ culler on teapots-small"), std::string::npos)
         << plus;
     EXPECT_EQ(plus.find("paper"), std::string::npos) << plus;
     EXPECT_NE(plus.find("kept at the defaults"), std::string::npos) << plus;
     EXPECT_NE(plus.find("| parameter | default | tuned |"), std::string::npos) << plus;
     const std::string plus_table =
-        confirmationTable(keptResult(*findAlgorithm("statistical+"), o, log));
+        confirmationTable(keptResult(*findCuller("statistical+"), o, log));
     EXPECT_NE(plus_table.find("mis default"), std::string::npos) << plus_table;
 
     const std::string paper = reportMarkdown(keptResult(statistical(), o, log));
@@ -712,7 +711,7 @@ TEST(Choice, AnOptimumBeyondTheRangeEndsOnItsBoundAndIsReportedWithTheWiderRange
 // An integer option's optimum is reported as the integer the confirmation runs (apply() rounds),
 // within its bounds: confirmation.json once said queries_before_restart=22.71 for a run of 23.
 TEST(Choice, AnIntegerOptionIsChosenAsTheIntegerTheConfirmationRuns) {
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     for (const auto& [bounds, expected] : std::vector<std::pair<std::string, double>>{
              {"queries_before_restart=1:32", 19.0}, {"queries_before_restart=1:18.6", 18.0}}) {
         TuneResult r;

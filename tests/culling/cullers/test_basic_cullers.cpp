@@ -76,7 +76,7 @@ TEST(IdealCuller, DrawsOnlyGroundTruthVisibleObjectsAndIssuesNoQueries) {
     ScriptedQueryDevice device;
     device.setVisibility(std::vector<uint8_t>(boxes.size(), 0), boxes);
     IdealCuller ideal;
-    EXPECT_TRUE(findAlgorithm(ideal.name())->oracle) << "the registry says it needs ground truth";
+    EXPECT_TRUE(findCuller("ideal")->oracle) << "the registry says it needs ground truth";
     ideal.cullAndRender(tree, frame, device);
     std::vector<uint32_t> drawn = device.drawnObjects();
     std::sort(drawn.begin(), drawn.end());
@@ -107,8 +107,8 @@ TEST(IdealBoxCuller, DrawsWhatGroundTruthSawAndEveryObjectWhoseBoxShows) {
     ScriptedQueryDevice device(3);
     device.setVisibility(truth, boxes);
     IdealBoxCuller culler;
-    EXPECT_TRUE(findAlgorithm(culler.name())->oracle);
-    EXPECT_FALSE(findAlgorithm(culler.name())->issues_queries) << "exact queries: no knobs";
+    EXPECT_TRUE(findCuller("ideal-box")->oracle);
+    EXPECT_FALSE(findCuller("ideal-box")->issues_queries) << "exact queries: no knobs";
     culler.cullAndRender(tree, frame, device);
     const std::set<uint32_t> drawn(device.drawnObjects().begin(), device.drawnObjects().end());
     EXPECT_EQ(drawn.size(), device.drawnObjects().size()) << "each object drawn once";

@@ -147,11 +147,11 @@ TEST_P(ConservativeTraversal, DrawsEveryObjectTheScriptedVisibilitySaysIsVisible
     const std::vector<Aabb> boxes = randomBoxes(1500, 7);
     const BspTree tree = buildTree(boxes);
     CullerOptions options;
-    OptionValues& chcpp = options.edit(*findAlgorithm("chc++"));
+    OptionValues& chcpp = options.edit(*findCuller("chc++"));
     if (algorithm == "chc++ box") chcpp.set("tight_bounds_depth", 0);
     if (algorithm == "chc++ skip") chcpp.set("visible_frames_skip", 10);
     if (algorithm == "chc++ single") chcpp.set("multiqueries", 0);
-    if (algorithm == "chc skip") options.edit(*findAlgorithm("chc")).set("visible_frames_skip", 3);
+    if (algorithm == "chc skip") options.edit(*findCuller("chc")).set("visible_frames_skip", 3);
     const std::string name = algorithm.substr(0, algorithm.find(' '));
     const std::unique_ptr<Culler> culler = testing::cullerNamed(name, options);
     culler->reset(tree);

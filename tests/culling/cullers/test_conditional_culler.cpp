@@ -217,13 +217,13 @@ TEST(ConditionalCuller, OnADeviceWithoutTheCapabilityThrowsBeforeAnyWork) {
 // --- The registry row and the refusal ------------------------------------------------------------
 
 TEST(ConditionalRegistration, NeedsConditionalRenderingAndIsConservativeWithoutQueryKnobs) {
-    const AlgorithmTraits* t = findAlgorithm("conditional");
+    const CullerRow* t = findCuller("conditional");
     ASSERT_NE(t, nullptr);
     EXPECT_EQ(t->device_needs, uint32_t{kConditionalRendering});
     EXPECT_TRUE(t->conservative);
     EXPECT_FALSE(t->issues_queries) << "no answer reaches it: threshold and stale cannot apply";
     // After the other query cullers, before the oracle (hzb and masked between them).
-    const std::vector<std::string> names = algorithmNames();
+    const std::vector<std::string> names = cullerNames();
     const auto at = [&](const std::string& n) {
         return std::find(names.begin(), names.end(), n) - names.begin();
     };
@@ -232,7 +232,7 @@ TEST(ConditionalRegistration, NeedsConditionalRenderingAndIsConservativeWithoutQ
 }
 
 TEST(ConditionalRegistration, OptionsOutOfRangeOrOfTheWrongTypeGetTheBuiltInsMessage) {
-    const AlgorithmTraits& t = *findAlgorithm("conditional");
+    const CullerRow& t = *findCuller("conditional");
     OptionValues values(t.options);
     EXPECT_EQ(checkOptionValues(t, values), "");
     values.set("queries_ahead", 70000);

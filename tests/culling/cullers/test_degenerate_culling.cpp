@@ -28,17 +28,16 @@ using testing::randomBoxes;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-std::vector<const AlgorithmTraits*> decidingCullers() {
-    std::vector<const AlgorithmTraits*> out;
-    for (const AlgorithmTraits* a : algorithms()) {
+std::vector<const CullerRow*> decidingCullers() {
+    std::vector<const CullerRow*> out;
+    for (const CullerRow* a : cullerRows()) {
         if (!a->oracle) out.push_back(a);
     }
     return out;
 }
 
 // Runs `frames` frames of a static view and returns the objects drawn in each.
-std::vector<std::set<uint32_t>> run(const AlgorithmTraits& algorithm,
-                                    const std::vector<Aabb>& boxes,
+std::vector<std::set<uint32_t>> run(const CullerRow& algorithm, const std::vector<Aabb>& boxes,
                                     const std::vector<uint8_t>& visible, const CullView& view,
                                     uint32_t latency, uint32_t frames) {
     const BspTree tree = buildTree(boxes);
@@ -63,7 +62,7 @@ TEST(DegenerateBoxes, AnObjectWithANaNCoordinateIsDrawnEveryFrameByEveryCuller) 
     boxes[nan_object].min.y = kNaN;
     const std::vector<uint8_t> visible(boxes.size(), 1);
     const CullView view = makeView({0, 5, 60}, {0, 0, 0});
-    for (const AlgorithmTraits* a : decidingCullers()) {
+    for (const CullerRow* a : decidingCullers()) {
         for (uint32_t latency : {0u, 3u, 50u}) {
             const auto drawn = run(*a, boxes, visible, view, latency, 8);
             for (size_t f = 0; f < drawn.size(); ++f) {
@@ -88,7 +87,7 @@ TEST(DegenerateBoxes, NearPlaneRuleTreatsUnknownPositionsAsTouching) {
 void expectDrawsEveryVisible(const std::vector<Aabb>& boxes, const CullView& view,
                              const std::string& what) {
     const std::vector<uint8_t> visible(boxes.size(), 1);
-    for (const AlgorithmTraits* a : decidingCullers()) {
+    for (const CullerRow* a : decidingCullers()) {
         if (!a->conservative) continue;
         for (uint32_t latency : {0u, 4u}) {
             const auto drawn = run(*a, boxes, visible, view, latency, 5);
@@ -133,7 +132,7 @@ TEST(DegenerateScenes, BoxesAroundTheEyeOrCutByTheNearPlaneAreDrawnNotQueried) {
     boxes.push_back({eye + glm::vec3(-1, -1, -0.15f), eye + glm::vec3(1, 1, -0.05f)});  // cut
     const CullView view = makeView(eye, eye + glm::vec3(0, 0, -10), 60.0f, 0.1f);
     std::vector<uint8_t> visible(boxes.size(), 0);  // the script would call every query "hidden"
-    for (const AlgorithmTraits* a : decidingCullers()) {
+    for (const CullerRow* a : decidingCullers()) {
         const BspTree tree = buildTree(boxes);
         const auto culler = makeCuller(*a, CullerOptions{});
         culler->reset(tree);

@@ -187,7 +187,7 @@ TEST(HzbCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
 // --- The capability ------------------------------------------------------------------------------
 
 TEST(HzbCuller, ADeviceWithoutADepthPyramidRefusesItWithOneLine) {
-    const AlgorithmTraits* hzb = findAlgorithm("hzb");
+    const CullerRow* hzb = findCuller("hzb");
     ASSERT_NE(hzb, nullptr);
     EXPECT_EQ(hzb->device_needs, uint32_t{kDepthPyramid});
     ScriptedQueryDevice scripted;

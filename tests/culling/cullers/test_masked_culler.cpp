@@ -311,7 +311,7 @@ TEST(MaskedDepthBuffer, RefusesACellItCannotKeep) {
         EXPECT_NE(validMaskedLayout(layout), "") << w << "x" << h;
         EXPECT_THROW(MaskedDepthBuffer(MaskedKernel::Plain, layout), std::invalid_argument);
     }
-    const AlgorithmTraits* t = findAlgorithm("masked");
+    const CullerRow* t = findCuller("masked");
     ASSERT_NE(t, nullptr);
     OptionValues values(t->options);
     values.set("cell_width", 12);
@@ -776,7 +776,7 @@ TEST(MaskedCuller, WithoutMeshesItDrawsWhatFrustumCullingDraws) {
 }
 
 TEST(MaskedCuller, IsRegisteredAsAConservativeCullerThatNeedsMeshes) {
-    const AlgorithmTraits* t = findAlgorithm("masked");
+    const CullerRow* t = findCuller("masked");
     ASSERT_NE(t, nullptr);
     EXPECT_TRUE(t->conservative);
     EXPECT_TRUE(t->needs_meshes);

@@ -13,7 +13,7 @@ namespace {
 
 TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingTheKey) {
     for (const char* name : {"statistical", "statistical+"}) {
-        const AlgorithmTraits& a = *findAlgorithm(name);
+        const CullerRow& a = *findCuller(name);
         EXPECT_EQ(checkOptionValues(a, OptionValues(a.options)), "") << name;
         const auto rejected = [&](const char* key, double value) {
             OptionValues v(a.options);
@@ -27,7 +27,7 @@ TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingT
                   0u);
     }
     // The rule tying two options together is the culler's own (its validate hook).
-    const AlgorithmTraits& plus = *findAlgorithm("statistical+");
+    const CullerRow& plus = *findCuller("statistical+");
     OptionValues both(plus.options);
     both.set("requery_distance", 3.0);
     EXPECT_NE(checkOptionValues(plus, both).find("alternatives"), std::string::npos);
@@ -36,10 +36,9 @@ TEST(StatisticalOptions, TheDescriptorRejectsOutOfRangeValuesWithAMessageNamingT
     EXPECT_EQ(both.number("requery_parallax"), 0.0);
     EXPECT_EQ(checkOptionValues(plus, both), "");
     // The values a culler reads are the descriptor's defaults: the paper's, or every improvement.
-    EXPECT_EQ(statisticalOptionTable()
-                  .read(OptionValues(findAlgorithm("statistical")->options))
-                  .base_time_s,
-              StatisticalOptions::paper().base_time_s);
+    EXPECT_EQ(
+        statisticalOptionTable().read(OptionValues(findCuller("statistical")->options)).base_time_s,
+        StatisticalOptions::paper().base_time_s);
     EXPECT_TRUE(statisticalOptionTable().read(OptionValues(plus.options)).fallback);
 }
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "culling/cullers/statistical_culler.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/registry/registry.h"
 
 namespace occsim {
@@ -43,9 +43,9 @@ TEST(OptionTable, EveryStatisticalRowReadsBackTheValueItWasGiven) {
 
 // A member that statistical+ changes but no row sets would read back as the paper's value.
 TEST(OptionTable, BothStatisticalCullersReadTheirDefaultsBackAsTheirStructs) {
-    EXPECT_EQ(statisticalOptionTable().read(OptionValues(findAlgorithm("statistical")->options)),
+    EXPECT_EQ(statisticalOptionTable().read(OptionValues(findCuller("statistical")->options)),
               StatisticalOptions::paper());
-    EXPECT_EQ(statisticalOptionTable().read(OptionValues(findAlgorithm("statistical+")->options)),
+    EXPECT_EQ(statisticalOptionTable().read(OptionValues(findCuller("statistical+")->options)),
               StatisticalOptions::plus());
 }
 

@@ -72,7 +72,7 @@ TEST(NearPlaneRule, NoCullerQueriesABoxTheRuleRefusesHoweverFarItsNodesReach) {
         boxes.push_back({{far_x, 0, -31}, {far_x, 1, -30}});
         const CullView view = makeView({0, 2, 6}, {0, 1.5f, -20}, 60.0f, 0.2f, 200.0f);
         const std::vector<uint8_t> hidden(boxes.size(), 0);
-        for (const AlgorithmTraits* a : algorithms()) {
+        for (const CullerRow* a : cullerRows()) {
             if (a->oracle) continue;
             const BspTree tree = buildTree(boxes);
             const auto culler = makeCuller(*a, CullerOptions{});

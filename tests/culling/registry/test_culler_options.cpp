@@ -11,8 +11,8 @@ namespace occsim {
 namespace {
 
 TEST(CullerOptions, ACullerNotNamedTakesItsDefaultsAndEditChangesOnlyTheOneNamed) {
-    const AlgorithmTraits& chc = *findAlgorithm("chc");
-    const AlgorithmTraits& async = *findAlgorithm("async");
+    const CullerRow& chc = *findCuller("chc");
+    const CullerRow& async = *findCuller("async");
     CullerOptions options;
     EXPECT_EQ(options.of(chc), OptionValues(chc.options));
     options.edit(async).set("retest_interval_frames", 3);
@@ -24,7 +24,7 @@ TEST(CullerOptions, ACullerNotNamedTakesItsDefaultsAndEditChangesOnlyTheOneNamed
 
 TEST(CullerOptions, TheFirstInvalidValueIsNamedWithItsCuller) {
     CullerOptions options;
-    options.edit(*findAlgorithm("async")).set("retest_interval_frames", 0);
+    options.edit(*findCuller("async")).set("retest_interval_frames", 0);
     std::string error;
     EXPECT_FALSE(options.isValid(&error));
     EXPECT_EQ(error.rfind("async: retest_interval_frames: expected an integer", 0), 0u) << error;

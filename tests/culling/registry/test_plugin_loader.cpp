@@ -32,7 +32,7 @@ TEST(PluginLoader, AGoodPluginRegistersItsCullersOnceWithItsFileAsTheSource) {
     CullerRegistry registry;
     const std::vector<std::string> names = loadPlugin(pluginFile("good"), registry);
     ASSERT_EQ(names, std::vector<std::string>{"test-frustum"});
-    const AlgorithmTraits* a = registry.find("test-frustum");
+    const CullerRow* a = registry.find("test-frustum");
     ASSERT_NE(a, nullptr);
     EXPECT_EQ(a->source, pluginFile("good").string());
     EXPECT_TRUE(a->conservative);
@@ -55,7 +55,7 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
         {dir / "libmissing.so", "no such file; expected a plugin culler"},
         {text_file, "not a loadable shared object"},
         {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
-        {pluginFile("other_abi"), "built for plugin ABI version 5; this occsim loads version 4"},
+        {pluginFile("other_abi"), "built for plugin ABI version 6; this occsim loads version 5"},
         {pluginFile("taken_name"),
          "culler 'chc': the name is already taken (by a built-in culler)"},
         {pluginFile("bad_descriptor"),
@@ -64,7 +64,7 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
     };
     for (const auto& c : cases) {
         CullerRegistry registry;
-        registry.add(*findAlgorithm("chc"));  // the name a plugin must not take
+        registry.add(*findCuller("chc"));  // the name a plugin must not take
         const std::string why = loadError(c.file, registry);
         EXPECT_EQ(why.rfind(c.file.string() + ": ", 0), 0u) << why;
         EXPECT_NE(why.find(c.expected), std::string::npos) << why;

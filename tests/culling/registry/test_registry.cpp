@@ -9,7 +9,7 @@ namespace occsim {
 namespace {
 
 TEST(RequireDeviceFeatures, RefusesTheConditionalCullerOnADeviceWithoutItInOneLine) {
-    const AlgorithmTraits& t = *findAlgorithm("conditional");
+    const CullerRow& t = *findCuller("conditional");
     ScriptedQueryDevice device;
     EXPECT_NO_THROW(requireDeviceFeatures(t, device.features()));
     device.offerConditionalRendering(false);
@@ -21,7 +21,7 @@ TEST(RequireDeviceFeatures, RefusesTheConditionalCullerOnADeviceWithoutItInOneLi
                      "culler 'conditional' needs conditional rendering, which this device does "
                      "not offer");
     }
-    EXPECT_NO_THROW(requireDeviceFeatures(*findAlgorithm("vfc"), device.features()));
+    EXPECT_NO_THROW(requireDeviceFeatures(*findCuller("vfc"), device.features()));
 }
 
 }  // namespace

@@ -412,7 +412,6 @@ TEST(CullerReasons, IdealDrawsWhatGroundTruthSawAndNothingElse) {
 // A culler that gives no reasons: a plugin that prepares its view without the frame's log.
 class Silent final : public Culler {
   public:
-    std::string_view name() const override { return "silent"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         const PreparedView view = prepareView(frame.view);
@@ -482,7 +481,7 @@ TEST(CullerReasons, EveryBuiltInGivesEveryObjectAReasonThatAgreesWithItsDraws) {
     for (uint32_t scene_seed = 1; scene_seed <= 3; ++scene_seed) {
         const std::vector<Aabb> boxes = testing::randomBoxes(300, scene_seed, 40.0f);
         const BoxMeshes meshes(boxes);
-        for (const AlgorithmTraits* a : algorithms()) {
+        for (const CullerRow* a : cullerRows()) {
             RasterRun run(makeCuller(*a, CullerOptions{}), boxes, 5, 3);
             for (uint64_t f = 0; f < 6; ++f) {
                 const float t = static_cast<float>(f);

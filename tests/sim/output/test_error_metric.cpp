@@ -27,7 +27,7 @@ const std::filesystem::path kTeapots = kScenarios / "teapots-small.json";
 
 BenchResult bench(const std::filesystem::path& file, const std::vector<std::string>& algorithms,
                   uint32_t frames = 0, BenchOptions options = {}) {
-    for (const std::string& n : algorithms) options.algorithms.push_back(findAlgorithm(n));
+    for (const std::string& n : algorithms) options.algorithms.push_back(findCuller(n));
     options.measure_error = true;
     options.latency = {true, 8};
     if (frames > 0) options.frames = frames;
@@ -43,8 +43,8 @@ const RunSummary& summaryOf(const BenchResult& result, const std::string& name) 
 
 std::vector<std::string> conservativeAlgorithms() {
     std::vector<std::string> out;
-    for (const std::string& name : algorithmNames()) {
-        if (findAlgorithm(name)->conservative) out.push_back(name);
+    for (const std::string& name : cullerNames()) {
+        if (findCuller(name)->conservative) out.push_back(name);
     }
     return out;
 }
@@ -151,7 +151,6 @@ class DroppingDevice final : public RenderDevice {
 class DroppingCuller final : public Culler {
   public:
     explicit DroppingCuller(uint32_t dropped) : dropped_(dropped) {}
-    std::string_view name() const override { return "vfc"; }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         DroppingDevice dropping(device, dropped_);
@@ -160,12 +159,12 @@ class DroppingCuller final : public Culler {
 
   private:
     uint32_t dropped_;
-    std::unique_ptr<Culler> inner_ = makeCuller(*findAlgorithm("vfc"), CullerOptions{});
+    std::unique_ptr<Culler> inner_ = makeCuller(*findCuller("vfc"), CullerOptions{});
 };
 
 BenchOptions withCuller(std::function<std::unique_ptr<Culler>()> make) {
     BenchOptions options;
-    options.make_culler = [make](const AlgorithmTraits&, const CullerOptions&) { return make(); };
+    options.make_culler = [make](const CullerRow&, const CullerOptions&) { return make(); };
     options.keep_worst_error_frame = true;
     return options;
 }

@@ -73,7 +73,7 @@ TEST(SegmentSummary, IsTheRunsSummaryOverItsFramesWithWarmupLeftOutOfTiming) {
 
 TEST(SegmentSummary, ASegmentInsideTheWarmupIsNotTimedAndItsRowSaysSo) {
     RunRecord r;
-    r.algorithm = findAlgorithm("vfc");
+    r.algorithm = findCuller("vfc");
     r.frames = frames(
         20, [](uint32_t) { return 2.0; }, [](uint32_t) { return 4; });
     r.summary = summarize("vfc", r.frames, 5);
@@ -176,7 +176,7 @@ TEST(WorstWindows, WarmupFramesAreInNoWindowAndAShortRunIsOneWindow) {
 
 RunRecord record(const char* algorithm, std::vector<FrameStats> f) {
     RunRecord r;
-    r.algorithm = findAlgorithm(algorithm);
+    r.algorithm = findCuller(algorithm);
     r.frames = std::move(f);
     r.summary = summarize(algorithm, r.frames, 10);
     return r;

@@ -378,7 +378,7 @@ TEST(BirdsEye, ADrawnFloorIsOutlinedSoTheDrawnObjectsOnItStandOut) {
 RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,
                  double error_mean, bool pareto) {
     RunRecord r;
-    r.algorithm = findAlgorithm(algorithm);
+    r.algorithm = findCuller(algorithm);
     r.pareto = pareto;
     RunSummary& s = r.summary;
     s.label = label;

@@ -37,14 +37,14 @@ std::filesystem::path freshDir(const std::string& name) {
     return dir;
 }
 
-std::vector<const AlgorithmTraits*> traitsOf(const std::vector<std::string>& names) {
-    std::vector<const AlgorithmTraits*> out;
-    for (const std::string& n : names) out.push_back(findAlgorithm(n));
+std::vector<const CullerRow*> traitsOf(const std::vector<std::string>& names) {
+    std::vector<const CullerRow*> out;
+    for (const std::string& n : names) out.push_back(findCuller(n));
     return out;
 }
 
 BenchResult benchSmall(bool error, LatencyMode latency,
-                       const std::vector<std::string>& algorithms = algorithmNames()) {
+                       const std::vector<std::string>& algorithms = cullerNames()) {
     BenchOptions options;
     options.algorithms = traitsOf(algorithms);
     options.measure_error = error;
@@ -54,7 +54,7 @@ BenchResult benchSmall(bool error, LatencyMode latency,
 
 TEST(Simulation, ConservativeAlgorithmsAndIdealShowZeroErrorPixelsOnEveryFrame) {
     std::vector<std::string> conservative;
-    for (const std::string& name : algorithmNames()) {
+    for (const std::string& name : cullerNames()) {
         if (name != "async") conservative.push_back(name);  // per-object async may miss by design
     }
     const BenchResult result = benchSmall(true, LatencyMode{}, conservative);
@@ -102,7 +102,7 @@ TEST(Simulation, GroundTruthIsIndependentOfTheCullersFrustumTest) {
     options.algorithms = traitsOf({"vfc"});
     options.measure_error = true;
     options.frames = 12;
-    options.make_culler = [](const AlgorithmTraits&, const CullerOptions&) {
+    options.make_culler = [](const CullerRow&, const CullerOptions&) {
         return std::unique_ptr<Culler>(new testing::ShrunkenFrustumCuller);
     };
     const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
@@ -115,7 +115,6 @@ class FailingCuller final : public Culler {
   public:
     FailingCuller(std::unique_ptr<Culler> inner, uint32_t fail_at)
         : inner_(std::move(inner)), fail_at_(fail_at) {}
-    std::string_view name() const override { return inner_->name(); }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         if (frames_++ == fail_at_) throw std::runtime_error("out of budget");
@@ -137,7 +136,7 @@ TEST(Simulation, AConfigurationThatThrowsEndsTheRunWithTheWholeFramesBeforeItNam
     options.frames = 12;
     options.repetitions = 2;
     options.frame_order = FrameOrder::rotated;
-    options.make_culler = [](const AlgorithmTraits& algorithm, const CullerOptions& culler) {
+    options.make_culler = [](const CullerRow& algorithm, const CullerOptions& culler) {
         std::unique_ptr<Culler> made = makeCuller(algorithm, culler);
         if (algorithm.name == "chc")
             return std::unique_ptr<Culler>(new FailingCuller(std::move(made), 5));
@@ -221,12 +220,12 @@ TEST(Simulation, ConditionalDrawsAreCountedAsSubmittedAndAsExecuted) {
     options.measure_error = true;
     options.latency = LatencyMode{true, 8};
     options.frames = 12;
-    const AlgorithmTraits& conditional = *findAlgorithm("conditional");
+    const CullerRow& conditional = *findCuller("conditional");
     RunConfig waited{"conditional wait=true", &conditional, scenario.culler};
     waited.culler.edit(conditional).set("wait", 1.0);
-    options.configs = {RunConfig{"vfc", findAlgorithm("vfc"), scenario.culler},
+    options.configs = {RunConfig{"vfc", findCuller("vfc"), scenario.culler},
                        RunConfig{"conditional", &conditional, scenario.culler}, waited};
-    options.algorithms = {findAlgorithm("vfc")};
+    options.algorithms = {findCuller("vfc")};
     const BenchResult result = runBenchmark(scenario, options);
     ASSERT_EQ(result.runs.size(), 3u);
     bool skipped_some = false;
@@ -285,7 +284,7 @@ TEST(Simulation, EveryBackendGivesTheSameDeterministicCounts) {
         counts;  // [backend][config][frame]
     for (Backend backend : backends) {
         BenchOptions options;
-        options.algorithms = traitsOf(algorithmNames());
+        options.algorithms = traitsOf(cullerNames());
         options.latency = LatencyMode{true, 6};
         options.backend.backend = backend;
         options.frames = 20;
@@ -322,7 +321,7 @@ TEST(Simulation, GpuTimeIsMeasuredOnlyWhereMeaningful) {
     uploadScene(scene, renderer);
     SimulationOptions options;
     options.measure_gpu_time = true;
-    const AlgorithmTraits& chc = *findAlgorithm("chc");
+    const CullerRow& chc = *findCuller("chc");
     Simulation sim(scene, scenario, chc, makeCuller(chc, scenario.culler), scenario.culler,
                    renderer, options);
     for (int f = 0; f < 3; ++f) EXPECT_GE(sim.renderFrame().gpu_ms, 0.0);
@@ -439,7 +438,6 @@ class LeavingWorkCuller final : public Culler {
   public:
     LeavingWorkCuller(std::unique_ptr<Culler> inner, bool leaves)
         : inner_(std::move(inner)), leaves_(leaves) {}
-    std::string_view name() const override { return inner_->name(); }
     void reset(const BspTree& tree) override { inner_->reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         if (g_left_in_frame == frame.frame_index) g_frame_clock_ms += g_left_behind_ms;
@@ -470,7 +468,7 @@ std::map<std::string, double> meansWithVfcLeavingWork(const std::vector<std::str
     options.frames = parseScenarioFile(kSmall).warmup_frames + 12;
     options.frame_order = order;
     options.frame_clock_ms = scriptedFrameClockMs;
-    options.make_culler = [](const AlgorithmTraits& algorithm, const CullerOptions& culler) {
+    options.make_culler = [](const CullerRow& algorithm, const CullerOptions& culler) {
         return std::unique_ptr<Culler>(
             new LeavingWorkCuller(makeCuller(algorithm, culler), algorithm.name == "vfc"));
     };

@@ -82,7 +82,6 @@ void scriptedSlowDown() { g_scripted_ms += 60.0; }
 class SabotagedCuller final : public Culler {
   public:
     explicit SabotagedCuller(Sabotage how) : how_(how) {}
-    std::string_view name() const override { return "statistical"; }
     void reset(const BspTree& tree) override { inner_.reset(tree); }
     void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
         switch (how_) {
@@ -123,7 +122,7 @@ RegressOptions optionsFor(const fs::path& scenario,
     o.out_dir = scenario.parent_path() / "out";
     o.frame_clock_ms = scriptedClockMs;
     if (sabotage) {
-        o.make_culler = [how = *sabotage](const AlgorithmTraits& algorithm,
+        o.make_culler = [how = *sabotage](const CullerRow& algorithm,
                                           const CullerOptions& options) {
             if (algorithm.name == "statistical")
                 return std::unique_ptr<Culler>(new SabotagedCuller(how));
@@ -603,7 +602,7 @@ TEST(Regress, AThreeRepetitionBenchOfACullerThatMissesReportsEveryMiss) {
     const Scenario scenario =
         parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/deep-depth-small.json");
     BenchOptions bench;
-    bench.algorithms = {findAlgorithm("vfc"), findAlgorithm("async")};
+    bench.algorithms = {findCuller("vfc"), findCuller("async")};
     bench.measure_error = true;
     bench.latency = {true, 8};
     bench.repetitions = 3;
@@ -628,7 +627,7 @@ TEST(Stopping, ASignalAfterTheLastFrameLosesNothingAndOneBeforeItMarksThePartial
         Scenario s =
             parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json");
         BenchOptions b;
-        b.algorithms = {findAlgorithm("vfc")};
+        b.algorithms = {findCuller("vfc")};
         b.frames = 4;
         b.on_frame = [signal_frame](const FrameEvent& e) {
             if (e.frame == signal_frame) std::raise(SIGINT);
@@ -653,7 +652,7 @@ TEST(Stopping, AWorldThatLeavesFiniteCoordinatesKeepsTheFramesBeforeIt) {
     s.movers[0].radius_min_m = s.movers[0].radius_max_m = 1e39;  // beyond float once it moves
     s.movers[0].speed_min_mps = s.movers[0].speed_max_mps = 1e300;
     BenchOptions b;
-    b.algorithms = {findAlgorithm("vfc")};
+    b.algorithms = {findCuller("vfc")};
     b.frames = 6;
     const BenchResult r = runBenchmark(s, b);
     ASSERT_TRUE(r.partial.has_value());

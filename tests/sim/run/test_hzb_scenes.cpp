@@ -71,7 +71,7 @@ json trapScene(uint32_t width, uint32_t height, const glm::dvec3& o, bool conven
 
 void expectZeroError(const json& scene, const std::string& what) {
     BenchOptions options;
-    options.algorithms = {findAlgorithm("vfc"), findAlgorithm("hzb")};
+    options.algorithms = {findCuller("vfc"), findCuller("hzb")};
     options.measure_error = true;
     options.latency = {true, 4};
     const BenchResult result = runBenchmark(

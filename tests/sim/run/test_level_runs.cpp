@@ -26,7 +26,7 @@ void expectConservativeAndOccluded(const std::string& name) {
     scenario.warmup_frames = 0;
     BenchOptions options;
     for (const char* algo : {"vfc", "chc", "statistical", "statistical+", "ideal"}) {
-        options.algorithms.push_back(findAlgorithm(algo));
+        options.algorithms.push_back(findCuller(algo));
     }
     options.measure_error = true;
     options.latency = {true, 4};
@@ -66,7 +66,7 @@ TEST(LevelRuns, StatisticalPlusQueriesCanyonPropsAfterTheBuildingsThatHideThem) 
     Scenario scenario =
         parseScenarioFile(fs::path(OCCSIM_SOURCE_DIR) / "scenarios/levels/canyon.json");
     BenchOptions options;
-    options.algorithms = {findAlgorithm("statistical+"), findAlgorithm("ideal-box")};
+    options.algorithms = {findCuller("statistical+"), findCuller("ideal-box")};
     options.sweep = Sweep{"statistical+", "distance_order", {1.0, 0.0}};
     options.frames = 60;
     options.measure_error = true;

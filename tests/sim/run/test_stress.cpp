@@ -45,7 +45,7 @@ Scenario shifted(const glm::dvec3& by) {
 
 BenchResult benchAll(const Scenario& scenario) {
     BenchOptions options;
-    options.algorithms = algorithms();
+    options.algorithms = cullerRows();
     options.measure_error = true;
     options.latency = {true, 8};
     return runBenchmark(scenario, options);

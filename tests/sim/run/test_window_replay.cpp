@@ -23,8 +23,7 @@ const std::filesystem::path kSmall =
 // the replay draws with no culling code. Each frame of VFC's is kept by the on_frame hook.
 TEST(WindowReplay, TheReplayedFrameIsTheFrameTheRunRendered) {
     BenchOptions options;
-    for (const char* name : {"vfc", "chc", "ideal"})
-        options.algorithms.push_back(findAlgorithm(name));
+    for (const char* name : {"vfc", "chc", "ideal"}) options.algorithms.push_back(findCuller(name));
     options.frames = 24;
     std::map<uint32_t, std::vector<uint8_t>> vfc_frames;
     options.on_frame = [&](const FrameEvent& e) {
@@ -55,7 +54,7 @@ TEST(WindowReplay, TheReplayedFrameIsTheFrameTheRunRendered) {
 
 TEST(WindowReplay, ASegmentsSummaryInARunIsSummarizeOverItsFrames) {
     BenchOptions options;
-    options.algorithms = {findAlgorithm("vfc"), findAlgorithm("statistical")};
+    options.algorithms = {findCuller("vfc"), findCuller("statistical")};
     options.frames = 20;
     options.measure_error = true;
     options.latency = {true, 6};

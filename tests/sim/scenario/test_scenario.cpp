@@ -50,7 +50,7 @@ std::string errorFor(const json& scenario) { return errorForText(scenario.dump(2
 // file, pointer "") and contain `fragment`.
 // A culler's option values as the scenario gave them (or their defaults).
 OptionValues optionsOf(const Scenario& s, const char* culler) {
-    return s.culler.of(*findAlgorithm(culler));
+    return s.culler.of(*findCuller(culler));
 }
 
 StatisticalOptions statisticalOf(const Scenario& s, const char* culler = "statistical") {
@@ -501,8 +501,7 @@ TEST(ScenarioEnums, UnknownAlgorithmListsValidNames) {
     scenario["culling"] = {{"algorithm", "statstical"}};
     // Every registered culler, in the registry's order (the list is the registry's, not typed).
     std::string names;
-    for (const std::string& n : algorithmNames())
-        names += (names.empty() ? "\"" : ", \"") + n + "\"";
+    for (const std::string& n : cullerNames()) names += (names.empty() ? "\"" : ", \"") + n + "\"";
     EXPECT_NE(names.find("\"vfc\", \"stop-and-wait\", \"statistical\""), std::string::npos);
     expectError(scenario, "/culling/algorithm",
                 "expected one of " + names + " (did you mean \"statistical\"?), got " +
@@ -793,8 +792,7 @@ TEST(NumberText, IntegersUseTheWholeTextWithoutSpacesOrPlus) {
 // --- Option values in JSON (option_json.h) --------------------------------------------------
 
 TEST(OptionJson, WritesEachOptionInItsJsonTypeInDescriptorOrder) {
-    const nlohmann::ordered_json j =
-        optionValuesJson(OptionValues(findAlgorithm("chc++")->options));
+    const nlohmann::ordered_json j = optionValuesJson(OptionValues(findCuller("chc++")->options));
     EXPECT_EQ(j.dump(), R"({"visible_frames_skip":2,"batch_size":50,"multiqueries":true,)"
                         R"("tight_bounds_depth":2,"seed":1})");
     EXPECT_TRUE(j["seed"].is_number_integer());
@@ -807,7 +805,7 @@ TEST(OptionJson, ANegativeIntegerIsWrittenAsItself) {
 }
 
 TEST(OptionJson, EveryCullersValuesReadBackAsWritten) {
-    for (const AlgorithmTraits* culler : algorithms()) {
+    for (const CullerRow* culler : cullerRows()) {
         const OptionValues written(culler->options);
         const Json j(optionValuesJson(written));
         OptionValues read(culler->options);

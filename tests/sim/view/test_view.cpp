@@ -281,7 +281,7 @@ TEST(ViewDocs, TheKeysAndAlgorithmsOfViewerMdAreTheProgramsOwn) {
     for (const KeyBinding& k : actionKeys()) {
         EXPECT_NE(keys.find("\n| `" + std::string(k.keys) + "` |"), std::string::npos) << k.keys;
     }
-    const auto& all = algorithms();
+    const auto& all = cullerRows();
     std::string digits;
     for (size_t i = 0; i < all.size() && i < 9; ++i) {
         digits += (i ? ", `" : "`") + std::to_string(i + 1) + "` " + std::string(all[i]->name);
@@ -303,7 +303,7 @@ TEST(ViewDocs, TheKeysAndAlgorithmsOfViewerMdAreTheProgramsOwn) {
     const size_t algo_at = doc.find("| `--algo NAME` |");
     ASSERT_NE(algo_at, std::string::npos);
     const std::string algo_row = doc.substr(algo_at, doc.find('\n', algo_at) - algo_at);
-    for (const AlgorithmTraits* a : all) {
+    for (const CullerRow* a : all) {
         EXPECT_NE(algo_row.find("`" + std::string(a->name) + "`"), std::string::npos) << a->name;
     }
 }

@@ -40,7 +40,7 @@ class ViewGl : public ::testing::TestWithParam<Backend> {
         uploadScene(*scene_, *renderer_);
     }
     std::unique_ptr<Simulation> simulation(const std::string& algorithm, bool error = false) {
-        const AlgorithmTraits& a = *findAlgorithm(algorithm);
+        const CullerRow& a = *findCuller(algorithm);
         SimulationOptions options;
         options.measure_error = error;
         return std::make_unique<Simulation>(*scene_, scenario_, a, makeCuller(a, scenario_.culler),
@@ -63,11 +63,11 @@ class ViewGl : public ::testing::TestWithParam<Backend> {
 // renderer, the others are left alone, and a cost model the scenario gives is kept.
 TEST_P(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
     std::vector<RunConfig> configs{
-        RunConfig{"vfc", findAlgorithm("vfc"), scenario_.culler},
-        RunConfig{"statistical+", findAlgorithm("statistical+"), scenario_.culler}};
+        RunConfig{"vfc", findCuller("vfc"), scenario_.culler},
+        RunConfig{"statistical+", findCuller("statistical+"), scenario_.culler}};
     const auto choice = chooseCostModel(configs, *scene_, scenario_, *renderer_, LatencyMode{});
     ASSERT_TRUE(choice);
-    EXPECT_EQ(choice->source, "calibrated");
+    EXPECT_EQ(choice->source, CostModelSource::Calibrated);
     EXPECT_FALSE(configs[0].culler.cost_model.known()) << "vfc weighs no costs";
     ASSERT_TRUE(configs[1].culler.cost_model.known());
     const std::unique_ptr<Culler> culler = makeConfiguredCuller(configs[1]);
@@ -78,8 +78,9 @@ TEST_P(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
     Scenario given = scenario_;
     given.culler.cost_model = CostModel{0.5, 0.001, 0.0};
     std::vector<RunConfig> kept{
-        RunConfig{"statistical+", findAlgorithm("statistical+"), given.culler}};
-    EXPECT_EQ(chooseCostModel(kept, *scene_, given, *renderer_, LatencyMode{})->source, "scenario");
+        RunConfig{"statistical+", findCuller("statistical+"), given.culler}};
+    EXPECT_EQ(chooseCostModel(kept, *scene_, given, *renderer_, LatencyMode{})->source,
+              CostModelSource::Scenario);
     EXPECT_EQ(kept[0].culler.cost_model, (CostModel{0.5, 0.001, 0.0}));
 }
 
@@ -122,7 +123,7 @@ TEST_P(ViewGl, ASwitchedAlgorithmContinuesTheWorldWhereItWas) {
     SharedWorld world(*scene_, scenario_);
     GroundTruth truth(*renderer_);
     auto onWorld = [&](const std::string& algorithm, bool error) {
-        const AlgorithmTraits& a = *findAlgorithm(algorithm);
+        const CullerRow& a = *findCuller(algorithm);
         SimulationOptions options;
         options.measure_error = error;
         return std::make_unique<Simulation>(world, truth, a, makeCuller(a, scenario_.culler),
@@ -233,7 +234,6 @@ TEST_P(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
 // A culler that draws nothing: everything ground truth sees is missed.
 class DrawsNothing final : public Culler {
   public:
-    std::string_view name() const override { return "draws-nothing"; }
     void reset(const BspTree&) override {}
     void cullAndRender(const BspTree&, const CullFrame&, RenderDevice&) override {}
 };
@@ -266,7 +266,7 @@ TEST_P(ViewGl, TheValidationOverlayShowsMissedDrawnHiddenAndCulledObjects) {
     EXPECT_GT(countColour(shown, kDrawnHiddenColour), countColour(plain, kDrawnHiddenColour) + 100);
     EXPECT_EQ(countColour(shown, kMissedColour), countColour(plain, kMissedColour));
 
-    const AlgorithmTraits& vfc_traits = *findAlgorithm("vfc");
+    const CullerRow& vfc_traits = *findCuller("vfc");
     SimulationOptions options;
     options.measure_error = true;
     Simulation nothing(*scene_, scenario_, vfc_traits, std::make_unique<DrawsNothing>(),

@@ -109,7 +109,7 @@ Camera cameraAt(uint64_t f) {
 class SteadyStateAllocation : public ::testing::TestWithParam<std::tuple<size_t, DeviceKind>> {};
 
 TEST_P(SteadyStateAllocation, CullAndReinsertAllocateNothing) {
-    const AlgorithmTraits& algorithm = *algorithms()[std::get<0>(GetParam())];
+    const CullerRow& algorithm = *cullerRows()[std::get<0>(GetParam())];
     const DeviceKind kind = std::get<1>(GetParam());
 
     const std::vector<Aabb> initial = testing::randomBoxes(kObjects, 17, 60.0f);
@@ -214,7 +214,7 @@ TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing
     ScriptedQueryDevice device(3);
     std::vector<uint8_t> visible(scene.objectCount(), 0);
     for (uint32_t o = 0; o < scene.objectCount(); o += 3) visible[o] = 1;
-    const std::unique_ptr<Culler> culler = makeCuller(*findAlgorithm("chc++"), CullerOptions{});
+    const std::unique_ptr<Culler> culler = makeCuller(*findCuller("chc++"), CullerOptions{});
     culler->reset(tree);
     const CullView view = testing::makeView(glm::vec3(0, 3, 30), glm::vec3(0.0f));
     constexpr uint64_t kWarmUp = 600, kMeasured = 200;  // 20 s of warm-up at 30 frames per second
@@ -246,12 +246,12 @@ TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing
 
 INSTANTIATE_TEST_SUITE_P(
     EveryAlgorithmAndDevice, SteadyStateAllocation,
-    ::testing::Combine(::testing::Range<size_t>(0, algorithms().size()),
+    ::testing::Combine(::testing::Range<size_t>(0, cullerRows().size()),
                        ::testing::Values(DeviceKind::Scripted, DeviceKind::ScriptedLatency,
                                          DeviceKind::Approximate, DeviceKind::Tracing,
                                          DeviceKind::DepthRaster)),
     [](const ::testing::TestParamInfo<std::tuple<size_t, DeviceKind>>& param_info) {
-        std::string name(algorithms()[std::get<0>(param_info.param)]->name);
+        std::string name(cullerRows()[std::get<0>(param_info.param)]->name);
         for (char& c : name) {
             if (c == '+') c = 'p';
             if (c == '-') c = '_';

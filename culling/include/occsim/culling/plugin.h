@@ -9,7 +9,7 @@
 //   #include <occsim/culling/plugin.h>
 //
 //   static void registerMine(occsim::PluginRegistrar& registrar) {
-//       occsim::AlgorithmTraits t;
+//       occsim::CullerRow t;
 //       t.name = "my-culler";
 //       ...
 //       registrar.add(std::move(t));
@@ -28,23 +28,26 @@
 #include "occsim/culling/contract/culler.h"
 #include "occsim/culling/contract/decision_log.h"
 #include "occsim/culling/contract/render_device.h"
+#include "occsim/culling/declaration/culler_row.h"
+#include "occsim/culling/declaration/option_table.h"
+#include "occsim/culling/declaration/options.h"
 #include "occsim/culling/geometry/aabb.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/geometry/query_box.h"
 #include "occsim/culling/geometry/random.h"
-#include "occsim/culling/registration/algorithm_traits.h"
-#include "occsim/culling/registration/option_table.h"
-#include "occsim/culling/registration/options.h"
 #include "occsim/culling/tree/bsp_tree.h"
 #include "occsim/culling/tree/decision_resolution.h"
 #include "occsim/culling/tree/node_state.h"
 #include "occsim/culling/tree/traversal.h"
 
 // 3: this header (the registry's row apart from the registry, the tree no longer reached through
-// the culler contract), CullView's view-projection and viewport, AlgorithmTraits::device_needs.
+// the culler contract), CullView's view-projection and viewport, CullerRow::device_needs.
 // 4: the decision log (CullFrame::decisions, PreparedView::decisions, contract/decision_log.h)
 // and DepthPyramid::levelOf.
-#define OCCSIM_PLUGIN_ABI_VERSION 4u
+// 5: one word per thing: the row is CullerRow (was AlgorithmTraits) in
+// occsim/culling/declaration/culler_row.h (was registration/algorithm_traits.h); Culler::name()
+// is gone (the registry's row names a culler; nothing read it).
+#define OCCSIM_PLUGIN_ABI_VERSION 5u
 
 namespace occsim {
 
@@ -52,7 +55,7 @@ namespace occsim {
 class PluginRegistrar {
   public:
     virtual ~PluginRegistrar() = default;
-    virtual void add(AlgorithmTraits traits) = 0;
+    virtual void add(CullerRow traits) = 0;
 };
 
 }  // namespace occsim

@@ -1,6 +1,6 @@
 // The culler interface: one frame's visibility decisions over a BspTree, carried out through a
 // RenderDevice. What each algorithm is (conservative, query-based, oracle) is stated by its
-// registration (occsim/culling/registration/algorithm_traits.h). Implementations keep their own
+// registration (occsim/culling/declaration/culler_row.h). Implementations keep their own
 // per-node state (sized by reset()), use simulation time (never wall-clock time) for every
 // decision, and are deterministic given the device's answers.
 #pragma once
@@ -62,8 +62,8 @@ struct MeshRange {
 };
 
 // The scene's triangles, for a culler that rasterises them itself (a software depth buffer; it
-// asks for them with AlgorithmTraits::needs_meshes,
-// occsim/culling/registration/algorithm_traits.h). The arrays are built once by the simulation and
+// asks for them with CullerRow::needs_meshes,
+// occsim/culling/declaration/culler_row.h). The arrays are built once by the simulation and
 // stay valid for the whole run; only object_to_culling changes per frame. Empty (every span) for a
 // culler that did not ask.
 struct CullMeshes {
@@ -95,7 +95,7 @@ struct CullFrame {
     double time_s = 0.0;  // simulation time: frame_index * dt
     CullView view;
     // Per object, 1 when ground truth saw at least one of its pixels this frame. Filled only for
-    // oracles (AlgorithmTraits::oracle, occsim/culling/registration/algorithm_traits.h); empty
+    // oracles (CullerRow::oracle, occsim/culling/declaration/culler_row.h); empty
     // otherwise.
     std::span<const uint8_t> ground_truth_visible;
     // Per object, its triangle count. The culling layer knows no meshes, so the simulation passes
@@ -104,7 +104,7 @@ struct CullFrame {
     // (StatisticalOptions::cost_model) then leaves its cost model off.
     std::span<const uint32_t> object_triangles;
     // The meshes and this frame's object transforms: filled only for cullers whose traits ask
-    // (AlgorithmTraits::needs_meshes), so that no other culler pays for the transforms.
+    // (CullerRow::needs_meshes), so that no other culler pays for the transforms.
     CullMeshes meshes;
     // Where the culler may say why it drew or left out each object (decision_log.h): null when
     // nobody records, which is every frame but those of `occsim run|bench|regress --record
@@ -123,7 +123,6 @@ inline PreparedView prepareView(const CullFrame& frame) {
 class Culler {
   public:
     virtual ~Culler() = default;
-    virtual std::string_view name() const = 0;
     // Called once the tree is built, before the first frame; clears all per-node state.
     virtual void reset(const BspTree& tree) = 0;
     virtual void cullAndRender(const BspTree& tree, const CullFrame& frame,

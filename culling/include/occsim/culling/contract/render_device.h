@@ -37,7 +37,7 @@ class ConditionalRendering;  // occsim/culling/contract/conditional_rendering.h
 class DepthPyramid;          // occsim/culling/contract/depth_pyramid.h
 
 // Optional capabilities of a device, as bits: a culler names those it needs
-// (AlgorithmTraits::device_needs) and a run refuses it before any work on a device without them.
+// (CullerRow::device_needs) and a run refuses it before any work on a device without them.
 enum DeviceFeature : uint32_t {
     kConditionalRendering = 1u << 0,  // draws that the device skips on a query's result
     kDepthPyramid = 1u << 1,          // a hierarchical depth buffer that tests boxes

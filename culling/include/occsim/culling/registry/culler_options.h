@@ -8,12 +8,12 @@
 #include <string_view>
 
 #include "occsim/culling/contract/cost_model.h"
+#include "occsim/culling/declaration/options.h"
 #include "occsim/culling/devices/approximation_options.h"
-#include "occsim/culling/registration/options.h"
 
 namespace occsim {
 
-struct AlgorithmTraits;
+struct CullerRow;
 
 struct CullerOptions {
     CostModel cost_model;  // unknown (all zero) unless given or measured at start-up
@@ -25,9 +25,9 @@ struct CullerOptions {
     std::map<std::string, OptionValues, std::less<>> given;
 
     // The culler's values: as given, or its defaults.
-    OptionValues of(const AlgorithmTraits& culler) const;
+    OptionValues of(const CullerRow& culler) const;
     // The culler's values to change (its defaults first when none were given).
-    OptionValues& edit(const AlgorithmTraits& culler);
+    OptionValues& edit(const CullerRow& culler);
 
     // The first invalid value's message, "<culler>: <key>: expected ..." (checkOptionValues).
     bool isValid(std::string* error) const;

@@ -12,7 +12,7 @@
 #include "occsim/culling/contract/cost_model.h"
 #include "occsim/culling/contract/culler.h"
 #include "occsim/culling/contract/input_error.h"
-#include "occsim/culling/registration/options.h"
+#include "occsim/culling/declaration/options.h"
 
 namespace occsim {
 
@@ -32,7 +32,7 @@ struct CostModelUse {
     uint32_t queries_in_flight = 0;
 };
 
-struct AlgorithmTraits {
+struct CullerRow {
     std::string name;     // as in --algos and culling.algorithm: [a-z0-9_+-], unique
     std::string summary;  // one line, for help texts and docs
     // Never hides a visible pixel by design (with the approximation knobs off): regression runs

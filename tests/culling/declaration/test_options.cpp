@@ -1,4 +1,4 @@
-// Option rows (occsim/culling/registration/options.h): what a value must be, the check of one
+// Option rows (occsim/culling/declaration/options.h): what a value must be, the check of one
 // value, the check of a whole descriptor, and the values a culler holds.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "occsim/culling/registration/options.h"
+#include "occsim/culling/declaration/options.h"
 
 namespace occsim {
 namespace {

@@ -1,4 +1,4 @@
-// occsim/culling/registration/option_table.h: options structs bound to their descriptors, row by
+// occsim/culling/declaration/option_table.h: options structs bound to their descriptors, row by
 // row.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "culling/cullers/statistical_culler.h"
-#include "occsim/culling/registration/option_table.h"
+#include "occsim/culling/declaration/option_table.h"
 #include "occsim/culling/registry/registry.h"
 
 namespace occsim {

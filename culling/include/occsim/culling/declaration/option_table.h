@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "occsim/culling/registration/options.h"
+#include "occsim/culling/declaration/options.h"
 
 namespace occsim {
 

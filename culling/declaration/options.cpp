@@ -1,4 +1,4 @@
-#include "occsim/culling/registration/options.h"
+#include "occsim/culling/declaration/options.h"
 
 #include <cmath>
 #include <cstdio>
