@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """The tables of docs/results.md from the runs scripts/results.sh made.
 
-Usage: scripts/results_table.py out/results/<set> [more sets...]
+Usage: scripts/results_table.py [--one-run] out/results/<set> [more sets...]
 
 Reads <set>/<scene>/run-<n>/summary.json (two or more runs per scene) and prints, per set, one
 markdown table: per scene and algorithm the speedup over VFC as the mean of the runs with their
 spread (half the range), VFC's frame time, the ratio of statistical+ to Ideal, the fastest
 conservative culler (bold; every culler within the spread of the fastest is marked too), the
 error (pixels and missed objects, summed over the runs) and the load average before and after each
-run. A run whose summary says busy is flagged: such a table is not a result. A second table per set
+run. A run whose summary says busy is flagged: such a table is not a result. --one-run takes
+scenes of one run (scripts/results.sh --quick): no spread, and said to be no result. A second table per set
 gives each culler's own CPU time per frame (`cull ms`: deciding, queries' bookkeeping, the software
 buffer of masked; draws and waits excluded) and the objects it drew per frame, means of the runs.
 """
@@ -23,6 +24,7 @@ NOT_CONSERVATIVE = {"async", "ideal", "ideal-box"}  # async may miss; the oracle
 # give its triangles per frame beside those of the query cullers and Ideal instead of a speedup.
 NOT_TIMED = {"ideal-box"}
 TRIANGLE_COLUMNS = ["statistical+", "chc", "chc++", "ideal-box", "ideal"]
+MIN_RUNS = 2  # 1 with --one-run
 
 
 def runs_of(scene_dir):
@@ -50,16 +52,16 @@ def runs_of(scene_dir):
 
 
 def scenes_with_runs(set_dir, warn=False):
-    """(scene, runs) for every scene folder of the set with two or more runs."""
+    """(scene, runs) for every scene folder of the set with MIN_RUNS or more runs."""
     for scene in sorted(os.listdir(set_dir)):
         scene_dir = os.path.join(set_dir, scene)
         if not os.path.isdir(scene_dir):
             continue
         runs = runs_of(scene_dir)
-        if len(runs) < 2:
+        if len(runs) < MIN_RUNS:
             if warn:
-                print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need two",
-                      file=sys.stderr)
+                print(f"results_table: {scene_dir}: {len(runs)} run(s); the tables need "
+                      f"{MIN_RUNS}", file=sys.stderr)
             continue
         yield scene, runs
 
@@ -102,10 +104,10 @@ def scene_row(scene, runs):
             cells[c] = "n/a"
             continue
         mean, spread = speed[c]
-        text = f"{mean:.2f}× ±{spread:.2f}"
+        text = f"{mean:.2f}× ±{spread:.2f}" if len(runs) > 1 else f"{mean:.2f}×"
         if c == fastest:
             text = f"**{text}**"
-        elif c in conservative and mean + spread >= best_mean - best_spread:
+        elif len(runs) > 1 and c in conservative and mean + spread >= best_mean - best_spread:
             text = f"_{text}_"  # within the spread of the fastest
         cells[c] = text
     vfc_ms = [t["vfc"]["frame_ms"]["mean"] for t in tables if "vfc" in t]
@@ -140,7 +142,7 @@ def table(set_dir):
         scenes += 1
         leads += fastest == "statistical+"
     if not rows:
-        return f"(no scene of {set_dir} has two runs)\n"
+        return f"(no scene of {set_dir} has {MIN_RUNS} runs)\n"
     header = ["scene", "VFC ms"] + columns + ["K triangles/frame: " + " / ".join(TRIANGLE_COLUMNS),
                                               "statistical+ / Ideal",
                                               "error px / missed (conservative)",
@@ -149,8 +151,12 @@ def table(set_dir):
     for cells, head, tail in rows:
         out.append("| " + " | ".join(head + [cells.get(c, "–") for c in columns] + tail) + " |")
     out.append("")
-    out.append(f"statistical+ fastest conservative culler on {leads} of {scenes} scenes "
-               f"(bold: fastest; italic: within the spread of the fastest).")
+    if MIN_RUNS == 1:
+        out.append(f"statistical+ fastest conservative culler on {leads} of {scenes} scenes "
+                   f"(bold: fastest). One run a scene (--quick): no spread; not a result.")
+    else:
+        out.append(f"statistical+ fastest conservative culler on {leads} of {scenes} scenes "
+                   f"(bold: fastest; italic: within the spread of the fastest).")
     return "\n".join(out) + "\n"
 
 
@@ -165,7 +171,8 @@ def cost_table(set_dir):
         for c in configs:
             cull = [t[c]["cull_cpu_ms_mean"] for t in tables]
             objects = [t[c]["objects_per_frame"] for t in tables]
-            cells[c] = (f"{sum(cull) / len(cull):.2f} ±{(max(cull) - min(cull)) / 2:.2f}"
+            spread = f" ±{(max(cull) - min(cull)) / 2:.2f}" if len(runs) > 1 else ""
+            cells[c] = (f"{sum(cull) / len(cull):.2f}{spread}"
                         f" / {sum(objects) / len(objects):.0f}")
         columns += [c for c in cells if c not in columns]
         rows.append((scene, cells))
@@ -176,12 +183,19 @@ def cost_table(set_dir):
     for scene, cells in rows:
         out.append("| " + " | ".join([scene] + [cells.get(c, "–") for c in columns]) + " |")
     out.append("")
-    out.append("Each cell: the culler's CPU ms per frame ± half the range of the runs / objects "
-               "drawn per frame.")
+    if MIN_RUNS == 1:
+        out.append("Each cell: the culler's CPU ms per frame (one run) / objects drawn per frame.")
+    else:
+        out.append("Each cell: the culler's CPU ms per frame ± half the range of the runs / "
+                   "objects drawn per frame.")
     return "\n".join(out) + "\n"
 
 
 def main(argv):
+    global MIN_RUNS
+    if len(argv) > 1 and argv[1] == "--one-run":
+        MIN_RUNS = 1
+        argv = argv[:1] + argv[2:]
     if len(argv) < 2:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2

@@ -6,6 +6,7 @@
 # and 2), so the run-to-run spread stands beside the means. The load average before and after each
 # step is logged; run this on a quiet machine (no build, test or other benchmark beside it).
 # Usage: scripts/tune_table.sh [default|paper|general|levels|all] [occtune options...]
+#   (the sets of scripts/scene_sets.sh)
 #   e.g. scripts/tune_table.sh all --frames 120 --budget 17
 # Output: out/tuning/<set>/<scene>/run-<n>/{tune/,peers/,load.txt}, then the tables
 # (scripts/tune_table.py out/tuning/<set>). Rerun with the same flags to resume a stopped table:
@@ -14,23 +15,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 set_name=${1:-all}
 shift || true
-case "$set_name" in
-  default) sets=(default) ;;
-  paper) sets=(paper) ;;
-  general) sets=(general) ;;
-  levels) sets=(levels) ;;
-  all) sets=(default paper general levels) ;;
-  *) echo "tune_table.sh: unknown set '$set_name'; expected default, paper, general, levels or all" >&2; exit 2 ;;
-esac
-scenes_of() {
-  case "$1" in
-    default) echo scenarios/teapots.json ;;
-    paper) echo scenarios/paper/teapots.json scenarios/paper/city.json scenarios/paper/library.json \
-                scenarios/paper/plant.json ;;
-    general) echo scenarios/general/*.json ;;
-    levels) echo scenarios/levels/*.json ;;
-  esac
-}
+source scripts/scene_sets.sh  # the sets, spelled once
+set_list=$(scene_sets_of "$set_name" tune_table.sh) || exit 2
+mapfile -t sets <<<"$set_list"
 # The occsim bench flags that match occtune's --frames, when given.
 bench_flags=()
 args=("$@")
