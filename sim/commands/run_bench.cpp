@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sstream>
+#include <string>
 
 #include "occsim/culling/contract/input_error.h"
 #include "occsim/culling/registry/registry.h"
 #include "sim/commands/algorithm_entries.h"
 #include "sim/commands/exit_codes.h"
 #include "sim/commands/flag_checks.h"
+#include "sim/output/console_table.h"
 #include "sim/output/moments.h"
 #include "sim/output/pictures.h"
 #include "sim/output/report.h"
@@ -62,6 +65,9 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     addPluginFlag(cmd, flags.plugins);
     cmd->add_flag("--quiet", flags.quiet,
                   "No progress on stderr (default: a bar on a terminal, else a line every 10 s)");
+    cmd->add_flag("--wide", flags.wide,
+                  "Print the full comparison table, every figure (default: a compact table of "
+                  "at most 100 columns and a verdict; report.md and summary.json have all)");
     cmd->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
@@ -233,13 +239,39 @@ int runAndReport(const RunRequest& request) {
         result, {folder.staging(), flags.plots, pictures.birdsEyeFiles(), {}, highlights});
     folder.publish();
 
-    std::printf("%s\n", occsim::runHeadline(result).c_str());
-    std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
-    if (const std::string line = occsim::aggregationLine(result); !line.empty())
-        std::printf("%s\n", line.c_str());
-    std::printf("%s\n", occsim::costsLine(result).c_str());
-    std::printf("%s", occsim::segmentTablesText(result).c_str());
-    std::printf("%s", occsim::worstWindowsText(result).c_str());
+    if (flags.wide) {
+        std::printf("%s\n", occsim::runHeadline(result).c_str());
+    } else {
+        std::istringstream headline(occsim::runHeadline(result));
+        for (std::string line; std::getline(headline, line);)
+            std::printf("%s", occsim::wrappedText(line).c_str());
+    }
+    if (flags.wide) {
+        std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    } else {
+        std::printf("%s", occsim::formatCompactTable(result.runs).c_str());
+        for (const std::string& line :
+             occsim::verdictLines(result, out_dir.string(), objects != nullptr))
+            std::printf("%s\n", line.c_str());
+    }
+    // The compact table has no pareto column: the line about how it was decided goes with it;
+    // the line on how repetitions were joined stays.
+    const std::string aggregation = occsim::aggregationLine(result);
+    if (flags.wide) {
+        if (!aggregation.empty()) std::printf("%s\n", aggregation.c_str());
+        std::printf("%s\n", occsim::costsLine(result).c_str());
+    } else {
+        if (result.metadata.repetitions > 1)
+            std::printf("%s", occsim::wrappedText(aggregation).c_str());
+        std::printf("%s", occsim::wrappedText(occsim::costsLine(result)).c_str());
+    }
+    if (flags.wide) {
+        std::printf("%s", occsim::segmentTablesText(result, true).c_str());
+        std::printf("%s", occsim::worstWindowsText(result, true).c_str());
+    } else {
+        std::printf("%s", occsim::wrappedText(occsim::segmentTablesText(result)).c_str());
+        std::printf("%s", occsim::wrappedText(occsim::worstWindowsText(result)).c_str());
+    }
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (objects) {
         std::printf("objects: %s/%s (occsim why %s --object ID|NAME, --overdraw, --missed)\n",

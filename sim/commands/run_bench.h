@@ -33,6 +33,7 @@ struct CommonFlags {
     std::vector<std::string> record;       // --record: "objects"
     std::vector<std::string> segments;     // --segments, each as given (joined by ',')
     bool quiet = false;                    // no progress on stderr
+    bool wide = false;                     // --wide: the full table instead of the compact one
     std::string frame_order = "balanced";  // --frame-order (bench)
 };
 

@@ -50,7 +50,9 @@ void writeFileAtomically(const std::filesystem::path& path, const std::vector<ui
 std::string safeFileName(std::string_view label) {
     std::string out(label);
     for (char& c : out) {
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.' && c != '_')
+        // '+' stays: culler names carry it (statistical+, chc++), and it needs no quoting.
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.' && c != '_' &&
+            c != '+')
             c = '_';
     }
     if (!out.empty() && out.front() == '.') out.front() = '_';

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "sim/output/console_table.h"
 #include "sim/output/fixed_text.h"
 #include "sim/output/report.h"
 #include "sim/run/segment_summaries.h"
@@ -50,11 +51,12 @@ std::string segmentHeading(const Segment& s, const RunMetadata& m) {
     return h;
 }
 
-std::string segmentTablesText(const BenchResult& result) {
+std::string segmentTablesText(const BenchResult& result, bool wide) {
     std::string out;
     for (size_t k = 0; k < result.metadata.segments.size(); ++k) {
         out += "\nsegment " + segmentHeading(result.metadata.segments[k], result.metadata) + "\n";
-        out += formatComparisonTable(segmentRuns(result, k));
+        const std::vector<RunRecord> runs = segmentRuns(result, k);
+        out += wide ? formatComparisonTable(runs) : formatCompactTable(runs);
     }
     return out;
 }
@@ -78,26 +80,45 @@ std::string describeWindow(const WorstWindow& w, const std::string& reference, d
     return text + "; worst frame " + std::to_string(w.worst_frame) + " (" + fixed(worst, 2) + "x)";
 }
 
-std::string worstWindowsText(const BenchResult& result) {
+std::string worstWindowsText(const BenchResult& result, bool wide) {
     if (result.window_reference.empty() || !anyWindow(result)) return "";
     const std::string reference = referenceWords(result);
-    std::string out = "\nworst windows against " + reference + " (" +
-                      std::to_string(kWorstWindowFrames) +
-                      " timed frames, the highest frame time over the reference's; report.md "
-                      "lists up to " +
-                      std::to_string(kWorstWindowsPerConfiguration) + " per configuration):\n";
+    std::string out =
+        wide ? "\nworst windows against " + reference + " (" + std::to_string(kWorstWindowFrames) +
+                   " timed frames, the highest frame time over the reference's; report.md "
+                   "lists up to " +
+                   std::to_string(kWorstWindowsPerConfiguration) + " per configuration):\n"
+             : "\nworst windows against " + reference + " (" + std::to_string(kWorstWindowFrames) +
+                   " timed frames; report.md has up to " +
+                   std::to_string(kWorstWindowsPerConfiguration) + " a configuration, in full):\n";
     size_t width = 0;
     for (const RunRecord& r : result.runs) {
         if (!r.worst_windows.empty()) width = std::max(width, r.summary.label.size());
     }
     for (const RunRecord& r : result.runs) {
         if (r.worst_windows.empty()) continue;
-        out +=
-            "  " + r.summary.label + std::string(width - r.summary.label.size(), ' ') + "  " +
-            describeWindow(r.worst_windows.front(), result.window_reference, result.metadata.dt_s) +
-            "\n";
+        const WorstWindow& w = r.worst_windows.front();
+        out += "  " + r.summary.label + std::string(width - r.summary.label.size(), ' ') + "  " +
+               (wide ? describeWindow(w, result.window_reference, result.metadata.dt_s)
+                     : describeWindowBriefly(w, result.window_reference)) +
+               "\n";
     }
     return out;
+}
+
+std::string describeWindowBriefly(const WorstWindow& w, const std::string& reference) {
+    std::string text = "frames " + std::to_string(w.first_frame) + "-" +
+                       std::to_string(w.first_frame + w.frames - 1) + ": " + fixed(w.ratio, 2) +
+                       "x " + reference + ", " + fixed(w.frame_ms_mean, 2) + " / " +
+                       fixed(w.reference_frame_ms_mean, 2) + " ms; " + fixed(w.objects_mean, 1) +
+                       " / " + fixed(w.reference_objects_mean, 1) + " objects";
+    if (w.error_pixels > 0 || w.missed_objects > 0) {
+        text += "; " + std::to_string(w.error_pixels) + " error px, " +
+                std::to_string(w.missed_objects) + " missed";
+    }
+    const double worst =
+        w.worst_reference_frame_ms > 0 ? w.worst_frame_ms / w.worst_reference_frame_ms : 0.0;
+    return text + "; worst frame " + std::to_string(w.worst_frame) + " (" + fixed(worst, 2) + "x)";
 }
 
 nlohmann::json segmentsJson(const BenchResult& result) {

@@ -16,14 +16,18 @@ namespace occsim {
 // it holds and how a shortened run cut it, when so.
 std::string segmentHeading(const Segment& segment, const RunMetadata& metadata);
 
-// The console's segment tables: per segment its heading and the comparison table over its frames;
-// empty without segments.
-std::string segmentTablesText(const BenchResult& result);
+// The console's segment tables: per segment its heading and the table over its frames, compact
+// (console_table.h) or with `wide` the full comparison table; empty without segments.
+std::string segmentTablesText(const BenchResult& result, bool wide = false);
 
 // The console's worst windows: a heading line, then one line per configuration with its worst
-// window (frames, seconds, the ratio, objects and triangles against the reference's, queries,
-// wait); empty when no reference ran or no configuration has a window.
-std::string worstWindowsText(const BenchResult& result);
+// window, briefly (describeWindowBriefly) or with `wide` in full (describeWindow); empty when no
+// reference ran or no configuration has a window.
+std::string worstWindowsText(const BenchResult& result, bool wide = false);
+
+// One window briefly, for a console line: "frames 120-129: 2.71x ideal, 12.31 / 4.54 ms; 412.0 /
+// 35.0 objects; worst frame 124 (3.10x)", with "; N error px, M missed" where it had any.
+std::string describeWindowBriefly(const WorstWindow& window, const std::string& reference);
 
 // One window in words: "frames 120 to 129 (4.000 to 4.300 s): 2.71x ideal (12.31 / 4.54 ms per
 // frame); objects 412 / 35, triangles 17162 / 190 per frame; 45.0 queries, 1.200 ms waiting per

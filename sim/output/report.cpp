@@ -388,7 +388,7 @@ std::string busyMachineLine(const RunMetadata& m) {
     return "busy machine: other work ran beside this run (load average above its " +
            std::to_string(m.hardware_threads) +
            " hardware threads before it, or above twice that after it); these timings are not "
-           "results";
+           "results: rerun when nothing else runs (a build just ended counts: wait a minute)";
 }
 
 std::string runHeadline(const BenchResult& result) {
@@ -414,6 +414,7 @@ std::string runHeadline(const BenchResult& result) {
                 (m.gpu_time_meaningful ? "" : " (software rasteriser: gpu ms not meaningful)");
     if (!m.backend_fallback.empty())
         headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
+    if (!m.occluder_roles.empty()) headline += "\noccluders: " + m.occluder_roles;
     if (nothingInView(result.runs)) {
         headline +=
             "\nwarning: the camera sees no object on any frame (none drawn, none visible): "

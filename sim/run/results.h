@@ -56,6 +56,9 @@ struct RunMetadata {
     uint32_t objects = 0;
     uint64_t triangles = 0;
     uint32_t movers = 0;
+    // occluderRolesText() of the scene when a configuration has an occluder pass (needs_meshes);
+    // else empty.
+    std::string occluder_roles;
     // The run.
     uint32_t repetitions = 1;
     std::string frame_order = "balanced";  // sim/run/frame_order.h

@@ -16,6 +16,7 @@
 #include "sim/run/segment_summaries.h"
 #include "sim/run/shared_world.h"
 #include "sim/run/stop_request.h"
+#include "sim/world/occluder_roles.h"
 
 namespace occsim {
 namespace {
@@ -83,8 +84,8 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
 void printCalibratedCosts(const std::optional<CostModelChoice>& costs) {
     if (costs && costs->source == CostModelSource::Calibrated) {
         std::fprintf(stderr,
-                     "cost model (calibrated): %.5f ms per query box, %.3g ms per triangle, %.5f "
-                     "ms per draw call\n",
+                     "cost model (calibrated): %.5f ms/query box, %.3g ms/triangle, %.5f ms/draw "
+                     "call\n",
                      costs->costs.query_box_ms, costs->costs.triangle_ms,
                      costs->costs.draw_call_ms);
     }
@@ -351,6 +352,12 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     BenchResult result;
     result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
+    // The roles a culler with an occluder pass reads: said, so that a user can check what the
+    // scene file gave (all explicit roles leave an occluder option nothing to act on).
+    for (const RunConfig& config : configs) {
+        if (config.algorithm->needs_meshes)
+            result.metadata.occluder_roles = occluderRolesText(countOccluderRoles(scene));
+    }
     result.metadata.heap = heap;
     if (costs) {
         result.metadata.cost_model = costs->costs;

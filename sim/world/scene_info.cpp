@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "occsim/culling/tree/bsp_tree.h"
+#include "sim/world/occluder_roles.h"
 #include "sim/world/world.h"
 
 namespace occsim {
@@ -148,6 +149,8 @@ std::string describeScenario(const Scenario& scenario, std::vector<std::string>&
     out << "movers        " << scene.initial_movers.size() << " (" << state.moved.size()
         << " objects move each frame)\n";
     describeAnimations(scene, out);
+    // What masked's occluder pass may use: the roles the scenario and the glTF nodes gave.
+    out << "occluders     " << occluderRolesText(countOccluderRoles(scene)) << "\n";
     out << "frames        " << scenario.frames << " x " << scenario.dt_s << " s, " << scenario.width
         << "x" << scenario.height << " pixels\n";
     std::snprintf(line, sizeof line, "bsp           %s split, looseness %.2f, %s\n",

@@ -225,6 +225,48 @@ TEST(Cli, ARunWithOnlyWarmupFramesSaysNothingWasTimed) {
     EXPECT_EQ(o.output.find("0.00"), std::string::npos) << o.output;
 }
 
+// The first answer fits a terminal (issue 56): bench prints the compact table and the verdict in
+// lines of at most 100 columns, the kind of each row, the fastest conservative culler or the tie,
+// the wrong pixels and the why command; --wide prints the full table of every figure instead.
+TEST(Cli, BenchPrintsACompactTableAndAVerdictThatFitAndWidePrintsEveryFigure) {
+    const std::string args =
+        "bench " + kSmall + " --error --algos vfc,chc,statistical+,async,ideal --frames 30 --out ";
+    const Outcome o = runOccsim(args + tempPath("compact").string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::istringstream lines(o.output);
+    size_t checked = 0;
+    for (std::string line; std::getline(lines, line);) {
+        EXPECT_LE(line.size(), 100u) << "'" << line << "'";
+        ++checked;
+    }
+    EXPECT_GT(checked, 10u) << o.output;
+    // The header's columns, in order.
+    const size_t header_at = o.output.find("\nconfiguration  kind ");
+    ASSERT_NE(header_at, std::string::npos) << o.output;
+    const std::string header =
+        o.output.substr(header_at + 1, o.output.find('\n', header_at + 1) - header_at - 1);
+    size_t at = 0;
+    for (const char* column :
+         {"mean ms", "vs vfc", "vs ideal", "queries", "objects", "err px", "missed"}) {
+        at = header.find(column, at);
+        EXPECT_NE(at, std::string::npos) << column << " in " << header;
+    }
+    for (const char* part : {"\nvfc ", " cons ", " approx ", " oracle ", "\nverdict: fastest ",
+                             "\nwrong pixels: ", "\nwhy "}) {
+        EXPECT_NE(o.output.find(part), std::string::npos) << part << " in " << o.output;
+    }
+    EXPECT_EQ(o.output.find("median ms"), std::string::npos) << o.output;
+
+    const Outcome wide = runOccsim(args + tempPath("wide").string() + " --wide");
+    ASSERT_EQ(wide.exit_code, 0) << wide.output;
+    for (const char* part :
+         {"configuration  mean ms  median ms  p95 ms  gpu ms  queries/fr", "err px/fr", "tie px",
+          "pop max", "overdrawn/fr", "speedup", "vs ideal  pareto"}) {
+        EXPECT_NE(wide.output.find(part), std::string::npos) << part << " in " << wide.output;
+    }
+    EXPECT_EQ(wide.output.find("verdict:"), std::string::npos) << wide.output;
+}
+
 TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
     const auto out = tempPath("ok");
     const Outcome o =
@@ -254,6 +296,30 @@ TEST(Cli, InfoPrintsTheSceneWithoutRendering) {
     const Outcome o = runOccsim("info " + kSmall);
     EXPECT_EQ(o.exit_code, 0) << o.output;
     EXPECT_NE(o.output.find("triangles"), std::string::npos) << o.output;
+    // What was read about occluders is said (issue 56): the teapots carry no roles.
+    EXPECT_NE(o.output.find("\noccluders     300 by size, 0 always, 0 never; 0 with an authored "
+                            "occluder mesh\n"),
+              std::string::npos)
+        << o.output;
+    // The courtyards' walls are always occluders (scripts/make_levels.py gives the role).
+    const Outcome level =
+        runOccsim("info " + std::string(OCCSIM_SOURCE_DIR) + "/scenarios/levels/courtyards.json");
+    EXPECT_NE(level.output.find("\noccluders     338 by size, 97 always, 0 never"),
+              std::string::npos)
+        << level.output;
+}
+
+// A run with an occluder pass (masked) says the roles in its header; one without does not.
+TEST(Cli, ARunWithAnOccluderPassSaysTheOccluderRoles) {
+    const Outcome masked = runOccsim("run " + kSmall + " --algo masked --frames 2 --out " +
+                                     tempPath("roles-masked").string());
+    ASSERT_EQ(masked.exit_code, 0) << masked.output;
+    EXPECT_NE(masked.output.find("\noccluders: 300 by size, 0 always, 0 never;"), std::string::npos)
+        << masked.output;
+    const Outcome vfc = runOccsim("run " + kSmall + " --algo vfc --frames 2 --out " +
+                                  tempPath("roles-vfc").string());
+    ASSERT_EQ(vfc.exit_code, 0) << vfc.output;
+    EXPECT_EQ(vfc.output.find("occluders:"), std::string::npos) << vfc.output;
 }
 
 // --culling FILE: a scenario's culling section on its own (what occtune writes as tuned.json),

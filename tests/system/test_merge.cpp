@@ -159,7 +159,7 @@ TEST(Junit, AFailedChecksEntryListsOnlyItsOwnCullersPictures) {
         {"zero error pixels: statistical+", "0 on every frame", "9 px", false, "statistical+"},
         {"frame time chc / vfc", "<= 1.00", "1.20", false}};
     o.captures = {"out/a/worst-error-statistical-frame-00003.png",
-                  "out/a/worst-error-statistical_-frame-00007.png"};
+                  "out/a/worst-error-statistical+-frame-00007.png"};
     r.report.scenarios = {o};
     auto failureOf = [](const std::string& xml, const std::string& check) {
         const size_t at = xml.find("name=\"" + check + "\"><failure");
@@ -174,9 +174,9 @@ TEST(Junit, AFailedChecksEntryListsOnlyItsOwnCullersPictures) {
         const std::string xml = junitXml(report);
         const std::string plain = failureOf(xml, "zero error pixels: statistical");
         EXPECT_NE(plain.find("worst-error-statistical-frame-00003.png"), std::string::npos);
-        EXPECT_EQ(plain.find("worst-error-statistical_-frame"), std::string::npos) << plain;
+        EXPECT_EQ(plain.find("worst-error-statistical+-frame"), std::string::npos) << plain;
         const std::string plus = failureOf(xml, "zero error pixels: statistical+");
-        EXPECT_NE(plus.find("worst-error-statistical_-frame-00007.png"), std::string::npos);
+        EXPECT_NE(plus.find("worst-error-statistical+-frame-00007.png"), std::string::npos);
         EXPECT_EQ(plus.find("worst-error-statistical-frame"), std::string::npos) << plus;
         EXPECT_EQ(failureOf(xml, "frame time chc / vfc").find("capture:"), std::string::npos);
     }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -276,10 +277,16 @@ TEST(MomentsReport, ReportMdHasTheSegmentTablesAndTheWorstWindowsWithTheirPictur
         << md;
     // Only the pictures that exist are linked.
     EXPECT_EQ(md.find("](worst-window-frame-00070.png)"), std::string::npos) << md;
-    const std::string console = worstWindowsText(result);
+    const std::string console = worstWindowsText(result, true);
     EXPECT_NE(console.find("worst windows against ideal (10 timed frames"), std::string::npos)
         << console;
     EXPECT_NE(console.find("  statistical  frames 40 to 49"), std::string::npos) << console;
+    // By default briefly, in lines that fit 100 columns.
+    const std::string brief = worstWindowsText(result);
+    EXPECT_NE(brief.find("  statistical  frames 40-49: "), std::string::npos) << brief;
+    EXPECT_NE(brief.find("worst frame 44 (4.50x)"), std::string::npos) << brief;
+    std::istringstream lines(brief);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << line;
     EXPECT_NE(segmentTablesText(result).find("segment storm: frames 40 to 49"), std::string::npos);
 }
 
