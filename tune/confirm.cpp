@@ -55,6 +55,34 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_n
         return !rows.empty() && std::all_of(rows.begin(), rows.end(),
                                             [&](const ConfirmationRow& r) { return r.*flag; });
     };
+    // A gain is a median ratio below 1 by more than the noise of that median: each repetition's
+    // ratio is of two runs (log noise s * sqrt(2)), and the median of R of them about that over
+    // sqrt(R) (docs/tuning.md "The verdict").
+    auto margin = [&](const ConfirmationRow& r) {
+        return run_noise * std::sqrt(2.0 / std::max<double>(1.0, r.repetitions));
+    };
+    // Two settings that must take the same time (the same setting, or the same decisions on every
+    // frame) timed apart by more than kUndecidedNoises times that noise (and 2 %): the machine's
+    // timing moved under the session, and no verdict on time can stand. tuned.json holds the
+    // reference, and the reason says why.
+    for (const ConfirmationRow& r : rows) {
+        if (!r.same_setting && !r.same_decisions) continue;
+        const double apart = std::abs(std::log(r.mean_ratio.median));
+        const double allowed = std::max(kUndecidedNoises * margin(r), std::log(1.02));
+        if (apart > allowed) {
+            return {Verdict::Kind::NoChange,
+                    "the machine could not decide: " + r.variant + " timed " +
+                        (r.same_setting ? "the same setting"
+                                        : "two settings making the same "
+                                          "decisions") +
+                        " at " + fixedText(r.tuned_mean_ms, 2) + " and " +
+                        fixedText(r.paper_mean_ms, 2) + " ms (median ratio " +
+                        fixedText(r.mean_ratio.median, 3) + "), beyond the " +
+                        fixedText(100.0 * (std::exp(allowed) - 1.0), 1) +
+                        " % its noise allows; rerun on a quiet machine: tuned.json holds " +
+                        reference};
+        }
+    }
     if (all(&ConfirmationRow::same_setting)) {
         return {Verdict::Kind::NoChange, "every parameter kept at " + reference +
                                              " and no cost model applied: tuned.json holds " +
@@ -67,12 +95,6 @@ Verdict judgeConfirmation(const std::vector<ConfirmationRow>& rows, double run_n
                     "tuned.json holds " +
                     reference};
     }
-    // A gain is a median ratio below 1 by more than the noise of that median: each repetition's
-    // ratio is of two runs (log noise s * sqrt(2)), and the median of R of them about that over
-    // sqrt(R) (docs/tuning.md "The verdict").
-    auto margin = [&](const ConfirmationRow& r) {
-        return run_noise * std::sqrt(2.0 / std::max<double>(1.0, r.repetitions));
-    };
     for (const ConfirmationRow& r : rows) {
         if (r.repetitions >= 2 && r.mean_ratio.min > 1.0) {
             return {Verdict::Kind::Rejected, r.variant + ": slower in every repetition"};

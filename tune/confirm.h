@@ -56,9 +56,16 @@ struct Verdict {
     }
 };
 
+// How many times the noise of a median ratio two settings that must time the same may stand apart
+// before the confirmation says the machine could not decide.
+inline constexpr double kUndecidedNoises = 3.0;
+
 // Rejected when any variant shows more error pixels or missed objects with the tuned setting, is
 // slower in every one of at least two repetitions, or has a median ratio above 1 beyond the
-// noise; "no change" when the two settings were the same (ConfirmationRow::same_setting), made
+// noise; "no change", the machine could not decide, when a variant whose two settings must take
+// the same time (the same setting, or the same decisions) timed them apart by more than
+// kUndecidedNoises times the noise of its median (and at least 2 %); "no change" when the two
+// settings were the same (ConfirmationRow::same_setting), made
 // the same decisions on every variant, or when any variant's median ratio is not below 1 beyond
 // the noise; accepted only when every variant (the fitted frames and the held-out ones) is
 // faster beyond it. The noise of a variant's median ratio is run_noise * sqrt(2 / repetitions),

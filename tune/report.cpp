@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "sim/output/fixed_text.h"
 #include "tune/tuned_file.h"
@@ -144,28 +146,39 @@ std::string costModelLine(const TuneResult& r) {
 }
 
 std::string confirmationTable(const TuneResult& r) {
-    std::ostringstream out;
-    char line[320];
+    // At most 100 columns on a console: ms and the error counts as "tuned/reference" pairs, the
+    // frames with their repetitions; report.md has every figure in columns of its own.
     const std::string ref = referenceShort(r);  // "paper", "default" ("ref" without a culler)
-    std::snprintf(line, sizeof line,
-                  "%-28s %6s %5s  %-22s %-22s %11s %11s %11s %11s %11s %11s %11s %11s\n", "variant",
-                  "frames", "reps", "mean ratio [min-max]", "p95 ratio [min-max]", "tuned ms",
-                  (ref + " ms").c_str(), "err tuned", ("err " + ref).c_str(), "tie tuned",
-                  ("tie " + ref).c_str(), "mis tuned", ("mis " + ref).c_str());
-    out << line;
+    const auto pair = [](long long tuned, long long reference) {
+        return std::to_string(tuned) + "/" + std::to_string(reference);
+    };
+    std::vector<std::vector<std::string>> rows = {{"variant", "frames", "mean ratio [min-max]",
+                                                   "p95 ratio", "ms", "err px", "tie px",
+                                                   "missed"}};
     for (const ConfirmationRow& c : r.confirmation) {
-        std::snprintf(
-            line, sizeof line,
-            "%-28s %6u %5u  %-22s %-22s %11.2f %11.2f %11lld %11lld %11lld %11lld %11lld %11lld\n",
-            c.variant.c_str(), c.frames, c.repetitions, formatSpread(c.mean_ratio).c_str(),
-            formatSpread(c.p95_ratio).c_str(), c.tuned_mean_ms, c.paper_mean_ms,
-            static_cast<long long>(c.tuned_error_pixels),
-            static_cast<long long>(c.paper_error_pixels),
-            static_cast<long long>(c.tuned_tie_pixels), static_cast<long long>(c.paper_tie_pixels),
-            static_cast<long long>(c.tuned_missed_objects),
-            static_cast<long long>(c.paper_missed_objects));
-        out << line;
+        rows.push_back({c.variant, std::to_string(c.frames) + "x" + std::to_string(c.repetitions),
+                        formatSpread(c.mean_ratio), fixed(c.p95_ratio.median, 3),
+                        fixed(c.tuned_mean_ms, 2) + "/" + fixed(c.paper_mean_ms, 2),
+                        pair(c.tuned_error_pixels, c.paper_error_pixels),
+                        pair(c.tuned_tie_pixels, c.paper_tie_pixels),
+                        pair(c.tuned_missed_objects, c.paper_missed_objects)});
     }
+    std::vector<size_t> width(rows.front().size(), 0);
+    for (const auto& row : rows)
+        for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+    std::ostringstream out;
+    for (const auto& row : rows) {
+        std::string line;
+        for (size_t c = 0; c < row.size(); ++c) {
+            const std::string pad(width[c] - row[c].size(), ' ');
+            line += c == 0 || c == 2 ? row[c] + pad : pad + row[c];
+            if (c + 1 < row.size()) line += "  ";
+        }
+        while (!line.empty() && line.back() == ' ') line.pop_back();
+        out << line << "\n";
+    }
+    out << "ratios tuned / " << ref << ": median [min-max] of the runs; frames x repetitions;\n"
+        << "ms, err px, tie px, missed: tuned/" << ref << "\n";
     return out.str();
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "sim/commands/flag_checks.h"
+#include "sim/output/console_table.h"
 #include "sim/record/why.h"
 
 namespace occsim_cli {
@@ -37,7 +38,8 @@ int whyCommand(const WhyFlags& flags) {
     request.overdraw = flags.overdraw;
     request.missed = flags.missed;
     request.limit = flags.limit;
-    std::fputs(occsim::answerWhy(request).c_str(), stdout);
+    // Lines that fit a terminal (100 columns), each broken one indented under its start.
+    std::fputs(occsim::wrappedText(occsim::answerWhy(request)).c_str(), stdout);
     return 0;
 }
 

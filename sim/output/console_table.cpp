@@ -24,9 +24,12 @@ Kind kindOf(const RunRecord& r) {
 
 const char* kindWord(Kind k) {
     switch (k) {
-        case Kind::Conservative: return "cons";
-        case Kind::Approximate: return "approx";
-        case Kind::Oracle: return "oracle";
+        case Kind::Conservative:
+            return "cons";
+        case Kind::Approximate:
+            return "approx";
+        case Kind::Oracle:
+            return "oracle";
     }
     return "?";
 }
@@ -86,6 +89,12 @@ std::string ms(double v) { return fixedNonZero(v, 2) + " ms"; }
 
 }  // namespace
 
+size_t displayWidth(const std::string& text) {
+    size_t width = 0;
+    for (const char c : text) width += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return width;
+}
+
 std::vector<std::string> wrapped(const std::string& text) {
     // The text's own indent starts its first line; the later ones are indented two more. Within a
     // line the text's own spacing stays (aligned columns keep their padding).
@@ -101,7 +110,8 @@ std::vector<std::string> wrapped(const std::string& text) {
         const size_t word_end = std::min(text.find(' ', word_at), text.size());
         const std::string spaces = text.substr(at, word_at - at);
         const std::string word = text.substr(word_at, word_end - word_at);
-        if (line_has_word && line.size() + spaces.size() + word.size() > kConsoleWidth) {
+        if (line_has_word &&
+            displayWidth(line) + spaces.size() + displayWidth(word) > kConsoleWidth) {
             lines.push_back(line);
             line = indent + "  " + word;
         } else {
@@ -173,8 +183,9 @@ std::string formatCompactTable(const std::vector<RunRecord>& runs) {
         std::max<size_t>(kConsoleWidth > figures ? kConsoleWidth - figures : 0, 13);
     for (size_t i = 1; i < lines.size(); ++i) lines[i][0] = fitLabel(lines[i][0], label_width);
     std::string out = align(lines);
-    out += "kind: cons never hides a visible pixel, approx may, oracle is the ground-truth bound;\n"
-           "queries and objects a frame, mean ms over the timed frames";
+    out +=
+        "kind: cons never hides a visible pixel, approx may, oracle is the ground-truth bound;\n"
+        "queries and objects a frame, mean ms over the timed frames";
     out += error ? "; err px and missed summed over all frames\n" : "\n";
     return out;
 }
@@ -202,8 +213,8 @@ TimeComparison compareTimes(const RunRecord& faster, const RunRecord& slower) {
         return c;
     }
     const double half = c.frames / 2.0, band = 1.96 * std::sqrt(static_cast<double>(c.frames)) / 2;
-    c.outcome = c.wins > half + band ? TimeComparison::Outcome::Faster
-                                     : TimeComparison::Outcome::Tie;
+    c.outcome =
+        c.wins > half + band ? TimeComparison::Outcome::Faster : TimeComparison::Outcome::Tie;
     return c;
 }
 
@@ -241,8 +252,7 @@ std::vector<std::string> verdictStatements(const BenchResult& result, const std:
                                  next.summary.label + " " + ms(next.summary.frame_ms.mean);
         std::string why;
         if (c.from_repetitions) {
-            why = "their means over " + std::to_string(best.summary.repetitions) +
-                  " repetitions " +
+            why = "their means over " + std::to_string(best.summary.repetitions) + " repetitions " +
                   (c.outcome == TimeComparison::Outcome::Tie ? "overlap" : "do not overlap");
         } else if (c.outcome == TimeComparison::Outcome::TooFewFrames) {
             why = "too few timed frames (" + std::to_string(c.frames) + ") to tell them apart";
@@ -252,8 +262,8 @@ std::vector<std::string> verdictStatements(const BenchResult& result, const std:
         }
         if (c.outcome == TimeComparison::Outcome::Faster) {
             lines.push_back("verdict: fastest conservative culler " + best_name + ", " +
-                            fixed(margin, 2) + "x faster than " + next.summary.label + " (" +
-                            pair + "; " + why + ")");
+                            fixed(margin, 2) + "x faster than " + next.summary.label + " (" + pair +
+                            "; " + why + ")");
         } else {
             lines.push_back("verdict: fastest conservative cullers " + best_name + " and " +
                             next.summary.label + " tie (" + pair + "; " + why + ")");
@@ -273,24 +283,24 @@ std::vector<std::string> verdictStatements(const BenchResult& result, const std:
             list += (list.empty() ? "" : "; ") + item;
         }
         if (!wrong_conservative.empty()) {
-            lines.push_back("WRONG PIXELS from conservative cullers (a bug): " +
-                            wrong_conservative + "; occsim why " + shellQuoted(out_dir) +
-                            " --missed");
+            lines.push_back(
+                "WRONG PIXELS from conservative cullers (a bug): " + wrong_conservative +
+                "; occsim why " + shellQuoted(out_dir) + " --missed");
         } else {
             lines.push_back("wrong pixels: none from a conservative culler" +
-                            (wrong_approximate.empty()
-                                 ? std::string(", none at all")
-                                 : "; approximate: " + wrong_approximate));
+                            (wrong_approximate.empty() ? std::string(", none at all")
+                                                       : "; approximate: " + wrong_approximate));
         }
     } else {
-        lines.push_back("wrong pixels: not measured (--error renders ground truth and counts them)");
+        lines.push_back(
+            "wrong pixels: not measured (--error renders ground truth and counts them)");
     }
 
     // Asking why the runner-up lost: what it drew that was hidden.
     if (conservative.size() > 1) {
         const std::string loser = conservative[1]->summary.label;
-        const std::string why = "occsim why " + shellQuoted(out_dir) + " --overdraw --algo " +
-                                shellQuoted(loser);
+        const std::string why =
+            "occsim why " + shellQuoted(out_dir) + " --overdraw --algo " + shellQuoted(loser);
         lines.push_back(objects_recorded
                             ? "why " + loser + " lost: " + why
                             : "why " + loser + " lost: rerun with --record objects, then " + why);

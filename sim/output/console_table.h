@@ -1,6 +1,6 @@
-// The console's first answer to "which culler, and did any draw wrong pixels?": a compact table that
-// fits kConsoleWidth columns, sorted, each row saying whether the culler is conservative, then a
-// verdict of two or three lines. Formatting only, like report.h; the full table
+// The console's first answer to "which culler, and did any draw wrong pixels?": a compact table
+// that fits kConsoleWidth columns, sorted, each row saying whether the culler is conservative, then
+// a verdict of two or three lines. Formatting only, like report.h; the full table
 // (formatComparisonTable, `--wide`), report.md and summary.json keep every figure.
 #pragma once
 
@@ -21,6 +21,9 @@ inline constexpr size_t kConsoleWidth = 100;
 // rows without a timed frame last in their group. A label too long for the width is cut in the
 // middle ("statistical+:bas...=0.5"), never a figure. Ends with a legend line.
 std::string formatCompactTable(const std::vector<RunRecord>& runs);
+
+// The columns a UTF-8 text takes on a terminal: one a code point ("×" is one, not two bytes).
+size_t displayWidth(const std::string& text);
 
 // One line of text broken at spaces into lines of at most kConsoleWidth characters: the first
 // keeps the text's indent, the later ones are indented two spaces more; a word longer than a line

@@ -89,8 +89,9 @@ std::string worstWindowsText(const BenchResult& result, bool wide) {
                    "lists up to " +
                    std::to_string(kWorstWindowsPerConfiguration) + " per configuration):\n"
              : "\nworst windows against " + reference + " (" + std::to_string(kWorstWindowFrames) +
-                   " timed frames; report.md has up to " +
-                   std::to_string(kWorstWindowsPerConfiguration) + " a configuration, in full):\n";
+                   " timed frames; up to " + std::to_string(kWorstWindowsPerConfiguration) +
+                   " a configuration in report.md):\n(ratio of times; ms and objects a frame, "
+                   "this / the reference's; the frame that lost most)\n";
     size_t width = 0;
     for (const RunRecord& r : result.runs) {
         if (!r.worst_windows.empty()) width = std::max(width, r.summary.label.size());
@@ -100,25 +101,25 @@ std::string worstWindowsText(const BenchResult& result, bool wide) {
         const WorstWindow& w = r.worst_windows.front();
         out += "  " + r.summary.label + std::string(width - r.summary.label.size(), ' ') + "  " +
                (wide ? describeWindow(w, result.window_reference, result.metadata.dt_s)
-                     : describeWindowBriefly(w, result.window_reference)) +
+                     : describeWindowBriefly(w)) +
                "\n";
     }
     return out;
 }
 
-std::string describeWindowBriefly(const WorstWindow& w, const std::string& reference) {
+std::string describeWindowBriefly(const WorstWindow& w) {
     std::string text = "frames " + std::to_string(w.first_frame) + "-" +
                        std::to_string(w.first_frame + w.frames - 1) + ": " + fixed(w.ratio, 2) +
-                       "x " + reference + ", " + fixed(w.frame_ms_mean, 2) + " / " +
-                       fixed(w.reference_frame_ms_mean, 2) + " ms; " + fixed(w.objects_mean, 1) +
-                       " / " + fixed(w.reference_objects_mean, 1) + " objects";
+                       "x, " + fixed(w.frame_ms_mean, 1) + " / " +
+                       fixed(w.reference_frame_ms_mean, 1) + " ms, " + fixed(w.objects_mean, 0) +
+                       " / " + fixed(w.reference_objects_mean, 0) + " objects";
     if (w.error_pixels > 0 || w.missed_objects > 0) {
-        text += "; " + std::to_string(w.error_pixels) + " error px, " +
+        text += ", " + std::to_string(w.error_pixels) + " error px, " +
                 std::to_string(w.missed_objects) + " missed";
     }
     const double worst =
         w.worst_reference_frame_ms > 0 ? w.worst_frame_ms / w.worst_reference_frame_ms : 0.0;
-    return text + "; worst frame " + std::to_string(w.worst_frame) + " (" + fixed(worst, 2) + "x)";
+    return text + ", worst frame " + std::to_string(w.worst_frame) + " (" + fixed(worst, 2) + "x)";
 }
 
 nlohmann::json segmentsJson(const BenchResult& result) {

@@ -25,9 +25,10 @@ std::string segmentTablesText(const BenchResult& result, bool wide = false);
 // reference ran or no configuration has a window.
 std::string worstWindowsText(const BenchResult& result, bool wide = false);
 
-// One window briefly, for a console line: "frames 120-129: 2.71x ideal, 12.31 / 4.54 ms; 412.0 /
-// 35.0 objects; worst frame 124 (3.10x)", with "; N error px, M missed" where it had any.
-std::string describeWindowBriefly(const WorstWindow& window, const std::string& reference);
+// One window briefly, for a console line under a heading that names the reference: "frames
+// 120-129: 2.71x, 12.3 / 4.5 ms, 412 / 35 objects, worst frame 124 (3.10x)", with ", N error px,
+// M missed" where it had any.
+std::string describeWindowBriefly(const WorstWindow& window);
 
 // One window in words: "frames 120 to 129 (4.000 to 4.300 s): 2.71x ideal (12.31 / 4.54 ms per
 // frame); objects 412 / 35, triangles 17162 / 190 per frame; 45.0 queries, 1.200 ms waiting per

@@ -10,9 +10,15 @@ OccluderRoleCounts countOccluderRoles(const Scene& scene) {
         const OccluderRole role =
             o < scene.object_occluder.size() ? scene.object_occluder[o] : OccluderRole::BySize;
         switch (role) {
-            case OccluderRole::BySize: ++c.by_size; break;
-            case OccluderRole::Always: ++c.always; break;
-            case OccluderRole::Never: ++c.never; break;
+            case OccluderRole::BySize:
+                ++c.by_size;
+                break;
+            case OccluderRole::Always:
+                ++c.always;
+                break;
+            case OccluderRole::Never:
+                ++c.never;
+                break;
         }
         if (o < scene.object_occluder_mesh.size() && scene.object_occluder_mesh[o] < meshes)
             ++c.authored_meshes;

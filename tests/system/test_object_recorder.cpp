@@ -14,6 +14,7 @@
 #include "occsim/culling/contract/decision_log.h"
 #include "occsim/culling/registry/registry.h"
 #include "signalled_run.h"
+#include "sim/output/console_table.h"
 #include "sim/record/object_schema.h"
 
 namespace occsim::testing {
@@ -216,10 +217,12 @@ TEST(ObjectsDatabase, WithRepetitionsTheFileWhyAndTheReportAddUpToTheSummarysMis
     ASSERT_EQ(missed.exit_code, 0) << missed.output;
     EXPECT_NE(missed.output.find("(repetition 1 of 3 recorded: "), std::string::npos)
         << missed.output;
-    EXPECT_NE(missed.output.find("async: 1 object missed in repetition 1; repetitions 2-3, not "
-                                 "recorded, missed " +
-                                 std::to_string(async_later) + " more (objects × frames)\n"),
-              std::string::npos)
+    // As the console prints it: broken into lines of at most 100 columns.
+    EXPECT_NE(
+        missed.output.find(wrappedText("async: 1 object missed in repetition 1; repetitions "
+                                       "2-3, not recorded, missed " +
+                                       std::to_string(async_later) + " more (objects × frames)")),
+        std::string::npos)
         << missed.output;
     EXPECT_NE(missed.output.find("vfc: 0 objects missed in repetition 1; repetitions 2-3, not "
                                  "recorded, missed none\n"),

@@ -86,8 +86,9 @@ TEST(ConsoleTable, SaysWhatEachRowIsAndSortsConservativeFirstByTime) {
     const std::vector<std::string> lines = linesOf(formatCompactTable(runs));
     ASSERT_GE(lines.size(), 7u);
     const std::vector<std::pair<std::string, std::string>> expected = {
-        {"statistical+", "cons"}, {"chc", "cons"},       {"vfc", "cons"},
-        {"chc threshold_pixels=4", "approx"}, {"async", "approx"}, {"ideal", "oracle"}};
+        {"statistical+", "cons"}, {"chc", "cons"},
+        {"vfc", "cons"},          {"chc threshold_pixels=4", "approx"},
+        {"async", "approx"},      {"ideal", "oracle"}};
     for (size_t i = 0; i < expected.size(); ++i) {
         const std::string& line = lines[i + 1];
         EXPECT_EQ(line.rfind(expected[i].first + " ", 0), 0u) << i << ": " << line;
@@ -106,9 +107,9 @@ TEST(ConsoleTable, ShowsErrorColumnsOnlyWhenErrorWasMeasured) {
 }
 
 TEST(Verdict, NamesTheFastestConservativeCullerAndItsMarginBeyondTheNoise) {
-    const BenchResult result = resultOf({record("vfc", "vfc", 9.0), record("chc", "chc", 3.0),
-                                         record("statistical+", "statistical+", 2.0),
-                                         record("ideal", "ideal", 0.5)});
+    const BenchResult result =
+        resultOf({record("vfc", "vfc", 9.0), record("chc", "chc", 3.0),
+                  record("statistical+", "statistical+", 2.0), record("ideal", "ideal", 0.5)});
     const std::vector<std::string> lines = verdictStatements(result, "out/x", true);
     ASSERT_EQ(lines.size(), 3u);
     EXPECT_EQ(lines[0].rfind("verdict: fastest conservative culler statistical+, 1.50x faster than "
@@ -151,8 +152,9 @@ TEST(Verdict, WithRepetitionsTiesWhenTheMeansRangesOverlap) {
                   "tie (chc 2.00 ms, statistical+ 2.20 ms; their means over 3 repetitions overlap"),
               std::string::npos);
     a.summary.frame_ms_mean_max = 2.05;
-    EXPECT_NE(verdictStatements(resultOf({a, b}), "o", true)[0].find("1.10x faster than statistical+"),
-              std::string::npos);
+    EXPECT_NE(
+        verdictStatements(resultOf({a, b}), "o", true)[0].find("1.10x faster than statistical+"),
+        std::string::npos);
 }
 
 TEST(Verdict, SaysLoudlyWhenAConservativeCullerDrewWrongPixels) {
@@ -166,10 +168,11 @@ TEST(Verdict, SaysLoudlyWhenAConservativeCullerDrewWrongPixels) {
               "'out/my run' --missed");
     const std::vector<std::string> fine =
         verdictStatements(resultOf({record("chc", "chc", 2.0), record("vfc", "vfc", 3.0),
-                               record("async", "async", 0.5, 0.0, 300, 4)}),
-                     "o", true);
-    EXPECT_EQ(fine[1], "wrong pixels: none from a conservative culler; approximate: async 300 px, "
-                       "4 missed");
+                                    record("async", "async", 0.5, 0.0, 300, 4)}),
+                          "o", true);
+    EXPECT_EQ(fine[1],
+              "wrong pixels: none from a conservative culler; approximate: async 300 px, "
+              "4 missed");
     EXPECT_EQ(verdictStatements(resultOf({record("chc", "chc", 2.0)}, false), "o", true)[1],
               "wrong pixels: not measured (--error renders ground truth and counts them)");
 }
@@ -197,7 +200,14 @@ TEST(Wrapped, BreaksAtSpacesIntoLinesThatFitAndIndentsTheRest) {
     EXPECT_EQ(wrapped("see " + path + " now"),
               (std::vector<std::string>{"see", "  " + path, "  now"}));
     // A line's own spacing stays: aligned columns keep their padding.
-    EXPECT_EQ(wrapped("  vfc    frames  1-10"), (std::vector<std::string>{"  vfc    frames  1-10"}));
+    EXPECT_EQ(wrapped("  vfc    frames  1-10"),
+              (std::vector<std::string>{"  vfc    frames  1-10"}));
+    // Columns, not bytes: "×" takes one.
+    EXPECT_EQ(displayWidth("objects \xC3\x97 frames"), 16u);
+    const std::string times = std::string(97, 'a') +
+                              " \xC3\x97"
+                              "b";  // 100 columns, 101 bytes
+    EXPECT_EQ(wrapped(times), (std::vector<std::string>{times}));
     EXPECT_EQ(wrappedText(""), "");
     EXPECT_EQ(wrappedText("a b"), "a b\n");
     // Every line of a text, its indent kept and its blank lines too.

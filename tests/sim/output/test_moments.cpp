@@ -283,7 +283,9 @@ TEST(MomentsReport, ReportMdHasTheSegmentTablesAndTheWorstWindowsWithTheirPictur
     EXPECT_NE(console.find("  statistical  frames 40 to 49"), std::string::npos) << console;
     // By default briefly, in lines that fit 100 columns.
     const std::string brief = worstWindowsText(result);
-    EXPECT_NE(brief.find("  statistical  frames 40-49: "), std::string::npos) << brief;
+    EXPECT_NE(brief.find("  statistical  frames 40-49: 3.15x, 6.3 / 2.0 ms, 30 / 3 objects"),
+              std::string::npos)
+        << brief;
     EXPECT_NE(brief.find("worst frame 44 (4.50x)"), std::string::npos) << brief;
     std::istringstream lines(brief);
     for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << line;

@@ -26,7 +26,8 @@ TEST(OccluderRoles, CountsEachObjectOnceByItsRole) {
     EXPECT_EQ(c.never, 2u);
     EXPECT_EQ(c.by_size, 1u);
     EXPECT_EQ(c.authored_meshes, 2u) << "mesh 7 is no mesh of the scene: not counted";
-    EXPECT_EQ(occluderRolesText(c), "1 by size, 2 always, 2 never; 2 with an authored occluder mesh");
+    EXPECT_EQ(occluderRolesText(c),
+              "1 by size, 2 always, 2 never; 2 with an authored occluder mesh");
 }
 
 TEST(OccluderRoles, AnObjectWithoutARoleIsChosenBySize) {
