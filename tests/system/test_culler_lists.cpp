@@ -52,8 +52,7 @@ std::vector<std::string> missingFrom(const MarkedList& list) {
     std::vector<std::string> missing;
     for (const CullerRow* row : cullerRows()) {
         if (!row->source.empty()) continue;  // a plugin's: not the docs' to list
-        const std::string named =
-            list.code ? "\n" + row->name + " " : "`" + row->name + "`";
+        const std::string named = list.code ? "\n" + row->name + " " : "`" + row->name + "`";
         if (("\n" + list.text).find(named) == std::string::npos) missing.push_back(row->name);
     }
     return missing;
@@ -81,7 +80,8 @@ TEST(CullerLists, EveryMarkedListInTheDocsNamesEveryRegisteredCuller) {
 TEST(CullerLists, TheCheckNamesACullerAMarkedListLacks) {
     const fs::path file =
         fs::temp_directory_path() / ("occsim-culler-lists-" + std::to_string(::getpid()) + ".md");
-    std::ofstream(file) << "text\n" << kMarker << "\n- `vfc` and `chc`\n- `ideal`\n\nafter `hzb`\n"
+    std::ofstream(file) << "text\n"
+                        << kMarker << "\n- `vfc` and `chc`\n- `ideal`\n\nafter `hzb`\n"
                         << kMarker << "\n```\nconfiguration  kind\nvfc  cons\nchc++  cons\n```\n";
     const std::vector<MarkedList> lists = markedLists(file, "planted.md");
     ASSERT_EQ(lists.size(), 2u);
