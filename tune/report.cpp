@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/output/console_table.h"
 #include "sim/output/fixed_text.h"
 #include "tune/tuned_file.h"
 
@@ -163,20 +164,8 @@ std::string confirmationTable(const TuneResult& r) {
                         pair(c.tuned_tie_pixels, c.paper_tie_pixels),
                         pair(c.tuned_missed_objects, c.paper_missed_objects)});
     }
-    std::vector<size_t> width(rows.front().size(), 0);
-    for (const auto& row : rows)
-        for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
     std::ostringstream out;
-    for (const auto& row : rows) {
-        std::string line;
-        for (size_t c = 0; c < row.size(); ++c) {
-            const std::string pad(width[c] - row[c].size(), ' ');
-            line += c == 0 || c == 2 ? row[c] + pad : pad + row[c];
-            if (c + 1 < row.size()) line += "  ";
-        }
-        while (!line.empty() && line.back() == ' ') line.pop_back();
-        out << line << "\n";
-    }
+    out << alignColumns(rows, {0, 2});
     out << "ratios tuned / " << ref << ": median [min-max] of the runs; frames x repetitions;\n"
         << "ms, err px, tie px, missed: tuned/" << ref << "\n";
     return out.str();

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include "occsim/culling/contract/input_error.h"
@@ -206,6 +205,32 @@ int partialRunEnded(const std::string& command, const occsim::BenchResult& resul
     return p.signal != 0 ? 128 + p.signal : kExitFailure;
 }
 
+// --wide: the full table and every line as long as it is.
+void printWide(const occsim::BenchResult& result) {
+    std::printf("%s\n", occsim::runHeadline(result).c_str());
+    std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    if (const std::string line = occsim::aggregationLine(result); !line.empty())
+        std::printf("%s\n", line.c_str());
+    std::printf("%s\n", occsim::costsLine(result).c_str());
+    std::printf("%s", occsim::segmentTablesText(result, true).c_str());
+    std::printf("%s", occsim::worstWindowsText(result, true).c_str());
+}
+
+// The default: the compact table and the verdict, every line within 100 columns. The compact
+// table has no pareto column, so the line on how it was decided goes; the line on how
+// repetitions were joined stays.
+void printCompact(const occsim::BenchResult& result, const std::string& out_dir,
+                  bool objects_recorded) {
+    std::string text = occsim::runHeadline(result) + "\n";
+    text += occsim::formatCompactTable(result.runs);
+    for (const std::string& line : occsim::verdictStatements(result, out_dir, objects_recorded))
+        text += line + "\n";
+    if (result.metadata.repetitions > 1) text += occsim::aggregationLine(result) + "\n";
+    text += occsim::costsLine(result) + "\n";
+    text += occsim::segmentTablesText(result) + occsim::worstWindowsText(result);
+    std::printf("%s", occsim::wrappedText(text).c_str());
+}
+
 int runAndReport(const RunRequest& request) {
     const CommonFlags& flags = request.flags;
     checkOutputFolder("--out", flags.out, flags.out_given);
@@ -240,37 +265,9 @@ int runAndReport(const RunRequest& request) {
     folder.publish();
 
     if (flags.wide) {
-        std::printf("%s\n", occsim::runHeadline(result).c_str());
+        printWide(result);
     } else {
-        std::istringstream headline(occsim::runHeadline(result));
-        for (std::string line; std::getline(headline, line);)
-            std::printf("%s", occsim::wrappedText(line).c_str());
-    }
-    if (flags.wide) {
-        std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
-    } else {
-        std::printf("%s", occsim::formatCompactTable(result.runs).c_str());
-        for (const std::string& line :
-             occsim::verdictLines(result, out_dir.string(), objects != nullptr))
-            std::printf("%s\n", line.c_str());
-    }
-    // The compact table has no pareto column: the line about how it was decided goes with it;
-    // the line on how repetitions were joined stays.
-    const std::string aggregation = occsim::aggregationLine(result);
-    if (flags.wide) {
-        if (!aggregation.empty()) std::printf("%s\n", aggregation.c_str());
-        std::printf("%s\n", occsim::costsLine(result).c_str());
-    } else {
-        if (result.metadata.repetitions > 1)
-            std::printf("%s", occsim::wrappedText(aggregation).c_str());
-        std::printf("%s", occsim::wrappedText(occsim::costsLine(result)).c_str());
-    }
-    if (flags.wide) {
-        std::printf("%s", occsim::segmentTablesText(result, true).c_str());
-        std::printf("%s", occsim::worstWindowsText(result, true).c_str());
-    } else {
-        std::printf("%s", occsim::wrappedText(occsim::segmentTablesText(result)).c_str());
-        std::printf("%s", occsim::wrappedText(occsim::worstWindowsText(result)).c_str());
+        printCompact(result, out_dir.string(), objects != nullptr);
     }
     std::printf("written: %s/{frames.csv,summary.json,report.md}\n", out_dir.string().c_str());
     if (objects) {

@@ -58,24 +58,6 @@ std::string fitLabel(const std::string& label, size_t width) {
     return label.substr(0, head) + "..." + label.substr(label.size() - (keep - head));
 }
 
-std::string align(const std::vector<std::vector<std::string>>& lines) {
-    std::vector<size_t> width(lines.front().size(), 0);
-    for (const auto& cells : lines)
-        for (size_t c = 0; c < cells.size(); ++c) width[c] = std::max(width[c], cells[c].size());
-    std::ostringstream out;
-    for (const auto& cells : lines) {
-        std::string line;
-        for (size_t c = 0; c < cells.size(); ++c) {
-            const std::string pad(width[c] - cells[c].size(), ' ');
-            line += c < 2 ? cells[c] + pad : pad + cells[c];  // names left, figures right
-            if (c + 1 < cells.size()) line += "  ";
-        }
-        while (!line.empty() && line.back() == ' ') line.pop_back();
-        out << line << '\n';
-    }
-    return out.str();
-}
-
 // The timed frame times of one record (its last timed_frames frames), by frame number.
 std::map<uint32_t, double> timedFrames(const RunRecord& r) {
     std::map<uint32_t, double> t;
@@ -93,6 +75,29 @@ size_t displayWidth(const std::string& text) {
     size_t width = 0;
     for (const char c : text) width += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
     return width;
+}
+
+std::string alignColumns(const std::vector<std::vector<std::string>>& rows,
+                         const std::vector<size_t>& left_columns) {
+    if (rows.empty()) return "";
+    std::vector<size_t> width(rows.front().size(), 0);
+    for (const auto& cells : rows)
+        for (size_t c = 0; c < cells.size(); ++c)
+            width[c] = std::max(width[c], displayWidth(cells[c]));
+    std::string out;
+    for (const auto& cells : rows) {
+        std::string line;
+        for (size_t c = 0; c < cells.size(); ++c) {
+            const std::string pad(width[c] - displayWidth(cells[c]), ' ');
+            const bool left =
+                std::find(left_columns.begin(), left_columns.end(), c) != left_columns.end();
+            line += left ? cells[c] + pad : pad + cells[c];
+            if (c + 1 < cells.size()) line += "  ";
+        }
+        while (!line.empty() && line.back() == ' ') line.pop_back();
+        out += line + "\n";
+    }
+    return out;
 }
 
 std::vector<std::string> wrapped(const std::string& text) {
@@ -182,7 +187,7 @@ std::string formatCompactTable(const std::vector<RunRecord>& runs) {
     const size_t label_width =
         std::max<size_t>(kConsoleWidth > figures ? kConsoleWidth - figures : 0, 13);
     for (size_t i = 1; i < lines.size(); ++i) lines[i][0] = fitLabel(lines[i][0], label_width);
-    std::string out = align(lines);
+    std::string out = alignColumns(lines, {0, 1});  // names left, figures right
     out +=
         "kind: cons never hides a visible pixel, approx may, oracle is the ground-truth bound;\n"
         "queries and objects a frame, mean ms over the timed frames";
@@ -218,22 +223,12 @@ TimeComparison compareTimes(const RunRecord& faster, const RunRecord& slower) {
     return c;
 }
 
-std::vector<std::string> verdictLines(const BenchResult& result, const std::string& out_dir,
-                                      bool objects_recorded) {
-    std::vector<std::string> lines = verdictStatements(result, out_dir, objects_recorded);
-    std::vector<std::string> out;
-    for (const std::string& line : lines) {
-        const std::vector<std::string> w = wrapped(line);
-        out.insert(out.end(), w.begin(), w.end());
-    }
-    return out;
-}
-
 std::vector<std::string> verdictStatements(const BenchResult& result, const std::string& out_dir,
                                            bool objects_recorded) {
     std::vector<std::string> lines;
+    const std::vector<const RunRecord*> rows = sortedRows(result.runs);
     std::vector<const RunRecord*> conservative;
-    for (const RunRecord* r : sortedRows(result.runs))
+    for (const RunRecord* r : rows)
         if (kindOf(*r) == Kind::Conservative && timed(*r)) conservative.push_back(r);
     if (conservative.empty()) return lines;
 
@@ -273,7 +268,7 @@ std::vector<std::string> verdictStatements(const BenchResult& result, const std:
     // Wrong pixels: a conservative culler's are a bug; an approximate one's are its trade.
     if (result.metadata.error_measured) {
         std::string wrong_conservative, wrong_approximate;
-        for (const RunRecord* r : sortedRows(result.runs)) {
+        for (const RunRecord* r : rows) {
             const RunSummary& s = r->summary;
             if (s.error_pixels_total == 0 && s.missed_objects_total == 0) continue;
             const std::string item = s.label + " " + std::to_string(s.error_pixels_total) +

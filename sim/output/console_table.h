@@ -25,6 +25,12 @@ std::string formatCompactTable(const std::vector<RunRecord>& runs);
 // The columns a UTF-8 text takes on a terminal: one a code point ("×" is one, not two bytes).
 size_t displayWidth(const std::string& text);
 
+// Rows of cells as aligned text, one line each ending in a newline: two spaces between columns,
+// the columns in `left_columns` padded on the right, the others on the left, widths in
+// displayWidth() columns, no trailing spaces.
+std::string alignColumns(const std::vector<std::vector<std::string>>& rows,
+                         const std::vector<size_t>& left_columns);
+
 // One line of text broken at spaces into lines of at most kConsoleWidth characters: the first
 // keeps the text's indent, the later ones are indented two spaces more; a word longer than a line
 // (a long path) stays whole. wrappedText() does so to every line of a text, blank lines kept,
@@ -49,11 +55,8 @@ TimeComparison compareTimes(const RunRecord& faster, const RunRecord& slower);
 // bug); and the `occsim why` command to ask about the runner-up (with `--record objects` when the
 // run did not record them). `out_dir` is the run's folder as the user named it. None at all when
 // no conservative culler was timed.
-// verdictStatements() gives each statement whole; verdictLines() breaks them into console lines
-// of at most kConsoleWidth characters, a statement's later lines indented by two spaces.
+// Each statement whole, one a line; the console breaks them with wrapped().
 std::vector<std::string> verdictStatements(const BenchResult& result, const std::string& out_dir,
                                            bool objects_recorded);
-std::vector<std::string> verdictLines(const BenchResult& result, const std::string& out_dir,
-                                      bool objects_recorded);
 
 }  // namespace occsim

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/output/console_table.h"
 #include "sim/output/fixed_text.h"
 #include "sim/output/moments.h"
 #include "sim/output/version.h"
@@ -97,24 +98,9 @@ ComparisonTable comparisonTable(const std::vector<RunRecord>& runs) {
 
 std::string formatComparisonTable(const std::vector<RunRecord>& runs) {
     const ComparisonTable table = comparisonTable(runs);
-    const auto& header = table.header;
-    const auto& rows = table.rows;
-    std::vector<size_t> width(header.size());
-    for (size_t c = 0; c < header.size(); ++c) {
-        width[c] = header[c].size();
-        for (const auto& row : rows) width[c] = std::max(width[c], row[c].size());
-    }
-    std::ostringstream out;
-    auto line = [&](const std::vector<std::string>& cells) {
-        for (size_t c = 0; c < cells.size(); ++c) {
-            const std::string pad(width[c] - cells[c].size(), ' ');
-            out << (c == 0 ? cells[c] + pad : pad + cells[c])
-                << (c + 1 < cells.size() ? "  " : "\n");
-        }
-    };
-    line(header);
-    for (const auto& row : rows) line(row);
-    return out.str();
+    std::vector<std::vector<std::string>> lines = {table.header};
+    lines.insert(lines.end(), table.rows.begin(), table.rows.end());
+    return alignColumns(lines, {0});
 }
 
 std::string framesCsv(const std::vector<RunRecord>& runs) {

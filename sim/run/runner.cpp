@@ -354,10 +354,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     result.metadata = metadataOf(scenario, scene, options, repetitions, *context);
     // The roles a culler with an occluder pass reads: said, so that a user can check what the
     // scene file gave (all explicit roles leave an occluder option nothing to act on).
-    for (const RunConfig& config : configs) {
-        if (config.algorithm->needs_meshes)
-            result.metadata.occluder_roles = occluderRolesText(countOccluderRoles(scene));
-    }
+    if (std::any_of(configs.begin(), configs.end(),
+                    [](const RunConfig& c) { return c.algorithm->needs_meshes; }))
+        result.metadata.occluder_roles = occluderRolesText(countOccluderRoles(scene));
     result.metadata.heap = heap;
     if (costs) {
         result.metadata.cost_model = costs->costs;

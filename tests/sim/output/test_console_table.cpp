@@ -120,7 +120,11 @@ TEST(Verdict, NamesTheFastestConservativeCullerAndItsMarginBeyondTheNoise) {
     EXPECT_EQ(lines[1], "wrong pixels: none from a conservative culler, none at all");
     EXPECT_EQ(lines[2], "why chc lost: occsim why out/x --overdraw --algo chc");
     // On the console each statement is broken into lines that fit, continued with an indent.
-    const std::vector<std::string> console = verdictLines(result, "out/x", true);
+    std::vector<std::string> console;
+    for (const std::string& statement : lines) {
+        const std::vector<std::string> w = wrapped(statement);
+        console.insert(console.end(), w.begin(), w.end());
+    }
     ASSERT_EQ(console.size(), 4u);
     EXPECT_EQ(console[0].rfind("verdict: fastest conservative culler statistical+", 0), 0u);
     EXPECT_EQ(console[1].rfind("  ", 0), 0u) << console[1];
