@@ -1,5 +1,6 @@
 // Checks of the BspTree contract (occsim/culling/tree/bsp_tree.h) recomputed from scratch, and the
-// random scenes the tree tests share (test_bsp_tree.cpp, test_bsp_adaptation.cpp).
+// random scenes the tree tests share (test_bsp_tree.cpp, test_bsp_tree_moves.cpp,
+// test_bsp_adaptation.cpp).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -17,6 +18,11 @@ namespace occsim::testing {
 constexpr uint32_t kNone = BspTree::kNone;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+
+// The split rule as a test name says it.
+inline const char* ruleName(BspSplitRule rule) {
+    return rule == BspSplitRule::Sah ? "Sah" : "Median";
+}
 
 inline bool sameBox(const Aabb& a, const Aabb& b) {
     return a.min.x == b.min.x && a.min.y == b.min.y && a.min.z == b.min.z && a.max.x == b.max.x &&

@@ -85,7 +85,7 @@ const std::string kQuick = " --params base_time --budget 5 --batch 3 --frames 12
 // Whether a session finished: exit 0 (tuned.json: accepted or no change) or kExitRejected
 // (tuned.rejected.json). Which of them depends on measured frame times, so on the machine's load:
 // a test of anything but the verdict takes either (the verdict's rules have tests of their own
-// on given ratios, test_tune_models.cpp).
+// on given ratios, tests/tune/test_confirm.cpp).
 bool finished(const Outcome& o) { return o.exit_code == 0 || o.exit_code == kExitRejected; }
 fs::path tunedFileIn(const fs::path& dir) {
     return fs::exists(dir / "tuned.json") ? dir / "tuned.json" : dir / "tuned.rejected.json";

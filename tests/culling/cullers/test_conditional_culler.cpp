@@ -1,6 +1,6 @@
 // The conditional-rendering culler (culling/cullers/conditional_culler.h) on the CPU test devices,
 // which evaluate a condition as a GPU does: no OpenGL. The capability on each device is tested in
-// that device's test file, the GL device's in test_render.cpp.
+// that device's test file, the GL device's in tests/render/test_gl_query_device.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

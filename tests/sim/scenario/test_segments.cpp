@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "sim/scenario/scenario.h"
-#include "sim/scenario/segments.h"
 
 namespace occsim {
 namespace {

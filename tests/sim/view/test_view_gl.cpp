@@ -1,62 +1,20 @@
 // What the viewer asks of the renderer and the simulation, headless (no window; on every backend
-// the build has): the live
-// camera, held worlds and algorithm switches on a SharedWorld, a resizable framebuffer, CPU images
-// shown in a default framebuffer, and the composed picture with the node boxes.
+// the build has): cullers made as runs make them, the live camera, held worlds and algorithm
+// switches on a SharedWorld, a resizable framebuffer, and CPU images shown in a default
+// framebuffer. The node boxes and the validation overlay: test_node_boxes.cpp and
+// test_validation_overlay.cpp.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
 #include "culling/cullers/statistical_culler.h"
-#include "headless_backends.h"
-#include "occsim/culling/registry/registry.h"
 #include "render/gl_api.h"
 #include "render/gl_image_presenter.h"
-#include "render/gl_renderer.h"
-#include "render/headless_context.h"
-#include "sim/run/culler_setup.h"
-#include "sim/run/ground_truth.h"
-#include "sim/run/simulation.h"
-#include "sim/scenario/scenario.h"
-#include "sim/view/node_boxes.h"
-#include "sim/view/validation_overlay.h"
-#include "sim/view/view_picture.h"
-#include "sim/world/camera_path.h"
+#include "view_gl_fixture.h"
 
 namespace occsim {
 namespace {
-
-const std::filesystem::path kSmall =
-    std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-small.json";
-
-class ViewGl : public ::testing::TestWithParam<Backend> {
-  protected:
-    void SetUp() override {
-        scenario_ = parseScenarioFile(kSmall);
-        context_ = createHeadlessContext({GetParam(), {}}, scenario_.width, scenario_.height);
-        scene_ = std::make_unique<Scene>(buildScene(scenario_));
-        renderer_ = std::make_unique<GlRenderer>(scenario_.width, scenario_.height);
-        uploadScene(*scene_, *renderer_);
-    }
-    std::unique_ptr<Simulation> simulation(const std::string& algorithm, bool error = false) {
-        const CullerRow& a = *findCuller(algorithm);
-        SimulationOptions options;
-        options.measure_error = error;
-        return std::make_unique<Simulation>(*scene_, scenario_, a, makeCuller(a, scenario_.culler),
-                                            scenario_.culler, *renderer_, options);
-    }
-    std::vector<uint32_t> ids() {
-        std::vector<uint32_t> out;
-        renderer_->readObjectIds(out);
-        return out;
-    }
-
-    Scenario scenario_;
-    std::unique_ptr<HeadlessContext> context_;
-    std::unique_ptr<Scene> scene_;
-    std::unique_ptr<GlRenderer> renderer_;
-};
 
 // The viewer makes its cullers through the run layer's one construction path
 // (sim/run/culler_setup.h): a culler that weighs costs gets a cost model measured on this
@@ -194,104 +152,6 @@ TEST_P(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
     glReadPixels(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), GL_RGBA, GL_UNSIGNED_BYTE,
                  shown.data());
     EXPECT_EQ(shown, image);
-}
-
-size_t countColour(const RasterCanvas& canvas, Rgb colour) {
-    size_t n = 0;
-    for (uint32_t y = 0; y < canvas.height(); ++y) {
-        for (uint32_t x = 0; x < canvas.width(); ++x) n += canvas.at(int(x), int(y)) == colour;
-    }
-    return n;
-}
-
-TEST_P(ViewGl, NodeBoxesShowInTheColoursOfWhatTheCullerDidOnlyForATracedFrame) {
-    auto sim = simulation("chc");
-    ViewLayers layers;
-    layers.boxes = true;
-    layers.hud = false;
-    std::vector<uint8_t> rgba;
-    const Rgb visible = nodeClassColour(NodeClass::DrawnAfterQuery);
-
-    sim->renderFrame();  // not traced: nothing to draw boxes from
-    renderer_->readColor(rgba);
-    const RasterCanvas plain = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
-                                                  *sim, scenario_.camera, layers, {});
-    EXPECT_EQ(
-        countColour(plain, visible),
-        countColour(canvasFromBottomUp(rgba, renderer_->width(), renderer_->height()), visible));
-
-    LiveControls controls;
-    controls.trace_every_frame = true;
-    sim->world().setLiveControls(controls);
-    for (int f = 0; f < 3; ++f) sim->renderFrame();  // CHC settles into querying
-    renderer_->readColor(rgba);
-    const RasterCanvas boxed = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
-                                                  *sim, scenario_.camera, layers, {});
-    EXPECT_GT(countColour(boxed, visible), 100u);
-    EXPECT_GT(countColour(boxed, nodeClassColour(NodeClass::OcclusionCulled)), 20u);
-}
-
-// A culler that draws nothing: everything ground truth sees is missed.
-class DrawsNothing final : public Culler {
-  public:
-    void reset(const BspTree&) override {}
-    void cullAndRender(const BspTree&, const CullFrame&, RenderDevice&) override {}
-};
-
-// The validation overlay shows each object's verdict against ground truth, from the same
-// comparison as the run's counts: VFC over-draws (yellow boxes) and misses nothing; a culler that
-// draws nothing misses what ground truth sees (its pixels tinted red) and over-draws nothing.
-TEST_P(ViewGl, TheValidationOverlayShowsMissedDrawnHiddenAndCulledObjects) {
-    ViewLayers layers;
-    layers.hud = false;
-    std::vector<uint8_t> rgba;
-    auto verdicts = [](const Simulation& sim, ObjectVerdict v) {
-        const auto& all = sim.objectVerdicts();
-        return static_cast<int64_t>(std::count(all.begin(), all.end(), static_cast<uint8_t>(v)));
-    };
-    auto vfc = simulation("vfc", true);
-    const FrameStats stats = vfc->renderFrame();
-    ASSERT_EQ(vfc->objectVerdicts().size(), scene_->objectCount());
-    EXPECT_EQ(verdicts(*vfc, ObjectVerdict::Missed), stats.missed_objects);
-    EXPECT_EQ(verdicts(*vfc, ObjectVerdict::DrawnHidden), stats.overdrawn_objects);
-    EXPECT_EQ(verdicts(*vfc, ObjectVerdict::DrawnVisible),
-              stats.visible_objects - stats.missed_objects);
-    EXPECT_GT(stats.overdrawn_objects, 0);
-    renderer_->readColor(rgba);
-    const RasterCanvas plain = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
-                                                  *vfc, scenario_.camera, layers, {});
-    layers.validation = true;
-    const RasterCanvas shown = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
-                                                  *vfc, scenario_.camera, layers, {});
-    EXPECT_GT(countColour(shown, kDrawnHiddenColour), countColour(plain, kDrawnHiddenColour) + 100);
-    EXPECT_EQ(countColour(shown, kMissedColour), countColour(plain, kMissedColour));
-
-    const CullerRow& vfc_traits = *findCuller("vfc");
-    SimulationOptions options;
-    options.measure_error = true;
-    Simulation nothing(*scene_, scenario_, vfc_traits, std::make_unique<DrawsNothing>(),
-                       scenario_.culler, *renderer_, options);
-    const FrameStats none = nothing.renderFrame();
-    EXPECT_EQ(verdicts(nothing, ObjectVerdict::Missed), none.visible_objects);
-    EXPECT_EQ(verdicts(nothing, ObjectVerdict::DrawnHidden), 0);
-    renderer_->readColor(rgba);  // the empty culled frame, before ground truth draws over it
-    GroundTruth truth(*renderer_);
-    const std::vector<uint32_t> truth_ids = truth.of(nothing.world()).ids;
-    layers.truth_ids = truth_ids;
-    const RasterCanvas holes = composeViewPicture(rgba, renderer_->width(), renderer_->height(),
-                                                  nothing, scenario_.camera, layers, {});
-    size_t reddish = 0;  // the missed objects' pixels, tinted red over the empty frame
-    for (uint32_t y = 0; y < holes.height(); ++y) {
-        for (uint32_t x = 0; x < holes.width(); ++x) {
-            const Rgb c = holes.at(static_cast<int>(x), static_cast<int>(y));
-            reddish += c.r > 120 && c.g < 60 && c.b < 60;
-        }
-    }
-    size_t seen = 0;
-    for (uint32_t id : truth_ids) seen += id != 0;
-    EXPECT_GE(reddish, seen / 2) << "the missed objects' pixels, " << seen << " of them";
-    EXPECT_GT(countColour(holes, kMissedColour), 100u) << "their boxes";
-    EXPECT_GT(countColour(holes, kCulledColour), 100u) << "the hidden ones' boxes, grey";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ViewGl, ::testing::ValuesIn(testing::testedBackends()),

@@ -3,21 +3,13 @@
 // transforms and replication place objects where the contract says, and broken files fail with one
 // line. Synthetic files are small JSON documents with a base64 data: URI buffer, built here.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "gltf_builder.h"
-#include "sim/scenario/scenario.h"
-#include "sim/scene/gltf_source.h"
-#include "sim/world/world.h"
+#include "gltf_files.h"
 
 namespace occsim {
 namespace {
@@ -25,101 +17,7 @@ namespace {
 using nlohmann::json;
 using namespace testing_gltf;
 
-const std::filesystem::path kAssets = std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios/assets";
-const std::filesystem::path kTeapot = kAssets / "Teapot/teapot.gltf";
-const std::filesystem::path kSubpass = kAssets / "SubpassSceneOpaque/subpass_scene_opaque.gltf";
-const std::filesystem::path kHouse = kAssets / "FZK-Haus/AC14-FZK-Haus.glb";
-
-SourceOutput load(const std::filesystem::path& path, double scale = 1.0,
-                  glm::dvec3 offset = glm::dvec3(0.0), GltfReplication replicate = {},
-                  uint64_t seed = 1) {
-    GltfSourceSpec spec;
-    spec.path = path;
-    spec.scale = scale;
-    spec.offset = offset;
-    spec.replicate = replicate;
-    return loadGltfSource(spec, seed);
-}
-
-uint64_t drawnTriangles(const SourceOutput& out) {
-    uint64_t total = 0;
-    for (const PlacedObject& o : out.objects) total += out.meshes.at(o.mesh).triangleCount();
-    return total;
-}
-
-// What every loaded source must satisfy whatever the file: finite positions, unit finite
-// normals (one per position), whole triangles, indices in range, every mesh used.
-void expectWellFormed(const SourceOutput& out) {
-    std::vector<uint8_t> used(out.meshes.size(), 0);
-    for (const PlacedObject& o : out.objects) {
-        ASSERT_LT(o.mesh, out.meshes.size());
-        used[o.mesh] = 1;
-    }
-    for (size_t m = 0; m < out.meshes.size(); ++m) {
-        const MeshData& mesh = out.meshes[m];
-        EXPECT_TRUE(used[m]) << "mesh " << m << " is used by no object";
-        ASSERT_EQ(mesh.normals.size(), mesh.positions.size()) << "mesh " << m;
-        ASSERT_EQ(mesh.indices.size() % 3, 0u) << "mesh " << m;
-        EXPECT_GT(mesh.indices.size(), 0u) << "mesh " << m;
-        for (const glm::vec3& p : mesh.positions) {
-            ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
-        }
-        for (const glm::vec3& n : mesh.normals) {
-            ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
-            ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f) << "mesh " << m;
-        }
-        for (uint32_t i : mesh.indices) ASSERT_LT(i, mesh.positions.size()) << "mesh " << m;
-    }
-}
-
-void expectBoxNear(const Aabb& box, glm::vec3 min, glm::vec3 max, float tolerance) {
-    for (int axis = 0; axis < 3; ++axis) {
-        EXPECT_NEAR(box.min[axis], min[axis], tolerance) << "min, axis " << axis;
-        EXPECT_NEAR(box.max[axis], max[axis], tolerance) << "max, axis " << axis;
-    }
-}
-
-// The geometric normal of triangle t of an object's mesh in world space (unnormalised).
-glm::vec3 worldFaceNormal(const SourceOutput& out, const PlacedObject& o, size_t t) {
-    const MeshData& mesh = out.meshes[o.mesh];
-    const glm::vec3 a = o.linear * mesh.positions[mesh.indices[3 * t]];
-    const glm::vec3 b = o.linear * mesh.positions[mesh.indices[3 * t + 1]];
-    const glm::vec3 c = o.linear * mesh.positions[mesh.indices[3 * t + 2]];
-    return glm::cross(b - a, c - a);
-}
-
-bool anyWarningContains(const SourceOutput& out, const std::string& text) {
-    return std::any_of(out.warnings.begin(), out.warnings.end(),
-                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
-}
-
-std::string allWarnings(const SourceOutput& out) {
-    std::string text;
-    for (const std::string& w : out.warnings) text += w + "\n";
-    return text;
-}
-
-// Loads a synthetic document through a temporary .gltf file.
-SourceOutput loadText(const std::string& text, GltfReplication replicate = {}, uint64_t seed = 1,
-                      double scale = 1.0, glm::dvec3 offset = glm::dvec3(0.0)) {
-    TempDir dir;
-    return load(dir.write("model.gltf", text), scale, offset, replicate, seed);
-}
-
-// The GltfError message of loading `path`, or "" when it loads.
-std::string errorOf(const std::filesystem::path& path) {
-    try {
-        load(path);
-    } catch (const GltfError& e) {
-        return e.what();
-    }
-    return "";
-}
-
-std::string errorOfText(const std::string& text) {
-    TempDir dir;
-    return errorOf(dir.write("model.gltf", text));
-}
+using namespace gltf_files;
 
 // ---- The real files (their table and boxes, as the assets' SOURCE notes give them) ---------
 
@@ -268,19 +166,6 @@ TEST(GltfScene, ANodesExtrasGiveItsOccluderRole) {
     EXPECT_EQ(out.objects[3].occluder, std::nullopt);
 }
 
-TEST(GltfErrors, AnOccluderRoleThatIsNotOneOfTheThreeNamesTheNode) {
-    GltfBuilder b;
-    const int mesh = b.triangleMesh("Tri");
-    b.node({{"mesh", mesh}});
-    b.node({{"mesh", mesh}, {"name", "Wall"}, {"extras", {{"occsim_occluder", "yes"}}}});
-    const std::string message = errorOfText(b.text());
-    EXPECT_NE(message.find("model.gltf: node 1 ('Wall'): extras.occsim_occluder: expected "
-                           "\"always\", \"never\" or \"by_size\", got \"yes\""),
-              std::string::npos)
-        << message;
-    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0);
-}
-
 // A node names a mesh of the file as its occluder: that mesh is output (here only for that; as
 // is, or mirrored where the node is) and the object points at it.
 TEST(GltfScene, ANodesExtrasNameItsOccluderMesh) {
@@ -300,26 +185,6 @@ TEST(GltfScene, ANodesExtrasNameItsOccluderMesh) {
     // The mirrored node's occluder is the mirrored output of the same mesh.
     EXPECT_NE(*out.objects[2].occluder_mesh, *out.objects[0].occluder_mesh);
     EXPECT_EQ(out.meshes.size(), 4u);  // Tri and Inner, each as is and mirrored
-}
-
-TEST(GltfErrors, AnOccluderMeshThatIsNoMeshOfTheFileNamesTheNode) {
-    for (const json& bad : {json(5), json(-1), json(0.5), json("Inner")}) {
-        GltfBuilder b;
-        const int mesh = b.triangleMesh("Tri");
-        b.node({{"mesh", mesh}, {"name", "Wall"}, {"extras", {{"occsim_occluder_mesh", bad}}}});
-        const std::string message = errorOfText(b.text());
-        EXPECT_NE(message.find("model.gltf: node 0 ('Wall'): extras.occsim_occluder_mesh: expected "
-                               "the index of one of the file's 1 mesh, got "),
-                  std::string::npos)
-            << message;
-        EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0);
-        if (bad == json(5)) {
-            EXPECT_NE(message.find("got 5"), std::string::npos) << message;
-        }
-        if (bad.is_string()) {
-            EXPECT_NE(message.find("got \"Inner\""), std::string::npos) << message;
-        }
-    }
 }
 
 // ---- Primitives ----------------------------------------------------------------------------
@@ -467,176 +332,6 @@ TEST(GltfPrimitives, RequiredGeometryExtensionsFailAppearanceOnesDoNot) {
     EXPECT_NE(error.find("requires the unsupported extension 'KHR_draco_mesh_compression'"),
               std::string::npos)
         << error;
-}
-
-// ---- Errors: one line naming the file ------------------------------------------------------
-
-// `file` is the path, or the end of it, that the message must start with.
-void expectOneLineError(const std::string& error, const std::string& file,
-                        const std::string& part) {
-    ASSERT_FALSE(error.empty()) << "expected a GltfError";
-    const size_t at = error.find(file + ": ");
-    ASSERT_NE(at, std::string::npos) << error;
-    EXPECT_EQ(error.find(": "), at + file.size()) << "the message starts with the file: " << error;
-    EXPECT_NE(error.find(part), std::string::npos) << error;
-    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
-}
-
-TEST(GltfErrors, MissingFile) {
-    const std::filesystem::path missing = kAssets / "no-such-model.glb";
-    expectOneLineError(errorOf(missing), missing.string(), "no such file");
-}
-
-TEST(GltfErrors, TruncatedGlb) {
-    std::ifstream in(kHouse, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_GT(bytes.size(), 1000u);
-    TempDir dir;
-    const std::filesystem::path half = dir.write("half.glb", bytes.substr(0, bytes.size() / 2));
-    expectOneLineError(errorOf(half), half.string(), "");
-}
-
-TEST(GltfErrors, CorruptJson) {
-    TempDir dir;
-    const std::filesystem::path file =
-        dir.write("corrupt.gltf", R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [)");
-    expectOneLineError(errorOf(file), file.string(), "");
-}
-
-TEST(GltfErrors, MissingExternalBin) {
-    GltfBuilder b;
-    b.node({{"mesh", b.triangleMesh("Tri")}});
-    json doc = json::parse(b.text());
-    doc["buffers"][0]["uri"] = "missing.bin";
-    TempDir dir;
-    const std::filesystem::path file = dir.write("external.gltf", doc.dump());
-    expectOneLineError(errorOf(file), file.string(), "missing.bin");
-}
-
-TEST(GltfErrors, ExternalBinLoadsWhenPresent) {
-    GltfBuilder b;
-    b.node({{"mesh", b.triangleMesh("Tri")}});
-    json doc = json::parse(b.text());
-    doc["buffers"][0]["uri"] = "model.bin";
-    TempDir dir;
-    dir.write("model.bin", std::string(b.bytes().begin(), b.bytes().end()));
-    const SourceOutput out = load(dir.write("external.gltf", doc.dump()));
-    EXPECT_EQ(drawnTriangles(out), 1u);
-}
-
-TEST(GltfErrors, AccessorIndexOutOfRange) {
-    GltfBuilder b;
-    b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});  // accessor 0 exists
-    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(7)}))}});
-    expectOneLineError(errorOfText(b.text()), "model.gltf", "accessor 7");
-}
-
-TEST(GltfErrors, IndexValuePastTheVertexCount) {
-    GltfBuilder b;
-    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    b.node(
-        {{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p, b.indices({0, 1, 3}))}))}});
-    expectOneLineError(errorOfText(b.text()), "model.gltf", "index value 3");
-}
-
-TEST(GltfErrors, NonFinitePosition) {
-    GltfBuilder b;
-    const int p = b.vec3({{0, 0, 0}, {NAN, 0, 0}, {0, 1, 0}});
-    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p)}))}});
-    // nlohmann writes NaN bounds as null; drop them (they are optional) to reach our check.
-    b.doc()["accessors"][p].erase("min");
-    b.doc()["accessors"][p].erase("max");
-    expectOneLineError(errorOfText(b.text()), "model.gltf", "not finite");
-}
-
-TEST(GltfErrors, AccessorPastTheEndOfItsBufferView) {
-    GltfBuilder b;
-    const int p = b.vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    b.doc()["accessors"][p]["count"] = 4;
-    b.node({{"mesh", b.mesh("Bad", json::array({GltfBuilder::primitive(p)}))}});
-    expectOneLineError(errorOfText(b.text()), "model.gltf", "runs past the end");
-}
-
-TEST(GltfErrors, NodeHierarchyCycle) {
-    GltfBuilder b;
-    const int mesh = b.triangleMesh("Tri");
-    b.node({{"mesh", mesh}, {"children", {1}}});
-    b.node({{"mesh", mesh}, {"children", {0}}}, false);
-    expectOneLineError(errorOfText(b.text()), "model.gltf", "cycle");
-}
-
-// ---- Replication ---------------------------------------------------------------------------
-
-GltfReplication grid(uint32_t x, uint32_t z, double spacing) {
-    GltfReplication r;
-    r.mode = GltfReplication::Mode::Grid;
-    r.count_x = x;
-    r.count_z = z;
-    r.spacing_m = spacing;
-    return r;
-}
-
-GltfReplication random(uint32_t count, bool yaw) {
-    GltfReplication r;
-    r.mode = GltfReplication::Mode::Random;
-    r.count = count;
-    r.region = {glm::vec3(-100, 0, -50), glm::vec3(100, 0, 50)};
-    r.random_yaw = yaw;
-    return r;
-}
-
-TEST(GltfReplication, GridMakesCountXTimesCountZCopiesAtTheSpacing) {
-    const SourceOutput one = load(kHouse);
-    const SourceOutput out = load(kHouse, 1.0, {5, 0, 7}, grid(3, 2, 40.0));
-    ASSERT_EQ(out.objects.size(), 6 * one.objects.size());
-    EXPECT_EQ(out.meshes.size(), one.meshes.size());  // copies share the meshes
-    const size_t n = one.objects.size();
-    for (size_t i = 0; i < n; ++i) {
-        const glm::dvec3 base = one.objects[i].position + glm::dvec3(5, 0, 7);
-        EXPECT_NEAR(glm::length(out.objects[i].position - base), 0.0, 1e-9);
-        EXPECT_NEAR(glm::length(out.objects[n + i].position - (base + glm::dvec3(40, 0, 0))), 0.0,
-                    1e-9);
-        EXPECT_NEAR(glm::length(out.objects[3 * n + i].position - (base + glm::dvec3(0, 0, 40))),
-                    0.0, 1e-9);
-        EXPECT_EQ(out.objects[5 * n + i].linear, one.objects[i].linear);
-    }
-    // Streets between the copies (the house is 18 x 16 m, the spacing 40 m): one loop per copy.
-    EXPECT_EQ(out.lanes.size(), 6u);
-    const Aabb bounds = floatBox(sourceBounds(out));
-    EXPECT_EQ(glm::vec3(out.region.min), bounds.min);
-    EXPECT_EQ(glm::vec3(out.region.max), bounds.max);
-    expectBoxNear(floatBox(out.region), {2.0f, -1.0f, -6.0f}, {100.0f, 6.3f, 50.0f}, 0.1f);
-}
-
-TEST(GltfReplication, GridSpacingZeroIsTheModelSizePlusTenPercent) {
-    const SourceOutput one = load(kHouse);
-    const glm::vec3 size = extent(floatBox(one.region));
-    const SourceOutput out = load(kHouse, 1.0, {}, grid(2, 2, 0.0));
-    const size_t n = one.objects.size();
-    EXPECT_NEAR(out.objects[n].position.x - out.objects[0].position.x, 1.1 * size.x, 1e-4);
-    EXPECT_NEAR(out.objects[2 * n].position.z - out.objects[0].position.z, 1.1 * size.z, 1e-4);
-}
-
-TEST(GltfReplication, RandomCopiesAreDeterministicPerSeedInsideTheRegion) {
-    const SourceOutput one = load(kTeapot);
-    const SourceOutput a = load(kTeapot, 1.0, {}, random(25, true), 7);
-    const SourceOutput b = load(kTeapot, 1.0, {}, random(25, true), 7);
-    const SourceOutput c = load(kTeapot, 1.0, {}, random(25, true), 8);
-    ASSERT_EQ(a.objects.size(), 25u);
-    EXPECT_EQ(a.meshes.size(), 1u);
-    bool yawed = false;
-    for (size_t i = 0; i < a.objects.size(); ++i) {
-        EXPECT_EQ(a.objects[i].position, b.objects[i].position);
-        EXPECT_EQ(a.objects[i].linear, b.objects[i].linear);
-        // The teapot's node sits at the origin, so each copy's origin is its object's position.
-        EXPECT_TRUE(contains(floatBox(random(1, true).region), glm::vec3(a.objects[i].position)));
-        yawed = yawed || a.objects[i].linear != one.objects[0].linear;
-    }
-    EXPECT_TRUE(yawed);
-    EXPECT_NE(a.objects[0].position, c.objects[0].position);
-    const SourceOutput upright = load(kTeapot, 1.0, {}, random(5, false), 7);
-    for (const PlacedObject& o : upright.objects) EXPECT_EQ(o.linear, one.objects[0].linear);
-    EXPECT_TRUE(a.lanes.empty());
 }
 
 // ---- Through the scenario and the scene builder --------------------------------------------
