@@ -3,30 +3,34 @@
 namespace occsim {
 namespace {
 
-// A node's record on one of its objects: an object the frustum culled stays culled by it.
-void applyFromNode(Decision& object, const Decision& decision) {
-    if (object.kind != DecisionKind::FrustumCulled) object = decision;
-}
-
-void applyToNodeObjects(const BspTree& tree, uint32_t node, const Decision& decision,
-                        std::vector<Decision>& out) {
-    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o))
-        applyFromNode(out[o], decision);
+// A node's record on the objects stored in `node`: an object the frustum culled stays culled by
+// its own record.
+void applyToNodeObjects(const BspTree& tree, uint32_t node, const DecisionRecord& record,
+                        std::vector<Decision>& out, std::vector<QueryTag>* subjects) {
+    for (uint32_t o = tree.firstObject(node); o != BspTree::kNone; o = tree.nextObject(o)) {
+        if (out[o].kind == DecisionKind::FrustumCulled) continue;
+        out[o] = record.decision;
+        if (subjects) (*subjects)[o] = record.subject;
+    }
 }
 
 }  // namespace
 
 void resolveDecisions(const BspTree& tree, std::span<const DecisionRecord> records,
-                      std::vector<Decision>& out, std::vector<uint32_t>& stack) {
+                      std::vector<Decision>& out, std::vector<uint32_t>& stack,
+                      std::vector<QueryTag>* subjects) {
     out.assign(tree.objectCount(), Decision{});
+    if (subjects) subjects->assign(tree.objectCount(), QueryTag{});
     for (const DecisionRecord& r : records) {
         const uint32_t index = r.subject.index;
         switch (r.subject.subject) {
             case QueryTag::Subject::Object:
-                if (index < out.size()) out[index] = r.decision;
+                if (index >= out.size()) break;
+                out[index] = r.decision;
+                if (subjects) (*subjects)[index] = r.subject;
                 break;
             case QueryTag::Subject::NodeObjects:
-                if (index < tree.nodeCount()) applyToNodeObjects(tree, index, r.decision, out);
+                if (index < tree.nodeCount()) applyToNodeObjects(tree, index, r, out, subjects);
                 break;
             case QueryTag::Subject::Node:
                 if (index >= tree.nodeCount()) break;
@@ -35,7 +39,7 @@ void resolveDecisions(const BspTree& tree, std::span<const DecisionRecord> recor
                 while (!stack.empty()) {
                     const uint32_t n = stack.back();
                     stack.pop_back();
-                    applyToNodeObjects(tree, n, r.decision, out);
+                    applyToNodeObjects(tree, n, r, out, subjects);
                     const BspNode& node = tree.node(n);
                     if (!node.isLeaf()) {
                         stack.push_back(node.child[0]);

@@ -1,6 +1,7 @@
 #include "sim/record/object_queries.h"
 
 #include <algorithm>
+#include <string>
 
 namespace occsim {
 namespace {
@@ -60,7 +61,7 @@ std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t obje
     sql::Statement s = db.prepare(
         "SELECT frame, drawn, reason, query_frame, samples, flags, phase, level, interval, "
         "next_query, next_query_frame, visible_answers, history, truth_pixels, error_pixels, "
-        "tie_pixels FROM decisions WHERE object = ?1 AND config = ?2 "
+        "tie_pixels, node, node_kind FROM decisions WHERE object = ?1 AND config = ?2 "
         "AND (?3 IS NULL OR frame = ?3) ORDER BY frame");
     s.bind(1, object).bind(2, config).bind(3, frame);
     std::vector<RecordedDecision> out;
@@ -84,9 +85,57 @@ std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t obje
         r.truth_pixels = static_cast<uint32_t>(s.integer(13));
         r.error_pixels = static_cast<uint32_t>(s.integer(14));
         r.tie_pixels = static_cast<uint32_t>(s.integer(15));
+        r.node = optionalInteger(s, 16, 0);
+        r.node_kind = static_cast<uint8_t>(optionalInteger(s, 17, 0));
         out.push_back(r);
     }
     return out;
+}
+
+std::vector<NodeMember> nodeMembers(sql::Database& db, uint32_t config, uint32_t frame,
+                                    uint32_t node) {
+    sql::Statement s = db.prepare(
+        "SELECT d.object, o.name, d.drawn, d.truth_pixels FROM decisions d "
+        "JOIN objects o ON o.object = d.object "
+        "WHERE d.config = ?1 AND d.node = ?2 AND d.frame = ?3 ORDER BY d.object");
+    s.bind(1, config).bind(2, node).bind(3, frame);
+    std::vector<NodeMember> out;
+    while (s.step()) {
+        out.push_back({static_cast<uint32_t>(s.integer(0)), s.text(1), s.integer(2) != 0,
+                       static_cast<uint32_t>(s.integer(3))});
+    }
+    return out;
+}
+
+namespace {
+
+// The answers are the rows `culled on query` (2) and `drawn on query` (3).
+std::optional<NodeAnswer> nodeAnswer(sql::Database& db, const char* where_and_order,
+                                     uint32_t config, uint32_t node, uint32_t frame) {
+    sql::Statement s = db.prepare(std::string("SELECT frame, reason, query_frame, samples "
+                                              "FROM decisions WHERE config = ?1 AND node = ?2 "
+                                              "AND reason IN (2, 3) AND ") +
+                                  where_and_order + " LIMIT 1");
+    s.bind(1, config).bind(2, node).bind(3, frame);
+    if (!s.step()) return std::nullopt;
+    NodeAnswer a;
+    a.frame = static_cast<uint32_t>(s.integer(0));
+    a.visible = static_cast<DecisionKind>(s.integer(1)) == DecisionKind::DrawnOnQuery;
+    a.query_frame = optionalInteger(s, 2, Decision::kNoFrame);
+    a.samples = optionalInteger(s, 3, 0);
+    return a;
+}
+
+}  // namespace
+
+std::optional<NodeAnswer> answerBefore(sql::Database& db, uint32_t config, uint32_t node,
+                                       uint32_t frame) {
+    return nodeAnswer(db, "frame < ?3 ORDER BY frame DESC", config, node, frame);
+}
+
+std::optional<NodeAnswer> answerFrom(sql::Database& db, uint32_t config, uint32_t node,
+                                     uint32_t frame) {
+    return nodeAnswer(db, "frame >= ?3 ORDER BY frame", config, node, frame);
 }
 
 std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config) {

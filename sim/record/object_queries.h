@@ -37,6 +37,26 @@ struct RecordedDecision {
     bool drawn = false;
     Decision why;
     uint32_t truth_pixels = 0, error_pixels = 0, tie_pixels = 0;
+    // The node whose record decided it (decisions.node, node_kind: 1 leaf, 2 an inner node's
+    // subtree, 3 an inner node's own objects); node_kind 0 when it was decided for itself.
+    uint32_t node = 0;
+    uint8_t node_kind = 0;
+};
+
+// An object decided with a node in a frame, and what ground truth saw of it.
+struct NodeMember {
+    uint32_t object = 0;
+    std::string name;
+    bool drawn = false;
+    uint32_t truth_pixels = 0;
+};
+
+// An answer recorded for a node: the frame it decided, and its row's reason and query.
+struct NodeAnswer {
+    uint32_t frame = 0;
+    bool visible = false;
+    uint32_t query_frame = Decision::kNoFrame;
+    uint32_t samples = 0;
 };
 
 std::vector<RecordedConfig> recordedConfigs(sql::Database& db);
@@ -48,6 +68,16 @@ uint32_t recordedObjectCount(sql::Database& db);
 // The object's rows for one configuration, by frame; `frame` limits them to that frame.
 std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t object, uint32_t config,
                                                 std::optional<uint32_t> frame = {});
+
+// The objects the configuration decided with `node` in `frame`, by index (rows only: an object
+// frustum culled and unseen has none).
+std::vector<NodeMember> nodeMembers(sql::Database& db, uint32_t config, uint32_t frame,
+                                    uint32_t node);
+// The last answer recorded for `node` before `frame`, and the first at or after it.
+std::optional<NodeAnswer> answerBefore(sql::Database& db, uint32_t config, uint32_t node,
+                                       uint32_t frame);
+std::optional<NodeAnswer> answerFrom(sql::Database& db, uint32_t config, uint32_t node,
+                                     uint32_t frame);
 
 // Every object the configuration drew while ground truth saw none of it, the most triangles drawn
 // that way (triangles x frames) first.

@@ -23,8 +23,8 @@ bool answered(DecisionKind kind) {
 constexpr const char* kInsertDecision =
     "INSERT INTO decisions (frame, config, object, drawn, reason, query_frame, samples, flags, "
     "phase, level, interval, next_query, next_query_frame, visible_answers, history, "
-    "truth_pixels, error_pixels, tie_pixels) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+    "truth_pixels, error_pixels, tie_pixels, node, node_kind) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
 // The frames whose rows stay: all of them, or those before the frame a stop dropped.
 uint32_t framesKept(const BenchResult& result) {
@@ -153,6 +153,9 @@ void ObjectRecorder::onFrame(const FrameEvent& e) {
         }
         if (d.next_query_frame != Decision::kNoFrame) s.bind(13, d.next_query_frame);
         s.bind(16, f.pixels.truth).bind(17, f.pixels.error).bind(18, f.pixels.tie);
+        if (f.node_kind != DecidingNode::None) {
+            s.bind(19, f.node).bind(20, static_cast<uint32_t>(f.node_kind));
+        }
         s.run();
         s.reset();  // clears the bindings: the columns left unbound above are NULL
     }

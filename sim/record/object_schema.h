@@ -11,7 +11,8 @@ inline constexpr const char* kObjectsDatabaseFile = "objects.sqlite";
 // 1: run, configurations, objects, reasons, decisions.
 // 2: run.repetitions and configurations.missed_in_later_repetitions (only the first repetition
 //    has rows; what the later ones missed is counted, so the file agrees with summary.json).
-inline constexpr int kObjectsFormatVersion = 2;
+// 3: decisions.node and decisions.node_kind (the node a decision rests on), and an index by node.
+inline constexpr int kObjectsFormatVersion = 3;
 
 // The tables. `decisions` holds a row per frame, configuration and object except the rows that
 // say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
@@ -69,6 +70,8 @@ CREATE TABLE decisions (
   next_query_frame INTEGER,
   visible_answers INTEGER,
   history INTEGER,
+  node INTEGER,
+  node_kind INTEGER,
   truth_pixels INTEGER NOT NULL,
   error_pixels INTEGER NOT NULL,
   tie_pixels INTEGER NOT NULL,
@@ -77,13 +80,14 @@ CREATE TABLE decisions (
 )sql";
 
 // Made once the rows are in (faster than keeping them up to date row by row): one object's
-// history, a culler's misses and its over-draw.
+// history, a culler's misses and its over-draw, and the objects decided with one node.
 inline constexpr const char* kObjectsIndexes = R"sql(
 CREATE INDEX decisions_by_object ON decisions(object, config, frame);
 CREATE INDEX decisions_missed ON decisions(config, object, frame)
   WHERE drawn = 0 AND truth_pixels > 0;
 CREATE INDEX decisions_overdrawn ON decisions(config, object, frame)
   WHERE drawn = 1 AND truth_pixels = 0;
+CREATE INDEX decisions_by_node ON decisions(config, node, frame) WHERE node IS NOT NULL;
 )sql";
 
 }  // namespace occsim

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "occsim/culling/contract/input_error.h"
+#include "sim/output/atomic_file.h"
 #include "sim/output/object_highlights.h"
 #include "sim/record/object_database.h"
 #include "sim/scenario/json_reader.h"
@@ -215,6 +216,100 @@ RecordedDecision decisionAt(sql::Database& db, uint32_t object, uint32_t config,
     return d;
 }
 
+// Every line of `text` two more spaces in.
+std::string indented(const std::string& text) {
+    std::string out;
+    size_t start = 0;
+    while (start < text.size()) {
+        const size_t end = text.find('\n', start);
+        const size_t stop = end == std::string::npos ? text.size() : end + 1;
+        out += "  " + text.substr(start, stop - start);
+        start = stop;
+    }
+    return out;
+}
+
+// "leaf 57", "inner node 3", "inner node 3's own objects".
+std::string nodeName(const RecordedDecision& d) {
+    const std::string n = std::to_string(d.node);
+    switch (d.node_kind) {
+        case 1:
+            return "leaf " + n;
+        case 2:
+            return "inner node " + n;
+        default:
+            return "inner node " + n + "'s own objects";
+    }
+}
+
+std::string answerWords(const NodeAnswer& a, uint32_t frame) {
+    std::string s = std::string(a.visible ? "visible" : "occluded") + " (" +
+                    plural(a.samples, "sample", "samples") + ") at frame " +
+                    std::to_string(a.frame);
+    if (a.frame < frame) {
+        const uint32_t age = frame - a.frame;
+        s += " (" + plural(age, "frame", "frames") + " before)";
+    } else if (a.frame > frame) {
+        const uint32_t later = a.frame - frame;
+        s += " (" + plural(later, "frame", "frames") + " later)";
+    }
+    if (a.query_frame != Decision::kNoFrame && a.query_frame != a.frame)
+        s += ", to its query issued at frame " + std::to_string(a.query_frame);
+    return s;
+}
+
+// Where a decision made with a node comes from: the node, the objects it held that frame (those
+// ground truth saw marked), its last answer before the frame and its next one (when the decision
+// was not itself an answer), and the bird's-eye picture of the frame. Empty for a decision made
+// for the object itself.
+std::string decisionCause(sql::Database& db, const WhyRequest& r, const RecordedConfig& c,
+                          const RecordedDecision& d) {
+    if (d.node_kind == 0) return "";
+    std::ostringstream out;
+    const std::vector<NodeMember> members = nodeMembers(db, c.id, d.frame, d.node);
+    out << "  decided with " << nodeName(d) << ", which held "
+        << plural(members.size(), "object", "objects") << " this frame:";
+    constexpr size_t kListed = 6;
+    uint32_t seen = 0;
+    for (const NodeMember& m : members) seen += m.truth_pixels > 0;
+    for (size_t i = 0; i < members.size() && i < kListed; ++i) {
+        const NodeMember& m = members[i];
+        out << (i ? ", " : " ") << "#" << m.object << " '" << m.name << "' ("
+            << (m.truth_pixels > 0 ? "seen, " + std::to_string(m.truth_pixels) + " px"
+                                   : std::string("unseen"))
+            << ")";
+    }
+    if (members.size() > kListed) out << ", and " << members.size() - kListed << " more";
+    out << "; ground truth saw " << seen << " of them\n";
+    const bool answered =
+        d.why.kind == DecisionKind::CulledOnQuery || d.why.kind == DecisionKind::DrawnOnQuery;
+    bool visible_answer = d.why.kind == DecisionKind::DrawnOnQuery;
+    if (!answered) {
+        const std::optional<NodeAnswer> before = answerBefore(db, c.id, d.node, d.frame);
+        const std::optional<NodeAnswer> next = answerFrom(db, c.id, d.node, d.frame);
+        out << "  its last answer before: "
+            << (before ? answerWords(*before, d.frame) : std::string("none recorded")) << "\n";
+        if (next) out << "  its next answer: " << answerWords(*next, d.frame) << "\n";
+        visible_answer = before && before->visible;
+    }
+    // The case the bird's-eye picture shows at a glance: the node's box passed where nothing it
+    // holds is seen.
+    if (visible_answer && seen == 0 && !members.empty()) {
+        out << "  its box answered visible though ground truth saw none of its objects: the box "
+               "reaches past what it holds\n";
+    }
+    char name[200];
+    std::snprintf(name, sizeof name, "birds-eye-%s-frame-%05u.png", safeFileName(c.label).c_str(),
+                  d.frame);
+    out << "  from above: "
+        << (std::filesystem::exists(r.run / name)
+                ? (r.run / name).string()
+                : "rerun the run with --birds-eye " + std::to_string(d.frame) +
+                      " for the picture of this frame")
+        << "\n";
+    return out.str();
+}
+
 std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
                       const std::vector<RecordedConfig>& configs, const RecordedObject& object) {
     sql::Database& db = base.db();
@@ -222,8 +317,9 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
     out << objectLabel(object) << "\n";
     if (r.frame) {
         for (const RecordedConfig& c : configs) {
-            out << "frame " << *r.frame << ", " << c.label << ": "
-                << describeDecision(decisionAt(db, object.index, c.id, *r.frame)) << "\n";
+            const RecordedDecision d = decisionAt(db, object.index, c.id, *r.frame);
+            out << "frame " << *r.frame << ", " << c.label << ": " << describeDecision(d) << "\n"
+                << decisionCause(db, r, c, d);
         }
         return out.str();
     }
@@ -260,9 +356,18 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
             });
             out << "  frame " << missed[i] << ", " << c.label << ": " << describeDecision(*row)
                 << "\n";
+            if (i == 0) out << indented(decisionCause(db, r, c, *row));
         }
         if (missed.size() > kShown)
             out << "  ... and " << missed.size() - kShown << " more missed frames (--frame N)\n";
+        if (!hidden.empty()) {  // the first, with where it came from: over-draw has a cause too
+            const auto row = std::find_if(rows.begin(), rows.end(), [&](const RecordedDecision& d) {
+                return d.frame == hidden.front();
+            });
+            out << "  frame " << hidden.front() << ", " << c.label
+                << " (first drawn while hidden): " << describeDecision(*row) << "\n"
+                << indented(decisionCause(db, r, c, *row));
+        }
     }
     return out.str();
 }

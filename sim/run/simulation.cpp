@@ -220,7 +220,8 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
 // culler left it (no configuration changes it), the drawn set as the device resolved it.
 void Simulation::recordObjects(const GroundTruthFrame& truth) {
     const uint32_t objects = world_->scene().objectCount();
-    resolveDecisions(world_->tree(), decisions_.records(), reasons_, resolve_stack_);
+    const BspTree& tree = world_->tree();
+    resolveDecisions(tree, decisions_.records(), reasons_, resolve_stack_, &reason_subjects_);
     attributePixels(truth.ids, truth.stray, culled_ids_, marks_, objects, object_pixels_);
     object_frames_.resize(objects);
     for (uint32_t o = 0; o < objects; ++o) {
@@ -228,6 +229,15 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
         f.why = o < reasons_.size() ? reasons_[o] : Decision{};
         f.drawn = gl_device_.drew(o);
         f.pixels = object_pixels_[o];
+        f.node_kind = DecidingNode::None;
+        f.node = 0;
+        const QueryTag subject = o < reason_subjects_.size() ? reason_subjects_[o] : QueryTag{};
+        if (subject.subject != QueryTag::Subject::Object && subject.index < tree.nodeCount()) {
+            f.node = subject.index;
+            f.node_kind = tree.node(subject.index).isLeaf()            ? DecidingNode::Leaf
+                          : subject.subject == QueryTag::Subject::Node ? DecidingNode::Subtree
+                                                                       : DecidingNode::NodeObjects;
+        }
     }
 }
 

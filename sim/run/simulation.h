@@ -59,10 +59,21 @@ struct SimulationOptions {
 };
 
 // One object's part of a frame (SimulationOptions::record_objects).
+// The node a decision rests on, as objects.sqlite stores it (docs/objects.md, decisions.node_kind).
+enum class DecidingNode : uint8_t {
+    None = 0,         // decided for the object itself, or by no record
+    Leaf = 1,         // with a leaf (its objects)
+    Subtree = 2,      // with an inner node's subtree
+    NodeObjects = 3,  // with the objects stored in an inner node itself
+};
+
 struct ObjectFrame {
     Decision why;        // the culler's reason (occsim/culling/contract/decision_log.h)
     bool drawn = false;  // the device drew it (a conditional draw: it executed)
     ObjectPixels pixels;
+    // The node whose record decided it (the tree's node index this frame), when one did.
+    DecidingNode node_kind = DecidingNode::None;
+    uint32_t node = 0;
 };
 
 // The frame of a run with the most error pixels, as read back (rows bottom-up, as GL gives them),
@@ -182,6 +193,7 @@ class Simulation {
     // record_objects: the culler's log, and what it and the pixels say per object.
     DecisionLog decisions_;
     std::vector<Decision> reasons_;
+    std::vector<QueryTag> reason_subjects_;
     std::vector<uint32_t> resolve_stack_;
     std::vector<uint8_t> marks_;
     std::vector<ObjectPixels> object_pixels_;

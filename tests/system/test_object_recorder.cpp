@@ -8,6 +8,7 @@
 
 #include <csignal>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "objects_fixtures.h"
@@ -176,6 +177,65 @@ TEST(ObjectsDatabase, OnAGltfLevelAsyncMissesTheTruckAndWhyNamesTheQueryThatHidI
     const std::string report = fileText(out / "report.md");
     EXPECT_NE(report.find("| async | 6 truck | " + std::to_string(frame)), std::string::npos)
         << report;
+}
+
+// Issue 56: CHC drew a crate hidden behind the wall "while its query is in flight", and why
+// stopped there. With one leaf for the whole yard (the wall and the crates share it), `why`
+// follows the decision to that leaf: the objects it held (the wall seen, the crates not), its
+// last answer and the next one, and the frame's bird's-eye picture; over the run, the first frame
+// drawn while hidden gets the same.
+TEST(ObjectsDatabase, WhyFollowsADecisionMadeForALeafToTheLeafItsAnswersAndThePicture) {
+    TempDir dir;
+    nlohmann::json scenario = nlohmann::json::parse(fileText(writeWalledYard(dir, 12)));
+    scenario["bsp"]["max_objects_per_leaf"] = 16;  // one leaf: the root
+    const fs::path file = dir.write("one-leaf.json", scenario.dump());
+    const fs::path out = dir.path() / "out";
+    const Outcome o = occsim("bench " + file.string() +
+                             " --algos chc --deterministic-latency 20 --record objects "
+                             "--birds-eye 6 --out " +
+                             out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    const std::string crate = "(SELECT object FROM objects WHERE name = 'crate.1')";
+    const int64_t node =
+        queryInteger(db, "SELECT node FROM decisions WHERE frame = 6 AND object = " + crate);
+    EXPECT_EQ(
+        queryInteger(db, "SELECT node_kind FROM decisions WHERE frame = 6 AND object = " + crate),
+        1)
+        << "decided with a leaf";
+    EXPECT_EQ(queryInteger(
+                  db, "SELECT truth_pixels FROM decisions WHERE frame = 6 AND object = " + crate),
+              0)
+        << "the crate is hidden behind the wall";
+    ASSERT_GE(node, 0);
+    const int64_t reason =
+        queryInteger(db, "SELECT reason FROM decisions WHERE frame = 6 AND object = " + crate);
+
+    const Outcome why = occsim("why " + out.string() + " --object crate.1 --frame 6");
+    ASSERT_EQ(why.exit_code, 0) << why.output;
+    const std::string leaf = "decided with leaf " + std::to_string(node) + ", which held 7 objects";
+    EXPECT_NE(why.output.find(leaf), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("'wall' (seen, "), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("'crate.1' (unseen)"), std::string::npos) << why.output;
+    if (reason != static_cast<int64_t>(DecisionKind::DrawnOnQuery) &&
+        reason != static_cast<int64_t>(DecisionKind::CulledOnQuery)) {
+        EXPECT_NE(why.output.find("its last answer before: visible ("), std::string::npos)
+            << why.output;
+    }
+    EXPECT_NE(why.output.find("from above: " + (out / "birds-eye-chc-frame-00006.png").string()),
+              std::string::npos)
+        << why.output;
+    std::istringstream lines(why.output);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(displayWidth(line), 100u) << line;
+
+    // Over the run: the first frame drawn while hidden, with its cause.
+    const Outcome history = occsim("why " + out.string() + " --object crate.1");
+    ASSERT_EQ(history.exit_code, 0) << history.output;
+    EXPECT_NE(history.output.find("(first drawn while hidden): drawn: "), std::string::npos)
+        << history.output;
+    EXPECT_NE(history.output.find("    " + leaf), std::string::npos) << history.output;
+    EXPECT_NE(history.output.find("    from above: "), std::string::npos) << history.output;
 }
 
 // The issue's case: with --repetitions 3 summary.json counted the later repetitions' misses and

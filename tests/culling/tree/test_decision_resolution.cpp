@@ -78,6 +78,31 @@ TEST(DecisionResolution, ObjectsNoRecordCoversGetNoReasonAndUnknownSubjectsAreIg
     for (size_t o = 1; o < 4; ++o) EXPECT_EQ(kinds[o], DecisionKind::NoReasonGiven) << o;
 }
 
+// What `occsim why` follows: each object's subject is that of the record that decided it (the
+// node whose subtree or own objects it was decided with, or the object itself), untagged where no
+// record covers it, and a frustum-culled object keeps its own.
+TEST(DecisionResolution, EachObjectKeepsTheSubjectOfTheRecordThatDecidedIt) {
+    Row row;
+    DecisionLog log;
+    const uint32_t leaf2 = row.tree.nodeOf(2);
+    log.add(QueryTag::object(1), decisionOf(DecisionKind::FrustumCulled));
+    log.add(QueryTag::node(row.tree.root()), decisionOf(DecisionKind::DrawnQueryInFlight));
+    log.add(QueryTag::nodeObjects(leaf2), decisionOf(DecisionKind::CulledOnQuery));
+    log.add(QueryTag::object(3), decisionOf(DecisionKind::DrawnOnQuery));
+    std::vector<QueryTag> subjects;
+    resolveDecisions(row.tree, log.records(), row.out, row.stack, &subjects);
+    ASSERT_EQ(subjects.size(), 4u);
+    EXPECT_EQ(subjects[0], QueryTag::node(row.tree.root()));
+    EXPECT_EQ(subjects[1], QueryTag::object(1));
+    EXPECT_EQ(subjects[2], QueryTag::nodeObjects(leaf2));
+    EXPECT_EQ(subjects[3], QueryTag::object(3));
+    EXPECT_EQ(row.out[2].kind, DecisionKind::CulledOnQuery);
+
+    DecisionLog none;
+    resolveDecisions(row.tree, none.records(), row.out, row.stack, &subjects);
+    for (const QueryTag& s : subjects) EXPECT_EQ(s.index, QueryTag::kUntagged);
+}
+
 // --- The reasons each culler gives
 // ----------------------------------------------------------------
 

@@ -16,8 +16,12 @@
 namespace occsim {
 
 // out[o] = object o's decision (out is resized to the tree's object count); `stack` is scratch.
-// Records naming a node or an object the tree does not have are ignored.
+// Records naming a node or an object the tree does not have are ignored. With `subjects`, also
+// subjects[o] = the subject of the record that decided object o (a node's subtree, a node's own
+// objects, or the object itself), untagged where no record covers it: what `occsim why` follows
+// to the node a decision rests on.
 void resolveDecisions(const BspTree& tree, std::span<const DecisionRecord> records,
-                      std::vector<Decision>& out, std::vector<uint32_t>& stack);
+                      std::vector<Decision>& out, std::vector<uint32_t>& stack,
+                      std::vector<QueryTag>* subjects = nullptr);
 
 }  // namespace occsim
