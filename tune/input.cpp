@@ -31,6 +31,25 @@ std::string fileText(const fs::path& file) {
 
 }  // namespace
 
+std::vector<std::string> leaveOutInertParameters(ParameterSpace& space,
+                                                 const OccluderRoleCounts& roles) {
+    std::vector<std::string> left_out;
+    for (size_t j = space.size(); j-- > 0;) {
+        const TunableParameter& p = space.parameters[j];
+        if (p.scope != OptionScope::OccludersBySize || roles.by_size > 0) continue;
+        left_out.insert(left_out.begin(), p.name +
+                                              ": no object's occluder role is chosen by size (" +
+                                              occluderRolesText(roles) + "), so it cannot act");
+        space.remove(j);
+    }
+    // Tuning nothing would fit noise.
+    if (space.size() == 0 && !left_out.empty()) {
+        throw TuneInputError("--params: nothing left to tune on this scene: " + left_out.front() +
+                             "; expected a scene with objects whose occluder role is by_size");
+    }
+    return left_out;
+}
+
 CheckedInput checkInput(const TuneOptions& o) {
     CheckedInput c;
     for (const fs::path& plugin : o.plugins) {
@@ -48,6 +67,12 @@ CheckedInput checkInput(const TuneOptions& o) {
                              "'; expected one of: " + cullerNameList());
     }
     c.space = parseParameterSpace(*algorithm, o.params, o.bounds);
+    if (o.frames) c.scenario.frames = *o.frames;
+    // Builds the scene once so that a scene that cannot be built (a glTF file, a mover's object)
+    // fails here, before any run, rather than in the first batch; and so that an option it gives
+    // nothing to act on is left out of the fit before the budget is checked against the rest.
+    const Scene scene = buildScene(c.scenario);
+    c.left_out = leaveOutInertParameters(c.space, countOccluderRoles(scene));
     const size_t needed = minimumSamples(c.space.size());
     if (o.budget < needed) {
         throw TuneInputError("--budget " + std::to_string(o.budget) +
@@ -59,15 +84,11 @@ CheckedInput checkInput(const TuneOptions& o) {
     }
     if (o.batch < 1) throw TuneInputError("--batch: expected at least 1 sample per run");
     if (o.repetitions < 1) throw TuneInputError("--repetitions: expected at least 1");
-    if (o.frames) c.scenario.frames = *o.frames;
     if (c.scenario.frames <= c.scenario.warmup_frames) {
         throw TuneInputError("--frames " + std::to_string(c.scenario.frames) +
                              ": the scenario has " + std::to_string(c.scenario.warmup_frames) +
                              " warm-up frames; expected more frames than that");
     }
-    // Builds the scene once so that a scene that cannot be built (a glTF file, a mover's object)
-    // fails here, before any run, rather than in the first batch.
-    const Scene scene = buildScene(c.scenario);
     c.objects = scene.objectCount();
     c.triangles = scene.triangle_count;
     Scenario held_out = c.scenario;

@@ -50,7 +50,7 @@ std::vector<TunableParameter> tunableParameters(const CullerRow& algorithm) {
     for (const OptionSpec& spec : algorithm.options) {
         if (!spec.tunable) continue;
         out.push_back({spec.key, spec.unit, spec.default_value, spec.tune_min, spec.tune_max,
-                       spec.min, spec.max, spec.type == OptionType::Integer});
+                       spec.min, spec.max, spec.type == OptionType::Integer, spec.scope});
     }
     return out;
 }
@@ -128,6 +128,11 @@ std::string ParameterSpace::describe(const std::vector<double>& values) const {
         text += number(values[j]);
     }
     return text;
+}
+
+void ParameterSpace::remove(size_t j) {
+    parameters.erase(parameters.begin() + static_cast<std::ptrdiff_t>(j));
+    bounds.erase(bounds.begin() + static_cast<std::ptrdiff_t>(j));
 }
 
 ParameterSpace parseParameterSpace(const CullerRow& algorithm, const std::string& params,

@@ -17,9 +17,10 @@ struct TunableParameter {
     // The reference every sample is measured against: the culler's default (for `statistical`,
     // the paper's choice).
     double paper_value = 0.0;
-    double default_lo = 0.0, default_hi = 1.0;  // the search box when --bounds does not say
-    double min = 0.0, max = 0.0;                // the option's valid range (its descriptor's)
-    bool integer = false;                       // an integer option: values are rounded
+    double default_lo = 0.0, default_hi = 1.0;     // the search box when --bounds does not say
+    double min = 0.0, max = 0.0;                   // the option's valid range (its descriptor's)
+    bool integer = false;                          // an integer option: values are rounded
+    OptionScope scope = OptionScope::EveryObject;  // what it acts on (its descriptor's)
 };
 
 // The tunable options of `algorithm`, in descriptor order.
@@ -61,6 +62,8 @@ struct ParameterSpace {
     // Per parameter, whether `values[j]` sits on an end of its search box (within 1% of the box):
     // "lower", "upper" or "".
     std::vector<std::string> boundsHit(const std::vector<double>& values) const;
+    // Without parameter j (and its bounds): one the scene gives nothing to act on.
+    void remove(size_t j);
 };
 
 // --params "base_time,decay_a" (empty: every tunable option of the algorithm) and --bounds

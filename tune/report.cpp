@@ -224,7 +224,10 @@ void headerSection(std::ostringstream& out, const TuneResult& r) {
         << r.sample_error_pixels
         << (r.sample_error_pixels == 0 ? " (the culler is conservative: zero expected)"
                                        : " (**zero expected**)")
-        << "\n\n";
+        << "\n";
+    for (const std::string& why : r.left_out)
+        out << "- Left out of the fit, kept at " << ref << ": " << why << "\n";
+    out << "\n";
     if (const std::string busy = busyMachineNote(r); !busy.empty())
         out << "**" << busy << ".**\n\n";
 }

@@ -55,6 +55,8 @@ struct TuneResult {
     // layout of the scene and the movers' starts and motions", or "nothing").
     uint64_t held_out_seed = 0;
     std::string held_out_changes;
+    // Tunable options the scene gives nothing to act on, left out of the fit, each with why.
+    std::vector<std::string> left_out;
     std::vector<ConfirmationRow> confirmation;  // fitted, then held out
     // This session's runs and those on a busy machine (SessionRuns): its timings are not results.
     uint32_t runs = 0, busy_runs = 0;

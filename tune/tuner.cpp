@@ -54,6 +54,7 @@ void describeSession(TuneResult& r, const TuneOptions& o, const CheckedInput& c,
     r.triangles = c.triangles;
     r.held_out_seed = c.held_out_seed;
     r.held_out_changes = c.held_out_effect.text();
+    r.left_out = c.left_out;
     r.hardware_threads = std::thread::hardware_concurrency();
     r.log = &log;
     r.samples = log.samples();

@@ -194,11 +194,12 @@ const OptionTable<MaskedOptions>& maskedOptionTable() {
         booleanOption(OCCSIM_OPTION_MEMBER(O, working_layer_test),
                       "boxes may be hidden by the working layer where its mask holds them; off "
                       "= the reference layer only, as in the paper"),
-        tunable(numberOption(OCCSIM_OPTION_MEMBER(O, occluder_size), "viewport heights", 0.0,
-                             std::numeric_limits<double>::infinity(),
-                             "an object occludes when its box's projection is at least this "
-                             "large (its larger side)"),
-                0.0, 0.5),
+        actingOn(tunable(numberOption(OCCSIM_OPTION_MEMBER(O, occluder_size), "viewport heights",
+                                      0.0, std::numeric_limits<double>::infinity(),
+                                      "an object occludes when its box's projection is at least "
+                                      "this large (its larger side)"),
+                         0.0, 0.5),
+                 OptionScope::OccludersBySize),
         booleanOption(OCCSIM_OPTION_MEMBER(O, simplified_occluders),
                       "an object with an inscribed occluder mesh (fewer triangles) occludes with "
                       "it, when the eye is outside its box; off = every object with its own mesh"),

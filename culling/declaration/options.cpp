@@ -77,6 +77,11 @@ OptionSpec alternativeTo(OptionSpec spec, std::string other_key) {
     return spec;
 }
 
+OptionSpec actingOn(OptionSpec spec, OptionScope scope) {
+    spec.scope = scope;
+    return spec;
+}
+
 const char* optionTypeName(OptionType type) {
     switch (type) {
         case OptionType::Boolean:

@@ -47,7 +47,8 @@
 // 5: one word per thing: the row is CullerRow (was AlgorithmTraits) in
 // occsim/culling/declaration/culler_row.h (was registration/algorithm_traits.h); Culler::name()
 // is gone (the registry's row names a culler; nothing read it).
-#define OCCSIM_PLUGIN_ABI_VERSION 5u
+// 6: OptionSpec::scope (what an option acts on), and resolveDecisions' deciding subjects.
+#define OCCSIM_PLUGIN_ABI_VERSION 6u
 
 namespace occsim {
 

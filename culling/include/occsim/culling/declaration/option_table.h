@@ -86,8 +86,8 @@ OptionRow<Options> numberOption(OptionMember<Options, double> m, std::string uni
             [p = m.member](Options& o, double v) { o.*p = v; }};
 }
 
-// The row, tunable within [lo, hi]; with an off value; as an alternative to another key (the
-// same as options.h's, on a bound row).
+// The row, tunable within [lo, hi]; with an off value; as an alternative to another key; acting
+// on a scope (the same as options.h's, on a bound row).
 template <class Options>
 OptionRow<Options> tunable(OptionRow<Options> row, double lo, double hi) {
     row.spec = tunable(std::move(row.spec), lo, hi);
@@ -103,6 +103,12 @@ OptionRow<Options> switchable(OptionRow<Options> row, double off_value) {
 template <class Options>
 OptionRow<Options> alternativeTo(OptionRow<Options> row, std::string other_key) {
     row.spec = alternativeTo(std::move(row.spec), std::move(other_key));
+    return row;
+}
+
+template <class Options>
+OptionRow<Options> actingOn(OptionRow<Options> row, OptionScope scope) {
+    row.spec = actingOn(std::move(row.spec), scope);
     return row;
 }
 

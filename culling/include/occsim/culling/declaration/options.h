@@ -18,6 +18,11 @@ namespace occsim {
 
 enum class OptionType : uint8_t { Boolean, Integer, Number };
 
+// What an option acts on: every frame's culling, or only the objects whose occluder role is
+// chosen by size (an object the scene marks `always` or `never` an occluder ignores it). The tuner
+// leaves out of its fit an option that nothing of the scene lets act.
+enum class OptionScope : uint8_t { EveryObject, OccludersBySize };
+
 // The largest integer a double holds exactly, the upper end of every integer option's range.
 inline constexpr double kMaxExactInteger = 9007199254740992.0;  // 2^53
 
@@ -39,6 +44,7 @@ struct OptionSpec {
     // Another option this one is an alternative to: a sweep or the tuner that sets this option to
     // a value other than its off value sets that one to its off value.
     std::string alternative_to;
+    OptionScope scope = OptionScope::EveryObject;
 };
 
 using OptionsDescriptor = std::vector<OptionSpec>;
@@ -53,6 +59,8 @@ OptionSpec numberOption(std::string key, std::string unit, double min, double ma
 OptionSpec tunable(OptionSpec spec, double lo, double hi);
 OptionSpec switchable(OptionSpec spec, double off_value);
 OptionSpec alternativeTo(OptionSpec spec, std::string other_key);
+// The same row, acting only on `scope`.
+OptionSpec actingOn(OptionSpec spec, OptionScope scope);
 
 const char* optionTypeName(OptionType type);  // "boolean", "integer", "number"
 
