@@ -28,6 +28,11 @@
 namespace occsim_cli {
 namespace {
 
+// A note on stderr, within the console's 100 columns.
+void printNote(const std::string& line) {
+    std::fputs(occsim::wrappedText("note: " + line + "\n").c_str(), stderr);
+}
+
 void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("scenario", flags.scenario, "Scenario file (JSON)")->required();
     addBackendFlags(cmd, flags.backend);
@@ -121,8 +126,7 @@ std::vector<occsim::Segment> runSegments(const occsim::Scenario& scenario,
     }
     occsim::PlannedSegments plan =
         occsim::planSegments(scenario.segments, scenario.frames, extra, frames, scenario.dt_s);
-    for (const std::string& note : plan.notes)
-        std::fprintf(stderr, "note: %s (--frames)\n", note.c_str());
+    for (const std::string& note : plan.notes) printNote(note + " (--frames)");
     return plan.segments;
 }
 
@@ -255,6 +259,7 @@ int runAndReport(const RunRequest& request) {
     options.on_window_frame = [&pictures](const occsim::ReplayedFrame& f) {
         pictures.onWindowFrame(f);
     };
+    options.on_note = printNote;
 
     watchFrames();
     const occsim::BenchResult result = occsim::runBenchmark(request.scenario, options);

@@ -293,7 +293,11 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
         for (const std::string& line : world.occluderMeshCost().refusals) {
             if (stage.options.warnings_shown && !stage.options.warnings_shown->insert(line).second)
                 continue;
-            std::fprintf(stderr, "note: %s\n", line.c_str());
+            if (stage.options.on_note) {
+                stage.options.on_note(line);
+            } else {
+                std::fprintf(stderr, "note: %s\n", line.c_str());
+            }
         }
     }
     if (!result.partial || rep == 0) recordRepetition(result, stage, sims, frames, rep);

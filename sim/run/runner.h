@@ -90,6 +90,10 @@ struct BenchOptions {
     // already in it is not printed again, and each one printed is added. Without it (nullptr)
     // every run prints its scene's warnings.
     std::set<std::string>* warnings_shown = nullptr;
+    // A note for the person running it (a scene's occluder mesh refused, ...), without "note: "
+    // and without a newline; empty: "note: <line>" on stderr as it is. The commands wrap it to
+    // the terminal's 100 columns (sim/output/console_table.h, a layer above).
+    std::function<void(const std::string&)> on_note;
 };
 
 // A run ends early, with the whole frames before it and BenchResult::partial set, when a stop
