@@ -86,7 +86,7 @@ std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t obje
         r.error_pixels = static_cast<uint32_t>(s.integer(14));
         r.tie_pixels = static_cast<uint32_t>(s.integer(15));
         r.node = optionalInteger(s, 16, 0);
-        r.node_kind = static_cast<uint8_t>(optionalInteger(s, 17, 0));
+        r.node_kind = static_cast<DecidingNode>(optionalInteger(s, 17, 0));
         out.push_back(r);
     }
     return out;

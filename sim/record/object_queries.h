@@ -11,6 +11,7 @@
 #include "occsim/culling/contract/decision_log.h"
 #include "sim/output/object_highlights.h"
 #include "sim/record/sqlite.h"
+#include "sim/run/deciding_node.h"
 
 namespace occsim {
 
@@ -37,10 +38,10 @@ struct RecordedDecision {
     bool drawn = false;
     Decision why;
     uint32_t truth_pixels = 0, error_pixels = 0, tie_pixels = 0;
-    // The node whose record decided it (decisions.node, node_kind: 1 leaf, 2 an inner node's
-    // subtree, 3 an inner node's own objects); node_kind 0 when it was decided for itself.
+    // The node whose record decided it (decisions.node and node_kind); None when it was decided
+    // for itself.
     uint32_t node = 0;
-    uint8_t node_kind = 0;
+    DecidingNode node_kind = DecidingNode::None;
 };
 
 // An object decided with a node in a frame, and what ground truth saw of it.

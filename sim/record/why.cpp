@@ -233,9 +233,9 @@ std::string indented(const std::string& text) {
 std::string nodeName(const RecordedDecision& d) {
     const std::string n = std::to_string(d.node);
     switch (d.node_kind) {
-        case 1:
+        case DecidingNode::Leaf:
             return "leaf " + n;
-        case 2:
+        case DecidingNode::Subtree:
             return "inner node " + n;
         default:
             return "inner node " + n + "'s own objects";
@@ -264,7 +264,7 @@ std::string answerWords(const NodeAnswer& a, uint32_t frame) {
 // for the object itself.
 std::string decisionCause(sql::Database& db, const WhyRequest& r, const RecordedConfig& c,
                           const RecordedDecision& d) {
-    if (d.node_kind == 0) return "";
+    if (d.node_kind == DecidingNode::None) return "";
     std::ostringstream out;
     const std::vector<NodeMember> members = nodeMembers(db, c.id, d.frame, d.node);
     out << "  decided with " << nodeName(d) << ", which held "

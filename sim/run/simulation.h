@@ -21,6 +21,7 @@
 #include "render/gl_frame_timer.h"
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
+#include "sim/run/deciding_node.h"
 #include "sim/run/frame_stats.h"
 #include "sim/run/frame_view.h"
 #include "sim/run/ground_truth.h"
@@ -59,14 +60,6 @@ struct SimulationOptions {
 };
 
 // One object's part of a frame (SimulationOptions::record_objects).
-// The node a decision rests on, as objects.sqlite stores it (docs/objects.md, decisions.node_kind).
-enum class DecidingNode : uint8_t {
-    None = 0,         // decided for the object itself, or by no record
-    Leaf = 1,         // with a leaf (its objects)
-    Subtree = 2,      // with an inner node's subtree
-    NodeObjects = 3,  // with the objects stored in an inner node itself
-};
-
 struct ObjectFrame {
     Decision why;        // the culler's reason (occsim/culling/contract/decision_log.h)
     bool drawn = false;  // the device drew it (a conditional draw: it executed)
