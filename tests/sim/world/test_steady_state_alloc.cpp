@@ -192,8 +192,9 @@ TEST(SteadyStateAllocationWithAnimations, StepPoseReinsertAndCullAllocateNothing
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("occsim-alloc-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    const std::string box =
-        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/BoxAnimated/BoxAnimated.gltf";
+    const std::string box = (std::filesystem::path(OCCSIM_SOURCE_DIR) / "scenarios" / "assets" /
+                             "BoxAnimated" / "BoxAnimated.gltf")
+                                .string();
     std::ofstream(dir / "animated.json") << R"({"format_version": 1, "name": "animated", "seed": 3,
       "camera": {"keyframes": [{"time": 0, "position": [0, 3, 30], "target": [0, 0, 0]}]},
       "scene": {"sources": [
