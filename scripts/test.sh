@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The test loop in stages, each with a time budget on a 2-core machine (docs/testing.md):
-#   scripts/test.sh quick   the release build and the `unit` tests: the inner loop
+#   scripts/test.sh quick   the release build of the programs (occsim, occtune) and of the `unit`
+#                           tests' executables, and the `unit` tests: the inner loop
 #   scripts/test.sh         the README's test command: the release build and every test but the
-#                           cluster test, then the `unit` and `gl` tests under ASan + UBSan
+#                           cluster test, then the `unit` and `gl` tests under ASan + UBSan (the
+#                           sanitizer build makes only their executables)
 #   scripts/test.sh ci      what .ci/run runs: the README's test command, then the no-osmesa
 #                           build's backend tests (`gl`, `system`) and the Slurm cluster test
 #   scripts/test.sh PRESET  one preset's whole suite (release, asan, no-osmesa, debug), as before
@@ -13,14 +15,17 @@ cd "$(dirname "$0")/.."
 stage_start=$SECONDS
 summaries=()
 
-# suite NAME PRESET [ctest arguments...]: builds PRESET, runs its tests with the arguments.
+# suite NAME PRESET [ctest arguments...]: builds PRESET (only the targets in $build_targets when
+# it is set), runs its tests with the arguments.
+build_targets=""
 suite() {
   local name=$1 preset=$2
   shift 2
   local start=$SECONDS log
   log=$(mktemp)
-  echo "== $name: build $preset"
-  bash scripts/build.sh "$preset"
+  echo "== $name: build $preset${build_targets:+ ($build_targets)}"
+  # shellcheck disable=SC2086  # the targets are words
+  bash scripts/build.sh "$preset" $build_targets
   local built=$((SECONDS - start))
   echo "== $name: ctest --preset $preset $*"
   local status=0
@@ -47,7 +52,10 @@ finish() {
 
 readme_stage() {
   suite "release, all but cluster" release -LE '^cluster$'
+  # Only what the sanitizer suite runs: not the system tests' executable nor the programs.
+  build_targets="unit_tests gl_tests"
   suite "asan, unit and gl" asan -L '^(unit|gl)$' -LE '^slow$'
+  build_targets=""
 }
 
 # Every argument checked before anything is installed, built or run.
@@ -69,6 +77,8 @@ bash scripts/setup.sh
 case "${1:-}" in
   quick)
     stage=quick
+    # The programs and the unit tests' executables: the gl and system ones wait for the next stage.
+    build_targets="occsim occtune unit_tests"
     suite "release, unit" release -L '^unit$' -LE '^slow$'
     ;;
   "")

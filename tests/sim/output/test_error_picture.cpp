@@ -1,11 +1,16 @@
 // The worst-frame error pictures: error and tie pixels in their own colours, each error pixel
-// under a label, every cluster ringed and each missed object labelled.
+// under a label, every cluster ringed and each missed object labelled; and on a real run, a
+// culler that drops a visible object shows error, the miss and its popping, and its worst frame's
+// picture marks the errors apart from the ties.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "error_bench.h"
 #include "sim/output/error_picture.h"
 
 namespace occsim {
@@ -160,5 +165,70 @@ TEST(ErrorPicture, EveryClusterOfErrorPixelsIsRingedAndEachMissedObjectLabelled)
               greenIn(picture, 0, 0, w * scale - 1, h * scale - 1) + 20);
 }
 
+// A device that never draws one object: what a culler that wrongly drops it puts on screen.
+class DroppingDevice final : public RenderDevice {
+  public:
+    DroppingDevice(RenderDevice& inner, uint32_t dropped) : inner_(inner), dropped_(dropped) {}
+    void drawObject(uint32_t object) override {
+        if (object != dropped_) inner_.drawObject(object);
+    }
+    QueryId issueQuery(std::span<const Aabb> boxes, std::span<const QueryTag> subjects) override {
+        return inner_.issueQuery(boxes, subjects);
+    }
+    bool isQueryReady(QueryId id) override { return inner_.isQueryReady(id); }
+    QueryAnswer takeAnswer(QueryId id) override { return inner_.takeAnswer(id); }
+    const DeviceCounters& counters() const override { return inner_.counters(); }
+    void resetCounters() override { inner_.resetCounters(); }
+
+  private:
+    RenderDevice& inner_;
+    uint32_t dropped_;
+};
+
+class DroppingCuller final : public Culler {
+  public:
+    explicit DroppingCuller(uint32_t dropped) : dropped_(dropped) {}
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        DroppingDevice dropping(device, dropped_);
+        inner_->cullAndRender(tree, frame, dropping);
+    }
+
+  private:
+    uint32_t dropped_;
+    std::unique_ptr<Culler> inner_ = makeCuller(*findCuller("vfc"), CullerOptions{});
+};
+
+TEST(ErrorMetric, ACullerThatDropsAVisibleObjectShowsErrorAndTheMissAndItsPopping) {
+    // Object 433: one of the four large boxes in front of the grid, in view from frame 0, with
+    // grid boxes behind it.
+    BenchOptions options;
+    options.make_culler = [](const CullerRow&, const CullerOptions&) {
+        return std::unique_ptr<Culler>(new DroppingCuller(433));
+    };
+    options.keep_worst_error_frame = true;
+    const BenchResult result = testing::errorBench(testing::kSharedFaces, {"vfc"}, 8, options);
+    const RunSummary& s = result.runs[0].summary;
+    EXPECT_GT(s.error_pixels_total, 0);
+    EXPECT_EQ(s.missed_objects_total, 8) << "missed on every one of the 8 frames";
+    EXPECT_EQ(s.popping_events, 1u);
+    EXPECT_EQ(s.popping_max_frames, 8u);
+    // The worst frame's picture marks errors apart from ties.
+    ASSERT_EQ(result.worst_error_frames.size(), 1u);
+    const ErrorFrame& worst = result.worst_error_frames[0];
+    const uint32_t w = result.metadata.width, h = result.metadata.height;
+    const std::vector<uint8_t> picture = composeErrorPicture(worst, w, h);
+    int64_t magenta = 0, yellow = 0;
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            const uint8_t* p = picture.data() + (size_t{y} * 3 * w + 2 * w + x) * 4;
+            magenta +=
+                p[0] == kErrorColour[0] && p[1] == kErrorColour[1] && p[2] == kErrorColour[2];
+            yellow += p[0] == kTieColour[0] && p[1] == kTieColour[1] && p[2] == kTieColour[2];
+        }
+    }
+    EXPECT_EQ(magenta, worst.error_pixels);
+    EXPECT_EQ(yellow, worst.tie_pixels);
+}
 }  // namespace
 }  // namespace occsim

@@ -1,105 +1,28 @@
-// What a person reads after a benchmark: report.md and its comparison table, the run's headline
-// on the machine's load, and the gnuplot charts (written whole or not at all).
+// The run's tables and lines (sim/output/report.h): the comparison table (no figure that is not
+// zero printed as zero), the headline on the machine's load, the line that says a run ended
+// early, and the overdraw and executed-draw columns from real runs. report.md and the charts:
+// test_markdown_report.cpp and test_plots.cpp.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <fstream>
-#include <optional>
+#include <memory>
+#include <stdexcept>
 #include <string>
-#include <vector>
 
+#include "sample_runs.h"
 #include "sim/output/fixed_text.h"
 #include "sim/output/markdown_report.h"
-#include "sim/output/plots.h"
+#include "sim/output/report.h"
+#include "small_bench.h"
 
 namespace occsim {
 namespace {
 
-namespace fs = std::filesystem;
-
-RunRecord record(const std::string& label, const std::string& algorithm, double mean_ms,
-                 double error_mean, bool pareto) {
-    RunRecord r;
-    r.algorithm = findCuller(algorithm);
-    r.pareto = pareto;
-    RunSummary& s = r.summary;
-    s.label = label;
-    s.frames = 30;
-    s.timed_frames = 25;
-    s.frame_ms = {mean_ms, mean_ms, mean_ms * 1.2, mean_ms * 0.8, mean_ms * 1.5};
-    s.frame_ms_mean_min = s.frame_ms_mean_max = mean_ms;
-    s.queries_mean = algorithm == "vfc" || algorithm == "ideal" ? 0 : 42;
-    s.triangles_mean = 1000 * mean_ms;
-    s.objects_mean = 10 * mean_ms;
-    s.error_measured = true;
-    s.error_pixels_mean = error_mean;
-    s.error_pixels_total = static_cast<int64_t>(error_mean * 30);
-    for (uint32_t f = 0; f < 30; ++f) {
-        FrameStats fs;
-        fs.frame = f;
-        fs.frame_ms = mean_ms + (f % 5);
-        fs.queries = static_cast<uint64_t>(s.queries_mean) + f;
-        fs.triangles = static_cast<uint64_t>(s.triangles_mean) + 100 * f;
-        r.frames.push_back(fs);
-    }
-    return r;
-}
-
-std::vector<RunRecord> sampleRuns() {
-    return {record("vfc", "vfc", 20.0, 0.0, false),
-            record("statistical threshold=4", "statistical", 12.0, 3.5, true),
-            record("chc", "chc", 14.0, 0.0, true), record("ideal", "ideal", 6.0, 0.0, false)};
-}
-
-TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
-    BenchResult result;
-    result.runs = sampleRuns();
-    RunMetadata& c = result.metadata;
-    c.scenario_name = "teapots-small";
-    c.scenario_file = "scenarios/small/teapots-small.json";
-    c.frames = 30;
-    c.warmup_frames = 5;
-    c.error_measured = true;
-    c.hardware_threads = 2;
-    c.renderer = "llvmpipe (test)";
-    c.width = 200;
-    c.height = 150;
-    c.command_line = "occsim bench scenarios/small/teapots-small.json --error --plots";
-    c.sweep = Sweep{"", "threshold", {0, 4}};
-    ReportFiles files;
-    files.plot_files = {"plot-frame-time.png", "plot-frame-time.svg", "plot-time-vs-error.png"};
-    files.birds_eye_files = {"birds-eye-chc-frame-00020.png"};
-    const std::string md = markdownReport(result, files);
-
-    EXPECT_NE(md.find("# occsim bench: teapots-small"), std::string::npos);
-    EXPECT_NE(md.find(c.command_line), std::string::npos);
-    EXPECT_NE(md.find("2 hardware threads"), std::string::npos);
-    EXPECT_NE(md.find("llvmpipe (test)"), std::string::npos);
-    EXPECT_NE(md.find("threshold = 0, 4"), std::string::npos);
-    EXPECT_NE(md.find("first 5 frames are warm-up"), std::string::npos);
-    EXPECT_NE(md.find("Ground-truth rendering, PNG writing and statistics I/O"), std::string::npos);
-    // The table: same columns as the text table, one row per configuration, Pareto marked.
-    const ComparisonTable t = comparisonTable(result.runs);
-    std::string header = "|";
-    for (const auto& h : t.header) header += " " + h + " |";
-    EXPECT_NE(md.find(header), std::string::npos) << md;
-    EXPECT_NE(md.find("| vfc | 20.00 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| **statistical threshold=4** | 12.00 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| **chc** | 14.00 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| ideal | 6.00 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("1.67x"), std::string::npos) << "speedup of statistical over VFC";
-    // Pictures: the PNGs as images, the SVG linked; only the files named.
-    EXPECT_NE(md.find("![Frame time per frame](plot-frame-time.png)"), std::string::npos);
-    EXPECT_NE(md.find("(plot-frame-time.svg)"), std::string::npos);
-    EXPECT_NE(md.find("![Time against error](plot-time-vs-error.png)"), std::string::npos);
-    EXPECT_EQ(md.find("plot-queries-triangles"), std::string::npos);
-    EXPECT_NE(md.find("](birds-eye-chc-frame-00020.png)"), std::string::npos);
-    EXPECT_NE(md.find("## How to read this"), std::string::npos);
-    EXPECT_NE(md.find("popping"), std::string::npos);
-}
+using testing::benchSmall;
+using testing::kSmall;
+using testing::record;
+using testing::sampleRuns;
+using testing::traitsOf;
 
 // One error pixel in 240 frames is an error: no cell of the table (console and report.md alike)
 // prints a figure that is not zero as 0.0.
@@ -130,46 +53,6 @@ TEST(ComparisonTable, ANonZeroFigureNeverPrintsAsZero) {
     EXPECT_EQ(t.rows[0][column("err px/fr")], "0.0") << "zero stays zero";
     EXPECT_NE(formatComparisonTable(result.runs).find("<0.1"), std::string::npos);
     EXPECT_NE(markdownReport(result, ReportFiles{}).find("| <0.1 |"), std::string::npos);
-}
-
-fs::path freshDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() /
-                       ("occsim-report-outputs-" + std::to_string(::getpid()) + "-" + name);
-    fs::remove_all(p);
-    return p;
-}
-
-// Sets PATH for the scope of a test and puts the old value back.
-class ScopedPath {
-  public:
-    explicit ScopedPath(const std::string& value) {
-        if (const char* old = std::getenv("PATH")) old_ = old;
-        ::setenv("PATH", value.c_str(), 1);
-    }
-    ~ScopedPath() {
-        if (old_)
-            ::setenv("PATH", old_->c_str(), 1);
-        else
-            ::unsetenv("PATH");
-    }
-    ScopedPath(const ScopedPath&) = delete;
-    ScopedPath& operator=(const ScopedPath&) = delete;
-
-  private:
-    std::optional<std::string> old_;
-};
-
-void writeExecutable(const fs::path& path, const std::string& text) {
-    std::ofstream(path) << text;
-    ::chmod(path.c_str(), 0755);
-}
-
-std::vector<std::string> filesIn(const fs::path& dir) {
-    std::vector<std::string> out;
-    if (!fs::exists(dir)) return out;
-    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
-    std::sort(out.begin(), out.end());
-    return out;
 }
 
 // A run records the load average before and after it; one on a machine busier than its hardware
@@ -207,70 +90,129 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
     EXPECT_EQ(summary["machine"]["load_average_before"].size(), 3u);
 }
 
-TEST(Plots, WithoutGnuplotOnPathSaysSoAndWritesNothing) {
-    const fs::path empty_bin = freshDir("empty-bin");
-    fs::create_directories(empty_bin);
-    const fs::path out = freshDir("no-gnuplot");
-    PlotResult r;
-    {
-        ScopedPath path(empty_bin.string());
-        r = writePlots(sampleRuns(), out);
+// A culler that throws in its frame `fail_at`, culling like `inner` before it.
+class FailingCuller final : public Culler {
+  public:
+    FailingCuller(std::unique_ptr<Culler> inner, uint32_t fail_at)
+        : inner_(std::move(inner)), fail_at_(fail_at) {}
+    void reset(const BspTree& tree) override { inner_->reset(tree); }
+    void cullAndRender(const BspTree& tree, const CullFrame& frame, RenderDevice& device) override {
+        if (frames_++ == fail_at_) throw std::runtime_error("out of budget");
+        inner_->cullAndRender(tree, frame, device);
     }
-    EXPECT_FALSE(r.ok);
-    EXPECT_EQ(r.message,
-              "plots skipped: gnuplot not found; install the Debian package gnuplot-nox");
-    EXPECT_TRUE(r.files.empty());
-    EXPECT_FALSE(fs::exists(out)) << "nothing written, not even the folder";
+
+  private:
+    std::unique_ptr<Culler> inner_;
+    uint32_t fail_at_;
+    uint32_t frames_ = 0;
+};
+
+// The failure is named, not thrown: every configuration keeps the whole frames before it (those
+// that rendered the failed frame first, in the rotated order too, drop it), and no repetition
+// after it runs.
+TEST(Simulation, AConfigurationThatThrowsEndsTheRunWithTheWholeFramesBeforeItNamed) {
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc", "chc", "statistical"});
+    options.frames = 12;
+    options.repetitions = 2;
+    options.frame_order = FrameOrder::rotated;
+    options.make_culler = [](const CullerRow& algorithm, const CullerOptions& culler) {
+        std::unique_ptr<Culler> made = makeCuller(algorithm, culler);
+        if (algorithm.name == "chc")
+            return std::unique_ptr<Culler>(new FailingCuller(std::move(made), 5));
+        return made;
+    };
+    const BenchResult result = runBenchmark(parseScenarioFile(kSmall), options);
+    ASSERT_TRUE(result.partial.has_value());
+    EXPECT_EQ(result.partial->reason, "configuration 'chc' failed at frame 5: out of budget");
+    EXPECT_EQ(result.partial->signal, 0);
+    EXPECT_EQ(result.partial->frames_reached, 5u);
+    for (const RunRecord& run : result.runs) {
+        EXPECT_EQ(run.frames.size(), 5u) << run.summary.label;
+        EXPECT_EQ(run.repetitions.size(), 1u) << run.summary.label;
+        EXPECT_EQ(run.summary.frames, 5u) << run.summary.label;
+    }
+    EXPECT_NE(partialLine(result).find("after 5 of 12 frames; the 5 whole frames are reported"),
+              std::string::npos)
+        << partialLine(result);
 }
 
-TEST(Plots, AFailingGnuplotLeavesNoPictureNotEvenAHalfWrittenOne) {
-    const fs::path bin = freshDir("failing-bin");
-    fs::create_directories(bin);
-    // Writes a partial file under every temporary name the script asks for, then fails.
-    writeExecutable(bin / "gnuplot",
-                    "#!/bin/sh\n"
-                    "for f in $(grep -o '\\.plot-[a-z-]*\\.[a-z]*\\.tmp-[0-9]*' \"$1\"); do\n"
-                    "  printf partial > \"$f\"\n"
-                    "done\n"
-                    "echo '\"plots.gp\" line 9: something broke' >&2\n"
-                    "exit 1\n");
-    const fs::path out = freshDir("failing");
-    PlotResult r;
-    {
-        ScopedPath path(bin.string() + ":/usr/bin:/bin");
-        r = writePlots(sampleRuns(), out);
+// Over-draw is what a culler drew that ground truth does not see: every drawn object is either
+// visible (and not missed) or over-drawn; Ideal over-draws nothing, VFC a great deal.
+TEST(Simulation, OverdrawCountsTheObjectsDrawnThatGroundTruthDoesNotSee) {
+    const BenchResult result =
+        benchSmall(true, LatencyMode{true, 8}, {"vfc", "statistical", "async", "ideal"});
+    const Scene scene = buildScene(parseScenarioFile(kSmall));
+    const uint64_t teapot = scene.meshes[scene.object_mesh[0]].triangleCount();
+    for (const RunRecord& run : result.runs) {
+        double overdrawn = 0;
+        for (const FrameStats& f : run.frames) {
+            EXPECT_EQ(static_cast<int64_t>(f.objects_drawn),
+                      f.visible_objects - f.missed_objects + f.overdrawn_objects)
+                << run.summary.label << " frame " << f.frame;
+            EXPECT_LE(f.overdrawn_triangles, static_cast<int64_t>(f.triangles));
+            EXPECT_EQ(static_cast<uint64_t>(f.overdrawn_triangles),
+                      teapot * static_cast<uint64_t>(f.overdrawn_objects))
+                << "every object is a teapot of one tessellation";
+            overdrawn += static_cast<double>(f.overdrawn_objects);
+        }
+        EXPECT_DOUBLE_EQ(run.summary.overdrawn_objects_mean,
+                         overdrawn / static_cast<double>(run.frames.size()));
+        if (run.summary.label == "ideal") {
+            EXPECT_EQ(run.summary.overdrawn_objects_mean, 0.0);
+        }
+        if (run.summary.label == "vfc") {
+            EXPECT_GT(run.summary.overdrawn_objects_mean, 10.0);
+        }
     }
-    EXPECT_FALSE(r.ok);
-    EXPECT_NE(r.message.find("plots failed"), std::string::npos) << r.message;
-    EXPECT_NE(r.message.find("something broke"), std::string::npos) << r.message;
-    EXPECT_TRUE(r.files.empty());
-    for (const std::string& f : filesIn(out)) {
-        EXPECT_TRUE(f.ends_with(".dat") || f == "plots.gp") << "left behind: " << f;
-    }
+    const ComparisonTable table = comparisonTable(result.runs);
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "overdrawn/fr"),
+              table.header.end());
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "overdrawn tris/fr"),
+              table.header.end());
+    EXPECT_NE(framesCsv(result.runs).find(",stray_pixels,overdrawn_objects,overdrawn_triangles,"),
+              std::string::npos);
 }
 
-TEST(Plots, WithGnuplotWritesNonEmptyPngAndSvgOfEveryChart) {
-    if (!findOnPath("gnuplot"))
-        GTEST_SKIP() << "gnuplot not installed (Debian package gnuplot-nox)";
-    const fs::path out = freshDir("real");
-    const PlotResult r = writePlots(sampleRuns(), out);
-    ASSERT_TRUE(r.ok) << r.message;
-    const std::vector<std::string> want = {
-        "plot-frame-time.png",    "plot-frame-time.svg",        "plot-time-vs-error.png",
-        "plot-time-vs-error.svg", "plot-queries-triangles.png", "plot-queries-triangles.svg"};
-    EXPECT_EQ(r.files, want);
-    for (const std::string& f : want) {
-        ASSERT_TRUE(fs::exists(out / f)) << f;
-        EXPECT_GT(fs::file_size(out / f), 1000u) << f;
-        std::ifstream in(out / f, std::ios::binary);
-        std::string head(8, '\0');
-        in.read(head.data(), 8);
-        if (f.ends_with(".png"))
-            EXPECT_EQ(head.substr(1, 3), "PNG") << f;
-        else
-            EXPECT_TRUE(head.starts_with("<?xml") || head.starts_with("<svg")) << f;
+// conditional submits every object in the frustum and the device skips the hidden ones: the two
+// are counted apart. With GL_QUERY_WAIT a draw executes exactly when its query passed samples,
+// so the executed draws are the drawn set error measurement reads from those samples.
+TEST(Simulation, ConditionalDrawsAreCountedAsSubmittedAndAsExecuted) {
+    const Scenario scenario = parseScenarioFile(kSmall);
+    BenchOptions options;
+    options.measure_error = true;
+    options.latency = LatencyMode{true, 8};
+    options.frames = 12;
+    const CullerRow& conditional = *findCuller("conditional");
+    RunConfig waited{"conditional wait=true", &conditional, scenario.culler};
+    waited.culler.edit(conditional).set("wait", 1.0);
+    options.configs = {RunConfig{"vfc", findCuller("vfc"), scenario.culler},
+                       RunConfig{"conditional", &conditional, scenario.culler}, waited};
+    options.algorithms = {findCuller("vfc")};
+    const BenchResult result = runBenchmark(scenario, options);
+    ASSERT_EQ(result.runs.size(), 3u);
+    bool skipped_some = false;
+    for (const RunRecord& run : result.runs) {
+        for (const FrameStats& f : run.frames) {
+            EXPECT_LE(f.executed_objects, f.objects_drawn);
+            EXPECT_LE(f.executed_triangles, f.triangles);
+            if (run.summary.label == "vfc") {
+                EXPECT_EQ(f.executed_objects, f.objects_drawn);
+                EXPECT_EQ(f.executed_triangles, f.triangles);
+            }
+            if (run.summary.label == "conditional wait=true") {
+                EXPECT_EQ(static_cast<int64_t>(f.executed_objects),
+                          f.visible_objects - f.missed_objects + f.overdrawn_objects)
+                    << "frame " << f.frame;
+                skipped_some |= f.executed_objects < f.objects_drawn;
+            }
+        }
     }
-    for (const std::string& f : filesIn(out)) EXPECT_EQ(f.find(".tmp-"), std::string::npos) << f;
+    EXPECT_TRUE(skipped_some) << "the teapot field hides some of what is in the frustum";
+    EXPECT_LT(result.runs[2].summary.executed_objects_mean, result.runs[2].summary.objects_mean);
+    const ComparisonTable table = comparisonTable(result.runs);
+    EXPECT_NE(std::find(table.header.begin(), table.header.end(), "exec objs/fr"),
+              table.header.end());
 }
 
 }  // namespace

@@ -131,5 +131,17 @@ TEST(Summary, TimingSkipsWarmupFramesButErrorCountsEveryFrame) {
     EXPECT_EQ(s.frames_with_error, 1u);
 }
 
+TEST(FrameStats, AnswerLatencyRanksAreNearestRankOverTheHistogram) {
+    RunSummary s;
+    addAnswerLatencies(s, {0, 10, 0, 8, 2});  // 10 x 1, 8 x 3, 2 x 4
+    EXPECT_EQ(s.answers, 20u);
+    EXPECT_EQ(s.answer_latency_median, 1.0);  // rank 10
+    EXPECT_EQ(s.answer_latency_p95, 4.0);     // rank 19
+    addAnswerLatencies(s, {});
+    EXPECT_EQ(s.answer_latency_median, -1.0);
+    std::vector<uint32_t> frame = {7, 1, 3, 5};
+    EXPECT_EQ(medianLatency(frame), 4.0);
+}
+
 }  // namespace
 }  // namespace occsim

@@ -4,7 +4,6 @@
 #include <vector>
 
 #include "sim/run/pixel_error.h"
-#include "sim/run/stray_fragments.h"
 
 namespace occsim {
 namespace {
@@ -78,16 +77,6 @@ TEST(PixelError, AMissingStrayFragmentIsStrayAndEveryOtherPixelKeepsItsClass) {
                                                    PixelDifference::Same, PixelDifference::Tie};
     for (size_t i = 0; i < marks.size(); ++i)
         EXPECT_EQ(static_cast<PixelDifference>(marks[i]), expected[i]) << i;
-}
-
-TEST(StrayFragments, OnlyAFragmentNearerThanItsObjectsBoundIsStray) {
-    //                                  bg  at bound  nearer  object 2 far
-    const std::vector<uint32_t> ids = {0, 1, 1, 2};
-    const std::vector<uint32_t> ranks = {99999, 500, 501, 10};
-    const std::vector<uint32_t> nearest_rank = {500, 400};
-    std::vector<uint8_t> stray;
-    EXPECT_EQ(markStrayFragments(ids, ranks, nearest_rank, stray), 1);
-    EXPECT_EQ(stray, (std::vector<uint8_t>{0, 0, 1, 0}));
 }
 
 TEST(PixelError, BuffersOfDifferentSizesAreRefused) {

@@ -1,8 +1,8 @@
 // What the viewer asks of the renderer and the simulation, headless (no window; on every backend
-// the build has): cullers made as runs make them, the live camera, held worlds and algorithm
-// switches on a SharedWorld, a resizable framebuffer, and CPU images shown in a default
-// framebuffer. The node boxes and the validation overlay: test_node_boxes.cpp and
-// test_validation_overlay.cpp.
+// the build has): the live camera, held worlds and algorithm switches on a SharedWorld, a
+// resizable framebuffer. Cullers made as runs make them: tests/sim/run/test_culler_setup.cpp; CPU
+// images shown in a default framebuffer: tests/render/test_gl_image_presenter.cpp; the node boxes
+// and the validation overlay: test_node_boxes.cpp and test_validation_overlay.cpp.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -15,32 +15,6 @@
 
 namespace occsim {
 namespace {
-
-// The viewer makes its cullers through the run layer's one construction path
-// (sim/run/culler_setup.h): a culler that weighs costs gets a cost model measured on this
-// renderer, the others are left alone, and a cost model the scenario gives is kept.
-TEST_P(ViewGl, CullersAreMadeAsRunsMakeThemWithTheCostModelStep) {
-    std::vector<RunConfig> configs{
-        RunConfig{"vfc", findCuller("vfc"), scenario_.culler},
-        RunConfig{"statistical+", findCuller("statistical+"), scenario_.culler}};
-    const auto choice = chooseCostModel(configs, *scene_, scenario_, *renderer_, LatencyMode{});
-    ASSERT_TRUE(choice);
-    EXPECT_EQ(choice->source, CostModelSource::Calibrated);
-    EXPECT_FALSE(configs[0].culler.cost_model.known()) << "vfc weighs no costs";
-    ASSERT_TRUE(configs[1].culler.cost_model.known());
-    const std::unique_ptr<Culler> culler = makeConfiguredCuller(configs[1]);
-    const auto* statistical = dynamic_cast<const StatisticalCuller*>(culler.get());
-    ASSERT_NE(statistical, nullptr);
-    EXPECT_EQ(statistical->costModel(), configs[1].culler.cost_model);
-
-    Scenario given = scenario_;
-    given.culler.cost_model = CostModel{0.5, 0.001, 0.0};
-    std::vector<RunConfig> kept{
-        RunConfig{"statistical+", findCuller("statistical+"), given.culler}};
-    EXPECT_EQ(chooseCostModel(kept, *scene_, given, *renderer_, LatencyMode{})->source,
-              CostModelSource::Scenario);
-    EXPECT_EQ(kept[0].culler.cost_model, (CostModel{0.5, 0.001, 0.0}));
-}
 
 TEST_P(ViewGl, ALiveCameraOnThePathsPoseRendersThePathsFrame) {
     auto on_path = simulation("vfc");
@@ -124,34 +98,6 @@ TEST_P(ViewGl, TheFramebufferFollowsANewSize) {
     ASSERT_EQ(small.size(), 96u * 64u);
     EXPECT_GT(std::count_if(small.begin(), small.end(), [](uint32_t id) { return id != 0; }),
               96 * 64 / 4);
-}
-
-TEST_P(ViewGl, APresentedImageFillsTheDefaultFramebuffer) {
-    // The presenter draws into a window's default framebuffer; an EGL context made current
-    // without a surface has none (headless runs render into framebuffer objects). OSMesa's client
-    // buffer stands in for a window here, and test_view_window runs the presenter in a real one.
-    if (GetParam() == Backend::Egl)
-        GTEST_SKIP() << "a surfaceless EGL context has no default framebuffer";
-    // Four quadrants of different colours, rows bottom-up.
-    const uint32_t w = scenario_.width, h = scenario_.height;
-    std::vector<uint8_t> image(size_t{w} * h * 4);
-    for (uint32_t y = 0; y < h; ++y) {
-        for (uint32_t x = 0; x < w; ++x) {
-            uint8_t* p = &image[(size_t{y} * w + x) * 4];
-            p[0] = x < w / 2 ? 200 : 10;
-            p[1] = y < h / 2 ? 180 : 20;
-            p[2] = 77;
-            p[3] = 255;
-        }
-    }
-    GlImagePresenter presenter;
-    presenter.draw(image, w, h, w, h);
-    glFinish();
-    std::vector<uint8_t> shown(image.size());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadPixels(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h), GL_RGBA, GL_UNSIGNED_BYTE,
-                 shown.data());
-    EXPECT_EQ(shown, image);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ViewGl, ::testing::ValuesIn(testing::testedBackends()),

@@ -1,6 +1,7 @@
-// The procedural scene generators (city, library, plant) and the primitives they are built from:
-// deterministic per seed, scaling with their spec, valid closed meshes with outward faces, lanes
-// that keep movers out of the geometry, and everything inside the source's region.
+// The procedural scene generators (city, library, plant): deterministic per seed, scaling with
+// their spec, valid closed meshes with outward faces, lanes that keep movers out of the geometry,
+// and everything inside the source's region. The primitives they are built from:
+// tests/sim/scene/test_primitives.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <set>
 #include <tuple>
 
+#include "mesh_checks.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scene/generators.h"
 #include "sim/scene/primitives.h"
@@ -23,83 +25,13 @@ const std::filesystem::path kRepo = OCCSIM_SOURCE_DIR;
 const std::filesystem::path kSmall = kRepo / "scenarios/small";
 const std::filesystem::path kPaper = kRepo / "scenarios/paper";
 
-// --- Mesh checks ---------------------------------------------------------------------------
-
-double signedVolume(const MeshData& m) {
-    double v = 0.0;
-    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
-            c(m.positions[m.indices[t + 2]]);
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return v;
-}
-
-// Every directed edge a -> b (by position, to a tenth of a millimetre, so that flat-shaded meshes
-// with split vertices still match) is cancelled by an edge b -> a of another triangle: the mesh
-// is a union of closed, consistently oriented surfaces.
-::testing::AssertionResult isClosed(const MeshData& m) {
-    using Key = std::tuple<long, long, long>;
-    const auto key = [&](uint32_t i) {
-        const glm::vec3 p = m.positions[i] * 1e4f;
-        return Key(std::lround(p.x), std::lround(p.y), std::lround(p.z));
-    };
-    std::map<std::pair<Key, Key>, int> balance;
-    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-        for (int e = 0; e < 3; ++e) {
-            const Key a = key(m.indices[t + e]), b = key(m.indices[t + (e + 1) % 3]);
-            if (a < b) {
-                ++balance[{a, b}];
-            } else {
-                --balance[{b, a}];
-            }
-        }
-    }
-    size_t open = 0;
-    for (const auto& [edge, count] : balance) open += count != 0;
-    if (open == 0) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << open << " of " << balance.size() << " edges unmatched";
-}
-
-// Indices in range, whole triangles, one finite unit normal per position, positive volume.
-void expectValidMesh(const MeshData& m, const std::string& what) {
-    SCOPED_TRACE(what);
-    ASSERT_FALSE(m.indices.empty());
-    ASSERT_EQ(m.indices.size() % 3, 0u);
-    ASSERT_EQ(m.normals.size(), m.positions.size());
-    for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
-    for (size_t i = 0; i < m.positions.size(); ++i) {
-        ASSERT_TRUE(std::isfinite(m.positions[i].x) && std::isfinite(m.positions[i].y) &&
-                    std::isfinite(m.positions[i].z));
-        ASSERT_NEAR(glm::length(m.normals[i]), 1.0f, 1e-4f) << "normal " << i;
-    }
-    EXPECT_GT(signedVolume(m), 0.0);
-    EXPECT_TRUE(isClosed(m));
-}
-
-// Each triangle's geometric normal (from its counter-clockwise winding) points the same way as
-// the normals stored at its corners: the faces are outward and front-facing from outside.
-void expectFaceNormalsAgree(const MeshData& m) {
-    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-        const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
-                        c = m.positions[m.indices[t + 2]];
-        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-        for (int k = 0; k < 3; ++k) {
-            ASSERT_GT(glm::dot(n, m.normals[m.indices[t + k]]), 0.0f) << "triangle " << t / 3;
-        }
-    }
-}
+using testing::expectFaceNormalsAgree;
+using testing::expectValidMesh;
+using testing::isClosed;
+using testing::objectBox;
+using testing::signedVolume;
 
 // --- Source checks -------------------------------------------------------------------------
-
-Aabb objectBox(const SourceOutput& s, const PlacedObject& o) {
-    glm::mat4 m(o.linear);
-    m[3] = glm::vec4(0, 0, 0, 1);
-    Aabb box = transformAabb(meshBounds(s.meshes.at(o.mesh)), m);
-    box.min = glm::vec3(glm::dvec3(box.min) + o.position);
-    box.max = glm::vec3(glm::dvec3(box.max) + o.position);
-    return box;
-}
 
 void expectSameOutput(const SourceOutput& a, const SourceOutput& b) {
     ASSERT_EQ(a.meshes.size(), b.meshes.size());
@@ -237,71 +169,6 @@ PlantSpec smallPlant() {
     p.pipes_per_unit = 12;
     p.tanks_per_unit = 4;
     return p;
-}
-
-// --- Primitives ----------------------------------------------------------------------------
-
-TEST(Primitives, BoxHasTwelveOutwardTrianglesStandingOnTheGround) {
-    const MeshData box = makeBox({2, 3, 4});
-    EXPECT_EQ(box.triangleCount(), 12u);
-    EXPECT_EQ(box.positions.size(), 24u);
-    expectValidMesh(box, "box");
-    expectFaceNormalsAgree(box);
-    EXPECT_NEAR(signedVolume(box), 24.0, 1e-4);
-    const Aabb b = meshBounds(box);
-    EXPECT_EQ(b.min, glm::vec3(-1, 0, -2));
-    EXPECT_EQ(b.max, glm::vec3(1, 3, 2));
-}
-
-TEST(Primitives, CylinderHasFourTrianglesPerSegmentAndOutwardFaces) {
-    for (uint32_t segments : {3u, 12u, 16u}) {
-        const MeshData c = makeCylinder(0.5f, 2.0f, segments);
-        EXPECT_EQ(c.triangleCount(), 4 * segments);
-        expectValidMesh(c, "cylinder " + std::to_string(segments));
-        expectFaceNormalsAgree(c);
-        // The inscribed polygon's area times the height.
-        const double area = 0.5 * segments * 0.25 * std::sin(2 * 3.14159265358979 / segments);
-        EXPECT_NEAR(signedVolume(c), area * 2.0, 1e-4);
-        EXPECT_NEAR(meshBounds(c).min.y, 0.0f, 1e-6f);
-        EXPECT_NEAR(meshBounds(c).max.y, 2.0f, 1e-6f);
-    }
-    EXPECT_THROW(makeCylinder(1, 1, 2), std::invalid_argument);
-}
-
-TEST(Primitives, SphereHasTwoTrianglesPerSegmentAndRingBetweenPolesAndOutwardFaces) {
-    for (auto [segments, rings] : {std::pair{3u, 2u}, std::pair{16u, 8u}, std::pair{24u, 12u}}) {
-        const MeshData s = makeSphere(1.5f, segments, rings);
-        EXPECT_EQ(s.triangleCount(), 2 * segments * (rings - 1));
-        expectValidMesh(s, "sphere " + std::to_string(segments) + "x" + std::to_string(rings));
-        expectFaceNormalsAgree(s);
-        EXPECT_NEAR(meshBounds(s).min.y, 0.0f, 1e-5f);
-        EXPECT_NEAR(meshBounds(s).max.y, 3.0f, 1e-5f);
-    }
-    // Fine enough, the volume approaches the sphere's.
-    EXPECT_NEAR(signedVolume(makeSphere(1.0f, 64, 32)), 4.0 / 3.0 * 3.14159265358979, 0.03);
-    EXPECT_THROW(makeSphere(1, 8, 1), std::invalid_argument);
-}
-
-TEST(Primitives, AppendBoxSpansItsCornersAndStaysClosed) {
-    MeshData m;
-    appendBox(m, {1, 2, 3}, {2, 4, 7});
-    appendBox(m, {-1, -1, -1}, {0, 0, 0});
-    EXPECT_EQ(m.triangleCount(), 24u);
-    expectValidMesh(m, "two boxes");
-    expectFaceNormalsAgree(m);
-    EXPECT_NEAR(signedVolume(m), 8.0 + 1.0, 1e-4);
-    EXPECT_EQ(meshBounds(m).min, glm::vec3(-1, -1, -1));
-    EXPECT_EQ(meshBounds(m).max, glm::vec3(2, 4, 7));
-}
-
-TEST(Primitives, PlacedUnitBoxFillsTheGivenBox) {
-    SourceOutput s;
-    s.meshes.push_back(makeBox(glm::vec3(1.0f)));
-    s.objects.push_back(placeUnitBox(0, {1, -2, 3}, {4, 0, 3.5}));
-    const Aabb box = objectBox(s, s.objects[0]);
-    EXPECT_EQ(box.min, glm::vec3(1, -2, 3));
-    EXPECT_EQ(box.max, glm::vec3(4, 0, 3.5));
-    EXPECT_EQ(scaleMatrix({2, 3, 4}) * glm::vec3(1), glm::vec3(2, 3, 4));
 }
 
 // --- The three generators, one test per property ---------------------------------------------

@@ -1,6 +1,7 @@
 // glTF node animations (issue 22): samplers evaluated against values computed by hand for
 // LINEAR (spherical for rotations), STEP and CUBICSPLINE; rotations stay unit quaternions; the
-// reader's errors (with the JSON path) and warnings; the real BoxAnimated file; and the world:
+// reader's errors (with the JSON path) and warnings; the real BoxAnimated file; and the world
+// (play modes alone: test_model_copies.cpp):
 // animated objects are movers with tight boxes, playback keys, seeded per-copy phases, whole-copy
 // movers that keep a model in one piece, spawned models.
 #include <gtest/gtest.h>
@@ -132,25 +133,6 @@ TEST(AnimationSampling, RotationsStayUnitQuaternionsInEveryMode) {
             EXPECT_NEAR(glm::determinant(r), 1.0, 1e-9) << "t " << t;
         }
     }
-}
-
-// ---- Play modes ----------------------------------------------------------------------------
-
-TEST(AnimationPlayback, LoopClampAndPingPongOverTheAnimationsOwnDuration) {
-    SceneModel m;
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 0.5), 0.5);
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 2.5), 0.5);  // loops
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 2.0), 2.0);  // the end shows the last key
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 0.0), 0.0);
-    m.mode = AnimationMode::Clamp;
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 5.0), 2.0);
-    m.mode = AnimationMode::PingPong;
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 2.5), 1.5);
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.0, 4.5), 0.5);
-    m.mode = AnimationMode::Loop;
-    m.speed = 2.0;
-    m.time_offset_s = 0.5;
-    EXPECT_DOUBLE_EQ(animationTime(m, 2.0, 0.25, 0.5), 1.75);  // 0.5 + 0.25 + 2 * 0.5
 }
 
 // ---- The reader: a two-node file with hand-made channels -------------------------------------

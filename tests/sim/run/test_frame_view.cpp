@@ -1,0 +1,128 @@
+// The camera of one frame (sim/run/frame_view.h): the culling view in the culling frame, exact far
+// from the origin; the render view in world coordinates with the scenario's depth convention; the
+// lens's near radius and viewport handed to both; straight up or down still a camera.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "occsim/culling/geometry/frustum.h"
+#include "sim/run/frame_view.h"
+#include "sim/scenario/scenario.h"
+
+namespace occsim {
+namespace {
+
+CameraSpec lens() {
+    CameraSpec camera;
+    camera.fov_y_deg = 60.0;
+    camera.near_m = 0.5;
+    camera.far_m = 200.0;
+    camera.keyframes = {CameraKeyframe{0.0, {0.0, 2.0, 10.0}, {0.0, 2.0, 0.0}}};
+    return camera;
+}
+
+Aabb cubeAt(const glm::vec3& centre, float half) {
+    return Aabb{centre - glm::vec3(half), centre + glm::vec3(half)};
+}
+
+TEST(FrameView, TheCullingViewIsTheCameraRelativeToTheCullingOriginFarFromTheWorldOrigin) {
+    // 10^6 m away, in single precision a step of 0.0625 m: the eye in the culling frame is
+    // computed in double before it is rounded, so it is exact to the millimetre.
+    const glm::dvec3 far{1.0e6 + 0.123, 3.0, -1.0e6 + 0.456};
+    const CameraPose pose{far, far + glm::dvec3(0.0, 0.0, -1.0)};
+    const glm::dvec3 origin{1.0e6, 0.0, -1.0e6};
+    const FrameView view = makeFrameView(lens(), pose, 320, 240, origin);
+    EXPECT_NEAR(view.cull.eye.x, 0.123f, 1e-6f);
+    EXPECT_NEAR(view.cull.eye.y, 3.0f, 1e-6f);
+    EXPECT_NEAR(view.cull.eye.z, 0.456f, 1e-6f);
+    EXPECT_EQ(view.render.eye, far);
+    EXPECT_EQ(view.render.box_origin, origin);
+
+    // A small box 5 m ahead is in the culling frustum; the same box behind the eye, or beyond
+    // the far plane, is not.
+    const glm::vec3 eye = view.cull.eye;
+    EXPECT_NE(classify(view.cull.frustum, cubeAt(eye + glm::vec3(0, 0, -5), 0.01f)),
+              FrustumTest::Outside);
+    EXPECT_EQ(classify(view.cull.frustum, cubeAt(eye + glm::vec3(0, 0, 5), 0.01f)),
+              FrustumTest::Outside);
+    EXPECT_EQ(classify(view.cull.frustum, cubeAt(eye + glm::vec3(0, 0, -210), 1.0f)),
+              FrustumTest::Outside);
+}
+
+TEST(FrameView, TheFieldOfViewAndAspectBoundTheCullingFrustum) {
+    const CameraSpec camera = lens();
+    const CameraPose pose{{0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}};
+    // 10 m ahead the frustum is 10 * tan(30 deg) = 5.77 m high each side of the axis and twice
+    // that wide at 2:1.
+    const FrameView view = makeFrameView(camera, pose, 400, 200, glm::dvec3(0.0));
+    const double half_height = 10.0 * std::tan(glm::radians(30.0));
+    const auto at = [&](double x, double y) {
+        return classify(
+            view.cull.frustum,
+            cubeAt(glm::vec3(static_cast<float>(x), static_cast<float>(y), -10.0f), 0.01f));
+    };
+    EXPECT_NE(at(0.0, half_height - 0.1), FrustumTest::Outside);
+    EXPECT_EQ(at(0.0, half_height + 0.1), FrustumTest::Outside);
+    EXPECT_NE(at(2.0 * half_height - 0.1, 0.0), FrustumTest::Outside);
+    EXPECT_EQ(at(2.0 * half_height + 0.1, 0.0), FrustumTest::Outside);
+    EXPECT_EQ(view.cull.viewport_width, 400u);
+    EXPECT_EQ(view.cull.viewport_height, 200u);
+    // The near radius both views guard with: eye to a corner of the near plane.
+    EXPECT_FLOAT_EQ(view.cull.near_radius,
+                    static_cast<float>(nearPlaneCornerDistance(0.5, glm::radians(60.0), 2.0)));
+    EXPECT_EQ(view.render.near_radius, view.cull.near_radius);
+}
+
+TEST(FrameView, TheRenderProjectionFollowsTheScenariosDepthConvention) {
+    Scenario scenario;
+    EXPECT_EQ(depthConventionOf(scenario), DepthConvention::ReverseFloat);
+    scenario.conventional_depth = true;
+    EXPECT_EQ(depthConventionOf(scenario), DepthConvention::Conventional24);
+
+    const CameraSpec camera = lens();
+    const CameraPose pose{{0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}};
+    // A point on the near plane: depth 1 under reverse-Z (GL_ZERO_TO_ONE), -1 conventionally;
+    // the far plane the other way round.
+    const auto ndcDepth = [&](DepthConvention depth, double distance) {
+        const FrameView view = makeFrameView(camera, pose, 320, 240, glm::dvec3(0.0), depth);
+        const glm::vec4 clip = view.render.projection * view.render.view_rotation *
+                               glm::vec4(0.0f, 0.0f, -static_cast<float>(distance), 1.0f);
+        return clip.z / clip.w;
+    };
+    EXPECT_NEAR(ndcDepth(DepthConvention::ReverseFloat, 0.5), 1.0f, 1e-5f);
+    EXPECT_NEAR(ndcDepth(DepthConvention::ReverseFloat, 200.0), 0.0f, 1e-5f);
+    EXPECT_NEAR(ndcDepth(DepthConvention::Conventional24, 0.5), -1.0f, 1e-5f);
+    EXPECT_NEAR(ndcDepth(DepthConvention::Conventional24, 200.0), 1.0f, 1e-5f);
+}
+
+TEST(FrameView, ACameraLookingStraightDownStillSeesTheGroundBelow) {
+    // y cannot be the up vector looking down y: a view made with it would be degenerate (NaN).
+    const CameraPose pose{{0.0, 50.0, 0.0}, {0.0, 0.0, 0.0}};
+    const FrameView view = makeFrameView(lens(), pose, 320, 240, glm::dvec3(0.0));
+    for (int i = 0; i < 6; ++i) {
+        const glm::vec4 p = view.cull.frustum.planes[i];
+        EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                    std::isfinite(p.w))
+            << "plane " << i;
+    }
+    EXPECT_NE(classify(view.cull.frustum, cubeAt(glm::vec3(0.0f, 0.0f, 0.0f), 1.0f)),
+              FrustumTest::Outside);
+    EXPECT_EQ(classify(view.cull.frustum, cubeAt(glm::vec3(0.0f, 60.0f, 0.0f), 1.0f)),
+              FrustumTest::Outside);
+}
+
+TEST(FrameView, AFrameOfThePathIsThePoseTheCameraPathGivesAtThatTime) {
+    CameraSpec camera = lens();
+    camera.keyframes = {CameraKeyframe{0.0, {0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}},
+                        CameraKeyframe{2.0, {10.0, 0.0, 0.0}, {10.0, 0.0, -1.0}}};
+    const FrameView view = makeFrameView(camera, 1.0, 320, 240, glm::dvec3(0.0));
+    const FrameView posed =
+        makeFrameView(camera, sampleCameraPath(camera, 1.0), 320, 240, glm::dvec3(0.0));
+    EXPECT_EQ(view.render.eye, posed.render.eye);
+    EXPECT_EQ(view.cull.eye, posed.cull.eye);
+    EXPECT_NEAR(view.render.eye.x, 5.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace occsim
