@@ -285,7 +285,7 @@ int runAndReport(const RunRequest& request) {
                     pictures.birdsEyeFiles().size());
     }
     if (!pictures.windowFiles().empty()) {
-        std::printf("worst-window pictures: %zu (worst-window-frame-*.png)\n",
+        std::printf("worst-window pictures: %zu (worst-window-*-frame-*.png)\n",
                     pictures.windowFiles().size());
     }
     size_t plots = 0;

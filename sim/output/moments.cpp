@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "sim/output/atomic_file.h"
 #include "sim/output/console_table.h"
 #include "sim/output/fixed_text.h"
 #include "sim/output/report.h"
@@ -185,10 +186,10 @@ nlohmann::json worstWindowsJson(const BenchResult& result) {
             {"configurations", configurations}};
 }
 
-std::string windowPictureName(uint32_t frame) {
-    char name[64];
-    std::snprintf(name, sizeof name, "worst-window-frame-%05u.png", frame);
-    return name;
+std::string windowPictureName(const std::string& configuration, uint32_t frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, "%05u", frame);
+    return "worst-window-" + safeFileName(configuration) + "-frame-" + number + ".png";
 }
 
 }  // namespace occsim

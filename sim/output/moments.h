@@ -44,7 +44,8 @@ nlohmann::json segmentsJson(const BenchResult& result);
 // windows.
 nlohmann::json worstWindowsJson(const BenchResult& result);
 
-// The picture of a worst window's worst frame (PictureRecorder::onWindowFrame writes it).
-std::string windowPictureName(uint32_t frame);
+// The picture of a configuration's worst window's worst frame, with its validation overlay
+// (PictureRecorder::onWindowFrame writes it): worst-window-<configuration>-frame-NNNNN.png.
+std::string windowPictureName(const std::string& configuration, uint32_t frame);
 
 }  // namespace occsim

@@ -9,9 +9,17 @@
 #include <string>
 #include <vector>
 
+#include "sim/output/raster_canvas.h"
 #include "sim/run/runner.h"
 
 namespace occsim {
+
+// A configuration's worst window's worst frame as a picture: a strip that says which frame,
+// whose window and what the colours mean, over the frame as the camera saw it (each frame pixel a
+// square of errorPictureScale()), with the configuration's verdicts of that frame as the
+// validation overlay (validation_overlay.h: missed objects tinted red with red boxes, objects
+// drawn while hidden as yellow boxes); without verdicts, the frame alone and the strip says why.
+RasterCanvas windowPicture(const ReplayedFrame& frame, const WindowVerdicts& window);
 
 class PictureRecorder {
   public:
@@ -22,8 +30,8 @@ class PictureRecorder {
                     std::optional<uint32_t> birds_eye_frame);
 
     void onFrame(const FrameEvent& event);
-    // A worst window's worst frame, replayed after the run (BenchOptions::on_window_frame):
-    // worst-window-frame-NNNNN.png, under a label with its frame and time.
+    // A worst window's worst frame, replayed after the run (BenchOptions::on_window_frame): per
+    // configuration whose worst window it ends, windowPictureName() (windowPicture()).
     void onWindowFrame(const ReplayedFrame& frame);
 
     const std::vector<std::string>& captureFiles() const { return captures_; }

@@ -20,7 +20,7 @@ OutputFiles writeRunOutputs(const BenchResult& result, const OutputRequest& requ
     // The worst windows' pictures the run took (PictureRecorder::onWindowFrame), by their names.
     for (const RunRecord& r : result.runs) {
         for (const WorstWindow& w : r.worst_windows) {
-            const std::string name = windowPictureName(w.worst_frame);
+            const std::string name = windowPictureName(r.summary.label, w.worst_frame);
             if (std::filesystem::exists(request.out_dir / name))
                 report.window_pictures.push_back(name);
         }

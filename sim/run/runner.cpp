@@ -113,6 +113,9 @@ struct Stage {
     const BenchOptions& options;
     const HeadlessContext& context;
     GlRenderer& renderer;
+    // Per configuration, its verdicts of the first repetition for the worst windows' pictures;
+    // empty when none are wanted (no on_window_frame, or error not measured).
+    std::vector<VerdictLog>& verdicts;
 };
 
 std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, SharedWorld& world,
@@ -214,6 +217,8 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
                 return frames;
             }
             spent.frame_ms_total += frames[c].back().frame_ms;
+            if (rep == 0 && !stage.verdicts.empty())
+                stage.verdicts[c].record(f, sims[c]->objectVerdicts());
             if (options.on_frame) {
                 options.on_frame(
                     FrameEvent{rep, f, stage.configs[c], *sims[c], scenario, stage.renderer});
@@ -306,7 +311,8 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
 // The worst windows' worst frames, each rendered again on a fresh world replayed to it (the same
 // frames every repetition rendered) and handed to the hook, outside every timing.
 void replayWindowFrames(BenchResult& result, const Scene& scene, const Scenario& scenario,
-                        GlRenderer& renderer, const BenchOptions& options) {
+                        GlRenderer& renderer, const BenchOptions& options,
+                        const std::vector<VerdictLog>& verdicts) {
     std::vector<uint32_t> wanted;
     for (const RunRecord& r : result.runs) {
         for (const WorstWindow& w : r.worst_windows) wanted.push_back(w.worst_frame);
@@ -322,8 +328,28 @@ void replayWindowFrames(BenchResult& result, const Scene& scene, const Scenario&
         world.advance();
         if (world.frame() != wanted[next]) continue;
         const GroundTruthFrame& frame = truth.of(world, true);
-        options.on_window_frame(ReplayedFrame{world.frame(), world.frame() * scenario.dt_s,
-                                              frame.rgba, renderer.width(), renderer.height()});
+        ReplayedFrame replayed{world.frame(),
+                               world.frame() * scenario.dt_s,
+                               frame.rgba,
+                               renderer.width(),
+                               renderer.height(),
+                               frame.ids,
+                               world.state().boxes,
+                               world.view().render,
+                               scenario.camera.near_m,
+                               {}};
+        for (size_t c = 0; c < result.runs.size(); ++c) {
+            const RunRecord& run = result.runs[c];
+            for (const WorstWindow& w : run.worst_windows) {
+                if (w.worst_frame != world.frame()) continue;
+                replayed.windows.push_back(
+                    WindowVerdicts{run.summary.label,
+                                   c < verdicts.size() ? verdicts[c].at(w.worst_frame) : nullptr,
+                                   options.measure_error});
+                break;
+            }
+        }
+        options.on_window_frame(replayed);
         ++next;
     }
     result.costs.window_frames_replayed = static_cast<uint32_t>(next);
@@ -368,7 +394,11 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     }
     prepareRecords(result, configs);
 
-    const Stage stage{scenario, configs, options, *context, renderer};
+    // The verdicts of every frame, kept for the worst windows' pictures (found after the run).
+    std::vector<VerdictLog> verdicts;
+    if (options.on_window_frame && options.measure_error)
+        verdicts.assign(configs.size(), VerdictLog(kVerdictLogBudgetBytes / configs.size()));
+    const Stage stage{scenario, configs, options, *context, renderer, verdicts};
     ProgressClock progress{
         Clock::now(), RunProgress(options.progress,
                                   scenario.name + ", " + std::to_string(configs.size()) +
@@ -389,7 +419,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     const int reference = markWorstWindows(result.runs, scenario.warmup_frames);
     if (reference >= 0) result.window_reference = result.runs[size_t(reference)].summary.label;
     if (options.on_window_frame && !(result.partial && result.partial->signal != 0))
-        replayWindowFrames(result, scene, scenario, renderer, options);
+        replayWindowFrames(result, scene, scenario, renderer, options, verdicts);
     return result;
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "sim/run/results.h"
 #include "sim/run/run_config.h"
 #include "sim/run/simulation.h"
+#include "sim/run/verdict_log.h"
 #include "sim/scenario/scenario.h"
 
 namespace occsim {
@@ -37,11 +39,31 @@ struct FrameEvent {
 // A frame of the run rendered again after it (BenchOptions::on_window_frame): the world replayed
 // to it and drawn whole, every object with no culling code (ground truth's colour: what the camera
 // saw), outside every timing. Rows bottom-up, as GL gives them.
+// Each configuration whose worst window's worst frame it is comes with what it missed and drew
+// while hidden on that frame in the first repetition (null: not kept, the run's decisions
+// outgrew VerdictLog's budget), for its picture's validation overlay.
+// What the verdict logs of all a run's configurations may hold together (BenchOptions::
+// on_window_frame): the teapots' 120 frames of 12 configurations keep about 8 MB.
+inline constexpr size_t kVerdictLogBudgetBytes = size_t{256} << 20;
+
+struct WindowVerdicts {
+    std::string label;                        // the configuration's
+    const FrameVerdicts* verdicts = nullptr;  // null: not kept, or error not measured
+    bool measured = false;                    // error was measured (null verdicts: over budget)
+};
+
 struct ReplayedFrame {
     uint32_t frame = 0;
     double time_s = 0.0;  // frame * dt: seconds of the camera path
     const std::vector<uint8_t>& rgba;
     uint32_t width = 0, height = 0;
+    // Ground truth's object IDs (index + 1, 0 background), rows bottom-up as the colour; the
+    // world's boxes at this frame (culling frame); the frame's camera and near plane.
+    std::span<const uint32_t> truth_ids;
+    std::span<const Aabb> object_boxes;
+    ViewSetup view;
+    double near_m = 0.1;
+    std::vector<WindowVerdicts> windows;  // in the order of the runs
 };
 
 struct BenchOptions {
@@ -80,6 +102,8 @@ struct BenchOptions {
     // worst frame of a configuration's worst window (RunRecord::worst_windows), in frame order,
     // replayed and handed here, e.g. to save its picture. The world replays the same frames as
     // every repetition did, so the frame is the one measured; its cost is RunCosts::window_*.
+    // With error measured, each configuration's verdicts of every frame of the first repetition
+    // are kept for it (VerdictLog, at most kVerdictLogBudgetBytes for all of them).
     std::function<void(const ReplayedFrame&)> on_window_frame;
     // Makes the culler for an algorithm; default makeCuller(). Tests inject broken ones.
     std::function<std::unique_ptr<Culler>(const CullerRow&, const CullerOptions&)> make_culler;

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "sim/output/validation_overlay.h"
 #include "sim/view/key_bindings.h"
 #include "sim/view/node_boxes.h"
-#include "sim/view/validation_overlay.h"
 
 namespace occsim {
 namespace {

@@ -26,9 +26,4 @@ std::span<const NodeBoxClass> shownNodeBoxClasses();
 void drawNodeBoxes(RasterCanvas& canvas, const BspTree& tree, std::span<const NodeClass> classes,
                    const ViewSetup& view, double near_m);
 
-// One box (in the culling frame, as the tree's bounds and the world boxes are) as a wireframe
-// through `view`, clipped at the near plane.
-void drawBoxWireframe(RasterCanvas& canvas, const ViewSetup& view, double near_m, const Aabb& box,
-                      Rgb colour);
-
 }  // namespace occsim

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "sim/output/birds_eye.h"
+#include "sim/output/validation_overlay.h"
 #include "sim/view/node_boxes.h"
-#include "sim/view/validation_overlay.h"
 
 namespace occsim {
 namespace {

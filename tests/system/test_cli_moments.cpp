@@ -107,7 +107,7 @@ TEST(CliMoments, ABenchWithSegmentsGivesEveryFigurePerSegmentAndTheWorstWindows)
     EXPECT_NE(md.find("## Worst windows"), std::string::npos) << md;
     const uint32_t worst = chc["windows"][0]["worst_frame"].get<uint32_t>();
     char picture[64];
-    std::snprintf(picture, sizeof picture, "worst-window-frame-%05u.png", worst);
+    std::snprintf(picture, sizeof picture, "worst-window-chc-frame-%05u.png", worst);
     EXPECT_TRUE(std::filesystem::exists(out / picture)) << picture;
     EXPECT_NE(md.find(std::string("](") + picture + ")"), std::string::npos) << md;
     std::filesystem::remove_all(dir);

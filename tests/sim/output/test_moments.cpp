@@ -66,7 +66,7 @@ TEST(MomentsReport, EachSegmentHasItsOwnSpeedupsAndRatiosToIdeal) {
 TEST(MomentsReport, ReportMdHasTheSegmentTablesAndTheWorstWindowsWithTheirPictures) {
     const BenchResult result = sampleResult();
     ReportFiles files;
-    files.window_pictures = {windowPictureName(44)};
+    files.window_pictures = {windowPictureName("statistical", 44)};
     const std::string md = markdownReport(result, files);
     EXPECT_NE(md.find("## Segments"), std::string::npos) << md;
     EXPECT_NE(md.find("### storm: frames 40 to 49, 1.333 to 1.667 s (10 frames, 10 timed)"),
@@ -80,11 +80,15 @@ TEST(MomentsReport, ReportMdHasTheSegmentTablesAndTheWorstWindowsWithTheirPictur
               std::string::npos)
         << md;
     EXPECT_NE(md.find("worst frame 44 (4.50x)"), std::string::npos) << md;
-    EXPECT_NE(md.find("![worst-window-frame-00044.png](worst-window-frame-00044.png)"),
+    EXPECT_NE(md.find("![worst-window-statistical-frame-00044.png]"
+                      "(worst-window-statistical-frame-00044.png)"),
               std::string::npos)
         << md;
     // Only the pictures that exist are linked.
-    EXPECT_EQ(md.find("](worst-window-frame-00070.png)"), std::string::npos) << md;
+    EXPECT_EQ(md.find("-frame-00070.png)"), std::string::npos) << md;
+    // A configuration's name is kept readable in its pictures' names.
+    EXPECT_EQ(windowPictureName("statistical+ base_time=0.5", 3),
+              "worst-window-statistical+_base_time_0.5-frame-00003.png");
     const std::string console = worstWindowsText(result, true);
     EXPECT_NE(console.find("worst windows against ideal (10 timed frames"), std::string::npos)
         << console;

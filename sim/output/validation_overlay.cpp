@@ -1,8 +1,8 @@
-#include "sim/view/validation_overlay.h"
+#include "sim/output/validation_overlay.h"
 
 #include <array>
 
-#include "sim/view/node_boxes.h"
+#include "sim/output/box_wireframe.h"
 
 namespace occsim {
 namespace {

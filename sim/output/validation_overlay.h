@@ -1,9 +1,10 @@
-// The viewer's validation overlay (key v): the frame's culling decisions against ground truth,
-// over the rendered frame. Missed objects (ground truth sees them, the culler did not draw them)
-// in red: their ground-truth pixels tinted and their boxes drawn, so a hole shows where it is;
-// objects drawn while hidden (over-draw) as yellow boxes; culled objects (not drawn, not seen) as
-// dim grey boxes. Objects drawn and seen are left as rendered. Needs error measured (ground
-// truth); composed on the CPU after the frame was measured, like the node boxes.
+// The validation overlay: a frame's culling decisions against ground truth, over the rendered
+// frame (the viewer's key v; the run's worst-window pictures). Missed objects (ground truth sees
+// them, the culler did not draw them) in red: their ground-truth pixels tinted and their boxes
+// drawn, so a hole shows where it is; objects drawn while hidden (over-draw) as yellow boxes;
+// culled objects (not drawn, not seen) as dim grey boxes. Objects drawn and seen are left as
+// rendered. Needs error measured (ground truth); composed on the CPU after the frame was
+// measured, like the node boxes.
 #pragma once
 
 #include <cstdint>

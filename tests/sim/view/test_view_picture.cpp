@@ -1,11 +1,13 @@
-// The viewer's validation overlay (sim/view/validation_overlay.h): missed objects, objects drawn
-// while hidden and culled ones, each in its colour. Headless, on every backend the build has.
+// The viewer's picture (sim/view/view_picture.h) with the validation overlay
+// (sim/output/validation_overlay.h) on a real frame: missed objects, objects drawn while hidden
+// and culled ones, each in its colour, from the same comparison as the run's counts. Headless, on
+// every backend the build has. The node boxes: test_node_boxes.cpp.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <stdexcept>
 
-#include "sim/view/validation_overlay.h"
+#include "sim/output/validation_overlay.h"
 #include "sim/view/view_picture.h"
 #include "view_gl_fixture.h"
 
