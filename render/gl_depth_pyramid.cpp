@@ -11,15 +11,12 @@
 #include "occsim/culling/geometry/query_box.h"
 #include "render/gl_api.h"
 #include "render/gl_shader.h"
+#include "render/steady_seconds.h"
 
 namespace occsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // One level from the cells below it (the depth texture for level 0, the level below otherwise):
 // each texel the farthest of the cells it covers, by hzb_rules.h's firstCovered/lastCovered.
@@ -176,7 +173,7 @@ void GlDepthPyramid::build() {
     renderer_.forgetBoundState();
     built_ = true;
     ++counters_.pyramid_builds;
-    counters_.submit_seconds += secondsSince(start);
+    counters_.submit_seconds += steadySecondsSince(start);
 }
 
 GlDepthPyramid::Test GlDepthPyramid::testFor(const Aabb& box, PyramidBound shape) const {
@@ -268,7 +265,7 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindTexture(GL_TEXTURE_2D, 0);
     renderer_.forgetBoundState();
-    counters_.submit_seconds += secondsSince(start);
+    counters_.submit_seconds += steadySecondsSince(start);
 
     const auto wait_start = Clock::now();
     flags_.resize(count);
@@ -276,7 +273,7 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
                        static_cast<GLsizeiptr>(count * sizeof(uint32_t)), flags_.data());
     for (size_t i = 0; i < count; ++i) visible[i] = flags_[i] != 0 ? 1 : 0;
-    counters_.wait_seconds += secondsSince(wait_start);
+    counters_.wait_seconds += steadySecondsSince(wait_start);
 }
 
 void GlDepthPyramid::readLevel(uint32_t level, std::vector<float>& texels, uint32_t* width,

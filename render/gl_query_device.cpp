@@ -8,15 +8,12 @@
 #include "occsim/culling/contract/query_id_check.h"
 #include "render/gl_api.h"
 #include "render/gl_checked_call.h"
+#include "render/steady_seconds.h"
 
 namespace occsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -57,7 +54,7 @@ void GlQueryDevice::drawObject(uint32_t object) {
     ++commands_;
     ++counters_.objects_drawn;
     counters_.triangles_drawn += renderer_.triangleCount(object);
-    counters_.submit_seconds += secondsSince(start);
+    counters_.submit_seconds += steadySecondsSince(start);
 }
 
 void GlQueryDevice::beginDrawnSet(uint32_t objects) {
@@ -121,7 +118,7 @@ void GlQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects, Condit
         OCCSIM_GL_CHECKED(glEndConditionalRender());
         OCCSIM_GL_CHECKED(glEndQuery(GL_PRIMITIVES_GENERATED));
     }
-    counters_.submit_seconds += secondsSince(start);
+    counters_.submit_seconds += steadySecondsSince(start);
 }
 
 void GlQueryDevice::release(QueryId id) {
@@ -184,7 +181,7 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
     live_[id] = 1;
     ++counters_.queries_issued;
     counters_.query_boxes += boxes.size();
-    counters_.submit_seconds += secondsSince(start);
+    counters_.submit_seconds += steadySecondsSince(start);
     return id;
 }
 
@@ -219,7 +216,7 @@ bool GlQueryDevice::pollReady(QueryId id) {
         GLuint available = GL_FALSE;
         OCCSIM_GL_CHECKED(
             glGetQueryObjectuiv(gl_queries_[id], GL_QUERY_RESULT_AVAILABLE, &available));
-        counters_.poll_seconds += secondsSince(start);
+        counters_.poll_seconds += steadySecondsSince(start);
         ready = available == GL_TRUE;
     }
     if (ready) noteAnswered(id);
@@ -242,9 +239,9 @@ QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {
         // Waited for: the answer arrived with as many commands after the query as there are now.
         noteAnswered(id);
         ++counters_.results_waited;
-        counters_.wait_seconds += secondsSince(start);
+        counters_.wait_seconds += steadySecondsSince(start);
     } else {
-        counters_.poll_seconds += secondsSince(start);
+        counters_.poll_seconds += steadySecondsSince(start);
     }
     ++counters_.results_fetched;
     retire(id);

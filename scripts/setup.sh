@@ -7,6 +7,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git          # toolchain
+  ninja-build                                   # the presets' generator (builds in parallel across targets)
   ccache                                        # presets after the first recompile only what differs
   libegl-dev libopengl-dev                      # headless OpenGL through EGL (the default backend)
   libegl-mesa0                                  # Mesa's EGL driver: the llvmpipe software device

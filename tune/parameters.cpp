@@ -10,7 +10,7 @@
 namespace occsim::tune {
 namespace {
 
-std::string number(double v) {
+std::string sixDigits(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
@@ -36,9 +36,9 @@ std::vector<std::string> split(const std::string& text, char separator) {
 void checkEndsValid(const std::string& flag, const TunableParameter& p, const Bounds& b) {
     for (double end : {b.lo, b.hi}) {
         if (!(end >= p.min && end <= p.max)) {
-            throw TuneInputError(flag + ": " + p.name + "=" + number(end) +
-                                 " is not a valid setting: expected a value in [" + number(p.min) +
-                                 ", " + number(p.max) + "]");
+            throw TuneInputError(flag + ": " + p.name + "=" + sixDigits(end) +
+                                 " is not a valid setting: expected a value in [" +
+                                 sixDigits(p.min) + ", " + sixDigits(p.max) + "]");
         }
     }
 }
@@ -125,7 +125,7 @@ std::string ParameterSpace::describe(const std::vector<double>& values) const {
         if (j) text += ' ';
         text += parameters[j].name;
         text += '=';
-        text += number(values[j]);
+        text += sixDigits(values[j]);
     }
     return text;
 }
@@ -176,8 +176,8 @@ ParameterSpace parseParameterSpace(const CullerRow& algorithm, const std::string
         if (eq == std::string::npos || colon == std::string::npos) {
             throw TuneInputError(flag + ": expected name=lo:hi, e.g. " +
                                  all.parameters.front().name + "=" +
-                                 number(all.parameters.front().default_lo) + ":" +
-                                 number(all.parameters.front().default_hi));
+                                 sixDigits(all.parameters.front().default_lo) + ":" +
+                                 sixDigits(all.parameters.front().default_hi));
         }
         const std::string name = text.substr(0, eq);
         const TunableParameter& p = known(flag, name);

@@ -74,7 +74,7 @@ double robustSpread(const Eigen::VectorXd& residuals) {
     return 1.4826 * a[a.size() / 2];  // the standard deviation, for normal residuals
 }
 
-std::string number(double v) {
+std::string threeDigits(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3g", v);
     return buf;
@@ -98,7 +98,7 @@ RobustFit fitRobustLinear(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
         solve(X, y, options, Loss::Huber, options.huber_delta, fit.coefficients);
     fit.converged = summary.termination_type == ceres::CONVERGENCE;
     fit.iterations = static_cast<int>(summary.iterations.size());
-    fit.loss = "Huber " + number(options.huber_delta);
+    fit.loss = "Huber " + threeDigits(options.huber_delta);
     if (fit.converged && options.cauchy_refinement) {
         const double scale =
             std::max(options.cauchy_min_scale,
@@ -106,7 +106,7 @@ RobustFit fitRobustLinear(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
         summary = solve(X, y, options, Loss::Cauchy, scale, fit.coefficients);
         fit.converged = summary.termination_type == ceres::CONVERGENCE;
         fit.iterations += static_cast<int>(summary.iterations.size());
-        fit.loss += " then Cauchy " + number(scale);
+        fit.loss += " then Cauchy " + threeDigits(scale);
     }
     fit.ceres_summary = summary.BriefReport();
     const Eigen::VectorXd residuals = X * fit.coefficients - y;

@@ -10,7 +10,7 @@
 namespace occsim {
 namespace {
 
-using O = StatisticalOptions;
+using SO = StatisticalOptions;
 
 // The keys of culling.statistical and culling["statistical+"], in the order `occsim cullers`
 // lists them: the paper's, then the improvements'. The two cullers share every row but what the
@@ -25,29 +25,30 @@ using O = StatisticalOptions;
 // visible results its interval is within 1/8 of parallax * a, so a only rescales the parallax
 // factor (a ridge the quadratic response cannot place), and b was kept at its default in 20 of
 // those 22 sessions.
-OptionTable<O> statisticalTable(bool plus) {
+OptionTable<SO> statisticalTable(bool plus) {
     const double inf = std::numeric_limits<double>::infinity();
-    OptionRow<O> base_time = numberOption(OptionMember{&O::base_time_s, "base_time"}, "s", 0.0, inf,
-                                          "BASE_TIME: a node found visible is re-queried after "
-                                          "BASE_TIME * (a - b^occ_num) seconds");
-    OptionRow<O> parallax = alternativeTo(
-        switchable(numberOption(OCCSIM_OPTION_MEMBER(O, requery_parallax), "", 0.0, inf,
+    OptionRow<SO> base_time =
+        numberOption(OptionMember{&SO::base_time_s, "base_time"}, "s", 0.0, inf,
+                     "BASE_TIME: a node found visible is re-queried after "
+                     "BASE_TIME * (a - b^occ_num) seconds");
+    OptionRow<SO> parallax = alternativeTo(
+        switchable(numberOption(OCCSIM_OPTION_MEMBER(SO, requery_parallax), "", 0.0, inf,
                                 "re-query once the travel divided by the node's distance from the "
                                 "eye exceeds this * (a - b^occ_num); 0 = BASE_TIME seconds"),
                    0.0),
         "requery_distance");
-    OptionRow<O> in_flight = integerOption(
-        OCCSIM_OPTION_MEMBER(O, queries_before_restart), "queries", 1, 4294967295.0,
+    OptionRow<SO> in_flight = integerOption(
+        OCCSIM_OPTION_MEMBER(SO, queries_before_restart), "queries", 1, 4294967295.0,
         "the traversal returns to the queue start after this many queries (with ready_answers: "
         "the most queries in flight; with waits_per_frame, the least bound)");
-    OptionRow<O> decay_a =
-        numberOption(OCCSIM_OPTION_MEMBER(O, decay_a), "", 1.0, inf,
+    OptionRow<SO> decay_a =
+        numberOption(OCCSIM_OPTION_MEMBER(SO, decay_a), "", 1.0, inf,
                      "a in BASE_TIME * (a - b^occ_num): the longest wait, in BASE_TIMEs");
-    OptionRow<O> decay_b = numberOption(OCCSIM_OPTION_MEMBER(O, decay_b), "", 0.0, 1.0,
-                                        "b in BASE_TIME * (a - b^occ_num): how fast a visible "
-                                        "history lengthens the wait");
-    OptionRow<O> waits = switchable(
-        integerOption(OCCSIM_OPTION_MEMBER(O, waits_per_frame), "waits", 0, 1000000,
+    OptionRow<SO> decay_b = numberOption(OCCSIM_OPTION_MEMBER(SO, decay_b), "", 0.0, 1.0,
+                                         "b in BASE_TIME * (a - b^occ_num): how fast a visible "
+                                         "history lengthens the wait");
+    OptionRow<SO> waits = switchable(
+        integerOption(OCCSIM_OPTION_MEMBER(SO, waits_per_frame), "waits", 0, 1000000,
                       "with ready_answers, the bound on queries in flight is at least the last "
                       "frame's waited queries over this many waits; 0 = off"),
         0.0);
@@ -69,64 +70,64 @@ OptionTable<O> statisticalTable(bool plus) {
         base_time,
         decay_a,
         decay_b,
-        integerOption(OCCSIM_OPTION_MEMBER(O, history_length), "results", 1, 32,
+        integerOption(OCCSIM_OPTION_MEMBER(SO, history_length), "results", 1, 32,
                       "query results remembered per node"),
-        numberOption(OptionMember{&O::max_statistics_age_s, "max_statistics_age"}, "s", 1e-6, inf,
+        numberOption(OptionMember{&SO::max_statistics_age_s, "max_statistics_age"}, "s", 1e-6, inf,
                      "statistics older than this are ignored: the node is queried"),
         in_flight,
         // The improvements (statistical_options.h numbers them).
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, ready_answers),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, ready_answers),
                                  "take each answer as soon as it is ready and keep traversing"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, virtual_leaves),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, virtual_leaves),
                                  "the objects stored in an inner node get statistics and a query "
                                  "of their own"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, object_queries),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, object_queries),
                                  "the objects of a rendered leaf are decided one by one, each with "
                                  "statistics of its own"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, cost_model),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, cost_model),
                                  "weigh each query against culling.cost_model: draw without a "
                                  "query what is cheaper to draw than to query"),
                    0.0),
         alternativeTo(
-            switchable(numberOption(OptionMember{&O::requery_distance_m, "requery_distance"}, "m",
+            switchable(numberOption(OptionMember{&SO::requery_distance_m, "requery_distance"}, "m",
                                     0.0, inf,
                                     "re-query after this distance travelled (camera and movers) "
                                     "* (a - b^occ_num); 0 = BASE_TIME seconds"),
                        0.0),
             "requery_parallax"),
         parallax,
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, fallback),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, fallback),
                                  "when recent answers show little occlusion, cull by the frustum "
                                  "only for a while"),
                    0.0),
-        numberOption(OCCSIM_OPTION_MEMBER(O, fallback_visible_share), "", 0.0, 1.0,
+        numberOption(OCCSIM_OPTION_MEMBER(SO, fallback_visible_share), "", 0.0, 1.0,
                      "fall back when at least this share of the window's answers came back "
                      "visible"),
-        integerOption(OCCSIM_OPTION_MEMBER(O, fallback_window_frames), "frames", 1, 1000,
+        integerOption(OCCSIM_OPTION_MEMBER(SO, fallback_window_frames), "frames", 1, 1000,
                       "the window the share is taken over"),
-        numberOption(OptionMember{&O::fallback_recheck_s, "fallback_recheck"}, "s", 0.0, inf,
+        numberOption(OptionMember{&SO::fallback_recheck_s, "fallback_recheck"}, "s", 0.0, inf,
                      "simulation time culled by the frustum only before the algorithm runs again"),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, draw_while_requerying),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, draw_while_requerying),
                                  "a subject last found visible whose re-query is due is drawn at "
                                  "once; its answer, taken when ready, only updates statistics"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, descend_visible_inner_nodes),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, descend_visible_inner_nodes),
                                  "an inner node last found visible whose re-query is due is not "
                                  "queried: its children decide"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, weigh_in_flight),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, weigh_in_flight),
                                  "with ready_answers, each query in flight counts by its chance of "
                                  "coming back visible against queries_before_restart"),
                    0.0),
         waits,
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, requery_horizon),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, requery_horizon),
                                  "with cost_model, a re-query of a subject last found visible is "
                                  "weighed over the frames until it would come due again"),
                    0.0),
-        switchable(booleanOption(OCCSIM_OPTION_MEMBER(O, distance_order),
+        switchable(booleanOption(OCCSIM_OPTION_MEMBER(SO, distance_order),
                                  "the main queue takes its entries nearest first by the distance "
                                  "from the eye to their bounds, not in the tree's order"),
                    0.0),
@@ -144,13 +145,13 @@ CostModelUse statisticalCostModelUse(const OptionValues& values) {
     // queries_before_restart (each weighed at least 1 / kMaxRunAhead with weigh_in_flight), a
     // bound that grows with the frame (waits_per_frame) keeps no fixed number (0: measured with
     // every query issued before the first answer is fetched).
-    const O o = statisticalOptionTable().read(values);
+    const SO o = statisticalOptionTable().read(values);
     uint32_t in_flight = o.queries_before_restart;
     if (o.ready_answers && o.waits_per_frame > 0) {
         in_flight = 0;
     } else if (o.ready_answers && o.weigh_in_flight) {
         in_flight = static_cast<uint32_t>(
-            std::min(4294967295.0, o.queries_before_restart * O::kMaxRunAhead));
+            std::min(4294967295.0, o.queries_before_restart * SO::kMaxRunAhead));
     }
     return {o.cost_model, in_flight};
 }
@@ -166,7 +167,7 @@ CullerRow statisticalRow(std::string name, std::string summary, bool plus) {
     t.summary = std::move(summary);
     t.conservative = true;
     t.issues_queries = true;
-    t.options = statisticalTable(plus).descriptor(plus ? O::plus() : O::paper());
+    t.options = statisticalTable(plus).descriptor(plus ? SO::plus() : SO::paper());
     t.factory = makeStatistical;
     t.validate = validateStatistical;
     t.cost_model_use = statisticalCostModelUse;

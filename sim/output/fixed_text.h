@@ -1,4 +1,5 @@
-// A number with a fixed count of decimals, as every table and report of occsim writes it.
+// Text as every table and report of occsim writes it: numbers with a fixed count of decimals,
+// Markdown table cells.
 #pragma once
 
 #include <cmath>
@@ -21,6 +22,16 @@ inline std::string fixedNonZero(double v, int decimals) {
     std::string text = fixed(v, decimals);
     if (v == 0 || std::strtod(text.c_str(), nullptr) != 0) return text;
     return (v > 0 ? "<" : ">-") + fixed(std::pow(10.0, -decimals), decimals);
+}
+
+// A Markdown table cell: a bare '|' would end the cell, so it is escaped.
+inline std::string markdownCell(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '|') out += '\\';
+        out += c;
+    }
+    return out;
 }
 
 }  // namespace occsim

@@ -4,22 +4,13 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/output/fixed_text.h"
 #include "sim/output/moments.h"
 #include "sim/output/report.h"
 #include "sim/run/segment_summaries.h"
 
 namespace occsim {
 namespace {
-
-// Table cells must not contain a bare '|' (it would end the cell).
-std::string cell(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '|') out += '\\';
-        out += c;
-    }
-    return out;
-}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() &&
@@ -40,22 +31,26 @@ void header(std::ostringstream& out, const BenchResult& result) {
     out << "# occsim " << c.command << ": " << c.scenario_name << "\n\n";
     if (result.partial) out << "**" << partialLine(result) << ".**\n\n";
     out << "| | |\n|---|---|\n";
-    out << "| scenario | " << cell(c.scenario_name) << " (`" << cell(c.scenario_file) << "`), "
-        << c.frames << " frames at " << c.width << "x" << c.height << " pixels |\n";
+    out << "| scenario | " << markdownCell(c.scenario_name) << " (`"
+        << markdownCell(c.scenario_file) << "`), " << c.frames << " frames at " << c.width << "x"
+        << c.height << " pixels |\n";
     char load[96];
     std::snprintf(load, sizeof load, ", load average %.2f before the run and %.2f after",
                   c.load_before[0], c.load_after[0]);
     out << "| machine | " << c.hardware_threads
-        << " hardware threads, LP_NUM_THREADS=" << cell(c.lp_num_threads) << ", freed memory "
-        << cell(c.heap) << ", renderer " << cell(c.renderer) << load
+        << " hardware threads, LP_NUM_THREADS=" << markdownCell(c.lp_num_threads)
+        << ", freed memory " << markdownCell(c.heap) << ", renderer " << markdownCell(c.renderer)
+        << load
         << (c.busyMachine() ? " (**busy: other work ran beside this run; timings are not results**)"
                             : "")
         << " |\n";
-    out << "| backend | " << cell(backendLabel(c)) << ": vendor " << cell(c.gl_vendor)
-        << ", renderer " << cell(c.gl_renderer) << ", driver " << cell(c.driver)
+    out << "| backend | " << markdownCell(backendLabel(c)) << ": vendor "
+        << markdownCell(c.gl_vendor) << ", renderer " << markdownCell(c.gl_renderer) << ", driver "
+        << markdownCell(c.driver)
         << (c.gpu_time_meaningful ? "" : " (software rasteriser: GPU time not meaningful)")
-        << (c.backend_fallback.empty() ? ""
-                                       : "; auto fell back to OSMesa: " + cell(c.backend_fallback))
+        << (c.backend_fallback.empty()
+                ? ""
+                : "; auto fell back to OSMesa: " + markdownCell(c.backend_fallback))
         << " |\n";
     out << "| configurations | " << result.runs.size() << ", each run " << c.repetitions
         << (c.repetitions == 1 ? " time"
@@ -63,7 +58,7 @@ void header(std::ostringstream& out, const BenchResult& result) {
                                  "error counts sums over every repetition)")
         << " |\n";
     if (c.sweep) {
-        out << "| sweep | " << cell(c.sweep->parameter) << " =";
+        out << "| sweep | " << markdownCell(c.sweep->parameter) << " =";
         for (size_t i = 0; i < c.sweep->values.size(); ++i) {
             char v[32];
             std::snprintf(v, sizeof v, "%g", c.sweep->values[i]);
@@ -102,7 +97,7 @@ bool markdownTable(std::ostringstream& out, const std::vector<RunRecord>& runs) 
                "the speedups are n/a.\n\n";
     }
     out << "|";
-    for (const std::string& h : t.header) out << ' ' << cell(h) << " |";
+    for (const std::string& h : t.header) out << ' ' << markdownCell(h) << " |";
     out << "\n|";
     for (size_t i = 0; i < t.header.size(); ++i) out << (i == 0 ? "---|" : "---:|");
     out << "\n";
@@ -110,7 +105,7 @@ bool markdownTable(std::ostringstream& out, const std::vector<RunRecord>& runs) 
         const bool pareto = has_pareto && row.back() == "*";
         out << "|";
         for (size_t i = 0; i < row.size(); ++i) {
-            std::string v = cell(row[i]);
+            std::string v = markdownCell(row[i]);
             if (i == 0 && pareto) v = "**" + v + "**";
             if (has_pareto && i + 1 == row.size()) v = pareto ? "yes" : "";
             out << ' ' << v << " |";
@@ -140,7 +135,7 @@ void segments(std::ostringstream& out, const BenchResult& result) {
         << "frames after the warm-up (a segment inside the warm-up is not timed), error and "
         << "popping over all its frames, speedup and ratio to Ideal from the same frames.\n\n";
     for (size_t k = 0; k < m.segments.size(); ++k) {
-        out << "### " << cell(segmentHeading(m.segments[k], m)) << "\n\n";
+        out << "### " << markdownCell(segmentHeading(m.segments[k], m)) << "\n\n";
         markdownTable(out, segmentRuns(result, k));
     }
 }
@@ -171,9 +166,10 @@ void worstWindows(std::ostringstream& out, const BenchResult& result, const Repo
     out << "\n\n";
     for (const RunRecord& r : result.runs) {
         if (r.worst_windows.empty()) continue;
-        out << "### " << cell(r.summary.label) << "\n\n";
+        out << "### " << markdownCell(r.summary.label) << "\n\n";
         for (const WorstWindow& w : r.worst_windows) {
-            out << "- " << cell(describeWindow(w, result.window_reference, result.metadata.dt_s))
+            out << "- "
+                << markdownCell(describeWindow(w, result.window_reference, result.metadata.dt_s))
                 << "\n";
             const std::string picture = windowPictureName(r.summary.label, w.worst_frame);
             const auto& taken = files.window_pictures;

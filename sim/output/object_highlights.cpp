@@ -2,20 +2,9 @@
 
 #include <sstream>
 
+#include "sim/output/fixed_text.h"
+
 namespace occsim {
-namespace {
-
-std::string cell(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '|') out += '\\';
-        out += c;
-    }
-    return out;
-}
-
-}  // namespace
-
 std::string frameRanges(const std::vector<uint32_t>& frames) {
     std::string out;
     for (size_t i = 0; i < frames.size();) {
@@ -54,9 +43,9 @@ std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
         out << "| configuration | object | triangles | frames | longest streak |\n"
             << "|---|---|---:|---:|---|\n";
         for (const OverdrawnObject& o : h.overdrawn) {
-            out << "| " << cell(o.config) << " | " << o.object << " " << cell(o.name) << " | "
-                << o.triangles << " | " << o.frames << " | " << o.longest_streak << " (from frame "
-                << o.streak_first << ") |\n";
+            out << "| " << markdownCell(o.config) << " | " << o.object << " "
+                << markdownCell(o.name) << " | " << o.triangles << " | " << o.frames << " | "
+                << o.longest_streak << " (from frame " << o.streak_first << ") |\n";
         }
         out << "\n";
     }
@@ -71,14 +60,15 @@ std::string objectHighlightsMarkdown(const ObjectHighlights& h) {
     } else {
         out << "| configuration | object | frames | error px |\n|---|---|---|---:|\n";
         for (const MissedObject& m : h.missed) {
-            out << "| " << cell(m.config) << " | " << m.object << " " << cell(m.name) << " | "
-                << frameRanges(m.frames) << " | " << m.error_pixels << " |\n";
+            out << "| " << markdownCell(m.config) << " | " << m.object << " "
+                << markdownCell(m.name) << " | " << frameRanges(m.frames) << " | " << m.error_pixels
+                << " |\n";
         }
         out << "\n";
     }
     for (const LaterMisses& l : h.later_misses) {
-        out << "- " << cell(l.config) << ": " << laterRepetitionsNote(h.repetitions, l.objects)
-            << "\n";
+        out << "- " << markdownCell(l.config) << ": "
+            << laterRepetitionsNote(h.repetitions, l.objects) << "\n";
     }
     if (!h.later_misses.empty()) out << "\n";
     return out.str();

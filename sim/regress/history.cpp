@@ -17,7 +17,7 @@
 namespace occsim {
 namespace {
 
-constexpr const char* kFormat = "occsim-history";
+constexpr const char* kHistoryFormat = "occsim-history";
 
 std::string readAll(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -127,7 +127,7 @@ std::string historyEntryJson(const HistoryEntry& e) {
         }
     }
     const Json j = {
-        {"format", kFormat},
+        {"format", kHistoryFormat},
         {"version", HistoryEntry::kFormatVersion},
         {"commit", e.commit},
         {"date", e.date},
@@ -144,9 +144,9 @@ HistoryEntry readHistoryEntry(const std::filesystem::path& file) {
     try {
         const Json root = parseStrictJson(readAll(file), name);
         JsonObjectReader top(root, "", name);
-        if (top.string("format", "") != kFormat) {
-            top.fail("format",
-                     std::string("expected \"") + kFormat + "\": not an occsim history entry");
+        if (top.string("format", "") != kHistoryFormat) {
+            top.fail("format", std::string("expected \"") + kHistoryFormat +
+                                   "\": not an occsim history entry");
         }
         const JsonValueReader version = top.required("version");
         if (!(version.json().is_number_integer() &&

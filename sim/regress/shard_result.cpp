@@ -13,7 +13,7 @@
 namespace occsim {
 namespace {
 
-constexpr const char* kFormat = "occsim-regress-shard";
+constexpr const char* kShardFormat = "occsim-regress-shard";
 
 void fnv1a(uint64_t& h, const std::string& bytes) {
     for (unsigned char c : bytes) {
@@ -120,7 +120,7 @@ std::string shardResultJson(const ShardResult& r) {
     Json scenarios = Json::array();
     for (const ScenarioOutcome& s : r.report.scenarios) scenarios.push_back(outcomeJson(s));
     const Json j = {
-        {"format", kFormat},
+        {"format", kShardFormat},
         {"version", ShardResult::kFormatVersion},
         {"scenario_set", {{"id", r.set.id}, {"scenarios", r.set.scenarios}, {"ids", r.set.ids}}},
         {"shard", {{"index", r.shard.index}, {"count", r.shard.count}}},
@@ -147,8 +147,8 @@ ShardResult readShardResult(const std::filesystem::path& dir) {
     try {
         const Json root = parseStrictJson(fileText(file), name);
         JsonObjectReader top(root, "", name);
-        if (top.string("format", "") != kFormat) {
-            top.fail("format", std::string("expected \"") + kFormat +
+        if (top.string("format", "") != kShardFormat) {
+            top.fail("format", std::string("expected \"") + kShardFormat +
                                    "\": not a shard result of occsim regress");
         }
         const JsonValueReader version = top.required("version");

@@ -6,7 +6,7 @@
 namespace occsim {
 namespace {
 
-constexpr uint64_t kFormatVersion = 1;
+constexpr uint64_t kCullingFileFormatVersion = 1;
 
 // A tuned file ("tuned_for": NAME, as occtune writes it) is one culler's confirmed setting: NAME
 // is a loaded culler, culling.algorithm is NAME, no other culler's options are in it, nor the
@@ -59,8 +59,8 @@ void readInto(const CullingFile& culling, Scenario& scenario) {
     const std::string name = culling.file.string();
     JsonObjectReader top(culling.json, "", name);
     const JsonValueReader version = top.required("format_version");
-    if (!(version.json().is_number() && version.json() == kFormatVersion)) {
-        version.failExpected(std::to_string(kFormatVersion) +
+    if (!(version.json().is_number() && version.json() == kCullingFileFormatVersion)) {
+        version.failExpected(std::to_string(kCullingFileFormatVersion) +
                              " (the only format_version this program reads)");
     }
     top.required("culling").asObject();  // present, and an object

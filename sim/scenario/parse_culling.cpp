@@ -12,8 +12,6 @@
 namespace occsim {
 namespace {
 
-constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
-
 // A culler's options object: keys it omits keep `defaults` (its descriptor's defaults, or what
 // the scenario gave before a --culling file is applied over it).
 OptionValues readCullerOptions(JsonObjectReader reader, const CullerRow& culler) {

@@ -3,13 +3,18 @@
 // object reader; the caller calls finish() (so unknown keys stay errors).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
 
 namespace occsim {
+
+// The largest value a uint32_t field of a scenario can take.
+inline constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 
 // scenario_parser.cpp: a file's text; a ScenarioError says why it cannot be read.
 std::string readScenarioFileText(const std::filesystem::path& file);

@@ -22,14 +22,13 @@ namespace occsim {
 
 namespace {
 
-constexpr uint64_t kFormatVersion = 1;
+constexpr uint64_t kScenarioFormatVersion = 1;
 constexpr uint64_t kMaxFrames = 10'000'000;
 constexpr double kMaxDt = 10.0;
 // About 3,000 years: a double still resolves well under a microsecond there.
 constexpr double kMaxStartTime = 1e11;
 constexpr uint64_t kMinViewport = 16;
 constexpr uint64_t kMaxViewport = 8192;
-constexpr uint64_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
 constexpr uint32_t kDefaultWarmupFrames = 10;
 
 const std::vector<std::string> kSourceTypes = {"teapots", "gltf", "city", "library", "plant"};
@@ -44,8 +43,8 @@ const std::vector<std::string> kDepthModes = {"reverse_float", "conventional_24"
 // "wrong version" rather than with a confusing complaint about keys this version lacks.
 void readFormatVersion(JsonObjectReader& top) {
     const JsonValueReader version = top.required("format_version");
-    if (version.json().is_number() && version.json() == kFormatVersion) return;
-    version.failExpected(std::to_string(kFormatVersion) +
+    if (version.json().is_number() && version.json() == kScenarioFormatVersion) return;
+    version.failExpected(std::to_string(kScenarioFormatVersion) +
                          " (the only format_version this program reads)");
 }
 

@@ -172,24 +172,24 @@ struct CityGrid {
     double street, half, pitch, width, depth;
 };
 
-constexpr uint32_t kUnitBox = 0;  // the mesh every slab and street is a scaled copy of
+constexpr uint32_t kCityUnitBox = 0;  // the mesh every slab and street is a scaled copy of
 
 // The bedrock under everything, and the streets: along x at full length, crossings included;
 // along z one segment between each pair of crossings.
 void addGroundAndStreets(const CitySpec& spec, const CityGrid& g, SourceOutput& out) {
-    out.objects.push_back(placeUnitBox(kUnitBox, {-g.half, kBedrockTopM - 1.0, -g.half},
+    out.objects.push_back(placeUnitBox(kCityUnitBox, {-g.half, kBedrockTopM - 1.0, -g.half},
                                        {g.width + g.half, kBedrockTopM, g.depth + g.half}));
     for (uint32_t j = 0; j <= spec.blocks_z; ++j) {
         const double z = j * g.pitch;
-        out.objects.push_back(placeUnitBox(kUnitBox, {-g.half, -kSlabDepthM, z - g.half},
+        out.objects.push_back(placeUnitBox(kCityUnitBox, {-g.half, -kSlabDepthM, z - g.half},
                                            {g.width + g.half, 0.0, z + g.half}));
     }
     for (uint32_t i = 0; i <= spec.blocks_x; ++i) {
         const double x = i * g.pitch;
         for (uint32_t j = 0; j < spec.blocks_z; ++j) {
-            out.objects.push_back(
-                placeUnitBox(kUnitBox, {x - g.half, -kSlabDepthM, j * g.pitch + g.half + kCrackM},
-                             {x + g.half, 0.0, (j + 1) * g.pitch - g.half - kCrackM}));
+            out.objects.push_back(placeUnitBox(
+                kCityUnitBox, {x - g.half, -kSlabDepthM, j * g.pitch + g.half + kCrackM},
+                {x + g.half, 0.0, (j + 1) * g.pitch - g.half - kCrackM}));
         }
     }
 }
@@ -226,7 +226,7 @@ void addBlock(const CitySpec& spec, const CityGrid& g, uint32_t i, uint32_t j, R
               SourceOutput& out) {
     const Rect block{i * g.pitch + g.half, j * g.pitch + g.half, (i + 1) * g.pitch - g.half,
                      (j + 1) * g.pitch - g.half};
-    out.objects.push_back(placeUnitBox(kUnitBox,
+    out.objects.push_back(placeUnitBox(kCityUnitBox,
                                        {block.x0 + kCrackM, -kSlabDepthM, block.z0 + kCrackM},
                                        {block.x1 - kCrackM, kPavementTopM, block.z1 - kCrackM}));
     std::vector<Rect> lots;

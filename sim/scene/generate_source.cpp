@@ -12,8 +12,6 @@
 namespace occsim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 SourceOutput generateTeapotField(const TeapotFieldSpec& spec, uint64_t seed) {
     SourceOutput out;
     out.meshes.push_back(tessellateTeapot(spec.tessellation));
@@ -24,7 +22,7 @@ SourceOutput generateTeapotField(const TeapotFieldSpec& spec, uint64_t seed) {
         PlacedObject object;
         object.position = {rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y),
                            rng.uniform(lo.z, hi.z)};
-        const auto yaw = static_cast<float>(rng.uniform(0.0, 2.0 * kPi));
+        const auto yaw = static_cast<float>(rng.uniform(0.0, 2.0 * std::numbers::pi));
         const auto scale = static_cast<float>(rng.uniform(spec.size_min_m, spec.size_max_m));
         object.linear = glm::mat3(glm::rotate(glm::mat4(1.0f), yaw, glm::vec3(0, 1, 0))) * scale;
         out.objects.push_back(object);

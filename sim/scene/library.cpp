@@ -67,8 +67,8 @@ MeshData bookMesh(uint32_t bands, float cover) {
     return m;
 }
 
-constexpr uint32_t kUnitBox = 0;        // the mesh every board, panel and wall is a scaled copy of
-constexpr uint32_t kFirstBookMesh = 1;  // then kBookMeshes book meshes
+constexpr uint32_t kLibraryUnitBox = 0;  // the mesh every board, panel and wall is a scaled copy of
+constexpr uint32_t kFirstBookMesh = 1;   // then kBookMeshes book meshes
 
 // The room's measures, from the spec.
 struct LibraryLayout {
@@ -93,15 +93,15 @@ struct LibraryLayout {
 // them, so the corners show no crack and no two walls touch.
 void addFloorAndWalls(const LibraryLayout& l, SourceOutput& out) {
     const double t = kWallThickness, f = kAboveFloor;
-    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - t, -0.2, l.room_z0 - t},
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {l.room_x0 - t, -0.2, l.room_z0 - t},
                                        {l.room_x1 + t, 0.0, l.room_z1 + t}));
-    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z0 - t},
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z0 - t},
                                        {l.room_x1 + 1.5 * t, l.wall_height, l.room_z0}));
-    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z1},
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {l.room_x0 - 1.5 * t, f, l.room_z1},
                                        {l.room_x1 + 1.5 * t, l.wall_height, l.room_z1 + t}));
-    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x0 - t, f, l.room_z0 + 0.01},
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {l.room_x0 - t, f, l.room_z0 + 0.01},
                                        {l.room_x0, l.wall_height, l.room_z1 - 0.01}));
-    out.objects.push_back(placeUnitBox(kUnitBox, {l.room_x1, f, l.room_z0 + 0.01},
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {l.room_x1, f, l.room_z0 + 0.01},
                                        {l.room_x1 + t, l.wall_height, l.room_z1 - 0.01}));
 }
 
@@ -146,16 +146,17 @@ void addShelfUnit(const LibrarySpec& spec, const LibraryLayout& l, uint32_t r, u
                   SourceOutput& out) {
     const double z0 = r * l.pitch, z1 = z0 + kShelfDepth;
     const double x0 = u * l.unit;  // left face of this unit's left side panel
-    out.objects.push_back(
-        placeUnitBox(kUnitBox, {x0, kAboveFloor, z0}, {x0 + kSideThickness, l.shelf_height, z1}));
+    out.objects.push_back(placeUnitBox(kLibraryUnitBox, {x0, kAboveFloor, z0},
+                                       {x0 + kSideThickness, l.shelf_height, z1}));
     if (u + 1 == spec.shelves_per_row) {
-        out.objects.push_back(placeUnitBox(kUnitBox, {x0 + l.unit, kAboveFloor, z0},
+        out.objects.push_back(placeUnitBox(kLibraryUnitBox, {x0 + l.unit, kAboveFloor, z0},
                                            {x0 + l.unit + kSideThickness, l.shelf_height, z1}));
     }
     const double inner0 = x0 + kSideThickness + kClear, inner1 = x0 + l.unit - kClear;
     for (uint32_t level = 0; level <= spec.levels; ++level) {
         const double board_top = kFirstBoardY + level * kLevelPitch + kBoardThickness;
-        out.objects.push_back(placeUnitBox(kUnitBox, {inner0, board_top - kBoardThickness, z0},
+        out.objects.push_back(placeUnitBox(kLibraryUnitBox,
+                                           {inner0, board_top - kBoardThickness, z0},
                                            {inner1, board_top, z1 - kBoardInset}));
         if (level == spec.levels) break;  // the top board carries no books
         addBooks(spec, inner0, inner1, board_top, z1, rng, out);

@@ -9,11 +9,7 @@
 #include "sim/world/world.h"
 
 namespace occsim {
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-}  // namespace
+namespace {}  // namespace
 
 MotionPath makePath(std::vector<glm::dvec3> points) {
     MotionPath path;
@@ -98,7 +94,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
                             bounce->region.max[axis]);
             }
         } else if (auto* orbit = std::get_if<OrbitMotion>(&mover.motion)) {
-            orbit->angle = std::remainder(orbit->angle + orbit->angular_speed * dt_s, 2.0 * kPi);
+            orbit->angle =
+                std::remainder(orbit->angle + orbit->angular_speed * dt_s, 2.0 * std::numbers::pi);
             pose.position.x = orbit->center.x + orbit->radius_m * std::cos(orbit->angle);
             pose.position.z = orbit->center.z + orbit->radius_m * std::sin(orbit->angle);
         } else if (auto* path = std::get_if<PathMotion>(&mover.motion)) {
@@ -111,7 +108,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             pose.rotation = yawTowards(direction);
         } else if (auto* walk = std::get_if<RandomWalkMotion>(&mover.motion)) {
             walk->heading = std::remainder(
-                walk->heading + walk->turn_rate * dt_s * walk->rng.uniform(-1.0, 1.0), 2.0 * kPi);
+                walk->heading + walk->turn_rate * dt_s * walk->rng.uniform(-1.0, 1.0),
+                2.0 * std::numbers::pi);
             double vx = walk->speed_mps * std::cos(walk->heading);
             double vz = walk->speed_mps * std::sin(walk->heading);
             pose.position.x += vx * dt_s;
@@ -121,7 +119,8 @@ void stepMovers(const Scene& scene, WorldState& state, double dt_s) {
             walk->heading = std::atan2(vz, vx);
             pose.rotation = yawTowards({vx, 0.0, vz});
         } else if (auto* spin = std::get_if<SpinMotion>(&mover.motion)) {
-            spin->angle = std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * kPi);
+            spin->angle =
+                std::remainder(spin->angle + spin->angular_speed * dt_s, 2.0 * std::numbers::pi);
             pose.rotation =
                 glm::angleAxis(static_cast<float>(spin->angle), glm::vec3(0, 1, 0)) * spin->base;
         }

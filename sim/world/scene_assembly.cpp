@@ -16,7 +16,6 @@
 namespace occsim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 enum SeedPurpose : uint64_t {
     kPlacement = 1,
     kMoverPick = 2,
@@ -576,13 +575,13 @@ Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose,
     switch (spec.motion) {
         case MotionType::Bounce: {
             // Mostly horizontal, like traffic; a little vertical drift where the box allows.
-            const double a = motion.uniform(0.0, 2.0 * kPi);
+            const double a = motion.uniform(0.0, 2.0 * std::numbers::pi);
             const glm::dvec3 dir(std::cos(a), motion.uniform(-0.2, 0.2), std::sin(a));
             return BounceMotion{speed * glm::normalize(dir), region};
         }
         case MotionType::Orbit: {
             const double radius = motion.uniform(spec.radius_min_m, spec.radius_max_m);
-            const double angle = motion.uniform(0.0, 2.0 * kPi);
+            const double angle = motion.uniform(0.0, 2.0 * std::numbers::pi);
             const double sign = motion.uniform() < 0.5 ? -1.0 : 1.0;
             // Centre chosen so that the orbit passes through the object's start position.
             const glm::dvec3 center =
@@ -603,7 +602,7 @@ Motion moverMotion(const MoverSpec& spec, const Scene& scene, ObjectPose& pose,
         case MotionType::RandomWalk: {
             RandomWalkMotion walk;
             walk.speed_mps = speed;
-            walk.heading = motion.uniform(0.0, 2.0 * kPi);
+            walk.heading = motion.uniform(0.0, 2.0 * std::numbers::pi);
             walk.turn_rate = glm::radians(spec.turn_rate_deg_s);
             walk.region = region;
             walk.rng = Rng(motion.next());

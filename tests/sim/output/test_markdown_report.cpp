@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sample_runs.h"
+#include "sim/output/fixed_text.h"
 #include "sim/output/markdown_report.h"
 #include "sim/output/report.h"
 
@@ -12,6 +13,13 @@ namespace occsim {
 namespace {
 
 using testing::sampleRuns;
+
+// A name with a '|' (a glTF node may have one) stays inside its cell.
+TEST(MarkdownReport, ACellEscapesTheBarThatWouldEndIt) {
+    EXPECT_EQ(markdownCell("crate|2"), "crate\\|2");
+    EXPECT_EQ(markdownCell("||"), "\\|\\|");
+    EXPECT_EQ(markdownCell("plain"), "plain");
+}
 
 TEST(MarkdownReport, HasTheHeaderTheTableRowsThePictureLinksAndHowToRead) {
     BenchResult result;
