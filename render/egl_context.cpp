@@ -31,6 +31,7 @@ struct EglLibrary {
     PFNEGLCREATECONTEXTPROC createContext = nullptr;
     PFNEGLDESTROYCONTEXTPROC destroyContext = nullptr;
     PFNEGLMAKECURRENTPROC makeCurrent = nullptr;
+    PFNEGLGETCURRENTCONTEXTPROC getCurrentContext = nullptr;
     PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
     PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
     void* opengl = nullptr;  // libOpenGL.so.0, for GL functions eglGetProcAddress does not give
@@ -71,7 +72,8 @@ EglLibrary loadEgl() {
                       loadSymbol(library, "eglChooseConfig", egl.chooseConfig) &&
                       loadSymbol(library, "eglCreateContext", egl.createContext) &&
                       loadSymbol(library, "eglDestroyContext", egl.destroyContext) &&
-                      loadSymbol(library, "eglMakeCurrent", egl.makeCurrent);
+                      loadSymbol(library, "eglMakeCurrent", egl.makeCurrent) &&
+                      loadSymbol(library, "eglGetCurrentContext", egl.getCurrentContext);
     if (!core || !loadSymbol(library, "eglGetPlatformDisplay", egl.getPlatformDisplay)) {
         egl.problem = "libEGL.so.1 lacks EGL 1.5 functions (eglGetPlatformDisplay); needs EGL 1.5";
         return egl;
@@ -243,6 +245,13 @@ class EglContext final : public HeadlessContext {
 
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
+    void makeCurrent() override {
+        if (!egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+            throw std::runtime_error("EGL: cannot make a context current again (" +
+                                     eglErrorText(egl_) + ")");
+        }
+    }
+
   private:
     // What the device offers instead, for the message: a context of any version, asked for
     // without one, and its GL_VERSION and GL_RENDERER.
@@ -265,9 +274,11 @@ class EglContext final : public HeadlessContext {
         return found;
     }
 
+    // Unbound only when current: another context of the process may be the current one.
     void release() {
         if (context_ == EGL_NO_CONTEXT) return;
-        egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (egl_.getCurrentContext() == context_)
+            egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         egl_.destroyContext(display_, context_);
         context_ = EGL_NO_CONTEXT;
     }

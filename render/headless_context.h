@@ -53,6 +53,10 @@ class HeadlessContext : public GlContext {
   public:
     const ContextInfo& info() const { return info_; }
     std::string rendererName() const override;
+    // Makes this context the calling thread's current one again, after another context of the
+    // process was (a run gives some cullers a context of their own: sim/run/runner.cpp). A context
+    // is current when created; destroying one that is not current leaves the current one be.
+    virtual void makeCurrent() = 0;
     void noteFallback(const std::string& why) { info_.fallback = why; }
 
   protected:

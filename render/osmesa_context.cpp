@@ -19,7 +19,8 @@ namespace {
 
 class OsMesaContext final : public HeadlessContext {
   public:
-    OsMesaContext(uint32_t width, uint32_t height) : buffer_(osmesaColourBuffer(width, height)) {
+    OsMesaContext(uint32_t width, uint32_t height)
+        : buffer_(osmesaColourBuffer(width, height)), width_(width), height_(height) {
         const int attribs[] = {OSMESA_FORMAT,
                                OSMESA_RGBA,
                                OSMESA_DEPTH_BITS,
@@ -58,6 +59,13 @@ class OsMesaContext final : public HeadlessContext {
 
     void setInfo(ContextInfo info) { info_ = std::move(info); }
 
+    void makeCurrent() override {
+        if (!OSMesaMakeCurrent(context_, buffer_, GL_UNSIGNED_BYTE, static_cast<GLsizei>(width_),
+                               static_cast<GLsizei>(height_))) {
+            throw std::runtime_error("OSMesa: cannot make a context current again");
+        }
+    }
+
   private:
     // Unbound first, so that the flush that goes with unbinding happens while the context still
     // has its buffer; then destroyed.
@@ -67,6 +75,7 @@ class OsMesaContext final : public HeadlessContext {
     }
 
     unsigned char* buffer_;  // never freed: Mesa keeps it (osmesa_colour_buffer.h)
+    uint32_t width_, height_;
     OSMesaContext context_ = nullptr;
 };
 

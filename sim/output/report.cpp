@@ -243,6 +243,7 @@ nlohmann::json machineJson(const RunMetadata& m) {
             {"gl_version", m.gl_version},
             {"driver", m.driver},
             {"gpu_time_meaningful", m.gpu_time_meaningful},
+            {"contexts_apart", m.contexts_apart},
             {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)}};
 }
 
@@ -371,11 +372,36 @@ std::string aggregationLine(const BenchResult& result) {
 
 std::string busyMachineLine(const RunMetadata& m) {
     if (!m.busyMachine()) return "";
-    return "busy machine: other work ran beside this run (load average above its " +
-           std::to_string(m.hardware_threads) +
-           " hardware threads before it, or above twice that after it); these timings are not "
-           "results: rerun when nothing else runs (a build just ended counts: wait a minute)";
+    // What was seen: the reading over its bound (the run's own threads count in the one after).
+    char seen[160];
+    if (m.load_before[0] > m.hardware_threads) {
+        std::snprintf(seen, sizeof seen,
+                      "load average %.2f before it, above its %u hardware threads",
+                      m.load_before[0], m.hardware_threads);
+    } else {
+        std::snprintf(seen, sizeof seen,
+                      "load average %.2f after it, above twice its %u hardware threads",
+                      m.load_after[0], m.hardware_threads);
+    }
+    std::string line = std::string("busy machine: other work ran beside this run (") + seen +
+                       "); these timings are not results: rerun when nothing else runs (a build "
+                       "just ended counts: wait a minute)";
+    if (!m.command_line.empty()) line += ": " + m.command_line;
+    return line;
 }
+
+namespace {
+
+// The configurations that rendered in a GL context of their own, and why (one line).
+std::string contextsApartLine(const std::vector<std::string>& labels) {
+    std::string names;
+    for (size_t i = 0; i < labels.size(); ++i) names += (i ? ", " : "") + labels[i];
+    return "own GL context: " + names +
+           " (conditional rendering slows what renders after it on llvmpipe: "
+           "docs/conditional.md)";
+}
+
+}  // namespace
 
 std::string runHeadline(const BenchResult& result) {
     const RunMetadata& m = result.metadata;
@@ -401,6 +427,7 @@ std::string runHeadline(const BenchResult& result) {
     if (!m.backend_fallback.empty())
         headline += "\nbackend auto fell back to OSMesa: " + m.backend_fallback;
     if (!m.occluder_roles.empty()) headline += "\noccluders: " + m.occluder_roles;
+    if (!m.contexts_apart.empty()) headline += "\n" + contextsApartLine(m.contexts_apart);
     if (nothingInView(result.runs)) {
         headline +=
             "\nwarning: the camera sees no object on any frame (none drawn, none visible): "

@@ -59,6 +59,8 @@ struct RunMetadata {
     // occluderRolesText() of the scene when a configuration has an occluder pass (needs_meshes);
     // else empty.
     std::string occluder_roles;
+    // The configurations that rendered in a GL context of their own (sim/run/config_contexts.h).
+    std::vector<std::string> contexts_apart;
     // The run.
     uint32_t repetitions = 1;
     std::string frame_order = "balanced";  // sim/run/frame_order.h

@@ -9,6 +9,7 @@
 
 #include "render/headless_context.h"
 #include "sim/run/calibration.h"
+#include "sim/run/config_contexts.h"
 #include "sim/run/crash_note.h"
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
@@ -112,17 +113,33 @@ struct Stage {
     const std::vector<RunConfig>& configs;
     const BenchOptions& options;
     const HeadlessContext& context;
-    GlRenderer& renderer;
+    GlRenderer& renderer;  // the run's: ground truth, and every configuration not apart
+    ConfigContexts& contexts;
     // Per configuration, its verdicts of the first repetition for the worst windows' pictures;
     // empty when none are wanted (no on_window_frame, or error not measured).
     std::vector<VerdictLog>& verdicts;
 };
 
-std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, SharedWorld& world,
-                                                         GroundTruth& truth, uint32_t rep) {
+// Every configuration's simulation of one repetition, each made and destroyed with its own
+// context current (its GL objects live there: sim/run/config_contexts.h).
+struct Simulations {
+    ConfigContexts& contexts;
+    std::vector<std::unique_ptr<Simulation>> all;
+
+    ~Simulations() {
+        for (size_t c = 0; c < all.size(); ++c) {
+            const ConfigContexts::Use use(contexts, c);
+            all[c].reset();
+        }
+    }
+};
+
+void makeSimulations(const Stage& stage, SharedWorld& world, GroundTruth& truth, uint32_t rep,
+                     Simulations& sims) {
     const BenchOptions& options = stage.options;
-    std::vector<std::unique_ptr<Simulation>> sims;
-    for (const RunConfig& config : stage.configs) {
+    for (size_t c = 0; c < stage.configs.size(); ++c) {
+        const RunConfig& config = stage.configs[c];
+        const ConfigContexts::Use use(stage.contexts, c);
         SimulationOptions sim_options;
         sim_options.measure_error = options.measure_error;
         sim_options.latency = options.latency;
@@ -135,11 +152,10 @@ std::vector<std::unique_ptr<Simulation>> makeSimulations(const Stage& stage, Sha
         sim_options.frame_clock_ms = options.frame_clock_ms;
         auto culler = options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                           : makeConfiguredCuller(config);
-        sims.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
-                                                    std::move(culler), config.culler,
-                                                    stage.renderer, sim_options));
+        sims.all.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
+                                                        std::move(culler), config.culler,
+                                                        stage.contexts.renderer(c), sim_options));
     }
-    return sims;
 }
 
 // The run's progress (sim/run/progress.h), timed from the first frame.
@@ -204,6 +220,7 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
         for (size_t k = 0; k < sims.size(); ++k) {
             const size_t c = configurationAt(options.frame_order, sims.size(), f, k);
             noteRendering(stage.configs[c].label.c_str(), f);
+            const ConfigContexts::Use use(stage.contexts, c);
             try {
                 frames[c].push_back(sims[c]->renderFrame());
             } catch (const std::exception& e) {
@@ -220,8 +237,8 @@ std::vector<std::vector<FrameStats>> runFrames(const Stage& stage, SharedWorld& 
             if (rep == 0 && !stage.verdicts.empty())
                 stage.verdicts[c].record(f, sims[c]->objectVerdicts());
             if (options.on_frame) {
-                options.on_frame(
-                    FrameEvent{rep, f, stage.configs[c], *sims[c], scenario, stage.renderer});
+                options.on_frame(FrameEvent{rep, f, stage.configs[c], *sims[c], scenario,
+                                            stage.contexts.renderer(c)});
             }
         }
         progress.frameDone(rep * scenario.frames + f + 1);
@@ -287,10 +304,11 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
                    ProgressClock& progress) {
     SharedWorld world(scene, stage.scenario);
     GroundTruth truth(stage.renderer);
-    std::vector<std::unique_ptr<Simulation>> sims = makeSimulations(stage, world, truth, rep);
+    Simulations sims{stage.contexts, {}};
+    makeSimulations(stage, world, truth, rep, sims);
     const auto loop_start = Clock::now();
     std::vector<std::vector<FrameStats>> frames =
-        runFrames(stage, world, truth, sims, rep, progress, result.costs, result.partial);
+        runFrames(stage, world, truth, sims.all, rep, progress, result.costs, result.partial);
     result.costs.wall_ms +=
         std::chrono::duration<double, std::milli>(Clock::now() - loop_start).count();
     addWorldCosts(result.costs, world, truth);
@@ -305,7 +323,7 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
             }
         }
     }
-    if (!result.partial || rep == 0) recordRepetition(result, stage, sims, frames, rep);
+    if (!result.partial || rep == 0) recordRepetition(result, stage, sims.all, frames, rep);
 }
 
 // The worst windows' worst frames, each rendered again on a fresh world replayed to it (the same
@@ -398,7 +416,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
     std::vector<VerdictLog> verdicts;
     if (options.on_window_frame && options.measure_error)
         verdicts.assign(configs.size(), VerdictLog(kVerdictLogBudgetBytes / configs.size()));
-    const Stage stage{scenario, configs, options, *context, renderer, verdicts};
+    ConfigContexts contexts(configs, *context, renderer, scene, depthConventionOf(scenario));
+    result.metadata.contexts_apart = contexts.apartLabels(configs);
+    const Stage stage{scenario, configs, options, *context, renderer, contexts, verdicts};
     ProgressClock progress{
         Clock::now(), RunProgress(options.progress,
                                   scenario.name + ", " + std::to_string(configs.size()) +

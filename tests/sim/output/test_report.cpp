@@ -79,8 +79,19 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
     m.load_after = {1.0, 1.0, 1.0};
     m.load_before = {2.5, 1.0, 1.0};
     EXPECT_TRUE(m.busyMachine()) << "other work when the run began";
+    // What it saw, and the command to rerun for a quiet figure.
+    m.command_line = "occsim bench scenarios/teapots.json --error";
+    EXPECT_NE(runHeadline(result).find("busy machine: other work ran beside this run (load "
+                                       "average 2.50 before it, above its 2 hardware threads)"),
+              std::string::npos)
+        << runHeadline(result);
+    EXPECT_NE(
+        runHeadline(result).find("wait a minute): occsim bench scenarios/teapots.json --error"),
+        std::string::npos);
+    m.load_before = {1.0, 1.0, 1.0};
     m.load_after = {5.5, 3.0, 1.0};
-    EXPECT_NE(runHeadline(result).find("busy machine: other work ran beside this run"),
+    EXPECT_NE(runHeadline(result).find("(load average 5.50 after it, above twice its 2 hardware "
+                                       "threads)"),
               std::string::npos);
     EXPECT_NE(markdownReport(result, {}).find("**busy: other work ran beside this run"),
               std::string::npos);
@@ -88,6 +99,12 @@ TEST(RunHeadline, SaysTheLoadAndWarnsWhenTheMachineWasBusy) {
     EXPECT_EQ(summary["machine"]["busy"], true);
     EXPECT_EQ(summary["machine"]["load_average_after"][0], 5.5);
     EXPECT_EQ(summary["machine"]["load_average_before"].size(), 3u);
+    EXPECT_TRUE(summary["machine"]["contexts_apart"].empty());
+    EXPECT_EQ(runHeadline(result).find("own GL context"), std::string::npos);
+    m.contexts_apart = {"conditional"};
+    EXPECT_NE(runHeadline(result).find("\nown GL context: conditional (conditional rendering"),
+              std::string::npos);
+    EXPECT_EQ(summaryJson(result)["machine"]["contexts_apart"][0], "conditional");
 }
 
 // A culler that throws in its frame `fail_at`, culling like `inner` before it.

@@ -110,10 +110,12 @@ TEST(Simulation, ConfigurationsOfOneBenchShareOneWorldSteppedOncePerFrame) {
 }
 
 // Sharing the world changes no decision: in deterministic-latency mode each configuration of a
-// bench draws and queries exactly what it does when it runs alone.
+// bench draws and queries exactly what it does when it runs alone (conditional in a GL context of
+// its own, sim/run/config_contexts.h, the others in the run's).
 TEST(Simulation, EveryConfigurationDecidesAsItDoesAlone) {
-    const std::vector<std::string> names = {"stop-and-wait", "statistical", "statistical+", "chc",
-                                            "chc++",         "async",       "ideal"};
+    const std::vector<std::string> names = {"stop-and-wait", "statistical", "statistical+",
+                                            "chc",           "chc++",       "async",
+                                            "conditional",   "ideal"};
     using Counts = std::vector<std::tuple<uint64_t, uint64_t, uint64_t>>;
     auto countsOf = [](const RunRecord& run) {
         Counts out;
@@ -127,6 +129,7 @@ TEST(Simulation, EveryConfigurationDecidesAsItDoesAlone) {
     options.frames = 12;
     const BenchResult together = runBenchmark(parseScenarioFile(kSmall), options);
     ASSERT_EQ(together.runs.size(), names.size());
+    EXPECT_EQ(together.metadata.contexts_apart, std::vector<std::string>{"conditional"});
     for (size_t c = 0; c < names.size(); ++c) {
         options.algorithms = traitsOf({names[c]});
         const BenchResult alone = runBenchmark(parseScenarioFile(kSmall), options);
