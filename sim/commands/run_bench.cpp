@@ -12,6 +12,7 @@
 #include "sim/commands/algorithm_entries.h"
 #include "sim/commands/exit_codes.h"
 #include "sim/commands/flag_checks.h"
+#include "sim/output/console_colour.h"
 #include "sim/output/console_table.h"
 #include "sim/output/moments.h"
 #include "sim/output/pictures.h"
@@ -209,15 +210,22 @@ int partialRunEnded(const std::string& command, const occsim::BenchResult& resul
     return p.signal != 0 ? 128 + p.signal : kExitFailure;
 }
 
+// The console's text, coloured only where a person reads it (sim/output/console_colour.h).
+void printConsole(const std::string& text) {
+    std::printf("%s",
+                (occsim::stdoutWantsColour() ? occsim::colouredConsoleText(text) : text).c_str());
+}
+
 // --wide: the full table and every line as long as it is.
 void printWide(const occsim::BenchResult& result) {
-    std::printf("%s\n", occsim::runHeadline(result).c_str());
-    std::printf("%s", occsim::formatComparisonTable(result.runs).c_str());
+    std::string text = occsim::runHeadline(result) + "\n";
+    text += occsim::formatComparisonTable(result.runs);
     if (const std::string line = occsim::aggregationLine(result); !line.empty())
-        std::printf("%s\n", line.c_str());
-    std::printf("%s\n", occsim::costsLine(result).c_str());
-    std::printf("%s", occsim::segmentTablesText(result, true).c_str());
-    std::printf("%s", occsim::worstWindowsText(result, true).c_str());
+        text += line + "\n";
+    text += occsim::costsLine(result) + "\n";
+    text += occsim::segmentTablesText(result, true);
+    text += occsim::worstWindowsText(result, true);
+    printConsole(text);
 }
 
 // The default: the compact table and the verdict, every line within 100 columns. The compact
@@ -232,7 +240,7 @@ void printCompact(const occsim::BenchResult& result, const std::string& out_dir,
     if (result.metadata.repetitions > 1) text += occsim::aggregationLine(result) + "\n";
     text += occsim::costsLine(result) + "\n";
     text += occsim::segmentTablesText(result) + occsim::worstWindowsText(result);
-    std::printf("%s", occsim::wrappedText(text).c_str());
+    printConsole(occsim::wrappedText(text));
 }
 
 int runAndReport(const RunRequest& request) {

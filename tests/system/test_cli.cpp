@@ -128,6 +128,7 @@ TEST(Cli, BenchPrintsACompactTableAndAVerdictThatFitAndWidePrintsEveryFigure) {
         EXPECT_NE(o.output.find(part), std::string::npos) << part << " in " << o.output;
     }
     EXPECT_EQ(o.output.find("median ms"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find('\033'), std::string::npos) << "no colour in a pipe: " << o.output;
 
     const Outcome wide = runOccsim(args + tempPath("wide").string() + " --wide");
     ASSERT_EQ(wide.exit_code, 0) << wide.output;
@@ -137,6 +138,22 @@ TEST(Cli, BenchPrintsACompactTableAndAVerdictThatFitAndWidePrintsEveryFigure) {
         EXPECT_NE(wide.output.find(part), std::string::npos) << part << " in " << wide.output;
     }
     EXPECT_EQ(wide.output.find("verdict:"), std::string::npos) << wide.output;
+}
+
+// On a terminal (script(1) gives the run one) the verdict is coloured; NO_COLOR and TERM=dumb
+// turn that off, as a pipe does (above).
+TEST(Cli, BenchColoursItsVerdictOnATerminalOnly) {
+    const std::string bench = std::string(OCCSIM_EXE) + " bench " + kSmall +
+                              " --algos vfc,chc --frames 14 --out " + tempPath("tty").string();
+    const Outcome tty = shell("TERM=xterm script -qec '" + bench + "' /dev/null");
+    ASSERT_EQ(tty.exit_code, 0) << tty.output;
+    EXPECT_NE(tty.output.find("\033[1mverdict:\033[0m "), std::string::npos) << tty.output;
+    for (const char* off : {"NO_COLOR=1 TERM=xterm", "TERM=dumb"}) {
+        const Outcome plain = shell(std::string(off) + " script -qec '" + bench + "' /dev/null");
+        ASSERT_EQ(plain.exit_code, 0) << plain.output;
+        EXPECT_NE(plain.output.find("verdict: "), std::string::npos) << off << plain.output;
+        EXPECT_EQ(plain.output.find('\033'), std::string::npos) << off << plain.output;
+    }
 }
 
 TEST(Cli, RunWritesTheSummaryTableAndBothFiles) {
