@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,18 @@ TEST(ConfigContexts, OnlyACullerThatNeedsConditionalRenderingRendersApart) {
     EXPECT_EQ(apart, 1u);  // conditional only, among the built-ins
 }
 
+// What a run has before its configurations: the small scenario's context, scene and renderer with
+// the scene uploaded.
+struct RunGl {
+    Scenario scenario = parseScenarioFile(kSmall);
+    std::unique_ptr<HeadlessContext> context =
+        createHeadlessContext({}, scenario.width, scenario.height);
+    Scene scene = buildScene(scenario);
+    GlRenderer renderer{scenario.width, scenario.height, depthConventionOf(scenario)};
+
+    RunGl() { uploadScene(scene, renderer); }
+};
+
 // The object IDs of the world's frame as ground truth draws them with `renderer` (its context
 // current).
 std::vector<uint32_t> idsDrawnBy(GlRenderer& renderer, const SharedWorld& world) {
@@ -42,35 +55,32 @@ std::vector<uint32_t> idsDrawnBy(GlRenderer& renderer, const SharedWorld& world)
 }
 
 TEST(ConfigContexts, AConfigurationApartDrawsWhatTheRunsContextDrawsAndLeavesItCurrent) {
-    const Scenario scenario = parseScenarioFile(kSmall);
-    const auto context = createHeadlessContext({}, scenario.width, scenario.height);
-    const Scene scene = buildScene(scenario);
-    GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
-    uploadScene(scene, renderer);
-    SharedWorld world(scene, scenario);
+    RunGl gl;
+    SharedWorld world(gl.scene, gl.scenario);
     for (int f = 0; f < 5; ++f) world.advance();
-    const std::vector<uint32_t> before = idsDrawnBy(renderer, world);
+    const std::vector<uint32_t> before = idsDrawnBy(gl.renderer, world);
     ASSERT_FALSE(before.empty());
 
     const std::vector<RunConfig> configs =
-        planConfigs(traitsOf({"vfc", "conditional", "chc"}), scenario.culler, std::nullopt);
+        planConfigs(traitsOf({"vfc", "conditional", "chc"}), gl.scenario.culler, std::nullopt);
     std::optional<std::vector<uint32_t>> apart_ids;
     {
-        ConfigContexts contexts(configs, *context, renderer, scene, depthConventionOf(scenario));
+        ConfigContexts contexts(configs, *gl.context, gl.renderer, gl.scene,
+                                depthConventionOf(gl.scenario));
         EXPECT_FALSE(contexts.apart(0));
         EXPECT_TRUE(contexts.apart(1));
         EXPECT_FALSE(contexts.apart(2));
-        EXPECT_EQ(&contexts.renderer(0), &renderer);
-        EXPECT_EQ(&contexts.renderer(2), &renderer);
-        EXPECT_NE(&contexts.renderer(1), &renderer);
+        EXPECT_EQ(&contexts.renderer(0), &gl.renderer);
+        EXPECT_EQ(&contexts.renderer(2), &gl.renderer);
+        EXPECT_NE(&contexts.renderer(1), &gl.renderer);
         EXPECT_EQ(contexts.apartLabels(configs), std::vector<std::string>{"conditional"});
         // The run's context is current after the constructor: its renderer still draws the frame.
-        EXPECT_EQ(idsDrawnBy(renderer, world), before);
+        EXPECT_EQ(idsDrawnBy(gl.renderer, world), before);
         {
             const ConfigContexts::Use use(contexts, 1);
             apart_ids = idsDrawnBy(contexts.renderer(1), world);
         }
-        EXPECT_EQ(idsDrawnBy(renderer, world), before);
+        EXPECT_EQ(idsDrawnBy(gl.renderer, world), before);
         {
             const ConfigContexts::Use use(contexts, 0);  // the run's own: nothing switches
             EXPECT_EQ(idsDrawnBy(contexts.renderer(0), world), before);
@@ -79,21 +89,18 @@ TEST(ConfigContexts, AConfigurationApartDrawsWhatTheRunsContextDrawsAndLeavesItC
     ASSERT_TRUE(apart_ids.has_value());
     EXPECT_EQ(*apart_ids, before);
     // Destroying the context apart left the run's current and its objects whole.
-    EXPECT_EQ(idsDrawnBy(renderer, world), before);
+    EXPECT_EQ(idsDrawnBy(gl.renderer, world), before);
 }
 
 TEST(ConfigContexts, ARunWithoutConditionalRenderingMakesNoContext) {
-    const Scenario scenario = parseScenarioFile(kSmall);
-    const auto context = createHeadlessContext({}, scenario.width, scenario.height);
-    const Scene scene = buildScene(scenario);
-    GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
-    uploadScene(scene, renderer);
+    RunGl gl;
     const std::vector<RunConfig> configs =
-        planConfigs(traitsOf({"vfc", "hzb", "masked"}), scenario.culler, std::nullopt);
-    ConfigContexts contexts(configs, *context, renderer, scene, depthConventionOf(scenario));
+        planConfigs(traitsOf({"vfc", "hzb", "masked"}), gl.scenario.culler, std::nullopt);
+    ConfigContexts contexts(configs, *gl.context, gl.renderer, gl.scene,
+                            depthConventionOf(gl.scenario));
     for (size_t c = 0; c < configs.size(); ++c) {
         EXPECT_FALSE(contexts.apart(c));
-        EXPECT_EQ(&contexts.renderer(c), &renderer);
+        EXPECT_EQ(&contexts.renderer(c), &gl.renderer);
     }
     EXPECT_TRUE(contexts.apartLabels(configs).empty());
 }
