@@ -128,8 +128,14 @@ struct Simulations {
 
     ~Simulations() {
         for (size_t c = 0; c < all.size(); ++c) {
-            const ConfigContexts::Use use(contexts, c);
-            all[c].reset();
+            try {
+                const ConfigContexts::Use use(contexts, c);
+                all[c].reset();
+            } catch (...) {
+                // Its context cannot be made current: freeing its GL names now would free the
+                // run's objects of the same names, so the simulation is left as it is.
+                (void)all[c].release();
+            }
         }
     }
 };
