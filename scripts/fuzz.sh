@@ -38,8 +38,8 @@ if [ ${#need[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
 fi
 
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")
+# shellcheck disable=SC2046  # one argument a target
+bash scripts/build.sh fuzz $(printf 'fuzz_%s ' "${targets[@]}")
 
 status=0
 for target in "${targets[@]}"; do
