@@ -36,22 +36,21 @@ struct FrameEvent {
     GlRenderer& renderer;
 };
 
-// A frame of the run rendered again after it (BenchOptions::on_window_frame): the world replayed
-// to it and drawn whole, every object with no culling code (ground truth's colour: what the camera
-// saw), outside every timing. Rows bottom-up, as GL gives them.
-// Each configuration whose worst window's worst frame it is comes with what it missed and drew
-// while hidden on that frame in the first repetition (null: not kept, the run's decisions
-// outgrew VerdictLog's budget), for its picture's validation overlay.
 // What the verdict logs of all a run's configurations may hold together (BenchOptions::
 // on_window_frame): the teapots' 120 frames of 12 configurations keep about 8 MB.
 inline constexpr size_t kVerdictLogBudgetBytes = size_t{256} << 20;
 
+// A configuration whose worst window's worst frame a replayed frame is, with what it missed and
+// drew while hidden on that frame in the first repetition, for its picture's validation overlay.
 struct WindowVerdicts {
     std::string label;                        // the configuration's
     const FrameVerdicts* verdicts = nullptr;  // null: not kept, or error not measured
     bool measured = false;                    // error was measured (null verdicts: over budget)
 };
 
+// A frame of the run rendered again after it (BenchOptions::on_window_frame): the world replayed
+// to it and drawn whole, every object with no culling code (ground truth's colour: what the camera
+// saw), outside every timing. Rows bottom-up, as GL gives them.
 struct ReplayedFrame {
     uint32_t frame = 0;
     double time_s = 0.0;  // frame * dt: seconds of the camera path
