@@ -268,6 +268,7 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
     counters_.submit_seconds += steadySecondsSince(start);
 
     const auto wait_start = Clock::now();
+    ++counters_.read_backs;
     flags_.resize(count);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, flag_buffer_);
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,

@@ -244,6 +244,7 @@ QueryAnswer GlQueryDevice::takeAnswer(QueryId id) {
         counters_.poll_seconds += steadySecondsSince(start);
     }
     ++counters_.results_fetched;
+    ++counters_.read_backs;
     retire(id);
     return {samples > 0 || near_eye_[id] != 0, samples, !ready};
 }

@@ -11,7 +11,8 @@ struct KindRow {
 };
 
 // Indexed by DecisionKind; the names are what objects.sqlite's reasons table and `occsim why`
-// show (docs/objects.md).
+// show (docs/objects.md). One kind a line, in DecisionKind's order:
+// clang-format off
 constexpr std::array<KindRow, kDecisionKinds> kKinds = {{
     {"no reason given", -1},
     {"frustum culled", 0},
@@ -30,7 +31,10 @@ constexpr std::array<KindRow, kDecisionKinds> kKinds = {{
     {"drawn conditionally", -1},
     {"drawn by oracle", 1},
     {"culled by oracle", 0},
+    {"culled on box raster", 0},
+    {"drawn on box raster", 1},
 }};
+// clang-format on
 
 }  // namespace
 

@@ -27,6 +27,8 @@ std::string deviceFeatureNames(uint32_t features) {
     static constexpr std::pair<uint32_t, const char*> kNames[] = {
         {kConditionalRendering, "conditional rendering"},
         {kDepthPyramid, "a depth pyramid (compute shaders)"},
+        {kGpuDrivenDraws, "GPU-driven draws (multi-draw indirect and storage buffers)"},
+        {kBoxRaster, "box rasterisation (storage buffers written by fragment shaders)"},
     };
     std::string out;
     for (const auto& [bit, name] : kNames) {

@@ -102,19 +102,26 @@ void DepthRasterDevice::rasterise(uint32_t object) {
 QueryId DepthRasterDevice::issueQuery(std::span<const Aabb> boxes,
                                       std::span<const QueryTag> subjects) {
     uint64_t samples = 0;
-    for (const Aabb& box : boxes) {
-        const Card c = cardOf(box);
-        for (uint32_t y = c.y0; y < c.y1; ++y) {
-            for (uint32_t x = c.x0; x < c.x1; ++x) samples += c.depth <= depth_[y * width_ + x];
-        }
-    }
+    for (const Aabb& box : boxes) samples += passingCells(box);
     query_log_.push_back(subjects.empty() ? QueryTag{} : subjects.front());
     return queries_.issue(samples, boxes.size(), counters_);
 }
 
+uint64_t DepthRasterDevice::passingCells(const Aabb& box) const {
+    uint64_t cells = 0;
+    const Card c = cardOf(box);
+    for (uint32_t y = c.y0; y < c.y1; ++y) {
+        for (uint32_t x = c.x0; x < c.x1; ++x) cells += c.depth <= depth_[y * width_ + x];
+    }
+    return cells;
+}
+
 bool DepthRasterDevice::isQueryReady(QueryId id) { return queries_.ready(id); }
 
-QueryAnswer DepthRasterDevice::takeAnswer(QueryId id) { return queries_.take(id, counters_); }
+QueryAnswer DepthRasterDevice::takeAnswer(QueryId id) {
+    ++counters_.read_backs;
+    return queries_.take(id, counters_);
+}
 
 DepthRasterDevice::Card DepthRasterDevice::cardOfSphere(const Aabb& box) const {
     const glm::dvec3 lo(box.min), hi(box.max);
@@ -149,6 +156,12 @@ uint32_t DepthRasterDevice::levelOf(const Aabb& box, PyramidBound shape) const {
 
 void DepthRasterDevice::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                                    std::span<uint8_t> visible) {
+    ++counters_.read_backs;  // the flags go back to the culler
+    testOnPyramid(boxes, shape, visible);
+}
+
+void DepthRasterDevice::testOnPyramid(std::span<const Aabb> boxes, PyramidBound shape,
+                                      std::span<uint8_t> visible) {
     assert(visible.size() == boxes.size());
     counters_.pyramid_bounds += boxes.size();
     for (size_t i = 0; i < boxes.size(); ++i) {

@@ -115,6 +115,13 @@ std::string reasonWords(const Decision& d, uint32_t frame, bool drawn) {
         case DecisionKind::CulledByOracle:
             s = "ground truth did not see it (the oracle draws only what it saw)";
             break;
+        case DecisionKind::CulledOnBoxRaster:
+            s = "no fragment of its box passed the depth test (phase 2)";
+            break;
+        case DecisionKind::DrawnOnBoxRaster:
+            s = d.phase == 1 ? "in phase 1: it was visible last frame"
+                             : "a fragment of its box passed the depth test (phase 2)";
+            break;
     }
     if (d.flags & kDecisionNodeUnit) s += " (decided for its node)";
     return s;

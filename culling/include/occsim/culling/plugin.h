@@ -48,7 +48,10 @@
 // occsim/culling/declaration/culler_row.h (was registration/algorithm_traits.h); Culler::name()
 // is gone (the registry's row names a culler; nothing read it).
 // 6: OptionSpec::scope (what an option acts on), and resolveDecisions' deciding subjects.
-#define OCCSIM_PLUGIN_ABI_VERSION 6u
+// 7: GPU-driven draws (contract/gpu_driven_draws.h, RenderDevice::gpuDrivenDraws, the DeviceFeature
+// bits kGpuDrivenDraws and kBoxRaster, DeviceCounters::read_backs), Culler::afterFrame, the
+// box-raster reasons of the decision log.
+#define OCCSIM_PLUGIN_ABI_VERSION 7u
 
 namespace occsim {
 

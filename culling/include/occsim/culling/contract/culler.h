@@ -127,6 +127,11 @@ class Culler {
     virtual void reset(const BspTree& tree) = 0;
     virtual void cullAndRender(const BspTree& tree, const CullFrame& frame,
                                RenderDevice& device) = 0;
+    // Called once the frame's timing has ended and the device has resolved it, before error is
+    // measured: a culler whose decisions were taken on the device (GPU-driven draws,
+    // gpu_driven_draws.h) reads them back here, to record its reasons in the frame's decision
+    // log. Nothing it does here is timed.
+    virtual void afterFrame(RenderDevice& /*device*/) {}
 };
 
 }  // namespace occsim

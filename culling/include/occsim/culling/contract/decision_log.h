@@ -44,8 +44,10 @@ enum class DecisionKind : uint8_t {
     DrawnConditional = 14,    // conditional: submitted under its query's condition; device decides
     DrawnByOracle = 15,       // ideal: ground truth saw it
     CulledByOracle = 16,      // ideal: ground truth did not see it
+    CulledOnBoxRaster = 17,   // raster: no fragment of its box passed the depth test (phase 2)
+    DrawnOnBoxRaster = 18,    // raster: phase 1 (visible last frame) or its box passed (phase 2)
 };
-inline constexpr uint32_t kDecisionKinds = 17;
+inline constexpr uint32_t kDecisionKinds = 19;
 
 // Refinements of a kind, as bits.
 enum DecisionFlag : uint8_t {

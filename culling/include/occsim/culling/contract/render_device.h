@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <span>
 
+#include "occsim/culling/contract/gpu_driven_draws.h"
 #include "occsim/culling/geometry/aabb.h"
 
 namespace occsim {
@@ -41,6 +42,8 @@ class DepthPyramid;          // occsim/culling/contract/depth_pyramid.h
 enum DeviceFeature : uint32_t {
     kConditionalRendering = 1u << 0,  // draws that the device skips on a query's result
     kDepthPyramid = 1u << 1,          // a hierarchical depth buffer that tests boxes
+    kGpuDrivenDraws = 1u << 2,        // indirect draws written and decided on the device
+    kBoxRaster = 1u << 3,             // GPU-driven draws that test boxes by rasterising them
 };
 
 // What one query decides. `index` is a node for Node and NodeObjects, an object for Object.
@@ -86,6 +89,9 @@ struct DeviceCounters {
     // The depth-pyramid capability (depth_pyramid.h): pyramids built, bounds tested against them.
     uint64_t pyramid_builds = 0;
     uint64_t pyramid_bounds = 0;
+    // Reads of data the device computed (query results, pyramid flags) made during the frame:
+    // each makes the CPU wait for the device's work so far. GPU-driven draws make none.
+    uint64_t read_backs = 0;
 };
 
 class RenderDevice {
@@ -105,10 +111,13 @@ class RenderDevice {
     // hands over those of the device it wraps.
     virtual ConditionalRendering* conditionalRendering() { return nullptr; }
     virtual DepthPyramid* depthPyramid() { return nullptr; }
+    virtual GpuDrivenDraws* gpuDrivenDraws() { return nullptr; }
     // The DeviceFeature bits of the capabilities above that are present.
     uint32_t features() {
+        GpuDrivenDraws* gpu = gpuDrivenDraws();
         return (conditionalRendering() ? kConditionalRendering : 0u) |
-               (depthPyramid() ? kDepthPyramid : 0u);
+               (depthPyramid() ? kDepthPyramid : 0u) | (gpu ? kGpuDrivenDraws : 0u) |
+               (gpu && gpu->offersBoxRaster() ? kBoxRaster : 0u);
     }
 
     virtual const DeviceCounters& counters() const { return counters_; }

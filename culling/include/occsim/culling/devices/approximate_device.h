@@ -52,6 +52,7 @@ class ApproximateDevice final : public RenderDevice {
         return options_.active() ? nullptr : inner_.conditionalRendering();
     }
     DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
+    GpuDrivenDraws* gpuDrivenDraws() override { return inner_.gpuDrivenDraws(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 

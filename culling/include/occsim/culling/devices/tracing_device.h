@@ -11,6 +11,8 @@
 // - Conditional draws (conditional_rendering.h; offered when the wrapped device offers them) are
 //   recorded among drawn_objects, as submitted, and in conditional_objects; the query they were
 //   conditioned on is marked `conditional`. Its answer is never read back, so it stays unfetched.
+// - GPU-driven draws (gpu_driven_draws.h) are the wrapped device's, forwarded: their draws are
+//   decided on the device and not recorded here.
 // - When not tracing, calls are forwarded and nothing is recorded.
 // - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
 #pragma once
@@ -63,6 +65,7 @@ class TracingDevice final : public RenderDevice, private ConditionalRendering {
         return inner_.conditionalRendering() ? this : nullptr;
     }
     DepthPyramid* depthPyramid() override { return inner_.depthPyramid(); }
+    GpuDrivenDraws* gpuDrivenDraws() override { return inner_.gpuDrivenDraws(); }
     const DeviceCounters& counters() const override { return inner_.counters(); }
     void resetCounters() override { inner_.resetCounters(); }
 

@@ -25,6 +25,11 @@
 // (software_depth_pyramid.h): a box's footprint is its card's cells, its nearest depth the
 // card's; a sphere's footprint is its exact projected rectangle, its depth the distance from the
 // eye to the sphere. Constructed with `with_pyramid` false it lacks the capability.
+// It offers GPU-driven draws (occsim/culling/contract/gpu_driven_draws.h), both tests, over the
+// same raster and the same rules: Pyramid through its own pyramid, BoxRaster as a query on the
+// one box (a box passes when a cell of its card passes), each slot's visibility kept here.
+// Drawn entries join drawnObjects() and the counters as the phases draw them (nothing to
+// resolve); read_backs counts the query answers and pyramid flags handed to the culler.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +39,7 @@
 
 #include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/depth_pyramid.h"
+#include "occsim/culling/contract/gpu_driven_draws.h"
 #include "occsim/culling/contract/render_device.h"
 #include "occsim/culling/geometry/frustum.h"
 #include "occsim/culling/testing/command_latency_queries.h"
@@ -43,7 +49,8 @@ namespace occsim {
 
 class DepthRasterDevice final : public RenderDevice,
                                 private ConditionalRendering,
-                                private DepthPyramid {
+                                private DepthPyramid,
+                                private GpuDrivenDraws {
   public:
     DepthRasterDevice(uint32_t width, uint32_t height, uint32_t latency_commands = 0,
                       bool with_pyramid = true);
@@ -61,6 +68,7 @@ class DepthRasterDevice final : public RenderDevice,
     QueryAnswer takeAnswer(QueryId id) override;
     ConditionalRendering* conditionalRendering() override { return this; }
     DepthPyramid* depthPyramid() override { return with_pyramid_ ? this : nullptr; }
+    GpuDrivenDraws* gpuDrivenDraws() override { return this; }
 
     // The pyramid of the last build() this frame (empty before it).
     const SoftwareDepthPyramid& pyramid() const { return pyramid_; }
@@ -91,6 +99,15 @@ class DepthRasterDevice final : public RenderDevice,
     uint32_t levelOf(const Aabb& box, PyramidBound shape) const override;
     void testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                     std::span<uint8_t> visible) override;
+    void testOnPyramid(std::span<const Aabb> boxes, PyramidBound shape, std::span<uint8_t> visible);
+    // GpuDrivenDraws (depth_raster_gpu_draws.cpp)
+    void resetVisibility() override;
+    void drawFirstPhase(const GpuUnits& units) override;
+    void drawSecondPhase(GpuTest test, PyramidBound shape) override;
+    void readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) override;
+    bool offersBoxRaster() const override { return true; }
+    // The cells of `box`'s card whose stored depth is >= the card's: what a query on it counts.
+    uint64_t passingCells(const Aabb& box) const;
 
     uint32_t width_, height_;
     glm::mat4 view_projection_{1.0f};
@@ -104,6 +121,12 @@ class DepthRasterDevice final : public RenderDevice,
     std::vector<QueryTag> query_log_;
     bool with_pyramid_ = true;
     SoftwareDepthPyramid pyramid_;
+    // GPU-driven draws: per slot, the frame its unit last passed (0: never); this frame's units,
+    // and per unit whether phase 1 drew it and whether it passed; per entry, drawn in phase 1.
+    std::vector<uint64_t> slot_passed_;
+    uint64_t gpu_frame_ = 1;
+    GpuUnits units_;
+    std::vector<uint8_t> unit_first_phase_, unit_passed_, entry_drawn_, flags_;
 };
 
 }  // namespace occsim

@@ -1,0 +1,67 @@
+// DepthRasterDevice's GPU-driven draws (occsim/culling/contract/gpu_driven_draws.h): the two
+// phases over the CPU raster, each slot's visibility kept here, as the GL device keeps it in a
+// buffer. What the GL device does with compute shaders and indirect draws, done in plain loops.
+#include <algorithm>
+#include <cassert>
+
+#include "occsim/culling/testing/depth_raster_device.h"
+
+namespace occsim {
+
+void DepthRasterDevice::resetVisibility() {
+    std::fill(slot_passed_.begin(), slot_passed_.end(), 0);
+}
+
+void DepthRasterDevice::drawFirstPhase(const GpuUnits& units) {
+    assert(units.slots.size() == units.bounds.size() && units.forced.size() == units.bounds.size());
+    assert(units.object_units.size() == units.objects.size());
+    units_ = units;
+    ++gpu_frame_;
+    if (slot_passed_.size() < units.slot_count) slot_passed_.resize(units.slot_count, 0);
+    const size_t unit_count = units.bounds.size();
+    unit_first_phase_.assign(unit_count, 0);
+    unit_passed_.assign(unit_count, 0);
+    for (size_t u = 0; u < unit_count; ++u) {
+        assert(units.slots[u] < units.slot_count);
+        unit_first_phase_[u] = units.forced[u] || slot_passed_[units.slots[u]] + 1 == gpu_frame_;
+    }
+    entry_drawn_.assign(units.objects.size(), 0);
+    for (size_t e = 0; e < units.objects.size(); ++e) {
+        if (!unit_first_phase_[units.object_units[e]]) continue;
+        entry_drawn_[e] = 1;
+        drawObject(units.objects[e]);
+    }
+}
+
+void DepthRasterDevice::drawSecondPhase(GpuTest test, PyramidBound shape) {
+    const size_t unit_count = units_.bounds.size();
+    flags_.assign(unit_count, 1);
+    if (test == GpuTest::Pyramid) {
+        if (with_pyramid_) {
+            build();
+            testOnPyramid(units_.bounds, shape, flags_);
+        }
+    } else {
+        for (size_t u = 0; u < unit_count; ++u) {
+            flags_[u] = passingCells(units_.bounds[u]) > 0 ? 1 : 0;
+        }
+    }
+    for (size_t u = 0; u < unit_count; ++u) {
+        unit_passed_[u] = units_.forced[u] || flags_[u];
+        if (unit_passed_[u]) slot_passed_[units_.slots[u]] = gpu_frame_;
+    }
+    for (size_t e = 0; e < units_.objects.size(); ++e) {
+        if (entry_drawn_[e] || !unit_passed_[units_.object_units[e]]) continue;
+        entry_drawn_[e] = 1;
+        drawObject(units_.objects[e]);
+    }
+    units_ = {};  // the culler's spans are not held beyond this call
+}
+
+void DepthRasterDevice::readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) {
+    assert(first_phase.size() == unit_first_phase_.size() && passed.size() == unit_passed_.size());
+    std::copy(unit_first_phase_.begin(), unit_first_phase_.end(), first_phase.begin());
+    std::copy(unit_passed_.begin(), unit_passed_.end(), passed.begin());
+}
+
+}  // namespace occsim
