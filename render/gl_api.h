@@ -11,90 +11,100 @@
 #include "render/gl_loader.h"
 
 // X(PFN type, name) for every function we call.
-#define OCCSIM_GL_FUNCTIONS(X)                                     \
-    X(PFNGLGETSTRINGPROC, glGetString)                             \
-    X(PFNGLGETSTRINGIPROC, glGetStringi)                           \
-    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                         \
-    X(PFNGLGETERRORPROC, glGetError)                               \
-    X(PFNGLENABLEPROC, glEnable)                                   \
-    X(PFNGLDISABLEPROC, glDisable)                                 \
-    X(PFNGLVIEWPORTPROC, glViewport)                               \
-    X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                     \
-    X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                   \
-    X(PFNGLDEPTHFUNCPROC, glDepthFunc)                             \
-    X(PFNGLDEPTHMASKPROC, glDepthMask)                             \
-    X(PFNGLCOLORMASKPROC, glColorMask)                             \
-    X(PFNGLCOLORMASKIPROC, glColorMaski)                           \
-    X(PFNGLCULLFACEPROC, glCullFace)                               \
-    X(PFNGLCLIPCONTROLPROC, glClipControl)                         \
-    X(PFNGLFINISHPROC, glFinish)                                   \
-    X(PFNGLFLUSHPROC, glFlush)                                     \
-    X(PFNGLREADPIXELSPROC, glReadPixels)                           \
-    X(PFNGLREADBUFFERPROC, glReadBuffer)                           \
-    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                         \
-    X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                         \
-    X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                 \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)           \
-    X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                 \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer) \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)   \
-    X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                 \
-    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)       \
-    X(PFNGLGENTEXTURESPROC, glGenTextures)                         \
-    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                   \
-    X(PFNGLBINDTEXTUREPROC, glBindTexture)                         \
-    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                           \
-    X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)               \
-    X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)         \
-    X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)               \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)         \
-    X(PFNGLGENBUFFERSPROC, glGenBuffers)                           \
-    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                     \
-    X(PFNGLBINDBUFFERPROC, glBindBuffer)                           \
-    X(PFNGLBUFFERDATAPROC, glBufferData)                           \
-    X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                 \
-    X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)           \
-    X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                 \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray) \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)         \
-    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, glDrawElementsBaseVertex)   \
-    X(PFNGLDRAWELEMENTSPROC, glDrawElements)                       \
-    X(PFNGLCREATESHADERPROC, glCreateShader)                       \
-    X(PFNGLSHADERSOURCEPROC, glShaderSource)                       \
-    X(PFNGLCOMPILESHADERPROC, glCompileShader)                     \
-    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                         \
-    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)               \
-    X(PFNGLDELETESHADERPROC, glDeleteShader)                       \
-    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                     \
-    X(PFNGLATTACHSHADERPROC, glAttachShader)                       \
-    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                         \
-    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                       \
-    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)             \
-    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                     \
-    X(PFNGLUSEPROGRAMPROC, glUseProgram)                           \
-    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)           \
-    X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)               \
-    X(PFNGLUNIFORM3FVPROC, glUniform3fv)                           \
-    X(PFNGLUNIFORM1UIPROC, glUniform1ui)                           \
-    X(PFNGLGENQUERIESPROC, glGenQueries)                           \
-    X(PFNGLDELETEQUERIESPROC, glDeleteQueries)                     \
-    X(PFNGLBEGINQUERYPROC, glBeginQuery)                           \
-    X(PFNGLENDQUERYPROC, glEndQuery)                               \
-    X(PFNGLBEGINCONDITIONALRENDERPROC, glBeginConditionalRender)   \
-    X(PFNGLENDCONDITIONALRENDERPROC, glEndConditionalRender)       \
-    X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)             \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)         \
-    X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                 \
-    X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                     \
-    X(PFNGLBINDIMAGETEXTUREPROC, glBindImageTexture)               \
-    X(PFNGLCOPYIMAGESUBDATAPROC, glCopyImageSubData)               \
-    X(PFNGLTEXSTORAGE2DPROC, glTexStorage2D)                       \
-    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                     \
-    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                     \
-    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                   \
-    X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData)               \
-    X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)                     \
-    X(PFNGLUNIFORM1IPROC, glUniform1i)                             \
+#define OCCSIM_GL_FUNCTIONS(X)                                         \
+    X(PFNGLGETSTRINGPROC, glGetString)                                 \
+    X(PFNGLGETSTRINGIPROC, glGetStringi)                               \
+    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                             \
+    X(PFNGLGETERRORPROC, glGetError)                                   \
+    X(PFNGLENABLEPROC, glEnable)                                       \
+    X(PFNGLDISABLEPROC, glDisable)                                     \
+    X(PFNGLVIEWPORTPROC, glViewport)                                   \
+    X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                         \
+    X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                       \
+    X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                 \
+    X(PFNGLDEPTHMASKPROC, glDepthMask)                                 \
+    X(PFNGLCOLORMASKPROC, glColorMask)                                 \
+    X(PFNGLCOLORMASKIPROC, glColorMaski)                               \
+    X(PFNGLCULLFACEPROC, glCullFace)                                   \
+    X(PFNGLCLIPCONTROLPROC, glClipControl)                             \
+    X(PFNGLFINISHPROC, glFinish)                                       \
+    X(PFNGLFLUSHPROC, glFlush)                                         \
+    X(PFNGLREADPIXELSPROC, glReadPixels)                               \
+    X(PFNGLREADBUFFERPROC, glReadBuffer)                               \
+    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                             \
+    X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                             \
+    X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                     \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)               \
+    X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                     \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)     \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)       \
+    X(PFNGLBLITFRAMEBUFFERPROC, glBlitFramebuffer)                     \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, glFramebufferTexture2D)           \
+    X(PFNGLGENTEXTURESPROC, glGenTextures)                             \
+    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                       \
+    X(PFNGLBINDTEXTUREPROC, glBindTexture)                             \
+    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                               \
+    X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                   \
+    X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)             \
+    X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                   \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)             \
+    X(PFNGLGENBUFFERSPROC, glGenBuffers)                               \
+    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                         \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                               \
+    X(PFNGLBUFFERDATAPROC, glBufferData)                               \
+    X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                     \
+    X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)               \
+    X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                     \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)     \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)             \
+    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, glDrawElementsBaseVertex)       \
+    X(PFNGLDRAWELEMENTSPROC, glDrawElements)                           \
+    X(PFNGLCREATESHADERPROC, glCreateShader)                           \
+    X(PFNGLSHADERSOURCEPROC, glShaderSource)                           \
+    X(PFNGLCOMPILESHADERPROC, glCompileShader)                         \
+    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                             \
+    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                   \
+    X(PFNGLDELETESHADERPROC, glDeleteShader)                           \
+    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                         \
+    X(PFNGLATTACHSHADERPROC, glAttachShader)                           \
+    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                             \
+    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                           \
+    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                 \
+    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                         \
+    X(PFNGLUSEPROGRAMPROC, glUseProgram)                               \
+    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)               \
+    X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                   \
+    X(PFNGLUNIFORM3FVPROC, glUniform3fv)                               \
+    X(PFNGLUNIFORM1UIPROC, glUniform1ui)                               \
+    X(PFNGLGENQUERIESPROC, glGenQueries)                               \
+    X(PFNGLDELETEQUERIESPROC, glDeleteQueries)                         \
+    X(PFNGLBEGINQUERYPROC, glBeginQuery)                               \
+    X(PFNGLENDQUERYPROC, glEndQuery)                                   \
+    X(PFNGLBEGINCONDITIONALRENDERPROC, glBeginConditionalRender)       \
+    X(PFNGLENDCONDITIONALRENDERPROC, glEndConditionalRender)           \
+    X(PFNGLGETQUERYOBJECTUIVPROC, glGetQueryObjectuiv)                 \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)             \
+    X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                     \
+    X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                         \
+    X(PFNGLBINDIMAGETEXTUREPROC, glBindImageTexture)                   \
+    X(PFNGLCOPYIMAGESUBDATAPROC, glCopyImageSubData)                   \
+    X(PFNGLTEXSTORAGE2DPROC, glTexStorage2D)                           \
+    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                         \
+    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                         \
+    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                       \
+    X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData)                   \
+    X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)                         \
+    X(PFNGLUNIFORM1IPROC, glUniform1i)                                 \
+    X(PFNGLVERTEXATTRIBDIVISORPROC, glVertexAttribDivisor)             \
+    X(PFNGLVERTEXATTRIBIPOINTERPROC, glVertexAttribIPointer)           \
+    X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC,            \
+      glDrawElementsInstancedBaseVertexBaseInstance)                   \
+    X(PFNGLDRAWELEMENTSINSTANCEDPROC, glDrawElementsInstanced)         \
+    X(PFNGLMULTIDRAWELEMENTSINDIRECTPROC, glMultiDrawElementsIndirect) \
+    X(PFNGLCLEARBUFFERSUBDATAPROC, glClearBufferSubData)               \
+    X(PFNGLCOPYBUFFERSUBDATAPROC, glCopyBufferSubData)                 \
+    X(PFNGLQUERYCOUNTERPROC, glQueryCounter)                           \
+    X(PFNGLUNIFORM1FPROC, glUniform1f)                                 \
     X(PFNGLUNIFORM2IPROC, glUniform2i)
 
 #define OCCSIM_GL_DECLARE(type, name) extern type occsim_##name;
@@ -187,6 +197,16 @@ OCCSIM_GL_FUNCTIONS(OCCSIM_GL_DECLARE)
 #define glBufferSubData occsim_glBufferSubData
 #define glUniform1i occsim_glUniform1i
 #define glUniform2i occsim_glUniform2i
+#define glVertexAttribDivisor occsim_glVertexAttribDivisor
+#define glVertexAttribIPointer occsim_glVertexAttribIPointer
+#define glDrawElementsInstancedBaseVertexBaseInstance \
+    occsim_glDrawElementsInstancedBaseVertexBaseInstance
+#define glDrawElementsInstanced occsim_glDrawElementsInstanced
+#define glMultiDrawElementsIndirect occsim_glMultiDrawElementsIndirect
+#define glClearBufferSubData occsim_glClearBufferSubData
+#define glCopyBufferSubData occsim_glCopyBufferSubData
+#define glQueryCounter occsim_glQueryCounter
+#define glUniform1f occsim_glUniform1f
 
 namespace occsim {
 

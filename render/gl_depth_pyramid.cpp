@@ -239,32 +239,14 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
     tests_.resize(boxes.size());
     for (size_t i = 0; i < boxes.size(); ++i) tests_[i] = testFor(boxes[i], shape);
     const uint32_t count = static_cast<uint32_t>(boxes.size());
-    if (count > buffer_capacity_) {
-        buffer_capacity_ = std::max<size_t>(count, 2 * buffer_capacity_);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, test_buffer_);
-        glBufferData(GL_SHADER_STORAGE_BUFFER,
-                     static_cast<GLsizeiptr>(buffer_capacity_ * sizeof(Test)), nullptr,
-                     GL_STREAM_DRAW);
+    if (count > flag_capacity_) {
+        flag_capacity_ = std::max<size_t>(count, 2 * flag_capacity_);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, flag_buffer_);
         glBufferData(GL_SHADER_STORAGE_BUFFER,
-                     static_cast<GLsizeiptr>(buffer_capacity_ * sizeof(uint32_t)), nullptr,
+                     static_cast<GLsizeiptr>(flag_capacity_ * sizeof(uint32_t)), nullptr,
                      GL_STREAM_READ);
     }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, test_buffer_);
-    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(Test)),
-                    tests_.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, test_buffer_);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, flag_buffer_);
-    glUseProgram(test_program_);
-    glUniform1ui(test_count_loc_, count);
-    glUniform1i(test_reverse_loc_,
-                renderer_.depthConvention() == DepthConvention::ReverseFloat ? 1 : 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, pyramid_);
-    glDispatchCompute(groups(count, 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    renderer_.forgetBoundState();
+    dispatchTests(tests_, flag_buffer_);
     counters_.submit_seconds += steadySecondsSince(start);
 
     const auto wait_start = Clock::now();
@@ -275,6 +257,33 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
                        static_cast<GLsizeiptr>(count * sizeof(uint32_t)), flags_.data());
     for (size_t i = 0; i < count; ++i) visible[i] = flags_[i] != 0 ? 1 : 0;
     counters_.wait_seconds += steadySecondsSince(wait_start);
+}
+
+void GlDepthPyramid::dispatchTests(std::span<const Test> tests, uint32_t flag_buffer) {
+    const uint32_t count = static_cast<uint32_t>(tests.size());
+    if (count == 0) return;
+    if (count > buffer_capacity_) {
+        buffer_capacity_ = std::max<size_t>(count, 2 * buffer_capacity_);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, test_buffer_);
+        glBufferData(GL_SHADER_STORAGE_BUFFER,
+                     static_cast<GLsizeiptr>(buffer_capacity_ * sizeof(Test)), nullptr,
+                     GL_STREAM_DRAW);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, test_buffer_);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(Test)),
+                    tests.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, test_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, flag_buffer);
+    glUseProgram(test_program_);
+    glUniform1ui(test_count_loc_, count);
+    glUniform1i(test_reverse_loc_,
+                renderer_.depthConvention() == DepthConvention::ReverseFloat ? 1 : 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, pyramid_);
+    glDispatchCompute(groups(count, 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    renderer_.forgetBoundState();
 }
 
 void GlDepthPyramid::readLevel(uint32_t level, std::vector<float>& texels, uint32_t* width,

@@ -58,6 +58,10 @@ class GlDepthPyramid final : public DepthPyramid {
     // The record for one box under the renderer's current view and depth convention (public for
     // the tests of the rules as the GPU path applies them).
     Test testFor(const Aabb& box, PyramidBound shape) const;
+    // Runs the test shader on `tests` against the last pyramid built, writing one uint flag per
+    // test into `flag_buffer` (a GL buffer of at least tests.size() uints), and reads nothing
+    // back: what GPU-driven draws (render/gl_gpu_driven_draws.h) build their commands from.
+    void dispatchTests(std::span<const Test> tests, uint32_t flag_buffer);
 
   private:
     void ensureTextures();
@@ -70,7 +74,8 @@ class GlDepthPyramid final : public DepthPyramid {
     uint32_t depth_copy_ = 0, pyramid_ = 0;  // textures
     uint32_t viewport_w_ = 0, viewport_h_ = 0, base_w_ = 0, base_h_ = 0, level_count_ = 0;
     uint32_t test_buffer_ = 0, flag_buffer_ = 0;
-    size_t buffer_capacity_ = 0;  // bounds the buffers hold
+    size_t buffer_capacity_ = 0;  // tests the test buffer holds
+    size_t flag_capacity_ = 0;    // flags the flag buffer holds
     bool built_ = false;
     std::vector<Test> tests_;
     std::vector<uint32_t> flags_;

@@ -43,6 +43,31 @@ DepthPyramid* GlQueryDevice::depthPyramid() {
     return pyramid_.get();
 }
 
+GpuDrivenDraws* GlQueryDevice::gpuDrivenDraws() {
+    if (!gpu_draws_tried_) {
+        gpu_draws_tried_ = true;
+        // The pyramid test needs the depth pyramid; box rasterisation does not.
+        auto* pyramid = static_cast<GlDepthPyramid*>(depthPyramid());
+        try {
+            gpu_draws_ = std::make_unique<GlGpuDrivenDraws>(renderer_, pyramid, counters_);
+        } catch (const std::runtime_error&) {
+            gpu_draws_.reset();  // no compute shaders or storage buffers: the capability is absent
+        }
+    }
+    return gpu_draws_.get();
+}
+
+void GlQueryDevice::resolveGpuDrivenDraws() {
+    if (!gpu_draws_) return;
+    gpu_draws_->takeDrawnEntries(gpu_drawn_);
+    for (const GlRenderer::DrawCommand& c : gpu_drawn_) {
+        const uint32_t object = c.base_instance;
+        if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
+        ++counters_.objects_drawn;
+        counters_.triangles_drawn += c.count / 3;
+    }
+}
+
 uint32_t GlQueryDevice::queriesInFlight() const {
     return static_cast<uint32_t>(gl_queries_.size() - free_ids_.size() - held_ids_.size());
 }

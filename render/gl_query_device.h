@@ -29,6 +29,7 @@
 #include "occsim/culling/contract/conditional_rendering.h"
 #include "occsim/culling/contract/render_device.h"
 #include "render/gl_depth_pyramid.h"
+#include "render/gl_gpu_driven_draws.h"
 #include "render/gl_renderer.h"
 
 namespace occsim {
@@ -49,6 +50,13 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     // The depth pyramid (render/gl_depth_pyramid.h), made on first use; nullptr when this
     // context cannot compile its compute shaders.
     DepthPyramid* depthPyramid() override;
+    // GPU-driven draws (render/gl_gpu_driven_draws.h), made on first use; nullptr when this
+    // context cannot compile their shaders.
+    GpuDrivenDraws* gpuDrivenDraws() override;
+    // After the frame, outside any timing: adds the objects the GPU-driven draws drew this frame
+    // to the drawn set and to the counters (objects_drawn, triangles_drawn), reading their command
+    // lists back. Does nothing in a frame without them.
+    void resolveGpuDrivenDraws();
 
     uint32_t queriesInFlight() const;
 
@@ -119,6 +127,9 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     uint32_t drawn_set_ = 1;
     std::unique_ptr<GlDepthPyramid> pyramid_;
     bool pyramid_tried_ = false;
+    std::unique_ptr<GlGpuDrivenDraws> gpu_draws_;
+    bool gpu_draws_tried_ = false;
+    std::vector<GlRenderer::DrawCommand> gpu_drawn_;  // reused by resolveGpuDrivenDraws()
 };
 
 }  // namespace occsim

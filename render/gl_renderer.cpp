@@ -14,24 +14,32 @@
 namespace occsim {
 namespace {
 
-// Object colour comes from its ID so every object looks distinct in captures without per-object
-// uniforms; lighting is a head light, two-sided because some meshes are open (the teapot's lid).
+// One program for every draw, direct (one object, its index as the base instance) or indirect
+// (GPU-written commands, render/gl_gpu_driven_draws.h): each object's model-view matrix and ID
+// are per-instance attributes read at the base instance, so both paths run the same shader on
+// the same inputs and write the same fragments (ground truth and a culled frame compare bit for
+// bit). Object colour comes from its ID so every object looks distinct in captures without
+// per-object uniforms; lighting is a head light, two-sided because some meshes are open (the
+// teapot's lid).
 const char* kDrawVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-uniform mat4 u_model_view;
+layout(location = 2) in mat4 a_model_view;
+layout(location = 6) in uint a_object_id;
 uniform mat4 u_projection;
 out vec3 v_normal;
+flat out uint v_object_id;
 void main() {
-    vec4 p = u_model_view * vec4(a_position, 1.0);
-    v_normal = mat3(u_model_view) * a_normal;
+    vec4 p = a_model_view * vec4(a_position, 1.0);
+    v_normal = mat3(a_model_view) * a_normal;
+    v_object_id = a_object_id;
     gl_Position = u_projection * p;
 }
 )";
 
 const char* kDrawFragmentShader = R"(#version 330 core
 in vec3 v_normal;
-uniform uint u_object_id;
+flat in uint v_object_id;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out uint o_object_id;
 vec3 idColor(uint id) {
@@ -42,8 +50,8 @@ vec3 idColor(uint id) {
 }
 void main() {
     float light = 0.25 + 0.75 * abs(normalize(v_normal).z);
-    o_color = vec4(idColor(u_object_id) * light, 1.0);
-    o_object_id = u_object_id;
+    o_color = vec4(idColor(v_object_id) * light, 1.0);
+    o_object_id = v_object_id;
 }
 )";
 
@@ -121,9 +129,7 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     draw_program_ = linkProgram(
         {{GL_VERTEX_SHADER, kDrawVertexShader}, {GL_FRAGMENT_SHADER, kDrawFragmentShader}},
         "the renderer's draw program");
-    draw_model_view_loc_ = glGetUniformLocation(draw_program_, "u_model_view");
     draw_projection_loc_ = glGetUniformLocation(draw_program_, "u_projection");
-    draw_object_id_loc_ = glGetUniformLocation(draw_program_, "u_object_id");
     query_program_ = linkProgram(
         {{GL_VERTEX_SHADER, kQueryVertexShader}, {GL_FRAGMENT_SHADER, kQueryFragmentShader}},
         "the renderer's query program");
@@ -157,8 +163,8 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
 GlRenderer::~GlRenderer() {
     glDeleteProgram(draw_program_);
     glDeleteProgram(query_program_);
-    const GLuint buffers[] = {mesh_vbo_, mesh_ibo_, box_vbo_, box_ibo_};
-    glDeleteBuffers(4, buffers);
+    const GLuint buffers[] = {mesh_vbo_, mesh_ibo_, box_vbo_, box_ibo_, model_view_vbo_, id_vbo_};
+    glDeleteBuffers(6, buffers);
     const GLuint arrays[] = {mesh_vao_, box_vao_};
     glDeleteVertexArrays(2, arrays);
     const GLuint rbs[] = {color_rb_, id_rb_, depth_rb_};
@@ -208,6 +214,8 @@ void GlRenderer::uploadMeshes(std::span<const MeshData> meshes) {
         glGenVertexArrays(1, &mesh_vao_);
         glGenBuffers(1, &mesh_vbo_);
         glGenBuffers(1, &mesh_ibo_);
+        glGenBuffers(1, &model_view_vbo_);
+        glGenBuffers(1, &id_vbo_);
     }
     glBindVertexArray(mesh_vao_);
     glBindBuffer(GL_ARRAY_BUFFER, mesh_vbo_);
@@ -222,6 +230,19 @@ void GlRenderer::uploadMeshes(std::span<const MeshData> meshes) {
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                           reinterpret_cast<const void*>(3 * sizeof(float)));
+    // Per instance: the model-view matrix (four columns) and the object ID, one each per object,
+    // read at the draw's base instance (the object's index).
+    glBindBuffer(GL_ARRAY_BUFFER, model_view_vbo_);
+    for (GLuint column = 0; column < 4; ++column) {
+        glEnableVertexAttribArray(2 + column);
+        glVertexAttribPointer(2 + column, 4, GL_FLOAT, GL_FALSE, sizeof(glm::mat4),
+                              reinterpret_cast<const void*>(column * sizeof(glm::vec4)));
+        glVertexAttribDivisor(2 + column, 1);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, id_vbo_);
+    glEnableVertexAttribArray(6);
+    glVertexAttribIPointer(6, 1, GL_UNSIGNED_INT, sizeof(uint32_t), nullptr);
+    glVertexAttribDivisor(6, 1);
     glBindVertexArray(0);
     state_ = State::None;
     checkGl("mesh upload");
@@ -232,6 +253,19 @@ void GlRenderer::setObjectMeshes(std::span<const uint32_t> mesh_of_object) {
         if (m >= meshes_.size()) throw std::out_of_range("object refers to a mesh never uploaded");
     }
     object_mesh_.assign(mesh_of_object.begin(), mesh_of_object.end());
+    // Object i's ID is i + 1 (0 is the background).
+    std::vector<uint32_t> ids(object_mesh_.size());
+    for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<uint32_t>(i + 1);
+    if (mesh_vao_ == 0) throw std::logic_error("setObjectMeshes before uploadMeshes");
+    glBindBuffer(GL_ARRAY_BUFFER, id_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(ids.size() * sizeof(uint32_t)),
+                 ids.data(), GL_STATIC_DRAW);
+    checkGl("object IDs");
+}
+
+GlRenderer::DrawCommand GlRenderer::drawCommandFor(uint32_t object) const {
+    const MeshRange& mesh = meshes_[object_mesh_[object]];
+    return {mesh.index_count, 1, mesh.first_index, static_cast<uint32_t>(mesh.base_vertex), object};
 }
 
 uint32_t GlRenderer::triangleCount(uint32_t object) const {
@@ -240,7 +274,14 @@ uint32_t GlRenderer::triangleCount(uint32_t object) const {
 
 void GlRenderer::setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view) {
     view_ = view;
-    object_model_view_ = object_model_view;
+    // Copied to the GPU now, before any timing, as an engine keeps its transforms there: a draw is
+    // then only a draw call, direct or indirect.
+    if (mesh_vao_ != 0) {
+        glBindBuffer(GL_ARRAY_BUFFER, model_view_vbo_);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(object_model_view.size() * sizeof(glm::mat4)),
+                     object_model_view.data(), GL_STREAM_DRAW);
+    }
     state_ = State::None;  // the projection uniform must be re-sent
 }
 
@@ -280,12 +321,21 @@ void GlRenderer::useState(State wanted) {
 void GlRenderer::drawObject(uint32_t object) {
     useState(State::Draw);
     const MeshRange& mesh = meshes_[object_mesh_[object]];
-    glUniformMatrix4fv(draw_model_view_loc_, 1, GL_FALSE, &object_model_view_[object][0][0]);
-    glUniform1ui(draw_object_id_loc_, object + 1);
-    glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(size_t{mesh.first_index} * 4),
-                             mesh.base_vertex);
+    glDrawElementsInstancedBaseVertexBaseInstance(
+        GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex, object);
 }
+
+void GlRenderer::drawIndirect(uint32_t command_buffer, uint32_t count) {
+    if (count == 0) return;
+    useState(State::Draw);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_buffer);
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count),
+                                0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+void GlRenderer::useBoxState() { useState(State::Query); }
 
 void GlRenderer::drawQueryBox(const Aabb& box) {
     useState(State::Query);

@@ -1,6 +1,7 @@
 // The OpenGL renderer: one framebuffer with colour (RGBA8), object ID (R32UI: object index + 1,
-// 0 = background) and float depth; all meshes in one vertex and one index buffer; one draw call
-// per object. Needs a current GlContext.
+// 0 = background) and float depth; all meshes in one vertex and one index buffer, every object's
+// model-view matrix in one per-instance buffer; one draw call per object, or one multi-draw of
+// GPU-written commands (drawIndirect). Needs a current GlContext.
 //
 // Conventions: right-handed world, y up, metres. Rendering is camera-relative (object matrices
 // are computed in double relative to the eye, then cast to float) with reverse-Z (clip control
@@ -66,12 +67,28 @@ class GlRenderer {
     uint32_t triangleCount(uint32_t object) const;
     uint32_t objectCount() const { return static_cast<uint32_t>(object_mesh_.size()); }
 
-    // Per frame: the view and every object's camera-relative model-view matrix. The span must
-    // stay valid until the frame's last draw.
+    // Per frame: the view and every object's camera-relative model-view matrix (copied to the
+    // GPU here).
     void setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view);
 
     void beginFrame();  // binds the framebuffer, clears colour, IDs and depth
     void drawObject(uint32_t object);
+    // One draw of an object as glMultiDrawElementsIndirect reads it (std430 and the GL layout
+    // agree: five uints); base_instance is the object, which selects its matrix and ID.
+    struct DrawCommand {
+        uint32_t count, instance_count, first_index, base_vertex, base_instance;
+    };
+    DrawCommand drawCommandFor(uint32_t object) const;
+    // Draws `count` commands of `command_buffer` (a GL buffer of DrawCommand) in one call, with
+    // the state drawObject() uses: what a GPU-written command list draws.
+    void drawIndirect(uint32_t command_buffer, uint32_t count);
+    // Binds the state query boxes are drawn with (no colour or depth writes, GL_GEQUAL / GL_LEQUAL
+    // depth test) for a pass that draws boxes with its own program (box rasterisation).
+    void useBoxState();
+    // The box geometry query boxes are drawn from: the unit cube [0,1]^3 (3 floats a corner),
+    // 36 byte indices.
+    uint32_t boxVertexBuffer() const { return box_vbo_; }
+    uint32_t boxIndexBuffer() const { return box_ibo_; }
     void drawQueryBox(const Aabb& box);  // inside glBeginQuery/glEndQuery, writes nothing
     // The near-plane rule (nearPlaneTouchesBox, occsim/culling/geometry/query_box.h) on a query box
     // in the culling frame, as this renderer draws it: a query on it cannot be trusted.
@@ -106,9 +123,10 @@ class GlRenderer {
     DepthConvention depth_ = DepthConvention::ReverseFloat;
     uint32_t fbo_ = 0, color_rb_ = 0, id_rb_ = 0, depth_rb_ = 0;
     uint32_t draw_program_ = 0, query_program_ = 0;
-    int draw_model_view_loc_ = -1, draw_projection_loc_ = -1, draw_object_id_loc_ = -1;
+    int draw_projection_loc_ = -1;
     int query_model_view_loc_ = -1, query_projection_loc_ = -1;
     uint32_t mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
+    uint32_t model_view_vbo_ = 0, id_vbo_ = 0;  // per object (instance)
     uint32_t box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0;
 
     struct MeshRange {
@@ -119,7 +137,6 @@ class GlRenderer {
     std::vector<MeshRange> meshes_;
     std::vector<uint32_t> object_mesh_;
     ViewSetup view_;
-    std::span<const glm::mat4> object_model_view_;
     State state_ = State::None;
 };
 

@@ -18,7 +18,7 @@ import os
 import sys
 
 ORDER = ["vfc", "stop-and-wait", "statistical", "statistical+", "chc", "chc++", "async", "conditional",
-         "hzb", "masked", "ideal-box", "ideal"]
+         "hzb", "raster", "masked", "ideal-box", "ideal"]
 NOT_CONSERVATIVE = {"async", "ideal", "ideal-box"}  # async may miss; the oracles are not cullers
 # ideal-box is not timed against the cullers (it queries every box it cannot rule out): the tables
 # give its triangles per frame beside those of the query cullers and Ideal instead of a speedup.

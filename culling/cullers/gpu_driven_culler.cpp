@@ -1,6 +1,8 @@
 // GPU-driven two-phase culling; see gpu_driven_culler.h and docs/hzb.md.
 #include "culling/cullers/gpu_driven_culler.h"
 
+#include <algorithm>
+
 #include "occsim/culling/contract/depth_pyramid.h"
 #include "occsim/culling/contract/render_device.h"
 
@@ -109,12 +111,17 @@ void GpuDrivenCuller::afterFrame(RenderDevice& device) {
     if (!used_device_) return;
     GpuDrivenDraws* gpu = device.gpuDrivenDraws();
     if (!gpu) return;
+    // Read back only for someone who records: outside the timing, but not free.
+    if (!view_.decisions) return;
     first_phase_.assign(bounds_.size(), 0);
     passed_.assign(bounds_.size(), 0);
     gpu->readResults(first_phase_, passed_);
-    if (!view_.decisions) return;
     const bool boxes = options_.test == GpuTest::BoxRaster;
-    const DepthPyramid* pyramid = boxes ? nullptr : device.depthPyramid();
+    // With nothing drawn in phase 1 the pyramid held only the far plane and hid nothing: said as
+    // the read-back `hzb` says it, which builds none then.
+    const bool empty_pyramid = !boxes && std::none_of(first_phase_.begin(), first_phase_.end(),
+                                                      [](uint8_t drew) { return drew != 0; });
+    const DepthPyramid* pyramid = boxes || empty_pyramid ? nullptr : device.depthPyramid();
     for (size_t u = 0; u < bounds_.size(); ++u) {
         Decision why;
         if (forced_[u]) {
@@ -129,6 +136,7 @@ void GpuDrivenCuller::afterFrame(RenderDevice& device) {
                     ? (boxes ? DecisionKind::DrawnOnBoxRaster : DecisionKind::DrawnOnPyramid)
                     : (boxes ? DecisionKind::CulledOnBoxRaster : DecisionKind::CulledOnPyramid));
             why.phase = 2;
+            if (empty_pyramid) why.flags |= kDecisionNoPyramid;
             if (pyramid) {
                 const uint32_t level = pyramid->levelOf(bounds_[u], options_.shape);
                 why.level =

@@ -17,7 +17,7 @@
 //      every unit's answer for the next frame.
 // Conservative whatever phase 1 drew, as hzb_culler.h says: the depth tested against holds only
 // what is really in the frame. After the frame (afterFrame) the culler reads the device's
-// per-unit answers, only to record its reasons when someone records.
+// per-unit answers, only when someone records its reasons.
 //
 // Needs the device's GPU-driven draws (DeviceFeature kGpuDrivenDraws; and kDepthPyramid for the
 // pyramid, kBoxRaster for boxes): a run on a device without them is refused before frame 0.
@@ -50,11 +50,8 @@ class GpuDrivenCuller final : public Culler {
     void afterFrame(RenderDevice& device) override;
 
     const GpuDrivenOptions& options() const { return options_; }
-    // The last frame's units and what the device said of each (after afterFrame(); empty when
-    // the device had no GPU-driven draws): tests of the culler's rules.
+    // The last frame's units (0 when the device had no GPU-driven draws): tests of the rules.
     uint32_t lastUnits() const { return static_cast<uint32_t>(bounds_.size()); }
-    const std::vector<uint8_t>& lastFirstPhase() const { return first_phase_; }
-    const std::vector<uint8_t>& lastPassed() const { return passed_; }
 
   private:
     void collectUnits(const BspTree& tree, const CullFrame& frame);

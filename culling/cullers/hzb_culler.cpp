@@ -1,6 +1,7 @@
 // Two-phase hierarchical-Z culling; see hzb_culler.h and docs/hzb.md.
 #include "culling/cullers/hzb_culler.h"
 
+#include "culling/cullers/gpu_driven_culler.h"
 #include "occsim/culling/declaration/culler_row.h"
 #include "occsim/culling/declaration/option_table.h"
 
@@ -149,6 +150,19 @@ const OptionTable<HzbOptions>& hzbOptionTable() {
         booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, node_units),
                       "test BSP nodes (their bounds; a node that passes draws its own objects) "
                       "instead of objects"),
+        booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, read_back),
+                      "read the pyramid's flags back in the frame and draw phase 2 from the CPU "
+                      "(the scheme before GPU-driven draws) instead of deciding and drawing both "
+                      "phases on the device"),
+    };
+    return table;
+}
+
+const OptionTable<GpuDrivenOptions>& rasterOptionTable() {
+    static const OptionTable<GpuDrivenOptions> table = {
+        booleanOption(OCCSIM_OPTION_MEMBER(GpuDrivenOptions, node_units),
+                      "test BSP nodes (their bounds; a node that passes draws its own objects) "
+                      "instead of objects"),
     };
     return table;
 }
@@ -163,10 +177,34 @@ CullerRow hzbRegistration() {
         "the rest tested on it";
     t.conservative = true;
     t.issues_queries = false;
-    t.device_needs = kDepthPyramid;
+    t.device_needs = kDepthPyramid | kGpuDrivenDraws;
     t.options = hzbOptionTable().descriptor(HzbOptions{});
     t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
-        return std::make_unique<HzbCuller>(hzbOptionTable().read(c.options));
+        const HzbOptions options = hzbOptionTable().read(c.options);
+        if (options.read_back) return std::make_unique<HzbCuller>(options);
+        GpuDrivenOptions gpu;
+        gpu.test = GpuTest::Pyramid;
+        gpu.shape = options.sphere_bounds ? PyramidBound::Sphere : PyramidBound::Box;
+        gpu.node_units = options.node_units;
+        return std::make_unique<GpuDrivenCuller>(gpu);
+    };
+    return t;
+}
+
+CullerRow rasterRegistration() {
+    CullerRow t;
+    t.name = "raster";
+    t.summary =
+        "GPU-driven two-phase culling that rasterises each object's box against the depth "
+        "buffer (last frame's visible set first)";
+    t.conservative = true;
+    t.issues_queries = false;
+    t.device_needs = kGpuDrivenDraws | kBoxRaster;
+    t.options = rasterOptionTable().descriptor(GpuDrivenOptions{});
+    t.factory = [](const CullerContext& c) -> std::unique_ptr<Culler> {
+        GpuDrivenOptions options = rasterOptionTable().read(c.options);
+        options.test = GpuTest::BoxRaster;
+        return std::make_unique<GpuDrivenCuller>(options);
     };
     return t;
 }

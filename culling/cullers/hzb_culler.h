@@ -1,6 +1,8 @@
-// Two-phase hierarchical-Z culling, as GPU-driven renderers do it (zeux/niagara's early and late
-// passes; nvpro-samples/gl_occlusion_culling's "temporal current frame"; bevy and Unity 6 use the
-// same scheme): docs/hzb.md says how it works here, its sources and every deviation.
+// Two-phase hierarchical-Z culling with the pyramid's flags read back (`hzb read_back=true`; the
+// default `hzb` is GPU-driven: gpu_driven_culler.h), as GPU-driven renderers do it (zeux/niagara's
+// early and late passes; nvpro-samples/gl_occlusion_culling's "temporal current frame"; bevy and
+// Unity 6 use the same scheme): docs/hzb.md says how it works here, its sources and every
+// deviation.
 //
 // Each frame, over the units in the frustum (objects, or BSP nodes: HzbOptions::node_units):
 //   1. phase 1 draws the units that were visible last frame, at their current transforms, and
@@ -38,6 +40,11 @@ struct HzbOptions {
     // stored in it) rather than objects. A node whose bound reaches the near plane hands its
     // objects down as units of their own.
     bool node_units = false;
+    // The scheme as first built here: the culler reads the pyramid's flags back in the frame and
+    // draws phase 2 itself (HzbCuller). Without it (the default) `hzb` is GPU-driven as engines
+    // ship it (GpuDrivenCuller, gpu_driven_culler.h): the device decides and draws both phases
+    // and nothing is read back in the frame; both draw the same objects frame by frame.
+    bool read_back = false;
 };
 
 class HzbCuller final : public Culler {

@@ -13,15 +13,17 @@ CullerRow chcppRegistration();            // cullers/chcpp_culler.cpp
 CullerRow asyncRegistration();            // cullers/async_culler.cpp
 CullerRow conditionalRegistration();      // cullers/conditional_culler.cpp
 CullerRow hzbRegistration();              // cullers/hzb_culler.cpp
+CullerRow rasterRegistration();           // cullers/hzb_culler.cpp
 CullerRow idealRegistration();            // cullers/basic_cullers.cpp
 CullerRow idealBoxRegistration();         // cullers/basic_cullers.cpp
 CullerRow maskedRegistration();           // cullers/masked_culler.cpp
 
 void registerBuiltinCullers(CullerRegistry& registry) {
-    for (CullerRow (*row)() : {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
-                               statisticalPlusRegistration, chcRegistration, chcppRegistration,
-                               asyncRegistration, conditionalRegistration, hzbRegistration,
-                               maskedRegistration, idealRegistration, idealBoxRegistration}) {
+    for (CullerRow (*row)() :
+         {vfcRegistration, stopAndWaitRegistration, statisticalRegistration,
+          statisticalPlusRegistration, chcRegistration, chcppRegistration, asyncRegistration,
+          conditionalRegistration, hzbRegistration, rasterRegistration, maskedRegistration,
+          idealRegistration, idealBoxRegistration}) {
         registry.add(row());
     }
 }

@@ -30,11 +30,15 @@ std::string deviceFeatureNames(uint32_t features) {
         {kGpuDrivenDraws, "GPU-driven draws (multi-draw indirect and storage buffers)"},
         {kBoxRaster, "box rasterisation (storage buffers written by fragment shaders)"},
     };
-    std::string out;
+    // "a", "a and b", "a, b and c".
+    std::vector<const char*> names;
     for (const auto& [bit, name] : kNames) {
-        if (!(features & bit)) continue;
-        if (!out.empty()) out += ", ";
-        out += name;
+        if (features & bit) names.push_back(name);
+    }
+    std::string out;
+    for (size_t i = 0; i < names.size(); ++i) {
+        if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+        out += names[i];
     }
     return out;
 }

@@ -109,7 +109,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
            "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
-           "executed_triangles\n";
+           "executed_triangles,read_backs\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -126,7 +126,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
                     << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
                     << f.overdrawn_triangles << ',' << f.executed_objects << ','
-                    << f.executed_triangles << '\n';
+                    << f.executed_triangles << ',' << f.read_backs << '\n';
             }
         }
     }
@@ -191,6 +191,7 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         // not); equal to the submitted counts for every culler that draws no conditional draw.
         {"executed_objects_per_frame", s.executed_objects_mean},
         {"executed_triangles_per_frame", s.executed_triangles_mean},
+        {"read_backs_per_frame", s.read_backs_mean},
         // null where not measured: see machine.gpu_time_meaningful.
         {"gpu_ms", s.gpu_ms_mean >= 0
                        ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}

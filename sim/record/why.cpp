@@ -90,7 +90,7 @@ std::string reasonWords(const Decision& d, uint32_t frame, bool drawn) {
             if (d.phase == 1) {
                 s = "in phase 1: it was visible last frame";
             } else if (d.flags & kDecisionNoPyramid) {
-                s = "untested: phase 1 drew nothing, so no pyramid was built";
+                s = "phase 1 drew nothing, so the pyramid hid nothing";
             } else if (d.level == Decision::kNoLevel) {
                 s = "in phase 2: the pyramid could not test its bound";
             } else {

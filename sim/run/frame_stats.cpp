@@ -29,7 +29,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
     std::vector<double> frame_ms, gpu_ms;
     bool gpu_measured = true;
     double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
-    double executed_objects = 0, executed_triangles = 0;
+    double executed_objects = 0, executed_triangles = 0, read_backs = 0;
     for (const FrameStats& f : frames) {
         if (f.error_pixels >= 0) {
             s.error_measured = true;
@@ -59,6 +59,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         triangles += static_cast<double>(f.triangles);
         executed_objects += static_cast<double>(f.executed_objects);
         executed_triangles += static_cast<double>(f.executed_triangles);
+        read_backs += static_cast<double>(f.read_backs);
     }
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
@@ -92,6 +93,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.triangles_mean = triangles / n;
         s.executed_objects_mean = executed_objects / n;
         s.executed_triangles_mean = executed_triangles / n;
+        s.read_backs_mean = read_backs / n;
     }
     return s;
 }
@@ -187,6 +189,7 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.executed_objects_mean = median([](const RunSummary& r) { return r.executed_objects_mean; });
     out.executed_triangles_mean =
         median([](const RunSummary& r) { return r.executed_triangles_mean; });
+    out.read_backs_mean = median([](const RunSummary& r) { return r.read_backs_mean; });
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });

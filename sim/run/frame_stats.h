@@ -28,6 +28,9 @@ struct FrameStats {
     // query's result (render/gl_query_device.h: counted with GL_PRIMITIVES_GENERATED).
     uint64_t executed_objects = 0;
     uint64_t executed_triangles = 0;
+    // Reads of device results during the frame (query answers, pyramid flags): each makes the
+    // CPU wait for the device's work so far. GPU-driven cullers make none (DeviceCounters).
+    uint64_t read_backs = 0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -67,6 +70,7 @@ struct RunSummary {
     double answer_latency_median = -1, answer_latency_p95 = -1;
     double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
     double executed_objects_mean = 0, executed_triangles_mean = 0;  // over the timed frames
+    double read_backs_mean = 0;                                     // over the timed frames
     bool error_measured = false;
     int64_t error_pixels_total = 0;
     int64_t error_pixels_worst = 0;

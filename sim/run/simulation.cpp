@@ -121,8 +121,14 @@ FrameStats Simulation::renderFrame() {
     stats.frame_ms = nowMs() - frame_start;
     if (gpu_timer_) stats.gpu_ms = gpu_timer_->resultMs();
     recordAnswerLatencies(frame, stats);
+    // Outside the timing: what GPU-driven draws drew (read back from their command lists), then
+    // the culler's own look at the device's decisions, for its decision log.
+    const uint64_t read_backs_in_frame = device_->counters().read_backs;
+    gl_device_.resolveGpuDrivenDraws();
+    culler_->afterFrame(*device_);
 
     const DeviceCounters& c = device_->counters();
+    stats.read_backs = read_backs_in_frame;
     stats.wait_ms = c.wait_seconds * 1e3;
     // The culler's own work: its time minus every device call (draws, queries, polls, waits).
     stats.cull_cpu_ms =

@@ -12,6 +12,7 @@
 #include "culling/cullers/hzb_culler.h"
 #include "culling_fixtures.h"
 #include "occsim/culling/contract/decision_log.h"
+#include "occsim/culling/registry/registry.h"
 #include "occsim/culling/testing/depth_raster_device.h"
 #include "occsim/culling/testing/scripted_query_device.h"
 
@@ -322,6 +323,26 @@ TEST(GpuDrivenCuller, OnADeviceWithoutTheCapabilityItDrawsTheFrustum) {
         in_frustum += classify(frame.view.frustum, box) != FrustumTest::Outside;
     EXPECT_EQ(device.counters().objects_drawn, in_frustum);
     EXPECT_EQ(culler.lastUnits(), 0u);
+}
+
+// `raster` on a device without GPU-driven draws or box rasterisation is refused before any work,
+// with one line naming the culler and what is missing (the run exits 2 on it).
+TEST(GpuDrivenCuller, RasterOnADeviceWithoutTheCapabilitiesIsRefusedWithOneLine) {
+    const CullerRow* raster = findCuller("raster");
+    ASSERT_NE(raster, nullptr);
+    EXPECT_EQ(raster->device_needs, uint32_t{kGpuDrivenDraws | kBoxRaster});
+    ScriptedQueryDevice scripted;
+    try {
+        requireDeviceFeatures(*raster, scripted.features());
+        ADD_FAILURE() << "refused nothing";
+    } catch (const RegistryError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "culler 'raster' needs GPU-driven draws (multi-draw indirect and storage "
+                  "buffers) and box rasterisation (storage buffers written by fragment shaders), "
+                  "which this device does not offer");
+    }
+    DepthRasterDevice capable(8, 8);
+    EXPECT_NO_THROW(requireDeviceFeatures(*raster, capable.features()));
 }
 
 TEST(GpuDrivenCuller, TheSoftwareDeviceOffersBothTests) {

@@ -15,6 +15,7 @@
 #include "culling/cullers/chc_culler.h"
 #include "culling/cullers/chcpp_culler.h"
 #include "culling/cullers/conditional_culler.h"
+#include "culling/cullers/gpu_driven_culler.h"
 #include "culling/cullers/hzb_culler.h"
 #include "culling/cullers/masked_culler.h"
 #include "culling/cullers/statistical_culler.h"
@@ -36,7 +37,8 @@ std::type_index builtinCullerType(const std::string& name) {
         {"chc++", typeid(ChcppCuller)},
         {"async", typeid(AsyncCuller)},
         {"conditional", typeid(ConditionalCuller)},
-        {"hzb", typeid(HzbCuller)},
+        {"hzb", typeid(GpuDrivenCuller)},  // `read_back=true`: HzbCuller
+        {"raster", typeid(GpuDrivenCuller)},
         {"masked", typeid(MaskedCuller)},
         {"statistical", typeid(StatisticalCuller)},
         {"statistical+", typeid(StatisticalCuller)},

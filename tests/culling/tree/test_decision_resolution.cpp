@@ -181,6 +181,7 @@ class RasterRun {
         log_.clear();
         frame.decisions = &log_;
         culler_->cullAndRender(tree_, frame, device_);
+        culler_->afterFrame(device_);  // as the simulation does, once the frame is over
         resolveDecisions(tree_, log_.records(), s.why, stack_);
         s.drawn.assign(boxes_.size(), 0);
         for (uint32_t o : device_.drawnObjects()) s.drawn[o] = 1;

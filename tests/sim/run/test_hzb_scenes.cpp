@@ -1,8 +1,10 @@
-// hzb end to end through the GL device, on the scenes that break careless depth pyramids, all in
+// hzb and raster end to end through the GL device (both GPU-driven: commands written and drawn on
+// the device), on the scenes that break careless depth pyramids and box tests, all in
 // one flight: viewports of odd sizes, two camera cuts, a pass 4 mm above the ground with the near
 // plane at 1 mm, the camera flying through large closed boxes, near/far of 10^-3/10^6, the scene
 // 10^6 m from the origin, and both depth conventions. Every frame must have zero error pixels and
-// zero missed objects, with boxes and with spheres, objects and nodes as units.
+// zero missed objects, with boxes and with spheres, objects and nodes as units; raster draws no
+// more objects than hzb.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -64,14 +66,19 @@ json trapScene(uint32_t width, uint32_t height, const glm::dvec3& o, bool conven
              {"replicate",
               {{"mode", "grid"}, {"count_x", 1}, {"count_z", 2}, {"spacing", 24}}}}}}}},
         {"movers", {{{"source", 0}, {"fraction", 0.3}, {"motion", "bounce"}, {"speed", {2, 6}}}}},
-        {"culling", {{"algorithm", "hzb"}, {"hzb", hzb_options}}},
+        {"culling",
+         {{"algorithm", "hzb"},
+          {"hzb", hzb_options},
+          {"raster", hzb_options.contains("node_units")
+                         ? json{{"node_units", hzb_options["node_units"]}}
+                         : json::object()}}},
     };
     return s;
 }
 
 void expectZeroError(const json& scene, const std::string& what) {
     BenchOptions options;
-    options.algorithms = {findCuller("vfc"), findCuller("hzb")};
+    options.algorithms = {findCuller("vfc"), findCuller("hzb"), findCuller("raster")};
     options.measure_error = true;
     options.latency = {true, 4};
     const BenchResult result = runBenchmark(
@@ -81,9 +88,18 @@ void expectZeroError(const json& scene, const std::string& what) {
         EXPECT_EQ(r.summary.missed_objects_total, 0) << what << ": " << r.algorithm->name;
         EXPECT_GT(r.summary.objects_mean, 0.0) << what << ": " << r.algorithm->name;
     }
-    ASSERT_EQ(result.runs.size(), 2u);
+    ASSERT_EQ(result.runs.size(), 3u);
     EXPECT_LT(result.runs[1].summary.objects_mean, result.runs[0].summary.objects_mean)
         << what << ": hzb culls something";
+    EXPECT_LE(result.runs[2].summary.objects_mean, result.runs[1].summary.objects_mean)
+        << what << ": raster draws no more than hzb";
+    for (const RunRecord& r : result.runs) {
+        for (const FrameStats& f : r.frames) {
+            if (r.algorithm->name != "vfc") {
+                EXPECT_EQ(f.read_backs, 0u) << what << ": " << r.algorithm->name;
+            }
+        }
+    }
 }
 
 TEST(HzbScenes, OddViewportsCutsNearSurfacesAndFarFromTheOriginKeepZeroError) {

@@ -56,7 +56,7 @@ enum DecisionFlag : uint8_t {
     kDecisionDistance = 1u << 2,    // statistical: the interval is in metres travelled, not seconds
     kDecisionFallback = 1u << 3,    // statistical+: a fallback frame of frustum culling only
     kDecisionOccluder = 1u << 4,    // masked: rasterised into the buffer as an occluder this frame
-    kDecisionNoPyramid = 1u << 5,   // hzb: phase 1 drew nothing, so no pyramid was built
+    kDecisionNoPyramid = 1u << 5,   // hzb: phase 1 drew nothing, so the pyramid hid nothing
     kDecisionNodeUnit = 1u << 6,    // hzb, masked: decided for its node, not for itself
 };
 

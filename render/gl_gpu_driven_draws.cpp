@@ -1,0 +1,383 @@
+#include "render/gl_gpu_driven_draws.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <stdexcept>
+
+#include "occsim/culling/geometry/query_box.h"
+#include "render/gl_api.h"
+#include "render/gl_shader.h"
+#include "render/steady_seconds.h"
+
+namespace occsim {
+namespace {
+
+// Storage-buffer bindings shared by the three programs.
+constexpr GLuint kUnitsBinding = 0, kTemplatesBinding = 1, kEntryUnitsBinding = 2,
+                 kSlotsBinding = 3, kStatesBinding = 4, kCommandsBinding = 5, kFlagsBinding = 6;
+
+// One command per entry, from its template: one instance when its unit is drawn in this phase.
+// Phase 1: the unit is forced or its slot passed last frame (stamped with the previous frame).
+// Phase 2: the unit passed and phase 1 did not draw it (its state, written by kStoreShader).
+const char* kCommandsShader = R"(#version 430 core
+layout(local_size_x = 64) in;
+struct Command {
+    uint count;
+    uint instance_count;
+    uint first_index;
+    uint base_vertex;
+    uint base_instance;
+};
+layout(std430, binding = 0) readonly buffer Units { uvec2 units[]; };
+layout(std430, binding = 1) readonly buffer Templates { Command templates[]; };
+layout(std430, binding = 2) readonly buffer EntryUnits { uint entry_units[]; };
+layout(std430, binding = 3) readonly buffer Slots { uint slots[]; };
+layout(std430, binding = 4) readonly buffer States { uint states[]; };
+layout(std430, binding = 5) writeonly buffer Commands { Command commands[]; };
+uniform uint u_count;
+uniform uint u_phase;
+uniform uint u_frame;
+void main() {
+    uint e = gl_GlobalInvocationID.x;
+    if (e >= u_count) return;
+    uint u = entry_units[e];
+    bool draw;
+    if (u_phase == 1u) {
+        uvec2 unit = units[u];
+        draw = unit.y != 0u || slots[unit.x] + 1u == u_frame;
+    } else {
+        uint state = states[u];
+        draw = (state & 2u) != 0u && (state & 1u) == 0u;
+    }
+    Command c = templates[e];
+    c.instance_count = draw ? 1u : 0u;
+    commands[e] = c;
+}
+)";
+
+// Per unit, after the test: whether phase 1 drew it and whether it passed (forced or flagged),
+// and the frame stamp of its slot when it passed, for the next frame's phase 1.
+const char* kStoreShader = R"(#version 430 core
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Units { uvec2 units[]; };
+layout(std430, binding = 3) buffer Slots { uint slots[]; };
+layout(std430, binding = 4) writeonly buffer States { uint states[]; };
+layout(std430, binding = 6) readonly buffer Flags { uint flags[]; };
+uniform uint u_count;
+uniform uint u_frame;
+void main() {
+    uint u = gl_GlobalInvocationID.x;
+    if (u >= u_count) return;
+    uvec2 unit = units[u];
+    bool first = unit.y != 0u || slots[unit.x] + 1u == u_frame;
+    bool passed = unit.y != 0u || flags[u] != 0u;
+    if (passed) slots[unit.x] = u_frame;
+    states[u] = (first ? 1u : 0u) | (passed ? 2u : 0u);
+}
+)";
+
+// Every unit's box, one instance each, the unit cube scaled and moved (eye-relative) and turned
+// into view space as GlRenderer::drawQueryBox turns a query box.
+const char* kBoxVertexShader = R"(#version 430 core
+layout(location = 0) in vec3 a_corner;
+layout(location = 1) in vec3 a_offset;
+layout(location = 2) in vec3 a_size;
+uniform mat4 u_projection;
+uniform mat4 u_view_rotation;
+flat out uint v_unit;
+void main() {
+    vec3 p = a_offset + a_corner * a_size;
+    gl_Position = u_projection * (u_view_rotation * vec4(p, 1.0));
+    v_unit = uint(gl_InstanceID);
+}
+)";
+
+// Early fragment tests: the shader runs only for fragments that passed the depth test, so a flag
+// is written exactly where an occlusion query would count a sample.
+const char* kBoxFragmentShader = R"(#version 430 core
+layout(early_fragment_tests) in;
+layout(std430, binding = 6) writeonly buffer Flags { uint flags[]; };
+flat in uint v_unit;
+void main() { flags[v_unit] = 1u; }
+)";
+
+GLuint workGroups(uint32_t n) { return (n + 63) / 64; }
+
+// (Re)allocates `buffer` for `bytes` with no contents.
+void allocate(GLuint buffer, size_t bytes, GLenum usage) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, usage);
+}
+
+void upload(GLuint buffer, const void* data, size_t bytes) {
+    if (bytes == 0) return;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+}
+
+// Fills the first `count` uints of `buffer` with `value`.
+void fillUints(GLuint buffer, uint32_t count, uint32_t value) {
+    if (count == 0) return;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, 0,
+                         static_cast<GLsizeiptr>(count * sizeof(uint32_t)), GL_RED_INTEGER,
+                         GL_UNSIGNED_INT, &value);
+}
+
+}  // namespace
+
+GlGpuDrivenDraws::GlGpuDrivenDraws(GlRenderer& renderer, GlDepthPyramid* pyramid,
+                                   DeviceCounters& counters)
+    : renderer_(renderer), pyramid_(pyramid), counters_(counters) {
+    commands_program_ = linkProgram({{GL_COMPUTE_SHADER, kCommandsShader}}, "GPU-driven commands");
+    try {
+        store_program_ = linkProgram({{GL_COMPUTE_SHADER, kStoreShader}}, "GPU-driven visibility");
+        box_program_ = linkProgram(
+            {{GL_VERTEX_SHADER, kBoxVertexShader}, {GL_FRAGMENT_SHADER, kBoxFragmentShader}},
+            "GPU-driven box rasterisation");
+    } catch (...) {
+        glDeleteProgram(commands_program_);
+        if (store_program_ != 0) glDeleteProgram(store_program_);
+        throw;
+    }
+    commands_count_loc_ = glGetUniformLocation(commands_program_, "u_count");
+    commands_phase_loc_ = glGetUniformLocation(commands_program_, "u_phase");
+    commands_frame_loc_ = glGetUniformLocation(commands_program_, "u_frame");
+    store_count_loc_ = glGetUniformLocation(store_program_, "u_count");
+    store_frame_loc_ = glGetUniformLocation(store_program_, "u_frame");
+    box_projection_loc_ = glGetUniformLocation(box_program_, "u_projection");
+    box_rotation_loc_ = glGetUniformLocation(box_program_, "u_view_rotation");
+
+    GLuint* buffers[] = {&units_buffer_,   &templates_buffer_, &entry_units_buffer_,
+                         &slots_buffer_,   &flags_buffer_,     &states_buffer_,
+                         &first_commands_, &second_commands_,  &boxes_buffer_};
+    for (GLuint* b : buffers) glGenBuffers(1, b);
+    // The boxes: the renderer's unit cube per vertex, offset and size per instance.
+    glGenVertexArrays(1, &box_vao_);
+    glBindVertexArray(box_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, renderer_.boxVertexBuffer());
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, renderer_.boxIndexBuffer());
+    glBindBuffer(GL_ARRAY_BUFFER, boxes_buffer_);
+    for (GLuint attribute = 1; attribute <= 2; ++attribute) {
+        glEnableVertexAttribArray(attribute);
+        glVertexAttribPointer(attribute, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float),
+                              reinterpret_cast<const void*>((attribute - 1) * 4 * sizeof(float)));
+        glVertexAttribDivisor(attribute, 1);
+    }
+    glBindVertexArray(0);
+    renderer_.forgetBoundState();
+    checkGl("GPU-driven draws set-up");
+}
+
+GlGpuDrivenDraws::~GlGpuDrivenDraws() {
+    glDeleteProgram(commands_program_);
+    glDeleteProgram(store_program_);
+    glDeleteProgram(box_program_);
+    const GLuint buffers[] = {units_buffer_,   templates_buffer_, entry_units_buffer_,
+                              slots_buffer_,   flags_buffer_,     states_buffer_,
+                              first_commands_, second_commands_,  boxes_buffer_};
+    glDeleteBuffers(9, buffers);
+    glDeleteVertexArrays(1, &box_vao_);
+}
+
+void GlGpuDrivenDraws::ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots) {
+    if (units > unit_capacity_) {
+        unit_capacity_ = std::max(units, 2 * unit_capacity_);
+        allocate(units_buffer_, unit_capacity_ * 2 * sizeof(uint32_t), GL_STREAM_DRAW);
+        allocate(flags_buffer_, unit_capacity_ * sizeof(uint32_t), GL_DYNAMIC_COPY);
+        allocate(states_buffer_, unit_capacity_ * sizeof(uint32_t), GL_DYNAMIC_READ);
+        glBindBuffer(GL_ARRAY_BUFFER, boxes_buffer_);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(unit_capacity_ * 8 * sizeof(float)),
+                     nullptr, GL_STREAM_DRAW);
+    }
+    if (entries > entry_capacity_) {
+        entry_capacity_ = std::max(entries, 2 * entry_capacity_);
+        const size_t command_bytes = entry_capacity_ * sizeof(GlRenderer::DrawCommand);
+        allocate(templates_buffer_, command_bytes, GL_STREAM_DRAW);
+        allocate(entry_units_buffer_, entry_capacity_ * sizeof(uint32_t), GL_STREAM_DRAW);
+        allocate(first_commands_, command_bytes, GL_DYNAMIC_COPY);
+        allocate(second_commands_, command_bytes, GL_DYNAMIC_COPY);
+    }
+    if (slots > slot_capacity_) {
+        // The tree has more nodes than before: a larger slot buffer, its new slots unseen, the
+        // old ones copied on the GPU (forgetting them would make phase 1 draw nothing and phase 2
+        // everything for a frame).
+        const uint32_t old_capacity = slot_capacity_;
+        slot_capacity_ = std::max(slots, 2 * slot_capacity_);
+        GLuint grown = 0;
+        glGenBuffers(1, &grown);
+        allocate(grown, slot_capacity_ * sizeof(uint32_t), GL_DYNAMIC_COPY);
+        fillUints(grown, slot_capacity_, 0);
+        if (old_capacity > 0) {
+            glBindBuffer(GL_COPY_READ_BUFFER, slots_buffer_);
+            glBindBuffer(GL_COPY_WRITE_BUFFER, grown);
+            glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,
+                                static_cast<GLsizeiptr>(old_capacity * sizeof(uint32_t)));
+        }
+        glDeleteBuffers(1, &slots_buffer_);
+        slots_buffer_ = grown;
+    }
+}
+
+void GlGpuDrivenDraws::resetVisibility() { fillUints(slots_buffer_, slot_capacity_, 0); }
+
+void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
+    assert(units.slots.size() == units.bounds.size() && units.forced.size() == units.bounds.size());
+    assert(units.object_units.size() == units.objects.size());
+    const auto start = std::chrono::steady_clock::now();
+    ++frame_;
+    frame_pending_ = true;
+    const auto unit_count = static_cast<uint32_t>(units.bounds.size());
+    const auto entry_count = static_cast<uint32_t>(units.objects.size());
+    bounds_.assign(units.bounds.begin(), units.bounds.end());
+    units_.resize(size_t{unit_count} * 2);
+    for (uint32_t u = 0; u < unit_count; ++u) {
+        assert(units.slots[u] < units.slot_count);
+        units_[2 * u] = units.slots[u];
+        // The renderer's own near-plane rule on the box as drawn: visible without a test.
+        units_[2 * u + 1] = units.forced[u] || renderer_.queryBoxNearEye(units.bounds[u]) ? 1 : 0;
+    }
+    templates_.resize(entry_count);
+    for (uint32_t e = 0; e < entry_count; ++e) {
+        templates_[e] = renderer_.drawCommandFor(units.objects[e]);
+    }
+    entry_units_.assign(units.object_units.begin(), units.object_units.end());
+    ensureCapacity(unit_count, entry_count, units.slot_count);
+    upload(units_buffer_, units_.data(), units_.size() * sizeof(uint32_t));
+    upload(templates_buffer_, templates_.data(), entry_count * sizeof(GlRenderer::DrawCommand));
+    upload(entry_units_buffer_, entry_units_.data(), entry_count * sizeof(uint32_t));
+
+    if (entry_count > 0) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, first_commands_);
+        glUseProgram(commands_program_);
+        glUniform1ui(commands_count_loc_, entry_count);
+        glUniform1ui(commands_phase_loc_, 1);
+        glUniform1ui(commands_frame_loc_, frame_);
+        glDispatchCompute(workGroups(entry_count), 1, 1);
+        glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+        renderer_.forgetBoundState();
+        renderer_.drawIndirect(first_commands_, entry_count);
+    }
+    counters_.submit_seconds += steadySecondsSince(start);
+}
+
+void GlGpuDrivenDraws::rasteriseBoxes() {
+    const ViewSetup& view = renderer_.view();
+    boxes_.resize(bounds_.size() * 8);
+    for (size_t u = 0; u < bounds_.size(); ++u) {
+        // As GlRenderer::drawQueryBox: padded by queryBoxPad, eye-relative in double.
+        const glm::dvec3 lo = glm::dvec3(bounds_[u].min) + view.box_origin;
+        const glm::dvec3 hi = glm::dvec3(bounds_[u].max) + view.box_origin;
+        const double pad = queryBoxPad(lo, hi, view.eye);
+        const glm::vec3 offset(lo - pad - view.eye);
+        const glm::vec3 size(hi - lo + 2.0 * pad);
+        float* b = &boxes_[u * 8];
+        b[0] = offset.x, b[1] = offset.y, b[2] = offset.z, b[3] = 0.0f;
+        b[4] = size.x, b[5] = size.y, b[6] = size.z, b[7] = 0.0f;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, boxes_buffer_);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(boxes_.size() * sizeof(float)),
+                    boxes_.data());
+    fillUints(flags_buffer_, static_cast<uint32_t>(bounds_.size()), 0);
+    // The query boxes' state (no writes, the passing-on-equal depth test), then this program.
+    renderer_.useBoxState();
+    glUseProgram(box_program_);
+    glUniformMatrix4fv(box_projection_loc_, 1, GL_FALSE, &view.projection[0][0]);
+    glUniformMatrix4fv(box_rotation_loc_, 1, GL_FALSE, &view.view_rotation[0][0]);
+    glBindVertexArray(box_vao_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFlagsBinding, flags_buffer_);
+    glDrawElementsInstanced(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr,
+                            static_cast<GLsizei>(bounds_.size()));
+    glBindVertexArray(0);
+    renderer_.forgetBoundState();
+}
+
+void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto unit_count = static_cast<uint32_t>(bounds_.size());
+    const auto entry_count = static_cast<uint32_t>(templates_.size());
+    if (unit_count > 0) {
+        if (test == GpuTest::BoxRaster) {
+            rasteriseBoxes();
+        } else if (pyramid_) {
+            pyramid_->build();
+            tests_.resize(unit_count);
+            for (uint32_t u = 0; u < unit_count; ++u)
+                tests_[u] = pyramid_->testFor(bounds_[u], shape);
+            counters_.pyramid_bounds += unit_count;
+            pyramid_->dispatchTests(tests_, flags_buffer_);
+        } else {
+            fillUints(flags_buffer_, unit_count, 1);  // no pyramid: nothing is hidden
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFlagsBinding, flags_buffer_);
+        glUseProgram(store_program_);
+        glUniform1ui(store_count_loc_, unit_count);
+        glUniform1ui(store_frame_loc_, frame_);
+        glDispatchCompute(workGroups(unit_count), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    if (entry_count > 0) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, second_commands_);
+        glUseProgram(commands_program_);
+        glUniform1ui(commands_count_loc_, entry_count);
+        glUniform1ui(commands_phase_loc_, 2);
+        glUniform1ui(commands_frame_loc_, frame_);
+        glDispatchCompute(workGroups(entry_count), 1, 1);
+        glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        renderer_.forgetBoundState();
+        renderer_.drawIndirect(second_commands_, entry_count);
+    }
+    renderer_.forgetBoundState();
+    counters_.submit_seconds += steadySecondsSince(start);
+}
+
+void GlGpuDrivenDraws::readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) {
+    assert(first_phase.size() == bounds_.size() && passed.size() == bounds_.size());
+    states_.resize(bounds_.size());
+    if (!states_.empty()) {
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, states_buffer_);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                           static_cast<GLsizeiptr>(states_.size() * sizeof(uint32_t)),
+                           states_.data());
+    }
+    for (size_t u = 0; u < states_.size(); ++u) {
+        first_phase[u] = (states_[u] & 1u) != 0 ? 1 : 0;
+        passed[u] = (states_[u] & 2u) != 0 ? 1 : 0;
+    }
+}
+
+void GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn) {
+    drawn.clear();
+    if (!frame_pending_) return;
+    frame_pending_ = false;
+    read_.resize(templates_.size());
+    if (read_.empty()) return;
+    for (const GLuint list : {first_commands_, second_commands_}) {
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, list);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                           static_cast<GLsizeiptr>(read_.size() * sizeof(GlRenderer::DrawCommand)),
+                           read_.data());
+        for (const GlRenderer::DrawCommand& c : read_) {
+            if (c.instance_count != 0) drawn.push_back(c);
+        }
+    }
+}
+
+}  // namespace occsim

@@ -1,0 +1,90 @@
+// GPU-driven draws (occsim/culling/contract/gpu_driven_draws.h) on OpenGL 4.5: both phases'
+// draw commands written by compute shaders and drawn with one glMultiDrawElementsIndirect each,
+// each slot's visibility kept in a storage buffer from frame to frame, nothing read back during
+// the frame. GlQueryDevice offers it (GlQueryDevice::gpuDrivenDraws()).
+//
+// - drawFirstPhase(): uploads the units (slot, forced) and one command template per draw-list
+//   entry (the object's mesh range, its index as the base instance: GlRenderer::drawCommandFor);
+//   a compute pass writes phase 1's commands, one instance where the entry's unit is forced or its
+//   slot passed last frame (a frame stamp, so a unit out of view for a frame is not "visible last
+//   frame"), zero otherwise; one multi-draw draws them.
+// - drawSecondPhase(): the test writes one flag per unit into a storage buffer. Pyramid: the
+//   depth pyramid is built from phase 1's depth and each unit's bound is projected on the CPU
+//   (GlDepthPyramid::testFor, the rules of hzb_rules.h) and tested by its compute shader
+//   (dispatchTests). BoxRaster: every unit's box, grown by the query-box pad as
+//   GlRenderer::drawQueryBox grows it, is drawn as one instanced draw against the depth buffer
+//   with the query boxes' depth test (GL_GEQUAL with reverse-Z), no colour or depth writes and
+//   early fragment tests, so only a fragment that passes the depth test writes its unit's flag.
+//   A unit the near plane reaches (GlRenderer::queryBoxNearEye) is forced here as well. Then a
+//   compute pass over the units stores each one's answer (forced or flagged) in its slot and a
+//   last one over the entries writes phase 2's commands (passed, not drawn in phase 1); one
+//   multi-draw draws them.
+// - After the frame: readResults() and drawnEntries() read the per-unit answers and the two
+//   command lists back (GlQueryDevice::resolveGpuDrivenDraws).
+// Time spent here counts as the device's submission time (DeviceCounters::submit_seconds).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "occsim/culling/contract/gpu_driven_draws.h"
+#include "occsim/culling/contract/render_device.h"
+#include "render/gl_depth_pyramid.h"
+#include "render/gl_renderer.h"
+
+namespace occsim {
+
+class GlGpuDrivenDraws final : public GpuDrivenDraws {
+  public:
+    // Compiles the shaders (std::runtime_error when the context cannot). `pyramid` may be null
+    // (GpuTest::Pyramid then passes every unit). Everything passed in must outlive this object.
+    GlGpuDrivenDraws(GlRenderer& renderer, GlDepthPyramid* pyramid, DeviceCounters& counters);
+    ~GlGpuDrivenDraws() override;
+    GlGpuDrivenDraws(const GlGpuDrivenDraws&) = delete;
+    GlGpuDrivenDraws& operator=(const GlGpuDrivenDraws&) = delete;
+
+    void resetVisibility() override;
+    void drawFirstPhase(const GpuUnits& units) override;
+    void drawSecondPhase(GpuTest test, PyramidBound shape) override;
+    void readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) override;
+    bool offersBoxRaster() const override { return true; }
+
+    // After the frame, outside any timing: the entries the two phases drew this frame (read back
+    // from their command lists), as the command each drew; empty when no frame ran since the last
+    // call. The frame is forgotten afterwards.
+    void takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn);
+
+  private:
+    void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
+    void rasteriseBoxes();
+
+    GlRenderer& renderer_;
+    GlDepthPyramid* pyramid_;
+    DeviceCounters& counters_;
+    uint32_t commands_program_ = 0, store_program_ = 0, box_program_ = 0;
+    int commands_count_loc_ = -1, commands_phase_loc_ = -1, commands_frame_loc_ = -1;
+    int store_count_loc_ = -1, store_frame_loc_ = -1;
+    int box_projection_loc_ = -1, box_rotation_loc_ = -1;
+    uint32_t box_vao_ = 0;
+    // Storage buffers: units (slot, forced), entry templates and their units, each slot's frame
+    // stamp, each unit's flag and state (bit 0 first phase, bit 1 passed), the two command lists,
+    // and the boxes to rasterise.
+    uint32_t units_buffer_ = 0, templates_buffer_ = 0, entry_units_buffer_ = 0;
+    uint32_t slots_buffer_ = 0, flags_buffer_ = 0, states_buffer_ = 0;
+    uint32_t first_commands_ = 0, second_commands_ = 0, boxes_buffer_ = 0;
+    uint32_t unit_capacity_ = 0, entry_capacity_ = 0, slot_capacity_ = 0;
+    uint32_t frame_ = 1;  // the stamp of the current frame (slots hold 0 when never passed)
+    bool frame_pending_ = false;
+    // This frame, on the CPU.
+    std::vector<uint32_t> units_;  // slot, forced: two uints a unit
+    std::vector<Aabb> bounds_;
+    std::vector<GlRenderer::DrawCommand> templates_;
+    std::vector<uint32_t> entry_units_;
+    std::vector<GlDepthPyramid::Test> tests_;
+    std::vector<float> boxes_;  // per unit: offset (xyz, pad) and size (xyz, pad), eye-relative
+    std::vector<GlRenderer::DrawCommand> read_;
+    std::vector<uint32_t> states_;
+};
+
+}  // namespace occsim
