@@ -168,6 +168,7 @@ GlGpuDrivenDraws::GlGpuDrivenDraws(GlRenderer& renderer, GlDepthPyramid* pyramid
         glVertexAttribDivisor(attribute, 1);
     }
     glBindVertexArray(0);
+    glGenQueries(4, timestamps_);
     renderer_.forgetBoundState();
     checkGl("GPU-driven draws set-up");
 }
@@ -181,6 +182,7 @@ GlGpuDrivenDraws::~GlGpuDrivenDraws() {
                               first_commands_, second_commands_,  boxes_buffer_};
     glDeleteBuffers(9, buffers);
     glDeleteVertexArrays(1, &box_vao_);
+    glDeleteQueries(4, timestamps_);
 }
 
 void GlGpuDrivenDraws::ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots) {
@@ -228,6 +230,7 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
     assert(units.slots.size() == units.bounds.size() && units.forced.size() == units.bounds.size());
     assert(units.object_units.size() == units.objects.size());
     const auto start = std::chrono::steady_clock::now();
+    glQueryCounter(timestamps_[0], GL_TIMESTAMP);
     ++frame_;
     frame_pending_ = true;
     const auto unit_count = static_cast<uint32_t>(units.bounds.size());
@@ -266,7 +269,10 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
         renderer_.forgetBoundState();
         renderer_.drawIndirect(first_commands_, entry_count);
     }
-    counters_.submit_seconds += steadySecondsSince(start);
+    glQueryCounter(timestamps_[1], GL_TIMESTAMP);
+    const double seconds = steadySecondsSince(start);
+    phase_times_.cpu_ms[0] = seconds * 1e3;
+    counters_.submit_seconds += seconds;
 }
 
 void GlGpuDrivenDraws::rasteriseBoxes() {
@@ -328,6 +334,8 @@ void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
         glDispatchCompute(workGroups(unit_count), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
+    glQueryCounter(timestamps_[2], GL_TIMESTAMP);
+    const double test_seconds = steadySecondsSince(start);
     if (entry_count > 0) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
@@ -344,8 +352,12 @@ void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
         renderer_.forgetBoundState();
         renderer_.drawIndirect(second_commands_, entry_count);
     }
+    glQueryCounter(timestamps_[3], GL_TIMESTAMP);
     renderer_.forgetBoundState();
-    counters_.submit_seconds += steadySecondsSince(start);
+    const double seconds = steadySecondsSince(start);
+    phase_times_.cpu_ms[1] = test_seconds * 1e3;
+    phase_times_.cpu_ms[2] = (seconds - test_seconds) * 1e3;
+    counters_.submit_seconds += seconds;
 }
 
 void GlGpuDrivenDraws::readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) {
@@ -363,12 +375,19 @@ void GlGpuDrivenDraws::readResults(std::span<uint8_t> first_phase, std::span<uin
     }
 }
 
-void GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn) {
+bool GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn) {
     drawn.clear();
-    if (!frame_pending_) return;
+    if (!frame_pending_) return false;
     frame_pending_ = false;
+    uint64_t ns[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 4; ++i) glGetQueryObjectui64v(timestamps_[i], GL_QUERY_RESULT, &ns[i]);
+    for (int i = 0; i < 3; ++i) {
+        // Timestamps are monotonic; a driver that returns zeros gives zero, never a negative.
+        phase_times_.gpu_ms[i] =
+            ns[i + 1] > ns[i] ? static_cast<double>(ns[i + 1] - ns[i]) * 1e-6 : 0.0;
+    }
     read_.resize(templates_.size());
-    if (read_.empty()) return;
+    if (read_.empty()) return true;
     for (const GLuint list : {first_commands_, second_commands_}) {
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, list);
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
@@ -378,6 +397,7 @@ void GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& dr
             if (c.instance_count != 0) drawn.push_back(c);
         }
     }
+    return true;
 }
 
 }  // namespace occsim

@@ -21,7 +21,10 @@
 //   multi-draw draws them.
 // - After the frame: readResults() and drawnEntries() read the per-unit answers and the two
 //   command lists back (GlQueryDevice::resolveGpuDrivenDraws).
-// Time spent here counts as the device's submission time (DeviceCounters::submit_seconds).
+// Time spent here counts as the device's submission time (DeviceCounters::submit_seconds), and
+// is measured per phase (phase 1, the test, phase 2) on the CPU and, with timestamp queries
+// between the phases, on the GPU (phaseTimes(); on a software rasteriser the GPU times are the
+// rasteriser's threads' time, which is CPU time).
 #pragma once
 
 #include <cstdint>
@@ -51,9 +54,19 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     bool offersBoxRaster() const override { return true; }
 
     // After the frame, outside any timing: the entries the two phases drew this frame (read back
-    // from their command lists), as the command each drew; empty when no frame ran since the last
-    // call. The frame is forgotten afterwards.
-    void takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn);
+    // from their command lists), as the command each drew, and the frame's phase times; false
+    // (and `drawn` empty) when no frame ran since the last call. The frame is forgotten after.
+    bool takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn);
+
+    // Milliseconds of phase 1 (uploads, commands, its multi-draw), the test (pyramid build and
+    // tests, or the box raster, and the pass that stores the answers) and phase 2 (commands, its
+    // multi-draw), of the last frame takeDrawnEntries() took: submission on the CPU, and between
+    // timestamps on the GPU.
+    struct PhaseTimes {
+        double cpu_ms[3] = {0, 0, 0};
+        double gpu_ms[3] = {0, 0, 0};
+    };
+    const PhaseTimes& phaseTimes() const { return phase_times_; }
 
   private:
     void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
@@ -75,6 +88,8 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     uint32_t first_commands_ = 0, second_commands_ = 0, boxes_buffer_ = 0;
     uint32_t unit_capacity_ = 0, entry_capacity_ = 0, slot_capacity_ = 0;
     uint32_t frame_ = 1;  // the stamp of the current frame (slots hold 0 when never passed)
+    uint32_t timestamps_[4] = {0, 0, 0, 0};  // before phase 1, after it, after the test, after 2
+    PhaseTimes phase_times_;
     bool frame_pending_ = false;
     // This frame, on the CPU.
     std::vector<uint32_t> units_;  // slot, forced: two uints a unit

@@ -58,8 +58,9 @@ GpuDrivenDraws* GlQueryDevice::gpuDrivenDraws() {
 }
 
 void GlQueryDevice::resolveGpuDrivenDraws() {
+    gpu_frame_resolved_ = false;
     if (!gpu_draws_) return;
-    gpu_draws_->takeDrawnEntries(gpu_drawn_);
+    gpu_frame_resolved_ = gpu_draws_->takeDrawnEntries(gpu_drawn_);
     for (const GlRenderer::DrawCommand& c : gpu_drawn_) {
         const uint32_t object = c.base_instance;
         if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;

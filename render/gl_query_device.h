@@ -57,6 +57,11 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     // to the drawn set and to the counters (objects_drawn, triangles_drawn), reading their command
     // lists back. Does nothing in a frame without them.
     void resolveGpuDrivenDraws();
+    // The phase times of the frame the last resolveGpuDrivenDraws() resolved; nullptr when that
+    // frame had no GPU-driven draws.
+    const GlGpuDrivenDraws::PhaseTimes* gpuDrivenPhaseTimes() const {
+        return gpu_frame_resolved_ ? &gpu_draws_->phaseTimes() : nullptr;
+    }
 
     uint32_t queriesInFlight() const;
 
@@ -130,6 +135,7 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     std::unique_ptr<GlGpuDrivenDraws> gpu_draws_;
     bool gpu_draws_tried_ = false;
     std::vector<GlRenderer::DrawCommand> gpu_drawn_;  // reused by resolveGpuDrivenDraws()
+    bool gpu_frame_resolved_ = false;
 };
 
 }  // namespace occsim

@@ -109,7 +109,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
            "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
-           "executed_triangles,read_backs\n";
+           "executed_triangles,read_backs,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
+           "test_gpu_ms,phase2_gpu_ms\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -126,7 +127,12 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
                     << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
                     << f.overdrawn_triangles << ',' << f.executed_objects << ','
-                    << f.executed_triangles << ',' << f.read_backs << '\n';
+                    << f.executed_triangles << ',' << f.read_backs;
+                // GPU-driven cullers' phases; empty for the others.
+                for (const auto* phases : {&f.phase_cpu_ms, &f.phase_gpu_ms}) {
+                    for (const double ms : *phases) out << ',' << (ms >= 0 ? fixed(ms, 4) : "");
+                }
+                out << '\n';
             }
         }
     }
@@ -134,6 +140,16 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
 }
 
 namespace {
+
+nlohmann::json phasesJson(const RunSummary& s) {
+    if (s.phase_cpu_ms_mean[0] < 0) return nullptr;
+    nlohmann::json j;
+    const char* names[3] = {"phase1", "test", "phase2"};
+    for (size_t p = 0; p < 3; ++p) {
+        j[names[p]] = {{"cpu_ms", s.phase_cpu_ms_mean[p]}, {"gpu_ms", s.phase_gpu_ms_mean[p]}};
+    }
+    return j;
+}
 
 // Milliseconds per query box, per triangle and per draw call, as culling.cost_model names them.
 nlohmann::json costModelJson(const CostModel& cost) {
@@ -192,6 +208,10 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         {"executed_objects_per_frame", s.executed_objects_mean},
         {"executed_triangles_per_frame", s.executed_triangles_mean},
         {"read_backs_per_frame", s.read_backs_mean},
+        // GPU-driven cullers (hzb, raster): mean ms of phase 1, the test and phase 2, submitted on
+        // the CPU and timed on the GPU (a software rasteriser's "GPU" time is its threads' CPU
+        // time: machine.gpu_time_meaningful); null for the other cullers.
+        {"gpu_driven_phases", phasesJson(s)},
         // null where not measured: see machine.gpu_time_meaningful.
         {"gpu_ms", s.gpu_ms_mean >= 0
                        ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}

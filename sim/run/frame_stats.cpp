@@ -30,6 +30,8 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
     bool gpu_measured = true;
     double cull = 0, wait = 0, update = 0, queries = 0, objects = 0, triangles = 0;
     double executed_objects = 0, executed_triangles = 0, read_backs = 0;
+    std::array<double, 3> phase_cpu = {0, 0, 0}, phase_gpu = {0, 0, 0};
+    uint32_t phase_frames = 0;
     for (const FrameStats& f : frames) {
         if (f.error_pixels >= 0) {
             s.error_measured = true;
@@ -60,6 +62,19 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         executed_objects += static_cast<double>(f.executed_objects);
         executed_triangles += static_cast<double>(f.executed_triangles);
         read_backs += static_cast<double>(f.read_backs);
+        if (f.phase_cpu_ms[0] >= 0) {
+            ++phase_frames;
+            for (size_t p = 0; p < 3; ++p) {
+                phase_cpu[p] += f.phase_cpu_ms[p];
+                phase_gpu[p] += f.phase_gpu_ms[p];
+            }
+        }
+    }
+    if (phase_frames > 0) {
+        for (size_t p = 0; p < 3; ++p) {
+            s.phase_cpu_ms_mean[p] = phase_cpu[p] / phase_frames;
+            s.phase_gpu_ms_mean[p] = phase_gpu[p] / phase_frames;
+        }
     }
     s.timed_frames = static_cast<uint32_t>(frame_ms.size());
     s.frame_ms = distributionOf(frame_ms);
@@ -190,6 +205,12 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.executed_triangles_mean =
         median([](const RunSummary& r) { return r.executed_triangles_mean; });
     out.read_backs_mean = median([](const RunSummary& r) { return r.read_backs_mean; });
+    for (size_t p = 0; p < 3; ++p) {
+        out.phase_cpu_ms_mean[p] =
+            median([p](const RunSummary& r) { return r.phase_cpu_ms_mean[p]; });
+        out.phase_gpu_ms_mean[p] =
+            median([p](const RunSummary& r) { return r.phase_gpu_ms_mean[p]; });
+    }
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });

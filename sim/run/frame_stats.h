@@ -1,6 +1,7 @@
 // What one frame of one algorithm cost and how wrong it was, and the summary over a run.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,6 +32,11 @@ struct FrameStats {
     // Reads of device results during the frame (query answers, pyramid flags): each makes the
     // CPU wait for the device's work so far. GPU-driven cullers make none (DeviceCounters).
     uint64_t read_backs = 0;
+    // GPU-driven cullers (hzb, raster): milliseconds of phase 1, the test and phase 2, submission
+    // on the CPU and between timestamps on the GPU (render/gl_gpu_driven_draws.h; on a software
+    // rasteriser the "GPU" times are its threads' CPU time); -1 for other cullers.
+    std::array<double, 3> phase_cpu_ms = {-1.0, -1.0, -1.0};
+    std::array<double, 3> phase_gpu_ms = {-1.0, -1.0, -1.0};
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -71,6 +77,10 @@ struct RunSummary {
     double queries_mean = 0, objects_mean = 0, triangles_mean = 0;
     double executed_objects_mean = 0, executed_triangles_mean = 0;  // over the timed frames
     double read_backs_mean = 0;                                     // over the timed frames
+    // Means over the timed frames of FrameStats::phase_cpu_ms and phase_gpu_ms; -1 when no timed
+    // frame measured them.
+    std::array<double, 3> phase_cpu_ms_mean = {-1.0, -1.0, -1.0};
+    std::array<double, 3> phase_gpu_ms_mean = {-1.0, -1.0, -1.0};
     bool error_measured = false;
     int64_t error_pixels_total = 0;
     int64_t error_pixels_worst = 0;

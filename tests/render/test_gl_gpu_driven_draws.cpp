@@ -141,6 +141,25 @@ TEST_P(GlGpuDrivenDrawsTest, TheWallHidesWhatItHidesAndEachSlotRemembers) {
     }
 }
 
+// Each phase is timed on the CPU and between GPU timestamps, for the frame just resolved only.
+TEST_P(GlGpuDrivenDrawsTest, EachPhaseIsTimedForTheFrameJustResolved) {
+    setView(glm::dvec3(0.0));
+    for (const GpuTest test : {GpuTest::Pyramid, GpuTest::BoxRaster}) {
+        runFrame(test);
+        const GlGpuDrivenDraws::PhaseTimes* t = device_->gpuDrivenPhaseTimes();
+        ASSERT_NE(t, nullptr) << testName(test);
+        EXPECT_GT(t->cpu_ms[0] + t->cpu_ms[1] + t->cpu_ms[2], 0.0);
+        EXPECT_GT(t->gpu_ms[0] + t->gpu_ms[1] + t->gpu_ms[2], 0.0) << "llvmpipe: its threads' time";
+        for (int p = 0; p < 3; ++p) EXPECT_GE(t->cpu_ms[p], 0.0) << p;
+    }
+    // A frame without GPU-driven draws has no phase times.
+    renderer_->beginFrame();
+    renderer_->drawObject(0);
+    renderer_->finish();
+    device_->resolveGpuDrivenDraws();
+    EXPECT_EQ(device_->gpuDrivenPhaseTimes(), nullptr);
+}
+
 // More slots (a tree that grew nodes) keep the answers of the old ones: phase 1 still draws what
 // was visible (forgetting would draw nothing there, and everything in phase 2).
 TEST_P(GlGpuDrivenDrawsTest, MoreSlotsKeepTheOldSlotsAnswers) {

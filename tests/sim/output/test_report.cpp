@@ -232,5 +232,61 @@ TEST(Simulation, ConditionalDrawsAreCountedAsSubmittedAndAsExecuted) {
               table.header.end());
 }
 
+// hzb and raster decide on the device: no read-back inside the frame (hzb read_back=true reads
+// its flags once a frame), what they drew counted after the frame (the same objects for both hzb
+// variants), and each phase's CPU and GPU time in frames.csv and summary.json (empty and null for
+// the other cullers).
+TEST(Simulation, GpuDrivenCullersReadNothingBackInTheFrameAndTimeEachPhase) {
+    const Scenario scenario = parseScenarioFile(kSmall);
+    BenchOptions options;
+    options.measure_error = true;
+    options.frames = 8;
+    const CullerRow& hzb = *findCuller("hzb");
+    RunConfig read_back{"hzb read_back=true", &hzb, scenario.culler};
+    read_back.culler.edit(hzb).set("read_back", 1.0);
+    options.configs = {RunConfig{"vfc", findCuller("vfc"), scenario.culler},
+                       RunConfig{"hzb", &hzb, scenario.culler}, read_back,
+                       RunConfig{"raster", findCuller("raster"), scenario.culler}};
+    options.algorithms = {findCuller("vfc")};
+    const BenchResult result = runBenchmark(scenario, options);
+    ASSERT_EQ(result.runs.size(), 4u);
+    for (size_t f = 0; f < 8; ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f));
+        for (const RunRecord& run : result.runs) {
+            const FrameStats& s = run.frames[f];
+            EXPECT_EQ(s.error_pixels, 0) << run.summary.label;
+            EXPECT_EQ(s.missed_objects, 0) << run.summary.label;
+            const bool gpu_driven = run.summary.label == "hzb" || run.summary.label == "raster";
+            if (gpu_driven) {
+                EXPECT_EQ(s.read_backs, 0u) << run.summary.label;
+                EXPECT_GT(s.objects_drawn, 0u) << run.summary.label;
+                EXPECT_GT(s.phase_cpu_ms[0], 0.0) << run.summary.label;
+                for (size_t p = 0; p < 3; ++p) EXPECT_GE(s.phase_gpu_ms[p], 0.0) << p;
+            } else {
+                EXPECT_LT(s.phase_cpu_ms[0], 0.0) << run.summary.label;
+            }
+        }
+        EXPECT_EQ(result.runs[1].frames[f].objects_drawn, result.runs[2].frames[f].objects_drawn)
+            << "hzb draws the same objects with and without the read-back";
+        if (f > 0) {  // frame 0 builds no pyramid: nothing to read
+            EXPECT_EQ(result.runs[2].frames[f].read_backs, 1u);
+        }
+    }
+    const std::string csv = framesCsv(result.runs);
+    EXPECT_NE(csv.find(",read_backs,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
+                       "test_gpu_ms,phase2_gpu_ms\n"),
+              std::string::npos);
+    EXPECT_NE(csv.find("\nvfc,0,0,"), std::string::npos);
+    // vfc's rows end in six empty phase columns.
+    const size_t vfc_row = csv.find("\nvfc,0,0,");
+    const std::string row = csv.substr(vfc_row + 1, csv.find('\n', vfc_row + 1) - vfc_row - 1);
+    EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,") << row;
+    const nlohmann::json j = configurationJson(result.runs[3], result.runs);
+    ASSERT_TRUE(j["gpu_driven_phases"].is_object()) << j.dump();
+    EXPECT_GT(j["gpu_driven_phases"]["phase1"]["cpu_ms"].get<double>(), 0.0);
+    EXPECT_TRUE(j["gpu_driven_phases"]["test"]["gpu_ms"].is_number());
+    EXPECT_TRUE(configurationJson(result.runs[0], result.runs)["gpu_driven_phases"].is_null());
+}
+
 }  // namespace
 }  // namespace occsim
