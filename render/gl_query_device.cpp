@@ -59,10 +59,12 @@ GpuDrivenDraws* GlQueryDevice::gpuDrivenDraws() {
 
 void GlQueryDevice::resolveGpuDrivenDraws() {
     gpu_frame_resolved_ = false;
+    gpu_drawn_objects_.clear();
     if (!gpu_draws_) return;
     gpu_frame_resolved_ = gpu_draws_->takeDrawnEntries(gpu_drawn_);
     for (const GlRenderer::DrawCommand& c : gpu_drawn_) {
         const uint32_t object = c.base_instance;
+        gpu_drawn_objects_.push_back(object);
         if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
         ++counters_.objects_drawn;
         counters_.triangles_drawn += c.count / 3;

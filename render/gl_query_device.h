@@ -62,6 +62,9 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     const GlGpuDrivenDraws::PhaseTimes* gpuDrivenPhaseTimes() const {
         return gpu_frame_resolved_ ? &gpu_draws_->phaseTimes() : nullptr;
     }
+    // The objects the GPU-driven draws drew in the frame the last resolveGpuDrivenDraws()
+    // resolved (phase 1's, then phase 2's), for a trace of that frame.
+    std::span<const uint32_t> gpuDrivenDrawnObjects() const { return gpu_drawn_objects_; }
 
     uint32_t queriesInFlight() const;
 
@@ -136,6 +139,7 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     bool gpu_draws_tried_ = false;
     std::vector<GlRenderer::DrawCommand> gpu_drawn_;  // reused by resolveGpuDrivenDraws()
     bool gpu_frame_resolved_ = false;
+    std::vector<uint32_t> gpu_drawn_objects_;
 };
 
 }  // namespace occsim

@@ -125,6 +125,7 @@ FrameStats Simulation::renderFrame() {
     // the culler's own look at the device's decisions, for its decision log.
     const uint64_t read_backs_in_frame = device_->counters().read_backs;
     gl_device_.resolveGpuDrivenDraws();
+    if (trace) tracer_.addDeviceDecidedDraws(gl_device_.gpuDrivenDrawnObjects());
     if (const auto* phases = gl_device_.gpuDrivenPhaseTimes()) {
         for (size_t p = 0; p < 3; ++p) {
             stats.phase_cpu_ms[p] = phases->cpu_ms[p];

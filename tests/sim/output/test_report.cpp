@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -286,6 +287,30 @@ TEST(Simulation, GpuDrivenCullersReadNothingBackInTheFrameAndTimeEachPhase) {
     EXPECT_GT(j["gpu_driven_phases"]["phase1"]["cpu_ms"].get<double>(), 0.0);
     EXPECT_TRUE(j["gpu_driven_phases"]["test"]["gpu_ms"].is_number());
     EXPECT_TRUE(configurationJson(result.runs[0], result.runs)["gpu_driven_phases"].is_null());
+}
+
+// A traced frame of a GPU-driven culler (the bird's-eye picture, the viewer's trace mode) names
+// the objects the device drew, read back after the frame: as many as the frame counted.
+TEST(Simulation, ATraceOfAGpuDrivenFrameNamesWhatTheDeviceDrew) {
+    const Scenario scenario = parseScenarioFile(kSmall);
+    BenchOptions options;
+    options.frames = 4;
+    options.trace_frame = 3;
+    options.algorithms = {findCuller("raster"), findCuller("hzb")};
+    std::map<std::string, size_t> traced;  // by configuration
+    options.on_frame = [&traced](const FrameEvent& e) {
+        if (e.frame != 3) return;
+        const FrameTrace* trace = e.simulation.lastTrace();
+        ASSERT_NE(trace, nullptr);
+        traced[e.config.label] = trace->drawn_objects.size();
+    };
+    const BenchResult result = runBenchmark(scenario, options);
+    ASSERT_EQ(traced.size(), 2u);
+    for (const RunRecord& run : result.runs) {
+        ASSERT_EQ(traced.count(run.summary.label), 1u) << run.summary.label;
+        EXPECT_GT(traced[run.summary.label], 0u);
+        EXPECT_EQ(traced[run.summary.label], run.frames[3].objects_drawn) << run.summary.label;
+    }
 }
 
 }  // namespace

@@ -12,7 +12,8 @@
 //   recorded among drawn_objects, as submitted, and in conditional_objects; the query they were
 //   conditioned on is marked `conditional`. Its answer is never read back, so it stays unfetched.
 // - GPU-driven draws (gpu_driven_draws.h) are the wrapped device's, forwarded: their draws are
-//   decided on the device and not recorded here.
+//   decided on the device, so the host adds them to the trace once it has read them back after
+//   the frame (addDeviceDecidedDraws()).
 // - When not tracing, calls are forwarded and nothing is recorded.
 // - Counters (draws, queries, wait time) are the wrapped device's: counters() forwards to it.
 #pragma once
@@ -52,6 +53,11 @@ class TracingDevice final : public RenderDevice, private ConditionalRendering {
     // Starts recording a fresh trace for `frame` (any previous one is discarded).
     void beginTrace(uint64_t frame);
     void endTrace() { tracing_ = false; }
+    // After endTrace(): objects the device drew on its own decisions during the traced frame
+    // (GPU-driven draws), appended to its drawn objects.
+    void addDeviceDecidedDraws(std::span<const uint32_t> objects) {
+        trace_.drawn_objects.insert(trace_.drawn_objects.end(), objects.begin(), objects.end());
+    }
     bool tracing() const { return tracing_; }
     const FrameTrace& trace() const { return trace_; }
 
