@@ -109,8 +109,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "objects_drawn,triangles,moved_objects,node_changes,error_pixels,tie_pixels,"
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
            "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
-           "executed_triangles,read_backs,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
-           "test_gpu_ms,phase2_gpu_ms\n";
+           "executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,test_gpu_ms,"
+           "phase2_gpu_ms,read_backs\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -127,12 +127,13 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                     << (f.answer_latency_median >= 0 ? fixed(f.answer_latency_median, 1) : "")
                     << ',' << f.stray_pixels << ',' << f.overdrawn_objects << ','
                     << f.overdrawn_triangles << ',' << f.executed_objects << ','
-                    << f.executed_triangles << ',' << f.read_backs;
-                // GPU-driven cullers' phases; empty for the others.
+                    << f.executed_triangles;
+                // GPU-driven cullers' phases; empty for the others (never the last column: a
+                // row ends in a number, which naive CSV splitters keep).
                 for (const auto* phases : {&f.phase_cpu_ms, &f.phase_gpu_ms}) {
                     for (const double ms : *phases) out << ',' << (ms >= 0 ? fixed(ms, 4) : "");
                 }
-                out << '\n';
+                out << ',' << f.read_backs << '\n';
             }
         }
     }

@@ -274,14 +274,14 @@ TEST(Simulation, GpuDrivenCullersReadNothingBackInTheFrameAndTimeEachPhase) {
         }
     }
     const std::string csv = framesCsv(result.runs);
-    EXPECT_NE(csv.find(",read_backs,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
-                       "test_gpu_ms,phase2_gpu_ms\n"),
+    EXPECT_NE(csv.find(",executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
+                       "test_gpu_ms,phase2_gpu_ms,read_backs\n"),
               std::string::npos);
     EXPECT_NE(csv.find("\nvfc,0,0,"), std::string::npos);
-    // vfc's rows end in six empty phase columns.
+    // vfc's rows hold six empty phase columns before read_backs (0).
     const size_t vfc_row = csv.find("\nvfc,0,0,");
     const std::string row = csv.substr(vfc_row + 1, csv.find('\n', vfc_row + 1) - vfc_row - 1);
-    EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,") << row;
+    EXPECT_EQ(row.substr(row.size() - 8), ",,,,,,,0") << row;
     const nlohmann::json j = configurationJson(result.runs[3], result.runs);
     ASSERT_TRUE(j["gpu_driven_phases"].is_object()) << j.dump();
     EXPECT_GT(j["gpu_driven_phases"]["phase1"]["cpu_ms"].get<double>(), 0.0);
