@@ -253,26 +253,32 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
     upload(templates_buffer_, templates_.data(), entry_count * sizeof(GlRenderer::DrawCommand));
     upload(entry_units_buffer_, entry_units_.data(), entry_count * sizeof(uint32_t));
 
-    if (entry_count > 0) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, first_commands_);
-        glUseProgram(commands_program_);
-        glUniform1ui(commands_count_loc_, entry_count);
-        glUniform1ui(commands_phase_loc_, 1);
-        glUniform1ui(commands_frame_loc_, frame_);
-        glDispatchCompute(workGroups(entry_count), 1, 1);
-        glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-        renderer_.forgetBoundState();
-        renderer_.drawIndirect(first_commands_, entry_count);
-    }
+    drawPhase(1, first_commands_);
     glQueryCounter(timestamps_[1], GL_TIMESTAMP);
     const double seconds = steadySecondsSince(start);
     phase_times_.cpu_ms[0] = seconds * 1e3;
     counters_.submit_seconds += seconds;
+}
+
+// Writes one phase's commands from the entry templates (kCommandsShader) into `commands` and
+// draws them with one multi-draw; the command barrier makes the draw read what the pass wrote.
+void GlGpuDrivenDraws::drawPhase(uint32_t phase, uint32_t commands) {
+    const auto entry_count = static_cast<uint32_t>(templates_.size());
+    if (entry_count == 0) return;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, commands);
+    glUseProgram(commands_program_);
+    glUniform1ui(commands_count_loc_, entry_count);
+    glUniform1ui(commands_phase_loc_, phase);
+    glUniform1ui(commands_frame_loc_, frame_);
+    glDispatchCompute(workGroups(entry_count), 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    renderer_.forgetBoundState();
+    renderer_.drawIndirect(commands, entry_count);
 }
 
 void GlGpuDrivenDraws::rasteriseBoxes() {
@@ -309,15 +315,15 @@ void GlGpuDrivenDraws::rasteriseBoxes() {
 void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
     const auto start = std::chrono::steady_clock::now();
     const auto unit_count = static_cast<uint32_t>(bounds_.size());
-    const auto entry_count = static_cast<uint32_t>(templates_.size());
     if (unit_count > 0) {
         if (test == GpuTest::BoxRaster) {
             rasteriseBoxes();
         } else if (pyramid_) {
             pyramid_->build();
             tests_.resize(unit_count);
-            for (uint32_t u = 0; u < unit_count; ++u)
+            for (uint32_t u = 0; u < unit_count; ++u) {
                 tests_[u] = pyramid_->testFor(bounds_[u], shape);
+            }
             counters_.pyramid_bounds += unit_count;
             pyramid_->dispatchTests(tests_, flags_buffer_);
         } else {
@@ -336,22 +342,7 @@ void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
     }
     glQueryCounter(timestamps_[2], GL_TIMESTAMP);
     const double test_seconds = steadySecondsSince(start);
-    if (entry_count > 0) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, second_commands_);
-        glUseProgram(commands_program_);
-        glUniform1ui(commands_count_loc_, entry_count);
-        glUniform1ui(commands_phase_loc_, 2);
-        glUniform1ui(commands_frame_loc_, frame_);
-        glDispatchCompute(workGroups(entry_count), 1, 1);
-        glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        renderer_.forgetBoundState();
-        renderer_.drawIndirect(second_commands_, entry_count);
-    }
+    drawPhase(2, second_commands_);
     glQueryCounter(timestamps_[3], GL_TIMESTAMP);
     renderer_.forgetBoundState();
     const double seconds = steadySecondsSince(start);

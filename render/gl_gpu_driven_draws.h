@@ -70,6 +70,7 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
 
   private:
     void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
+    void drawPhase(uint32_t phase, uint32_t commands);
     void rasteriseBoxes();
 
     GlRenderer& renderer_;

@@ -14,22 +14,10 @@
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "render/headless_context.h"
+#include "render_test_scene.h"
 
 namespace occsim {
 namespace {
-
-// A unit cube [-0.5, 0.5]^3.
-MeshData unitCube() {
-    MeshData m;
-    for (int i = 0; i < 8; ++i) {
-        m.positions.push_back(
-            glm::vec3((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f));
-        m.normals.push_back(glm::normalize(m.positions.back()));
-    }
-    m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-                 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-    return m;
-}
 
 const char* testName(GpuTest test) { return test == GpuTest::Pyramid ? "pyramid" : "box raster"; }
 
@@ -39,7 +27,7 @@ class GlGpuDrivenDrawsTest : public ::testing::TestWithParam<DepthConvention> {
     void SetUp() override {
         context_ = createHeadlessContext({Backend::Egl, {}}, kW, kH);
         renderer_ = std::make_unique<GlRenderer>(kW, kH, GetParam());
-        const MeshData cube = unitCube();
+        const MeshData cube = cubeMesh();
         renderer_->uploadMeshes(std::span<const MeshData>(&cube, 1));
         // Object 0: a wall at z = -5; 1: a cube hidden behind it; 2: a cube beside it; 3: a cube
         // behind the wall of which a sliver shows past the wall's edge (about a pixel wide).
