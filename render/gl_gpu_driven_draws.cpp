@@ -5,7 +5,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "occsim/culling/geometry/query_box.h"
 #include "render/gl_api.h"
 #include "render/gl_shader.h"
 #include "render/steady_seconds.h"
@@ -233,6 +232,7 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
     glQueryCounter(timestamps_[0], GL_TIMESTAMP);
     ++frame_;
     frame_pending_ = true;
+    states_read_ = false;
     const auto unit_count = static_cast<uint32_t>(units.bounds.size());
     const auto entry_count = static_cast<uint32_t>(units.objects.size());
     bounds_.assign(units.bounds.begin(), units.bounds.end());
@@ -285,15 +285,10 @@ void GlGpuDrivenDraws::rasteriseBoxes() {
     const ViewSetup& view = renderer_.view();
     boxes_.resize(bounds_.size() * 8);
     for (size_t u = 0; u < bounds_.size(); ++u) {
-        // As GlRenderer::drawQueryBox: padded by queryBoxPad, eye-relative in double.
-        const glm::dvec3 lo = glm::dvec3(bounds_[u].min) + view.box_origin;
-        const glm::dvec3 hi = glm::dvec3(bounds_[u].max) + view.box_origin;
-        const double pad = queryBoxPad(lo, hi, view.eye);
-        const glm::vec3 offset(lo - pad - view.eye);
-        const glm::vec3 size(hi - lo + 2.0 * pad);
+        const GlRenderer::EyeRelativeBox box = renderer_.queryBoxAsDrawn(bounds_[u]);
         float* b = &boxes_[u * 8];
-        b[0] = offset.x, b[1] = offset.y, b[2] = offset.z, b[3] = 0.0f;
-        b[4] = size.x, b[5] = size.y, b[6] = size.z, b[7] = 0.0f;
+        b[0] = box.offset.x, b[1] = box.offset.y, b[2] = box.offset.z, b[3] = 0.0f;
+        b[4] = box.size.x, b[5] = box.size.y, b[6] = box.size.z, b[7] = 0.0f;
     }
     glBindBuffer(GL_ARRAY_BUFFER, boxes_buffer_);
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(boxes_.size() * sizeof(float)),
@@ -351,15 +346,19 @@ void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
     counters_.submit_seconds += seconds;
 }
 
+void GlGpuDrivenDraws::readStates() {
+    if (states_read_) return;
+    states_read_ = true;
+    states_.resize(bounds_.size());
+    if (states_.empty()) return;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, states_buffer_);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                       static_cast<GLsizeiptr>(states_.size() * sizeof(uint32_t)), states_.data());
+}
+
 void GlGpuDrivenDraws::readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) {
     assert(first_phase.size() == bounds_.size() && passed.size() == bounds_.size());
-    states_.resize(bounds_.size());
-    if (!states_.empty()) {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, states_buffer_);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
-                           static_cast<GLsizeiptr>(states_.size() * sizeof(uint32_t)),
-                           states_.data());
-    }
+    readStates();
     for (size_t u = 0; u < states_.size(); ++u) {
         first_phase[u] = (states_[u] & 1u) != 0 ? 1 : 0;
         passed[u] = (states_[u] & 2u) != 0 ? 1 : 0;
@@ -377,16 +376,11 @@ bool GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& dr
         phase_times_.gpu_ms[i] =
             ns[i + 1] > ns[i] ? static_cast<double>(ns[i + 1] - ns[i]) * 1e-6 : 0.0;
     }
-    read_.resize(templates_.size());
-    if (read_.empty()) return true;
-    for (const GLuint list : {first_commands_, second_commands_}) {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, list);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
-                           static_cast<GLsizeiptr>(read_.size() * sizeof(GlRenderer::DrawCommand)),
-                           read_.data());
-        for (const GlRenderer::DrawCommand& c : read_) {
-            if (c.instance_count != 0) drawn.push_back(c);
-        }
+    // An entry was drawn in phase 1 when its unit was, in phase 2 when its unit passed (and
+    // phase 1 had not drawn it): the units' states, which the command passes read, say which.
+    readStates();
+    for (size_t e = 0; e < templates_.size(); ++e) {
+        if ((states_[entry_units_[e]] & 3u) != 0) drawn.push_back(templates_[e]);
     }
     return true;
 }

@@ -19,8 +19,9 @@
 //   compute pass over the units stores each one's answer (forced or flagged) in its slot and a
 //   last one over the entries writes phase 2's commands (passed, not drawn in phase 1); one
 //   multi-draw draws them.
-// - After the frame: readResults() and drawnEntries() read the per-unit answers and the two
-//   command lists back (GlQueryDevice::resolveGpuDrivenDraws).
+// - After the frame: readResults() and takeDrawnEntries() read the units' states back, once
+//   (what the command passes wrote their commands from), and derive what each phase drew
+//   (GlQueryDevice::resolveGpuDrivenDraws).
 // Time spent here counts as the device's submission time (DeviceCounters::submit_seconds), and
 // is measured per phase (phase 1, the test, phase 2) on the CPU and, with timestamp queries
 // between the phases, on the GPU (phaseTimes(); on a software rasteriser the GPU times are the
@@ -53,9 +54,10 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     void readResults(std::span<uint8_t> first_phase, std::span<uint8_t> passed) override;
     bool offersBoxRaster() const override { return true; }
 
-    // After the frame, outside any timing: the entries the two phases drew this frame (read back
-    // from their command lists), as the command each drew, and the frame's phase times; false
-    // (and `drawn` empty) when no frame ran since the last call. The frame is forgotten after.
+    // After the frame, outside any timing: the entries the two phases drew this frame (from the
+    // units' states read back, as the command passes read them), as the command each drew, and the
+    // frame's phase times; false (and `drawn` empty) when no frame ran since the last call. The
+    // frame is forgotten after.
     bool takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& drawn);
 
     // Milliseconds of phase 1 (uploads, commands, its multi-draw), the test (pyramid build and
@@ -72,6 +74,7 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
     void drawPhase(uint32_t phase, uint32_t commands);
     void rasteriseBoxes();
+    void readStates();
 
     GlRenderer& renderer_;
     GlDepthPyramid* pyramid_;
@@ -98,9 +101,9 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     std::vector<GlRenderer::DrawCommand> templates_;
     std::vector<uint32_t> entry_units_;
     std::vector<GlDepthPyramid::Test> tests_;
-    std::vector<float> boxes_;  // per unit: offset (xyz, pad) and size (xyz, pad), eye-relative
-    std::vector<GlRenderer::DrawCommand> read_;
-    std::vector<uint32_t> states_;
+    std::vector<float> boxes_;      // per unit: offset (xyz, pad) and size (xyz, pad), eye-relative
+    std::vector<uint32_t> states_;  // per unit, read back once a frame after it (readStates)
+    bool states_read_ = false;
 };
 
 }  // namespace occsim

@@ -54,8 +54,8 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     // context cannot compile their shaders.
     GpuDrivenDraws* gpuDrivenDraws() override;
     // After the frame, outside any timing: adds the objects the GPU-driven draws drew this frame
-    // to the drawn set and to the counters (objects_drawn, triangles_drawn), reading their command
-    // lists back. Does nothing in a frame without them.
+    // to the drawn set and to the counters (objects_drawn, triangles_drawn), reading the units'
+    // states back. Does nothing in a frame without them.
     void resolveGpuDrivenDraws();
     // The phase times of the frame the last resolveGpuDrivenDraws() resolved; nullptr when that
     // frame had no GPU-driven draws.

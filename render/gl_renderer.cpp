@@ -344,15 +344,18 @@ void GlRenderer::drawQueryBox(const Aabb& box) {
     // as visible; a larger box only makes the query more conservative. The box arrives in the
     // culling frame; relative to the eye it is small again, so the float model-view matrix keeps
     // its precision far from the world origin.
+    const EyeRelativeBox drawn = queryBoxAsDrawn(box);
+    glm::mat4 model_view = view_.view_rotation * glm::translate(glm::mat4(1.0f), drawn.offset) *
+                           glm::scale(glm::mat4(1.0f), drawn.size);
+    glUniformMatrix4fv(query_model_view_loc_, 1, GL_FALSE, &model_view[0][0]);
+    glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr);
+}
+
+GlRenderer::EyeRelativeBox GlRenderer::queryBoxAsDrawn(const Aabb& box) const {
     const glm::dvec3 lo = glm::dvec3(box.min) + view_.box_origin;
     const glm::dvec3 hi = glm::dvec3(box.max) + view_.box_origin;
     const double pad = queryBoxPad(lo, hi, view_.eye);
-    const glm::vec3 offset(lo - pad - view_.eye);
-    const glm::vec3 size(hi - lo + 2.0 * pad);
-    glm::mat4 model_view = view_.view_rotation * glm::translate(glm::mat4(1.0f), offset) *
-                           glm::scale(glm::mat4(1.0f), size);
-    glUniformMatrix4fv(query_model_view_loc_, 1, GL_FALSE, &model_view[0][0]);
-    glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr);
+    return {glm::vec3(lo - pad - view_.eye), glm::vec3(hi - lo + 2.0 * pad)};
 }
 
 bool GlRenderer::queryBoxNearEye(const Aabb& box) const {

@@ -90,6 +90,12 @@ class GlRenderer {
     uint32_t boxVertexBuffer() const { return box_vbo_; }
     uint32_t boxIndexBuffer() const { return box_ibo_; }
     void drawQueryBox(const Aabb& box);  // inside glBeginQuery/glEndQuery, writes nothing
+    // A query box (culling frame) as drawQueryBox() and box rasterisation draw it: grown by the
+    // query-box pad, its min corner relative to the eye and its size, computed in double.
+    struct EyeRelativeBox {
+        glm::vec3 offset, size;
+    };
+    EyeRelativeBox queryBoxAsDrawn(const Aabb& box) const;
     // The near-plane rule (nearPlaneTouchesBox, occsim/culling/geometry/query_box.h) on a query box
     // in the culling frame, as this renderer draws it: a query on it cannot be trusted.
     bool queryBoxNearEye(const Aabb& box) const;

@@ -142,14 +142,16 @@ void HzbCuller::cullAndRender(const BspTree& tree, const CullFrame& frame, Rende
 
 namespace {
 
+// hzb's and raster's option of the same name.
+constexpr const char* kNodeUnitsHelp =
+    "test BSP nodes (their bounds; a node that passes draws its own objects) instead of objects";
+
 const OptionTable<HzbOptions>& hzbOptionTable() {
     static const OptionTable<HzbOptions> table = {
         booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, sphere_bounds),
                       "test the sphere around each box (its exact projected rectangle) instead "
                       "of the box's 8 projected corners"),
-        booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, node_units),
-                      "test BSP nodes (their bounds; a node that passes draws its own objects) "
-                      "instead of objects"),
+        booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, node_units), kNodeUnitsHelp),
         booleanOption(OCCSIM_OPTION_MEMBER(HzbOptions, read_back),
                       "read the pyramid's flags back in the frame and draw phase 2 from the CPU "
                       "(the scheme before GPU-driven draws) instead of deciding and drawing both "
@@ -160,9 +162,7 @@ const OptionTable<HzbOptions>& hzbOptionTable() {
 
 const OptionTable<GpuDrivenOptions>& rasterOptionTable() {
     static const OptionTable<GpuDrivenOptions> table = {
-        booleanOption(OCCSIM_OPTION_MEMBER(GpuDrivenOptions, node_units),
-                      "test BSP nodes (their bounds; a node that passes draws its own objects) "
-                      "instead of objects"),
+        booleanOption(OCCSIM_OPTION_MEMBER(GpuDrivenOptions, node_units), kNodeUnitsHelp),
     };
     return table;
 }
