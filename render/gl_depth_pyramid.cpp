@@ -58,6 +58,7 @@ layout(std430, binding = 0) readonly buffer Tests { Test tests[]; };
 layout(std430, binding = 1) writeonly buffer Flags { uint flags[]; };
 layout(binding = 0) uniform sampler2D u_pyramid;
 uniform uint u_count;
+uniform uint u_first_flag;
 uniform int u_reverse;
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -74,7 +75,7 @@ void main() {
             }
         }
     }
-    flags[i] = visible;
+    flags[u_first_flag + i] = visible;
 }
 )";
 
@@ -100,6 +101,7 @@ GlDepthPyramid::GlDepthPyramid(GlRenderer& renderer, DeviceCounters& counters)
     reduce_in_level_loc_ = glGetUniformLocation(reduce_program_, "u_in_level");
     reduce_reverse_loc_ = glGetUniformLocation(reduce_program_, "u_reverse");
     test_count_loc_ = glGetUniformLocation(test_program_, "u_count");
+    test_first_flag_loc_ = glGetUniformLocation(test_program_, "u_first_flag");
     test_reverse_loc_ = glGetUniformLocation(test_program_, "u_reverse");
     glGenBuffers(1, &test_buffer_);
     glGenBuffers(1, &flag_buffer_);
@@ -259,7 +261,8 @@ void GlDepthPyramid::testBounds(std::span<const Aabb> boxes, PyramidBound shape,
     counters_.wait_seconds += steadySecondsSince(wait_start);
 }
 
-void GlDepthPyramid::dispatchTests(std::span<const Test> tests, uint32_t flag_buffer) {
+void GlDepthPyramid::dispatchTests(std::span<const Test> tests, uint32_t flag_buffer,
+                                   uint32_t first_flag) {
     const uint32_t count = static_cast<uint32_t>(tests.size());
     if (count == 0) return;
     if (count > buffer_capacity_) {
@@ -276,6 +279,7 @@ void GlDepthPyramid::dispatchTests(std::span<const Test> tests, uint32_t flag_bu
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, flag_buffer);
     glUseProgram(test_program_);
     glUniform1ui(test_count_loc_, count);
+    glUniform1ui(test_first_flag_loc_, first_flag);
     glUniform1i(test_reverse_loc_,
                 renderer_.depthConvention() == DepthConvention::ReverseFloat ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);

@@ -59,9 +59,10 @@ class GlDepthPyramid final : public DepthPyramid {
     // the tests of the rules as the GPU path applies them).
     Test testFor(const Aabb& box, PyramidBound shape) const;
     // Runs the test shader on `tests` against the last pyramid built, writing one uint flag per
-    // test into `flag_buffer` (a GL buffer of at least tests.size() uints), and reads nothing
-    // back: what GPU-driven draws (render/gl_gpu_driven_draws.h) build their commands from.
-    void dispatchTests(std::span<const Test> tests, uint32_t flag_buffer);
+    // test into `flag_buffer` (a GL buffer of at least first_flag + tests.size() uints) from
+    // `first_flag` on, and reads nothing back: what GPU-driven draws (render/gl_gpu_driven_draws.h)
+    // build their commands from.
+    void dispatchTests(std::span<const Test> tests, uint32_t flag_buffer, uint32_t first_flag = 0);
 
   private:
     void ensureTextures();
@@ -70,7 +71,8 @@ class GlDepthPyramid final : public DepthPyramid {
     DeviceCounters& counters_;
     uint32_t reduce_program_ = 0, test_program_ = 0;
     int reduce_in_size_loc_ = -1, reduce_out_size_loc_ = -1, reduce_in_level_loc_ = -1,
-        reduce_reverse_loc_ = -1, test_count_loc_ = -1, test_reverse_loc_ = -1;
+        reduce_reverse_loc_ = -1, test_count_loc_ = -1, test_first_flag_loc_ = -1,
+        test_reverse_loc_ = -1;
     uint32_t depth_copy_ = 0, pyramid_ = 0;  // textures
     uint32_t viewport_w_ = 0, viewport_h_ = 0, base_w_ = 0, base_h_ = 0, level_count_ = 0;
     uint32_t test_buffer_ = 0, flag_buffer_ = 0;

@@ -34,12 +34,13 @@ layout(std430, binding = 2) readonly buffer EntryUnits { uint entry_units[]; };
 layout(std430, binding = 3) readonly buffer Slots { uint slots[]; };
 layout(std430, binding = 4) readonly buffer States { uint states[]; };
 layout(std430, binding = 5) writeonly buffer Commands { Command commands[]; };
-uniform uint u_count;
+uniform uint u_first;
+uniform uint u_end;
 uniform uint u_phase;
 uniform uint u_frame;
 void main() {
-    uint e = gl_GlobalInvocationID.x;
-    if (e >= u_count) return;
+    uint e = u_first + gl_GlobalInvocationID.x;
+    if (e >= u_end) return;
     uint u = entry_units[e];
     bool draw;
     if (u_phase == 1u) {
@@ -63,11 +64,12 @@ layout(std430, binding = 0) readonly buffer Units { uvec2 units[]; };
 layout(std430, binding = 3) buffer Slots { uint slots[]; };
 layout(std430, binding = 4) writeonly buffer States { uint states[]; };
 layout(std430, binding = 6) readonly buffer Flags { uint flags[]; };
-uniform uint u_count;
+uniform uint u_first;
+uniform uint u_end;
 uniform uint u_frame;
 void main() {
-    uint u = gl_GlobalInvocationID.x;
-    if (u >= u_count) return;
+    uint u = u_first + gl_GlobalInvocationID.x;
+    if (u >= u_end) return;
     uvec2 unit = units[u];
     bool first = unit.y != 0u || slots[unit.x] + 1u == u_frame;
     bool passed = unit.y != 0u || flags[u] != 0u;
@@ -76,19 +78,21 @@ void main() {
 }
 )";
 
-// Every unit's box, one instance each, the unit cube scaled and moved (eye-relative) and turned
-// into view space as GlRenderer::drawQueryBox turns a query box.
+// Every unit's box of a batch, one instance each (the base instance the batch's first unit), the
+// unit cube scaled and moved (eye-relative) and turned into view space as GlRenderer::drawQueryBox
+// turns a query box.
 const char* kBoxVertexShader = R"(#version 430 core
 layout(location = 0) in vec3 a_corner;
 layout(location = 1) in vec3 a_offset;
 layout(location = 2) in vec3 a_size;
 uniform mat4 u_projection;
 uniform mat4 u_view_rotation;
+uniform uint u_first_unit;
 flat out uint v_unit;
 void main() {
     vec3 p = a_offset + a_corner * a_size;
     gl_Position = u_projection * (u_view_rotation * vec4(p, 1.0));
-    v_unit = uint(gl_InstanceID);
+    v_unit = u_first_unit + uint(gl_InstanceID);
 }
 )";
 
@@ -140,13 +144,16 @@ GlGpuDrivenDraws::GlGpuDrivenDraws(GlRenderer& renderer, GlDepthPyramid* pyramid
         if (store_program_ != 0) glDeleteProgram(store_program_);
         throw;
     }
-    commands_count_loc_ = glGetUniformLocation(commands_program_, "u_count");
+    commands_first_loc_ = glGetUniformLocation(commands_program_, "u_first");
+    commands_end_loc_ = glGetUniformLocation(commands_program_, "u_end");
     commands_phase_loc_ = glGetUniformLocation(commands_program_, "u_phase");
     commands_frame_loc_ = glGetUniformLocation(commands_program_, "u_frame");
-    store_count_loc_ = glGetUniformLocation(store_program_, "u_count");
+    store_first_loc_ = glGetUniformLocation(store_program_, "u_first");
+    store_end_loc_ = glGetUniformLocation(store_program_, "u_end");
     store_frame_loc_ = glGetUniformLocation(store_program_, "u_frame");
     box_projection_loc_ = glGetUniformLocation(box_program_, "u_projection");
     box_rotation_loc_ = glGetUniformLocation(box_program_, "u_view_rotation");
+    box_first_unit_loc_ = glGetUniformLocation(box_program_, "u_first_unit");
 
     GLuint* buffers[] = {&units_buffer_,   &templates_buffer_, &entry_units_buffer_,
                          &slots_buffer_,   &flags_buffer_,     &states_buffer_,
@@ -167,7 +174,6 @@ GlGpuDrivenDraws::GlGpuDrivenDraws(GlRenderer& renderer, GlDepthPyramid* pyramid
         glVertexAttribDivisor(attribute, 1);
     }
     glBindVertexArray(0);
-    glGenQueries(4, timestamps_);
     renderer_.forgetBoundState();
     checkGl("GPU-driven draws set-up");
 }
@@ -181,7 +187,9 @@ GlGpuDrivenDraws::~GlGpuDrivenDraws() {
                               first_commands_, second_commands_,  boxes_buffer_};
     glDeleteBuffers(9, buffers);
     glDeleteVertexArrays(1, &box_vao_);
-    glDeleteQueries(4, timestamps_);
+    if (!timestamps_.empty()) {
+        glDeleteQueries(static_cast<GLsizei>(timestamps_.size()), timestamps_.data());
+    }
 }
 
 void GlGpuDrivenDraws::ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots) {
@@ -229,7 +237,8 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
     assert(units.slots.size() == units.bounds.size() && units.forced.size() == units.bounds.size());
     assert(units.object_units.size() == units.objects.size());
     const auto start = std::chrono::steady_clock::now();
-    glQueryCounter(timestamps_[0], GL_TIMESTAMP);
+    timestamps_used_ = 0;
+    stampTime();
     ++frame_;
     frame_pending_ = true;
     states_read_ = false;
@@ -248,23 +257,36 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
         templates_[e] = renderer_.drawCommandFor(units.objects[e]);
     }
     entry_units_.assign(units.object_units.begin(), units.object_units.end());
+    assert(std::is_sorted(entry_units_.begin(), entry_units_.end()));
+    batch_ends_.assign(units.batch_ends.begin(), units.batch_ends.end());
+    if (batch_ends_.empty()) batch_ends_.push_back(unit_count);
+    assert(std::is_sorted(batch_ends_.begin(), batch_ends_.end()) &&
+           batch_ends_.back() == unit_count);
     ensureCapacity(unit_count, entry_count, units.slot_count);
     upload(units_buffer_, units_.data(), units_.size() * sizeof(uint32_t));
     upload(templates_buffer_, templates_.data(), entry_count * sizeof(GlRenderer::DrawCommand));
     upload(entry_units_buffer_, entry_units_.data(), entry_count * sizeof(uint32_t));
 
-    drawPhase(1, first_commands_);
-    glQueryCounter(timestamps_[1], GL_TIMESTAMP);
+    drawPhase(1, first_commands_, 0, entry_count);
+    stampTime();
     const double seconds = steadySecondsSince(start);
     phase_times_.cpu_ms[0] = seconds * 1e3;
     counters_.submit_seconds += seconds;
 }
 
-// Writes one phase's commands from the entry templates (kCommandsShader) into `commands` and
-// draws them with one multi-draw; the command barrier makes the draw read what the pass wrote.
-void GlGpuDrivenDraws::drawPhase(uint32_t phase, uint32_t commands) {
-    const auto entry_count = static_cast<uint32_t>(templates_.size());
-    if (entry_count == 0) return;
+void GlGpuDrivenDraws::stampTime() {
+    if (timestamps_used_ == timestamps_.size()) {
+        timestamps_.push_back(0);
+        glGenQueries(1, &timestamps_.back());
+    }
+    glQueryCounter(timestamps_[timestamps_used_++], GL_TIMESTAMP);
+}
+
+// Writes one phase's commands for entries [first, end) from their templates (kCommandsShader)
+// into `commands` and draws them with one multi-draw; the command barrier makes the draw read
+// what the pass wrote.
+void GlGpuDrivenDraws::drawPhase(uint32_t phase, uint32_t commands, uint32_t first, uint32_t end) {
+    if (end <= first) return;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTemplatesBinding, templates_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEntryUnitsBinding, entry_units_buffer_);
@@ -272,17 +294,18 @@ void GlGpuDrivenDraws::drawPhase(uint32_t phase, uint32_t commands) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, commands);
     glUseProgram(commands_program_);
-    glUniform1ui(commands_count_loc_, entry_count);
+    glUniform1ui(commands_first_loc_, first);
+    glUniform1ui(commands_end_loc_, end);
     glUniform1ui(commands_phase_loc_, phase);
     glUniform1ui(commands_frame_loc_, frame_);
-    glDispatchCompute(workGroups(entry_count), 1, 1);
+    glDispatchCompute(workGroups(end - first), 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     renderer_.forgetBoundState();
-    renderer_.drawIndirect(commands, entry_count);
+    renderer_.drawIndirect(commands, end - first, first);
 }
 
-void GlGpuDrivenDraws::rasteriseBoxes() {
-    const ViewSetup& view = renderer_.view();
+// Uploads every unit's box (once a frame, before the first batch) and clears the flags.
+void GlGpuDrivenDraws::uploadBoxes() {
     boxes_.resize(bounds_.size() * 8);
     for (size_t u = 0; u < bounds_.size(); ++u) {
         const GlRenderer::EyeRelativeBox box = renderer_.queryBoxAsDrawn(bounds_[u]);
@@ -294,56 +317,78 @@ void GlGpuDrivenDraws::rasteriseBoxes() {
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(boxes_.size() * sizeof(float)),
                     boxes_.data());
     fillUints(flags_buffer_, static_cast<uint32_t>(bounds_.size()), 0);
+}
+
+// The boxes of units [first, end) as one instanced draw.
+void GlGpuDrivenDraws::rasteriseBoxes(uint32_t first, uint32_t end) {
+    const ViewSetup& view = renderer_.view();
     // The query boxes' state (no writes, the passing-on-equal depth test), then this program.
     renderer_.useBoxState();
     glUseProgram(box_program_);
     glUniformMatrix4fv(box_projection_loc_, 1, GL_FALSE, &view.projection[0][0]);
     glUniformMatrix4fv(box_rotation_loc_, 1, GL_FALSE, &view.view_rotation[0][0]);
+    glUniform1ui(box_first_unit_loc_, first);
     glBindVertexArray(box_vao_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFlagsBinding, flags_buffer_);
-    glDrawElementsInstanced(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr,
-                            static_cast<GLsizei>(bounds_.size()));
+    glDrawElementsInstancedBaseVertexBaseInstance(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr,
+                                                  static_cast<GLsizei>(end - first), 0, first);
     glBindVertexArray(0);
     renderer_.forgetBoundState();
 }
 
-void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
-    const auto start = std::chrono::steady_clock::now();
-    const auto unit_count = static_cast<uint32_t>(bounds_.size());
-    if (unit_count > 0) {
-        if (test == GpuTest::BoxRaster) {
-            rasteriseBoxes();
-        } else if (pyramid_) {
-            pyramid_->build();
-            tests_.resize(unit_count);
-            for (uint32_t u = 0; u < unit_count; ++u) {
-                tests_[u] = pyramid_->testFor(bounds_[u], shape);
-            }
-            counters_.pyramid_bounds += unit_count;
-            pyramid_->dispatchTests(tests_, flags_buffer_);
-        } else {
-            fillUints(flags_buffer_, unit_count, 1);  // no pyramid: nothing is hidden
-        }
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFlagsBinding, flags_buffer_);
-        glUseProgram(store_program_);
-        glUniform1ui(store_count_loc_, unit_count);
-        glUniform1ui(store_frame_loc_, frame_);
-        glDispatchCompute(workGroups(unit_count), 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+// Tests units [first, end) against the depth drawn so far and stores each one's answer (its
+// state, and its slot's stamp when it passed).
+void GlGpuDrivenDraws::testBatch(GpuTest test, PyramidBound shape, uint32_t first, uint32_t end) {
+    if (test == GpuTest::BoxRaster) {
+        if (first == 0) uploadBoxes();
+        rasteriseBoxes(first, end);
+    } else if (pyramid_) {
+        pyramid_->build();
+        tests_.resize(end - first);
+        for (uint32_t u = first; u < end; ++u)
+            tests_[u - first] = pyramid_->testFor(bounds_[u], shape);
+        counters_.pyramid_bounds += end - first;
+        pyramid_->dispatchTests(tests_, flags_buffer_, first);
+    } else if (first == 0) {
+        fillUints(flags_buffer_, static_cast<uint32_t>(bounds_.size()), 1);  // nothing is hidden
     }
-    glQueryCounter(timestamps_[2], GL_TIMESTAMP);
-    const double test_seconds = steadySecondsSince(start);
-    drawPhase(2, second_commands_);
-    glQueryCounter(timestamps_[3], GL_TIMESTAMP);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUnitsBinding, units_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlotsBinding, slots_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatesBinding, states_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFlagsBinding, flags_buffer_);
+    glUseProgram(store_program_);
+    glUniform1ui(store_first_loc_, first);
+    glUniform1ui(store_end_loc_, end);
+    glUniform1ui(store_frame_loc_, frame_);
+    glDispatchCompute(workGroups(end - first), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GlGpuDrivenDraws::drawSecondPhase(GpuTest test, PyramidBound shape) {
+    using Clock = std::chrono::steady_clock;
+    double test_seconds = 0, draw_seconds = 0;
+    uint32_t first = 0, first_entry = 0;
+    const auto entry_count = static_cast<uint32_t>(entry_units_.size());
+    for (const uint32_t end : batch_ends_) {
+        const auto start = Clock::now();
+        if (end > first) testBatch(test, shape, first, end);
+        stampTime();
+        test_seconds += steadySecondsSince(start);
+        const auto draw_start = Clock::now();
+        // The batch's entries: those of its units, contiguous as the units are.
+        uint32_t end_entry = first_entry;
+        while (end_entry < entry_count && entry_units_[end_entry] < end) ++end_entry;
+        drawPhase(2, second_commands_, first_entry, end_entry);
+        stampTime();
+        draw_seconds += steadySecondsSince(draw_start);
+        first = end;
+        first_entry = end_entry;
+    }
     renderer_.forgetBoundState();
-    const double seconds = steadySecondsSince(start);
     phase_times_.cpu_ms[1] = test_seconds * 1e3;
-    phase_times_.cpu_ms[2] = (seconds - test_seconds) * 1e3;
-    counters_.submit_seconds += seconds;
+    phase_times_.cpu_ms[2] = draw_seconds * 1e3;
+    counters_.submit_seconds += test_seconds + draw_seconds;
 }
 
 void GlGpuDrivenDraws::readStates() {
@@ -369,12 +414,18 @@ bool GlGpuDrivenDraws::takeDrawnEntries(std::vector<GlRenderer::DrawCommand>& dr
     drawn.clear();
     if (!frame_pending_) return false;
     frame_pending_ = false;
-    uint64_t ns[4] = {0, 0, 0, 0};
-    for (int i = 0; i < 4; ++i) glGetQueryObjectui64v(timestamps_[i], GL_QUERY_RESULT, &ns[i]);
-    for (int i = 0; i < 3; ++i) {
-        // Timestamps are monotonic; a driver that returns zeros gives zero, never a negative.
-        phase_times_.gpu_ms[i] =
-            ns[i + 1] > ns[i] ? static_cast<double>(ns[i + 1] - ns[i]) * 1e-6 : 0.0;
+    // Timestamps: before phase 1, after it, then after each batch's test and after its draws.
+    ns_.resize(timestamps_used_);
+    for (uint32_t i = 0; i < timestamps_used_; ++i) {
+        glGetQueryObjectui64v(timestamps_[i], GL_QUERY_RESULT, &ns_[i]);
+    }
+    // Timestamps are monotonic; a driver that returns zeros gives zero, never a negative.
+    const auto between = [&](uint32_t i) {
+        return ns_[i + 1] > ns_[i] ? static_cast<double>(ns_[i + 1] - ns_[i]) * 1e-6 : 0.0;
+    };
+    for (double& ms : phase_times_.gpu_ms) ms = 0;
+    for (uint32_t i = 0; i + 1 < timestamps_used_; ++i) {
+        phase_times_.gpu_ms[i == 0 ? 0 : (i % 2 == 1 ? 1 : 2)] += between(i);
     }
     // An entry was drawn in phase 1 when its unit was, in phase 2 when its unit passed (and
     // phase 1 had not drawn it): the units' states, which the command passes read, say which.

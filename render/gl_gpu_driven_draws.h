@@ -18,14 +18,17 @@
 //   A unit the near plane reaches (GlRenderer::queryBoxNearEye) is forced here as well. Then a
 //   compute pass over the units stores each one's answer (forced or flagged) in its slot and a
 //   last one over the entries writes phase 2's commands (passed, not drawn in phase 1); one
-//   multi-draw draws them.
+//   multi-draw draws them. In batches (GpuUnits::batch_ends) all of it is done batch by batch:
+//   each batch's boxes are one instanced draw (its first unit the base instance), or a pyramid
+//   rebuilt from the depth so far, and its entries (contiguous, as its units are) one multi-draw
+//   from an offset into the command list.
 // - After the frame: readResults() and takeDrawnEntries() read the units' states back, once
 //   (what the command passes wrote their commands from), and derive what each phase drew
 //   (GlQueryDevice::resolveGpuDrivenDraws).
 // Time spent here counts as the device's submission time (DeviceCounters::submit_seconds), and
-// is measured per phase (phase 1, the test, phase 2) on the CPU and, with timestamp queries
-// between the phases, on the GPU (phaseTimes(); on a software rasteriser the GPU times are the
-// rasteriser's threads' time, which is CPU time).
+// is measured per phase (phase 1, the test, phase 2; the batches' tests and draws summed) on the
+// CPU and, with timestamp queries between the phases, on the GPU (phaseTimes(); on a software
+// rasteriser the GPU times are the rasteriser's threads' time, which is CPU time).
 #pragma once
 
 #include <cstdint>
@@ -72,17 +75,21 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
 
   private:
     void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
-    void drawPhase(uint32_t phase, uint32_t commands);
-    void rasteriseBoxes();
+    void stampTime();
+    void drawPhase(uint32_t phase, uint32_t commands, uint32_t first, uint32_t end);
+    void uploadBoxes();
+    void rasteriseBoxes(uint32_t first, uint32_t end);
+    void testBatch(GpuTest test, PyramidBound shape, uint32_t first, uint32_t end);
     void readStates();
 
     GlRenderer& renderer_;
     GlDepthPyramid* pyramid_;
     DeviceCounters& counters_;
     uint32_t commands_program_ = 0, store_program_ = 0, box_program_ = 0;
-    int commands_count_loc_ = -1, commands_phase_loc_ = -1, commands_frame_loc_ = -1;
-    int store_count_loc_ = -1, store_frame_loc_ = -1;
-    int box_projection_loc_ = -1, box_rotation_loc_ = -1;
+    int commands_first_loc_ = -1, commands_end_loc_ = -1, commands_phase_loc_ = -1,
+        commands_frame_loc_ = -1;
+    int store_first_loc_ = -1, store_end_loc_ = -1, store_frame_loc_ = -1;
+    int box_projection_loc_ = -1, box_rotation_loc_ = -1, box_first_unit_loc_ = -1;
     uint32_t box_vao_ = 0;
     // Storage buffers: units (slot, forced), entry templates and their units, each slot's frame
     // stamp, each unit's flag and state (bit 0 first phase, bit 1 passed), the two command lists,
@@ -92,7 +99,10 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     uint32_t first_commands_ = 0, second_commands_ = 0, boxes_buffer_ = 0;
     uint32_t unit_capacity_ = 0, entry_capacity_ = 0, slot_capacity_ = 0;
     uint32_t frame_ = 1;  // the stamp of the current frame (slots hold 0 when never passed)
-    uint32_t timestamps_[4] = {0, 0, 0, 0};  // before phase 1, after it, after the test, after 2
+    // Timestamp queries: before phase 1, after it, then after each batch's test and its draws.
+    std::vector<uint32_t> timestamps_;
+    uint32_t timestamps_used_ = 0;
+    std::vector<uint64_t> ns_;
     PhaseTimes phase_times_;
     bool frame_pending_ = false;
     // This frame, on the CPU.
@@ -100,6 +110,7 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
     std::vector<Aabb> bounds_;
     std::vector<GlRenderer::DrawCommand> templates_;
     std::vector<uint32_t> entry_units_;
+    std::vector<uint32_t> batch_ends_;  // phase 2's batches (GpuUnits::batch_ends), at least one
     std::vector<GlDepthPyramid::Test> tests_;
     std::vector<float> boxes_;      // per unit: offset (xyz, pad) and size (xyz, pad), eye-relative
     std::vector<uint32_t> states_;  // per unit, read back once a frame after it (readStates)

@@ -326,12 +326,14 @@ void GlRenderer::drawObject(uint32_t object) {
         reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex, object);
 }
 
-void GlRenderer::drawIndirect(uint32_t command_buffer, uint32_t count) {
+void GlRenderer::drawIndirect(uint32_t command_buffer, uint32_t count, uint32_t first) {
     if (count == 0) return;
     useState(State::Draw);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_buffer);
-    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count),
-                                0);
+    glMultiDrawElementsIndirect(
+        GL_TRIANGLES, GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(uintptr_t{first} * sizeof(DrawCommand)),
+        static_cast<GLsizei>(count), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 

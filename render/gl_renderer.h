@@ -79,9 +79,10 @@ class GlRenderer {
         uint32_t count, instance_count, first_index, base_vertex, base_instance;
     };
     DrawCommand drawCommandFor(uint32_t object) const;
-    // Draws `count` commands of `command_buffer` (a GL buffer of DrawCommand) in one call, with
-    // the state drawObject() uses: what a GPU-written command list draws.
-    void drawIndirect(uint32_t command_buffer, uint32_t count);
+    // Draws `count` commands of `command_buffer` (a GL buffer of DrawCommand) from command
+    // `first` on in one call, with the state drawObject() uses: what a GPU-written command list
+    // draws.
+    void drawIndirect(uint32_t command_buffer, uint32_t count, uint32_t first = 0);
     // Binds the state query boxes are drawn with (no colour or depth writes, GL_GEQUAL / GL_LEQUAL
     // depth test) for a pass that draws boxes with its own program (box rasterisation).
     void useBoxState();

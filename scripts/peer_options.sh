@@ -4,7 +4,8 @@
 # measured, every run twice so that the spread stands beside the means. Run it on a quiet machine
 # (no build, test or other benchmark beside it); each run's summary gives the load average.
 # About 13 minutes per scene with --frames 60 on a 2-core machine for the 10 runs before
-# hzb-read_back and raster-node_units joined (not timed since; each run about 40 s).
+# hzb-read_back, raster-node_units and raster-batches joined (not timed since; each run about
+# 40 s).
 # Usage: scripts/peer_options.sh [SCENARIO...] [-- occsim bench options...]
 #   default scenario: scenarios/teapots.json; e.g. scripts/peer_options.sh -- --frames 60
 # Output: out/peer-options/<scene>/<option>/run-<n>/, then a table per scene
@@ -21,6 +22,7 @@ runs=(
   "hzb-node_units|--algos vfc,hzb --sweep hzb:node_units=false,true"
   "hzb-read_back|--algos vfc,hzb --sweep hzb:read_back=false,true"
   "raster-node_units|--algos vfc,raster --sweep raster:node_units=false,true"
+  "raster-batches|--algos vfc,raster --sweep raster:batches=1,2,4,8"
   "conditional-wait|--algos vfc,conditional --sweep conditional:wait=false,true"
   "conditional-node_queries|--algos vfc,conditional --sweep conditional:node_queries=false,true"
   "masked-width|--algos vfc,masked --sweep masked:width=320,0"

@@ -2,11 +2,26 @@
 #include "culling/cullers/gpu_driven_culler.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "occsim/culling/contract/depth_pyramid.h"
 #include "occsim/culling/contract/render_device.h"
 
 namespace occsim {
+
+void secondPhaseBatchEnds(uint32_t units, uint32_t batches, std::vector<uint32_t>& ends) {
+    ends.clear();
+    batches = std::max<uint32_t>(batches, 1);
+    // Batch b holds 2^b shares of 2^batches - 1 (in doubles: batches may exceed 63).
+    const double shares = std::exp2(static_cast<double>(batches)) - 1.0;
+    double share_end = 0.0;
+    for (uint32_t b = 0; b + 1 < batches; ++b) {
+        share_end += std::exp2(static_cast<double>(b));
+        const auto end = static_cast<uint32_t>(static_cast<double>(units) * share_end / shares);
+        if (end > (ends.empty() ? 0 : ends.back()) && end < units) ends.push_back(end);
+    }
+    ends.push_back(units);
+}
 
 GpuDrivenCuller::GpuDrivenCuller(const GpuDrivenOptions& options) : options_(options) {}
 
@@ -101,6 +116,8 @@ void GpuDrivenCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     units.forced = forced_;
     units.objects = objects_;
     units.object_units = object_units_;
+    secondPhaseBatchEnds(static_cast<uint32_t>(bounds_.size()), options_.batches, batch_ends_);
+    units.batch_ends = batch_ends_;
     units.slot_count = object_count_ + tree.nodeCount();
     gpu->drawFirstPhase(units);
     gpu->drawSecondPhase(options_.test, options_.shape);

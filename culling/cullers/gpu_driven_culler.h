@@ -40,7 +40,16 @@ struct GpuDrivenOptions {
     // stored in it) rather than objects. A node whose bound reaches the near plane hands its
     // objects down as units of their own.
     bool node_units = false;
+    // Phase 2 in this many batches, front to back, each twice the units of the one before
+    // (secondPhaseBatchEnds): a batch is tested against the depth of phase 1 and of the batches
+    // before it. 1 is the two phases as published.
+    uint32_t batches = 1;
 };
+
+// The ends of `batches` batches over `units` units, each twice the size of the one before (the
+// last takes what rounding leaves), so that the first, nearest batches are small: what they draw
+// hides the many far units of the last. Empty batches are dropped; `ends` ends at `units`.
+void secondPhaseBatchEnds(uint32_t units, uint32_t batches, std::vector<uint32_t>& ends);
 
 class GpuDrivenCuller final : public Culler {
   public:
@@ -70,6 +79,7 @@ class GpuDrivenCuller final : public Culler {
     std::vector<uint8_t> forced_;
     std::vector<QueryTag> tags_;  // per unit, what it stands for in the decision log
     std::vector<uint32_t> objects_, object_units_;
+    std::vector<uint32_t> batch_ends_;
     std::vector<uint8_t> first_phase_, passed_;
 };
 

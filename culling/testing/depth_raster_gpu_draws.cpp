@@ -34,26 +34,38 @@ void DepthRasterDevice::drawFirstPhase(const GpuUnits& units) {
 }
 
 void DepthRasterDevice::drawSecondPhase(GpuTest test, PyramidBound shape) {
-    const size_t unit_count = units_.bounds.size();
+    const auto unit_count = static_cast<uint32_t>(units_.bounds.size());
     flags_.assign(unit_count, 1);
-    if (test == GpuTest::Pyramid) {
-        if (with_pyramid_) {
-            build();
-            testOnPyramid(units_.bounds, shape, flags_);
+    const uint32_t one_batch[] = {unit_count};
+    const std::span<const uint32_t> ends =
+        units_.batch_ends.empty() ? std::span<const uint32_t>(one_batch) : units_.batch_ends;
+    assert(ends.back() == unit_count);
+    uint32_t first = 0;
+    size_t entry = 0;  // the entries are in the order of their units
+    for (const uint32_t end : ends) {
+        assert(end >= first && end <= unit_count);
+        const size_t count = end - first;
+        if (test == GpuTest::Pyramid) {
+            if (with_pyramid_) {
+                build();
+                testOnPyramid(units_.bounds.subspan(first, count), shape,
+                              std::span<uint8_t>(flags_).subspan(first, count));
+            }
+        } else {
+            for (uint32_t u = first; u < end; ++u) {
+                flags_[u] = passingCells(units_.bounds[u]) > 0 ? 1 : 0;
+            }
         }
-    } else {
-        for (size_t u = 0; u < unit_count; ++u) {
-            flags_[u] = passingCells(units_.bounds[u]) > 0 ? 1 : 0;
+        for (uint32_t u = first; u < end; ++u) {
+            unit_passed_[u] = units_.forced[u] || flags_[u];
+            if (unit_passed_[u]) slot_passed_[units_.slots[u]] = gpu_frame_;
         }
-    }
-    for (size_t u = 0; u < unit_count; ++u) {
-        unit_passed_[u] = units_.forced[u] || flags_[u];
-        if (unit_passed_[u]) slot_passed_[units_.slots[u]] = gpu_frame_;
-    }
-    for (size_t e = 0; e < units_.objects.size(); ++e) {
-        if (entry_drawn_[e] || !unit_passed_[units_.object_units[e]]) continue;
-        entry_drawn_[e] = 1;
-        drawObject(units_.objects[e]);
+        for (; entry < units_.objects.size() && units_.object_units[entry] < end; ++entry) {
+            if (entry_drawn_[entry] || !unit_passed_[units_.object_units[entry]]) continue;
+            entry_drawn_[entry] = 1;
+            drawObject(units_.objects[entry]);
+        }
+        first = end;
     }
     units_ = {};  // the culler's spans are not held beyond this call
 }

@@ -2,7 +2,8 @@
 // depth conventions: both phases' commands written and drawn on the GPU with nothing read back in
 // the frame, each slot's answer kept for the next frame, both tests (pyramid and box raster)
 // hiding what the wall hides and nothing else, next to the origin and 10^6 m from it, on an odd
-// viewport, with the eye inside a box; and an indirect draw writes the pixels a direct draw does.
+// viewport, with the eye inside a box; phase 2 in batches; and an indirect draw writes the pixels a
+// direct draw does.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -62,9 +63,12 @@ class GlGpuDrivenDrawsTest : public ::testing::TestWithParam<DepthConvention> {
         std::vector<uint8_t> drawn, first_phase, passed;
         uint64_t read_backs_in_frame = 0;
     };
-    // One frame through the GPU-driven draws, every object its own unit.
-    Frame runFrame(GpuTest test, uint32_t slot_count = 0) {
+    // One frame through the GPU-driven draws, every object its own unit; phase 2 in the batches
+    // `batch_ends` says (none: one).
+    Frame runFrame(GpuTest test, uint32_t slot_count = 0,
+                   std::span<const uint32_t> batch_ends = {}) {
         GpuUnits units;
+        units.batch_ends = batch_ends;
         units.bounds = boxes_;
         units.slots = slots_;
         units.forced = forced_;
@@ -146,6 +150,37 @@ TEST_P(GlGpuDrivenDrawsTest, EachPhaseIsTimedForTheFrameJustResolved) {
     renderer_->finish();
     device_->resolveGpuDrivenDraws();
     EXPECT_EQ(device_->gpuDrivenPhaseTimes(), nullptr);
+}
+
+// Phase 2 in batches: the wall (the first batch) is drawn before the cubes (the second) are
+// tested, so the hidden cube is not drawn on a frame whose phase 1 drew nothing; the pyramid is
+// rebuilt for the second batch. Each batch's test and draws count in the test's and phase 2's
+// times.
+TEST_P(GlGpuDrivenDrawsTest, ABatchIsTestedAgainstWhatTheBatchesBeforeItDrew) {
+    const uint32_t ends[] = {1, 4};
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, -3e5, 1e6)}) {
+        for (const GpuTest test : {GpuTest::Pyramid, GpuTest::BoxRaster}) {
+            SCOPED_TRACE(testName(test));
+            setView(origin);
+            device_->gpuDrivenDraws()->resetVisibility();
+            Frame f = runFrame(test, 0, ends);
+            EXPECT_EQ(f.first_phase, (std::vector<uint8_t>{0, 0, 0, 0}));
+            EXPECT_EQ(f.drawn, (std::vector<uint8_t>{1, 0, 1, 1})) << "the sliver shows";
+            EXPECT_EQ(f.passed, (std::vector<uint8_t>{1, 0, 1, 1}));
+            EXPECT_EQ(f.read_backs_in_frame, 0u);
+            const GlGpuDrivenDraws::PhaseTimes* t = device_->gpuDrivenPhaseTimes();
+            ASSERT_NE(t, nullptr);
+            EXPECT_GT(t->gpu_ms[1] + t->gpu_ms[2], 0.0);
+            // Next frame, phase 1 draws what passed; the hidden cube stays hidden.
+            f = runFrame(test, 0, ends);
+            EXPECT_EQ(f.first_phase, (std::vector<uint8_t>{1, 0, 1, 1}));
+            EXPECT_EQ(f.drawn, (std::vector<uint8_t>{1, 0, 1, 1}));
+            // In one batch, from forgotten visibility, it passes against the empty depth.
+            device_->gpuDrivenDraws()->resetVisibility();
+            f = runFrame(test);
+            EXPECT_EQ(f.drawn, (std::vector<uint8_t>{1, 1, 1, 1}));
+        }
+    }
 }
 
 // More slots (a tree that grew nodes) keep the answers of the old ones: phase 1 still draws what

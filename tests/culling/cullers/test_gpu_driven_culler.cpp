@@ -222,13 +222,14 @@ TEST(GpuDrivenCuller, ItsReasonsNameTheTestAndThePhase) {
 
 // The property: over random scenes, views and viewport sizes, with the camera moving and
 // cutting, no object the exact depth raster sees is culled, for both tests and every option; the
-// tests do cull; rasterising boxes draws no more than the pyramid; and the pyramid decided on the
-// device draws, frame by frame, exactly what the read-back `hzb` (HzbCuller) draws.
+// tests do cull; rasterising boxes draws no more than the pyramid, and in 4 batches no more than
+// in one; and the pyramid decided on the device draws, frame by frame, exactly what the read-back
+// `hzb` (HzbCuller) draws.
 TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
     std::mt19937 rng(2026);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::uniform_int_distribution<uint32_t> size(1, 160);
-    uint64_t hidden_in_frustum = 0, hidden_drawn[2] = {0, 0}, drawn_total[2] = {0, 0};
+    uint64_t hidden_in_frustum = 0, hidden_drawn[3] = {0, 0, 0}, drawn_total[3] = {0, 0, 0};
     for (int scene = 0; scene < 16; ++scene) {
         std::vector<Aabb> boxes = testing::randomBoxes(150, 300 + scene, 40.0f);
         for (int i = 0; i < 12; ++i) {  // large thin occluders
@@ -238,16 +239,19 @@ TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
         }
         const BspTree tree = testing::buildTree(boxes, 1 + scene % 6);
         const uint32_t w = size(rng), h = size(rng);
-        GpuDrivenCuller* cullers[2];
-        GpuDrivenOptions options[2];
+        GpuDrivenCuller* cullers[3];
+        GpuDrivenOptions options[3];
         options[0].test = GpuTest::Pyramid;
         options[0].shape = scene % 2 == 1 ? PyramidBound::Sphere : PyramidBound::Box;
-        options[1].test = GpuTest::BoxRaster;
-        options[0].node_units = options[1].node_units = scene % 4 >= 2;
-        GpuDrivenCuller pyramid(options[0]), raster(options[1]);
+        options[1].test = options[2].test = GpuTest::BoxRaster;
+        options[0].node_units = options[1].node_units = options[2].node_units = scene % 4 >= 2;
+        options[2].batches = 4;
+        GpuDrivenCuller pyramid(options[0]), raster(options[1]), batched(options[2]);
         cullers[0] = &pyramid;
         cullers[1] = &raster;
-        DepthRasterDevice devices[2] = {DepthRasterDevice(w, h), DepthRasterDevice(w, h)};
+        cullers[2] = &batched;
+        DepthRasterDevice devices[3] = {DepthRasterDevice(w, h), DepthRasterDevice(w, h),
+                                        DepthRasterDevice(w, h)};
         for (GpuDrivenCuller* c : cullers) c->reset(tree);
         HzbOptions hzb_options;
         hzb_options.sphere_bounds = options[0].shape == PyramidBound::Sphere;
@@ -275,7 +279,7 @@ TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
             read_back_device.beginFrame(vp, eye, boxes);
             read_back.cullAndRender(tree, testing::makeFrame(view, f, f / 30.0), read_back_device);
             const std::vector<uint8_t> read_back_drawn = drawnFlags(read_back_device, boxes.size());
-            for (int k = 0; k < 2; ++k) {
+            for (int k = 0; k < 3; ++k) {
                 devices[k].beginFrame(vp, eye, boxes);
                 cullers[k]->cullAndRender(tree, testing::makeFrame(view, f, f / 30.0), devices[k]);
                 cullers[k]->afterFrame(devices[k]);
@@ -286,8 +290,9 @@ TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
                 }
                 for (uint32_t o = 0; o < boxes.size(); ++o) {
                     ASSERT_FALSE(truth[o] && !drawn[o])
-                        << testName(options[k].test) << " scene " << scene << " frame " << f << " "
-                        << w << "x" << h << " missed object " << o;
+                        << testName(options[k].test) << " batches " << options[k].batches
+                        << " scene " << scene << " frame " << f << " " << w << "x" << h
+                        << " missed object " << o;
                     if (!settled) continue;
                     const bool in_frustum =
                         classify(view.frustum, boxes[o]) != FrustumTest::Outside;
@@ -303,6 +308,29 @@ TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
     EXPECT_LT(hidden_drawn[0], hidden_in_frustum * 2 / 3) << "the pyramid culls hidden objects";
     EXPECT_LT(hidden_drawn[1], hidden_in_frustum / 3) << "box raster culls most hidden objects";
     EXPECT_LE(drawn_total[1], drawn_total[0]) << "box raster draws no more than the pyramid";
+    EXPECT_LT(drawn_total[2], drawn_total[1]) << "in 4 batches, fewer than in one";
+    EXPECT_LT(hidden_drawn[2], hidden_drawn[1]);
+}
+
+// Each batch twice the one before, the last ending at the last unit; empty batches dropped.
+TEST(GpuDrivenCuller, SecondPhaseBatchesDoubleAndEndAtTheLastUnit) {
+    std::vector<uint32_t> ends;
+    secondPhaseBatchEnds(15, 4, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{1, 3, 7, 15}));
+    secondPhaseBatchEnds(1500, 4, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{100, 300, 700, 1500}));
+    secondPhaseBatchEnds(100, 1, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{100}));
+    secondPhaseBatchEnds(100, 0, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{100})) << "0 batches are one";
+    secondPhaseBatchEnds(3, 4, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{1, 3})) << "3 * 1/15 and 3 * 3/15 round to 0";
+    secondPhaseBatchEnds(0, 4, ends);
+    EXPECT_EQ(ends, (std::vector<uint32_t>{0}));
+    secondPhaseBatchEnds(1000, 16, ends);
+    EXPECT_EQ(ends.back(), 1000u);
+    EXPECT_TRUE(std::is_sorted(ends.begin(), ends.end()));
+    EXPECT_EQ(std::adjacent_find(ends.begin(), ends.end()), ends.end()) << "no empty batch";
 }
 
 // Called on a device without GPU-driven draws (a test looping over every culler), it draws

@@ -1,6 +1,6 @@
 // The software device's GPU-driven draws (culling/testing/depth_raster_gpu_draws.cpp, the contract
 // of occsim/culling/contract/gpu_driven_draws.h): what each phase draws, the visibility each slot
-// keeps across frames, forced units, and the two tests against the same depth.
+// keeps across frames, forced units, phase 2 in batches, and the two tests against the same depth.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -97,6 +97,32 @@ TEST(DepthRasterGpuDraws, AForcedUnitIsDrawnInPhaseOneAndPassesWhateverTheDepthS
             EXPECT_EQ(r.passed[2], 1) << "behind the wall, but forced; frame " << f;
             EXPECT_EQ(r.passed[1], 0) << "behind the wall; frame " << f;
         }
+    }
+}
+
+// Phase 2 in batches: the wall (the first batch) is drawn before the objects behind it (the
+// second) are tested, so they are hidden on a frame whose phase 1 drew nothing; in one batch they
+// pass against the empty depth.
+TEST(DepthRasterGpuDraws, ABatchIsTestedAgainstWhatTheBatchesBeforeItDrew) {
+    for (const GpuTest test : {GpuTest::Pyramid, GpuTest::BoxRaster}) {
+        WallScene scene;
+        const std::vector<uint32_t> ends = {1, 3};
+        DepthRasterDevice device(32, 24);
+        const Camera cam = makeCamera({0, 1, 10}, {0, 1, 0});
+        device.beginFrame(cam.view_projection, cam.view.eye, scene.boxes);
+        GpuUnits units = scene.units();
+        units.batch_ends = ends;
+        device.gpuDrivenDraws()->drawFirstPhase(units);
+        device.gpuDrivenDraws()->drawSecondPhase(test, PyramidBound::Box);
+        EXPECT_EQ(device.drawnObjects(), (std::vector<uint32_t>{0}));
+        std::vector<uint8_t> first_phase(3), passed(3);
+        device.gpuDrivenDraws()->readResults(first_phase, passed);
+        EXPECT_EQ(first_phase, (std::vector<uint8_t>{0, 0, 0}));
+        EXPECT_EQ(passed, (std::vector<uint8_t>{1, 0, 0}));
+        // The same frame in one batch, from forgotten visibility: all three pass.
+        device.gpuDrivenDraws()->resetVisibility();
+        const PhaseResult r = runFrame(device, scene, test);
+        EXPECT_EQ(r.drawn, (std::vector<uint32_t>{0, 1, 2}));
     }
 }
 

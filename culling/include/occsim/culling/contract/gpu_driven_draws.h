@@ -21,6 +21,12 @@
 //   depth buffer itself with early fragment tests and no writes, a unit passing when one fragment
 //   of its box passes (GL_GEQUAL: a face coplanar with an occluder passes), as an occlusion query
 //   would; the devices answer a box the near plane reaches as drawn passed without a test.
+//   With `batch_ends` (GpuUnits), the units are tested and drawn in batches in that order: batch b
+//   (units batch_ends[b-1] to batch_ends[b], the first from unit 0, the last ending at the last
+//   unit) is tested against the depth of phase 1 and of every batch before it, and its survivors
+//   drawn before the next batch is tested (a pyramid is rebuilt for each batch). Units listed
+//   front to back, the near batches' draws hide what the far ones would pass on phase 1's depth
+//   alone. Without, one batch.
 // - readResults(first_phase, passed): after the frame, outside any timing: per unit, whether the
 //   first phase drew its entries and whether the second phase passed it. The device's drawn set
 //   and its counters (objects_drawn, triangles_drawn) count the entries drawn only once the host
@@ -44,13 +50,15 @@ enum class GpuTest : uint8_t { Pyramid, BoxRaster };
 
 // One frame's units and draw list. Units: bounds (the culling frame), slots and forced flags, one
 // each per unit. Draw list: objects and the unit of each, one each per entry; an object appears in
-// at most one entry.
+// at most one entry, and the entries are listed in the order of their units (object_units does
+// not decrease). batch_ends: phase 2's batches (above), increasing, the last one the unit count.
 struct GpuUnits {
     std::span<const Aabb> bounds;
     std::span<const uint32_t> slots;
     std::span<const uint8_t> forced;
     std::span<const uint32_t> objects;
     std::span<const uint32_t> object_units;
+    std::span<const uint32_t> batch_ends;
     uint32_t slot_count = 0;
 };
 
