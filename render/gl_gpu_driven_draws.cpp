@@ -233,6 +233,14 @@ void GlGpuDrivenDraws::ensureCapacity(uint32_t units, uint32_t entries, uint32_t
 
 void GlGpuDrivenDraws::resetVisibility() { fillUints(slots_buffer_, slot_capacity_, 0); }
 
+void GlGpuDrivenDraws::clearSlot(uint32_t slot) {
+    const uint32_t zero = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, slots_buffer_);
+    glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI,
+                         static_cast<GLintptr>(slot * sizeof(uint32_t)), sizeof(uint32_t),
+                         GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
 void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
     assert(units.slots.size() == units.bounds.size() && units.forced.size() == units.bounds.size());
     assert(units.object_units.size() == units.objects.size());
@@ -264,6 +272,11 @@ void GlGpuDrivenDraws::drawFirstPhase(const GpuUnits& units) {
            batch_ends_.back() == unit_count);
     ensureCapacity(unit_count, entry_count, units.slot_count);
     upload(units_buffer_, units_.data(), units_.size() * sizeof(uint32_t));
+    // Forgotten slots: a few a frame at most (BSP nodes the tree reused), each cleared alone.
+    for (const uint32_t slot : units.forgotten_slots) {
+        assert(slot < units.slot_count);
+        clearSlot(slot);
+    }
     upload(templates_buffer_, templates_.data(), entry_count * sizeof(GlRenderer::DrawCommand));
     upload(entry_units_buffer_, entry_units_.data(), entry_count * sizeof(uint32_t));
 

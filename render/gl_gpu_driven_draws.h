@@ -75,6 +75,7 @@ class GlGpuDrivenDraws final : public GpuDrivenDraws {
 
   private:
     void ensureCapacity(uint32_t units, uint32_t entries, uint32_t slots);
+    void clearSlot(uint32_t slot);
     void stampTime();
     void drawPhase(uint32_t phase, uint32_t commands, uint32_t first, uint32_t end);
     void uploadBoxes();

@@ -28,6 +28,30 @@ GpuDrivenCuller::GpuDrivenCuller(const GpuDrivenOptions& options) : options_(opt
 void GpuDrivenCuller::reset(const BspTree& tree) {
     object_count_ = tree.objectCount();
     reset_device_ = true;
+    node_generation_.clear();  // every slot is forgotten: no node's needs forgetting again
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        node_generation_.push_back(tree.node(n).generation);
+    }
+    structure_version_ = tree.structureVersion();
+}
+
+// A node index the tree reused (a merge freed it, a split took it) stands for another node: its
+// slot still holds the old node's answer, which would draw the new node's objects in phase 1
+// (harmless, but not what the read-back hzb draws, whose NodeStateArray forgets it). New indices
+// need nothing: a slot beyond the device's old count starts unseen.
+void GpuDrivenCuller::forgetReusedNodes(const BspTree& tree) {
+    forgotten_slots_.clear();
+    if (!options_.node_units || structure_version_ == tree.structureVersion()) return;
+    structure_version_ = tree.structureVersion();
+    // Never shrunk: an index beyond `known` has never had a slot written since the reset.
+    const auto known = static_cast<uint32_t>(node_generation_.size());
+    if (tree.nodeCount() > known) node_generation_.resize(tree.nodeCount(), 0);
+    for (uint32_t n = 0; n < tree.nodeCount(); ++n) {
+        const uint32_t generation = tree.node(n).generation;
+        if (node_generation_[n] == generation) continue;
+        node_generation_[n] = generation;
+        if (n < known) forgotten_slots_.push_back(object_count_ + n);
+    }
 }
 
 void GpuDrivenCuller::addUnit(const Aabb& bound, uint32_t slot, bool forced, QueryTag tag) {
@@ -110,6 +134,7 @@ void GpuDrivenCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
         reset_device_ = false;
     }
     collectUnits(tree, frame);
+    forgetReusedNodes(tree);
     GpuUnits units;
     units.bounds = bounds_;
     units.slots = slots_;
@@ -118,6 +143,7 @@ void GpuDrivenCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     units.object_units = object_units_;
     secondPhaseBatchEnds(static_cast<uint32_t>(bounds_.size()), options_.batches, batch_ends_);
     units.batch_ends = batch_ends_;
+    units.forgotten_slots = forgotten_slots_;
     units.slot_count = object_count_ + tree.nodeCount();
     gpu->drawFirstPhase(units);
     gpu->drawSecondPhase(options_.test, options_.shape);

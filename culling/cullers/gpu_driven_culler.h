@@ -61,11 +61,14 @@ class GpuDrivenCuller final : public Culler {
     const GpuDrivenOptions& options() const { return options_; }
     // The last frame's units (0 when the device had no GPU-driven draws): tests of the rules.
     uint32_t lastUnits() const { return static_cast<uint32_t>(bounds_.size()); }
+    // The slots the last frame forgot (node_units: nodes whose index the tree reused).
+    const std::vector<uint32_t>& lastForgottenSlots() const { return forgotten_slots_; }
 
   private:
     void collectUnits(const BspTree& tree, const CullFrame& frame);
     void addUnit(const Aabb& bound, uint32_t slot, bool forced, QueryTag tag);
     void drawEverythingInFrustum(const BspTree& tree, RenderDevice& device);
+    void forgetReusedNodes(const BspTree& tree);
 
     GpuDrivenOptions options_;
     PreparedView view_;
@@ -80,6 +83,11 @@ class GpuDrivenCuller final : public Culler {
     std::vector<QueryTag> tags_;  // per unit, what it stands for in the decision log
     std::vector<uint32_t> objects_, object_units_;
     std::vector<uint32_t> batch_ends_;
+    // With node_units: each node's generation when its slot last stood for it, and the slots of
+    // nodes whose index the tree has reused since (BspNode::generation), forgotten this frame.
+    std::vector<uint32_t> node_generation_;
+    uint64_t structure_version_ = 0;
+    std::vector<uint32_t> forgotten_slots_;
     std::vector<uint8_t> first_phase_, passed_;
 };
 

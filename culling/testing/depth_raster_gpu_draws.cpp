@@ -18,6 +18,10 @@ void DepthRasterDevice::drawFirstPhase(const GpuUnits& units) {
     units_ = units;
     ++gpu_frame_;
     if (slot_passed_.size() < units.slot_count) slot_passed_.resize(units.slot_count, 0);
+    for (const uint32_t slot : units.forgotten_slots) {
+        assert(slot < units.slot_count);
+        slot_passed_[slot] = 0;
+    }
     const size_t unit_count = units.bounds.size();
     unit_first_phase_.assign(unit_count, 0);
     unit_passed_.assign(unit_count, 0);

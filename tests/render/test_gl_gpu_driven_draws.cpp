@@ -64,11 +64,12 @@ class GlGpuDrivenDrawsTest : public ::testing::TestWithParam<DepthConvention> {
         uint64_t read_backs_in_frame = 0;
     };
     // One frame through the GPU-driven draws, every object its own unit; phase 2 in the batches
-    // `batch_ends` says (none: one).
-    Frame runFrame(GpuTest test, uint32_t slot_count = 0,
-                   std::span<const uint32_t> batch_ends = {}) {
+    // `batch_ends` says (none: one); `forgotten` slots forgotten first.
+    Frame runFrame(GpuTest test, uint32_t slot_count = 0, std::span<const uint32_t> batch_ends = {},
+                   std::span<const uint32_t> forgotten = {}) {
         GpuUnits units;
         units.batch_ends = batch_ends;
+        units.forgotten_slots = forgotten;
         units.bounds = boxes_;
         units.slots = slots_;
         units.forced = forced_;
@@ -181,6 +182,21 @@ TEST_P(GlGpuDrivenDrawsTest, ABatchIsTestedAgainstWhatTheBatchesBeforeItDrew) {
             EXPECT_EQ(f.drawn, (std::vector<uint8_t>{1, 1, 1, 1}));
         }
     }
+}
+
+// A forgotten slot (a unit index reused for another unit) is not visible to phase 1; the others
+// keep their answers.
+TEST_P(GlGpuDrivenDrawsTest, AForgottenSlotIsNotDrawnInPhaseOne) {
+    device_->gpuDrivenDraws()->resetVisibility();
+    setView(glm::dvec3(0.0));
+    runFrame(GpuTest::BoxRaster);
+    runFrame(GpuTest::BoxRaster);
+    const uint32_t forget[] = {2};
+    Frame f = runFrame(GpuTest::BoxRaster, 0, {}, forget);
+    EXPECT_EQ(f.first_phase, (std::vector<uint8_t>{1, 0, 0, 1}));
+    EXPECT_EQ(f.drawn, (std::vector<uint8_t>{1, 0, 1, 1})) << "phase 2 finds it visible";
+    f = runFrame(GpuTest::BoxRaster);
+    EXPECT_EQ(f.first_phase, (std::vector<uint8_t>{1, 0, 1, 1}));
 }
 
 // More slots (a tree that grew nodes) keep the answers of the old ones: phase 1 still draws what

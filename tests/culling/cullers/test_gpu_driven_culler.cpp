@@ -312,6 +312,62 @@ TEST(GpuDrivenCuller, NeverCullsAnObjectTheExactDepthBufferSees) {
     EXPECT_LT(hidden_drawn[2], hidden_drawn[1]);
 }
 
+// With node_units, a node index the tree reuses (a merge frees it, a split takes it) stands for
+// another node: its slot is forgotten, as the read-back hzb's NodeStateArray forgets its state, so
+// the two draw the same objects frame by frame while objects move and the tree adapts.
+TEST(GpuDrivenCuller, WithNodeUnitsAReusedNodesSlotIsForgottenAsTheReadBackHzbForgetsIt) {
+    std::mt19937 rng(44);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<Aabb> boxes = testing::randomBoxes(300, 7, 30.0f);
+    for (int i = 0; i < 10; ++i) {  // thin walls, so that something is hidden
+        const glm::vec3 c(20.0f * u(rng), 0.0f, 20.0f * u(rng));
+        boxes.push_back({c - glm::vec3(6, 0, 0.01f), c + glm::vec3(6, 5, 0.01f)});
+    }
+    BspTree tree = testing::buildTree(boxes, 2);
+    GpuDrivenOptions options;
+    options.node_units = true;
+    GpuDrivenCuller gpu_driven(options);
+    HzbOptions hzb_options;
+    hzb_options.node_units = true;
+    HzbCuller read_back(hzb_options);
+    gpu_driven.reset(tree);
+    read_back.reset(tree);
+    DepthRasterDevice device(96, 64), read_back_device(96, 64);
+    const glm::vec3 eye(0, 2, 45), target(0, 0, 0);
+    const glm::mat4 vp = viewProjection(eye, target, 1.5f, 0.1f);
+    CullView view = testing::makeView(eye, target, 60.0f, 0.1f, 1e4f, 1.5f);
+    view.view_projection = vp;
+    view.viewport_width = 96;
+    view.viewport_height = 64;
+    uint64_t forgotten = 0;
+    for (uint64_t f = 0; f < 40; ++f) {
+        // A third of the small objects gather into a corner and scatter again: leaves split
+        // where they crowd and merge where they left, reusing node indices.
+        for (uint32_t o = 0; o < 300; o += 3) {
+            const glm::vec3 size = extent(boxes[o]);
+            glm::vec3 lo = f % 10 < 5
+                               ? glm::vec3(-25.0f + 0.5f * u(rng), 0.0f, -25.0f + 0.5f * u(rng))
+                               : glm::vec3(30.0f * u(rng), 0.0f, 30.0f * u(rng));
+            boxes[o] = {lo, lo + size};
+            tree.reinsert(o, boxes[o]);
+        }
+        tree.refitDirtyBounds();
+        read_back_device.beginFrame(vp, eye, boxes);
+        read_back.cullAndRender(tree, testing::makeFrame(view, f, f / 30.0), read_back_device);
+        device.beginFrame(vp, eye, boxes);
+        gpu_driven.cullAndRender(tree, testing::makeFrame(view, f, f / 30.0), device);
+        forgotten += gpu_driven.lastForgottenSlots().size();
+        ASSERT_EQ(drawnFlags(device, boxes.size()), drawnFlags(read_back_device, boxes.size()))
+            << "frame " << f;
+        const std::vector<uint8_t> truth = device.groundTruth();
+        const std::vector<uint8_t> drawn = drawnFlags(device, boxes.size());
+        for (uint32_t o = 0; o < boxes.size(); ++o) {
+            ASSERT_FALSE(truth[o] && !drawn[o]) << "frame " << f << " missed object " << o;
+        }
+    }
+    EXPECT_GT(forgotten, 0u) << "the tree reused node indices";
+}
+
 // Each batch twice the one before, the last ending at the last unit; empty batches dropped.
 TEST(GpuDrivenCuller, SecondPhaseBatchesDoubleAndEndAtTheLastUnit) {
     std::vector<uint32_t> ends;

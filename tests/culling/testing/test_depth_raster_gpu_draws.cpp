@@ -126,6 +126,24 @@ TEST(DepthRasterGpuDraws, ABatchIsTestedAgainstWhatTheBatchesBeforeItDrew) {
     }
 }
 
+// A forgotten slot is not visible to phase 1; the other slots keep their answers.
+TEST(DepthRasterGpuDraws, AForgottenSlotIsNotDrawnInPhaseOne) {
+    WallScene scene;
+    scene.boxes[2] = {glm::vec3(20, 0, -30), glm::vec3(22, 2, -28)};  // beside the wall: visible
+    DepthRasterDevice device(32, 24);
+    runFrame(device, scene, GpuTest::BoxRaster);
+    runFrame(device, scene, GpuTest::BoxRaster);
+    const Camera cam = makeCamera({0, 1, 10}, {0, 1, 0});
+    device.beginFrame(cam.view_projection, cam.view.eye, scene.boxes);
+    GpuUnits units = scene.units();
+    const std::vector<uint32_t> forget = {2};
+    units.forgotten_slots = forget;
+    device.gpuDrivenDraws()->drawFirstPhase(units);
+    EXPECT_EQ(device.drawnObjects(), (std::vector<uint32_t>{0})) << "slot 2 forgotten";
+    device.gpuDrivenDraws()->drawSecondPhase(GpuTest::BoxRaster, PyramidBound::Box);
+    EXPECT_EQ(device.drawnObjects(), (std::vector<uint32_t>{0, 2}));
+}
+
 // Several entries of one unit (a node's objects) are drawn together, in the phase their unit is.
 TEST(DepthRasterGpuDraws, EveryEntryOfAUnitIsDrawnInItsUnitsPhase) {
     WallScene scene;

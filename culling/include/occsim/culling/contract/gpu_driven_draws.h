@@ -10,8 +10,10 @@
 // - drawFirstPhase(units): draws every entry of the draw list whose unit is `forced` (visible
 //   without a test: the near plane reaches it) or whose slot passed the second phase of the
 //   previous frame, at this frame's transforms. The slots are the device's: `slot_count` of them
-//   (a unit's slot is below it), zero (not visible) when new or after resetVisibility(). The spans
-//   must stay valid until drawSecondPhase() returns.
+//   (a unit's slot is below it), zero (not visible) when new, after resetVisibility(), and for the
+//   `forgotten_slots` of this frame (forgotten before phase 1 reads them: a slot that now stands
+//   for another unit, as a BSP node index the tree reused). The spans must stay valid until
+//   drawSecondPhase() returns.
 // - drawSecondPhase(test, shape): tests every unit that is not forced against the depth drawn so
 //   far this frame, draws the entries whose unit passed and that the first phase did not draw,
 //   and stores every unit's answer in its slot for the next frame (a forced unit passes).
@@ -59,6 +61,7 @@ struct GpuUnits {
     std::span<const uint32_t> objects;
     std::span<const uint32_t> object_units;
     std::span<const uint32_t> batch_ends;
+    std::span<const uint32_t> forgotten_slots;
     uint32_t slot_count = 0;
 };
 
