@@ -40,6 +40,25 @@ void printWarnings(const Scene& scene, std::set<std::string>* shown) {
     }
 }
 
+// A note for the person running it, once a session (BenchOptions::warnings_shown).
+void printNote(const BenchOptions& options, const std::string& line) {
+    if (options.warnings_shown && !options.warnings_shown->insert(line).second) return;
+    if (options.on_note) {
+        options.on_note(line);
+    } else {
+        std::fprintf(stderr, "note: %s\n", line.c_str());
+    }
+}
+
+// Lights and a second eye are read and checked, not rendered yet (docs/views.md): said, so that
+// nobody reads this run's figures as those of a frame with shadow passes.
+void noteViewsNotRendered(const Scenario& scenario, const BenchOptions& options) {
+    if (scenario.lights.empty() && !scenario.stereo) return;
+    printNote(options, scenario.file.string() +
+                           ": lights and stereo are read and checked but not rendered yet "
+                           "(docs/views.md); this run culls and measures the camera's view alone");
+}
+
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
                        uint32_t repetitions, const HeadlessContext& context) {
     RunMetadata m;
@@ -320,13 +339,7 @@ void runRepetition(BenchResult& result, const Stage& stage, const Scene& scene, 
     addWorldCosts(result.costs, world, truth);
     if (rep == 0) {
         for (const std::string& line : world.occluderMeshCost().refusals) {
-            if (stage.options.warnings_shown && !stage.options.warnings_shown->insert(line).second)
-                continue;
-            if (stage.options.on_note) {
-                stage.options.on_note(line);
-            } else {
-                std::fprintf(stderr, "note: %s\n", line.c_str());
-            }
+            printNote(stage.options, line);
         }
     }
     if (!result.partial || rep == 0) recordRepetition(result, stage, sims.all, frames, rep);
@@ -396,6 +409,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene, options.warnings_shown);
+    noteViewsNotRendered(scenario, options);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);

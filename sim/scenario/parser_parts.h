@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "sim/scenario/json_reader.h"
 #include "sim/scenario/scenario.h"
@@ -32,6 +34,10 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
 CitySpec readCity(JsonObjectReader& source);
 LibrarySpec readLibrary(JsonObjectReader& source);
 PlantSpec readPlant(JsonObjectReader& source);
+
+// parse_views.cpp: the "lights" list and the "stereo" object (absent: none).
+std::vector<LightSpec> readLights(JsonObjectReader& top);
+std::optional<StereoSpec> readStereo(JsonObjectReader& top);
 
 // parse_segments.cpp: the "segments" list, placed on the scenario's frames (frames and dt read).
 std::vector<SegmentSpec> readSegments(JsonObjectReader& top, const Scenario& scenario);

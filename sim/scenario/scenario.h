@@ -19,6 +19,7 @@
 #include "sim/scenario/errors.h"
 #include "sim/scenario/scene_specs.h"
 #include "sim/scenario/segments.h"
+#include "sim/scenario/view_specs.h"
 
 namespace occsim {
 
@@ -124,6 +125,10 @@ struct Scenario {
     // in float: only to show the depth-precision trap (docs/stability.md).
     bool conventional_depth = false;
     CameraSpec camera;
+    // The views besides the camera's ("lights", "stereo"): read and checked; docs/views.md says
+    // what a run does with them.
+    std::vector<LightSpec> lights;
+    std::optional<StereoSpec> stereo;
     std::vector<SceneSourceSpec> sources;
     std::vector<MoverSpec> movers;
     // Plugins the scenario loads ("plugins"), resolved against its folder; loaded by the parser.

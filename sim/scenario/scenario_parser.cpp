@@ -480,6 +480,8 @@ Scenario parseScenarioText(const std::string& text, const std::filesystem::path&
     readRunSettings(top, s);
     readViewport(top, s);
     s.camera = readCamera(top.object("camera"));
+    s.lights = readLights(top);
+    s.stereo = readStereo(top);
     s.sources = readScene(top.object("scene"), file.parent_path());
     s.movers = readMovers(top, s.sources.size());
     for (size_t m = 0; m < s.movers.size(); ++m) {

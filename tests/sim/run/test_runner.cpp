@@ -184,5 +184,31 @@ TEST(Simulation, RunBenchmarkWritesNoFile) {
     EXPECT_FALSE(result.metadata.renderer.empty());
 }
 
+// A scenario with lights or a second eye is run as before (the camera's view alone), and the run
+// says so once: nobody reads its figures as a frame with shadow passes. Without them, no note.
+TEST(Simulation, LightsAndStereoNotRenderedYetAreSaidOnce) {
+    std::vector<std::string> notes;
+    std::set<std::string> shown;
+    BenchOptions options;
+    options.algorithms = traitsOf({"vfc"});
+    options.frames = 2;
+    options.on_note = [&](const std::string& line) { notes.push_back(line); };
+    options.warnings_shown = &shown;
+    Scenario scenario = parseScenarioFile(kSmall);
+    const BenchResult plain = runBenchmark(scenario, options);
+    EXPECT_TRUE(notes.empty());
+    scenario.lights.push_back(LightSpec{});
+    scenario.stereo = StereoSpec{};
+    const BenchResult lit = runBenchmark(scenario, options);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("teapots-small.json: lights and stereo are read and checked but not "
+                            "rendered yet"),
+              std::string::npos)
+        << notes[0];
+    EXPECT_EQ(lit.runs[0].summary.objects_mean, plain.runs[0].summary.objects_mean);
+    runBenchmark(scenario, options);
+    EXPECT_EQ(notes.size(), 1u) << "once a session";
+}
+
 }  // namespace
 }  // namespace occsim
