@@ -109,6 +109,9 @@ ContextInfo checkedContextInfo(Backend backend, std::optional<uint32_t> device,
     info.version = found.version;
     info.driver = driverOfVersion(found.version);
     info.gpu_time_meaningful = !isSoftwareRenderer(found.renderer);
+    GLint max_texture = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    info.max_texture_size = static_cast<uint32_t>(std::max(max_texture, 0));
     return info;
 }
 

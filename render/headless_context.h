@@ -39,7 +39,8 @@ struct ContextInfo {
     // False on software rasterisers (llvmpipe, softpipe, SwiftShader): their GL_TIME_ELAPSED
     // does not time rasterisation, so a GPU time figure would mislead (docs/headless-gpu.md).
     bool gpu_time_meaningful = false;
-    std::string fallback;  // why --backend auto fell back to OSMesa; empty when it did not
+    std::string fallback;           // why --backend auto fell back to OSMesa; empty when it did not
+    uint32_t max_texture_size = 0;  // GL_MAX_TEXTURE_SIZE: the largest shadow map it can hold
 };
 
 // The requested backend or device cannot serve: missing, out of range, or its context falls

@@ -14,6 +14,7 @@
 #include "sim/run/culler_setup.h"
 #include "sim/run/ground_truth.h"
 #include "sim/run/heap_policy.h"
+#include "sim/run/light_limits.h"
 #include "sim/run/segment_summaries.h"
 #include "sim/run/shared_world.h"
 #include "sim/run/stop_request.h"
@@ -52,8 +53,9 @@ void printNote(const BenchOptions& options, const std::string& line) {
 
 // Lights and a second eye are read and checked, not rendered yet (docs/views.md): said, so that
 // nobody reads this run's figures as those of a frame with shadow passes.
-void noteViewsNotRendered(const Scenario& scenario, const BenchOptions& options) {
-    if (scenario.lights.empty() && !scenario.stereo) return;
+void noteViewsNotRendered(const Scenario& scenario, const Scene& scene,
+                          const BenchOptions& options) {
+    if (scene.lights.empty() && !scenario.stereo) return;
     printNote(options, scenario.file.string() +
                            ": lights and stereo are read and checked but not rendered yet "
                            "(docs/views.md); this run culls and measures the camera's view alone");
@@ -409,8 +411,9 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene, options.warnings_shown);
-    noteViewsNotRendered(scenario, options);
+    noteViewsNotRendered(scenario, scene, options);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
+    checkShadowMapsFit(scenario, context->info().max_texture_size);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
     uploadScene(scene, renderer);
 

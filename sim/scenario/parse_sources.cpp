@@ -125,6 +125,11 @@ GltfSourceSpec readGltfSource(JsonObjectReader& source, const std::filesystem::p
     if (auto animation = source.optionalObject("animation")) {
         spec.animation = readAnimationPlayback(std::move(*animation));
     }
+    const std::string lights =
+        source.enumeration("lights", {"shadows", "no_shadows", "ignore"}, "shadows");
+    spec.lights = lights == "ignore"       ? GltfLights::Ignore
+                  : lights == "no_shadows" ? GltfLights::NoShadows
+                                           : GltfLights::Shadows;
     return spec;
 }
 

@@ -116,6 +116,10 @@ struct GltfAnimationSpec {
     bool random_phase = false;   // each copy starts at its own seeded phase
 };
 
+// What a glTF source does with its file's KHR_lights_punctual lights: read them, its directional
+// lights casting shadows (the default); read them, none casting; or leave them out.
+enum class GltfLights : uint8_t { Shadows, NoShadows, Ignore };
+
 struct GltfSourceSpec {
     std::filesystem::path path;  // resolved against the scenario file's folder
     double scale = 1.0;          // uniform scale applied to the whole model
@@ -123,6 +127,7 @@ struct GltfSourceSpec {
     GltfReplication replicate;
     GltfAnimationSpec animation;
     bool place = true;  // false: only movers' "spawn": {"model": ...} place it
+    GltfLights lights = GltfLights::Shadows;
 };
 
 enum class SourceType : uint8_t { Teapots, Gltf, City, Library, Plant };

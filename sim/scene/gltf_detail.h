@@ -5,11 +5,14 @@
 
 #include <tiny_gltf.h>
 
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/scenario/errors.h"
+#include "sim/scenario/scene_specs.h"
+#include "sim/scenario/view_specs.h"
 #include "sim/scene/model_animation.h"
 
 namespace occsim::gltf_detail {
@@ -51,5 +54,21 @@ ViewOrSkip viewAccessor(const Context& c, int index, const std::string& what);
 // match the interpolation, a rotation output that is not VEC4, ...); warns about what is not
 // evaluated (morph-target weights, channels without a target node).
 std::vector<NodeAnimation> readAnimations(const Context& c);
+
+// A node that carries a light (KHR_lights_punctual), with its world transform.
+struct LightNode {
+    size_t node = 0;
+    int light = -1;
+    glm::dmat4 world{1.0};
+};
+
+// The light node `index` carries, -1 when none (gltf_lights.cpp). Throws GltfError when its
+// extension names no light index.
+int nodeLight(const Context& c, const tg::Node& node, size_t index);
+
+// The lights of `nodes` as a scene's lights, positions scaled by `scale` (gltf_lights.cpp):
+// directional and spot lights; anything else, or a light index out of range, throws GltfError.
+std::vector<LightSpec> convertLights(const Context& c, const std::vector<LightNode>& nodes,
+                                     double scale, GltfLights use);
 
 }  // namespace occsim::gltf_detail

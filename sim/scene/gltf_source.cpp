@@ -18,9 +18,10 @@
 // quantized (integer) positions, sparse accessors, morph targets (base positions are used), skins
 // (meshes drawn rigid in their bind pose), cameras. Node animations are read by gltf_animation.cpp
 // and the model's hierarchy is kept (SourceOutput::model) so the world can pose it each frame.
-// Errors (GltfError, "<file>: <reason>"): unreadable file, tinygltf parse errors, references out
-// of range, index values past the vertex count, non-finite positions or transforms, required
-// extensions that would change the geometry, and no triangles at all.
+// KHR_lights_punctual lights on the visited nodes are read by gltf_lights.cpp
+// (SourceOutput::lights). Errors (GltfError, "<file>: <reason>"): unreadable file, tinygltf parse
+// errors, references out of range, index values past the vertex count, non-finite positions or
+// transforms, required extensions that would change the geometry, and no triangles at all.
 #include "sim/scene/gltf_source.h"
 
 #include <algorithm>
@@ -435,6 +436,7 @@ struct SceneContent {
     std::vector<MeshInstance> instances;
     std::vector<ModelNode> nodes;        // per node of the file (rest transforms of visited ones)
     std::vector<HierarchyVisit> visits;  // the hierarchy as visited, parents first
+    std::vector<LightNode> lights;       // the nodes that carry a light (KHR_lights_punctual)
     size_t skinned = 0;
     size_t cameras = 0;
 };
@@ -484,6 +486,9 @@ SceneContent flattenScene(const Context& c) {
             if (node.skin >= 0) ++content.skinned;
         }
         if (node.camera >= 0) ++content.cameras;
+        if (const int light = nodeLight(c, node, index); light != -1) {
+            content.lights.push_back({index, light, world});
+        }
         for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
             stack.push_back({*child, world, at.depth + 1, static_cast<int32_t>(visit)});
         }
@@ -713,6 +718,22 @@ SourceOutput replicate(SourceOutput model, const GltfSourceSpec& spec, uint64_t 
     if (spec.replicate.mode == GltfReplication::Mode::Grid) {
         model.lanes = gridLanes(copies, model_bounds, spacing, spec.offset);
     }
+    // The sun once (it lights the whole scene, whatever a copy's yaw); a spot light with each
+    // copy, moved and turned as the copy is.
+    std::vector<LightSpec> one_copy_lights = std::move(model.lights);
+    model.lights.clear();
+    for (const LightSpec& light : one_copy_lights) {
+        if (light.type == LightType::Directional) model.lights.push_back(light);
+    }
+    for (const Copy& copy : copies) {
+        const glm::dmat3 yaw(glm::rotate(glm::dmat4(1.0), copy.yaw, glm::dvec3(0, 1, 0)));
+        for (LightSpec light : one_copy_lights) {
+            if (light.type != LightType::Spot) continue;
+            light.position = spec.offset + copy.origin + yaw * light.position;
+            light.direction = yaw * light.direction;
+            model.lights.push_back(light);
+        }
+    }
     model.region = sourceBounds(model);
     return model;
 }
@@ -737,6 +758,7 @@ SourceOutput loadGltfSource(const GltfSourceSpec& spec, uint64_t seed) {
         fail(file, "no triangles to draw (" + plural(content.instances.size(), "mesh node") +
                        " in the scene" + why + ")");
     }
+    out.lights = convertLights(c, content.lights, spec.scale, spec.lights);
     animated->nodes = content.nodes;
     animated->visits = content.visits;
     animated->scale = spec.scale;

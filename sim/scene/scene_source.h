@@ -13,6 +13,7 @@
 #include "occsim/culling/geometry/aabb.h"
 #include "render/mesh_data.h"
 #include "sim/scenario/scene_specs.h"
+#include "sim/scenario/view_specs.h"
 #include "sim/scene/model_animation.h"
 
 namespace occsim {
@@ -53,6 +54,9 @@ struct SourceOutput {
     // are objects[k * n .. (k + 1) * n - 1], n = model->object_visit.size().
     std::shared_ptr<const AnimatedModel> model;
     std::vector<ModelCopyPlacement> model_copies;
+    // glTF sources: the file's lights (KHR_lights_punctual) in world space: its directional
+    // lights once, its spot lights once per copy.
+    std::vector<LightSpec> lights;
 };
 
 // Bounds of every object's mesh bounds under its placement.

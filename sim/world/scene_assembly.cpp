@@ -390,6 +390,8 @@ std::vector<SourceRange> addSources(Scene& scene, const Scenario& scenario) {
             generateSource(scenario.sources[s], deriveSeed(scenario.seed, s, kPlacement));
         std::shared_ptr<const AnimatedModel> model = source.model;
         const bool place = !model || std::get<GltfSourceSpec>(scenario.sources[s].spec).place;
+        if (place)
+            scene.lights.insert(scene.lights.end(), source.lights.begin(), source.lights.end());
         std::vector<uint32_t> copy_meshes;
         std::vector<std::string> copy_names;
         std::vector<OccluderRole> copy_occluders;
@@ -643,6 +645,7 @@ void placeMover(Scene& scene, const Scenario& scenario, size_t m, std::vector<So
 
 Scene buildScene(const Scenario& scenario) {
     Scene scene;
+    scene.lights = scenario.lights;  // the scenario's first, then each placed glTF file's
     std::vector<SourceRange> ranges = addSources(scene, scenario);
     MotionFlags flags = animatedObjects(scene);
     std::vector<uint8_t> rigid_copy;  // per initial copy: a mover moves it whole

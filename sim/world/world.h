@@ -146,7 +146,10 @@ struct Scene {
     std::vector<SceneModel> models;         // one per glTF source (and per spawned model's source)
     std::vector<ModelCopy> initial_copies;  // the copies that move
     std::vector<std::string> warnings;      // from sources (e.g. glTF parts skipped)
-    uint64_t triangle_count = 0;            // over all objects
+    // The lights: the scenario's ("lights"), then each placed glTF source's (KHR_lights_punctual)
+    // in world space (docs/views.md).
+    std::vector<LightSpec> lights;
+    uint64_t triangle_count = 0;  // over all objects
     // The origin of the culling frame, in world coordinates (metres, double): the centre of the
     // camera path's keyframe positions, rounded to whole metres. Object boxes, the BSP tree, the
     // frustum and the eye given to cullers are all relative to it, so float keeps its precision

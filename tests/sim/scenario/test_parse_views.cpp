@@ -103,5 +103,23 @@ TEST(ScenarioViews, BadStereoIsOneErrorNamingTheKey) {
     expectError(scenario, "/stereo/eyes", "unknown key");
 }
 
+// A glTF source's "lights": its file's lights read with their shadows (the default), without, or
+// left out; anything else is one error at the key.
+TEST(ScenarioViews, AGltfSourceSaysWhatItsFilesLightsDo) {
+    json scenario = minimalScenario();
+    const std::string box = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/assets/Box/box.gltf";
+    scenario["scene"]["sources"] = {{{"type", "gltf"}, {"path", box}}};
+    EXPECT_EQ(std::get<GltfSourceSpec>(parsed(scenario).sources[0].spec).lights,
+              GltfLights::Shadows);
+    scenario["scene"]["sources"][0]["lights"] = "no_shadows";
+    EXPECT_EQ(std::get<GltfSourceSpec>(parsed(scenario).sources[0].spec).lights,
+              GltfLights::NoShadows);
+    scenario["scene"]["sources"][0]["lights"] = "ignore";
+    EXPECT_EQ(std::get<GltfSourceSpec>(parsed(scenario).sources[0].spec).lights,
+              GltfLights::Ignore);
+    scenario["scene"]["sources"][0]["lights"] = "off";
+    expectError(scenario, "/scene/sources/0/lights", "expected one of");
+}
+
 }  // namespace
 }  // namespace occsim

@@ -3,6 +3,7 @@
 // that pick distinct objects, never two motions for one.
 #include <gtest/gtest.h>
 
+#include "gltf_builder.h"
 #include "sim/world/world.h"
 #include "small_scenario.h"
 
@@ -46,6 +47,31 @@ TEST(Scene, MoverFractionsPickDistinctObjectsAndNeverTwoMotionsForOne) {
     std::vector<int> seen(scene.objectCount());
     for (const Mover& m : scene.initial_movers) ++seen[m.object];
     for (int count : seen) EXPECT_LE(count, 1) << "an object carries one motion at most";
+}
+
+// A scene's lights: the scenario's first, then each placed glTF source's; a source that places
+// nothing ("place": false) brings none.
+TEST(Scene, ItsLightsAreTheScenariosThenThePlacedGltfFiles) {
+    testing_gltf::GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc()["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "directional"}}}}}}};
+    testing_gltf::TempDir dir;
+    GltfSourceSpec lit;
+    lit.path = dir.write("sun.gltf", b.text());
+    Scenario s = smallScenario();
+    LightSpec spot;
+    spot.type = LightType::Spot;
+    s.lights.push_back(spot);
+    s.sources.push_back({SourceType::Gltf, OccluderRole::BySize, lit});
+    Scene scene = buildScene(s);
+    ASSERT_EQ(scene.lights.size(), 2u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Spot);
+    EXPECT_EQ(scene.lights[1].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[1].direction, glm::dvec3(0, 0, -1)) << "down the node's -z";
+    std::get<GltfSourceSpec>(s.sources.back().spec).place = false;
+    scene = buildScene(s);
+    EXPECT_EQ(scene.lights.size(), 1u);
 }
 
 }  // namespace
