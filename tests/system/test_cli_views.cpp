@@ -1,0 +1,93 @@
+// Lights and stereo from the command line (docs/views.md): a bad light in a scenario, or a point
+// light in its glTF file, is one line naming the file and the place, exit 2, nothing written; a
+// run with a good light runs and says once that the lights are not rendered yet.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_run.h"
+#include "gltf_builder.h"
+
+using namespace occsim::cli_run;
+using nlohmann::json;
+
+namespace {
+
+// The small teapot scenario, without its expectations, with `edit` applied, written to `dir`.
+std::filesystem::path smallWith(const std::filesystem::path& dir,
+                                const std::function<void(json&)>& edit) {
+    std::ifstream in(kSmall);
+    json s = json::parse(in);
+    s.erase("expect");
+    s["frames"] = 3;
+    s["warmup_frames"] = 0;
+    edit(s);
+    std::filesystem::create_directories(dir);
+    const auto file = dir / "lit.json";
+    std::ofstream(file) << s.dump(2);
+    return file;
+}
+
+TEST(CliViews, ALightWithoutADirectionIsOneLineWithExitCode2AndWritesNothing) {
+    const auto dir = tempPath("views-bad");
+    const auto file = smallWith(dir, [](json& s) {
+        s["lights"] = {{{"type", "directional"}, {"direction", {0, 0, 0}}}};
+    });
+    const auto out = dir / "out";
+    const Outcome o = runOccsim("bench " + file.string() + " --algos vfc --out " + out.string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("lit.json: /lights/0/direction: expected a non-zero direction"),
+              std::string::npos)
+        << o.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(CliViews, APointLightInAGltfFileIsOneLineWithExitCode2) {
+    const auto dir = tempPath("views-point");
+    occsim::testing_gltf::GltfBuilder b;
+    b.node({{"mesh", b.triangleMesh("Tri")}});
+    b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc()["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}}}}}}};
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "lamp.gltf") << b.text();
+    const auto file = smallWith(dir, [](json& s) {
+        s["scene"]["sources"].push_back({{"type", "gltf"}, {"path", "lamp.gltf"}});
+    });
+    const Outcome o =
+        runOccsim("bench " + file.string() + " --algos vfc --out " + (dir / "out").string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(lineCount(o.output), 1u) << o.output;
+    EXPECT_NE(o.output.find("lamp.gltf: light 0 is a point light"), std::string::npos) << o.output;
+}
+
+TEST(CliViews, ARunWithAGoodLightSaysOnceThatItIsNotRenderedYet) {
+    const auto dir = tempPath("views-good");
+    const auto file = smallWith(dir, [](json& s) {
+        s["lights"] = {{{"type", "directional"}, {"direction", {0.3, -1, 0.2}}}};
+        s["stereo"] = {{"eye_separation", 0.065}};
+    });
+    const Outcome o =
+        runOccsim("bench " + file.string() + " --algos vfc --out " + (dir / "out").string());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    // The note is wrapped to the terminal's width: read it unwrapped.
+    std::string text;
+    for (size_t i = 0; i < o.output.size(); ++i) {
+        if (o.output[i] == '\n' && o.output.compare(i + 1, 2, "  ") == 0) {
+            text += ' ';
+            i += 2;
+        } else {
+            text += o.output[i];
+        }
+    }
+    const std::string note = "lights and stereo are read and checked but not rendered yet";
+    const size_t at = text.find(note);
+    EXPECT_NE(at, std::string::npos) << o.output;
+    EXPECT_EQ(text.find(note, at + 1), std::string::npos) << "once";
+}
+
+}  // namespace
