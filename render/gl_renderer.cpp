@@ -107,6 +107,22 @@ glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspec
                : glm::perspective(fov_y_radians, aspect, near_plane, far_plane);
 }
 
+glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float bottom, float top,
+                          float near_plane, float far_plane) {
+    if (depth == DepthConvention::Conventional24) {
+        return glm::ortho(left, right, bottom, top, near_plane, far_plane);
+    }
+    // Reverse-Z with clip control 0..1: view depth d = -z goes to (far - d) / (far - near).
+    glm::mat4 p(1.0f);
+    p[0][0] = 2.0f / (right - left);
+    p[1][1] = 2.0f / (top - bottom);
+    p[3][0] = -(right + left) / (right - left);
+    p[3][1] = -(top + bottom) / (top - bottom);
+    p[2][2] = 1.0f / (far_plane - near_plane);
+    p[3][2] = far_plane / (far_plane - near_plane);
+    return p;
+}
+
 GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     : width_(width), height_(height), depth_(depth) {
     const bool reverse = depth_ == DepthConvention::ReverseFloat;

@@ -46,6 +46,12 @@ enum class DepthConvention : uint8_t { ReverseFloat, Conventional24 };
 glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspect, float near_plane,
                          float far_plane);
 
+// An orthographic projection for a light's box in view space (x in [left, right], y in [bottom,
+// top], the view looking down -z from `near` to `far` metres), in `depth`'s convention: reverse-Z
+// maps near to 1 and far to 0, as reverseZPerspective does.
+glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float bottom, float top,
+                          float near_plane, float far_plane);
+
 class GlRenderer {
   public:
     GlRenderer(uint32_t width, uint32_t height,

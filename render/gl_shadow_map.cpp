@@ -1,29 +1,12 @@
 // See gl_shadow_map.h.
 #include "render/gl_shadow_map.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "render/gl_api.h"
 
 namespace occsim {
-
-glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float bottom, float top,
-                          float near_plane, float far_plane) {
-    if (depth == DepthConvention::Conventional24) {
-        return glm::ortho(left, right, bottom, top, near_plane, far_plane);
-    }
-    // Reverse-Z with clip control 0..1: view depth d = -z goes to (far - d) / (far - near).
-    glm::mat4 p(1.0f);
-    p[0][0] = 2.0f / (right - left);
-    p[1][1] = 2.0f / (top - bottom);
-    p[3][0] = -(right + left) / (right - left);
-    p[3][1] = -(top + bottom) / (top - bottom);
-    p[2][2] = 1.0f / (far_plane - near_plane);
-    p[3][2] = far_plane / (far_plane - near_plane);
-    return p;
-}
 
 GlShadowMap::GlShadowMap(uint32_t size) : size_(size) {
     GLint max_size = 0;

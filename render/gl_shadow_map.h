@@ -15,12 +15,6 @@
 
 namespace occsim {
 
-// An orthographic projection for a light's box in view space (x in [left, right], y in [bottom,
-// top], the view looking down -z from `near` to `far` metres), in `depth`'s convention: reverse-Z
-// maps near to 1 and far to 0, as reverseZPerspective does.
-glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float bottom, float top,
-                          float near_plane, float far_plane);
-
 class GlShadowMap {
   public:
     // A map `size` texels a side; std::runtime_error beyond the context's GL_MAX_TEXTURE_SIZE

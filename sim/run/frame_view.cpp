@@ -47,4 +47,24 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     return view;
 }
 
+ViewSetup makeLightRenderView(const LightBox& box, const glm::dvec3& culling_origin,
+                              DepthConvention depth) {
+    // The eye 2 m before the box's near face, the near plane 1 m from the eye and the far one 1 m
+    // past the box: the whole box strictly inside, its faces clear of both planes.
+    constexpr double kStandOff = 2.0, kNear = 1.0;
+    const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
+    const glm::dvec2 half = 0.5 * (glm::dvec2(box.max) - glm::dvec2(box.min));
+    ViewSetup view;
+    // Light space is measured from the world origin along right, up and forward.
+    view.eye = box.right * centre.x + box.up * centre.y + box.forward * (box.min.z - kStandOff);
+    view.box_origin = culling_origin;
+    // World to view: x along right, y along up, the view looking down -z = forward.
+    view.view_rotation = glm::mat4(glm::transpose(glm::dmat3(box.right, box.up, -box.forward)));
+    view.projection = orthographicFor(
+        depth, static_cast<float>(-half.x), static_cast<float>(half.x), static_cast<float>(-half.y),
+        static_cast<float>(half.y), static_cast<float>(kNear),
+        static_cast<float>(box.max.z - box.min.z + kStandOff + kNear));
+    return view;
+}
+
 }  // namespace occsim

@@ -9,6 +9,7 @@
 #include "render/gl_renderer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"
+#include "sim/world/light_view.h"
 
 namespace occsim {
 
@@ -28,6 +29,13 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
 FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
                         uint32_t height, const glm::dvec3& culling_origin,
                         DepthConvention depth = DepthConvention::ReverseFloat);
+
+// A directional light's view for its shadow pass (docs/views.md), in world coordinates: the eye
+// 2 m before the box's near face on its centre line, looking down the light, and an orthographic
+// projection of the box (near plane 1 m from the eye, far 1 m past the box) in `depth`'s
+// convention. `box` not empty.
+ViewSetup makeLightRenderView(const LightBox& box, const glm::dvec3& culling_origin,
+                              DepthConvention depth = DepthConvention::ReverseFloat);
 
 // The renderer's depth convention a scenario asks for.
 DepthConvention depthConventionOf(const Scenario& scenario);

@@ -1,6 +1,7 @@
 // The camera of one frame (sim/run/frame_view.h): the culling view in the culling frame, exact far
 // from the origin; the render view in world coordinates with the scenario's depth convention; the
-// lens's near radius and viewport handed to both; straight up or down still a camera.
+// lens's near radius and viewport handed to both; straight up or down still a camera; a light's
+// render view holds its whole box, nearer the light nearer in depth, next to the origin and far.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -122,6 +123,46 @@ TEST(FrameView, AFrameOfThePathIsThePoseTheCameraPathGivesAtThatTime) {
     EXPECT_EQ(view.render.eye, posed.render.eye);
     EXPECT_EQ(view.cull.eye, posed.cull.eye);
     EXPECT_NEAR(view.render.eye.x, 5.0, 1e-9);
+}
+
+// Every point of a directional light's box projects inside the view, in depth between near and
+// far, a point nearer the light nearer; a point beside the box projects outside. In double, as the
+// renderer computes eye-relative positions, next to the origin and 10^6 m from it.
+TEST(LightRenderView, HoldsItsWholeBoxNearerTheLightNearer) {
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, 0.0, -1e6)}) {
+        for (const DepthConvention depth :
+             {DepthConvention::ReverseFloat, DepthConvention::Conventional24}) {
+            const WorldBox scene{origin + glm::dvec3(-50, 0, -50), origin + glm::dvec3(50, 30, 50)};
+            const auto corners = viewFrustumCorners(origin + glm::dvec3(0, 2, 40),
+                                                    origin + glm::dvec3(0, 0, 0), 60, 1.5, 0.1, 80);
+            const LightBox box = fitDirectionalLight(glm::dvec3(0.4, -1.0, 0.3), corners, scene);
+            ASSERT_FALSE(box.empty);
+            const ViewSetup view = makeLightRenderView(box, origin, depth);
+            const auto project = [&](const glm::dvec3& light_space) {
+                const glm::dvec3 world = box.right * light_space.x + box.up * light_space.y +
+                                         box.forward * light_space.z;
+                const glm::vec4 clip = view.projection * view.view_rotation *
+                                       glm::vec4(glm::vec3(world - view.eye), 1);
+                return glm::vec3(clip) / clip.w;
+            };
+            const bool reverse = depth == DepthConvention::ReverseFloat;
+            const float z_lo = reverse ? 0.0f : -1.0f;
+            for (int i = 0; i < 8; ++i) {
+                const glm::dvec3 l((i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
+                                   (i & 4) ? box.max.z : box.min.z);
+                const glm::vec3 ndc = project(l);
+                EXPECT_LE(std::abs(ndc.x), 1.0f + 1e-4f) << i;
+                EXPECT_LE(std::abs(ndc.y), 1.0f + 1e-4f) << i;
+                EXPECT_GT(ndc.z, z_lo) << i;
+                EXPECT_LT(ndc.z, 1.0f) << i;
+            }
+            const glm::dvec3 mid = 0.5 * (box.min + box.max);
+            const float near_z = project({mid.x, mid.y, box.min.z}).z;
+            const float far_z = project({mid.x, mid.y, box.max.z}).z;
+            EXPECT_TRUE(reverse ? near_z > far_z : near_z < far_z);
+            EXPECT_GT(std::abs(project({box.max.x + 1.0, mid.y, mid.z}).x), 1.0f);
+        }
+    }
 }
 
 }  // namespace
