@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "headless_backends.h"
@@ -13,6 +14,14 @@
 #include "render/headless_context.h"
 
 namespace occsim {
+
+// Both depth conventions, for a suite run in each: the values and the name each test gets.
+inline auto bothDepthConventions() {
+    return ::testing::Values(DepthConvention::ReverseFloat, DepthConvention::Conventional24);
+}
+inline std::string depthConventionName(const ::testing::TestParamInfo<DepthConvention>& param) {
+    return param.param == DepthConvention::ReverseFloat ? "ReverseFloat" : "Conventional24";
+}
 
 // A unit cube [-0.5, 0.5]^3 with per-face normals.
 inline MeshData cubeMesh() {

@@ -14,6 +14,7 @@
 #include "render/gl_query_device.h"
 #include "render/gl_renderer.h"
 #include "render/headless_context.h"
+#include "render_test_scene.h"
 
 namespace occsim {
 namespace {
@@ -162,14 +163,8 @@ TEST_P(GlDepthPyramidTest, ABoxTheNearPlaneReachesIsVisibleWithoutATest) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Conventions, GlDepthPyramidTest,
-                         ::testing::Values(DepthConvention::ReverseFloat,
-                                           DepthConvention::Conventional24),
-                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
-                             return std::string(param.param == DepthConvention::ReverseFloat
-                                                    ? "ReverseFloat"
-                                                    : "Conventional24");
-                         });
+INSTANTIATE_TEST_SUITE_P(Conventions, GlDepthPyramidTest, bothDepthConventions(),
+                         depthConventionName);
 
 }  // namespace
 }  // namespace occsim

@@ -256,14 +256,8 @@ TEST_P(GlGpuDrivenDrawsTest, IndirectDrawsWriteThePixelsDirectDrawsWrite) {
     EXPECT_GT(std::count(direct_ids.begin(), direct_ids.end(), 4u), 0) << "the sliver is on screen";
 }
 
-INSTANTIATE_TEST_SUITE_P(Conventions, GlGpuDrivenDrawsTest,
-                         ::testing::Values(DepthConvention::ReverseFloat,
-                                           DepthConvention::Conventional24),
-                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
-                             return std::string(param.param == DepthConvention::ReverseFloat
-                                                    ? "ReverseFloat"
-                                                    : "Conventional24");
-                         });
+INSTANTIATE_TEST_SUITE_P(Conventions, GlGpuDrivenDrawsTest, bothDepthConventions(),
+                         depthConventionName);
 
 }  // namespace
 }  // namespace occsim

@@ -79,14 +79,7 @@ TEST_P(GlShadowMapTest, AMapLargerThanTheDevicesLargestTextureIsRefused) {
     EXPECT_THROW(GlShadowMap(0), std::runtime_error);
 }
 
-INSTANTIATE_TEST_SUITE_P(Conventions, GlShadowMapTest,
-                         ::testing::Values(DepthConvention::ReverseFloat,
-                                           DepthConvention::Conventional24),
-                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
-                             return std::string(param.param == DepthConvention::ReverseFloat
-                                                    ? "ReverseFloat"
-                                                    : "Conventional24");
-                         });
+INSTANTIATE_TEST_SUITE_P(Conventions, GlShadowMapTest, bothDepthConventions(), depthConventionName);
 
 }  // namespace
 }  // namespace occsim
