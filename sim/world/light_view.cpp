@@ -28,9 +28,10 @@ std::array<glm::dvec3, 8> viewFrustumCorners(const glm::dvec3& eye, const glm::d
                                              double fov_y_deg, double aspect, double near_m,
                                              double far_m) {
     const glm::dvec3 forward = glm::normalize(target - eye);
-    // The camera's own up, as a look-at with world +y makes it (any other for a vertical view).
+    // The camera's own up by the rule the renderer's camera uses (makeFrameView in
+    // sim/run/frame_view.cpp): world +y, or +z for a view straight up or down.
     const glm::dvec3 world_up =
-        std::abs(forward.y) > 0.999 ? glm::dvec3(0.0, 0.0, -1.0) : glm::dvec3(0.0, 1.0, 0.0);
+        std::abs(forward.y) > 0.999 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
     const glm::dvec3 up = glm::cross(right, forward);
     const double tan_half = std::tan(glm::radians(fov_y_deg) * 0.5);
