@@ -28,30 +28,64 @@ layout(location = 2) in mat4 a_model_view;
 layout(location = 6) in uint a_object_id;
 uniform mat4 u_projection;
 out vec3 v_normal;
+out vec3 v_view_position;
 flat out uint v_object_id;
 void main() {
     vec4 p = a_model_view * vec4(a_position, 1.0);
     v_normal = mat3(a_model_view) * a_normal;
+    v_view_position = p.xyz;
     v_object_id = a_object_id;
     gl_Position = u_projection * p;
 }
 )";
 
+// The shadow term (setShadow): the fragment moved 1.5 texels along its normal turned toward the
+// light (normal offset, against self-shadowing on slopes), into the light's clip space, and its
+// depth there compared with the nearest caster's in the texel it falls in (texelFetch: no
+// filtering, so a pixel's state names one texel and the caster there). Outside the map: lit.
+// Output 2 is that texel + 1 where the fragment is in shadow, 0 where it is lit or has no term.
 const char* kDrawFragmentShader = R"(#version 330 core
 in vec3 v_normal;
+in vec3 v_view_position;
 flat in uint v_object_id;
+uniform bool u_shadow_on;
+uniform bool u_shadow_reverse;
+uniform mat4 u_view_to_light;
+uniform vec3 u_light_travel;
+uniform sampler2D u_shadow_map;
+uniform int u_shadow_size;
+uniform float u_normal_offset;
+uniform float u_depth_bias;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out uint o_object_id;
+layout(location = 2) out uint o_shadow_texel;
 vec3 idColor(uint id) {
     uint h = id * 2654435761u;
     h ^= h >> 15;
     return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.6
            + 0.35;
 }
+uint shadowTexel() {
+    vec3 n = normalize(v_normal);
+    if (dot(n, u_light_travel) > 0.0) n = -n;
+    vec4 clip = u_view_to_light * vec4(v_view_position + u_normal_offset * n, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    vec2 uv = ndc.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return 0u;
+    ivec2 t = min(ivec2(uv * float(u_shadow_size)), ivec2(u_shadow_size - 1));
+    float stored = texelFetch(u_shadow_map, t, 0).r;
+    float depth = u_shadow_reverse ? ndc.z : ndc.z * 0.5 + 0.5;
+    bool shadowed = u_shadow_reverse ? depth + u_depth_bias < stored
+                                     : depth - u_depth_bias > stored;
+    return shadowed ? uint(t.y * u_shadow_size + t.x) + 1u : 0u;
+}
 void main() {
     float light = 0.25 + 0.75 * abs(normalize(v_normal).z);
+    uint texel = u_shadow_on ? shadowTexel() : 0u;
+    if (texel != 0u) light *= 0.45;
     o_color = vec4(idColor(v_object_id) * light, 1.0);
     o_object_id = v_object_id;
+    o_shadow_texel = texel;
 }
 )";
 
@@ -123,6 +157,16 @@ glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float 
     return p;
 }
 
+glm::mat4 cameraToLightClip(const ViewSetup& camera, const ViewSetup& light) {
+    // Camera view space -> world relative to the camera's eye -> relative to the light's eye ->
+    // light view -> light clip, composed in double: the two eyes may be far from the origin and
+    // from each other, and only their difference is cast to float.
+    const glm::dmat4 camera_to_world = glm::transpose(glm::dmat4(camera.view_rotation));
+    const glm::dmat4 eyes = glm::translate(glm::dmat4(1.0), camera.eye - light.eye);
+    return glm::mat4(glm::dmat4(light.projection) * glm::dmat4(light.view_rotation) * eyes *
+                     camera_to_world);
+}
+
 GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
     : width_(width), height_(height), depth_(depth) {
     const bool reverse = depth_ == DepthConvention::ReverseFloat;
@@ -146,6 +190,14 @@ GlRenderer::GlRenderer(uint32_t width, uint32_t height, DepthConvention depth)
         {{GL_VERTEX_SHADER, kDrawVertexShader}, {GL_FRAGMENT_SHADER, kDrawFragmentShader}},
         "the renderer's draw program");
     draw_projection_loc_ = glGetUniformLocation(draw_program_, "u_projection");
+    shadow_locs_ = {glGetUniformLocation(draw_program_, "u_shadow_on"),
+                    glGetUniformLocation(draw_program_, "u_shadow_reverse"),
+                    glGetUniformLocation(draw_program_, "u_view_to_light"),
+                    glGetUniformLocation(draw_program_, "u_light_travel"),
+                    glGetUniformLocation(draw_program_, "u_shadow_map"),
+                    glGetUniformLocation(draw_program_, "u_shadow_size"),
+                    glGetUniformLocation(draw_program_, "u_normal_offset"),
+                    glGetUniformLocation(draw_program_, "u_depth_bias")};
     query_program_ = linkProgram(
         {{GL_VERTEX_SHADER, kQueryVertexShader}, {GL_FRAGMENT_SHADER, kQueryFragmentShader}},
         "the renderer's query program");
@@ -183,8 +235,8 @@ GlRenderer::~GlRenderer() {
     glDeleteBuffers(6, buffers);
     const GLuint arrays[] = {mesh_vao_, box_vao_};
     glDeleteVertexArrays(2, arrays);
-    const GLuint rbs[] = {color_rb_, id_rb_, depth_rb_};
-    glDeleteRenderbuffers(3, rbs);
+    const GLuint rbs[] = {color_rb_, id_rb_, depth_rb_, shadow_texel_rb_};
+    glDeleteRenderbuffers(shadow_texel_rb_ != 0 ? 4 : 3, rbs);
     glDeleteFramebuffers(1, &fbo_);
 }
 
@@ -195,6 +247,7 @@ void GlRenderer::resize(uint32_t width, uint32_t height) {
     allocateRenderbuffer(color_rb_, kColorFormat, width, height);
     allocateRenderbuffer(id_rb_, kIdFormat, width, height);
     allocateRenderbuffer(depth_rb_, depthFormatOf(depth_), width, height);
+    if (shadow_texel_rb_ != 0) allocateRenderbuffer(shadow_texel_rb_, kIdFormat, width, height);
     width_ = width;
     height_ = height;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -312,7 +365,43 @@ void GlRenderer::beginFrame() {
     glClearBufferfv(GL_COLOR, 0, background);
     glClearBufferuiv(GL_COLOR, 1, no_object);
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    if (shadow_texel_rb_ != 0) glClearBufferuiv(GL_COLOR, 2, no_object);
     state_ = State::None;
+}
+
+void GlRenderer::setShadow(const ShadowLookup* lookup) {
+    if (lookup != nullptr && shadow_texel_rb_ == 0) {
+        // The shadow-texel attachment, made on the first frame with a shadow term: runs without
+        // lights never have it.
+        shadow_texel_rb_ = makeRenderbuffer(kIdFormat, width_, height_);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_RENDERBUFFER,
+                                  shadow_texel_rb_);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        glDrawBuffers(3, buffers);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw std::runtime_error(
+                "OpenGL: the framebuffer with a shadow-texel buffer is incomplete");
+        }
+        checkGl("shadow-texel buffer");
+    }
+    shadow_on_ = lookup != nullptr;
+    if (shadow_on_) shadow_ = *lookup;
+    state_ = State::None;  // the shadow uniforms must be re-sent
+}
+
+void GlRenderer::sendShadowUniforms() {
+    glUniform1i(shadow_locs_[0], shadow_on_ ? 1 : 0);
+    if (!shadow_on_) return;
+    glUniform1i(shadow_locs_[1], depth_ == DepthConvention::ReverseFloat ? 1 : 0);
+    glUniformMatrix4fv(shadow_locs_[2], 1, GL_FALSE, &shadow_.view_to_light[0][0]);
+    glUniform3fv(shadow_locs_[3], 1, &shadow_.light_travel[0]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shadow_.texture);
+    glUniform1i(shadow_locs_[4], 0);
+    glUniform1i(shadow_locs_[5], static_cast<GLint>(shadow_.size));
+    glUniform1f(shadow_locs_[6], 1.5f * shadow_.texel_m);
+    glUniform1f(shadow_locs_[7], shadow_.depth_bias);
 }
 
 void GlRenderer::useState(State wanted) {
@@ -322,6 +411,7 @@ void GlRenderer::useState(State wanted) {
     glUseProgram(draw ? draw_program_ : query_program_);
     glUniformMatrix4fv(draw ? draw_projection_loc_ : query_projection_loc_, 1, GL_FALSE,
                        &view_.projection[0][0]);
+    if (draw) sendShadowUniforms();
     glBindVertexArray(draw ? mesh_vao_ : box_vao_);
     const GLboolean write = draw ? GL_TRUE : GL_FALSE;
     glColorMask(write, write, write, write);
@@ -391,6 +481,17 @@ void GlRenderer::readObjectIds(std::vector<uint32_t>& ids) const {
     glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED_INTEGER,
                  GL_UNSIGNED_INT, ids.data());
     checkGl("glReadPixels(object IDs)");
+}
+
+void GlRenderer::readShadowTexels(std::vector<uint32_t>& texels) const {
+    texels.assign(size_t{width_} * height_, 0);
+    if (shadow_texel_rb_ == 0) return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    glReadBuffer(GL_COLOR_ATTACHMENT2);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED_INTEGER,
+                 GL_UNSIGNED_INT, texels.data());
+    checkGl("glReadPixels(shadow texels)");
 }
 
 void GlRenderer::readColor(std::vector<uint8_t>& rgba) const {

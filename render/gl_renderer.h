@@ -1,5 +1,6 @@
 // The OpenGL renderer: one framebuffer with colour (RGBA8), object ID (R32UI: object index + 1,
-// 0 = background) and float depth; all meshes in one vertex and one index buffer, every object's
+// 0 = background) and float depth, and with a light's shadow term (setShadow) a fourth buffer of
+// shadow-map texels (R32UI); all meshes in one vertex and one index buffer, every object's
 // model-view matrix in one per-instance buffer; one draw call per object, or one multi-draw of
 // GPU-written commands (drawIndirect). Needs a current GlContext.
 //
@@ -10,6 +11,7 @@
 // face coplanar with an occluder counts as visible (conservative).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -52,6 +54,22 @@ glm::mat4 perspectiveFor(DepthConvention depth, float fov_y_radians, float aspec
 glm::mat4 orthographicFor(DepthConvention depth, float left, float right, float bottom, float top,
                           float near_plane, float far_plane);
 
+// The shadow term of a camera pass (setShadow, docs/views.md): where to look up a light's shadow
+// map and how. A fragment is in shadow when its depth from the light, after a normal offset of
+// 1.5 texels and `depth_bias`, lies behind the map's texel it falls in.
+struct ShadowLookup {
+    uint32_t texture = 0;              // the light's depth texture (GlShadowMap::depthTexture)
+    uint32_t size = 0;                 // texels a side
+    glm::mat4 view_to_light{1.0f};     // camera view space to light clip (cameraToLightClip)
+    glm::vec3 light_travel{0, -1, 0};  // the way the light travels, in camera view space
+    float texel_m = 0.0f;              // a texel's width in metres
+    float depth_bias = 0.0f;           // in the map's stored depth units
+};
+
+// The matrix from the camera's view space (setView's model-view matrices give positions in it)
+// to a light view's clip space, composed in double.
+glm::mat4 cameraToLightClip(const ViewSetup& camera, const ViewSetup& light);
+
 class GlRenderer {
   public:
     GlRenderer(uint32_t width, uint32_t height,
@@ -77,7 +95,11 @@ class GlRenderer {
     // GPU here).
     void setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view);
 
-    void beginFrame();  // binds the framebuffer, clears colour, IDs and depth
+    void beginFrame();  // binds the framebuffer, clears colour, IDs, depth (and shadow texels)
+    // The shadow term of the draws that follow (until the next call): nullptr, none (as before;
+    // also while drawing into a shadow map, which the term would read). The first non-null call
+    // adds the shadow-texel buffer to the framebuffer; beginFrame() clears it from then on.
+    void setShadow(const ShadowLookup* lookup);
     void drawObject(uint32_t object);
     // One draw of an object as glMultiDrawElementsIndirect reads it (std430 and the GL layout
     // agree: five uints); base_instance is the object, which selects its matrix and ID.
@@ -111,6 +133,9 @@ class GlRenderer {
     // Read back the last frame (row 0 at the bottom, as GL returns it).
     void readObjectIds(std::vector<uint32_t>& ids) const;
     void readColor(std::vector<uint8_t>& rgba) const;
+    // Per pixel: the shadow-map texel (y * size + x) + 1 whose caster shadows it, 0 where it is
+    // lit, background or drawn without a shadow term (all 0 before the first setShadow()).
+    void readShadowTexels(std::vector<uint32_t>& texels) const;
     // Each pixel's stored depth as its rank among the values the depth format can hold, nearer is
     // larger, so that "one step" means the same in both formats: reverse-Z float, the float's bit
     // pattern (non-negative floats order as their bits); conventional 24-bit, 2^24 - 1 minus the
@@ -131,6 +156,7 @@ class GlRenderer {
   private:
     enum class State : uint8_t { None, Draw, Query };
     void useState(State wanted);
+    void sendShadowUniforms();
 
     uint32_t width_ = 0, height_ = 0;
     DepthConvention depth_ = DepthConvention::ReverseFloat;
@@ -141,6 +167,10 @@ class GlRenderer {
     uint32_t mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
     uint32_t model_view_vbo_ = 0, id_vbo_ = 0;  // per object (instance)
     uint32_t box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0;
+    uint32_t shadow_texel_rb_ = 0;  // made by the first setShadow()
+    std::array<int, 8> shadow_locs_{};
+    ShadowLookup shadow_;
+    bool shadow_on_ = false;
 
     struct MeshRange {
         uint32_t first_index;

@@ -110,7 +110,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
            "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
            "executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,test_gpu_ms,"
-           "phase2_gpu_ms,read_backs\n";
+           "phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,shadow_casters,shadow_triangles,"
+           "shadow_error_pixels,missed_casters,shadow_seen_casters,shadow_tie_pixels\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -133,7 +134,14 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                 for (const auto* phases : {&f.phase_cpu_ms, &f.phase_gpu_ms}) {
                     for (const double ms : *phases) out << ',' << (ms >= 0 ? fixed(ms, 4) : "");
                 }
-                out << ',' << f.read_backs << '\n';
+                out << ',' << f.read_backs;
+                // The shadow pass: times empty, counts -1 on a frame without one.
+                for (const double ms : {f.shadow_cpu_ms, f.shadow_gpu_ms}) {
+                    out << ',' << (ms >= 0 ? fixed(ms, 4) : "");
+                }
+                out << ',' << f.shadow_casters << ',' << f.shadow_triangles << ','
+                    << f.shadow_error_pixels << ',' << f.missed_casters << ','
+                    << f.shadow_seen_casters << ',' << f.shadow_tie_pixels << '\n';
             }
         }
     }
@@ -148,6 +156,23 @@ nlohmann::json phasesJson(const RunSummary& s) {
     const char* names[3] = {"phase1", "test", "phase2"};
     for (size_t p = 0; p < 3; ++p) {
         j[names[p]] = {{"cpu_ms", s.phase_cpu_ms_mean[p]}, {"gpu_ms", s.phase_gpu_ms_mean[p]}};
+    }
+    return j;
+}
+
+// The shadow pass over the timed frames (docs/views.md); null without one.
+nlohmann::json shadowJson(const RunSummary& s) {
+    if (s.shadow_casters_mean < 0) return nullptr;
+    nlohmann::json j = {
+        {"casters_per_frame", s.shadow_casters_mean},
+        {"cpu_ms_mean", s.shadow_cpu_ms_mean},
+        {"gpu_ms_mean", s.shadow_gpu_ms_mean >= 0 ? nlohmann::json(s.shadow_gpu_ms_mean)
+                                                  : nlohmann::json(nullptr)}};
+    if (s.shadow_error_pixels_total >= 0) {
+        j["error_pixels_total"] = s.shadow_error_pixels_total;
+        j["missed_casters_total"] = s.missed_casters_total;
+        j["seen_casters_per_frame"] = s.shadow_seen_casters_mean;
+        j["tie_pixels_total"] = s.shadow_tie_pixels_total;
     }
     return j;
 }
@@ -213,6 +238,8 @@ nlohmann::json configurationJson(const RunRecord& r, const std::vector<RunRecord
         // the CPU and timed on the GPU (a software rasteriser's "GPU" time is its threads' CPU
         // time: machine.gpu_time_meaningful); null for the other cullers.
         {"gpu_driven_phases", phasesJson(s)},
+        // The shadow pass, with its error when error is measured; null without one.
+        {"shadow_pass", shadowJson(s)},
         // null where not measured: see machine.gpu_time_meaningful.
         {"gpu_ms", s.gpu_ms_mean >= 0
                        ? nlohmann::json{{"mean", s.gpu_ms_mean}, {"p95", s.gpu_ms_p95}}

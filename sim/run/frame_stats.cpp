@@ -21,6 +21,44 @@ Distribution distributionOf(std::vector<double> values) {
     return d;
 }
 
+namespace {
+
+// The shadow pass's figures (FrameStats::shadow_*): means over the timed frames that had a pass,
+// error totals over every frame that measured it.
+void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_frames,
+                      RunSummary& s) {
+    double casters = 0, cpu = 0, gpu = 0, seen = 0;
+    uint32_t passes = 0, gpu_passes = 0, measured = 0;
+    for (const FrameStats& f : frames) {
+        if (f.shadow_error_pixels >= 0) {
+            ++measured;
+            seen += static_cast<double>(f.shadow_seen_casters);
+            s.shadow_error_pixels_total =
+                std::max<int64_t>(s.shadow_error_pixels_total, 0) + f.shadow_error_pixels;
+            s.missed_casters_total =
+                std::max<int64_t>(s.missed_casters_total, 0) + f.missed_casters;
+            s.shadow_tie_pixels_total =
+                std::max<int64_t>(s.shadow_tie_pixels_total, 0) + f.shadow_tie_pixels;
+        }
+        if (f.frame < warmup_frames || f.shadow_casters < 0) continue;
+        ++passes;
+        casters += static_cast<double>(f.shadow_casters);
+        cpu += f.shadow_cpu_ms;
+        if (f.shadow_gpu_ms >= 0) {
+            ++gpu_passes;
+            gpu += f.shadow_gpu_ms;
+        }
+    }
+    if (passes > 0) {
+        s.shadow_casters_mean = casters / passes;
+        s.shadow_cpu_ms_mean = cpu / passes;
+    }
+    if (gpu_passes > 0) s.shadow_gpu_ms_mean = gpu / gpu_passes;
+    if (measured > 0) s.shadow_seen_casters_mean = seen / measured;
+}
+
+}  // namespace
+
 RunSummary summarize(const std::string& label, const std::vector<FrameStats>& frames,
                      uint32_t warmup_frames) {
     RunSummary s;
@@ -110,6 +148,7 @@ RunSummary summarize(const std::string& label, const std::vector<FrameStats>& fr
         s.executed_triangles_mean = executed_triangles / n;
         s.read_backs_mean = read_backs / n;
     }
+    summarizeShadows(frames, warmup_frames, s);
     return s;
 }
 
@@ -211,6 +250,9 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
         out.phase_gpu_ms_mean[p] =
             median([p](const RunSummary& r) { return r.phase_gpu_ms_mean[p]; });
     }
+    out.shadow_casters_mean = median([](const RunSummary& r) { return r.shadow_casters_mean; });
+    out.shadow_cpu_ms_mean = median([](const RunSummary& r) { return r.shadow_cpu_ms_mean; });
+    out.shadow_gpu_ms_mean = median([](const RunSummary& r) { return r.shadow_gpu_ms_mean; });
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });
@@ -240,6 +282,18 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
         out.overdrawn_objects_mean += r.overdrawn_objects_mean / static_cast<double>(n);
         out.overdrawn_triangles_mean += r.overdrawn_triangles_mean / static_cast<double>(n);
         out.error_pixels_p99 = std::max(out.error_pixels_p99, r.error_pixels_p99);
+    }
+    out.shadow_seen_casters_mean =
+        median([](const RunSummary& r) { return r.shadow_seen_casters_mean; });
+    out.shadow_error_pixels_total = out.missed_casters_total = out.shadow_tie_pixels_total = -1;
+    for (const RunSummary& r : reps) {
+        if (r.shadow_error_pixels_total < 0) continue;
+        out.shadow_error_pixels_total =
+            std::max<int64_t>(0, out.shadow_error_pixels_total) + r.shadow_error_pixels_total;
+        out.missed_casters_total =
+            std::max<int64_t>(0, out.missed_casters_total) + r.missed_casters_total;
+        out.shadow_tie_pixels_total =
+            std::max<int64_t>(0, out.shadow_tie_pixels_total) + r.shadow_tie_pixels_total;
     }
     out.popping_mean_frames = out.popping_events ? popping_frames / out.popping_events : 0.0;
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;

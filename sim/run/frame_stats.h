@@ -10,13 +10,15 @@ namespace occsim {
 
 struct FrameStats {
     uint32_t frame = 0;
-    double time_s = 0.0;       // simulation time
-    double frame_ms = 0.0;     // wall clock: frame start to glFinish, culled render only
+    double time_s = 0.0;  // simulation time
+    // Wall clock: frame start to glFinish, the culled render only (with a shadow pass, it too).
+    double frame_ms = 0.0;
     double cull_cpu_ms = 0.0;  // culler's own CPU time (traversal minus submission and waits)
     double wait_ms = 0.0;      // blocked on query results
     double update_ms = 0.0;    // movers, BSP reinsertion and refit (outside frame_ms)
-    // GL_TIME_ELAPSED around the culled render; -1 when not measured (a software rasteriser,
-    // whose timer queries do not time rasterisation: ContextInfo::gpu_time_meaningful).
+    // GL_TIME_ELAPSED around the culled camera pass (not the shadow pass: shadow_gpu_ms); -1 when
+    // not measured (a software rasteriser, whose timer queries do not time rasterisation:
+    // ContextInfo::gpu_time_meaningful).
     double gpu_ms = -1.0;
     // Query answers that became ready this frame, and the median of their latencies: commands
     // (draws and queries) submitted after a query by the time its answer was ready (-1: none).
@@ -37,6 +39,14 @@ struct FrameStats {
     // rasteriser the "GPU" times are its threads' CPU time); -1 for other cullers.
     std::array<double, 3> phase_cpu_ms = {-1.0, -1.0, -1.0};
     std::array<double, 3> phase_gpu_ms = {-1.0, -1.0, -1.0};
+    // The shadow pass (docs/views.md), -1 on a frame without one: casters drawn into the light's
+    // shadow map and their triangles, its CPU time from the pass's start to the camera pass's
+    // (submission and light-frustum culling), and its GL_TIME_ELAPSED (-1 where GPU time is not
+    // measured, as gpu_ms).
+    int64_t shadow_casters = -1;
+    int64_t shadow_triangles = -1;
+    double shadow_cpu_ms = -1.0;
+    double shadow_gpu_ms = -1.0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -53,6 +63,18 @@ struct FrameStats {
     // the full render), and their triangles: the work culling was there to save.
     int64_t overdrawn_objects = -1;
     int64_t overdrawn_triangles = -1;
+    // Error of the shadow term, with a shadow pass and error measured (-1 otherwise): pixels
+    // showing the same object as ground truth but lit where it is shadowed or the other way
+    // round, and casters whose shadow ground truth shows on a visible pixel but the shadow pass
+    // did not draw.
+    int64_t shadow_error_pixels = -1;
+    int64_t missed_casters = -1;
+    // Pixels whose lit state differs only because a caster one depth step from ground truth's
+    // stands in for it in the map (sim/run/shadow_error.h): no error.
+    int64_t shadow_tie_pixels = -1;
+    // Casters whose shadow ground truth shows on a visible pixel: what a perfect caster culler
+    // would draw (-1 as above).
+    int64_t shadow_seen_casters = -1;
 };
 
 struct Distribution {
@@ -81,6 +103,12 @@ struct RunSummary {
     // frame measured them.
     std::array<double, 3> phase_cpu_ms_mean = {-1.0, -1.0, -1.0};
     std::array<double, 3> phase_gpu_ms_mean = {-1.0, -1.0, -1.0};
+    // Over the timed frames with a shadow pass (FrameStats::shadow_*); -1 when none had one, or
+    // (GPU) none measured it.
+    double shadow_casters_mean = -1, shadow_cpu_ms_mean = -1, shadow_gpu_ms_mean = -1;
+    // Over every frame with a shadow pass and error measured; -1 when there was none.
+    int64_t shadow_error_pixels_total = -1, missed_casters_total = -1, shadow_tie_pixels_total = -1;
+    double shadow_seen_casters_mean = -1;
     bool error_measured = false;
     int64_t error_pixels_total = 0;
     int64_t error_pixels_worst = 0;

@@ -51,14 +51,34 @@ void printNote(const BenchOptions& options, const std::string& line) {
     }
 }
 
-// Lights and a second eye are read and checked, not rendered yet (docs/views.md): said, so that
-// nobody reads this run's figures as those of a frame with shadow passes.
-void noteViewsNotRendered(const Scenario& scenario, const Scene& scene,
-                          const BenchOptions& options) {
-    if (scene.lights.empty() && !scenario.stereo) return;
-    printNote(options, scenario.file.string() +
-                           ": lights and stereo are read and checked but not rendered yet "
-                           "(docs/views.md); this run culls and measures the camera's view alone");
+// What a run renders of the views a scene names (docs/views.md), said once, so that nobody reads
+// its figures as those of a frame with every view culled: the first shadow-casting directional
+// light's shadow pass is rendered, drawing what its box holds (no culler culls it yet); other
+// lights and a second eye are read and checked but not rendered yet.
+void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions& options) {
+    std::vector<std::string> parts;
+    bool shadow_light = false, other_lights = false;
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightSpec& light = scene.lights[i];
+        if (!shadow_light && light.type == LightType::Directional && light.casts_shadows) {
+            shadow_light = true;
+            parts.push_back("light " + std::to_string(i) +
+                            " renders a shadow pass drawing every object in its box "
+                            "(light-frustum culling: the cullers cull the camera's view alone)");
+        } else if (light.casts_shadows) {
+            other_lights = true;
+        }
+    }
+    if (other_lights) {
+        parts.push_back(
+            "spot lights and further shadow-casting lights are read and checked but "
+            "not rendered yet");
+    }
+    if (scenario.stereo) parts.push_back("stereo is read and checked but not rendered yet");
+    if (parts.empty()) return;
+    std::string line = scenario.file.string() + ": ";
+    for (size_t i = 0; i < parts.size(); ++i) line += (i > 0 ? "; " : "") + parts[i];
+    printNote(options, line + " (docs/views.md)");
 }
 
 RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const BenchOptions& options,
@@ -411,7 +431,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     const Scene scene = buildScene(scenario);
     printWarnings(scene, options.warnings_shown);
-    noteViewsNotRendered(scenario, scene, options);
+    noteViews(scenario, scene, options);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     checkShadowMapsFit(scenario, context->info().max_texture_size);
     GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));

@@ -68,6 +68,38 @@ SharedWorld::SharedWorld(const Scene& scene, const Scenario& scenario)
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
         object_triangles_[o] = scene.meshes[scene.object_mesh[o]].triangleCount();
     }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightSpec& light = scene.lights[i];
+        if (light.type != LightType::Directional || !light.casts_shadows) continue;
+        shadow_.emplace();
+        shadow_->light = static_cast<uint32_t>(i);
+        shadow_->map_size = light.shadow_map;
+        shadow_->model_views.resize(scene.objectCount());
+        break;
+    }
+}
+
+void SharedWorld::computeShadowView(const CameraPose& pose, double aspect, DepthConvention depth) {
+    ShadowView& shadow = *shadow_;
+    const CameraSpec& camera = scenario_.camera;
+    const auto corners = viewFrustumCorners(pose.position, pose.target, camera.fov_y_deg, aspect,
+                                            camera.near_m, camera.far_m);
+    // The scene's bounds this frame: the tree's root bounds over every object's box, moved ones
+    // included (refit in advance()), in the world.
+    const Aabb& root = tree_.bounds(0);
+    WorldBox scene_box;
+    if (root.min.x <= root.max.x) {
+        scene_box.min = glm::dvec3(root.min) + scene_.culling_origin;
+        scene_box.max = glm::dvec3(root.max) + scene_.culling_origin;
+    }
+    shadow.box = fitDirectionalLight(scene_.lights[shadow.light].direction, corners, scene_box);
+    if (shadow.box.empty) return;
+    shadow.render = makeLightRenderView(shadow.box, scene_.culling_origin, depth);
+    const glm::dmat4 rotation(shadow.render.view_rotation);
+    const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -shadow.render.eye);
+    for (uint32_t o = 0; o < scene_.objectCount(); ++o) {
+        shadow.model_views[o] = glm::mat4(rotation * to_eye * modelMatrix(state_.poses[o]));
+    }
 }
 
 void SharedWorld::computeModelViews() {
@@ -211,11 +243,11 @@ void SharedWorld::advance() {
     const uint32_t width = live_.width > 0 ? live_.width : scenario_.width;
     const uint32_t height = live_.height > 0 ? live_.height : scenario_.height;
     const DepthConvention depth = depthConventionOf(scenario_);
-    view_ = live_.camera ? makeFrameView(scenario_.camera, *live_.camera, width, height,
-                                         scene_.culling_origin, depth)
-                         : makeFrameView(scenario_.camera, since_start_s, width, height,
-                                         scene_.culling_origin, depth);
+    const CameraPose pose =
+        live_.camera ? *live_.camera : sampleCameraPath(scenario_.camera, since_start_s);
+    view_ = makeFrameView(scenario_.camera, pose, width, height, scene_.culling_origin, depth);
     computeModelViews();
+    if (shadow_) computeShadowView(pose, static_cast<double>(width) / height, depth);
     cull_frame_ = CullFrame{};
     cull_frame_.frame_index = frame_;
     cull_frame_.time_s = stats.time_s;

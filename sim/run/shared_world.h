@@ -19,6 +19,7 @@
 #include "sim/run/frame_view.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/camera_path.h"
+#include "sim/world/light_view.h"
 #include "sim/world/world.h"
 
 namespace occsim {
@@ -37,6 +38,16 @@ struct LiveControls {
     // Every configuration on this world traces every frame for Simulation::lastTrace(), not only
     // SimulationOptions::trace_frame (the viewer shows one configuration at a time).
     bool trace_every_frame = false;
+};
+
+// The shadow view of a frame (docs/views.md): the scene's first shadow-casting directional light,
+// its box fitted to what the camera sees this frame, and what its shadow pass needs.
+struct ShadowView {
+    uint32_t light = 0;     // index into Scene::lights
+    uint32_t map_size = 0;  // texels a side
+    LightBox box;           // empty: the camera sees none of the scene, no shadow pass this frame
+    ViewSetup render;       // makeLightRenderView(box), when not empty
+    std::vector<glm::mat4> model_views;  // every object's, relative to the light's eye
 };
 
 class SharedWorld {
@@ -70,6 +81,9 @@ class SharedWorld {
     const CullFrame& cullFrame() const { return cull_frame_; }
     const FrameView& view() const { return view_; }
     std::span<const glm::mat4> modelViews() const { return model_view_; }
+    // The current frame's shadow view; nullptr for a scene without a shadow-casting directional
+    // light (spot lights are not rendered yet).
+    const ShadowView* shadowView() const { return shadow_ ? &*shadow_ : nullptr; }
     // The scene's meshes as flat arrays (built on the first call) and the current frame's object
     // transforms into the culling frame (computed on the first call of each frame): what a culler
     // with CullerRow::needs_meshes gets in CullFrame::meshes. Runs without such a culler
@@ -102,6 +116,7 @@ class SharedWorld {
 
   private:
     void computeModelViews();
+    void computeShadowView(const CameraPose& pose, double aspect, DepthConvention depth);
 
     const Scene& scene_;
     const Scenario& scenario_;
@@ -116,6 +131,7 @@ class SharedWorld {
     FrameStats stats_;
     CullFrame cull_frame_;
     FrameView view_;
+    std::optional<ShadowView> shadow_;
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;
     std::vector<uint32_t> object_triangles_;  // per object, for cullers that weigh draw costs

@@ -1,9 +1,11 @@
 #include "sim/run/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
 #include "occsim/culling/tree/decision_resolution.h"
+#include "sim/run/shadow_error.h"
 
 namespace occsim {
 namespace {
@@ -101,11 +103,28 @@ FrameStats Simulation::renderFrame() {
         cull_frame.decisions = &decisions_;
     }
 
-    // The measured frame: culled render to glFinish.
-    renderer_.setView(world_->view().render, world_->modelViews());
+    // The measured frame: the shadow pass, if any, then the culled camera pass, to glFinish.
+    // With a shadow pass the camera's matrices are uploaded inside the frame, after it (the
+    // light's take the same buffer).
+    const ShadowView* shadow = world_->shadowView();
+    const bool shadow_pass = shadow != nullptr && !shadow->box.empty;
+    if (!shadow_pass) renderer_.setView(world_->view().render, world_->modelViews());
+    if (shadow_pass && (!shadow_map_ || shadow_map_->size() != shadow->map_size)) {
+        shadow_map_ = std::make_unique<GlShadowMap>(shadow->map_size);  // outside the timing
+    }
+    if (shadow_pass && options_.measure_gpu_time && !shadow_gpu_timer_) {
+        shadow_gpu_timer_ = std::make_unique<GlFrameTimer>();
+    }
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
     const double frame_start = nowMs();
+    if (shadow_pass) {
+        renderShadowPass(*shadow, stats);
+        const ShadowLookup lookup = shadow_map_->lookupFor(world_->view().render, shadow->render,
+                                                           renderer_.depthConvention());
+        renderer_.setView(world_->view().render, world_->modelViews());
+        renderer_.setShadow(&lookup);
+    }
     if (gpu_timer_) gpu_timer_->begin();
     renderer_.beginFrame();
     const double cull_start = nowMs();
@@ -149,7 +168,53 @@ FrameStats Simulation::renderFrame() {
     stats.executed_triangles = c.triangles_drawn - skipped.triangles;
 
     if (options_.measure_error) measureError(*truth, stats);
+    if (shadow_pass) {
+        if (shadow_gpu_timer_) stats.shadow_gpu_ms = shadow_gpu_timer_->resultMs();
+        renderer_.setShadow(nullptr);
+    }
     return stats;
+}
+
+// Light-frustum culling: every object whose box overlaps the light's box is drawn into the map
+// (docs/views.md). Timed from the pass's start (the light's matrices uploaded) to its last draw's
+// submission.
+void Simulation::renderShadowPass(const ShadowView& shadow, FrameStats& stats) {
+    const double start = nowMs();
+    renderer_.setView(shadow.render, shadow.model_views);
+    if (shadow_gpu_timer_) shadow_gpu_timer_->begin();
+    shadow_map_->begin(renderer_);
+    objectsInLightBox(shadow.box, world_->state().boxes, world_->scene().culling_origin,
+                      shadow_casters_);
+    cast_shadow_.assign(world_->scene().objectCount(), 0);
+    int64_t triangles = 0;
+    for (const uint32_t o : shadow_casters_) {
+        renderer_.drawObject(o);
+        cast_shadow_[o] = 1;
+        triangles += renderer_.triangleCount(o);
+    }
+    if (shadow_gpu_timer_) shadow_gpu_timer_->end();
+    stats.shadow_casters = static_cast<int64_t>(shadow_casters_.size());
+    stats.shadow_triangles = triangles;
+    stats.shadow_cpu_ms = nowMs() - start;
+}
+
+// The shadow term's error (sim/run/shadow_error.h), after the camera view's read-back.
+void Simulation::measureShadowError(const GroundTruthFrame& truth, FrameStats& stats) {
+    renderer_.readShadowTexels(culled_shadow_texels_);
+    ShadowPixelCounts pixels =
+        compareShadowTerms(truth.ids, truth.shadow_texels, culled_ids_, culled_shadow_texels_);
+    if (pixels.error > 0) {
+        // A difference: both maps read back (only now: a map is megabytes) to tell ties apart.
+        truth_->readShadowDepth(truth_shadow_depth_);
+        shadow_map_->readDepth(culled_shadow_depth_);
+        pixels =
+            compareShadowTerms(truth.ids, truth.shadow_texels, culled_ids_, culled_shadow_texels_,
+                               truth_shadow_depth_, culled_shadow_depth_);
+    }
+    stats.shadow_error_pixels = pixels.error;
+    stats.shadow_tie_pixels = pixels.tie;
+    stats.missed_casters = countMissedCasters(truth.shadow_seen, cast_shadow_);
+    stats.shadow_seen_casters = std::count(truth.shadow_seen.begin(), truth.shadow_seen.end(), 1);
 }
 
 void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
@@ -208,6 +273,7 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     popping_.addFrame(missing_);
     segment_tallies_.addMissing(stats.frame, missing_);
     if (options_.record_objects) recordObjects(truth);
+    if (truth.has_shadow) measureShadowError(truth, stats);
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;
     stats.stray_pixels = pixels.stray;

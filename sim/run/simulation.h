@@ -149,6 +149,8 @@ class Simulation {
                SharedWorld* world, GroundTruth* truth, const CullerRow& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
+    void renderShadowPass(const ShadowView& shadow, FrameStats& stats);
+    void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
     void recordObjects(const GroundTruthFrame& truth);
     void recordAnswerLatencies(uint32_t frame, FrameStats& stats);
@@ -178,6 +180,14 @@ class Simulation {
     PoppingCounter popping_;
     SegmentTallies segment_tallies_;
     std::unique_ptr<GlFrameTimer> gpu_timer_;  // when options_.measure_gpu_time
+    // The shadow pass (SharedWorld::shadowView): this configuration's own map, made on its first
+    // pass, the casters it drew this frame (per object) and their timer.
+    std::unique_ptr<GlShadowMap> shadow_map_;
+    std::unique_ptr<GlFrameTimer> shadow_gpu_timer_;
+    std::vector<uint32_t> shadow_casters_;
+    std::vector<uint8_t> cast_shadow_;
+    std::vector<uint32_t> culled_shadow_texels_;
+    std::vector<float> truth_shadow_depth_, culled_shadow_depth_;  // on a frame with a difference
     std::vector<uint32_t> frame_latencies_;
     std::vector<uint64_t> answer_latencies_;
     std::vector<uint32_t> culled_ids_;

@@ -83,4 +83,23 @@ LightBox fitDirectionalLight(const glm::dvec3& direction, const std::array<glm::
     return box;
 }
 
+void objectsInLightBox(const LightBox& box, std::span<const Aabb> boxes,
+                       const glm::dvec3& culling_origin, std::vector<uint32_t>& out) {
+    out.clear();
+    if (box.empty) return;
+    const glm::dvec3 axes[3] = {box.right, box.up, box.forward};
+    const glm::dvec3 abs_axes[3] = {glm::abs(box.right), glm::abs(box.up), glm::abs(box.forward)};
+    for (size_t o = 0; o < boxes.size(); ++o) {
+        const glm::dvec3 lo = glm::dvec3(boxes[o].min) + culling_origin;
+        const glm::dvec3 hi = glm::dvec3(boxes[o].max) + culling_origin;
+        const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        bool overlaps = true;
+        for (int a = 0; a < 3 && overlaps; ++a) {
+            const double c = glm::dot(centre, axes[a]), r = glm::dot(half, abs_axes[a]);
+            overlaps = c + r >= box.min[a] && c - r <= box.max[a];
+        }
+        if (overlaps) out.push_back(static_cast<uint32_t>(o));
+    }
+}
+
 }  // namespace occsim

@@ -6,8 +6,12 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
+#include <vector>
 
+#include "occsim/culling/geometry/aabb.h"
 #include "sim/scenario/scene_specs.h"
 
 namespace occsim {
@@ -37,5 +41,12 @@ glm::dvec3 toLightSpace(const LightBox& box, const glm::dvec3& world);
 // scene's nearest. Empty when the two overlap nowhere across the light.
 LightBox fitDirectionalLight(const glm::dvec3& direction, const std::array<glm::dvec3, 8>& corners,
                              const WorldBox& scene);
+
+// Light-frustum culling of a shadow pass: the objects whose boxes (in the culling frame, which
+// lies at `culling_origin` in the world) overlap `box` in light space, in index order; `out`
+// replaced. A box's light-space bounds are exact (its centre and half-extents projected on each
+// axis), so an object with a point inside the box is never left out.
+void objectsInLightBox(const LightBox& box, std::span<const Aabb> boxes,
+                       const glm::dvec3& culling_origin, std::vector<uint32_t>& out);
 
 }  // namespace occsim

@@ -4,6 +4,8 @@
 // larger than the device's largest texture is refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <string>
@@ -71,6 +73,118 @@ TEST_P(GlShadowMapTest, ACasterWritesItsDepthWhereItCoversTheMapAndNothingElsewh
     }
     EXPECT_EQ(covered, 16u * 16u);
 }
+
+// A camera pass with the shadow term (GlRenderer::setShadow): a ground slab (object 0, top at
+// y = 0) and a unit cube (object 1) centred 3 m above it, the light travelling along
+// (1, -1, 0) / sqrt(2), so the cube's shadow on the ground is x in [2, 4], z in [-0.5, 0.5]; the
+// camera 10 m above (3, 0, 0) looking straight down. Every ground pixel well inside that shadow
+// is shadowed by a texel whose caster is the cube, every ground pixel well outside it is lit,
+// and so is the cube's top; the same 10^6 m from the origin.
+class GlShadowTermTest : public ::testing::TestWithParam<DepthConvention> {
+  protected:
+    static constexpr uint32_t kSide = 128, kMap = 256;
+    void SetUp() override {
+        context_ = createHeadlessContext({Backend::Egl, {}}, kSide, kSide);
+        renderer_ = std::make_unique<GlRenderer>(kSide, kSide, GetParam());
+        const MeshData cube = cubeMesh();
+        renderer_->uploadMeshes(std::span<const MeshData>(&cube, 1));
+        renderer_->setObjectMeshes(std::vector<uint32_t>{0, 0});
+    }
+    // Object model-view matrices for a view, relative to its eye in double.
+    std::vector<glm::mat4> modelViews(const ViewSetup& view, const glm::dvec3& origin) const {
+        const glm::dmat4 ground = glm::translate(glm::dmat4(1.0), origin + glm::dvec3(0, -0.1, 0)) *
+                                  glm::scale(glm::dmat4(1.0), glm::dvec3(40.0, 0.2, 40.0));
+        const glm::dmat4 caster = glm::translate(glm::dmat4(1.0), origin + glm::dvec3(0, 3, 0));
+        std::vector<glm::mat4> out;
+        for (const glm::dmat4& world : {ground, caster}) {
+            out.push_back(view.view_rotation *
+                          glm::mat4(glm::translate(glm::dmat4(1.0), -view.eye) * world));
+        }
+        return out;
+    }
+    std::unique_ptr<HeadlessContext> context_;
+    std::unique_ptr<GlRenderer> renderer_;
+};
+
+TEST_P(GlShadowTermTest, TheGroundUnderACastersShadowIsShadowedByItAndTheRestIsLit) {
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, 0.0, -1e6)}) {
+        SCOPED_TRACE(origin.x);
+        const glm::dvec3 travel = glm::normalize(glm::dvec3(1, -1, 0));
+        ViewSetup light;
+        light.eye = origin + glm::dvec3(3, 0, 0) - 15.0 * travel;
+        light.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), travel, glm::dvec3(0, 1, 0)));
+        light.projection = orthographicFor(GetParam(), -8, 8, -8, 8, 1, 40);
+        ViewSetup camera;
+        camera.eye = origin + glm::dvec3(3, 10, 0);
+        camera.view_rotation =
+            glm::mat4(glm::lookAt(glm::dvec3(0.0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1)));
+        camera.projection = perspectiveFor(GetParam(), glm::radians(90.0f), 1.0f, 0.5f, 100.0f);
+
+        GlShadowMap map(kMap, /*caster_ids=*/true);
+        renderer_->setView(light, modelViews(light, origin));
+        map.begin(*renderer_);
+        renderer_->drawObject(0);
+        renderer_->drawObject(1);
+        const ShadowLookup lookup = map.lookupFor(camera, light, GetParam());
+        renderer_->setView(camera, modelViews(camera, origin));
+        renderer_->setShadow(&lookup);
+        renderer_->beginFrame();
+        renderer_->drawObject(0);
+        renderer_->drawObject(1);
+        renderer_->finish();
+        std::vector<uint32_t> ids, texels, casters;
+        renderer_->readObjectIds(ids);
+        renderer_->readShadowTexels(texels);
+        map.readCasterIds(casters);
+
+        uint32_t shadowed = 0, lit = 0, top = 0;
+        for (uint32_t y = 0; y < kSide; ++y) {
+            for (uint32_t x = 0; x < kSide; ++x) {
+                const size_t i = size_t{y} * kSide + x;
+                if (ids[i] == 2) {
+                    // The cube's top (x in [-0.5, 0.5] 6.5 m down) faces the light; its +x side,
+                    // seen beside the top, is in the cube's own shadow.
+                    const double tx = 3.0 + ((x + 0.5) / (kSide / 2.0) - 1.0) * 6.5;
+                    if (std::abs(tx) < 0.45) {
+                        ++top;
+                        EXPECT_EQ(texels[i], 0u) << x << "," << y;
+                    }
+                    continue;
+                }
+                ASSERT_EQ(ids[i], 1u) << x << "," << y;
+                // The ground point at this pixel: the camera's right is +x, its up -z, 10 m down
+                // with a 90 degree field of view.
+                const double gx = 3.0 + ((x + 0.5) / (kSide / 2.0) - 1.0) * 10.0;
+                const double gz = -((y + 0.5) / (kSide / 2.0) - 1.0) * 10.0;
+                const bool inside = gx > 2.3 && gx < 3.7 && std::abs(gz) < 0.2;
+                const bool outside = gx < 1.7 || gx > 4.3 || std::abs(gz) > 0.8;
+                if (inside) {
+                    ++shadowed;
+                    ASSERT_NE(texels[i], 0u) << x << "," << y;
+                    ASSERT_LE(texels[i], kMap * kMap);
+                    EXPECT_EQ(casters[texels[i] - 1], 2u) << x << "," << y;
+                } else if (outside) {
+                    ++lit;
+                    EXPECT_EQ(texels[i], 0u) << x << "," << y;
+                }
+            }
+        }
+        EXPECT_GT(shadowed, 10u);
+        EXPECT_GT(lit, 1000u);
+        EXPECT_GT(top, 4u);
+
+        // Without the term, nothing is shadowed.
+        renderer_->setShadow(nullptr);
+        renderer_->beginFrame();
+        renderer_->drawObject(0);
+        renderer_->drawObject(1);
+        renderer_->readShadowTexels(texels);
+        EXPECT_EQ(std::count(texels.begin(), texels.end(), 0u), std::ptrdiff_t{kSide * kSide});
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Conventions, GlShadowTermTest, bothDepthConventions(),
+                         depthConventionName);
 
 TEST_P(GlShadowMapTest, AMapLargerThanTheDevicesLargestTextureIsRefused) {
     GLint max_size = 0;

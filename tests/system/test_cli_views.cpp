@@ -1,6 +1,7 @@
 // Lights and stereo from the command line (docs/views.md): a bad light in a scenario, or a point
 // light in its glTF file, is one line naming the file and the place, exit 2, nothing written; a
-// run with a good light runs and says once that the lights are not rendered yet.
+// run with a good light runs and says once what it renders of it (a shadow pass) and not yet
+// (stereo).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -65,7 +66,7 @@ TEST(CliViews, APointLightInAGltfFileIsOneLineWithExitCode2) {
     EXPECT_NE(o.output.find("lamp.gltf: light 0 is a point light"), std::string::npos) << o.output;
 }
 
-TEST(CliViews, ARunWithAGoodLightSaysOnceThatItIsNotRenderedYet) {
+TEST(CliViews, ARunWithAGoodLightSaysOnceWhatItRendersOfIt) {
     const auto dir = tempPath("views-good");
     const auto file = smallWith(dir, [](json& s) {
         s["lights"] = {{{"type", "directional"}, {"direction", {0.3, -1, 0.2}}}};
@@ -84,10 +85,12 @@ TEST(CliViews, ARunWithAGoodLightSaysOnceThatItIsNotRenderedYet) {
             text += o.output[i];
         }
     }
-    const std::string note = "lights and stereo are read and checked but not rendered yet";
+    const std::string note = "light 0 renders a shadow pass drawing every object in its box";
     const size_t at = text.find(note);
     EXPECT_NE(at, std::string::npos) << o.output;
     EXPECT_EQ(text.find(note, at + 1), std::string::npos) << "once";
+    EXPECT_NE(text.find("stereo is read and checked but not rendered yet"), std::string::npos)
+        << o.output;
 }
 
 }  // namespace

@@ -184,9 +184,10 @@ TEST(Simulation, RunBenchmarkWritesNoFile) {
     EXPECT_FALSE(result.metadata.renderer.empty());
 }
 
-// A scenario with lights or a second eye is run as before (the camera's view alone), and the run
-// says so once: nobody reads its figures as a frame with shadow passes. Without them, no note.
-TEST(Simulation, LightsAndStereoNotRenderedYetAreSaidOnce) {
+// A scenario with a shadow-casting light renders its shadow pass, culled by the light's box alone,
+// and a second eye is not rendered yet: the run says both once, so that nobody reads its figures
+// as a frame with every view culled; the camera's culling is as before. Without them, no note.
+TEST(Simulation, WhatARunRendersOfLightsAndStereoIsSaidOnce) {
     std::vector<std::string> notes;
     std::set<std::string> shown;
     BenchOptions options;
@@ -201,9 +202,11 @@ TEST(Simulation, LightsAndStereoNotRenderedYetAreSaidOnce) {
     scenario.stereo = StereoSpec{};
     const BenchResult lit = runBenchmark(scenario, options);
     ASSERT_EQ(notes.size(), 1u);
-    EXPECT_NE(notes[0].find("teapots-small.json: lights and stereo are read and checked but not "
-                            "rendered yet"),
+    EXPECT_NE(notes[0].find("teapots-small.json: light 0 renders a shadow pass drawing every "
+                            "object in its box"),
               std::string::npos)
+        << notes[0];
+    EXPECT_NE(notes[0].find("stereo is read and checked but not rendered yet"), std::string::npos)
         << notes[0];
     EXPECT_EQ(lit.runs[0].summary.objects_mean, plain.runs[0].summary.objects_mean);
     runBenchmark(scenario, options);

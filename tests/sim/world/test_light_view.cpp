@@ -110,5 +110,36 @@ TEST(LightView, ItsBasisIsOrthonormalForEveryDirection) {
     }
 }
 
+// Light-frustum culling: a box with any point inside the light's box is kept, one beside it,
+// beyond its far end or rotated out of it by the light's slant is not; the culling frame may lie
+// 10^6 m from the origin.
+TEST(LightView, ObjectsInTheLightBoxAreThoseWhoseBoxesOverlapIt) {
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, 0.0, -1e6)}) {
+        // The sun straight down on a 20 x 20 x 20 m scene, the camera above looking down at it.
+        LightBox box = fitDirectionalLight(
+            glm::dvec3(0.0, -1.0, 0.0),
+            viewFrustumCorners(origin + glm::dvec3(0, 50, 0), origin + glm::dvec3(0, 0, 0), 60, 1,
+                               1, 60),
+            WorldBox{origin + glm::dvec3(-10, 0, -10), origin + glm::dvec3(10, 20, 10)});
+        ASSERT_FALSE(box.empty);
+        // In light space the box spans the scene across (|x|, |z| <= 10) and in depth from the
+        // scene's top (y = 20) to its floor (y = 0).
+        const std::vector<Aabb> boxes = {
+            {{-1, 0, -1}, {1, 2, 1}},          // 0: inside
+            {{9.5f, 0, 9.5f}, {12, 1, 12}},    // 1: straddles a corner
+            {{11, 0, 0}, {12, 1, 1}},          // 2: beside it across the light
+            {{0, -5, 0}, {1, -1, 1}},          // 3: below the floor, beyond its far end
+            {{0, 20, 0}, {1, 25, 1}},          // 4: touches its near end
+            {{-12, 30, -12}, {-11, 31, -11}},  // 5: above and beside
+        };
+        std::vector<uint32_t> in;
+        objectsInLightBox(box, boxes, origin, in);
+        EXPECT_EQ(in, (std::vector<uint32_t>{0, 1, 4}));
+        box.empty = true;
+        objectsInLightBox(box, boxes, origin, in);
+        EXPECT_TRUE(in.empty()) << "no box, no shadow pass";
+    }
+}
+
 }  // namespace
 }  // namespace occsim

@@ -1,0 +1,189 @@
+// The shadow term's error (sim/run/shadow_error.h, docs/views.md): the counts on planted
+// buffers, a planted tie in the maps; on a real run of a city under a low sun, light-frustum
+// culling misses no caster and no shadow pixel while ground truth sees shadows, the camera's
+// figures are those of the run without the light; and a caster left out of the shadow pass shows as
+// shadow error pixels and one missed caster, so the zero above can fail.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "error_bench.h"
+#include "render/gl_shadow_map.h"
+#include "sim/run/ground_truth.h"
+#include "sim/run/shadow_error.h"
+#include "sim/run/shared_world.h"
+#include "sim/run/simulation.h"
+#include "sim/world/world.h"
+
+namespace occsim {
+namespace {
+
+using testing::kScenarios;
+
+TEST(ShadowError, CountsPixelsOfTheSameObjectWhoseLitStateDiffers) {
+    // Pixel 0: same object, both lit; 1: same object, shadowed in truth only (error); 2: same
+    // object, shadowed by different texels (no error: both shadowed); 3: another object (the
+    // camera view's business); 4: background in both.
+    const std::vector<uint32_t> truth_ids = {1, 1, 2, 3, 0}, culled_ids = {1, 1, 2, 4, 0};
+    const std::vector<uint32_t> truth_texels = {0, 7, 9, 5, 0}, culled_texels = {0, 0, 8, 0, 0};
+    const ShadowPixelCounts counts =
+        compareShadowTerms(truth_ids, truth_texels, culled_ids, culled_texels);
+    EXPECT_EQ(counts.error, 1);
+    EXPECT_EQ(counts.tie, 0);
+    EXPECT_EQ(compareShadowTerms(truth_ids, truth_texels, truth_ids, truth_texels).error, 0);
+    EXPECT_THROW(compareShadowTerms(truth_ids, truth_texels, culled_ids, {}),
+                 std::invalid_argument);
+}
+
+// A planted tie: ground truth's caster at texel 6 (pixel 1's) left out, and another one float step
+// behind it in the culled map. Pixel 1 is lit in the culled frame only because of that step: a
+// tie. Two steps behind, or a texel the culled map left empty, it is an error; pixel 2 is
+// shadowed only in the culled frame, by texel 3, which the maps agree on within a step.
+TEST(ShadowError, ACasterOneDepthStepFromGroundTruthsIsATie) {
+    const std::vector<uint32_t> ids = {1, 1, 2}, truth_texels = {0, 7, 0},
+                                culled_texels = {0, 0, 4};
+    std::vector<float> truth_map(8, 0.5f), culled_map(8, 0.5f);
+    culled_map[6] = std::nextafter(0.5f, 1.0f);
+    culled_map[3] = std::nextafter(0.5f, 0.0f);
+    ShadowPixelCounts counts =
+        compareShadowTerms(ids, truth_texels, ids, culled_texels, truth_map, culled_map);
+    EXPECT_EQ(counts.tie, 2);
+    EXPECT_EQ(counts.error, 0);
+    culled_map[6] = std::nextafter(culled_map[6], 1.0f);
+    counts = compareShadowTerms(ids, truth_texels, ids, culled_texels, truth_map, culled_map);
+    EXPECT_EQ(counts.tie, 1);
+    EXPECT_EQ(counts.error, 1);
+    culled_map[6] = 1.0f;  // nothing there (the conventional far value)
+    counts = compareShadowTerms(ids, truth_texels, ids, culled_texels, truth_map, culled_map);
+    EXPECT_EQ(counts.error, 1);
+    // Without the maps, every difference is an error.
+    counts = compareShadowTerms(ids, truth_texels, ids, culled_texels);
+    EXPECT_EQ(counts.error, 2);
+    EXPECT_EQ(counts.tie, 0);
+}
+
+TEST(ShadowError, ACasterIsMissedWhenItsShadowIsSeenAndItWasNotDrawn) {
+    const std::vector<uint8_t> seen = {1, 0, 1, 1}, drawn = {1, 1, 0};
+    EXPECT_EQ(countMissedCasters(seen, drawn), 2);  // object 2 not drawn, object 3 past `drawn`
+    EXPECT_EQ(countMissedCasters(seen, std::vector<uint8_t>{1, 0, 1, 1}), 0);
+}
+
+// city-small under a low sun from the side: tall buildings shade the streets the camera sees.
+Scenario litCity(DepthConvention depth = DepthConvention::ReverseFloat) {
+    Scenario scenario = parseScenarioFile(kScenarios / "city-small.json");
+    LightSpec sun;
+    sun.direction = glm::normalize(glm::dvec3(1.0, -0.35, 0.25));
+    sun.shadow_map = 1024;
+    scenario.lights.push_back(sun);
+    scenario.conventional_depth = depth == DepthConvention::Conventional24;
+    return scenario;
+}
+
+TEST(ShadowError, LightFrustumCullingMissesNoCasterAndLeavesTheCameraFiguresAlone) {
+    BenchOptions options;
+    for (const char* name : {"vfc", "chc", "hzb"}) options.algorithms.push_back(findCuller(name));
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = 12;
+    const BenchResult lit = runBenchmark(litCity(), options);
+    const BenchResult plain =
+        runBenchmark(parseScenarioFile(kScenarios / "city-small.json"), options);
+    testing::expectNoErrorAndNoMiss(lit);
+    ASSERT_EQ(lit.runs.size(), plain.runs.size());
+    int64_t seen = 0;
+    for (size_t r = 0; r < lit.runs.size(); ++r) {
+        const std::string& label = lit.runs[r].summary.label;
+        for (size_t f = 0; f < lit.runs[r].frames.size(); ++f) {
+            const FrameStats& s = lit.runs[r].frames[f];
+            EXPECT_GT(s.shadow_casters, 0) << label << " frame " << f;
+            EXPECT_GE(s.shadow_cpu_ms, 0.0);
+            EXPECT_EQ(s.shadow_error_pixels, 0) << label << " frame " << f;
+            EXPECT_EQ(s.shadow_tie_pixels, 0) << label << " frame " << f;
+            EXPECT_EQ(s.missed_casters, 0) << label << " frame " << f;
+            EXPECT_LE(s.shadow_seen_casters, s.shadow_casters) << label << " frame " << f;
+            seen += s.shadow_seen_casters;
+            // The camera's culling and error are the same as without the light.
+            const FrameStats& p = plain.runs[r].frames[f];
+            EXPECT_EQ(s.objects_drawn, p.objects_drawn) << label << " frame " << f;
+            EXPECT_EQ(s.queries, p.queries) << label << " frame " << f;
+            EXPECT_EQ(s.visible_objects, p.visible_objects) << label << " frame " << f;
+            EXPECT_EQ(p.shadow_casters, -1);
+            EXPECT_EQ(p.shadow_error_pixels, -1);
+        }
+        EXPECT_EQ(lit.runs[r].summary.missed_casters_total, 0) << label;
+        EXPECT_GT(lit.runs[r].summary.shadow_casters_mean, 0.0) << label;
+    }
+    EXPECT_GT(seen, 0) << "ground truth shows no shadow: the check above proves nothing";
+}
+
+class PlantedShadowError : public ::testing::TestWithParam<DepthConvention> {};
+
+TEST_P(PlantedShadowError, ACasterLeftOutOfTheShadowPassIsCounted) {
+    const Scenario scenario = litCity(GetParam());
+    const auto context = createHeadlessContext({}, scenario.width, scenario.height);
+    const Scene scene = buildScene(scenario);
+    GlRenderer renderer(scenario.width, scenario.height, GetParam());
+    uploadScene(scene, renderer);
+    SharedWorld world(scene, scenario);
+    GroundTruth truth(renderer);
+    world.advance();
+    const GroundTruthFrame& frame = truth.of(world);
+    ASSERT_TRUE(frame.has_shadow);
+    // The caster whose shadow covers most visible pixels.
+    const uint32_t objects = scene.objectCount();
+    std::vector<uint32_t> shaded(objects, 0);
+    const std::vector<uint32_t> casters = frame.shadow_casters;
+    const std::vector<uint32_t> truth_ids = frame.ids, truth_texels = frame.shadow_texels;
+    for (size_t i = 0; i < truth_ids.size(); ++i) {
+        if (truth_ids[i] != 0 && truth_texels[i] != 0 && casters[truth_texels[i] - 1] != 0) {
+            ++shaded[casters[truth_texels[i] - 1] - 1];
+        }
+    }
+    const auto left_out =
+        static_cast<uint32_t>(std::max_element(shaded.begin(), shaded.end()) - shaded.begin());
+    ASSERT_GT(shaded[left_out], 20u);
+
+    // The frame again with every object in the camera's pass, and every caster but that one in
+    // the shadow pass.
+    const ShadowView& shadow = *world.shadowView();
+    GlShadowMap map(shadow.map_size);
+    renderer.setView(shadow.render, shadow.model_views);
+    map.begin(renderer);
+    std::vector<uint8_t> drawn(objects, 1);
+    drawn[left_out] = 0;
+    for (uint32_t o = 0; o < objects; ++o) {
+        if (drawn[o]) renderer.drawObject(o);
+    }
+    const ShadowLookup lookup =
+        map.lookupFor(world.view().render, shadow.render, renderer.depthConvention());
+    renderer.setView(world.view().render, world.modelViews());
+    renderer.setShadow(&lookup);
+    renderer.beginFrame();
+    for (uint32_t o = 0; o < objects; ++o) renderer.drawObject(o);
+    std::vector<uint32_t> ids, texels;
+    renderer.readObjectIds(ids);
+    renderer.readShadowTexels(texels);
+    renderer.setShadow(nullptr);
+    EXPECT_EQ(ids, truth_ids);
+    EXPECT_GE(compareShadowTerms(truth_ids, truth_texels, ids, texels).error, 1);
+    EXPECT_EQ(countMissedCasters(frame.shadow_seen, drawn), 1);
+    // With it drawn, the same frame has none.
+    drawn[left_out] = 1;
+    EXPECT_EQ(countMissedCasters(frame.shadow_seen, drawn), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Depth, PlantedShadowError,
+                         ::testing::Values(DepthConvention::ReverseFloat,
+                                           DepthConvention::Conventional24),
+                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
+                             return std::string(param.param == DepthConvention::ReverseFloat
+                                                    ? "ReverseFloat"
+                                                    : "Conventional24");
+                         });
+
+}  // namespace
+}  // namespace occsim
