@@ -25,6 +25,7 @@
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/sun_override.h"
 
 namespace occsim_cli {
 namespace {
@@ -74,6 +75,11 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                   "Print the full comparison table, every figure (default: a compact table of "
                   "at most 100 columns and a verdict; report.md and summary.json have all)");
     cmd->add_option("--record", flags.record, kRecordHelp)->delimiter(',');
+    cmd->add_option("--sun", flags.sun,
+                    "ELEVATION,AZIMUTH[,SHADOW_MAP]: one shadow-casting sun, degrees above the "
+                    "horizon and round from +x toward +z (map 2048 texels unless given), in place "
+                    "of every light the scene names (docs/views.md)")
+        ->each([&flags](const std::string&) { flags.sun_given = true; });
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -106,9 +112,17 @@ struct RunRequest {
 RunRequest requestOf(const std::string& command, const std::string& command_line,
                      const CommonFlags& flags) {
     loadPlugins(flags.plugins);
-    return RunRequest{
+    RunRequest request{
         command, command_line, flags, scenarioWithCulling(flags.scenario, flags.culling),
         {},      {},           ""};
+    if (flags.sun_given) {
+        try {
+            occsim::replaceLightsWith(request.scenario, occsim::parseSun(flags.sun));
+        } catch (const std::invalid_argument& e) {
+            throw occsim::InputError(std::string("--sun: ") + e.what());
+        }
+    }
+    return request;
 }
 
 // The scenario's segments and --segments', placed on the frames this run runs, before any work; a

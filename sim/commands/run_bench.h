@@ -35,6 +35,8 @@ struct CommonFlags {
     bool quiet = false;                    // no progress on stderr
     bool wide = false;                     // --wide: the full table instead of the compact one
     std::string frame_order = "balanced";  // --frame-order (bench)
+    std::string sun;                       // --sun ELEVATION,AZIMUTH[,SHADOW_MAP]
+    bool sun_given = false;                // --sun on the command line (an empty one is refused)
 };
 
 struct RunFlags {

@@ -1,7 +1,7 @@
 // Lights and stereo from the command line (docs/views.md): a bad light in a scenario, or a point
 // light in its glTF file, is one line naming the file and the place, exit 2, nothing written; a
 // run with a good light runs and says once what it renders of it (a shadow pass) and not yet
-// (stereo).
+// (stereo); --sun lights any scene.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -91,6 +91,36 @@ TEST(CliViews, ARunWithAGoodLightSaysOnceWhatItRendersOfIt) {
     EXPECT_EQ(text.find(note, at + 1), std::string::npos) << "once";
     EXPECT_NE(text.find("stereo is read and checked but not rendered yet"), std::string::npos)
         << o.output;
+}
+
+// --sun lights any scene without a copy of its file: the run renders its shadow pass, measures
+// its error (light-frustum culling misses nothing) and says so once; a sun below the horizon is
+// one line naming the flag, exit 2, nothing written.
+TEST(CliViews, TheSunFlagLightsAnySceneAndABadOneIsOneLine) {
+    const auto dir = tempPath("views-sun");
+    const auto out = dir / "out";
+    const Outcome bad =
+        runOccsim("bench " + kSmall + " --algos vfc --sun -5,40 --out " + out.string());
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+    EXPECT_NE(bad.output.find("--sun: expected ELEVATION,AZIMUTH[,SHADOW_MAP]"), std::string::npos)
+        << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
+    const Outcome o =
+        runOccsim("bench " + kSmall + " --algos vfc,chc --sun 25,40,512 --error --frames 8 --out " +
+                  out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("light 0 renders a shadow pass"), std::string::npos) << o.output;
+    std::ifstream in(out / "summary.json");
+    const json summary = json::parse(in);
+    for (const json& a : summary["algorithms"]) {
+        const json& shadow = a["shadow_pass"];
+        ASSERT_TRUE(shadow.is_object()) << a.dump();
+        EXPECT_GT(shadow["casters_per_frame"].get<double>(), 0.0);
+        EXPECT_EQ(shadow["missed_casters_total"], 0);
+        EXPECT_EQ(shadow["error_pixels_total"], 0);
+    }
 }
 
 }  // namespace

@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""The shadow-pass table of docs/views.md from the runs scripts/views_table.sh made.
+
+Usage: scripts/views_table.py out/views
+
+Reads <scene>/{none,low,high}/run-<n>/summary.json (VFC's configuration) and prints one markdown
+table: per scene and sun the casters light-frustum culling drew a frame, the casters whose shadow
+ground truth shows on a visible pixel (what a perfect caster culler would draw) and the ratio of
+the two, the shadow pass's CPU time, VFC's frame time with the sun and without it (means of the
+runs, with the spread: half the range), the shadow error pixels and missed casters summed over
+the runs, and the load average before and after each run. A busy run is flagged: such a table is
+not a result.
+"""
+import json
+import os
+import sys
+
+
+def summaries(folder):
+    runs = []
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name, "summary.json")
+        if name.startswith("run-") and os.path.isfile(path):
+            with open(path) as f:
+                runs.append(json.load(f))
+    return runs
+
+
+def vfc(summary):
+    return next(a for a in summary["algorithms"] if a["configuration"] == "vfc")
+
+
+def mean_spread(values):
+    if not values:
+        return None, None
+    return sum(values) / len(values), (max(values) - min(values)) / 2
+
+
+def fmt(value, spread=None, digits=1):
+    if value is None:
+        return "-"
+    text = f"{value:,.{digits}f}"
+    return text + (f" ±{spread:,.{digits}f}" if spread is not None else "")
+
+
+def loads(runs):
+    parts = []
+    for s in runs:
+        m = s["machine"]
+        busy = " BUSY" if m.get("busy") else ""
+        parts.append(f"{m['load_average_before']:.2f}→{m['load_average_after']:.2f}{busy}")
+    return ", ".join(parts)
+
+
+def main(root):
+    print("| scene | sun | casters drawn / frame | casters seen / frame | drawn / seen | "
+          "shadow pass CPU ms | frame ms with sun | frame ms without | shadow err px | "
+          "missed casters | load (before→after) |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for scene in sorted(os.listdir(root)):
+        none_runs = summaries(os.path.join(root, scene, "none"))
+        plain_ms = mean_spread([vfc(s)["frame_ms"]["mean"] for s in none_runs])
+        for sun in ("low", "high"):
+            folder = os.path.join(root, scene, sun)
+            if not os.path.isdir(folder):
+                continue
+            runs = summaries(folder)
+            shadows = [vfc(s)["shadow_pass"] for s in runs]
+            if not runs or any(sh is None for sh in shadows):
+                print(f"| {scene} | {sun} | no shadow pass | | | | | | | | |")
+                continue
+            drawn = mean_spread([sh["casters_per_frame"] for sh in shadows])
+            seen = mean_spread([sh["seen_casters_per_frame"] for sh in shadows])
+            ratio = drawn[0] / seen[0] if seen[0] else None
+            cpu = mean_spread([sh["cpu_ms_mean"] for sh in shadows])
+            frame = mean_spread([vfc(s)["frame_ms"]["mean"] for s in runs])
+            error = sum(sh["error_pixels_total"] for sh in shadows)
+            missed = sum(sh["missed_casters_total"] for sh in shadows)
+            print(f"| {scene} | {sun} | {fmt(*drawn)} | {fmt(*seen)} | "
+                  f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*cpu, digits=2)} | "
+                  f"{fmt(*frame, digits=2)} | {fmt(*plain_ms, digits=2)} | {error} | {missed} | "
+                  f"{loads(runs + none_runs)} |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: scripts/views_table.py out/views")
+    main(sys.argv[1])
