@@ -85,6 +85,14 @@ void GlQueryDevice::drawObject(uint32_t object) {
     counters_.submit_seconds += steadySecondsSince(start);
 }
 
+void GlQueryDevice::markSubmitted(std::vector<uint8_t>& submitted) const {
+    submitted.assign(drawn_mark_.size(), 0);
+    for (size_t o = 0; o < drawn_mark_.size(); ++o) submitted[o] = drawn_mark_[o] == drawn_set_;
+    for (const ConditionalDraw& d : conditional_draws_) {
+        if (d.object < submitted.size()) submitted[d.object] = 1;
+    }
+}
+
 void GlQueryDevice::beginDrawnSet(uint32_t objects) {
     if (++drawn_set_ == 0) {  // wrapped after 2^32 sets: old marks could match again
         drawn_mark_.assign(drawn_mark_.size(), 0);

@@ -75,6 +75,10 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     bool drew(uint32_t object) const {
         return object < drawn_mark_.size() && drawn_mark_[object] == drawn_set_;
     }
+    // Marks in `submitted` (resized to the set's objects) every object the current set submitted
+    // a draw of, conditional draws included whatever their query says (no read-back): during the
+    // frame, a superset of what it drew.
+    void markSubmitted(std::vector<uint8_t>& submitted) const;
     // Adds to the drawn set the objects drawn under a condition whose query passed samples (reads
     // those queries' results: call after the frame, outside any timing).
     void resolveConditionalDraws();

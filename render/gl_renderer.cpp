@@ -369,6 +369,12 @@ void GlRenderer::beginFrame() {
     state_ = State::None;
 }
 
+void GlRenderer::resumeFrame() {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
+    state_ = State::None;
+}
+
 void GlRenderer::setShadow(const ShadowLookup* lookup) {
     if (lookup != nullptr && shadow_texel_rb_ == 0) {
         // The shadow-texel attachment, made on the first frame with a shadow term: runs without
@@ -406,8 +412,9 @@ void GlRenderer::sendShadowUniforms() {
 
 void GlRenderer::useState(State wanted) {
     if (state_ == wanted) return;
-    // Drawing writes colour, IDs and depth; query boxes write nothing and pass on equal depth.
-    const bool draw = wanted == State::Draw;
+    // Drawing writes colour, IDs and depth; a redraw writes colour and IDs where the depth is
+    // equal; query boxes write nothing and pass on equal depth.
+    const bool draw = wanted != State::Query;
     glUseProgram(draw ? draw_program_ : query_program_);
     glUniformMatrix4fv(draw ? draw_projection_loc_ : query_projection_loc_, 1, GL_FALSE,
                        &view_.projection[0][0]);
@@ -415,8 +422,10 @@ void GlRenderer::useState(State wanted) {
     glBindVertexArray(draw ? mesh_vao_ : box_vao_);
     const GLboolean write = draw ? GL_TRUE : GL_FALSE;
     glColorMask(write, write, write, write);
-    glDepthMask(write);
-    if (depth_ == DepthConvention::ReverseFloat) {
+    glDepthMask(wanted == State::Draw ? GL_TRUE : GL_FALSE);
+    if (wanted == State::Redraw) {
+        glDepthFunc(GL_EQUAL);
+    } else if (depth_ == DepthConvention::ReverseFloat) {
         glDepthFunc(draw ? GL_GREATER : GL_GEQUAL);
     } else {
         glDepthFunc(draw ? GL_LESS : GL_LEQUAL);
@@ -426,6 +435,14 @@ void GlRenderer::useState(State wanted) {
 
 void GlRenderer::drawObject(uint32_t object) {
     useState(State::Draw);
+    const MeshRange& mesh = meshes_[object_mesh_[object]];
+    glDrawElementsInstancedBaseVertexBaseInstance(
+        GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex, object);
+}
+
+void GlRenderer::redrawObject(uint32_t object) {
+    useState(State::Redraw);
     const MeshRange& mesh = meshes_[object_mesh_[object]];
     glDrawElementsInstancedBaseVertexBaseInstance(
         GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,

@@ -96,6 +96,14 @@ class GlRenderer {
     void setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view);
 
     void beginFrame();  // binds the framebuffer, clears colour, IDs, depth (and shadow texels)
+    // Binds the framebuffer and its viewport again without clearing, to go on with the frame
+    // after a pass into another framebuffer (a shadow map).
+    void resumeFrame();
+    // Draws an object drawn earlier in this frame again, with the current shadow term (a
+    // shading pass after a depth pass): depth test GL_EQUAL, no depth write, so only its
+    // fragments that won the depth test are shaded again, colour, ID and shadow texel alike.
+    // The same program and inputs give the same depths (invariance).
+    void redrawObject(uint32_t object);
     // The shadow term of the draws that follow (until the next call): nullptr, none (as before;
     // also while drawing into a shadow map, which the term would read). The first non-null call
     // adds the shadow-texel buffer to the framebuffer; beginFrame() clears it from then on.
@@ -154,7 +162,7 @@ class GlRenderer {
     void forgetBoundState() { state_ = State::None; }
 
   private:
-    enum class State : uint8_t { None, Draw, Query };
+    enum class State : uint8_t { None, Draw, Query, Redraw };
     void useState(State wanted);
     void sendShadowUniforms();
 

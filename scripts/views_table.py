@@ -3,13 +3,13 @@
 
 Usage: scripts/views_table.py out/views
 
-Reads <scene>/{none,low,high}/run-<n>/summary.json (VFC's configuration) and prints one markdown
-table: per scene and sun the casters light-frustum culling drew a frame, the casters whose shadow
-ground truth shows on a visible pixel (what a perfect caster culler would draw) and the ratio of
-the two, the shadow pass's CPU time, VFC's frame time with the sun and without it (means of the
-runs, with the spread: half the range), the shadow error pixels and missed casters summed over
-the runs, and the load average before and after each run. A busy run is flagged: such a table is
-not a result.
+Reads <scene>/{none,<sun>-<casters>}/run-<n>/summary.json (VFC's configuration) and prints one
+markdown table: per scene, sun (low, high) and caster culling (frustum, receivers) the casters
+the shadow pass drew a frame, the casters whose shadow ground truth shows on a visible pixel
+(what a perfect caster culler would draw) and the ratio of the two, the shadow pass's CPU time,
+VFC's frame time with the sun and without it (means of the runs, with the spread: half the
+range), the shadow error pixels and missed casters summed over the runs, and the load average
+before and after each run. A busy run is flagged: such a table is not a result.
 """
 import json
 import os
@@ -53,21 +53,21 @@ def loads(runs):
 
 
 def main(root):
-    print("| scene | sun | casters drawn / frame | casters seen / frame | drawn / seen | "
+    print("| scene | sun | casters | casters drawn / frame | casters seen / frame | drawn / seen | "
           "shadow pass CPU ms | frame ms with sun | frame ms without | shadow err px | "
           "missed casters | load (before→after) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for scene in sorted(os.listdir(root)):
         none_runs = summaries(os.path.join(root, scene, "none"))
         plain_ms = mean_spread([vfc(s)["frame_ms"]["mean"] for s in none_runs])
-        for sun in ("low", "high"):
-            folder = os.path.join(root, scene, sun)
+        for sun, casters in [(s, c) for s in ("low", "high") for c in ("frustum", "receivers")]:
+            folder = os.path.join(root, scene, f"{sun}-{casters}")
             if not os.path.isdir(folder):
                 continue
             runs = summaries(folder)
             shadows = [vfc(s)["shadow_pass"] for s in runs]
             if not runs or any(sh is None for sh in shadows):
-                print(f"| {scene} | {sun} | no shadow pass | | | | | | | | |")
+                print(f"| {scene} | {sun} | {casters} | no shadow pass | | | | | | | | |")
                 continue
             drawn = mean_spread([sh["casters_per_frame"] for sh in shadows])
             seen = mean_spread([sh["seen_casters_per_frame"] for sh in shadows])
@@ -76,7 +76,7 @@ def main(root):
             frame = mean_spread([vfc(s)["frame_ms"]["mean"] for s in runs])
             error = sum(sh["error_pixels_total"] for sh in shadows)
             missed = sum(sh["missed_casters_total"] for sh in shadows)
-            print(f"| {scene} | {sun} | {fmt(*drawn)} | {fmt(*seen)} | "
+            print(f"| {scene} | {sun} | {casters} | {fmt(*drawn)} | {fmt(*seen)} | "
                   f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*cpu, digits=2)} | "
                   f"{fmt(*frame, digits=2)} | {fmt(*plain_ms, digits=2)} | {error} | {missed} | "
                   f"{loads(runs + none_runs)} |")

@@ -1,19 +1,25 @@
 #!/usr/bin/env bash
 # The shadow-pass table of docs/views.md: the paper's city and the three game levels under a low
-# and a high sun (`--sun`), each run twice beside a run without a sun, VFC culling the camera's
-# view and light-frustum culling the shadow pass, error measured. Run it on a quiet machine (no
+# and a high sun (`--sun`), the shadow pass's casters culled by the light's box (light-frustum)
+# and by the camera's receivers (`--shadow-casters receivers`), each run twice beside a run
+# without a sun, VFC culling the camera's view, error measured. Run it on a quiet machine (no
 # build, test or other benchmark beside it): each run's summary gives the load before and after.
-# Usage: scripts/views_table.sh [--frames N] [--map TEXELS] [more occsim bench options...]
-#   --frames N: frames a run (default 60); --map: the shadow map's side (default 2048).
-#   The suns: low 15 degrees up, high 60, both from azimuth 40 (LOW_SUN, HIGH_SUN below).
-# Output: out/views/<scene>/{none,low,high}/run-<n>/{summary.json,frames.csv,report.md}, then the
-# table (scripts/views_table.py) and how long it took.
+# Usage: scripts/views_table.sh [--frames N] [--map TEXELS] [--scenes "A.json B.json"]
+#                               [more occsim bench options...]
+#   --frames N: frames a run (default 60); --map: the shadow map's side (default 2048);
+#   --scenes: these scenario files instead of the four (one scene a command keeps each command
+#   within 15 minutes). The suns: low 15 degrees up, high 60, both from azimuth 40 (LOW_SUN,
+#   HIGH_SUN below).
+# Output: out/views/<scene>/{none,low-frustum,low-receivers,high-frustum,high-receivers}/run-<n>/
+# {summary.json,frames.csv,report.md}, then the table of every scene under out/views
+# (scripts/views_table.py) and how long it took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 LOW_SUN=15,40
 HIGH_SUN=60,40
 frames=60
 map=2048
+scenes="scenarios/paper/city.json scenarios/levels/courtyards.json scenarios/levels/canyon.json scenarios/levels/interior.json"
 bench_args=()
 while (($#)); do
   case "$1" in
@@ -21,6 +27,7 @@ while (($#)); do
     --frames=*) frames=${1#--frames=}; shift ;;
     --map) map=$2; shift 2 ;;
     --map=*) map=${1#--map=}; shift ;;
+    --scenes) scenes=$2; shift 2 ;;
     *) bench_args+=("$1"); shift ;;
   esac
 done
@@ -29,17 +36,18 @@ bash scripts/build.sh release occsim
 command -v python3 >/dev/null || { echo "views_table.sh: the table needs python3 (apt-get install python3)" >&2; exit 1; }
 out=out/views
 start=$SECONDS
-for scene in scenarios/paper/city.json scenarios/levels/courtyards.json \
-  scenarios/levels/canyon.json scenarios/levels/interior.json; do
+for scene in $scenes; do
   name=$(basename "$scene" .json)
   for run in 1 2; do
-    for sun in none low high; do
-      sun_args=()
-      [[ $sun == low ]] && sun_args=(--sun "$LOW_SUN,$map")
-      [[ $sun == high ]] && sun_args=(--sun "$HIGH_SUN,$map")
-      echo "== $scene, sun $sun, run $run ($(uptime))"
+    for view in none low-frustum low-receivers high-frustum high-receivers; do
+      view_args=()
+      case $view in
+        low-*) view_args=(--sun "$LOW_SUN,$map" --shadow-casters "${view#low-}") ;;
+        high-*) view_args=(--sun "$HIGH_SUN,$map" --shadow-casters "${view#high-}") ;;
+      esac
+      echo "== $scene, $view, run $run ($(uptime))"
       ./build/release/sim/occsim bench "$scene" --algos vfc --error --quiet --frames "$frames" \
-        "${sun_args[@]}" --out "$out/$name/$sun/run-$run" "${bench_args[@]}" >/dev/null
+        "${view_args[@]}" --out "$out/$name/$view/run-$run" "${bench_args[@]}" >/dev/null
     done
   done
 done

@@ -80,6 +80,10 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                     "horizon and round from +x toward +z (map 2048 texels unless given), in place "
                     "of every light the scene names (docs/views.md)")
         ->each([&flags](const std::string&) { flags.sun_given = true; });
+    cmd->add_option("--shadow-casters", flags.shadow_casters,
+                    "Which casters a shadow pass draws: frustum (every object in the light's "
+                    "box, the default) or receivers (those that may shadow what the camera's "
+                    "pass drew; the camera's pass first, then a shading pass; docs/views.md)");
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -174,6 +178,12 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         }
     }
     o.ablate = flags.ablate;
+    if (flags.shadow_casters == "receivers") {
+        o.shadow_casters = occsim::ShadowCasterCulling::ReceiverMask;
+    } else if (flags.shadow_casters != "frustum") {
+        throw occsim::InputError("--shadow-casters: expected frustum or receivers, got '" +
+                                 flags.shadow_casters + "'");
+    }
     // The configurations are planned once here, before any work, so that a swept value that makes
     // options invalid or repeats an ablation row is bad input, named by its flag.
     // A NAME@FILE entry makes the configurations explicit: each plain culler's as planned, each

@@ -30,13 +30,14 @@ struct CommonFlags {
     bool wait_lock = false;
     std::vector<std::string> plugins;
     std::string ablate;
-    std::vector<std::string> record;       // --record: "objects"
-    std::vector<std::string> segments;     // --segments, each as given (joined by ',')
-    bool quiet = false;                    // no progress on stderr
-    bool wide = false;                     // --wide: the full table instead of the compact one
-    std::string frame_order = "balanced";  // --frame-order (bench)
-    std::string sun;                       // --sun ELEVATION,AZIMUTH[,SHADOW_MAP]
-    bool sun_given = false;                // --sun on the command line (an empty one is refused)
+    std::vector<std::string> record;         // --record: "objects"
+    std::vector<std::string> segments;       // --segments, each as given (joined by ',')
+    bool quiet = false;                      // no progress on stderr
+    bool wide = false;                       // --wide: the full table instead of the compact one
+    std::string frame_order = "balanced";    // --frame-order (bench)
+    std::string sun;                         // --sun ELEVATION,AZIMUTH[,SHADOW_MAP]
+    bool sun_given = false;                  // --sun on the command line (an empty one is refused)
+    std::string shadow_casters = "frustum";  // --shadow-casters frustum|receivers
 };
 
 struct RunFlags {

@@ -53,8 +53,9 @@ void printNote(const BenchOptions& options, const std::string& line) {
 
 // What a run renders of the views a scene names (docs/views.md), said once, so that nobody reads
 // its figures as those of a frame with every view culled: the first shadow-casting directional
-// light's shadow pass is rendered, drawing what its box holds (no culler culls it yet); other
-// lights and a second eye are read and checked but not rendered yet.
+// light's shadow pass is rendered, its casters culled by the light's box or by the camera's
+// receivers (no culler culls the light's view yet); other lights and a second eye are read and
+// checked but not rendered yet.
 void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions& options) {
     std::vector<std::string> parts;
     bool shadow_light = false, other_lights = false;
@@ -62,9 +63,14 @@ void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions&
         const LightSpec& light = scene.lights[i];
         if (!shadow_light && light.type == LightType::Directional && light.casts_shadows) {
             shadow_light = true;
-            parts.push_back("light " + std::to_string(i) +
-                            " renders a shadow pass drawing every object in its box "
-                            "(light-frustum culling: the cullers cull the camera's view alone)");
+            parts.push_back(
+                "light " + std::to_string(i) +
+                (options.shadow_casters == ShadowCasterCulling::ReceiverMask
+                     ? " renders a shadow pass after the camera's, drawing the casters that may "
+                       "shadow what the camera's pass drew (receiver-masked), then a shading pass"
+                     : " renders a shadow pass drawing every object in its box (light-frustum "
+                       "culling)") +
+                ": the cullers cull the camera's view alone");
         } else if (light.casts_shadows) {
             other_lights = true;
         }
@@ -189,6 +195,7 @@ void makeSimulations(const Stage& stage, SharedWorld& world, GroundTruth& truth,
         const ConfigContexts::Use use(stage.contexts, c);
         SimulationOptions sim_options;
         sim_options.measure_error = options.measure_error;
+        sim_options.shadow_casters = options.shadow_casters;
         sim_options.latency = options.latency;
         sim_options.keep_worst_error_frame =
             options.keep_worst_error_frame && options.measure_error && rep == 0;

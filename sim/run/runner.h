@@ -67,6 +67,8 @@ struct ReplayedFrame {
 
 struct BenchOptions {
     std::vector<const CullerRow*> algorithms;  // from cullerRows(); at least one
+    // Which casters a shadow pass draws (docs/views.md), every configuration alike.
+    ShadowCasterCulling shadow_casters = ShadowCasterCulling::LightFrustum;
     // Explicit configurations (label, algorithm, options), e.g. a tuner's samples beside its
     // reference; when given, `algorithms` and `sweep` are not used. Labels must differ.
     std::vector<RunConfig> configs;

@@ -6,6 +6,7 @@
 
 #include "occsim/culling/tree/decision_resolution.h"
 #include "sim/run/shadow_error.h"
+#include "sim/run/visible_receivers.h"
 
 namespace occsim {
 namespace {
@@ -55,6 +56,14 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       tracer_(*device_) {
     // Before any frame: a culler that needs what this device lacks is refused with one line.
     requireDeviceFeatures(algorithm_, device_->features());
+    if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask &&
+        (algorithm_.device_needs & kGpuDrivenDraws) != 0) {
+        throw RegistryError(
+            "culler '" + algorithm_.name +
+            "' draws from the device (its drawn set is not on the CPU during the "
+            "frame): receiver-masked shadow culling does not take it yet; leave it out of "
+            "--algos");
+    }
     if (options_.record_objects && !options_.measure_error) {
         throw std::logic_error("Simulation: record_objects needs measure_error");
     }
@@ -118,12 +127,16 @@ FrameStats Simulation::renderFrame() {
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
     const double frame_start = nowMs();
-    if (shadow_pass) {
+    const bool receivers_first =
+        shadow_pass && options_.shadow_casters == ShadowCasterCulling::ReceiverMask;
+    if (shadow_pass && !receivers_first) {
         renderShadowPass(*shadow, stats);
         const ShadowLookup lookup = shadow_map_->lookupFor(world_->view().render, shadow->render,
                                                            renderer_.depthConvention());
         renderer_.setView(world_->view().render, world_->modelViews());
         renderer_.setShadow(&lookup);
+    } else if (receivers_first) {
+        renderer_.setView(world_->view().render, world_->modelViews());
     }
     if (gpu_timer_) gpu_timer_->begin();
     renderer_.beginFrame();
@@ -136,6 +149,13 @@ FrameStats Simulation::renderFrame() {
     traced_ |= trace;
     const double cull_ms = nowMs() - cull_start;
     if (gpu_timer_) gpu_timer_->end();
+    if (receivers_first) {
+        // The receivers are what the camera's pass drew: the shadow pass draws the casters they
+        // may catch the shadow of, then the camera's pass is shaded from the map.
+        gl_device_.markSubmitted(camera_submitted_);
+        renderShadowPass(*shadow, stats);
+        shadeCameraPass();
+    }
     renderer_.finish();
     stats.frame_ms = nowMs() - frame_start;
     if (gpu_timer_) stats.gpu_ms = gpu_timer_->resultMs();
@@ -175,16 +195,14 @@ FrameStats Simulation::renderFrame() {
     return stats;
 }
 
-// Light-frustum culling: every object whose box overlaps the light's box is drawn into the map
-// (docs/views.md). Timed from the pass's start (the light's matrices uploaded) to its last draw's
-// submission.
+// The casters selectCasters() keeps, drawn into the map (docs/views.md). Timed from the pass's
+// start (caster selection, the light's matrices uploaded) to its last draw's submission.
 void Simulation::renderShadowPass(const ShadowView& shadow, FrameStats& stats) {
     const double start = nowMs();
+    selectCasters(shadow);
     renderer_.setView(shadow.render, shadow.model_views);
     if (shadow_gpu_timer_) shadow_gpu_timer_->begin();
     shadow_map_->begin(renderer_);
-    objectsInLightBox(shadow.box, world_->state().boxes, world_->scene().culling_origin,
-                      shadow_casters_);
     cast_shadow_.assign(world_->scene().objectCount(), 0);
     int64_t triangles = 0;
     for (const uint32_t o : shadow_casters_) {
@@ -196,6 +214,40 @@ void Simulation::renderShadowPass(const ShadowView& shadow, FrameStats& stats) {
     stats.shadow_casters = static_cast<int64_t>(shadow_casters_.size());
     stats.shadow_triangles = triangles;
     stats.shadow_cpu_ms = nowMs() - start;
+}
+
+// Light-frustum culling: every object whose box overlaps the light's box; receiver-masked, of
+// those only the ones that may shadow a point the camera's pass left in its depth buffer.
+void Simulation::selectCasters(const ShadowView& shadow) {
+    const std::vector<Aabb>& boxes = world_->state().boxes;
+    const glm::dvec3& origin = world_->scene().culling_origin;
+    objectsInLightBox(shadow.box, boxes, origin, shadow_casters_);
+    if (options_.shadow_casters != ShadowCasterCulling::ReceiverMask) return;
+    // The receivers: every pixel the camera's pass covered, read back inside the frame (a wait
+    // for the camera's pass), grown by the shadow lookup's normal offset (1.5 texels) and one
+    // texel more.
+    renderer_.readDepthRanks(camera_depth_);
+    const ShadowLookup lookup =
+        shadow_map_->lookupFor(world_->view().render, shadow.render, renderer_.depthConvention());
+    receiver_mask_.reset(shadow.box, kReceiverMaskResolution);
+    addVisibleReceivers(camera_depth_, renderer_.width(), renderer_.height(), world_->view().render,
+                        renderer_.depthConvention(), 2.5 * lookup.texel_m, receiver_mask_);
+    std::erase_if(shadow_casters_,
+                  [&](uint32_t o) { return !receiver_mask_.mayShadow(boxes[o], origin); });
+}
+
+// Receiver-masked: the camera's pass drawn again with the shadow term over its own depth, each
+// object it drew (GlRenderer::redrawObject), inside the frame's timing.
+void Simulation::shadeCameraPass() {
+    const ShadowView& shadow = *world_->shadowView();
+    const ShadowLookup lookup =
+        shadow_map_->lookupFor(world_->view().render, shadow.render, renderer_.depthConvention());
+    renderer_.setView(world_->view().render, world_->modelViews());
+    renderer_.setShadow(&lookup);
+    renderer_.resumeFrame();
+    for (size_t o = 0; o < camera_submitted_.size(); ++o) {
+        if (camera_submitted_[o]) renderer_.redrawObject(static_cast<uint32_t>(o));
+    }
 }
 
 // The shadow term's error (sim/run/shadow_error.h), after the camera view's read-back.

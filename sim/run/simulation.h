@@ -29,12 +29,28 @@
 #include "sim/run/segment_tallies.h"
 #include "sim/run/shared_world.h"
 #include "sim/scenario/scenario.h"
+#include "sim/world/receiver_mask.h"
 #include "sim/world/world.h"
 
 namespace occsim {
 
+// Which casters a frame's shadow pass draws (docs/views.md).
+enum class ShadowCasterCulling : uint8_t {
+    // Every object whose box overlaps the light's box, the shadow pass before the camera's.
+    LightFrustum,
+    // Of those, only casters that may shadow a receiver the camera's pass drew (receiver-masked,
+    // sim/world/receiver_mask.h): the camera's pass first, unshaded, then the shadow pass, then
+    // a shading pass over what the camera's pass drew. Needs the drawn set on the CPU during the
+    // frame: not for cullers whose draws the device decides (hzb, raster).
+    ReceiverMask,
+};
+
+// The receiver mask's resolution, texels a side.
+inline constexpr uint32_t kReceiverMaskResolution = 256;
+
 struct SimulationOptions {
     bool measure_error = false;
+    ShadowCasterCulling shadow_casters = ShadowCasterCulling::LightFrustum;
     LatencyMode latency;
     // Keep the frame with the most error pixels (culled colour and IDs, ground-truth colour and
     // IDs) for a picture of what went wrong. Costs a colour read-back per frame; regression
@@ -150,6 +166,8 @@ class Simulation {
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
     void renderShadowPass(const ShadowView& shadow, FrameStats& stats);
+    void selectCasters(const ShadowView& shadow);
+    void shadeCameraPass();
     void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
     void recordObjects(const GroundTruthFrame& truth);
@@ -186,6 +204,9 @@ class Simulation {
     std::unique_ptr<GlFrameTimer> shadow_gpu_timer_;
     std::vector<uint32_t> shadow_casters_;
     std::vector<uint8_t> cast_shadow_;
+    ReceiverMask receiver_mask_;             // ShadowCasterCulling::ReceiverMask
+    std::vector<uint8_t> camera_submitted_;  // per object: the camera's pass drew it
+    std::vector<uint32_t> camera_depth_;     // the camera pass's depth, for the receivers
     std::vector<uint32_t> culled_shadow_texels_;
     std::vector<float> truth_shadow_depth_, culled_shadow_depth_;  // on a frame with a difference
     std::vector<uint32_t> frame_latencies_;

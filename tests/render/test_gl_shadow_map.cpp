@@ -183,6 +183,59 @@ TEST_P(GlShadowTermTest, TheGroundUnderACastersShadowIsShadowedByItAndTheRestIsL
     }
 }
 
+// A shading pass after a depth pass (GlRenderer::redrawObject): the frame drawn unshaded, then
+// every object drawn again with the shadow term over its own depth, gives the IDs, colours and
+// shadow texels of the frame drawn shaded in one pass.
+TEST_P(GlShadowTermTest, ARedrawShadesExactlyWhatOnePassWouldHave) {
+    const glm::dvec3 origin(0.0);
+    const glm::dvec3 travel = glm::normalize(glm::dvec3(1, -1, 0.3));
+    ViewSetup light;
+    light.eye = origin + glm::dvec3(3, 0, 0) - 15.0 * travel;
+    light.view_rotation = glm::mat4(glm::lookAt(glm::dvec3(0.0), travel, glm::dvec3(0, 1, 0)));
+    light.projection = orthographicFor(GetParam(), -8, 8, -8, 8, 1, 40);
+    ViewSetup camera;
+    camera.eye = origin + glm::dvec3(-2, 6, 9);
+    camera.view_rotation = glm::mat4(
+        glm::lookAt(glm::dvec3(0.0), glm::normalize(glm::dvec3(5, -6, -9)), glm::dvec3(0, 1, 0)));
+    camera.projection = perspectiveFor(GetParam(), glm::radians(60.0f), 1.0f, 0.5f, 100.0f);
+    GlShadowMap map(kMap);
+    renderer_->setView(light, modelViews(light, origin));
+    map.begin(*renderer_);
+    renderer_->drawObject(0);
+    renderer_->drawObject(1);
+    const ShadowLookup lookup = map.lookupFor(camera, light, GetParam());
+    renderer_->setView(camera, modelViews(camera, origin));
+
+    renderer_->setShadow(&lookup);
+    renderer_->beginFrame();
+    renderer_->drawObject(0);
+    renderer_->drawObject(1);
+    std::vector<uint32_t> ids, texels;
+    std::vector<uint8_t> colour;
+    renderer_->readObjectIds(ids);
+    renderer_->readShadowTexels(texels);
+    renderer_->readColor(colour);
+
+    renderer_->setShadow(nullptr);
+    renderer_->beginFrame();
+    renderer_->drawObject(1);  // another order: the depth test decides, not the order
+    renderer_->drawObject(0);
+    renderer_->setShadow(&lookup);
+    renderer_->resumeFrame();
+    renderer_->redrawObject(0);
+    renderer_->redrawObject(1);
+    std::vector<uint32_t> ids2, texels2;
+    std::vector<uint8_t> colour2;
+    renderer_->readObjectIds(ids2);
+    renderer_->readShadowTexels(texels2);
+    renderer_->readColor(colour2);
+    EXPECT_EQ(ids2, ids);
+    EXPECT_EQ(texels2, texels);
+    EXPECT_EQ(colour2, colour);
+    EXPECT_GT(std::count_if(texels.begin(), texels.end(), [](uint32_t t) { return t != 0; }), 50)
+        << "the cube's shadow is in view";
+}
+
 INSTANTIATE_TEST_SUITE_P(Conventions, GlShadowTermTest, bothDepthConventions(),
                          depthConventionName);
 

@@ -123,4 +123,38 @@ TEST(CliViews, TheSunFlagLightsAnySceneAndABadOneIsOneLine) {
     }
 }
 
+// --shadow-casters: receivers runs the receiver-masked shadow pass (said in the note, no caster
+// missed); a value it does not know, or a culler whose draws the device decides, is one line
+// naming it, exit 2.
+TEST(CliViews, ShadowCastersReceiversRunsAndABadValueIsOneLine) {
+    const auto dir = tempPath("views-receivers");
+    const auto out = dir / "out";
+    const Outcome bad = runOccsim("bench " + kSmall + " --algos vfc --sun 30,40 --shadow-casters " +
+                                  "light --out " + out.string());
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+    EXPECT_NE(bad.output.find("--shadow-casters: expected frustum or receivers, got 'light'"),
+              std::string::npos)
+        << bad.output;
+    const Outcome gpu =
+        runOccsim("bench " + kSmall +
+                  " --algos raster --sun 30,40 --shadow-casters receivers --out " + out.string());
+    EXPECT_EQ(gpu.exit_code, 2) << gpu.output;
+    EXPECT_NE(gpu.output.find("culler 'raster' draws from the device"), std::string::npos)
+        << gpu.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
+    const Outcome o = runOccsim("bench " + kSmall +
+                                " --algos vfc --sun 30,40,512 --shadow-casters receivers --error "
+                                "--frames 8 --out " +
+                                out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_NE(o.output.find("(receiver-masked)"), std::string::npos) << o.output;
+    std::ifstream in(out / "summary.json");
+    const json shadow = json::parse(in)["algorithms"][0]["shadow_pass"];
+    ASSERT_TRUE(shadow.is_object());
+    EXPECT_EQ(shadow["missed_casters_total"], 0);
+    EXPECT_EQ(shadow["error_pixels_total"], 0);
+}
+
 }  // namespace

@@ -120,6 +120,41 @@ TEST(ShadowError, LightFrustumCullingMissesNoCasterAndLeavesTheCameraFiguresAlon
     EXPECT_GT(seen, 0) << "ground truth shows no shadow: the check above proves nothing";
 }
 
+// Receiver-masked caster culling (sim/world/receiver_mask.h) on the same runs: no shadow error
+// and no missed caster on any frame, never more casters than light-frustum culling and fewer on
+// most frames, never fewer than ground truth shows; the camera's decisions as before. A culler
+// whose draws the device decides is refused with one line.
+TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
+    BenchOptions options;
+    for (const char* name : {"vfc", "statistical", "chc", "conditional", "masked"}) {
+        options.algorithms.push_back(findCuller(name));
+    }
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = 12;
+    const BenchResult frustum = runBenchmark(litCity(), options);
+    options.shadow_casters = ShadowCasterCulling::ReceiverMask;
+    const BenchResult masked = runBenchmark(litCity(), options);
+    testing::expectNoErrorAndNoMiss(masked);
+    for (size_t r = 0; r < masked.runs.size(); ++r) {
+        const std::string& label = masked.runs[r].summary.label;
+        uint32_t fewer = 0;
+        for (size_t f = 0; f < masked.runs[r].frames.size(); ++f) {
+            const FrameStats& m = masked.runs[r].frames[f];
+            const FrameStats& l = frustum.runs[r].frames[f];
+            EXPECT_EQ(m.shadow_error_pixels, 0) << label << " frame " << f;
+            EXPECT_EQ(m.missed_casters, 0) << label << " frame " << f;
+            EXPECT_LE(m.shadow_casters, l.shadow_casters) << label << " frame " << f;
+            EXPECT_GE(m.shadow_casters, m.shadow_seen_casters) << label << " frame " << f;
+            EXPECT_EQ(m.objects_drawn, l.objects_drawn) << label << " frame " << f;
+            fewer += m.shadow_casters < l.shadow_casters;
+        }
+        EXPECT_GT(fewer, masked.runs[r].frames.size() / 2) << label;
+    }
+    options.algorithms = {findCuller("hzb")};
+    EXPECT_THROW(runBenchmark(litCity(), options), InputError);
+}
+
 class PlantedShadowError : public ::testing::TestWithParam<DepthConvention> {};
 
 TEST_P(PlantedShadowError, ACasterLeftOutOfTheShadowPassIsCounted) {
