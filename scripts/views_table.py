@@ -48,7 +48,8 @@ def loads(runs):
     for s in runs:
         m = s["machine"]
         busy = " BUSY" if m.get("busy") else ""
-        parts.append(f"{m['load_average_before']:.2f}→{m['load_average_after']:.2f}{busy}")
+        # The one-minute load average before and after the run.
+        parts.append(f"{m['load_average_before'][0]:.2f}→{m['load_average_after'][0]:.2f}{busy}")
     return ", ".join(parts)
 
 
