@@ -110,7 +110,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "missed_objects,tied_away_objects,visible_objects,gpu_ms,answers,answer_latency_"
            "median,stray_pixels,overdrawn_objects,overdrawn_triangles,executed_objects,"
            "executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,test_gpu_ms,"
-           "phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,shadow_casters,shadow_triangles,"
+           "phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,shading_cpu_ms,shading_gpu_ms,"
+           "shadow_casters,shadow_triangles,"
            "shadow_error_pixels,missed_casters,shadow_seen_casters,shadow_tie_pixels\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
@@ -136,7 +137,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                 }
                 out << ',' << f.read_backs;
                 // The shadow pass: times empty, counts -1 on a frame without one.
-                for (const double ms : {f.shadow_cpu_ms, f.shadow_gpu_ms}) {
+                for (const double ms :
+                     {f.shadow_cpu_ms, f.shadow_gpu_ms, f.shading_cpu_ms, f.shading_gpu_ms}) {
                     out << ',' << (ms >= 0 ? fixed(ms, 4) : "");
                 }
                 out << ',' << f.shadow_casters << ',' << f.shadow_triangles << ','
@@ -168,6 +170,13 @@ nlohmann::json shadowJson(const RunSummary& s) {
         {"cpu_ms_mean", s.shadow_cpu_ms_mean},
         {"gpu_ms_mean", s.shadow_gpu_ms_mean >= 0 ? nlohmann::json(s.shadow_gpu_ms_mean)
                                                   : nlohmann::json(nullptr)}};
+    // Receiver-masked caster culling's shading pass, when it ran.
+    if (s.shading_cpu_ms_mean >= 0) {
+        j["shading_pass"] = {
+            {"cpu_ms_mean", s.shading_cpu_ms_mean},
+            {"gpu_ms_mean", s.shading_gpu_ms_mean >= 0 ? nlohmann::json(s.shading_gpu_ms_mean)
+                                                       : nlohmann::json(nullptr)}};
+    }
     if (s.shadow_error_pixels_total >= 0) {
         j["error_pixels_total"] = s.shadow_error_pixels_total;
         j["missed_casters_total"] = s.missed_casters_total;

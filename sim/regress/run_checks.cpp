@@ -75,6 +75,17 @@ void checkZeroError(ResultChecks& checks, const Expectations& expect) {
                       s.missed_objects_total == 0, name};
         m.got = std::to_string(s.missed_objects_total) + " (visible in ground truth, not drawn)";
         checks.outcome.checks.push_back(m);
+        if (s.shadow_error_pixels_total < 0) continue;  // no shadow pass (docs/views.md)
+        CheckResult sh{"zero shadow error pixels: " + name, "0 on every frame",
+                       std::to_string(s.shadow_error_pixels_total) + " (" +
+                           std::to_string(s.shadow_tie_pixels_total) + " shadow tie px)",
+                       s.shadow_error_pixels_total == 0, name};
+        checks.outcome.checks.push_back(sh);
+        CheckResult mc{"no missed casters: " + name, "0 on every frame",
+                       std::to_string(s.missed_casters_total) +
+                           " (their shadow on a visible pixel in ground truth, not drawn)",
+                       s.missed_casters_total == 0, name};
+        checks.outcome.checks.push_back(mc);
     }
 }
 

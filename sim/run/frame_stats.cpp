@@ -27,8 +27,8 @@ namespace {
 // error totals over every frame that measured it.
 void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_frames,
                       RunSummary& s) {
-    double casters = 0, cpu = 0, gpu = 0, seen = 0;
-    uint32_t passes = 0, gpu_passes = 0, measured = 0;
+    double casters = 0, cpu = 0, gpu = 0, seen = 0, shading_cpu = 0, shading_gpu = 0;
+    uint32_t passes = 0, gpu_passes = 0, measured = 0, shadings = 0, gpu_shadings = 0;
     for (const FrameStats& f : frames) {
         if (f.shadow_error_pixels >= 0) {
             ++measured;
@@ -48,7 +48,17 @@ void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_fra
             ++gpu_passes;
             gpu += f.shadow_gpu_ms;
         }
+        if (f.shading_cpu_ms >= 0) {
+            ++shadings;
+            shading_cpu += f.shading_cpu_ms;
+        }
+        if (f.shading_gpu_ms >= 0) {
+            ++gpu_shadings;
+            shading_gpu += f.shading_gpu_ms;
+        }
     }
+    if (shadings > 0) s.shading_cpu_ms_mean = shading_cpu / shadings;
+    if (gpu_shadings > 0) s.shading_gpu_ms_mean = shading_gpu / gpu_shadings;
     if (passes > 0) {
         s.shadow_casters_mean = casters / passes;
         s.shadow_cpu_ms_mean = cpu / passes;
@@ -253,6 +263,8 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.shadow_casters_mean = median([](const RunSummary& r) { return r.shadow_casters_mean; });
     out.shadow_cpu_ms_mean = median([](const RunSummary& r) { return r.shadow_cpu_ms_mean; });
     out.shadow_gpu_ms_mean = median([](const RunSummary& r) { return r.shadow_gpu_ms_mean; });
+    out.shading_cpu_ms_mean = median([](const RunSummary& r) { return r.shading_cpu_ms_mean; });
+    out.shading_gpu_ms_mean = median([](const RunSummary& r) { return r.shading_gpu_ms_mean; });
     out.gpu_ms_mean = median([](const RunSummary& r) { return r.gpu_ms_mean; });
     out.gpu_ms_p95 = median([](const RunSummary& r) { return r.gpu_ms_p95; });
     out.answer_latency_median = median([](const RunSummary& r) { return r.answer_latency_median; });

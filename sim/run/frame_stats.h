@@ -47,6 +47,10 @@ struct FrameStats {
     int64_t shadow_triangles = -1;
     double shadow_cpu_ms = -1.0;
     double shadow_gpu_ms = -1.0;
+    // Receiver-masked caster culling's shading pass (the camera's objects drawn again with the
+    // shadow term): its CPU time and GL_TIME_ELAPSED, -1 without one (GPU: as gpu_ms).
+    double shading_cpu_ms = -1.0;
+    double shading_gpu_ms = -1.0;
     uint64_t moved_objects = 0;
     uint64_t node_changes = 0;  // reinsertions that moved an object to another BSP node
     // Error against ground truth (docs/error.md); -1 when error was not measured.
@@ -106,6 +110,7 @@ struct RunSummary {
     // Over the timed frames with a shadow pass (FrameStats::shadow_*); -1 when none had one, or
     // (GPU) none measured it.
     double shadow_casters_mean = -1, shadow_cpu_ms_mean = -1, shadow_gpu_ms_mean = -1;
+    double shading_cpu_ms_mean = -1, shading_gpu_ms_mean = -1;  // receiver-masked only
     // Over every frame with a shadow pass and error measured; -1 when there was none.
     int64_t shadow_error_pixels_total = -1, missed_casters_total = -1, shadow_tie_pixels_total = -1;
     double shadow_seen_casters_mean = -1;

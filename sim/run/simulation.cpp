@@ -123,6 +123,9 @@ FrameStats Simulation::renderFrame() {
     }
     if (shadow_pass && options_.measure_gpu_time && !shadow_gpu_timer_) {
         shadow_gpu_timer_ = std::make_unique<GlFrameTimer>();
+        if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask) {
+            shading_gpu_timer_ = std::make_unique<GlFrameTimer>();
+        }
     }
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
@@ -154,7 +157,7 @@ FrameStats Simulation::renderFrame() {
         // may catch the shadow of, then the camera's pass is shaded from the map.
         gl_device_.markSubmitted(camera_submitted_);
         renderShadowPass(*shadow, stats);
-        shadeCameraPass();
+        shadeCameraPass(stats);
     }
     renderer_.finish();
     stats.frame_ms = nowMs() - frame_start;
@@ -190,6 +193,9 @@ FrameStats Simulation::renderFrame() {
     if (options_.measure_error) measureError(*truth, stats);
     if (shadow_pass) {
         if (shadow_gpu_timer_) stats.shadow_gpu_ms = shadow_gpu_timer_->resultMs();
+        if (shading_gpu_timer_ && receivers_first) {
+            stats.shading_gpu_ms = shading_gpu_timer_->resultMs();
+        }
         renderer_.setShadow(nullptr);
     }
     return stats;
@@ -238,16 +244,20 @@ void Simulation::selectCasters(const ShadowView& shadow) {
 
 // Receiver-masked: the camera's pass drawn again with the shadow term over its own depth, each
 // object it drew (GlRenderer::redrawObject), inside the frame's timing.
-void Simulation::shadeCameraPass() {
+void Simulation::shadeCameraPass(FrameStats& stats) {
+    const double start = nowMs();
     const ShadowView& shadow = *world_->shadowView();
     const ShadowLookup lookup =
         shadow_map_->lookupFor(world_->view().render, shadow.render, renderer_.depthConvention());
     renderer_.setView(world_->view().render, world_->modelViews());
     renderer_.setShadow(&lookup);
     renderer_.resumeFrame();
+    if (shading_gpu_timer_) shading_gpu_timer_->begin();
     for (size_t o = 0; o < camera_submitted_.size(); ++o) {
         if (camera_submitted_[o]) renderer_.redrawObject(static_cast<uint32_t>(o));
     }
+    if (shading_gpu_timer_) shading_gpu_timer_->end();
+    stats.shading_cpu_ms = nowMs() - start;
 }
 
 // The shadow term's error (sim/run/shadow_error.h), after the camera view's read-back.

@@ -167,7 +167,7 @@ class Simulation {
                const SimulationOptions& sim_options);
     void renderShadowPass(const ShadowView& shadow, FrameStats& stats);
     void selectCasters(const ShadowView& shadow);
-    void shadeCameraPass();
+    void shadeCameraPass(FrameStats& stats);
     void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
     void recordObjects(const GroundTruthFrame& truth);
@@ -202,6 +202,7 @@ class Simulation {
     // pass, the casters it drew this frame (per object) and their timer.
     std::unique_ptr<GlShadowMap> shadow_map_;
     std::unique_ptr<GlFrameTimer> shadow_gpu_timer_;
+    std::unique_ptr<GlFrameTimer> shading_gpu_timer_;  // receiver-masked
     std::vector<uint32_t> shadow_casters_;
     std::vector<uint8_t> cast_shadow_;
     ReceiverMask receiver_mask_;             // ShadowCasterCulling::ReceiverMask

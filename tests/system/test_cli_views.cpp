@@ -155,6 +155,8 @@ TEST(CliViews, ShadowCastersReceiversRunsAndABadValueIsOneLine) {
     ASSERT_TRUE(shadow.is_object());
     EXPECT_EQ(shadow["missed_casters_total"], 0);
     EXPECT_EQ(shadow["error_pixels_total"], 0);
+    ASSERT_TRUE(shadow["shading_pass"].is_object()) << shadow.dump();
+    EXPECT_GE(shadow["shading_pass"]["cpu_ms_mean"].get<double>(), 0.0);
 }
 
 }  // namespace

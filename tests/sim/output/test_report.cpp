@@ -276,15 +276,16 @@ TEST(Simulation, GpuDrivenCullersReadNothingBackInTheFrameAndTimeEachPhase) {
     const std::string csv = framesCsv(result.runs);
     EXPECT_NE(csv.find(",executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,"
                        "test_gpu_ms,phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,"
-                       "shadow_casters,shadow_triangles,shadow_error_pixels,missed_casters,"
+                       "shading_cpu_ms,shading_gpu_ms,shadow_casters,shadow_triangles,shadow_error_"
+                       "pixels,missed_casters,"
                        "shadow_seen_casters,shadow_tie_pixels\n"),
               std::string::npos);
     EXPECT_NE(csv.find("\nvfc,0,0,"), std::string::npos);
     // vfc's rows hold six empty phase columns before read_backs (0), then a scene without
-    // lights has no shadow pass: two empty times and six -1 counts.
+    // lights has no shadow pass: four empty times and six -1 counts.
     const size_t vfc_row = csv.find("\nvfc,0,0,");
     const std::string row = csv.substr(vfc_row + 1, csv.find('\n', vfc_row + 1) - vfc_row - 1);
-    EXPECT_EQ(row.substr(row.size() - 28), ",,,,,,,0,,,-1,-1,-1,-1,-1,-1") << row;
+    EXPECT_EQ(row.substr(row.size() - 30), ",,,,,,,0,,,,,-1,-1,-1,-1,-1,-1") << row;
     EXPECT_TRUE(configurationJson(result.runs[0], result.runs)["shadow_pass"].is_null());
     const nlohmann::json j = configurationJson(result.runs[3], result.runs);
     ASSERT_TRUE(j["gpu_driven_phases"].is_object()) << j.dump();

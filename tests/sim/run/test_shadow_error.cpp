@@ -147,6 +147,8 @@ TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
             EXPECT_LE(m.shadow_casters, l.shadow_casters) << label << " frame " << f;
             EXPECT_GE(m.shadow_casters, m.shadow_seen_casters) << label << " frame " << f;
             EXPECT_EQ(m.objects_drawn, l.objects_drawn) << label << " frame " << f;
+            EXPECT_GE(m.shading_cpu_ms, 0.0) << "the shading pass is timed";
+            EXPECT_EQ(l.shading_cpu_ms, -1.0) << "light-frustum culling has none";
             fewer += m.shadow_casters < l.shadow_casters;
         }
         EXPECT_GT(fewer, masked.runs[r].frames.size() / 2) << label;
