@@ -435,14 +435,16 @@ void GlRenderer::useState(State wanted) {
 
 void GlRenderer::drawObject(uint32_t object) {
     useState(State::Draw);
-    const MeshRange& mesh = meshes_[object_mesh_[object]];
-    glDrawElementsInstancedBaseVertexBaseInstance(
-        GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
-        reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex, object);
+    drawMesh(object);
 }
 
 void GlRenderer::redrawObject(uint32_t object) {
     useState(State::Redraw);
+    drawMesh(object);
+}
+
+void GlRenderer::drawMesh(uint32_t object) {
+    // The object's index is the base instance: it selects its matrix and ID.
     const MeshRange& mesh = meshes_[object_mesh_[object]];
     glDrawElementsInstancedBaseVertexBaseInstance(
         GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
@@ -490,25 +492,27 @@ bool GlRenderer::queryBoxNearEye(const Aabb& box) const {
 
 void GlRenderer::finish() { glFinish(); }
 
-void GlRenderer::readObjectIds(std::vector<uint32_t>& ids) const {
-    ids.resize(size_t{width_} * height_);
+void GlRenderer::readUintAttachment(uint32_t attachment, std::vector<uint32_t>& out,
+                                    const char* what) const {
+    out.resize(size_t{width_} * height_);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-    glReadBuffer(GL_COLOR_ATTACHMENT1);
+    glReadBuffer(attachment);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED_INTEGER,
-                 GL_UNSIGNED_INT, ids.data());
-    checkGl("glReadPixels(object IDs)");
+                 GL_UNSIGNED_INT, out.data());
+    checkGl(what);
+}
+
+void GlRenderer::readObjectIds(std::vector<uint32_t>& ids) const {
+    readUintAttachment(GL_COLOR_ATTACHMENT1, ids, "glReadPixels(object IDs)");
 }
 
 void GlRenderer::readShadowTexels(std::vector<uint32_t>& texels) const {
-    texels.assign(size_t{width_} * height_, 0);
-    if (shadow_texel_rb_ == 0) return;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-    glReadBuffer(GL_COLOR_ATTACHMENT2);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED_INTEGER,
-                 GL_UNSIGNED_INT, texels.data());
-    checkGl("glReadPixels(shadow texels)");
+    if (shadow_texel_rb_ == 0) {
+        texels.assign(size_t{width_} * height_, 0);
+        return;
+    }
+    readUintAttachment(GL_COLOR_ATTACHMENT2, texels, "glReadPixels(shadow texels)");
 }
 
 void GlRenderer::readColor(std::vector<uint8_t>& rgba) const {

@@ -165,6 +165,10 @@ class GlRenderer {
     enum class State : uint8_t { None, Draw, Query, Redraw };
     void useState(State wanted);
     void sendShadowUniforms();
+    void drawMesh(uint32_t object);  // one draw of the object's mesh in the bound state
+    // An R32UI colour attachment (GL_COLOR_ATTACHMENTn), width * height values.
+    void readUintAttachment(uint32_t attachment, std::vector<uint32_t>& out,
+                            const char* what) const;
 
     uint32_t width_ = 0, height_ = 0;
     DepthConvention depth_ = DepthConvention::ReverseFloat;

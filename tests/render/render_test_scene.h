@@ -9,19 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "depth_conventions.h"
 #include "headless_backends.h"
 #include "render/gl_renderer.h"
 #include "render/headless_context.h"
 
 namespace occsim {
-
-// Both depth conventions, for a suite run in each: the values and the name each test gets.
-inline auto bothDepthConventions() {
-    return ::testing::Values(DepthConvention::ReverseFloat, DepthConvention::Conventional24);
-}
-inline std::string depthConventionName(const ::testing::TestParamInfo<DepthConvention>& param) {
-    return param.param == DepthConvention::ReverseFloat ? "ReverseFloat" : "Conventional24";
-}
 
 // A unit cube [-0.5, 0.5]^3 with per-face normals.
 inline MeshData cubeMesh() {

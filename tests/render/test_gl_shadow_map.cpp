@@ -102,6 +102,15 @@ class GlShadowTermTest : public ::testing::TestWithParam<DepthConvention> {
         }
         return out;
     }
+    // Both objects drawn into `map` from `light`; how `camera` looks it up.
+    ShadowLookup renderMap(GlShadowMap& map, const ViewSetup& light, const ViewSetup& camera,
+                           const glm::dvec3& origin) {
+        renderer_->setView(light, modelViews(light, origin));
+        map.begin(*renderer_);
+        renderer_->drawObject(0);
+        renderer_->drawObject(1);
+        return map.lookupFor(camera, light, GetParam());
+    }
     std::unique_ptr<HeadlessContext> context_;
     std::unique_ptr<GlRenderer> renderer_;
 };
@@ -121,11 +130,7 @@ TEST_P(GlShadowTermTest, TheGroundUnderACastersShadowIsShadowedByItAndTheRestIsL
         camera.projection = perspectiveFor(GetParam(), glm::radians(90.0f), 1.0f, 0.5f, 100.0f);
 
         GlShadowMap map(kMap, /*caster_ids=*/true);
-        renderer_->setView(light, modelViews(light, origin));
-        map.begin(*renderer_);
-        renderer_->drawObject(0);
-        renderer_->drawObject(1);
-        const ShadowLookup lookup = map.lookupFor(camera, light, GetParam());
+        const ShadowLookup lookup = renderMap(map, light, camera, origin);
         renderer_->setView(camera, modelViews(camera, origin));
         renderer_->setShadow(&lookup);
         renderer_->beginFrame();
@@ -199,22 +204,26 @@ TEST_P(GlShadowTermTest, ARedrawShadesExactlyWhatOnePassWouldHave) {
         glm::lookAt(glm::dvec3(0.0), glm::normalize(glm::dvec3(5, -6, -9)), glm::dvec3(0, 1, 0)));
     camera.projection = perspectiveFor(GetParam(), glm::radians(60.0f), 1.0f, 0.5f, 100.0f);
     GlShadowMap map(kMap);
-    renderer_->setView(light, modelViews(light, origin));
-    map.begin(*renderer_);
-    renderer_->drawObject(0);
-    renderer_->drawObject(1);
-    const ShadowLookup lookup = map.lookupFor(camera, light, GetParam());
+    const ShadowLookup lookup = renderMap(map, light, camera, origin);
     renderer_->setView(camera, modelViews(camera, origin));
 
+    // What the frame holds: IDs, shadow texels, colour.
+    struct Frame {
+        std::vector<uint32_t> ids, texels;
+        std::vector<uint8_t> colour;
+    };
+    auto read = [this] {
+        Frame f;
+        renderer_->readObjectIds(f.ids);
+        renderer_->readShadowTexels(f.texels);
+        renderer_->readColor(f.colour);
+        return f;
+    };
     renderer_->setShadow(&lookup);
     renderer_->beginFrame();
     renderer_->drawObject(0);
     renderer_->drawObject(1);
-    std::vector<uint32_t> ids, texels;
-    std::vector<uint8_t> colour;
-    renderer_->readObjectIds(ids);
-    renderer_->readShadowTexels(texels);
-    renderer_->readColor(colour);
+    const Frame one_pass = read();
 
     renderer_->setShadow(nullptr);
     renderer_->beginFrame();
@@ -224,15 +233,13 @@ TEST_P(GlShadowTermTest, ARedrawShadesExactlyWhatOnePassWouldHave) {
     renderer_->resumeFrame();
     renderer_->redrawObject(0);
     renderer_->redrawObject(1);
-    std::vector<uint32_t> ids2, texels2;
-    std::vector<uint8_t> colour2;
-    renderer_->readObjectIds(ids2);
-    renderer_->readShadowTexels(texels2);
-    renderer_->readColor(colour2);
-    EXPECT_EQ(ids2, ids);
-    EXPECT_EQ(texels2, texels);
-    EXPECT_EQ(colour2, colour);
-    EXPECT_GT(std::count_if(texels.begin(), texels.end(), [](uint32_t t) { return t != 0; }), 50)
+    const Frame two_passes = read();
+    EXPECT_EQ(two_passes.ids, one_pass.ids);
+    EXPECT_EQ(two_passes.texels, one_pass.texels);
+    EXPECT_EQ(two_passes.colour, one_pass.colour);
+    EXPECT_GT(std::count_if(one_pass.texels.begin(), one_pass.texels.end(),
+                            [](uint32_t t) { return t != 0; }),
+              50)
         << "the cube's shadow is in view";
 }
 

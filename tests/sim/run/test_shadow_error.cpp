@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "depth_conventions.h"
 #include "error_bench.h"
 #include "render/gl_shadow_map.h"
 #include "sim/run/ground_truth.h"
@@ -213,14 +214,7 @@ TEST_P(PlantedShadowError, ACasterLeftOutOfTheShadowPassIsCounted) {
     EXPECT_EQ(countMissedCasters(frame.shadow_seen, drawn), 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Depth, PlantedShadowError,
-                         ::testing::Values(DepthConvention::ReverseFloat,
-                                           DepthConvention::Conventional24),
-                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
-                             return std::string(param.param == DepthConvention::ReverseFloat
-                                                    ? "ReverseFloat"
-                                                    : "Conventional24");
-                         });
+INSTANTIATE_TEST_SUITE_P(Depth, PlantedShadowError, bothDepthConventions(), depthConventionName);
 
 }  // namespace
 }  // namespace occsim

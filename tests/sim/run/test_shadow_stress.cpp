@@ -4,40 +4,22 @@
 // query cullers on the camera's view; far from the origin they draw what they draw at it.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "error_bench.h"
+#include "shifted_teapots.h"
 #include "sim/scenario/sun_override.h"
 #include "sim/world/world.h"
 
 namespace occsim {
 namespace {
 
-using json = nlohmann::json;
 using testing::kScenarios;
-
-void shiftPoint(json& p, const glm::dvec3& by) {
-    for (int i = 0; i < 3; ++i) p[i] = p[i].get<double>() + by[i];
-}
 
 // The small teapot scenario moved by `by`, under `sun` (ELEVATION,AZIMUTH,MAP).
 Scenario teapotsUnder(const std::string& sun, const glm::dvec3& by = glm::dvec3(0.0)) {
-    const std::filesystem::path file = kScenarios / "teapots-small.json";
-    json s = json::parse(std::ifstream(file));
-    for (json& key : s["camera"]["keyframes"]) {
-        shiftPoint(key["position"], by);
-        shiftPoint(key["target"], by);
-    }
-    for (json& source : s["scene"]["sources"]) {
-        shiftPoint(source["region"]["min"], by);
-        shiftPoint(source["region"]["max"], by);
-    }
-    s.erase("expect");
-    Scenario scenario = parseScenarioText(s.dump(), file);
+    Scenario scenario = testing::shiftedTeapots(by);
     replaceLightsWith(scenario, parseSun(sun));
     return scenario;
 }

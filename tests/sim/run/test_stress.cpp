@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "occsim/culling/registry/registry.h"
+#include "shifted_teapots.h"
 #include "sim/run/runner.h"
 #include "sim/scenario/scenario.h"
 #include "sim/world/world.h"
@@ -24,24 +25,8 @@ const fs::path kSmall = fs::path(OCCSIM_SOURCE_DIR) / "scenarios/small/teapots-s
 
 json readJson(const fs::path& file) { return json::parse(std::ifstream(file)); }
 
-void shiftPoint(json& p, const glm::dvec3& by) {
-    for (int i = 0; i < 3; ++i) p[i] = p[i].get<double>() + by[i];
-}
-
 // The small teapot scenario with every position it holds moved by `by`.
-Scenario shifted(const glm::dvec3& by) {
-    json s = readJson(kSmall);
-    for (json& key : s["camera"]["keyframes"]) {
-        shiftPoint(key["position"], by);
-        shiftPoint(key["target"], by);
-    }
-    for (json& source : s["scene"]["sources"]) {
-        shiftPoint(source["region"]["min"], by);
-        shiftPoint(source["region"]["max"], by);
-    }
-    s.erase("expect");
-    return parseScenarioText(s.dump(), kSmall);
-}
+Scenario shifted(const glm::dvec3& by) { return testing::shiftedTeapots(by); }
 
 BenchResult benchAll(const Scenario& scenario) {
     BenchOptions options;

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
+#include "depth_conventions.h"
 #include "render/gl_renderer.h"
 #include "sim/run/visible_receivers.h"
 
@@ -62,14 +63,7 @@ TEST_P(VisibleReceivers, APixelsPointLandsWhereItsSurfaceIs) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Depth, VisibleReceivers,
-                         ::testing::Values(DepthConvention::ReverseFloat,
-                                           DepthConvention::Conventional24),
-                         [](const ::testing::TestParamInfo<DepthConvention>& param) {
-                             return std::string(param.param == DepthConvention::ReverseFloat
-                                                    ? "ReverseFloat"
-                                                    : "Conventional24");
-                         });
+INSTANTIATE_TEST_SUITE_P(Depth, VisibleReceivers, bothDepthConventions(), depthConventionName);
 
 }  // namespace
 }  // namespace occsim
