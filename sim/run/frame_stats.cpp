@@ -23,6 +23,14 @@ Distribution distributionOf(std::vector<double> values) {
 
 namespace {
 
+// Adds to the shadow error totals, which stay -1 (not measured) until the first count.
+void addShadowCounts(RunSummary& s, int64_t error_pixels, int64_t missed_casters,
+                     int64_t tie_pixels) {
+    s.shadow_error_pixels_total = std::max<int64_t>(s.shadow_error_pixels_total, 0) + error_pixels;
+    s.missed_casters_total = std::max<int64_t>(s.missed_casters_total, 0) + missed_casters;
+    s.shadow_tie_pixels_total = std::max<int64_t>(s.shadow_tie_pixels_total, 0) + tie_pixels;
+}
+
 // The shadow pass's figures (FrameStats::shadow_*): means over the timed frames that had a pass,
 // error totals over every frame that measured it.
 void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_frames,
@@ -33,12 +41,7 @@ void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_fra
         if (f.shadow_error_pixels >= 0) {
             ++measured;
             seen += static_cast<double>(f.shadow_seen_casters);
-            s.shadow_error_pixels_total =
-                std::max<int64_t>(s.shadow_error_pixels_total, 0) + f.shadow_error_pixels;
-            s.missed_casters_total =
-                std::max<int64_t>(s.missed_casters_total, 0) + f.missed_casters;
-            s.shadow_tie_pixels_total =
-                std::max<int64_t>(s.shadow_tie_pixels_total, 0) + f.shadow_tie_pixels;
+            addShadowCounts(s, f.shadow_error_pixels, f.missed_casters, f.shadow_tie_pixels);
         }
         if (f.frame < warmup_frames || f.shadow_casters < 0) continue;
         ++passes;
@@ -300,12 +303,8 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
     out.shadow_error_pixels_total = out.missed_casters_total = out.shadow_tie_pixels_total = -1;
     for (const RunSummary& r : reps) {
         if (r.shadow_error_pixels_total < 0) continue;
-        out.shadow_error_pixels_total =
-            std::max<int64_t>(0, out.shadow_error_pixels_total) + r.shadow_error_pixels_total;
-        out.missed_casters_total =
-            std::max<int64_t>(0, out.missed_casters_total) + r.missed_casters_total;
-        out.shadow_tie_pixels_total =
-            std::max<int64_t>(0, out.shadow_tie_pixels_total) + r.shadow_tie_pixels_total;
+        addShadowCounts(out, r.shadow_error_pixels_total, r.missed_casters_total,
+                        r.shadow_tie_pixels_total);
     }
     out.popping_mean_frames = out.popping_events ? popping_frames / out.popping_events : 0.0;
     out.frame_ms_mean_min = out.frame_ms_mean_max = reps.front().frame_ms.mean;

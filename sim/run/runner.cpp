@@ -58,23 +58,20 @@ void printNote(const BenchOptions& options, const std::string& line) {
 // checked but not rendered yet.
 void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions& options) {
     std::vector<std::string> parts;
-    bool shadow_light = false, other_lights = false;
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const LightSpec& light = scene.lights[i];
-        if (!shadow_light && light.type == LightType::Directional && light.casts_shadows) {
-            shadow_light = true;
-            parts.push_back(
-                "light " + std::to_string(i) +
-                (options.shadow_casters == ShadowCasterCulling::ReceiverMask
-                     ? " renders a shadow pass after the camera's, drawing the casters that may "
-                       "shadow what the camera's pass drew (receiver-masked), then a shading pass"
-                     : " renders a shadow pass drawing every object in its box (light-frustum "
-                       "culling)") +
-                ": the cullers cull the camera's view alone");
-        } else if (light.casts_shadows) {
-            other_lights = true;
-        }
+    const int shadow_light = firstShadowLight(scene.lights);
+    if (shadow_light >= 0) {
+        parts.push_back(
+            "light " + std::to_string(shadow_light) +
+            (options.shadow_casters == ShadowCasterCulling::ReceiverMask
+                 ? " renders a shadow pass after the camera's, drawing the casters that may "
+                   "shadow what the camera's pass drew (receiver-masked), then a shading pass"
+                 : " renders a shadow pass drawing every object in its box (light-frustum "
+                   "culling)") +
+            ": the cullers cull the camera's view alone");
     }
+    const auto casting = std::count_if(scene.lights.begin(), scene.lights.end(),
+                                       [](const LightSpec& l) { return l.casts_shadows; });
+    const bool other_lights = casting > (shadow_light >= 0 ? 1 : 0);
     if (other_lights) {
         parts.push_back(
             "spot lights and further shadow-casting lights are read and checked but "

@@ -68,14 +68,11 @@ SharedWorld::SharedWorld(const Scene& scene, const Scenario& scenario)
     for (uint32_t o = 0; o < scene.objectCount(); ++o) {
         object_triangles_[o] = scene.meshes[scene.object_mesh[o]].triangleCount();
     }
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const LightSpec& light = scene.lights[i];
-        if (light.type != LightType::Directional || !light.casts_shadows) continue;
+    if (const int light = firstShadowLight(scene.lights); light >= 0) {
         shadow_.emplace();
-        shadow_->light = static_cast<uint32_t>(i);
-        shadow_->map_size = light.shadow_map;
+        shadow_->light = static_cast<uint32_t>(light);
+        shadow_->map_size = scene.lights[light].shadow_map;
         shadow_->model_views.resize(scene.objectCount());
-        break;
     }
 }
 

@@ -121,6 +121,11 @@ FrameStats Simulation::renderFrame() {
     if (shadow_pass && (!shadow_map_ || shadow_map_->size() != shadow->map_size)) {
         shadow_map_ = std::make_unique<GlShadowMap>(shadow->map_size);  // outside the timing
     }
+    // How the camera's pass looks the map up this frame (the views' matrices, as setView's).
+    if (shadow_pass) {
+        shadow_lookup_ = shadow_map_->lookupFor(world_->view().render, shadow->render,
+                                                renderer_.depthConvention());
+    }
     if (shadow_pass && options_.measure_gpu_time && !shadow_gpu_timer_) {
         shadow_gpu_timer_ = std::make_unique<GlFrameTimer>();
         if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask) {
@@ -134,10 +139,8 @@ FrameStats Simulation::renderFrame() {
         shadow_pass && options_.shadow_casters == ShadowCasterCulling::ReceiverMask;
     if (shadow_pass && !receivers_first) {
         renderShadowPass(*shadow, stats);
-        const ShadowLookup lookup = shadow_map_->lookupFor(world_->view().render, shadow->render,
-                                                           renderer_.depthConvention());
         renderer_.setView(world_->view().render, world_->modelViews());
-        renderer_.setShadow(&lookup);
+        renderer_.setShadow(&shadow_lookup_);
     } else if (receivers_first) {
         renderer_.setView(world_->view().render, world_->modelViews());
     }
@@ -233,11 +236,9 @@ void Simulation::selectCasters(const ShadowView& shadow) {
     // for the camera's pass), grown by the shadow lookup's normal offset (1.5 texels) and one
     // texel more.
     renderer_.readDepthRanks(camera_depth_);
-    const ShadowLookup lookup =
-        shadow_map_->lookupFor(world_->view().render, shadow.render, renderer_.depthConvention());
     receiver_mask_.reset(shadow.box, kReceiverMaskResolution);
     addVisibleReceivers(camera_depth_, renderer_.width(), renderer_.height(), world_->view().render,
-                        renderer_.depthConvention(), 2.5 * lookup.texel_m, receiver_mask_);
+                        renderer_.depthConvention(), 2.5 * shadow_lookup_.texel_m, receiver_mask_);
     std::erase_if(shadow_casters_,
                   [&](uint32_t o) { return !receiver_mask_.mayShadow(boxes[o], origin); });
 }
@@ -246,11 +247,8 @@ void Simulation::selectCasters(const ShadowView& shadow) {
 // object it drew (GlRenderer::redrawObject), inside the frame's timing.
 void Simulation::shadeCameraPass(FrameStats& stats) {
     const double start = nowMs();
-    const ShadowView& shadow = *world_->shadowView();
-    const ShadowLookup lookup =
-        shadow_map_->lookupFor(world_->view().render, shadow.render, renderer_.depthConvention());
     renderer_.setView(world_->view().render, world_->modelViews());
-    renderer_.setShadow(&lookup);
+    renderer_.setShadow(&shadow_lookup_);
     renderer_.resumeFrame();
     if (shading_gpu_timer_) shading_gpu_timer_->begin();
     for (size_t o = 0; o < camera_submitted_.size(); ++o) {

@@ -201,6 +201,7 @@ class Simulation {
     // The shadow pass (SharedWorld::shadowView): this configuration's own map, made on its first
     // pass, the casters it drew this frame (per object) and their timer.
     std::unique_ptr<GlShadowMap> shadow_map_;
+    ShadowLookup shadow_lookup_;  // this frame's, for the camera's pass and the receivers' margin
     std::unique_ptr<GlFrameTimer> shadow_gpu_timer_;
     std::unique_ptr<GlFrameTimer> shading_gpu_timer_;  // receiver-masked
     std::vector<uint32_t> shadow_casters_;

@@ -83,22 +83,38 @@ LightBox fitDirectionalLight(const glm::dvec3& direction, const std::array<glm::
     return box;
 }
 
+void lightSpaceBounds(const LightBox& box, const glm::dvec3& lo, const glm::dvec3& hi,
+                      glm::dvec3& min, glm::dvec3& max) {
+    const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+    const glm::dvec3 axes[3] = {box.right, box.up, box.forward};
+    for (int a = 0; a < 3; ++a) {
+        const double c = glm::dot(centre, axes[a]), e = glm::dot(half, glm::abs(axes[a]));
+        min[a] = c - e;
+        max[a] = c + e;
+    }
+}
+
+int firstShadowLight(const std::vector<LightSpec>& lights) {
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (lights[i].type == LightType::Directional && lights[i].casts_shadows) {
+            return static_cast<int>(i);
+        }
+    }
+    return -1;
+}
+
 void objectsInLightBox(const LightBox& box, std::span<const Aabb> boxes,
                        const glm::dvec3& culling_origin, std::vector<uint32_t>& out) {
     out.clear();
     if (box.empty) return;
-    const glm::dvec3 axes[3] = {box.right, box.up, box.forward};
-    const glm::dvec3 abs_axes[3] = {glm::abs(box.right), glm::abs(box.up), glm::abs(box.forward)};
     for (size_t o = 0; o < boxes.size(); ++o) {
-        const glm::dvec3 lo = glm::dvec3(boxes[o].min) + culling_origin;
-        const glm::dvec3 hi = glm::dvec3(boxes[o].max) + culling_origin;
-        const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-        bool overlaps = true;
-        for (int a = 0; a < 3 && overlaps; ++a) {
-            const double c = glm::dot(centre, axes[a]), r = glm::dot(half, abs_axes[a]);
-            overlaps = c + r >= box.min[a] && c - r <= box.max[a];
+        glm::dvec3 min, max;
+        lightSpaceBounds(box, glm::dvec3(boxes[o].min) + culling_origin,
+                         glm::dvec3(boxes[o].max) + culling_origin, min, max);
+        if (glm::all(glm::lessThanEqual(min, box.max)) &&
+            glm::all(glm::greaterThanEqual(max, box.min))) {
+            out.push_back(static_cast<uint32_t>(o));
         }
-        if (overlaps) out.push_back(static_cast<uint32_t>(o));
     }
 }
 

@@ -13,6 +13,7 @@
 
 #include "occsim/culling/geometry/aabb.h"
 #include "sim/scenario/scene_specs.h"
+#include "sim/scenario/view_specs.h"
 
 namespace occsim {
 
@@ -41,6 +42,15 @@ glm::dvec3 toLightSpace(const LightBox& box, const glm::dvec3& world);
 // scene's nearest. Empty when the two overlap nowhere across the light.
 LightBox fitDirectionalLight(const glm::dvec3& direction, const std::array<glm::dvec3, 8>& corners,
                              const WorldBox& scene);
+
+// The light-space bounds of a world box (lo, hi its corners), exact: its centre and half-extents
+// projected on each of `box`'s axes.
+void lightSpaceBounds(const LightBox& box, const glm::dvec3& lo, const glm::dvec3& hi,
+                      glm::dvec3& min, glm::dvec3& max);
+
+// The index into `lights` of the first shadow-casting directional light, the one a frame
+// renders a shadow pass for (docs/views.md); -1 when there is none.
+int firstShadowLight(const std::vector<LightSpec>& lights);
 
 // Light-frustum culling of a shadow pass: the objects whose boxes (in the culling frame, which
 // lies at `culling_origin` in the world) overlap `box` in light space, in index order; `out`

@@ -26,15 +26,8 @@ void ReceiverMask::reset(const LightBox& box, uint32_t resolution) {
 ReceiverMask::TexelRange ReceiverMask::footprint(const glm::dvec3& lo, const glm::dvec3& hi) const {
     TexelRange r;
     if (box_.empty || !(lo.x <= hi.x)) return r;
-    // The box's light-space bounds, exact: its centre and half-extents projected on each axis.
-    const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-    const glm::dvec3 axes[3] = {box_.right, box_.up, box_.forward};
     glm::dvec3 min, max;
-    for (int a = 0; a < 3; ++a) {
-        const double c = glm::dot(centre, axes[a]), e = glm::dot(half, glm::abs(axes[a]));
-        min[a] = c - e;
-        max[a] = c + e;
-    }
+    lightSpaceBounds(box_, lo, hi, min, max);
     if (max.x < box_.min.x || min.x > box_.max.x || max.y < box_.min.y || min.y > box_.max.y) {
         return r;  // beside the light's box: no texel
     }

@@ -141,5 +141,15 @@ TEST(LightView, ObjectsInTheLightBoxAreThoseWhoseBoxesOverlapIt) {
     }
 }
 
+// The light a frame renders a shadow pass for: the first directional light that casts shadows.
+TEST(LightView, TheShadowLightIsTheFirstDirectionalLightCastingShadows) {
+    LightSpec spot, quiet_sun, sun;
+    spot.type = LightType::Spot;
+    quiet_sun.casts_shadows = false;
+    EXPECT_EQ(firstShadowLight({}), -1);
+    EXPECT_EQ(firstShadowLight({spot, quiet_sun}), -1);
+    EXPECT_EQ(firstShadowLight({spot, quiet_sun, sun, sun}), 2);
+}
+
 }  // namespace
 }  // namespace occsim
