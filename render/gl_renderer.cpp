@@ -391,20 +391,22 @@ void GlRenderer::setShadow(const ShadowLookup* lookup) {
         }
         checkGl("shadow-texel buffer");
     }
+    const bool was_on = shadow_on_;
     shadow_on_ = lookup != nullptr;
     if (shadow_on_) shadow_ = *lookup;
-    state_ = State::None;  // the shadow uniforms must be re-sent
+    if (shadow_on_ || was_on) sendShadowUniforms();  // nothing at all for a run without lights
+    state_ = State::None;  // the program and the shadow texture are bound again by the next draw
 }
 
 void GlRenderer::sendShadowUniforms() {
+    // Uniforms are the program's own state: set once here, they hold across program switches.
+    glUseProgram(draw_program_);
     glUniform1i(shadow_locs_[0], shadow_on_ ? 1 : 0);
     if (!shadow_on_) return;
     glUniform1i(shadow_locs_[1], depth_ == DepthConvention::ReverseFloat ? 1 : 0);
     glUniformMatrix4fv(shadow_locs_[2], 1, GL_FALSE, &shadow_.view_to_light[0][0]);
     glUniform3fv(shadow_locs_[3], 1, &shadow_.light_travel[0]);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, shadow_.texture);
-    glUniform1i(shadow_locs_[4], 0);
+    glUniform1i(shadow_locs_[4], 0);  // texture unit 0, bound by useState()
     glUniform1i(shadow_locs_[5], static_cast<GLint>(shadow_.size));
     glUniform1f(shadow_locs_[6], 1.5f * shadow_.texel_m);
     glUniform1f(shadow_locs_[7], shadow_.depth_bias);
@@ -418,7 +420,11 @@ void GlRenderer::useState(State wanted) {
     glUseProgram(draw ? draw_program_ : query_program_);
     glUniformMatrix4fv(draw ? draw_projection_loc_ : query_projection_loc_, 1, GL_FALSE,
                        &view_.projection[0][0]);
-    if (draw) sendShadowUniforms();
+    if (draw && shadow_on_) {
+        // Unit 0 is context state other passes bind their own textures to (the depth pyramid).
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, shadow_.texture);
+    }
     glBindVertexArray(draw ? mesh_vao_ : box_vao_);
     const GLboolean write = draw ? GL_TRUE : GL_FALSE;
     glColorMask(write, write, write, write);
