@@ -10,6 +10,11 @@ the shadow pass drew a frame, the casters whose shadow ground truth shows on a v
 VFC's frame time with the sun and without it (means of the runs, with the spread: half the
 range), the shadow error pixels and missed casters summed over the runs, and the load average
 before and after each run. A busy run is flagged: such a table is not a result.
+
+Then a second table from the <sun>-culler runs: per scene, sun and culler, the casters that
+culler drew in the light's view against those light-frustum culling drew (the <sun>-frustum
+runs), the shadow pass's CPU time and the culler's frame time with each, the shadow error pixels
+and missed casters summed over the runs.
 """
 import json
 import os
@@ -26,8 +31,12 @@ def summaries(folder):
     return runs
 
 
+def config(summary, name):
+    return next(a for a in summary["algorithms"] if a["configuration"] == name)
+
+
 def vfc(summary):
-    return next(a for a in summary["algorithms"] if a["configuration"] == "vfc")
+    return config(summary, "vfc")
 
 
 def mean_spread(values):
@@ -83,7 +92,44 @@ def main(root):
                   f"{loads(runs + none_runs)} |")
 
 
+def culler_table(root):
+    print()
+    print("| scene | sun | culler | casters drawn / frame: culler | light-frustum | "
+          "light-frustum / culler | shadow pass CPU ms: culler | light-frustum | "
+          "frame ms: culler | light-frustum | shadow err px | missed casters | "
+          "load (before→after) |")
+    print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for scene in sorted(os.listdir(root)):
+        for sun in ("low", "high"):
+            culled = summaries(os.path.join(root, scene, f"{sun}-culler"))
+            frustum = summaries(os.path.join(root, scene, f"{sun}-frustum"))
+            if not culled or not frustum:
+                continue
+            for a in culled[0]["algorithms"]:
+                name = a["configuration"]
+                if any(config(s, name)["shadow_pass"] is None for s in culled + frustum):
+                    print(f"| {scene} | {sun} | {name} | no shadow pass | | | | | | | | | |")
+                    continue
+                c = [config(s, name)["shadow_pass"] for s in culled]
+                f = [config(s, name)["shadow_pass"] for s in frustum]
+                drawn = mean_spread([sh["casters_per_frame"] for sh in c])
+                frustum_drawn = mean_spread([sh["casters_per_frame"] for sh in f])
+                ratio = frustum_drawn[0] / drawn[0] if drawn[0] else None
+                cpu = mean_spread([sh["cpu_ms_mean"] for sh in c])
+                frustum_cpu = mean_spread([sh["cpu_ms_mean"] for sh in f])
+                frame = mean_spread([config(s, name)["frame_ms"]["mean"] for s in culled])
+                frustum_frame = mean_spread([config(s, name)["frame_ms"]["mean"] for s in frustum])
+                error = sum(sh["error_pixels_total"] for sh in c)
+                missed = sum(sh["missed_casters_total"] for sh in c)
+                print(f"| {scene} | {sun} | {name} | {fmt(*drawn)} | {fmt(*frustum_drawn)} | "
+                      f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*cpu, digits=2)} | "
+                      f"{fmt(*frustum_cpu, digits=2)} | {fmt(*frame, digits=2)} | "
+                      f"{fmt(*frustum_frame, digits=2)} | {error} | {missed} | "
+                      f"{loads(culled)} |")
+
+
 if __name__ == "__main__":
     if len(sys.argv) != 2:
         sys.exit("usage: scripts/views_table.py out/views")
     main(sys.argv[1])
+    culler_table(sys.argv[1])

@@ -82,8 +82,9 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
         ->each([&flags](const std::string&) { flags.sun_given = true; });
     cmd->add_option("--shadow-casters", flags.shadow_casters,
                     "Which casters a shadow pass draws: frustum (every object in the light's "
-                    "box, the default) or receivers (those that may shadow what the camera's "
-                    "pass drew; the camera's pass first, then a shading pass; docs/views.md)");
+                    "box, the default), receivers (those that may shadow what the camera's "
+                    "pass drew; the camera's pass first, then a shading pass) or culler (those "
+                    "each configuration's culler draws in the light's view; docs/views.md)");
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -180,8 +181,10 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
     o.ablate = flags.ablate;
     if (flags.shadow_casters == "receivers") {
         o.shadow_casters = occsim::ShadowCasterCulling::ReceiverMask;
+    } else if (flags.shadow_casters == "culler") {
+        o.shadow_casters = occsim::ShadowCasterCulling::Culler;
     } else if (flags.shadow_casters != "frustum") {
-        throw occsim::InputError("--shadow-casters: expected frustum or receivers, got '" +
+        throw occsim::InputError("--shadow-casters: expected frustum, receivers or culler, got '" +
                                  flags.shadow_casters + "'");
     }
     // The configurations are planned once here, before any work, so that a swept value that makes

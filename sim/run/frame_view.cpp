@@ -1,5 +1,6 @@
 #include "sim/run/frame_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -47,11 +48,43 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     return view;
 }
 
+namespace {
+
+// The eye 2 m before the box's near face, the near plane 1 m from the eye and the far one 1 m past
+// the box: the whole box strictly inside, its faces clear of both planes.
+constexpr double kLightStandOff = 2.0, kLightNear = 1.0;
+
+}  // namespace
+
+CullView makeLightCullView(const LightBox& box, const glm::dvec3& culling_origin,
+                           uint32_t map_size) {
+    const glm::dvec3 half = 0.5 * (box.max - box.min);
+    const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
+    // The render view's eye, in the culling frame (differences in double: 10^6 m out too).
+    const glm::dvec3 eye = box.right * centre.x + box.up * centre.y +
+                           box.forward * (box.min.z - kLightStandOff) - culling_origin;
+    // x along right, y along up, looking down -z = forward: makeLightRenderView's rotation.
+    const glm::dmat4 view =
+        glm::dmat4(glm::transpose(glm::dmat3(box.right, box.up, -box.forward))) *
+        glm::translate(glm::dmat4(1.0), -eye);
+    const double far_plane = box.max.z - box.min.z + kLightStandOff + kLightNear;
+    const glm::dmat4 view_projection =
+        glm::ortho(-half.x, half.x, -half.y, half.y, kLightNear, far_plane) * view;
+    CullView cull;
+    cull.kind = ViewKind::Light;
+    const double behind = kLightEyeDistance * std::max(2.0 * glm::length(half), 1.0);
+    cull.eye = glm::vec3(eye - box.forward * behind);
+    cull.frustum = frustumFromViewProjection(view_projection);
+    cull.near_radius = 0.0f;
+    cull.view_projection = glm::mat4(view_projection);
+    cull.viewport_width = map_size;
+    cull.viewport_height = map_size;
+    return cull;
+}
+
 ViewSetup makeLightRenderView(const LightBox& box, const glm::dvec3& culling_origin,
                               DepthConvention depth) {
-    // The eye 2 m before the box's near face, the near plane 1 m from the eye and the far one 1 m
-    // past the box: the whole box strictly inside, its faces clear of both planes.
-    constexpr double kStandOff = 2.0, kNear = 1.0;
+    constexpr double kStandOff = kLightStandOff, kNear = kLightNear;
     const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
     const glm::dvec2 half = 0.5 * (glm::dvec2(box.max) - glm::dvec2(box.min));
     ViewSetup view;

@@ -37,6 +37,18 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
 ViewSetup makeLightRenderView(const LightBox& box, const glm::dvec3& culling_origin,
                               DepthConvention depth = DepthConvention::ReverseFloat);
 
+// The same light's view as the cullers see it (ViewKind::Light), relative to `culling_origin`: the
+// frustum of makeLightRenderView's box (planes in double), its conventional OpenGL
+// view-projection, a viewport of the map's `map_size` texels a side, and no near radius (the box
+// starts at the scene's nearest point to the light, so no object's box reaches its near plane).
+// The eye, which an orthographic view does not have, stands kLightEyeDistance box diagonals
+// behind the near face's centre along the light: the cullers' front-to-back orders and distances
+// then follow the light's direction (a split plane misorders only where the light runs within
+// 1/(2 kLightEyeDistance) of parallel to it, where nothing is in front of anything anyway).
+inline constexpr double kLightEyeDistance = 1000.0;
+CullView makeLightCullView(const LightBox& box, const glm::dvec3& culling_origin,
+                           uint32_t map_size);
+
 // The renderer's depth convention a scenario asks for.
 DepthConvention depthConventionOf(const Scenario& scenario);
 

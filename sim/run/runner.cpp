@@ -53,21 +53,25 @@ void printNote(const BenchOptions& options, const std::string& line) {
 
 // What a run renders of the views a scene names (docs/views.md), said once, so that nobody reads
 // its figures as those of a frame with every view culled: the first shadow-casting directional
-// light's shadow pass is rendered, its casters culled by the light's box or by the camera's
-// receivers (no culler culls the light's view yet); other lights and a second eye are read and
+// light's shadow pass is rendered, its casters culled by the light's box, by the camera's
+// receivers, or by each configuration's culler; other lights and a second eye are read and
 // checked but not rendered yet.
 void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions& options) {
     std::vector<std::string> parts;
     const int shadow_light = firstShadowLight(scene.lights);
     if (shadow_light >= 0) {
+        const ShadowCasterCulling mode = options.shadow_casters;
         parts.push_back(
             "light " + std::to_string(shadow_light) +
-            (options.shadow_casters == ShadowCasterCulling::ReceiverMask
+            (mode == ShadowCasterCulling::ReceiverMask
                  ? " renders a shadow pass after the camera's, drawing the casters that may "
-                   "shadow what the camera's pass drew (receiver-masked), then a shading pass"
+                   "shadow what the camera's pass drew (receiver-masked), then a shading pass: "
+                   "the cullers cull the camera's view alone"
+             : mode == ShadowCasterCulling::Culler
+                 ? " renders a shadow pass whose casters each configuration's culler culls in "
+                   "the light's view, with state of its own"
                  : " renders a shadow pass drawing every object in its box (light-frustum "
-                   "culling)") +
-            ": the cullers cull the camera's view alone");
+                   "culling): the cullers cull the camera's view alone"));
     }
     const auto casting = std::count_if(scene.lights.begin(), scene.lights.end(),
                                        [](const LightSpec& l) { return l.casts_shadows; });
@@ -206,6 +210,12 @@ void makeSimulations(const Stage& stage, SharedWorld& world, GroundTruth& truth,
         sims.all.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
                                                         std::move(culler), config.culler,
                                                         stage.contexts.renderer(c), sim_options));
+        if (options.shadow_casters == ShadowCasterCulling::Culler) {
+            // The light's view culled by an instance of its own (its state apart).
+            sims.all.back()->cullLightViewWith(
+                options.make_culler ? options.make_culler(*config.algorithm, config.culler)
+                                    : makeConfiguredCuller(config));
+        }
     }
 }
 

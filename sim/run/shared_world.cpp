@@ -92,6 +92,7 @@ void SharedWorld::computeShadowView(const CameraPose& pose, double aspect, Depth
     shadow.box = fitDirectionalLight(scene_.lights[shadow.light].direction, corners, scene_box);
     if (shadow.box.empty) return;
     shadow.render = makeLightRenderView(shadow.box, scene_.culling_origin, depth);
+    shadow.cull = makeLightCullView(shadow.box, scene_.culling_origin, shadow.map_size);
     const glm::dmat4 rotation(shadow.render.view_rotation);
     const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -shadow.render.eye);
     for (uint32_t o = 0; o < scene_.objectCount(); ++o) {

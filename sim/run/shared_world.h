@@ -47,6 +47,7 @@ struct ShadowView {
     uint32_t map_size = 0;  // texels a side
     LightBox box;           // empty: the camera sees none of the scene, no shadow pass this frame
     ViewSetup render;       // makeLightRenderView(box), when not empty
+    CullView cull;          // makeLightCullView(box), when not empty: the light's view culled
     std::vector<glm::mat4> model_views;  // every object's, relative to the light's eye
 };
 

@@ -15,6 +15,25 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
+// The light view's culler on a device of its own: its queries, drawn set and counters apart from
+// the camera's, wrapped by the approximation as the camera's device is.
+struct Simulation::LightViewCulling {
+    LightViewCulling(std::unique_ptr<Culler> c, GlRenderer& renderer, const LatencyMode& latency,
+                     const ApproximationOptions* approximation)
+        : culler(std::move(c)),
+          gl_device(renderer, latency),
+          approximate(approximation ? std::make_unique<ApproximateDevice>(gl_device, *approximation)
+                                    : nullptr),
+          device(approximate ? static_cast<RenderDevice*>(approximate.get()) : &gl_device) {}
+
+    std::unique_ptr<Culler> culler;
+    GlQueryDevice gl_device;
+    std::unique_ptr<ApproximateDevice> approximate;
+    RenderDevice* device;
+};
+
+Simulation::~Simulation() = default;
+
 void uploadScene(const Scene& scene, GlRenderer& renderer) {
     renderer.uploadMeshes(scene.meshes);
     renderer.setObjectMeshes(scene.object_mesh);
@@ -53,7 +72,8 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
               : nullptr),
       device_(approximate_device_ ? static_cast<RenderDevice*>(approximate_device_.get())
                                   : &gl_device_),
-      tracer_(*device_) {
+      tracer_(*device_),
+      approximation_(options.approximation) {
     // Before any frame: a culler that needs what this device lacks is refused with one line.
     requireDeviceFeatures(algorithm_, device_->features());
     if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask &&
@@ -63,6 +83,18 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
             "' draws from the device (its drawn set is not on the CPU during the "
             "frame): receiver-masked shadow culling does not take it yet; leave it out of "
             "--algos");
+    }
+    if (options_.shadow_casters == ShadowCasterCulling::Culler) {
+        const char* why = algorithm_.oracle         ? "it decides from the camera's ground truth"
+                          : algorithm_.needs_meshes ? "it rasterises the camera's view itself"
+                          : (algorithm_.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
+                              ? "its decisions are taken on the device against the camera's depth"
+                              : nullptr;
+        if (why != nullptr) {
+            throw RegistryError("culler '" + algorithm_.name +
+                                "' cannot cull a light's view yet (" + why +
+                                "): leave it out of --algos, or use --shadow-casters frustum");
+        }
     }
     if (options_.record_objects && !options_.measure_error) {
         throw std::logic_error("Simulation: record_objects needs measure_error");
@@ -74,6 +106,16 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
     if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
     segment_tallies_.reset(options_.segments, world_->scenario().warmup_frames);
     culler_->reset(world_->tree());
+}
+
+void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
+    if (options_.shadow_casters != ShadowCasterCulling::Culler) {
+        throw std::logic_error("Simulation::cullLightViewWith: the shadow casters are not culled");
+    }
+    const bool approximate = algorithm_.issues_queries && approximation_.active();
+    light_ = std::make_unique<LightViewCulling>(std::move(culler), renderer_, options_.latency,
+                                                approximate ? &approximation_ : nullptr);
+    light_->culler->reset(world_->tree());
 }
 
 double Simulation::nowMs() const {
@@ -93,6 +135,9 @@ FrameStats Simulation::renderFrame() {
         world_->advance();
     }
     rendered_serial_ = world_->frameSerial();
+    if (options_.shadow_casters == ShadowCasterCulling::Culler && !light_) {
+        throw std::logic_error("Simulation::renderFrame: the light's view has no culler");
+    }
     FrameStats stats = world_->frameStats();
     CullFrame cull_frame = world_->cullFrame();
     const uint32_t frame = world_->frame();
@@ -138,7 +183,7 @@ FrameStats Simulation::renderFrame() {
     const bool receivers_first =
         shadow_pass && options_.shadow_casters == ShadowCasterCulling::ReceiverMask;
     if (shadow_pass && !receivers_first) {
-        renderShadowPass(*shadow, stats);
+        renderShadowPass(*shadow, cull_frame, stats);
         renderer_.setView(world_->view().render, world_->modelViews());
         renderer_.setShadow(&shadow_lookup_);
     } else if (receivers_first) {
@@ -159,7 +204,7 @@ FrameStats Simulation::renderFrame() {
         // The receivers are what the camera's pass drew: the shadow pass draws the casters they
         // may catch the shadow of, then the camera's pass is shaded from the map.
         gl_device_.markSubmitted(camera_submitted_);
-        renderShadowPass(*shadow, stats);
+        renderShadowPass(*shadow, cull_frame, stats);
         shadeCameraPass(stats);
     }
     renderer_.finish();
@@ -178,6 +223,7 @@ FrameStats Simulation::renderFrame() {
         }
     }
     culler_->afterFrame(*device_);
+    if (shadow_pass && light_) resolveLightViewCasters();
 
     const DeviceCounters& c = device_->counters();
     stats.read_backs = read_backs_in_frame;
@@ -204,25 +250,52 @@ FrameStats Simulation::renderFrame() {
     return stats;
 }
 
-// The casters selectCasters() keeps, drawn into the map (docs/views.md). Timed from the pass's
-// start (caster selection, the light's matrices uploaded) to its last draw's submission.
-void Simulation::renderShadowPass(const ShadowView& shadow, FrameStats& stats) {
+// The casters selectCasters() keeps, drawn into the map (docs/views.md), or those the light
+// view's culler draws. Timed from the pass's start (caster selection, the light's matrices
+// uploaded) to its last draw's submission (with a culler, its last query's answer it waited for).
+void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& camera,
+                                  FrameStats& stats) {
     const double start = nowMs();
-    selectCasters(shadow);
+    if (!light_) selectCasters(shadow);
     renderer_.setView(shadow.render, shadow.model_views);
     if (shadow_gpu_timer_) shadow_gpu_timer_->begin();
     shadow_map_->begin(renderer_);
-    cast_shadow_.assign(world_->scene().objectCount(), 0);
-    int64_t triangles = 0;
-    for (const uint32_t o : shadow_casters_) {
-        renderer_.drawObject(o);
-        cast_shadow_[o] = 1;
-        triangles += renderer_.triangleCount(o);
+    const uint32_t objects = world_->scene().objectCount();
+    if (light_) {
+        CullFrame frame;
+        frame.frame_index = camera.frame_index;
+        frame.time_s = camera.time_s;
+        frame.view = shadow.cull;
+        frame.object_triangles = camera.object_triangles;
+        light_->device->resetCounters();
+        light_->gl_device.beginDrawnSet(objects);
+        light_->culler->cullAndRender(world_->tree(), frame, *light_->device);
+        const DeviceCounters& c = light_->device->counters();
+        stats.shadow_casters = static_cast<int64_t>(c.objects_drawn);
+        stats.shadow_triangles = static_cast<int64_t>(c.triangles_drawn);
+    } else {
+        cast_shadow_.assign(objects, 0);
+        int64_t triangles = 0;
+        for (const uint32_t o : shadow_casters_) {
+            renderer_.drawObject(o);
+            cast_shadow_[o] = 1;
+            triangles += renderer_.triangleCount(o);
+        }
+        stats.shadow_casters = static_cast<int64_t>(shadow_casters_.size());
+        stats.shadow_triangles = triangles;
     }
     if (shadow_gpu_timer_) shadow_gpu_timer_->end();
-    stats.shadow_casters = static_cast<int64_t>(shadow_casters_.size());
-    stats.shadow_triangles = triangles;
     stats.shadow_cpu_ms = nowMs() - start;
+}
+
+// After the frame, outside the timing: the casters the light view's culler drew (a conditional
+// draw counts when its query passed samples), for the missed casters.
+void Simulation::resolveLightViewCasters() {
+    const uint32_t objects = world_->scene().objectCount();
+    light_->gl_device.resolveConditionalDraws();
+    cast_shadow_.assign(objects, 0);
+    for (uint32_t o = 0; o < objects; ++o) cast_shadow_[o] = light_->gl_device.drew(o) ? 1 : 0;
+    light_->culler->afterFrame(*light_->device);
 }
 
 // Light-frustum culling: every object whose box overlaps the light's box; receiver-masked, of

@@ -43,6 +43,12 @@ enum class ShadowCasterCulling : uint8_t {
     // a shading pass over what the camera's pass drew. Needs the drawn set on the CPU during the
     // frame: not for cullers whose draws the device decides (hzb, raster).
     ReceiverMask,
+    // The configuration's culler culls the light's view too (Simulation::cullLightViewWith): an
+    // instance of its own, with its own state, over the objects in the light's box, its queries
+    // against the map's depth, the shadow pass before the camera's. A caster hidden from the
+    // light behind other casters changes no texel of the map. Query cullers only for now: not
+    // oracles, nor cullers that rasterise meshes or decide on the device.
+    Culler,
 };
 
 // The receiver mask's resolution, texels a side.
@@ -122,6 +128,13 @@ class Simulation {
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
 
+    ~Simulation();
+
+    // ShadowCasterCulling::Culler: the culler of the light's view, an instance of the
+    // configuration's own culler made for it (its state apart from the camera's). Throws
+    // RegistryError, one line, for a culler that cannot cull a light's view yet.
+    void cullLightViewWith(std::unique_ptr<Culler> culler);
+
     bool needsGroundTruth() const;
     // Renders the world's current frame through the culler and measures it (ground truth, when
     // needed, comes from the shared GroundTruth, outside the timing). On a shared world, once
@@ -165,7 +178,8 @@ class Simulation {
                SharedWorld* world, GroundTruth* truth, const CullerRow& algorithm,
                std::unique_ptr<Culler> culler, const CullerOptions& options, GlRenderer& renderer,
                const SimulationOptions& sim_options);
-    void renderShadowPass(const ShadowView& shadow, FrameStats& stats);
+    void renderShadowPass(const ShadowView& shadow, const CullFrame& camera, FrameStats& stats);
+    void resolveLightViewCasters();
     void selectCasters(const ShadowView& shadow);
     void shadeCameraPass(FrameStats& stats);
     void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
@@ -206,6 +220,10 @@ class Simulation {
     std::unique_ptr<GlFrameTimer> shading_gpu_timer_;  // receiver-masked
     std::vector<uint32_t> shadow_casters_;
     std::vector<uint8_t> cast_shadow_;
+    // ShadowCasterCulling::Culler: the light view's culler and its devices (as device_'s).
+    struct LightViewCulling;
+    std::unique_ptr<LightViewCulling> light_;
+    ApproximationOptions approximation_;
     ReceiverMask receiver_mask_;             // ShadowCasterCulling::ReceiverMask
     std::vector<uint8_t> camera_submitted_;  // per object: the camera's pass drew it
     std::vector<uint32_t> camera_depth_;     // the camera pass's depth, for the receivers

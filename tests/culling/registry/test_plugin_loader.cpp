@@ -55,7 +55,7 @@ TEST(PluginLoader, EachBadFileIsOneLineNamingTheFileAndWhatWasExpected) {
         {dir / "libmissing.so", "no such file; expected a plugin culler"},
         {text_file, "not a loadable shared object"},
         {pluginFile("no_entry"), "no entry point 'occsim_plugin'"},
-        {pluginFile("other_abi"), "built for plugin ABI version 8; this occsim loads version 7"},
+        {pluginFile("other_abi"), "built for plugin ABI version 9; this occsim loads version 8"},
         {pluginFile("taken_name"),
          "culler 'chc': the name is already taken (by a built-in culler)"},
         {pluginFile("bad_descriptor"),

@@ -1,7 +1,9 @@
 // The camera of one frame (sim/run/frame_view.h): the culling view in the culling frame, exact far
 // from the origin; the render view in world coordinates with the scenario's depth convention; the
 // lens's near radius and viewport handed to both; straight up or down still a camera; a light's
-// render view holds its whole box, nearer the light nearer in depth, next to the origin and far.
+// render view holds its whole box, nearer the light nearer in depth, next to the origin and far;
+// its culling view keeps a box inside the light's box and culls one beside it, its eye far up the
+// light so that the tree's front-to-back order follows the light.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +12,7 @@
 #include "occsim/culling/geometry/frustum.h"
 #include "sim/run/frame_view.h"
 #include "sim/scenario/scenario.h"
+#include "sim/world/light_view.h"
 
 namespace occsim {
 namespace {
@@ -161,6 +164,62 @@ TEST(LightRenderView, HoldsItsWholeBoxNearerTheLightNearer) {
             const float far_z = project({mid.x, mid.y, box.max.z}).z;
             EXPECT_TRUE(reverse ? near_z > far_z : near_z < far_z);
             EXPECT_GT(std::abs(project({box.max.x + 1.0, mid.y, mid.z}).x), 1.0f);
+        }
+    }
+}
+
+// The light's view as the cullers see it (makeLightCullView): an object box inside the light's box
+// is inside its frustum, one beside it across the light or beyond its far end is outside; its
+// view-projection maps the box into clip space as the render view does; its eye lies up the light
+// from every point of the box, farther than any distance across it, so that for every split plane
+// the eye's side is the side the light comes from; the viewport is the map's. Next to the origin
+// and 10^6 m from it (the culling frame is relative to the culling origin).
+TEST(LightCullView, ItsFrustumIsTheLightsBoxAndItsEyeLiesUpTheLight) {
+    for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, 0.0, -1e6)}) {
+        const WorldBox scene{origin + glm::dvec3(-50, 0, -50), origin + glm::dvec3(50, 30, 50)};
+        const auto corners = viewFrustumCorners(origin + glm::dvec3(0, 2, 40),
+                                                origin + glm::dvec3(0, 0, 0), 60, 1.5, 0.1, 80);
+        const glm::dvec3 direction = glm::normalize(glm::dvec3(0.4, -1.0, 0.3));
+        const LightBox box = fitDirectionalLight(direction, corners, scene);
+        ASSERT_FALSE(box.empty);
+        const CullView view = makeLightCullView(box, origin, 1024);
+        EXPECT_EQ(view.kind, ViewKind::Light);
+        EXPECT_EQ(view.viewport_width, 1024u);
+        EXPECT_EQ(view.viewport_height, 1024u);
+        EXPECT_EQ(view.near_radius, 0.0f);
+        // Light space to the culling frame.
+        const auto at = [&](const glm::dvec3& l) {
+            return glm::vec3(box.right * l.x + box.up * l.y + box.forward * l.z - origin);
+        };
+        const glm::dvec3 mid = 0.5 * (box.min + box.max);
+        const glm::dvec3 size = box.max - box.min;
+        const FrustumPlanes planes = planeTableOf(view.frustum);
+        EXPECT_NE(classify(planes, cubeAt(at(mid), 0.5f)), FrustumTest::Outside);
+        EXPECT_NE(classify(planes, cubeAt(at({box.min.x + 0.5, mid.y, box.min.z + 0.5}), 0.4f)),
+                  FrustumTest::Outside);
+        EXPECT_EQ(classify(planes, cubeAt(at({box.max.x + 2.0, mid.y, mid.z}), 0.5f)),
+                  FrustumTest::Outside);
+        EXPECT_EQ(classify(planes, cubeAt(at({mid.x, mid.y, box.max.z + 4.0}), 0.5f)),
+                  FrustumTest::Outside);
+        // A corner of the box in clip space: inside [-1, 1]^3.
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 l((i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
+                               (i & 4) ? box.max.z : box.min.z);
+            const glm::vec4 clip = view.view_projection * glm::vec4(at(l), 1.0f);
+            EXPECT_LE(std::abs(clip.x / clip.w), 1.0f + 1e-3f) << i;
+            EXPECT_LE(std::abs(clip.y / clip.w), 1.0f + 1e-3f) << i;
+            EXPECT_LE(std::abs(clip.z / clip.w), 1.0f) << i;
+        }
+        // Up the light from the box's centre, farther than the box is across.
+        const glm::dvec3 to_eye = glm::dvec3(view.eye) - glm::dvec3(at(mid));
+        EXPECT_GT(glm::dot(to_eye, -box.forward), 100.0 * glm::length(size));
+        EXPECT_GT(glm::dot(glm::normalize(to_eye), -box.forward), 0.999999);
+        // For a split plane through the box's centre on each axis, the eye is on the side the light
+        // comes from (where the light travels toward +axis, below the split).
+        for (int axis = 0; axis < 3; ++axis) {
+            if (std::abs(direction[axis]) < 1e-3) continue;
+            const float split = at(mid)[axis];
+            EXPECT_EQ(view.eye[axis]<split, direction[axis]> 0.0) << axis;
         }
     }
 }

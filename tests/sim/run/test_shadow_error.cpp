@@ -158,6 +158,55 @@ TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
     EXPECT_THROW(runBenchmark(litCity(), options), InputError);
 }
 
+// The light's view culled by each configuration's culler (ShadowCasterCulling::Culler): no
+// shadow error and no missed caster on any frame; the camera's decisions as with light-frustum
+// culling (the light's culler is an instance of its own: its state does not touch the camera's);
+// vfc in the light's view draws every caster light-frustum culling draws (its frustum is the
+// light's box), a culler that waits for each query fewer on most frames under a low sun (the
+// buildings hide one another from it); the same casters on a second run. Oracles and cullers
+// that rasterise the camera's view or decide on the device are refused with one line.
+TEST(ShadowError, CullersCullingTheLightsViewMissNoCasterAndDrawFewer) {
+    BenchOptions options;
+    for (const char* name : {"vfc", "stop-and-wait", "statistical", "chc", "conditional"}) {
+        options.algorithms.push_back(findCuller(name));
+    }
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = 12;
+    const BenchResult frustum = runBenchmark(litCity(), options);
+    options.shadow_casters = ShadowCasterCulling::Culler;
+    const BenchResult culled = runBenchmark(litCity(), options);
+    const BenchResult again = runBenchmark(litCity(), options);
+    testing::expectNoErrorAndNoMiss(culled);
+    ASSERT_EQ(culled.runs.size(), frustum.runs.size());
+    for (size_t r = 0; r < culled.runs.size(); ++r) {
+        const std::string& label = culled.runs[r].summary.label;
+        uint32_t fewer = 0;
+        for (size_t f = 0; f < culled.runs[r].frames.size(); ++f) {
+            const FrameStats& c = culled.runs[r].frames[f];
+            const FrameStats& l = frustum.runs[r].frames[f];
+            EXPECT_EQ(c.shadow_error_pixels, 0) << label << " frame " << f;
+            EXPECT_EQ(c.missed_casters, 0) << label << " frame " << f;
+            EXPECT_GE(c.shadow_casters, c.shadow_seen_casters) << label << " frame " << f;
+            EXPECT_EQ(c.objects_drawn, l.objects_drawn) << label << " frame " << f;
+            EXPECT_EQ(c.queries, l.queries) << label << " frame " << f;
+            EXPECT_EQ(c.shadow_casters, again.runs[r].frames[f].shadow_casters)
+                << label << " frame " << f;
+            if (label == "vfc") {
+                EXPECT_GE(c.shadow_casters, l.shadow_casters) << "frame " << f;
+            }
+            fewer += c.shadow_casters < l.shadow_casters;
+        }
+        if (label == "stop-and-wait") {
+            EXPECT_GT(fewer, culled.runs[r].frames.size() / 2);
+        }
+    }
+    for (const char* refused : {"hzb", "masked", "ideal-box"}) {
+        options.algorithms = {findCuller(refused)};
+        EXPECT_THROW(runBenchmark(litCity(), options), InputError) << refused;
+    }
+}
+
 class PlantedShadowError : public ::testing::TestWithParam<DepthConvention> {};
 
 TEST_P(PlantedShadowError, ACasterLeftOutOfTheShadowPassIsCounted) {

@@ -51,7 +51,9 @@
 // 7: GPU-driven draws (contract/gpu_driven_draws.h, RenderDevice::gpuDrivenDraws, the DeviceFeature
 // bits kGpuDrivenDraws and kBoxRaster, DeviceCounters::read_backs), Culler::afterFrame, the
 // box-raster reasons of the decision log.
-#define OCCSIM_PLUGIN_ABI_VERSION 7u
+// 8: CullView::kind (ViewKind): a frame culls several views (a light's, two eyes), each with a
+// culler instance of its own.
+#define OCCSIM_PLUGIN_ABI_VERSION 8u
 
 namespace occsim {
 

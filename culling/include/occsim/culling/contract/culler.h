@@ -22,7 +22,21 @@ namespace occsim {
 // tree's layout, and the tree's traversal helpers (tree/traversal.h) build on this contract.
 class BspTree;
 
+// Which of a frame's views a CullView is (docs/views.md). A culler culls each view with its own
+// state: the host gives every view a culler instance of its own, so a culler needs the kind only
+// to say what its decisions were for, or to treat a view apart.
+enum class ViewKind : uint8_t {
+    Camera,   // the camera's view (one pass for a single eye, or for a frustum around both)
+    Light,    // a directional light's shadow view: orthographic, its eye far behind (below)
+    LeftEye,  // one eye of a stereo pair culled on its own
+    RightEye,
+};
+
 struct CullView {
+    ViewKind kind = ViewKind::Camera;
+    // The eye. An orthographic view (a light's) has none: its eye stands far behind the near
+    // plane along the view's direction (makeLightCullView, sim/run/frame_view.h), so that the
+    // front-to-back orders and distances the cullers take from an eye follow that direction.
     glm::vec3 eye{0.0f};
     Frustum frustum{};
     float near_radius = 0.0f;  // eye to a near-plane corner; see nearPlaneTouchesBox()
