@@ -76,6 +76,7 @@ uint32_t GlQueryDevice::queriesInFlight() const {
 }
 
 void GlQueryDevice::drawObject(uint32_t object) {
+    if (leftOut(object)) return;
     const auto start = Clock::now();
     renderer_.drawObject(object);
     if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;
@@ -138,6 +139,7 @@ void GlQueryDevice::drawIf(QueryId id, std::span<const uint32_t> objects, Condit
         OCCSIM_GL_CHECKED(glBeginConditionalRender(gl_queries_[id], mode));
     }
     for (uint32_t object : objects) {
+        if (leftOut(object)) continue;
         renderer_.drawObject(object);
         if (!conditional) {
             if (object < drawn_mark_.size()) drawn_mark_[object] = drawn_set_;

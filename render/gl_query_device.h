@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "occsim/culling/contract/conditional_rendering.h"
@@ -75,6 +76,12 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     bool drew(uint32_t object) const {
         return object < drawn_mark_.size() && drawn_mark_[object] == drawn_set_;
     }
+    // Objects the device leaves out of every draw, plain or conditional, from now on: those whose
+    // entry in `may_draw` is 0 (one per object; empty: none left out). A draw left out is not a
+    // command, not counted and not in the drawn set: what receiver-masked culling of a light's
+    // view needs (a caster that shadows no visible receiver is not drawn, whatever the culler
+    // decides). The span must stay valid while it is set.
+    void setDrawFilter(std::span<const uint8_t> may_draw) { may_draw_ = may_draw; }
     // Marks in `submitted` (resized to the set's objects) every object the current set submitted
     // a draw of, conditional draws included whatever their query says (no read-back): during the
     // frame, a superset of what it drew.
@@ -103,6 +110,9 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     void noteAnswered(QueryId id);
     bool pollReady(QueryId id);                       // asks the driver (or the latency model) once
     bool isLive(QueryId id, const char* call) const;  // issued and not yet taken
+    bool leftOut(uint32_t object) const {
+        return object < may_draw_.size() && may_draw_[object] == 0;
+    }
 
     GlRenderer& renderer_;
     LatencyMode latency_;
@@ -119,7 +129,8 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     std::vector<uint8_t> near_eye_;
     std::vector<uint32_t> latencies_;  // since the last takeAnswerLatencies()
     std::vector<QueryId> free_ids_;
-    std::vector<uint32_t> drawn_mark_;  // object -> drawn_set_ when drawn in the current set
+    std::vector<uint32_t> drawn_mark_;   // object -> drawn_set_ when drawn in the current set
+    std::span<const uint8_t> may_draw_;  // setDrawFilter()
     // Conditional draws of the current set: the object and the query it was conditioned on.
     struct ConditionalDraw {
         uint32_t object;

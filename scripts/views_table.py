@@ -11,10 +11,10 @@ VFC's frame time with the sun and without it (means of the runs, with the spread
 range), the shadow error pixels and missed casters summed over the runs, and the load average
 before and after each run. A busy run is flagged: such a table is not a result.
 
-Then a second table from the <sun>-culler runs: per scene, sun and culler, the casters that
-culler drew in the light's view against those light-frustum culling drew (the <sun>-frustum
-runs), the shadow pass's CPU time and the culler's frame time with each, the shadow error pixels
-and missed casters summed over the runs.
+Then a second table from the <sun>-culler and <sun>-both runs: per scene, sun, culler and mode
+(the culler in the light's view alone, or with the receiver mask), the casters it drew against
+those light-frustum culling drew (the <sun>-frustum runs), the shadow pass's CPU time and the
+culler's frame time with each, the shadow error pixels and missed casters summed over the runs.
 """
 import json
 import os
@@ -23,6 +23,8 @@ import sys
 
 def summaries(folder):
     runs = []
+    if not os.path.isdir(folder):
+        return runs
     for name in sorted(os.listdir(folder)):
         path = os.path.join(folder, name, "summary.json")
         if name.startswith("run-") and os.path.isfile(path):
@@ -94,21 +96,21 @@ def main(root):
 
 def culler_table(root):
     print()
-    print("| scene | sun | culler | casters drawn / frame: culler | light-frustum | "
-          "light-frustum / culler | shadow pass CPU ms: culler | light-frustum | "
-          "frame ms: culler | light-frustum | shadow err px | missed casters | "
+    print("| scene | sun | culler | light view | casters drawn / frame | light-frustum | "
+          "light-frustum / this | shadow pass CPU ms | light-frustum | "
+          "frame ms | light-frustum | shadow err px | missed casters | "
           "load (before→after) |")
-    print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for scene in sorted(os.listdir(root)):
-        for sun in ("low", "high"):
-            culled = summaries(os.path.join(root, scene, f"{sun}-culler"))
+        for sun, mode in [(s, m) for s in ("low", "high") for m in ("culler", "both")]:
+            culled = summaries(os.path.join(root, scene, f"{sun}-{mode}"))
             frustum = summaries(os.path.join(root, scene, f"{sun}-frustum"))
             if not culled or not frustum:
                 continue
             for a in culled[0]["algorithms"]:
                 name = a["configuration"]
                 if any(config(s, name)["shadow_pass"] is None for s in culled + frustum):
-                    print(f"| {scene} | {sun} | {name} | no shadow pass | | | | | | | | | |")
+                    print(f"| {scene} | {sun} | {name} | {mode} | no shadow pass | | | | | | | | | |")
                     continue
                 c = [config(s, name)["shadow_pass"] for s in culled]
                 f = [config(s, name)["shadow_pass"] for s in frustum]
@@ -121,7 +123,8 @@ def culler_table(root):
                 frustum_frame = mean_spread([config(s, name)["frame_ms"]["mean"] for s in frustum])
                 error = sum(sh["error_pixels_total"] for sh in c)
                 missed = sum(sh["missed_casters_total"] for sh in c)
-                print(f"| {scene} | {sun} | {name} | {fmt(*drawn)} | {fmt(*frustum_drawn)} | "
+                label = "culler" if mode == "culler" else "culler + receivers"
+                print(f"| {scene} | {sun} | {name} | {label} | {fmt(*drawn)} | {fmt(*frustum_drawn)} | "
                       f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*cpu, digits=2)} | "
                       f"{fmt(*frustum_cpu, digits=2)} | {fmt(*frame, digits=2)} | "
                       f"{fmt(*frustum_frame, digits=2)} | {error} | {missed} | "

@@ -83,8 +83,10 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
     cmd->add_option("--shadow-casters", flags.shadow_casters,
                     "Which casters a shadow pass draws: frustum (every object in the light's "
                     "box, the default), receivers (those that may shadow what the camera's "
-                    "pass drew; the camera's pass first, then a shading pass) or culler (those "
-                    "each configuration's culler draws in the light's view; docs/views.md)");
+                    "pass drew; the camera's pass first, then a shading pass), culler (those "
+                    "each configuration's culler draws in the light's view) or culler+receivers "
+                    "(of those, the ones that may shadow what the camera's pass drew; "
+                    "docs/views.md)");
     cmd->add_option("--culling", flags.culling,
                     "Culling options from this file ({\"format_version\": 1, \"culling\": {...}}, "
                     "e.g. occtune's "
@@ -183,9 +185,12 @@ occsim::BenchOptions benchOptions(const RunRequest& request) {
         o.shadow_casters = occsim::ShadowCasterCulling::ReceiverMask;
     } else if (flags.shadow_casters == "culler") {
         o.shadow_casters = occsim::ShadowCasterCulling::Culler;
+    } else if (flags.shadow_casters == "culler+receivers") {
+        o.shadow_casters = occsim::ShadowCasterCulling::CullerWithReceiverMask;
     } else if (flags.shadow_casters != "frustum") {
-        throw occsim::InputError("--shadow-casters: expected frustum, receivers or culler, got '" +
-                                 flags.shadow_casters + "'");
+        throw occsim::InputError(
+            "--shadow-casters: expected frustum, receivers, culler or culler+receivers, got '" +
+            flags.shadow_casters + "'");
     }
     // The configurations are planned once here, before any work, so that a swept value that makes
     // options invalid or repeats an ablation row is bad input, named by its flag.

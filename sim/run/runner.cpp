@@ -70,6 +70,11 @@ void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions&
              : mode == ShadowCasterCulling::Culler
                  ? " renders a shadow pass whose casters each configuration's culler culls in "
                    "the light's view, with state of its own"
+             : mode == ShadowCasterCulling::CullerWithReceiverMask
+                 ? " renders a shadow pass after the camera's, whose casters each "
+                   "configuration's culler culls in the light's view, with state of its own, "
+                   "leaving out those that may shadow nothing the camera's pass drew, then a "
+                   "shading pass"
                  : " renders a shadow pass drawing every object in its box (light-frustum "
                    "culling): the cullers cull the camera's view alone"));
     }
@@ -210,7 +215,7 @@ void makeSimulations(const Stage& stage, SharedWorld& world, GroundTruth& truth,
         sims.all.push_back(std::make_unique<Simulation>(world, truth, *config.algorithm,
                                                         std::move(culler), config.culler,
                                                         stage.contexts.renderer(c), sim_options));
-        if (options.shadow_casters == ShadowCasterCulling::Culler) {
+        if (cullsLightView(options.shadow_casters)) {
             // The light's view culled by an instance of its own (its state apart).
             sims.all.back()->cullLightViewWith(
                 options.make_culler ? options.make_culler(*config.algorithm, config.culler)

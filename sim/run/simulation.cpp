@@ -84,7 +84,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
             "frame): receiver-masked shadow culling does not take it yet; leave it out of "
             "--algos");
     }
-    if (options_.shadow_casters == ShadowCasterCulling::Culler) {
+    if (cullsLightView(options_.shadow_casters)) {
         const char* why = algorithm_.oracle         ? "it decides from the camera's ground truth"
                           : algorithm_.needs_meshes ? "it rasterises the camera's view itself"
                           : (algorithm_.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
@@ -109,7 +109,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
 }
 
 void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
-    if (options_.shadow_casters != ShadowCasterCulling::Culler) {
+    if (!cullsLightView(options_.shadow_casters)) {
         throw std::logic_error("Simulation::cullLightViewWith: the shadow casters are not culled");
     }
     const bool approximate = algorithm_.issues_queries && approximation_.active();
@@ -135,7 +135,7 @@ FrameStats Simulation::renderFrame() {
         world_->advance();
     }
     rendered_serial_ = world_->frameSerial();
-    if (options_.shadow_casters == ShadowCasterCulling::Culler && !light_) {
+    if (cullsLightView(options_.shadow_casters) && !light_) {
         throw std::logic_error("Simulation::renderFrame: the light's view has no culler");
     }
     FrameStats stats = world_->frameStats();
@@ -173,15 +173,14 @@ FrameStats Simulation::renderFrame() {
     }
     if (shadow_pass && options_.measure_gpu_time && !shadow_gpu_timer_) {
         shadow_gpu_timer_ = std::make_unique<GlFrameTimer>();
-        if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask) {
+        if (masksReceivers(options_.shadow_casters)) {
             shading_gpu_timer_ = std::make_unique<GlFrameTimer>();
         }
     }
     device_->resetCounters();
     gl_device_.beginDrawnSet(world_->scene().objectCount());
     const double frame_start = nowMs();
-    const bool receivers_first =
-        shadow_pass && options_.shadow_casters == ShadowCasterCulling::ReceiverMask;
+    const bool receivers_first = shadow_pass && masksReceivers(options_.shadow_casters);
     if (shadow_pass && !receivers_first) {
         renderShadowPass(*shadow, cull_frame, stats);
         renderer_.setView(world_->view().render, world_->modelViews());
@@ -256,7 +255,20 @@ FrameStats Simulation::renderFrame() {
 void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& camera,
                                   FrameStats& stats) {
     const double start = nowMs();
-    if (!light_) selectCasters(shadow);
+    if (!light_) {
+        selectCasters(shadow);
+    } else if (masksReceivers(options_.shadow_casters)) {
+        // The light view's culler decides; the casters that may shadow no receiver are left out
+        // of its draws.
+        buildReceiverMask(shadow);
+        const std::vector<Aabb>& boxes = world_->state().boxes;
+        const glm::dvec3& origin = world_->scene().culling_origin;
+        may_shadow_.resize(boxes.size());
+        for (size_t o = 0; o < boxes.size(); ++o) {
+            may_shadow_[o] = receiver_mask_.mayShadow(boxes[o], origin) ? 1 : 0;
+        }
+        light_->gl_device.setDrawFilter(may_shadow_);
+    }
     renderer_.setView(shadow.render, shadow.model_views);
     if (shadow_gpu_timer_) shadow_gpu_timer_->begin();
     shadow_map_->begin(renderer_);
@@ -304,16 +316,19 @@ void Simulation::selectCasters(const ShadowView& shadow) {
     const std::vector<Aabb>& boxes = world_->state().boxes;
     const glm::dvec3& origin = world_->scene().culling_origin;
     objectsInLightBox(shadow.box, boxes, origin, shadow_casters_);
-    if (options_.shadow_casters != ShadowCasterCulling::ReceiverMask) return;
-    // The receivers: every pixel the camera's pass covered, read back inside the frame (a wait
-    // for the camera's pass), grown by the shadow lookup's normal offset (1.5 texels) and one
-    // texel more.
+    if (!masksReceivers(options_.shadow_casters)) return;
+    buildReceiverMask(shadow);
+    std::erase_if(shadow_casters_,
+                  [&](uint32_t o) { return !receiver_mask_.mayShadow(boxes[o], origin); });
+}
+
+// The receivers: every pixel the camera's pass covered, read back inside the frame (a wait for
+// the camera's pass), grown by the shadow lookup's normal offset (1.5 texels) and one texel more.
+void Simulation::buildReceiverMask(const ShadowView& shadow) {
     renderer_.readDepthRanks(camera_depth_);
     receiver_mask_.reset(shadow.box, kReceiverMaskResolution);
     addVisibleReceivers(camera_depth_, renderer_.width(), renderer_.height(), world_->view().render,
                         renderer_.depthConvention(), 2.5 * shadow_lookup_.texel_m, receiver_mask_);
-    std::erase_if(shadow_casters_,
-                  [&](uint32_t o) { return !receiver_mask_.mayShadow(boxes[o], origin); });
 }
 
 // Receiver-masked: the camera's pass drawn again with the shadow term over its own depth, each

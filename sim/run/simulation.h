@@ -49,7 +49,21 @@ enum class ShadowCasterCulling : uint8_t {
     // light behind other casters changes no texel of the map. Query cullers only for now: not
     // oracles, nor cullers that rasterise meshes or decide on the device.
     Culler,
+    // Both, as Bittner et al. 2011 combine them: the camera's pass first and the receiver mask
+    // built from it, then the light view's culler, whose draws of casters that may shadow no
+    // receiver are left out (GlQueryDevice::setDrawFilter), then the shading pass.
+    CullerWithReceiverMask,
 };
+
+// Whether the light's view is culled by the configuration's culler, and whether the camera's
+// pass comes first for a receiver mask.
+inline bool cullsLightView(ShadowCasterCulling c) {
+    return c == ShadowCasterCulling::Culler || c == ShadowCasterCulling::CullerWithReceiverMask;
+}
+inline bool masksReceivers(ShadowCasterCulling c) {
+    return c == ShadowCasterCulling::ReceiverMask ||
+           c == ShadowCasterCulling::CullerWithReceiverMask;
+}
 
 // The receiver mask's resolution, texels a side.
 inline constexpr uint32_t kReceiverMaskResolution = 256;
@@ -181,6 +195,7 @@ class Simulation {
     void renderShadowPass(const ShadowView& shadow, const CullFrame& camera, FrameStats& stats);
     void resolveLightViewCasters();
     void selectCasters(const ShadowView& shadow);
+    void buildReceiverMask(const ShadowView& shadow);
     void shadeCameraPass(FrameStats& stats);
     void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
@@ -224,7 +239,8 @@ class Simulation {
     struct LightViewCulling;
     std::unique_ptr<LightViewCulling> light_;
     ApproximationOptions approximation_;
-    ReceiverMask receiver_mask_;             // ShadowCasterCulling::ReceiverMask
+    ReceiverMask receiver_mask_;             // masksReceivers()
+    std::vector<uint8_t> may_shadow_;        // per object: the mask's draw filter (light view)
     std::vector<uint8_t> camera_submitted_;  // per object: the camera's pass drew it
     std::vector<uint32_t> camera_depth_;     // the camera pass's depth, for the receivers
     std::vector<uint32_t> culled_shadow_texels_;

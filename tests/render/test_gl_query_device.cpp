@@ -192,6 +192,35 @@ TEST_P(RenderTest, TheDeviceKnowsWhichObjectsItDrewSinceTheSetBegan) {
     EXPECT_TRUE(device.drew(2));
 }
 
+// A draw filter (setDrawFilter) leaves its objects out of plain and conditional draws alike: no
+// pixel, not counted, not in the drawn set; the others are drawn as before, and an empty filter
+// leaves nothing out.
+TEST_P(RenderTest, ADrawFilterLeavesItsObjectsOutOfEveryDraw) {
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    const std::vector<uint8_t> may_draw = {1, 1, 0};
+    device.setDrawFilter(may_draw);
+    device.beginDrawnSet(3);
+    renderer_->beginFrame();
+    device.drawObject(2);
+    const QueryId visible = device.issueQuery(boxes_[2]);
+    device.conditionalRendering()->drawIf(visible, 2, ConditionWait::Wait);
+    device.conditionalRendering()->release(visible);
+    device.drawObject(1);
+    renderer_->finish();
+    std::vector<uint32_t> ids;
+    renderer_->readObjectIds(ids);
+    EXPECT_EQ(std::count(ids.begin(), ids.end(), 3u), 0) << "the side cube is left out";
+    EXPECT_GT(std::count(ids.begin(), ids.end(), 2u), 0);
+    device.resolveConditionalDraws();
+    EXPECT_FALSE(device.drew(2));
+    EXPECT_TRUE(device.drew(1));
+    EXPECT_EQ(device.counters().objects_drawn, 1u);
+    device.setDrawFilter({});
+    device.beginDrawnSet(3);
+    device.drawObject(2);
+    EXPECT_TRUE(device.drew(2)) << "no filter: nothing left out";
+}
+
 // Conditional rendering (occsim/culling/contract/conditional_rendering.h) on the GL device: the
 // driver skips what the query found hidden, nothing is read back, and the drawn set used for missed
 // objects counts a conditional draw as drawn when its query passed samples.

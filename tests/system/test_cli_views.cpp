@@ -133,9 +133,9 @@ TEST(CliViews, ShadowCastersReceiversRunsAndABadValueIsOneLine) {
                                   "light --out " + out.string());
     EXPECT_EQ(bad.exit_code, 2) << bad.output;
     EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
-    EXPECT_NE(
-        bad.output.find("--shadow-casters: expected frustum, receivers or culler, got 'light'"),
-        std::string::npos)
+    EXPECT_NE(bad.output.find("--shadow-casters: expected frustum, receivers, culler or "
+                              "culler+receivers, got 'light'"),
+              std::string::npos)
         << bad.output;
     const Outcome gpu =
         runOccsim("bench " + kSmall +
@@ -160,9 +160,9 @@ TEST(CliViews, ShadowCastersReceiversRunsAndABadValueIsOneLine) {
     EXPECT_GE(shadow["shading_pass"]["cpu_ms_mean"].get<double>(), 0.0);
 }
 
-// --shadow-casters culler: each configuration's culler culls the light's view (said in the note, no
-// caster missed, no shadow error); a culler that cannot cull a light's view yet is refused before
-// any frame with a line naming it, exit 2, nothing written.
+// --shadow-casters culler and culler+receivers: each configuration's culler culls the light's
+// view (said in the note, no caster missed, no shadow error); a culler that cannot cull a light's
+// view yet is refused before any frame with a line naming it, exit 2, nothing written.
 TEST(CliViews, ShadowCastersCullerRunsEachCullerInTheLightsView) {
     const auto dir = tempPath("views-culler");
     const auto out = dir / "out";
@@ -175,22 +175,25 @@ TEST(CliViews, ShadowCastersCullerRunsEachCullerInTheLightsView) {
         << refused.output;
     EXPECT_FALSE(std::filesystem::exists(out));
 
-    const Outcome o = runOccsim("bench " + kSmall +
-                                " --algos vfc,chc --sun 20,40,512 --shadow-casters culler --error "
-                                "--frames 8 --out " +
-                                out.string());
-    ASSERT_EQ(o.exit_code, 0) << o.output;
-    EXPECT_NE(o.output.find("culls in the light's view"), std::string::npos) << o.output;
-    std::ifstream in(out / "summary.json");
-    const json summary = json::parse(in);
-    ASSERT_EQ(summary["algorithms"].size(), 2u);
-    for (const json& algorithm : summary["algorithms"]) {
-        const json& shadow = algorithm["shadow_pass"];
-        ASSERT_TRUE(shadow.is_object()) << algorithm.dump();
-        EXPECT_GT(shadow["casters_per_frame"].get<double>(), 0.0);
-        EXPECT_EQ(shadow["missed_casters_total"], 0);
-        EXPECT_EQ(shadow["error_pixels_total"], 0);
+    for (const std::string mode : {"culler", "culler+receivers"}) {
+        const Outcome o =
+            runOccsim("bench " + kSmall + " --algos vfc,chc --sun 20,40,512 " +
+                      "--shadow-casters " + mode + " --error --frames 8 --out " + out.string());
+        ASSERT_EQ(o.exit_code, 0) << o.output;
+        EXPECT_NE(o.output.find("culls in the light's view"), std::string::npos) << o.output;
+        EXPECT_EQ(o.output.find("leaving out those that may shadow nothing") != std::string::npos,
+                  mode == "culler+receivers")
+            << o.output;
+        std::ifstream in(out / "summary.json");
+        const json summary = json::parse(in);
+        ASSERT_EQ(summary["algorithms"].size(), 2u);
+        for (const json& algorithm : summary["algorithms"]) {
+            const json& shadow = algorithm["shadow_pass"];
+            ASSERT_TRUE(shadow.is_object()) << algorithm.dump();
+            EXPECT_GT(shadow["casters_per_frame"].get<double>(), 0.0);
+            EXPECT_EQ(shadow["missed_casters_total"], 0);
+            EXPECT_EQ(shadow["error_pixels_total"], 0);
+        }
     }
 }
-
 }  // namespace

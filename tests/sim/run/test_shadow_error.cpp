@@ -158,13 +158,15 @@ TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
     EXPECT_THROW(runBenchmark(litCity(), options), InputError);
 }
 
-// The light's view culled by each configuration's culler (ShadowCasterCulling::Culler): no
-// shadow error and no missed caster on any frame; the camera's decisions as with light-frustum
-// culling (the light's culler is an instance of its own: its state does not touch the camera's);
-// vfc in the light's view draws every caster light-frustum culling draws (its frustum is the
-// light's box), a culler that waits for each query fewer on most frames under a low sun (the
-// buildings hide one another from it); the same casters on a second run. Oracles and cullers
-// that rasterise the camera's view or decide on the device are refused with one line.
+// The light's view culled by each configuration's culler (ShadowCasterCulling::Culler), alone and
+// with the receiver mask leaving out casters that may shadow no visible receiver
+// (CullerWithReceiverMask): no shadow error and no missed caster on any frame; the camera's
+// decisions as with light-frustum culling (the light's culler is an instance of its own: its
+// state does not touch the camera's); vfc in the light's view draws every caster light-frustum
+// culling draws (its frustum is the light's box), a culler that waits for each query fewer on
+// most frames under a low sun (the buildings hide one another from it); with the mask, fewer
+// casters over the run than with either alone; the same casters on a second run. Oracles and
+// cullers that rasterise the camera's view or decide on the device are refused with one line.
 TEST(ShadowError, CullersCullingTheLightsViewMissNoCasterAndDrawFewer) {
     BenchOptions options;
     for (const char* name : {"vfc", "stop-and-wait", "statistical", "chc", "conditional"}) {
@@ -174,32 +176,47 @@ TEST(ShadowError, CullersCullingTheLightsViewMissNoCasterAndDrawFewer) {
     options.latency = {true, 8};
     options.frames = 12;
     const BenchResult frustum = runBenchmark(litCity(), options);
+    options.shadow_casters = ShadowCasterCulling::ReceiverMask;
+    const BenchResult receivers = runBenchmark(litCity(), options);
     options.shadow_casters = ShadowCasterCulling::Culler;
     const BenchResult culled = runBenchmark(litCity(), options);
     const BenchResult again = runBenchmark(litCity(), options);
+    options.shadow_casters = ShadowCasterCulling::CullerWithReceiverMask;
+    const BenchResult both = runBenchmark(litCity(), options);
     testing::expectNoErrorAndNoMiss(culled);
+    testing::expectNoErrorAndNoMiss(both);
     ASSERT_EQ(culled.runs.size(), frustum.runs.size());
+    ASSERT_EQ(both.runs.size(), frustum.runs.size());
     for (size_t r = 0; r < culled.runs.size(); ++r) {
         const std::string& label = culled.runs[r].summary.label;
         uint32_t fewer = 0;
+        int64_t culled_total = 0, receivers_total = 0, both_total = 0;
         for (size_t f = 0; f < culled.runs[r].frames.size(); ++f) {
-            const FrameStats& c = culled.runs[r].frames[f];
             const FrameStats& l = frustum.runs[r].frames[f];
-            EXPECT_EQ(c.shadow_error_pixels, 0) << label << " frame " << f;
-            EXPECT_EQ(c.missed_casters, 0) << label << " frame " << f;
-            EXPECT_GE(c.shadow_casters, c.shadow_seen_casters) << label << " frame " << f;
-            EXPECT_EQ(c.objects_drawn, l.objects_drawn) << label << " frame " << f;
-            EXPECT_EQ(c.queries, l.queries) << label << " frame " << f;
+            for (const BenchResult* result : {&culled, &both}) {
+                const FrameStats& c = result->runs[r].frames[f];
+                EXPECT_EQ(c.shadow_error_pixels, 0) << label << " frame " << f;
+                EXPECT_EQ(c.missed_casters, 0) << label << " frame " << f;
+                EXPECT_GE(c.shadow_casters, c.shadow_seen_casters) << label << " frame " << f;
+                EXPECT_EQ(c.objects_drawn, l.objects_drawn) << label << " frame " << f;
+                EXPECT_EQ(c.queries, l.queries) << label << " frame " << f;
+            }
+            const FrameStats& c = culled.runs[r].frames[f];
             EXPECT_EQ(c.shadow_casters, again.runs[r].frames[f].shadow_casters)
                 << label << " frame " << f;
             if (label == "vfc") {
                 EXPECT_GE(c.shadow_casters, l.shadow_casters) << "frame " << f;
             }
             fewer += c.shadow_casters < l.shadow_casters;
+            culled_total += c.shadow_casters;
+            receivers_total += receivers.runs[r].frames[f].shadow_casters;
+            both_total += both.runs[r].frames[f].shadow_casters;
         }
         if (label == "stop-and-wait") {
             EXPECT_GT(fewer, culled.runs[r].frames.size() / 2);
         }
+        EXPECT_LT(both_total, culled_total) << label;
+        EXPECT_LE(both_total, receivers_total) << label;
     }
     for (const char* refused : {"hzb", "masked", "ideal-box"}) {
         options.algorithms = {findCuller(refused)};
