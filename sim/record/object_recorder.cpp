@@ -26,6 +26,40 @@ constexpr const char* kInsertDecision =
     "truth_pixels, error_pixels, tie_pixels, node, node_kind) "
     "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
+constexpr const char* kInsertLightDecision =
+    "INSERT INTO light_decisions (frame, config, object, drawn, reason, query_frame, samples, "
+    "flags, phase, level, interval, next_query, next_query_frame, visible_answers, history, "
+    "shadow_pixels, missed_shadow_pixels, light, node, node_kind) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+
+// One object's row of either table: both share columns 1-15 and 19-20; 16-18 are the camera's
+// truth, error and tie pixels, or the light's shadow pixels, missed shadow pixels and light.
+void insertRow(sql::Statement& s, uint32_t frame, uint32_t config, uint32_t object,
+               const ObjectFrame& f, uint32_t third) {
+    const Decision& d = f.why;
+    const bool statistics = d.kind == DecisionKind::DrawnOnStatistics;
+    s.bind(1, frame).bind(2, config).bind(3, object).bind(4, f.drawn);
+    s.bind(5, static_cast<uint32_t>(d.kind));
+    if (d.query_frame != Decision::kNoFrame) s.bind(6, d.query_frame);
+    if (answered(d.kind)) s.bind(7, d.samples);
+    s.bind(8, d.flags);
+    if (d.phase != 0) s.bind(9, d.phase);
+    if (d.level != Decision::kNoLevel) s.bind(10, d.level);
+    if (statistics) {
+        s.bind(11, static_cast<double>(d.interval));
+        s.bind(12, static_cast<double>(d.next_query));
+        s.bind(14, d.count);
+        s.bind(15, d.history);
+    }
+    if (d.next_query_frame != Decision::kNoFrame) s.bind(13, d.next_query_frame);
+    s.bind(16, f.pixels.truth).bind(17, f.pixels.error).bind(18, third);
+    if (f.node_kind != DecidingNode::None) {
+        s.bind(19, f.node).bind(20, static_cast<uint32_t>(f.node_kind));
+    }
+    s.run();
+    s.reset();  // clears the bindings: the columns left unbound above are NULL
+}
+
 // The frames whose rows stay: all of them, or those before the frame a stop dropped.
 uint32_t framesKept(const BenchResult& result) {
     if (result.partial && result.partial->repetition == 0) return result.partial->frames_reached;
@@ -58,6 +92,7 @@ ObjectRecorder::ObjectRecorder(const std::filesystem::path& folder)
         reason.reset();
     }
     insert_ = std::make_unique<sql::Statement>(db_->prepare(kInsertDecision));
+    insert_light_ = std::make_unique<sql::Statement>(db_->prepare(kInsertLightDecision));
 }
 
 ObjectRecorder::~ObjectRecorder() = default;
@@ -132,32 +167,15 @@ void ObjectRecorder::onFrame(const FrameEvent& e) {
         frame_ = e.frame;
     }
     const uint32_t config = configId(e.config);
-    sql::Statement& s = *insert_;
     for (uint32_t o = 0; o < objects.size(); ++o) {
-        const ObjectFrame& f = objects[o];
-        if (saysNothing(f)) continue;
-        const Decision& d = f.why;
-        const bool statistics = d.kind == DecisionKind::DrawnOnStatistics;
-        s.bind(1, e.frame).bind(2, config).bind(3, o).bind(4, f.drawn);
-        s.bind(5, static_cast<uint32_t>(d.kind));
-        if (d.query_frame != Decision::kNoFrame) s.bind(6, d.query_frame);
-        if (answered(d.kind)) s.bind(7, d.samples);
-        s.bind(8, d.flags);
-        if (d.phase != 0) s.bind(9, d.phase);
-        if (d.level != Decision::kNoLevel) s.bind(10, d.level);
-        if (statistics) {
-            s.bind(11, static_cast<double>(d.interval));
-            s.bind(12, static_cast<double>(d.next_query));
-            s.bind(14, d.count);
-            s.bind(15, d.history);
-        }
-        if (d.next_query_frame != Decision::kNoFrame) s.bind(13, d.next_query_frame);
-        s.bind(16, f.pixels.truth).bind(17, f.pixels.error).bind(18, f.pixels.tie);
-        if (f.node_kind != DecidingNode::None) {
-            s.bind(19, f.node).bind(20, static_cast<uint32_t>(f.node_kind));
-        }
-        s.run();
-        s.reset();  // clears the bindings: the columns left unbound above are NULL
+        if (!saysNothing(objects[o]))
+            insertRow(*insert_, e.frame, config, o, objects[o], objects[o].pixels.tie);
+    }
+    const std::vector<ObjectFrame>& casters = e.simulation.lightObjectFrames();
+    const uint32_t light = e.simulation.recordedLight();
+    for (uint32_t o = 0; o < casters.size(); ++o) {
+        if (!saysNothing(casters[o]))
+            insertRow(*insert_light_, e.frame, config, o, casters[o], light);
     }
 }
 
@@ -184,6 +202,7 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
     const uint32_t kept = started_ ? framesKept(result) : 0;
     db_->exec("BEGIN");
     db_->prepare("DELETE FROM decisions WHERE frame >= ?").bind(1, kept).run();
+    db_->prepare("DELETE FROM light_decisions WHERE frame >= ?").bind(1, kept).run();
     db_->prepare(
            "UPDATE run SET command = ?, command_line = ?, frames = ?, frames_recorded = ?, "
            "partial = ?, partial_reason = ?, deterministic_latency = ?")
@@ -224,6 +243,7 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
         h.missed.insert(h.missed.end(), missed.begin(), missed.end());
     }
     insert_.reset();
+    insert_light_.reset();
     db_->exec("PRAGMA journal_mode = DELETE");  // removes the journal file beside it
     db_->close();
     db_.reset();

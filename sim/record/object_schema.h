@@ -12,11 +12,34 @@ inline constexpr const char* kObjectsDatabaseFile = "objects.sqlite";
 // 2: run.repetitions and configurations.missed_in_later_repetitions (only the first repetition
 //    has rows; what the later ones missed is counted, so the file agrees with summary.json).
 // 3: decisions.node and decisions.node_kind (the node a decision rests on), and an index by node.
-inline constexpr int kObjectsFormatVersion = 3;
+// 4: light_decisions, the decisions of a light's view culled by the configuration's culler.
+inline constexpr int kObjectsFormatVersion = 4;
+
+// The columns `decisions` and `light_decisions` share: a decision, its reason and what the culler
+// said of it (a macro, so that both tables' statements stay string literals).
+#define OCCSIM_DECISION_COLUMNS                                                \
+    "  drawn INTEGER NOT NULL,\n"                                              \
+    "  reason INTEGER NOT NULL REFERENCES reasons(reason),\n"                  \
+    "  query_frame INTEGER,\n"                                                 \
+    "  query_age INTEGER GENERATED ALWAYS AS (frame - query_frame) VIRTUAL,\n" \
+    "  samples INTEGER,\n"                                                     \
+    "  flags INTEGER NOT NULL,\n"                                              \
+    "  phase INTEGER,\n"                                                       \
+    "  level INTEGER,\n"                                                       \
+    "  interval REAL,\n"                                                       \
+    "  next_query REAL,\n"                                                     \
+    "  next_query_frame INTEGER,\n"                                            \
+    "  visible_answers INTEGER,\n"                                             \
+    "  history INTEGER,\n"                                                     \
+    "  node INTEGER,\n"                                                        \
+    "  node_kind INTEGER,\n"
 
 // The tables. `decisions` holds a row per frame, configuration and object except the rows that
 // say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
 // no tie). Every drawn object, every visible one and every missed one has its row.
+// `light_decisions` holds the same for a light's view, when the configuration's culler culls it
+// (`--shadow-casters culler`, `culler+receivers`): a caster's pixels are the visible pixels ground
+// truth shadows through it.
 inline constexpr const char* kObjectsSchema = R"sql(
 CREATE TABLE run (
   format_version INTEGER NOT NULL,
@@ -57,25 +80,21 @@ CREATE TABLE decisions (
   frame INTEGER NOT NULL,
   config INTEGER NOT NULL REFERENCES configurations(config),
   object INTEGER NOT NULL REFERENCES objects(object),
-  drawn INTEGER NOT NULL,
-  reason INTEGER NOT NULL REFERENCES reasons(reason),
-  query_frame INTEGER,
-  query_age INTEGER GENERATED ALWAYS AS (frame - query_frame) VIRTUAL,
-  samples INTEGER,
-  flags INTEGER NOT NULL,
-  phase INTEGER,
-  level INTEGER,
-  interval REAL,
-  next_query REAL,
-  next_query_frame INTEGER,
-  visible_answers INTEGER,
-  history INTEGER,
-  node INTEGER,
-  node_kind INTEGER,
+)sql" OCCSIM_DECISION_COLUMNS R"sql(
   truth_pixels INTEGER NOT NULL,
   error_pixels INTEGER NOT NULL,
   tie_pixels INTEGER NOT NULL,
   PRIMARY KEY (config, frame, object)
+) WITHOUT ROWID;
+CREATE TABLE light_decisions (
+  frame INTEGER NOT NULL,
+  config INTEGER NOT NULL REFERENCES configurations(config),
+  light INTEGER NOT NULL,
+  object INTEGER NOT NULL REFERENCES objects(object),
+)sql" OCCSIM_DECISION_COLUMNS R"sql(
+  shadow_pixels INTEGER NOT NULL,
+  missed_shadow_pixels INTEGER NOT NULL,
+  PRIMARY KEY (config, frame, light, object)
 ) WITHOUT ROWID;
 )sql";
 

@@ -13,6 +13,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The node whose record decided an object (its reason's subject), when one did.
+void setDecidingNode(const BspTree& tree, const QueryTag& subject, ObjectFrame& f) {
+    f.node_kind = DecidingNode::None;
+    f.node = 0;
+    if (subject.subject != QueryTag::Subject::Object && subject.index < tree.nodeCount()) {
+        f.node = subject.index;
+        f.node_kind = tree.node(subject.index).isLeaf()            ? DecidingNode::Leaf
+                      : subject.subject == QueryTag::Subject::Node ? DecidingNode::Subtree
+                                                                   : DecidingNode::NodeObjects;
+    }
+}
+
 }  // namespace
 
 // The light view's culler on a device of its own: its queries, drawn set and counters apart from
@@ -30,6 +42,7 @@ struct Simulation::LightViewCulling {
     GlQueryDevice gl_device;
     std::unique_ptr<ApproximateDevice> approximate;
     RenderDevice* device;
+    DecisionLog decisions;  // SimulationOptions::record_objects
 };
 
 Simulation::~Simulation() = default;
@@ -115,7 +128,16 @@ void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
     const bool approximate = algorithm_.issues_queries && approximation_.active();
     light_ = std::make_unique<LightViewCulling>(std::move(culler), renderer_, options_.latency,
                                                 approximate ? &approximation_ : nullptr);
+    if (options_.record_objects) {
+        light_->decisions.reserve(
+            4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
+    }
     light_->culler->reset(world_->tree());
+}
+
+uint32_t Simulation::recordedLight() const {
+    const ShadowView* shadow = world_->shadowView();
+    return shadow != nullptr ? shadow->light : 0;
 }
 
 double Simulation::nowMs() const {
@@ -279,6 +301,10 @@ void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& cam
         frame.time_s = camera.time_s;
         frame.view = shadow.cull;
         frame.object_triangles = camera.object_triangles;
+        if (options_.record_objects) {
+            light_->decisions.clear();
+            frame.decisions = &light_->decisions;
+        }
         light_->device->resetCounters();
         light_->gl_device.beginDrawnSet(objects);
         light_->culler->cullAndRender(world_->tree(), frame, *light_->device);
@@ -421,7 +447,13 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     popping_.addFrame(missing_);
     segment_tallies_.addMissing(stats.frame, missing_);
     if (options_.record_objects) recordObjects(truth);
-    if (truth.has_shadow) measureShadowError(truth, stats);
+    light_object_frames_.clear();
+    if (truth.has_shadow) {
+        measureShadowError(truth, stats);
+        if (options_.record_objects && light_ && stats.shadow_casters >= 0) {
+            recordLightObjects(truth);
+        }
+    }
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;
     stats.stray_pixels = pixels.stray;
@@ -456,15 +488,34 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
         f.why = o < reasons_.size() ? reasons_[o] : Decision{};
         f.drawn = gl_device_.drew(o);
         f.pixels = object_pixels_[o];
-        f.node_kind = DecidingNode::None;
-        f.node = 0;
-        const QueryTag subject = o < reason_subjects_.size() ? reason_subjects_[o] : QueryTag{};
-        if (subject.subject != QueryTag::Subject::Object && subject.index < tree.nodeCount()) {
-            f.node = subject.index;
-            f.node_kind = tree.node(subject.index).isLeaf()            ? DecidingNode::Leaf
-                          : subject.subject == QueryTag::Subject::Node ? DecidingNode::Subtree
-                                                                       : DecidingNode::NodeObjects;
-        }
+        setDecidingNode(tree, o < reason_subjects_.size() ? reason_subjects_[o] : QueryTag{}, f);
+    }
+}
+
+// The light view's decisions, as recordObjects() the camera's: each caster's reason from the light
+// culler's log, whether it was drawn into the map, and the visible pixels ground truth shadows
+// through it (a pixel's shadowing texel, then that texel's caster).
+void Simulation::recordLightObjects(const GroundTruthFrame& truth) {
+    const uint32_t objects = world_->scene().objectCount();
+    const BspTree& tree = world_->tree();
+    resolveDecisions(tree, light_->decisions.records(), light_reasons_, resolve_stack_,
+                     &light_subjects_);
+    shadow_pixels_.assign(objects, 0);
+    for (size_t i = 0; i < truth.ids.size(); ++i) {
+        const uint32_t texel = truth.shadow_texels[i];
+        if (truth.ids[i] == 0 || texel == 0) continue;
+        const uint32_t caster = truth.shadow_casters[texel - 1];
+        if (caster != 0 && caster <= objects) ++shadow_pixels_[caster - 1];
+    }
+    light_object_frames_.resize(objects);
+    for (uint32_t o = 0; o < objects; ++o) {
+        ObjectFrame& f = light_object_frames_[o];
+        f.why = o < light_reasons_.size() ? light_reasons_[o] : Decision{};
+        f.drawn = cast_shadow_[o] != 0;
+        f.pixels = ObjectPixels{};
+        f.pixels.truth = shadow_pixels_[o];
+        f.pixels.error = f.drawn ? 0 : shadow_pixels_[o];
+        setDecidingNode(tree, o < light_subjects_.size() ? light_subjects_[o] : QueryTag{}, f);
     }
 }
 

@@ -178,6 +178,13 @@ class Simulation {
     const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
     // Per object, the last frame rendered (SimulationOptions::record_objects; empty otherwise).
     const std::vector<ObjectFrame>& objectFrames() const { return object_frames_; }
+    // The same for the light's view, when the culler culls it (cullsLightView) and the frame had a
+    // shadow pass; empty otherwise. `pixels.truth` is the visible pixels ground truth shadows
+    // through the caster, `pixels.error` those of them it left lit by not being drawn (all of
+    // them when it was not drawn, else none), `pixels.tie` 0.
+    const std::vector<ObjectFrame>& lightObjectFrames() const { return light_object_frames_; }
+    // The scene's light whose view lightObjectFrames() are of.
+    uint32_t recordedLight() const;
 
     SharedWorld& world() { return *world_; }
     const SharedWorld& world() const { return *world_; }
@@ -200,6 +207,7 @@ class Simulation {
     void measureShadowError(const GroundTruthFrame& truth, FrameStats& stats);
     void measureError(const GroundTruthFrame& truth, FrameStats& stats);
     void recordObjects(const GroundTruthFrame& truth);
+    void recordLightObjects(const GroundTruthFrame& truth);
     void recordAnswerLatencies(uint32_t frame, FrameStats& stats);
     double nowMs() const;  // SimulationOptions::frame_clock_ms, else the steady clock
 
@@ -258,6 +266,11 @@ class Simulation {
     std::vector<uint8_t> marks_;
     std::vector<ObjectPixels> object_pixels_;
     std::vector<ObjectFrame> object_frames_;
+    // record_objects with a culled light view: the same for it.
+    std::vector<Decision> light_reasons_;
+    std::vector<QueryTag> light_subjects_;
+    std::vector<uint32_t> shadow_pixels_;
+    std::vector<ObjectFrame> light_object_frames_;
 };
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).

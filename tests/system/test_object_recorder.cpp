@@ -115,6 +115,60 @@ TEST(ObjectsDatabase, OnTheSmallScenarioItsMissesAndErrorPixelsAreFramesCsvsForE
     EXPECT_NE(report.find("**Drawn while hidden**"), std::string::npos) << report;
 }
 
+// A light's view culled by each culler (--shadow-casters culler): light_decisions holds its
+// decisions beside the camera's. Per configuration and frame its drawn casters are frames.csv's
+// shadow_casters, the casters with shadow pixels are its shadow_seen_casters, none of them
+// missed (as frames.csv's missed_casters: zero), every reason agrees with the drawing; the
+// camera's rows still match frames.csv.
+TEST(ObjectsDatabase, ALightsViewCulledByEachCullerHasItsOwnRowsThatMatchFramesCsv) {
+    TempDir dir;
+    const fs::path out = dir.path() / "out";
+    const std::string city =
+        std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/city-sun-small.json";
+    const Outcome o = occsim("bench " + city + " --algos vfc,statistical,chc --frames 10 " +
+                             "--deterministic-latency 8 --shadow-casters culler --record objects " +
+                             "--out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    expectDatabaseMatchesFramesCsv(out);
+    const FramesCsv csv(out / "frames.csv");
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    EXPECT_EQ(queryInteger(db, "SELECT format_version FROM run"), kObjectsFormatVersion);
+    const auto count = [&](const std::string& where, const std::string& label, int64_t frame) {
+        return queryInteger(db,
+                            "SELECT COUNT(*) FROM light_decisions d JOIN configurations c ON "
+                            "c.config = d.config WHERE c.label = ? AND d.frame = ? AND " +
+                                where,
+                            {label}, {frame});
+    };
+    int64_t seen = 0;
+    for (const auto& row : csv.rows) {
+        const std::string label = row.at("configuration");
+        const int64_t frame = std::stoll(row.at("frame"));
+        const std::string where = label + " frame " + std::to_string(frame);
+        EXPECT_EQ(count("d.drawn = 1", label, frame), std::stoll(row.at("shadow_casters")))
+            << where;
+        EXPECT_EQ(count("d.shadow_pixels > 0", label, frame),
+                  std::stoll(row.at("shadow_seen_casters")))
+            << where;
+        EXPECT_EQ(count("d.missed_shadow_pixels > 0", label, frame),
+                  std::stoll(row.at("missed_casters")))
+            << where;
+        seen += std::stoll(row.at("shadow_seen_casters"));
+    }
+    EXPECT_GT(seen, 0) << "ground truth shows no shadow: the checks above prove little";
+    EXPECT_EQ(queryInteger(db, "SELECT COUNT(*) FROM light_decisions WHERE light != 0"), 0);
+    EXPECT_EQ(queryInteger(db,
+                           "SELECT COUNT(*) FROM light_decisions d JOIN reasons r ON "
+                           "r.reason = d.reason WHERE r.draws IS NOT NULL AND r.draws != d.drawn"),
+              0)
+        << "a reason that says drawn is a drawn caster, and one that says culled is not";
+    EXPECT_GT(queryInteger(db,
+                           "SELECT COUNT(*) FROM light_decisions WHERE reason IN "
+                           "(SELECT reason FROM reasons WHERE name = 'culled on query')"),
+              0)
+        << "some caster is hidden from the light";
+}
+
 TEST(ObjectsDatabase, OnAGltfLevelAsyncMissesTheTruckAndWhyNamesTheQueryThatHidIt) {
     TempDir dir;
     const fs::path scenario = writeWalledYard(dir);

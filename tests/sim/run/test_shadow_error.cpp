@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,16 @@ Scenario litCity(DepthConvention depth = DepthConvention::ReverseFloat) {
     return scenario;
 }
 
+// A bench of these cullers on litCity(): error measured, deterministic latency, 12 frames.
+BenchOptions litCityBench(std::initializer_list<const char*> cullers) {
+    BenchOptions options;
+    for (const char* name : cullers) options.algorithms.push_back(findCuller(name));
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = 12;
+    return options;
+}
+
 TEST(ShadowError, LightFrustumCullingMissesNoCasterAndLeavesTheCameraFiguresAlone) {
     BenchOptions options;
     for (const char* name : {"vfc", "chc", "hzb"}) options.algorithms.push_back(findCuller(name));
@@ -126,13 +137,7 @@ TEST(ShadowError, LightFrustumCullingMissesNoCasterAndLeavesTheCameraFiguresAlon
 // most frames, never fewer than ground truth shows; the camera's decisions as before. A culler
 // whose draws the device decides is refused with one line.
 TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
-    BenchOptions options;
-    for (const char* name : {"vfc", "statistical", "chc", "conditional", "masked"}) {
-        options.algorithms.push_back(findCuller(name));
-    }
-    options.measure_error = true;
-    options.latency = {true, 8};
-    options.frames = 12;
+    BenchOptions options = litCityBench({"vfc", "statistical", "chc", "conditional", "masked"});
     const BenchResult frustum = runBenchmark(litCity(), options);
     options.shadow_casters = ShadowCasterCulling::ReceiverMask;
     const BenchResult masked = runBenchmark(litCity(), options);
@@ -168,13 +173,8 @@ TEST(ShadowError, ReceiverMaskedCullingMissesNoCasterAndDrawsFewer) {
 // casters over the run than with either alone; the same casters on a second run. Oracles and
 // cullers that rasterise the camera's view or decide on the device are refused with one line.
 TEST(ShadowError, CullersCullingTheLightsViewMissNoCasterAndDrawFewer) {
-    BenchOptions options;
-    for (const char* name : {"vfc", "stop-and-wait", "statistical", "chc", "conditional"}) {
-        options.algorithms.push_back(findCuller(name));
-    }
-    options.measure_error = true;
-    options.latency = {true, 8};
-    options.frames = 12;
+    BenchOptions options =
+        litCityBench({"vfc", "stop-and-wait", "statistical", "chc", "conditional"});
     const BenchResult frustum = runBenchmark(litCity(), options);
     options.shadow_casters = ShadowCasterCulling::ReceiverMask;
     const BenchResult receivers = runBenchmark(litCity(), options);
