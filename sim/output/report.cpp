@@ -112,7 +112,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "executed_triangles,phase1_cpu_ms,test_cpu_ms,phase2_cpu_ms,phase1_gpu_ms,test_gpu_ms,"
            "phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,shading_cpu_ms,shading_gpu_ms,"
            "shadow_casters,shadow_triangles,"
-           "shadow_error_pixels,missed_casters,shadow_seen_casters,shadow_tie_pixels\n";
+           "shadow_error_pixels,missed_casters,shadow_seen_casters,shadow_tie_pixels,shadow_"
+           "queries\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -143,7 +144,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                 }
                 out << ',' << f.shadow_casters << ',' << f.shadow_triangles << ','
                     << f.shadow_error_pixels << ',' << f.missed_casters << ','
-                    << f.shadow_seen_casters << ',' << f.shadow_tie_pixels << '\n';
+                    << f.shadow_seen_casters << ',' << f.shadow_tie_pixels << ','
+                    << f.shadow_queries << '\n';
             }
         }
     }
@@ -167,6 +169,7 @@ nlohmann::json shadowJson(const RunSummary& s) {
     if (s.shadow_casters_mean < 0) return nullptr;
     nlohmann::json j = {
         {"casters_per_frame", s.shadow_casters_mean},
+        {"queries_per_frame", s.shadow_queries_mean},
         {"cpu_ms_mean", s.shadow_cpu_ms_mean},
         {"gpu_ms_mean", s.shadow_gpu_ms_mean >= 0 ? nlohmann::json(s.shadow_gpu_ms_mean)
                                                   : nlohmann::json(nullptr)}};

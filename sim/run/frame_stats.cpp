@@ -35,7 +35,7 @@ void addShadowCounts(RunSummary& s, int64_t error_pixels, int64_t missed_casters
 // error totals over every frame that measured it.
 void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_frames,
                       RunSummary& s) {
-    double casters = 0, cpu = 0, gpu = 0, seen = 0, shading_cpu = 0, shading_gpu = 0;
+    double casters = 0, queries = 0, cpu = 0, gpu = 0, seen = 0, shading_cpu = 0, shading_gpu = 0;
     uint32_t passes = 0, gpu_passes = 0, measured = 0, shadings = 0, gpu_shadings = 0;
     for (const FrameStats& f : frames) {
         if (f.shadow_error_pixels >= 0) {
@@ -46,6 +46,7 @@ void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_fra
         if (f.frame < warmup_frames || f.shadow_casters < 0) continue;
         ++passes;
         casters += static_cast<double>(f.shadow_casters);
+        queries += static_cast<double>(std::max<int64_t>(f.shadow_queries, 0));
         cpu += f.shadow_cpu_ms;
         if (f.shadow_gpu_ms >= 0) {
             ++gpu_passes;
@@ -64,6 +65,7 @@ void summarizeShadows(const std::vector<FrameStats>& frames, uint32_t warmup_fra
     if (gpu_shadings > 0) s.shading_gpu_ms_mean = shading_gpu / gpu_shadings;
     if (passes > 0) {
         s.shadow_casters_mean = casters / passes;
+        s.shadow_queries_mean = queries / passes;
         s.shadow_cpu_ms_mean = cpu / passes;
     }
     if (gpu_passes > 0) s.shadow_gpu_ms_mean = gpu / gpu_passes;
@@ -264,6 +266,7 @@ RunSummary aggregateRepetitions(const std::vector<RunSummary>& reps) {
             median([p](const RunSummary& r) { return r.phase_gpu_ms_mean[p]; });
     }
     out.shadow_casters_mean = median([](const RunSummary& r) { return r.shadow_casters_mean; });
+    out.shadow_queries_mean = median([](const RunSummary& r) { return r.shadow_queries_mean; });
     out.shadow_cpu_ms_mean = median([](const RunSummary& r) { return r.shadow_cpu_ms_mean; });
     out.shadow_gpu_ms_mean = median([](const RunSummary& r) { return r.shadow_gpu_ms_mean; });
     out.shading_cpu_ms_mean = median([](const RunSummary& r) { return r.shading_cpu_ms_mean; });

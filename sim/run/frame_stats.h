@@ -45,6 +45,9 @@ struct FrameStats {
     // measured, as gpu_ms).
     int64_t shadow_casters = -1;
     int64_t shadow_triangles = -1;
+    // The light view's occlusion queries, when the configuration's culler culls it
+    // (--shadow-casters culler, culler+receivers); 0 in a shadow pass without, -1 without one.
+    int64_t shadow_queries = -1;
     double shadow_cpu_ms = -1.0;
     double shadow_gpu_ms = -1.0;
     // Receiver-masked caster culling's shading pass (the camera's objects drawn again with the
@@ -110,6 +113,7 @@ struct RunSummary {
     // Over the timed frames with a shadow pass (FrameStats::shadow_*); -1 when none had one, or
     // (GPU) none measured it.
     double shadow_casters_mean = -1, shadow_cpu_ms_mean = -1, shadow_gpu_ms_mean = -1;
+    double shadow_queries_mean = -1;  // the light view's occlusion queries (0: no culler there)
     double shading_cpu_ms_mean = -1, shading_gpu_ms_mean = -1;  // receiver-masked only
     // Over every frame with a shadow pass and error measured; -1 when there was none.
     int64_t shadow_error_pixels_total = -1, missed_casters_total = -1, shadow_tie_pixels_total = -1;

@@ -311,6 +311,7 @@ void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& cam
         const DeviceCounters& c = light_->device->counters();
         stats.shadow_casters = static_cast<int64_t>(c.objects_drawn);
         stats.shadow_triangles = static_cast<int64_t>(c.triangles_drawn);
+        stats.shadow_queries = static_cast<int64_t>(c.queries_issued);
     } else {
         cast_shadow_.assign(objects, 0);
         int64_t triangles = 0;
@@ -321,6 +322,7 @@ void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& cam
         }
         stats.shadow_casters = static_cast<int64_t>(shadow_casters_.size());
         stats.shadow_triangles = triangles;
+        stats.shadow_queries = 0;
     }
     if (shadow_gpu_timer_) shadow_gpu_timer_->end();
     stats.shadow_cpu_ms = nowMs() - start;

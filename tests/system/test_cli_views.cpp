@@ -193,6 +193,10 @@ TEST(CliViews, ShadowCastersCullerRunsEachCullerInTheLightsView) {
             EXPECT_GT(shadow["casters_per_frame"].get<double>(), 0.0);
             EXPECT_EQ(shadow["missed_casters_total"], 0);
             EXPECT_EQ(shadow["error_pixels_total"], 0);
+            // The light view's queries: chc's, none for vfc.
+            EXPECT_EQ(shadow["queries_per_frame"].get<double>() > 0.0,
+                      algorithm["configuration"] == "chc")
+                << algorithm.dump();
         }
     }
 }
