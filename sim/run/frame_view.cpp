@@ -50,29 +50,40 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
 
 namespace {
 
-// The eye 2 m before the box's near face, the near plane 1 m from the eye and the far one 1 m past
-// the box: the whole box strictly inside, its faces clear of both planes.
-constexpr double kLightStandOff = 2.0, kLightNear = 1.0;
+// A directional light's orthographic view of its box (docs/views.md): the eye 2 m before the box's
+// near face on its centre line, the near plane 1 m from the eye and the far one 1 m past the box,
+// the whole box strictly inside, its faces clear of both planes. World coordinates, double.
+struct LightEye {
+    glm::dvec3 eye;        // light space is measured from the world origin along right, up, forward
+    glm::dvec2 half;       // the box's half-extents across the light
+    double near_m, far_m;  // the planes' distances from the eye
+    glm::dmat3 rotation;   // world to view: x along right, y along up, looking down -z = forward
+};
+
+LightEye lightEyeOf(const LightBox& box) {
+    constexpr double kStandOff = 2.0, kNear = 1.0;
+    const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
+    return LightEye{
+        box.right * centre.x + box.up * centre.y + box.forward * (box.min.z - kStandOff),
+        0.5 * (glm::dvec2(box.max) - glm::dvec2(box.min)), kNear,
+        box.max.z - box.min.z + kStandOff + kNear,
+        glm::transpose(glm::dmat3(box.right, box.up, -box.forward))};
+}
 
 }  // namespace
 
 CullView makeLightCullView(const LightBox& box, const glm::dvec3& culling_origin,
                            uint32_t map_size) {
-    const glm::dvec3 half = 0.5 * (box.max - box.min);
-    const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
-    // The render view's eye, in the culling frame (differences in double: 10^6 m out too).
-    const glm::dvec3 eye = box.right * centre.x + box.up * centre.y +
-                           box.forward * (box.min.z - kLightStandOff) - culling_origin;
-    // x along right, y along up, looking down -z = forward: makeLightRenderView's rotation.
-    const glm::dmat4 view =
-        glm::dmat4(glm::transpose(glm::dmat3(box.right, box.up, -box.forward))) *
-        glm::translate(glm::dmat4(1.0), -eye);
-    const double far_plane = box.max.z - box.min.z + kLightStandOff + kLightNear;
-    const glm::dmat4 view_projection =
-        glm::ortho(-half.x, half.x, -half.y, half.y, kLightNear, far_plane) * view;
+    const LightEye light = lightEyeOf(box);
+    // The render view's eye in the culling frame (the difference in double: 10^6 m out too).
+    const glm::dvec3 eye = light.eye - culling_origin;
+    const glm::dmat4 view_projection = glm::ortho(-light.half.x, light.half.x, -light.half.y,
+                                                  light.half.y, light.near_m, light.far_m) *
+                                       glm::dmat4(light.rotation) *
+                                       glm::translate(glm::dmat4(1.0), -eye);
     CullView cull;
     cull.kind = ViewKind::Light;
-    const double behind = kLightEyeDistance * std::max(2.0 * glm::length(half), 1.0);
+    const double behind = kLightEyeDistance * std::max(glm::length(box.max - box.min), 1.0);
     cull.eye = glm::vec3(eye - box.forward * behind);
     cull.frustum = frustumFromViewProjection(view_projection);
     cull.near_radius = 0.0f;
@@ -84,19 +95,15 @@ CullView makeLightCullView(const LightBox& box, const glm::dvec3& culling_origin
 
 ViewSetup makeLightRenderView(const LightBox& box, const glm::dvec3& culling_origin,
                               DepthConvention depth) {
-    constexpr double kStandOff = kLightStandOff, kNear = kLightNear;
-    const glm::dvec2 centre = 0.5 * (glm::dvec2(box.min) + glm::dvec2(box.max));
-    const glm::dvec2 half = 0.5 * (glm::dvec2(box.max) - glm::dvec2(box.min));
+    const LightEye light = lightEyeOf(box);
     ViewSetup view;
-    // Light space is measured from the world origin along right, up and forward.
-    view.eye = box.right * centre.x + box.up * centre.y + box.forward * (box.min.z - kStandOff);
+    view.eye = light.eye;
     view.box_origin = culling_origin;
-    // World to view: x along right, y along up, the view looking down -z = forward.
-    view.view_rotation = glm::mat4(glm::transpose(glm::dmat3(box.right, box.up, -box.forward)));
-    view.projection = orthographicFor(
-        depth, static_cast<float>(-half.x), static_cast<float>(half.x), static_cast<float>(-half.y),
-        static_cast<float>(half.y), static_cast<float>(kNear),
-        static_cast<float>(box.max.z - box.min.z + kStandOff + kNear));
+    view.view_rotation = glm::mat4(glm::dmat4(light.rotation));
+    view.projection =
+        orthographicFor(depth, static_cast<float>(-light.half.x), static_cast<float>(light.half.x),
+                        static_cast<float>(-light.half.y), static_cast<float>(light.half.y),
+                        static_cast<float>(light.near_m), static_cast<float>(light.far_m));
     return view;
 }
 

@@ -49,13 +49,13 @@ const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colo
     for (size_t i = 0; i < frame_.ids.size(); ++i) {
         if (frame_.ids[i] != 0 && !frame_.stray[i]) frame_.visible[frame_.ids[i] - 1] = 1;
     }
-    frame_.shadow_seen.assign(frame_.has_shadow ? objects : 0, 0);
+    frame_.shadow_pixels.assign(frame_.has_shadow ? objects : 0, 0);
     if (frame_.has_shadow) {
         for (size_t i = 0; i < frame_.ids.size(); ++i) {
             const uint32_t texel = frame_.shadow_texels[i];
             if (frame_.ids[i] == 0 || frame_.stray[i] || texel == 0) continue;
             const uint32_t caster = frame_.shadow_casters[texel - 1];
-            if (caster != 0 && caster <= objects) frame_.shadow_seen[caster - 1] = 1;
+            if (caster != 0 && caster <= objects) ++frame_.shadow_pixels[caster - 1];
         }
     }
     serial_ = world.frameSerial();

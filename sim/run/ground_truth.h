@@ -28,9 +28,9 @@ struct GroundTruthFrame {
     bool has_shadow = false;
     std::vector<uint32_t> shadow_texels;   // width * height, GlRenderer::readShadowTexels
     std::vector<uint32_t> shadow_casters;  // per map texel, the nearest caster's ID (0: none)
-    // Per object: its shadow falls on a visible pixel (one that is not stray), as the caster
-    // nearest the light in the texel that shadows it.
-    std::vector<uint8_t> shadow_seen;
+    // Per object: the visible pixels (not stray) its shadow falls on, as the caster nearest the
+    // light in the texel that shadows each; a caster whose shadow shows has at least one.
+    std::vector<uint32_t> shadow_pixels;
 };
 
 class GroundTruth {

@@ -45,10 +45,11 @@ ShadowPixelCounts compareShadowTerms(std::span<const uint32_t> truth_ids,
     return counts;
 }
 
-int64_t countMissedCasters(std::span<const uint8_t> shadow_seen, std::span<const uint8_t> drawn) {
+int64_t countMissedCasters(std::span<const uint32_t> shadow_pixels,
+                           std::span<const uint8_t> drawn) {
     int64_t missed = 0;
-    for (size_t o = 0; o < shadow_seen.size(); ++o) {
-        missed += shadow_seen[o] && !(o < drawn.size() && drawn[o]);
+    for (size_t o = 0; o < shadow_pixels.size(); ++o) {
+        missed += shadow_pixels[o] > 0 && !(o < drawn.size() && drawn[o]);
     }
     return missed;
 }

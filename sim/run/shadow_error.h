@@ -33,8 +33,8 @@ ShadowPixelCounts compareShadowTerms(std::span<const uint32_t> truth_ids,
                                      std::span<const float> truth_map = {},
                                      std::span<const float> culled_map = {});
 
-// Casters whose shadow ground truth shows on a visible pixel (GroundTruthFrame::shadow_seen) that
-// the culled shadow pass did not draw (`drawn`, per object; shorter: the rest not drawn).
-int64_t countMissedCasters(std::span<const uint8_t> shadow_seen, std::span<const uint8_t> drawn);
+// Casters whose shadow ground truth shows on a visible pixel (GroundTruthFrame::shadow_pixels > 0)
+// that the culled shadow pass did not draw (`drawn`, per object; shorter: the rest not drawn).
+int64_t countMissedCasters(std::span<const uint32_t> shadow_pixels, std::span<const uint8_t> drawn);
 
 }  // namespace occsim

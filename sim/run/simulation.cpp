@@ -389,8 +389,10 @@ void Simulation::measureShadowError(const GroundTruthFrame& truth, FrameStats& s
     }
     stats.shadow_error_pixels = pixels.error;
     stats.shadow_tie_pixels = pixels.tie;
-    stats.missed_casters = countMissedCasters(truth.shadow_seen, cast_shadow_);
-    stats.shadow_seen_casters = std::count(truth.shadow_seen.begin(), truth.shadow_seen.end(), 1);
+    stats.missed_casters = countMissedCasters(truth.shadow_pixels, cast_shadow_);
+    stats.shadow_seen_casters =
+        std::count_if(truth.shadow_pixels.begin(), truth.shadow_pixels.end(),
+                      [](uint32_t shadowed) { return shadowed > 0; });
 }
 
 void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
@@ -496,27 +498,20 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
 
 // The light view's decisions, as recordObjects() the camera's: each caster's reason from the light
 // culler's log, whether it was drawn into the map, and the visible pixels ground truth shadows
-// through it (a pixel's shadowing texel, then that texel's caster).
+// through it (GroundTruthFrame::shadow_pixels).
 void Simulation::recordLightObjects(const GroundTruthFrame& truth) {
     const uint32_t objects = world_->scene().objectCount();
     const BspTree& tree = world_->tree();
     resolveDecisions(tree, light_->decisions.records(), light_reasons_, resolve_stack_,
                      &light_subjects_);
-    shadow_pixels_.assign(objects, 0);
-    for (size_t i = 0; i < truth.ids.size(); ++i) {
-        const uint32_t texel = truth.shadow_texels[i];
-        if (truth.ids[i] == 0 || texel == 0) continue;
-        const uint32_t caster = truth.shadow_casters[texel - 1];
-        if (caster != 0 && caster <= objects) ++shadow_pixels_[caster - 1];
-    }
     light_object_frames_.resize(objects);
     for (uint32_t o = 0; o < objects; ++o) {
         ObjectFrame& f = light_object_frames_[o];
         f.why = o < light_reasons_.size() ? light_reasons_[o] : Decision{};
         f.drawn = cast_shadow_[o] != 0;
         f.pixels = ObjectPixels{};
-        f.pixels.truth = shadow_pixels_[o];
-        f.pixels.error = f.drawn ? 0 : shadow_pixels_[o];
+        f.pixels.truth = truth.shadow_pixels[o];
+        f.pixels.error = f.drawn ? 0 : truth.shadow_pixels[o];
         setDecidingNode(tree, o < light_subjects_.size() ? light_subjects_[o] : QueryTag{}, f);
     }
 }

@@ -180,8 +180,8 @@ class Simulation {
     const std::vector<ObjectFrame>& objectFrames() const { return object_frames_; }
     // The same for the light's view, when the culler culls it (cullsLightView) and the frame had a
     // shadow pass; empty otherwise. `pixels.truth` is the visible pixels ground truth shadows
-    // through the caster, `pixels.error` those of them it left lit by not being drawn (all of
-    // them when it was not drawn, else none), `pixels.tie` 0.
+    // through the caster (GroundTruthFrame::shadow_pixels), `pixels.error` those of them it left
+    // lit by not being drawn (all of them when it was not drawn, else none), `pixels.tie` 0.
     const std::vector<ObjectFrame>& lightObjectFrames() const { return light_object_frames_; }
     // The scene's light whose view lightObjectFrames() are of.
     uint32_t recordedLight() const;
@@ -269,7 +269,6 @@ class Simulation {
     // record_objects with a culled light view: the same for it.
     std::vector<Decision> light_reasons_;
     std::vector<QueryTag> light_subjects_;
-    std::vector<uint32_t> shadow_pixels_;
     std::vector<ObjectFrame> light_object_frames_;
 };
 

@@ -69,7 +69,8 @@ TEST(ShadowError, ACasterOneDepthStepFromGroundTruthsIsATie) {
 }
 
 TEST(ShadowError, ACasterIsMissedWhenItsShadowIsSeenAndItWasNotDrawn) {
-    const std::vector<uint8_t> seen = {1, 0, 1, 1}, drawn = {1, 1, 0};
+    const std::vector<uint32_t> seen = {7, 0, 1, 30};  // shadow pixels per caster
+    const std::vector<uint8_t> drawn = {1, 1, 0};
     EXPECT_EQ(countMissedCasters(seen, drawn), 2);  // object 2 not drawn, object 3 past `drawn`
     EXPECT_EQ(countMissedCasters(seen, std::vector<uint8_t>{1, 0, 1, 1}), 0);
 }
@@ -274,10 +275,10 @@ TEST_P(PlantedShadowError, ACasterLeftOutOfTheShadowPassIsCounted) {
     renderer.setShadow(nullptr);
     EXPECT_EQ(ids, truth_ids);
     EXPECT_GE(compareShadowTerms(truth_ids, truth_texels, ids, texels).error, 1);
-    EXPECT_EQ(countMissedCasters(frame.shadow_seen, drawn), 1);
+    EXPECT_EQ(countMissedCasters(frame.shadow_pixels, drawn), 1);
     // With it drawn, the same frame has none.
     drawn[left_out] = 1;
-    EXPECT_EQ(countMissedCasters(frame.shadow_seen, drawn), 0);
+    EXPECT_EQ(countMissedCasters(frame.shadow_pixels, drawn), 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Depth, PlantedShadowError, bothDepthConventions(), depthConventionName);
