@@ -449,22 +449,54 @@ void GlRenderer::redrawObject(uint32_t object) {
     drawMesh(object);
 }
 
+template <typename Draw>
+void GlRenderer::forEachEye(Draw draw) {
+    if (view_.eye_separation_m == 0.0) {
+        draw();
+        return;
+    }
+    // Each eye sees the scene from half the separation to its side: a point's position relative
+    // to the left eye is its position relative to the midpoint plus half the separation along x.
+    // The shift is applied after the model-view matrices, in view space, where values are small.
+    const int projection_loc =
+        state_ == State::Query ? query_projection_loc_ : draw_projection_loc_;
+    // The left eye in the upper half (read back second: rows come bottom-up), the right in the
+    // lower, so that each eye's pixels are one run of a read-back (stereoEyeFirstRow).
+    const auto eye_height = static_cast<GLsizei>(height_ / 2);
+    const auto half = static_cast<float>(0.5 * view_.eye_separation_m);
+    for (int eye = 0; eye < 2; ++eye) {
+        if ((eye == 0 && eyes_ == StereoEyes::Right) || (eye == 1 && eyes_ == StereoEyes::Left))
+            continue;
+        glViewport(0, eye == 0 ? eye_height : 0, static_cast<GLsizei>(width_), eye_height);
+        const glm::mat4 projection =
+            view_.projection *
+            glm::translate(glm::mat4(1.0f), glm::vec3(eye == 0 ? half : -half, 0.0f, 0.0f));
+        glUniformMatrix4fv(projection_loc, 1, GL_FALSE, &projection[0][0]);
+        draw();
+    }
+}
+
 void GlRenderer::drawMesh(uint32_t object) {
     // The object's index is the base instance: it selects its matrix and ID.
     const MeshRange& mesh = meshes_[object_mesh_[object]];
-    glDrawElementsInstancedBaseVertexBaseInstance(
-        GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
-        reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex, object);
+    forEachEye([&] {
+        glDrawElementsInstancedBaseVertexBaseInstance(
+            GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(size_t{mesh.first_index} * 4), 1, mesh.base_vertex,
+            object);
+    });
 }
 
 void GlRenderer::drawIndirect(uint32_t command_buffer, uint32_t count, uint32_t first) {
     if (count == 0) return;
     useState(State::Draw);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_buffer);
-    glMultiDrawElementsIndirect(
-        GL_TRIANGLES, GL_UNSIGNED_INT,
-        reinterpret_cast<const void*>(uintptr_t{first} * sizeof(DrawCommand)),
-        static_cast<GLsizei>(count), 0);
+    forEachEye([&] {
+        glMultiDrawElementsIndirect(
+            GL_TRIANGLES, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(uintptr_t{first} * sizeof(DrawCommand)),
+            static_cast<GLsizei>(count), 0);
+    });
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
@@ -481,7 +513,7 @@ void GlRenderer::drawQueryBox(const Aabb& box) {
     glm::mat4 model_view = view_.view_rotation * glm::translate(glm::mat4(1.0f), drawn.offset) *
                            glm::scale(glm::mat4(1.0f), drawn.size);
     glUniformMatrix4fv(query_model_view_loc_, 1, GL_FALSE, &model_view[0][0]);
-    glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr);
+    forEachEye([] { glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_BYTE, nullptr); });
 }
 
 GlRenderer::EyeRelativeBox GlRenderer::queryBoxAsDrawn(const Aabb& box) const {

@@ -2,7 +2,8 @@
 // 0 = background) and float depth, and with a light's shadow term (setShadow) a fourth buffer of
 // shadow-map texels (R32UI); all meshes in one vertex and one index buffer, every object's
 // model-view matrix in one per-instance buffer; one draw call per object, or one multi-draw of
-// GPU-written commands (drawIndirect). Needs a current GlContext.
+// GPU-written commands (drawIndirect). A stereo view (ViewSetup::eye_separation_m) draws each
+// object once per eye, the two eyes one above the other. Needs a current GlContext.
 //
 // Conventions: right-handed world, y up, metres. Rendering is camera-relative (object matrices
 // are computed in double relative to the eye, then cast to float) with reverse-Z (clip control
@@ -30,7 +31,21 @@ struct ViewSetup {
     // Eye to a near-plane corner (nearPlaneCornerDistance): the query boxes within it of the eye,
     // as drawn, are answered visible (queryBoxNearEye). 0: no guard (pictures, tests).
     float near_radius = 0.0f;
+    // Stereo (docs/views.md): two eyes on the view's x axis this far apart, `eye` midway between
+    // them, their axes parallel. Draws then go to each eye's half of a framebuffer twice an eye's
+    // height (stereoEyeFirstRow), through `projection` shifted by half the separation
+    // (GlRenderer::setEyes says which eyes); the model-view matrices stay relative to `eye`.
+    // 0: one eye, the whole framebuffer.
+    double eye_separation_m = 0.0;
 };
+
+// Where each eye of a stereo view lies in a framebuffer of `height` rows (twice an eye's): the
+// first row of its run in a read-back (row 0 at the bottom). The left eye is the upper half, so a
+// picture of the framebuffer shows it on top.
+inline uint32_t stereoEyeFirstRow(int eye, uint32_t height) { return eye == 0 ? height / 2 : 0; }
+
+// Which eyes of a stereo view the draws that follow go to (GlRenderer::setEyes).
+enum class StereoEyes : uint8_t { Both, Left, Right };
 
 // Perspective projection with reverse-Z for clip control GL_ZERO_TO_ONE: near maps to depth 1,
 // far to depth 0.
@@ -94,6 +109,11 @@ class GlRenderer {
     // Per frame: the view and every object's camera-relative model-view matrix (copied to the
     // GPU here).
     void setView(const ViewSetup& view, std::span<const glm::mat4> object_model_view);
+
+    // Stereo views only: the eyes the draws and query boxes that follow go to (both: each draw
+    // once per eye, and a query counts the samples of both). Both until changed.
+    void setEyes(StereoEyes eyes) { eyes_ = eyes; }
+    StereoEyes eyes() const { return eyes_; }
 
     void beginFrame();  // binds the framebuffer, clears colour, IDs, depth (and shadow texels)
     // Binds the framebuffer and its viewport again without clearing, to go on with the frame
@@ -165,6 +185,10 @@ class GlRenderer {
     enum class State : uint8_t { None, Draw, Query, Redraw };
     void useState(State wanted);
     void sendShadowUniforms();
+    // Runs `draw` once per eye the draws go to, with that eye's viewport and projection (stereo),
+    // or once as it is (one eye).
+    template <typename Draw>
+    void forEachEye(Draw draw);
     void drawMesh(uint32_t object);  // one draw of the object's mesh in the bound state
     // An R32UI colour attachment (GL_COLOR_ATTACHMENTn), width * height values.
     void readUintAttachment(uint32_t attachment, std::vector<uint32_t>& out,
@@ -183,6 +207,7 @@ class GlRenderer {
     std::array<int, 8> shadow_locs_{};
     ShadowLookup shadow_;
     bool shadow_on_ = false;
+    StereoEyes eyes_ = StereoEyes::Both;
 
     struct MeshRange {
         uint32_t first_index;

@@ -55,10 +55,12 @@ class RenderTest : public ::testing::TestWithParam<Backend> {
                   {{11.5f, -0.5f, -20.5f}, {12.5f, 0.5f, -19.5f}}};
         setEye({0, 0, 0});
     }
-    void setEye(glm::dvec3 eye, float near_radius = 0.0f) {
+    // A stereo view (eye_separation > 0) draws into a framebuffer twice kH high, each eye kH.
+    void setEye(glm::dvec3 eye, float near_radius = 0.0f, double eye_separation = 0.0) {
         ViewSetup view;
         view.eye = eye;
         view.near_radius = near_radius;
+        view.eye_separation_m = eye_separation;
         view.view_rotation = glm::mat4(1.0f);  // looking down -z
         view.projection = reverseZPerspective(glm::radians(90.0f), float(kW) / kH, 0.1f, 1000.0f);
         model_view_.clear();

@@ -326,5 +326,21 @@ TEST_P(RenderTest, AConditionOnABoxAroundTheEyeDrawsUnconditionally) {
     EXPECT_TRUE(device.drew(1)) << "its samples mean nothing: drawn, as takeAnswer says visible";
 }
 
+// A stereo query counts the samples of the eyes the draws go to: the cube behind the wall shows
+// past its edge to the right eye (x = 3) only, not to the left one (x = 0).
+TEST_P(RenderTest, AStereoQueryIsVisibleWhenEitherEyeSeesTheBox) {
+    renderer_->resize(kW, 2 * kH);
+    setEye({1.5, 0, 0}, 0.0f, 3.0);
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    for (const StereoEyes eyes : {StereoEyes::Left, StereoEyes::Right, StereoEyes::Both}) {
+        renderer_->setEyes(eyes);
+        renderer_->beginFrame();
+        device.drawObject(0);
+        EXPECT_EQ(device.takeAnswer(device.issueQuery(boxes_[1])).visible,
+                  eyes != StereoEyes::Left);
+    }
+    renderer_->setEyes(StereoEyes::Both);
+}
+
 }  // namespace
 }  // namespace occsim

@@ -131,6 +131,60 @@ TEST(RenderDepthFormats, ConventionalDepthRanksAreTheFixedPointStepsNearerLarger
     ASSERT_LT(near_min, UINT32_MAX) << "the near cube shows";
     EXPECT_GT(near_min, far_max);
 }
+// Stereo: the midpoint 1.5 m to the right, eyes 3 m apart, at x = 0 and x = 3. Each half of the
+// double-height framebuffer holds what that eye alone sees (to a few edge pixels: the two renders
+// round their matrices differently); the cube behind the wall shows to the right eye only.
+TEST_P(RenderTest, AStereoViewDrawsEachEyeIntoItsHalfAsThatEyeAlone) {
+    auto drawAll = [&] {
+        renderer_->beginFrame();
+        for (uint32_t o = 0; o < 3; ++o) renderer_->drawObject(o);
+        std::vector<uint32_t> ids;
+        renderer_->readObjectIds(ids);
+        return ids;
+    };
+    renderer_->resize(kW, 2 * kH);
+    setEye({1.5, 0, 0}, 0.0f, 3.0);
+    const std::vector<uint32_t> pair = drawAll();
+    renderer_->resize(kW, kH);
+    for (int eye = 0; eye < 2; ++eye) {
+        setEye({eye == 0 ? 0.0 : 3.0, 0, 0});
+        const std::vector<uint32_t> alone = drawAll();
+        size_t differ = 0, hidden_cube = 0;
+        for (uint32_t y = 0; y < kH; ++y) {
+            for (uint32_t x = 0; x < kW; ++x) {
+                const uint32_t id = pair[size_t{stereoEyeFirstRow(eye, 2 * kH) + y} * kW + x];
+                differ += id != alone[size_t{y} * kW + x];
+                hidden_cube += id == 2u;
+            }
+        }
+        EXPECT_LE(differ, size_t{kW} * kH / 200) << "eye " << eye;
+        if (eye == 0) {
+            EXPECT_EQ(hidden_cube, 0u) << "the left eye looks at the wall's middle";
+        } else {
+            EXPECT_GT(hidden_cube, 0u) << "the right eye sees past the wall's edge";
+        }
+    }
+}
+
+// setEyes: draws go to the chosen eye's half alone.
+TEST_P(RenderTest, AStereoViewDrawsOnlyIntoTheEyesItIsGiven) {
+    renderer_->resize(kW, 2 * kH);
+    setEye({1.5, 0, 0}, 0.0f, 3.0);
+    for (const StereoEyes eyes : {StereoEyes::Left, StereoEyes::Right, StereoEyes::Both}) {
+        renderer_->setEyes(eyes);
+        renderer_->beginFrame();
+        renderer_->drawObject(0);
+        std::vector<uint32_t> ids;
+        renderer_->readObjectIds(ids);
+        const size_t left_first = size_t{stereoEyeFirstRow(0, 2 * kH)} * kW;
+        size_t left = 0, right = 0;
+        for (size_t i = 0; i < ids.size(); ++i) (i >= left_first ? left : right) += ids[i] != 0;
+        EXPECT_EQ(left > 0, eyes != StereoEyes::Right);
+        EXPECT_EQ(right > 0, eyes != StereoEyes::Left);
+    }
+    renderer_->setEyes(StereoEyes::Both);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::ValuesIn(testing::testedBackends()),
                          testing::backendTestName);
 
