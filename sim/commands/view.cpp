@@ -42,7 +42,15 @@ CLI::App* addView(CLI::App& app, ViewFlags& flags) {
 int viewCommand(const ViewFlags& flags) {
     loadPlugins(flags.plugins);
     occsim::ViewOptions options;
-    const occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
+    occsim::Scenario scenario = occsim::parseScenarioFile(flags.scenario);
+    if (scenario.stereo) {
+        // The window shows one view: the camera's, midway between the eyes.
+        std::fprintf(stderr,
+                     "note: %s: the viewer shows the camera midway between the eyes; stereo is "
+                     "rendered by run, bench and regress (docs/views.md)\n",
+                     flags.scenario.c_str());
+        scenario.stereo.reset();
+    }
     if (!flags.algorithm.empty())
         options.algorithm = algorithmNamed("--algo", flags.algorithm).name;
     options.error = flags.error;

@@ -113,7 +113,7 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
            "phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,shading_cpu_ms,shading_gpu_ms,"
            "shadow_casters,shadow_triangles,"
            "shadow_error_pixels,missed_casters,shadow_seen_casters,shadow_tie_pixels,shadow_"
-           "queries\n";
+           "queries,left_error_pixels,right_error_pixels\n";
     for (const RunRecord& r : runs) {
         for (size_t rep = 0; rep <= r.later_repetitions.size(); ++rep) {
             const auto& frames = rep == 0 ? r.frames : r.later_repetitions[rep - 1];
@@ -145,7 +145,8 @@ std::string framesCsv(const std::vector<RunRecord>& runs) {
                 out << ',' << f.shadow_casters << ',' << f.shadow_triangles << ','
                     << f.shadow_error_pixels << ',' << f.missed_casters << ','
                     << f.shadow_seen_casters << ',' << f.shadow_tie_pixels << ','
-                    << f.shadow_queries << '\n';
+                    << f.shadow_queries << ',' << f.left_error_pixels << ',' << f.right_error_pixels
+                    << '\n';
             }
         }
     }
@@ -285,6 +286,13 @@ nlohmann::json scenarioJson(const RunMetadata& m) {
                         {"dt_s", m.dt_s},          {"seed", m.seed},
                         {"objects", m.objects},    {"triangles", m.triangles},
                         {"movers", m.movers}};
+    // Stereo: null without; the eyes' separation and how they were culled.
+    j["stereo"] = nullptr;
+    if (m.stereo) {
+        j["stereo"] = {
+            {"eye_separation_m", m.stereo->eye_separation_m},
+            {"culling", m.stereo->culling == StereoCulling::PerEye ? "per_eye" : "enclosing"}};
+    }
     if (!m.scenario_id.empty()) j["id"] = m.scenario_id;  // what merge and history file it under
     return j;
 }

@@ -70,6 +70,10 @@ struct FrameStats {
     // the full render), and their triangles: the work culling was there to save.
     int64_t overdrawn_objects = -1;
     int64_t overdrawn_triangles = -1;
+    // Stereo with error measured (-1 otherwise): error_pixels of each eye's half of the frame (the
+    // two add up to error_pixels).
+    int64_t left_error_pixels = -1;
+    int64_t right_error_pixels = -1;
     // Error of the shadow term, with a shadow pass and error measured (-1 otherwise): pixels
     // showing the same object as ground truth but lit where it is shadowed or the other way
     // round, and casters whose shadow ground truth shows on a visible pixel but the shadow pass

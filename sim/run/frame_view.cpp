@@ -17,11 +17,19 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
                          depth);
 }
 
+namespace {
+
+// Looking straight up or down: y cannot be the up vector, take z.
+glm::dvec3 cameraUp(const glm::dvec3& forward) {
+    return std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+}
+
+}  // namespace
+
 FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
                         uint32_t height, const glm::dvec3& culling_origin, DepthConvention depth) {
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
-    // Looking straight up or down: y cannot be the up vector, take z.
-    const glm::dvec3 up = std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 up = cameraUp(forward);
     const double aspect = static_cast<double>(width) / height;
     const double fov = glm::radians(camera.fov_y_deg);
 
@@ -46,6 +54,32 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
     view.cull.viewport_height = height;
     view.render.near_radius = view.cull.near_radius;
     return view;
+}
+
+StereoViews makeStereoViews(const CameraSpec& camera, const CameraPose& pose, double separation_m,
+                            uint32_t width, uint32_t height, const glm::dvec3& culling_origin,
+                            DepthConvention depth) {
+    const FrameView middle = makeFrameView(camera, pose, width, height, culling_origin, depth);
+    // The view's x axis in the world, as lookAt makes it (forward x up).
+    const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
+    const glm::dvec3 half =
+        0.5 * separation_m * glm::normalize(glm::cross(forward, cameraUp(forward)));
+    const CameraPose left_pose{pose.position - half, pose.target - half};
+    const CameraPose right_pose{pose.position + half, pose.target + half};
+    StereoViews views;
+    views.left = makeFrameView(camera, left_pose, width, height, culling_origin, depth).cull;
+    views.right = makeFrameView(camera, right_pose, width, height, culling_origin, depth).cull;
+    views.left.kind = ViewKind::LeftEye;
+    views.right.kind = ViewKind::RightEye;
+    const float grown = middle.cull.near_radius + static_cast<float>(0.5 * separation_m);
+    views.render = middle.render;
+    views.render.eye_separation_m = separation_m;
+    views.render.near_radius = grown;
+    views.enclosing = middle.cull;
+    views.enclosing.frustum.planes[0] = views.left.frustum.planes[0];
+    views.enclosing.frustum.planes[1] = views.right.frustum.planes[1];
+    views.enclosing.near_radius = grown;
+    return views;
 }
 
 namespace {

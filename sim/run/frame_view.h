@@ -30,6 +30,26 @@ FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32
                         uint32_t height, const glm::dvec3& culling_origin,
                         DepthConvention depth = DepthConvention::ReverseFloat);
 
+// A stereo frame's views (docs/views.md): two eyes `separation_m` apart on the camera's x axis,
+// the camera midway, their axes parallel, each eye `width` x `height` pixels (the renderer draws
+// them one above the other: GlRenderer, ViewSetup::eye_separation_m).
+struct StereoViews {
+    // The camera's render view with the separation set and its near radius grown by half the
+    // separation: a box within an eye's near radius of that eye is within it of the midpoint, so
+    // the renderer's near-eye guard holds for either eye.
+    ViewSetup render;
+    // Each eye's own culling view, for a culling pass per eye (ViewKind::LeftEye, RightEye).
+    CullView left, right;
+    // One culling view around both (ViewKind::Camera): the left eye's left plane, the right eye's
+    // right plane and the camera's other four, which the eyes share (an eye's top, bottom, near and
+    // far planes contain the x axis it is shifted along). The camera's eye and view-projection, the
+    // near radius grown as the render view's.
+    CullView enclosing;
+};
+StereoViews makeStereoViews(const CameraSpec& camera, const CameraPose& pose, double separation_m,
+                            uint32_t width, uint32_t height, const glm::dvec3& culling_origin,
+                            DepthConvention depth = DepthConvention::ReverseFloat);
+
 // A directional light's view for its shadow pass (docs/views.md), in world coordinates: the eye
 // 2 m before the box's near face on its centre line, looking down the light, and an orthographic
 // projection of the box (near plane 1 m from the eye, far 1 m past the box) in `depth`'s

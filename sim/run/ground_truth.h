@@ -22,7 +22,10 @@ struct GroundTruthFrame {
     std::vector<uint8_t> stray;    // width * height, 1: a stray fragment (stray_fragments.h)
     int64_t stray_fragments = 0;   // pixels marked in `stray`
     std::vector<uint8_t> visible;  // per object: at least one pixel that is not stray
-    std::vector<uint8_t> rgba;     // colour, only when asked for
+    // Stereo (SharedWorld::stereoViews): per object, bit 0 set when the left eye sees it (a pixel
+    // that is not stray in its half), bit 1 the right eye; empty without stereo.
+    std::vector<uint8_t> eye_visible;
+    std::vector<uint8_t> rgba;  // colour, only when asked for
     // With a shadow pass this frame (SharedWorld::shadowView, docs/views.md): every object drawn
     // into the light's shadow map, the camera's pass shaded from it.
     bool has_shadow = false;

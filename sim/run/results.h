@@ -14,6 +14,7 @@
 #include "sim/run/simulation.h"
 #include "sim/run/worst_windows.h"
 #include "sim/scenario/segments.h"
+#include "sim/scenario/view_specs.h"
 
 namespace occsim {
 
@@ -90,7 +91,9 @@ struct RunMetadata {
     std::string gl_vendor, gl_renderer, gl_version, driver;
     bool gpu_time_meaningful = false;  // false on software rasterisers (llvmpipe)
     std::string backend_fallback;      // why --backend auto took OSMesa; empty when it did not
-    uint32_t width = 0, height = 0;
+    uint32_t width = 0, height = 0;    // a view's (each eye's with stereo)
+    // The scenario's stereo (docs/views.md), when it has one: two eyes a frame.
+    std::optional<StereoSpec> stereo;
     std::string depth_format;  // the depth buffer both renders share: what a tie's step is
     // The run's segments (BenchOptions::segments), frames as it ran them.
     std::vector<Segment> segments;

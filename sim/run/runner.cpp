@@ -86,7 +86,14 @@ void noteViews(const Scenario& scenario, const Scene& scene, const BenchOptions&
             "spot lights and further shadow-casting lights are read and checked but "
             "not rendered yet");
     }
-    if (scenario.stereo) parts.push_back("stereo is read and checked but not rendered yet");
+    if (scenario.stereo) {
+        const bool per_eye = scenario.stereo->culling == StereoCulling::PerEye;
+        parts.push_back("stereo renders two eyes of " + std::to_string(scenario.width) + "x" +
+                        std::to_string(scenario.height) + " each, one above the other, " +
+                        (per_eye
+                             ? "each culled by an instance of the configuration's culler of its own"
+                             : "culled by one pass over a frustum enclosing both"));
+    }
     if (parts.empty()) return;
     std::string line = scenario.file.string() + ": ";
     for (size_t i = 0; i < parts.size(); ++i) line += (i > 0 ? "; " : "") + parts[i];
@@ -128,6 +135,7 @@ RunMetadata metadataOf(const Scenario& scenario, const Scene& scene, const Bench
     m.width = scenario.width;
     m.height = scenario.height;
     m.segments = options.segments;
+    m.stereo = scenario.stereo;
     m.depth_format = depthConventionOf(scenario) == DepthConvention::ReverseFloat
                          ? "reverse-Z, 32-bit float"
                          : "conventional, 24-bit fixed point";
@@ -218,6 +226,12 @@ void makeSimulations(const Stage& stage, SharedWorld& world, GroundTruth& truth,
         if (cullsLightView(options.shadow_casters)) {
             // The light's view culled by an instance of its own (its state apart).
             sims.all.back()->cullLightViewWith(
+                options.make_culler ? options.make_culler(*config.algorithm, config.culler)
+                                    : makeConfiguredCuller(config));
+        }
+        if (world.cullsEachEye()) {
+            // Stereo per eye: the right eye culled by an instance of its own.
+            sims.all.back()->cullRightEyeWith(
                 options.make_culler ? options.make_culler(*config.algorithm, config.culler)
                                     : makeConfiguredCuller(config));
         }
@@ -448,12 +462,19 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
             : options.configs;
     const uint32_t repetitions = std::max(1u, options.repetitions);
 
+    // Before the scene is built: what the views cannot take yet is one line, and nothing else.
+    for (const RunConfig& config : configs) {
+        requireViewSupport(*config.algorithm, scenario, options.shadow_casters,
+                           options.record_objects && options.measure_error);
+    }
     const Scene scene = buildScene(scenario);
     printWarnings(scene, options.warnings_shown);
     noteViews(scenario, scene, options);
     auto context = createHeadlessContext(options.backend, scenario.width, scenario.height);
     checkShadowMapsFit(scenario, context->info().max_texture_size);
-    GlRenderer renderer(scenario.width, scenario.height, depthConventionOf(scenario));
+    // Stereo: the two eyes one above the other (GlRenderer, docs/views.md).
+    GlRenderer renderer(scenario.width, scenario.stereo ? 2 * scenario.height : scenario.height,
+                        depthConventionOf(scenario));
     uploadScene(scene, renderer);
 
     const std::optional<CostModelChoice> costs =

@@ -79,8 +79,21 @@ SharedWorld::SharedWorld(const Scene& scene, const Scenario& scenario)
 void SharedWorld::computeShadowView(const CameraPose& pose, double aspect, DepthConvention depth) {
     ShadowView& shadow = *shadow_;
     const CameraSpec& camera = scenario_.camera;
-    const auto corners = viewFrustumCorners(pose.position, pose.target, camera.fov_y_deg, aspect,
-                                            camera.near_m, camera.far_m);
+    auto corners = viewFrustumCorners(pose.position, pose.target, camera.fov_y_deg, aspect,
+                                      camera.near_m, camera.far_m);
+    if (scenario_.stereo) {
+        // Both eyes' frusta (docs/views.md): the left eye's left corners and the right eye's
+        // right ones hold both, the eyes being shifted along the camera's right.
+        const glm::dvec3 half =
+            0.5 * scenario_.stereo->eye_separation_m * glm::normalize(corners[1] - corners[0]);
+        const auto left = viewFrustumCorners(pose.position - half, pose.target - half,
+                                             camera.fov_y_deg, aspect, camera.near_m, camera.far_m);
+        const auto right =
+            viewFrustumCorners(pose.position + half, pose.target + half, camera.fov_y_deg, aspect,
+                               camera.near_m, camera.far_m);
+        for (const int i : {0, 3, 4, 7}) corners[i] = left[i];
+        for (const int i : {1, 2, 5, 6}) corners[i] = right[i];
+    }
     // The scene's bounds this frame: the tree's root bounds over every object's box, moved ones
     // included (refit in advance()), in the world.
     const Aabb& root = tree_.bounds(0);
@@ -244,6 +257,12 @@ void SharedWorld::advance() {
     const CameraPose pose =
         live_.camera ? *live_.camera : sampleCameraPath(scenario_.camera, since_start_s);
     view_ = makeFrameView(scenario_.camera, pose, width, height, scene_.culling_origin, depth);
+    if (scenario_.stereo) {
+        stereo_ = makeStereoViews(scenario_.camera, pose, scenario_.stereo->eye_separation_m, width,
+                                  height, scene_.culling_origin, depth);
+        view_.render = stereo_->render;
+        view_.cull = cullsEachEye() ? stereo_->left : stereo_->enclosing;
+    }
     computeModelViews();
     if (shadow_) computeShadowView(pose, static_cast<double>(width) / height, depth);
     cull_frame_ = CullFrame{};

@@ -80,7 +80,16 @@ class SharedWorld {
     const FrameStats& frameStats() const { return stats_; }
     // The culler's frame, without ground truth (a configuration that needs it adds it).
     const CullFrame& cullFrame() const { return cull_frame_; }
+    // The camera's view. With stereo (docs/views.md) its render view draws both eyes
+    // (StereoViews::render) and its culling view is the one the camera's culler culls: the
+    // frustum enclosing both eyes, or the left eye's when each eye is culled on its own.
     const FrameView& view() const { return view_; }
+    // The current frame's stereo views; nullptr for a scenario without stereo.
+    const StereoViews* stereoViews() const { return stereo_ ? &*stereo_ : nullptr; }
+    // Each eye culled on its own (StereoCulling::PerEye): the right eye needs a culler of its own.
+    bool cullsEachEye() const {
+        return scenario_.stereo && scenario_.stereo->culling == StereoCulling::PerEye;
+    }
     std::span<const glm::mat4> modelViews() const { return model_view_; }
     // The current frame's shadow view; nullptr for a scene without a shadow-casting directional
     // light (spot lights are not rendered yet).
@@ -132,6 +141,7 @@ class SharedWorld {
     FrameStats stats_;
     CullFrame cull_frame_;
     FrameView view_;
+    std::optional<StereoViews> stereo_;
     std::optional<ShadowView> shadow_;
     // Per-frame scratch, reused so the steady state allocates nothing.
     std::vector<glm::mat4> model_view_;

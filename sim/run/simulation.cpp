@@ -27,11 +27,11 @@ void setDecidingNode(const BspTree& tree, const QueryTag& subject, ObjectFrame& 
 
 }  // namespace
 
-// The light view's culler on a device of its own: its queries, drawn set and counters apart from
-// the camera's, wrapped by the approximation as the camera's device is.
-struct Simulation::LightViewCulling {
-    LightViewCulling(std::unique_ptr<Culler> c, GlRenderer& renderer, const LatencyMode& latency,
-                     const ApproximationOptions* approximation)
+// A view's culler on a device of its own (the light's, the right eye's): its queries, drawn set
+// and counters apart from the camera's, wrapped by the approximation as the camera's device is.
+struct Simulation::ViewCulling {
+    ViewCulling(std::unique_ptr<Culler> c, GlRenderer& renderer, const LatencyMode& latency,
+                const ApproximationOptions* approximation)
         : culler(std::move(c)),
           gl_device(renderer, latency),
           approximate(approximation ? std::make_unique<ApproximateDevice>(gl_device, *approximation)
@@ -89,26 +89,8 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       approximation_(options.approximation) {
     // Before any frame: a culler that needs what this device lacks is refused with one line.
     requireDeviceFeatures(algorithm_, device_->features());
-    if (options_.shadow_casters == ShadowCasterCulling::ReceiverMask &&
-        (algorithm_.device_needs & kGpuDrivenDraws) != 0) {
-        throw RegistryError(
-            "culler '" + algorithm_.name +
-            "' draws from the device (its drawn set is not on the CPU during the "
-            "frame): receiver-masked shadow culling does not take it yet; leave it out of "
-            "--algos");
-    }
-    if (cullsLightView(options_.shadow_casters)) {
-        const char* why = algorithm_.oracle         ? "it decides from the camera's ground truth"
-                          : algorithm_.needs_meshes ? "it rasterises the camera's view itself"
-                          : (algorithm_.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
-                              ? "its decisions are taken on the device against the camera's depth"
-                              : nullptr;
-        if (why != nullptr) {
-            throw RegistryError("culler '" + algorithm_.name +
-                                "' cannot cull a light's view yet (" + why +
-                                "): leave it out of --algos, or use --shadow-casters frustum");
-        }
-    }
+    requireViewSupport(algorithm_, world_->scenario(), options_.shadow_casters,
+                       options_.record_objects);
     if (options_.record_objects && !options_.measure_error) {
         throw std::logic_error("Simulation: record_objects needs measure_error");
     }
@@ -121,18 +103,77 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
     culler_->reset(world_->tree());
 }
 
+void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
+                        ShadowCasterCulling shadow_casters, bool record_objects) {
+    if (shadow_casters == ShadowCasterCulling::ReceiverMask &&
+        (algorithm.device_needs & kGpuDrivenDraws) != 0) {
+        throw RegistryError(
+            "culler '" + algorithm.name +
+            "' draws from the device (its drawn set is not on the CPU during the "
+            "frame): receiver-masked shadow culling does not take it yet; leave it out of "
+            "--algos");
+    }
+    if (cullsLightView(shadow_casters)) {
+        const char* why = algorithm.oracle         ? "it decides from the camera's ground truth"
+                          : algorithm.needs_meshes ? "it rasterises the camera's view itself"
+                          : (algorithm.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
+                              ? "its decisions are taken on the device against the camera's depth"
+                              : nullptr;
+        if (why != nullptr) {
+            throw RegistryError("culler '" + algorithm.name + "' cannot cull a light's view yet (" +
+                                why +
+                                "): leave it out of --algos, or use --shadow-casters frustum");
+        }
+    }
+    if (!scenario.stereo) return;
+    const bool per_eye = scenario.stereo->culling == StereoCulling::PerEye;
+    const char* why = algorithm.needs_meshes ? "it rasterises one view's depth itself"
+                      : (algorithm.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
+                          ? "its decisions are taken on the device against one view's depth"
+                      : algorithm.oracle && per_eye
+                          ? "it decides from ground truth of both eyes, not of one"
+                          : nullptr;
+    if (why != nullptr) {
+        throw RegistryError("culler '" + algorithm.name + "' cannot cull a stereo view yet (" +
+                            why + "): leave it out of --algos");
+    }
+    if (masksReceivers(shadow_casters)) {
+        throw RegistryError(
+            "--shadow-casters receivers and culler+receivers do not take a stereo scenario yet "
+            "(the receiver mask reads one eye's depth): use frustum or culler");
+    }
+    if (per_eye && record_objects) {
+        throw RegistryError(
+            "--record objects does not record a stereo scenario culled per eye yet (one "
+            "decision per object and frame): use \"culling\": \"enclosing\" to record it");
+    }
+}
+
+std::unique_ptr<Simulation::ViewCulling> Simulation::makeViewCulling(
+    std::unique_ptr<Culler> culler) {
+    const bool approximate = algorithm_.issues_queries && approximation_.active();
+    auto view = std::make_unique<ViewCulling>(std::move(culler), renderer_, options_.latency,
+                                              approximate ? &approximation_ : nullptr);
+    view->culler->reset(world_->tree());
+    return view;
+}
+
 void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
     if (!cullsLightView(options_.shadow_casters)) {
         throw std::logic_error("Simulation::cullLightViewWith: the shadow casters are not culled");
     }
-    const bool approximate = algorithm_.issues_queries && approximation_.active();
-    light_ = std::make_unique<LightViewCulling>(std::move(culler), renderer_, options_.latency,
-                                                approximate ? &approximation_ : nullptr);
+    light_ = makeViewCulling(std::move(culler));
     if (options_.record_objects) {
         light_->decisions.reserve(
             4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
     }
-    light_->culler->reset(world_->tree());
+}
+
+void Simulation::cullRightEyeWith(std::unique_ptr<Culler> culler) {
+    if (!world_->cullsEachEye()) {
+        throw std::logic_error("Simulation::cullRightEyeWith: the eyes are not culled apart");
+    }
+    right_eye_ = makeViewCulling(std::move(culler));
 }
 
 uint32_t Simulation::recordedLight() const {
@@ -159,6 +200,9 @@ FrameStats Simulation::renderFrame() {
     rendered_serial_ = world_->frameSerial();
     if (cullsLightView(options_.shadow_casters) && !light_) {
         throw std::logic_error("Simulation::renderFrame: the light's view has no culler");
+    }
+    if (world_->cullsEachEye() && !right_eye_) {
+        throw std::logic_error("Simulation::renderFrame: the right eye has no culler");
     }
     FrameStats stats = world_->frameStats();
     CullFrame cull_frame = world_->cullFrame();
@@ -216,9 +260,11 @@ FrameStats Simulation::renderFrame() {
     const bool trace = world_->liveControls().trace_every_frame ||
                        (options_.trace_frame && *options_.trace_frame == frame);
     if (trace) tracer_.beginTrace(frame);
+    if (right_eye_) renderer_.setEyes(StereoEyes::Left);
     culler_->cullAndRender(world_->tree(), cull_frame, trace ? tracer_ : *device_);
     tracer_.endTrace();
     traced_ |= trace;
+    if (right_eye_) cullRightEye(cull_frame);
     const double cull_ms = nowMs() - cull_start;
     if (gpu_timer_) gpu_timer_->end();
     if (receivers_first) {
@@ -246,8 +292,27 @@ FrameStats Simulation::renderFrame() {
     culler_->afterFrame(*device_);
     if (shadow_pass && light_) resolveLightViewCasters();
 
-    const DeviceCounters& c = device_->counters();
-    stats.read_backs = read_backs_in_frame;
+    DeviceCounters c = device_->counters();
+    uint64_t read_backs = read_backs_in_frame;
+    // What the device skipped of the conditional draws, read back after the frame.
+    GlQueryDevice::SkippedDraws skipped = gl_device_.skippedConditionalDraws();
+    if (right_eye_) {
+        // Stereo per eye: the frame's figures are both eyes' passes together.
+        right_eye_->gl_device.resolveConditionalDraws();
+        right_eye_->culler->afterFrame(*right_eye_->device);
+        const DeviceCounters& r = right_eye_->device->counters();
+        read_backs += r.read_backs;
+        c.submit_seconds += r.submit_seconds;
+        c.wait_seconds += r.wait_seconds;
+        c.poll_seconds += r.poll_seconds;
+        c.queries_issued += r.queries_issued;
+        c.objects_drawn += r.objects_drawn;
+        c.triangles_drawn += r.triangles_drawn;
+        const GlQueryDevice::SkippedDraws right = right_eye_->gl_device.skippedConditionalDraws();
+        skipped.objects += right.objects;
+        skipped.triangles += right.triangles;
+    }
+    stats.read_backs = read_backs;
     stats.wait_ms = c.wait_seconds * 1e3;
     // The culler's own work: its time minus every device call (draws, queries, polls, waits).
     stats.cull_cpu_ms =
@@ -255,8 +320,6 @@ FrameStats Simulation::renderFrame() {
     stats.queries = c.queries_issued;
     stats.objects_drawn = c.objects_drawn;
     stats.triangles = c.triangles_drawn;
-    // What the device skipped of the conditional draws, read back after the frame.
-    const GlQueryDevice::SkippedDraws skipped = gl_device_.skippedConditionalDraws();
     stats.executed_objects = c.objects_drawn - skipped.objects;
     stats.executed_triangles = c.triangles_drawn - skipped.triangles;
 
@@ -328,6 +391,19 @@ void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& cam
     stats.shadow_cpu_ms = nowMs() - start;
 }
 
+// Stereo per eye, inside the frame's timing: the right eye culled by its own culler on its own
+// device, into its half of the framebuffer, after the left eye's pass.
+void Simulation::cullRightEye(const CullFrame& camera) {
+    CullFrame frame = camera;
+    frame.view = world_->stereoViews()->right;
+    frame.decisions = nullptr;
+    right_eye_->device->resetCounters();
+    right_eye_->gl_device.beginDrawnSet(world_->scene().objectCount());
+    renderer_.setEyes(StereoEyes::Right);
+    right_eye_->culler->cullAndRender(world_->tree(), frame, *right_eye_->device);
+    renderer_.setEyes(StereoEyes::Both);
+}
+
 // After the frame, outside the timing: the casters the light view's culler drew (a conditional
 // draw counts when its query passed samples), for the missed casters.
 void Simulation::resolveLightViewCasters() {
@@ -397,6 +473,11 @@ void Simulation::measureShadowError(const GroundTruthFrame& truth, FrameStats& s
 
 void Simulation::recordAnswerLatencies(uint32_t frame, FrameStats& stats) {
     gl_device_.takeAnswerLatencies(frame_latencies_);
+    if (right_eye_) {
+        right_eye_->gl_device.takeAnswerLatencies(right_latencies_);
+        frame_latencies_.insert(frame_latencies_.end(), right_latencies_.begin(),
+                                right_latencies_.end());
+    }
     stats.answers = frame_latencies_.size();
     segment_tallies_.addLatencies(frame, frame_latencies_);
     if (frame >= world_->scenario().warmup_frames) {
@@ -428,12 +509,19 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
     // Conditional draws count as drawn when their query passed samples: one the device skipped
     // was not drawn; one it executed on a query that passed nothing cannot show.
     gl_device_.resolveConditionalDraws();
+    if (right_eye_) right_eye_->gl_device.resolveConditionalDraws();
     int64_t missed = 0, tied_away = 0, visible = 0, overdrawn = 0, overdrawn_triangles = 0;
     missing_.assign(objects, 0);
     verdicts_.resize(objects);
     const Scene& scene = world_->scene();
     for (uint32_t o = 0; o < objects; ++o) {
-        const bool drawn = gl_device_.drew(o);
+        // Stereo per eye: drawn by either eye's pass; missed when an eye that sees it did not
+        // draw it.
+        const bool left_drew = gl_device_.drew(o);
+        const bool right_drew = right_eye_ && right_eye_->gl_device.drew(o);
+        const bool drawn = left_drew || right_drew;
+        const bool eye_missed = right_eye_ && ((truth.eye_visible[o] & 1u && !left_drew) ||
+                                               (truth.eye_visible[o] & 2u && !right_drew));
         verdicts_[o] = static_cast<uint8_t>(
             truth.visible[o] ? (drawn ? ObjectVerdict::DrawnVisible : ObjectVerdict::Missed)
                              : (drawn ? ObjectVerdict::DrawnHidden : ObjectVerdict::Culled));
@@ -444,8 +532,8 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
             continue;
         }
         ++visible;
-        missing_[o] = !drawn;
-        missed += !drawn;
+        missing_[o] = !drawn || eye_missed;
+        missed += missing_[o];
         tied_away += drawn && !culled_visible_[o];
     }
     popping_.addFrame(missing_);
@@ -456,6 +544,20 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         measureShadowError(truth, stats);
         if (options_.record_objects && light_ && stats.shadow_casters >= 0) {
             recordLightObjects(truth);
+        }
+    }
+    if (world_->stereoViews() != nullptr) {
+        // Each eye's error apart: its half of the framebuffer (stereoEyeFirstRow).
+        const size_t eye_pixels = culled_ids_.size() / 2;
+        for (int eye = 0; eye < 2; ++eye) {
+            const size_t first =
+                size_t{stereoEyeFirstRow(eye, renderer_.height())} * renderer_.width();
+            auto half = [&](const auto& v) { return std::span(v).subspan(first, eye_pixels); };
+            const int64_t error =
+                comparePixels(half(truth.ids), half(truth.depth), half(culled_ids_),
+                              half(culled_depth_), half(truth.stray), nullptr)
+                    .error;
+            (eye == 0 ? stats.left_error_pixels : stats.right_error_pixels) = error;
         }
     }
     stats.error_pixels = pixels.error;

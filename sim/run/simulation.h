@@ -148,6 +148,9 @@ class Simulation {
     // configuration's own culler made for it (its state apart from the camera's). Throws
     // RegistryError, one line, for a culler that cannot cull a light's view yet.
     void cullLightViewWith(std::unique_ptr<Culler> culler);
+    // Stereo culled per eye (SharedWorld::cullsEachEye): the right eye's culler, an instance of the
+    // configuration's own made for it; the configuration's culler culls the left eye.
+    void cullRightEyeWith(std::unique_ptr<Culler> culler);
 
     bool needsGroundTruth() const;
     // Renders the world's current frame through the culler and measures it (ground truth, when
@@ -243,9 +246,13 @@ class Simulation {
     std::unique_ptr<GlFrameTimer> shading_gpu_timer_;  // receiver-masked
     std::vector<uint32_t> shadow_casters_;
     std::vector<uint8_t> cast_shadow_;
-    // ShadowCasterCulling::Culler: the light view's culler and its devices (as device_'s).
-    struct LightViewCulling;
-    std::unique_ptr<LightViewCulling> light_;
+    // A view culled by an instance of its own, on devices of its own (as device_'s): the light's
+    // (cullsLightView) and the right eye's (stereo per eye).
+    struct ViewCulling;
+    std::unique_ptr<ViewCulling> light_;
+    std::unique_ptr<ViewCulling> right_eye_;
+    std::unique_ptr<ViewCulling> makeViewCulling(std::unique_ptr<Culler> culler);
+    void cullRightEye(const CullFrame& camera);
     ApproximationOptions approximation_;
     ReceiverMask receiver_mask_;             // masksReceivers()
     std::vector<uint8_t> may_shadow_;        // per object: the mask's draw filter (light view)
@@ -254,6 +261,7 @@ class Simulation {
     std::vector<uint32_t> culled_shadow_texels_;
     std::vector<float> truth_shadow_depth_, culled_shadow_depth_;  // on a frame with a difference
     std::vector<uint32_t> frame_latencies_;
+    std::vector<uint32_t> right_latencies_;  // stereo per eye: the right eye's device's
     std::vector<uint64_t> answer_latencies_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint32_t> culled_depth_;
@@ -271,6 +279,13 @@ class Simulation {
     std::vector<QueryTag> light_subjects_;
     std::vector<ObjectFrame> light_object_frames_;
 };
+
+// What the views of a run do not take yet (docs/views.md): a culler that cannot cull a light's
+// view or a stereo view, receiver masking with stereo or with a culler whose draws the device
+// decides, a stereo run culled per eye recorded per object. Throws RegistryError, one line; a
+// run checks every configuration before frame 0 and before it says anything of its views.
+void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
+                        ShadowCasterCulling shadow_casters, bool record_objects);
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).
 void uploadScene(const Scene& scene, GlRenderer& renderer);

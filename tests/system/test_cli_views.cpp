@@ -1,7 +1,7 @@
 // Lights and stereo from the command line (docs/views.md): a bad light in a scenario, or a point
 // light in its glTF file, is one line naming the file and the place, exit 2, nothing written; a
-// run with a good light runs and says once what it renders of it (a shadow pass) and not yet
-// (stereo); --sun lights any scene.
+// run with a good light and stereo runs and says once what it renders of them (a shadow pass, two
+// eyes); --sun lights any scene.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -89,8 +89,44 @@ TEST(CliViews, ARunWithAGoodLightSaysOnceWhatItRendersOfIt) {
     const size_t at = text.find(note);
     EXPECT_NE(at, std::string::npos) << o.output;
     EXPECT_EQ(text.find(note, at + 1), std::string::npos) << "once";
-    EXPECT_NE(text.find("stereo is read and checked but not rendered yet"), std::string::npos)
-        << o.output;
+    EXPECT_NE(text.find("stereo renders two eyes of"), std::string::npos) << o.output;
+}
+
+// A stereo scenario culled per eye, from the command line with the error measured: summary.json
+// names the stereo, frames.csv has each eye's error (zero for chc), and a culler stereo does not
+// take yet is one line, exit 2, nothing written.
+TEST(CliViews, AStereoRunWritesEachEyesErrorAndRefusesWhatItCannotCullYet) {
+    const auto dir = tempPath("views-stereo");
+    const auto file = smallWith(dir, [](json& s) {
+        s["stereo"] = {{"eye_separation", 0.065}, {"culling", "per_eye"}};
+    });
+    const auto out = dir / "out";
+    const Outcome o =
+        runOccsim("bench " + file.string() + " --algos vfc,chc --error --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::ifstream in(out / "summary.json");
+    const json summary = json::parse(in);
+    EXPECT_EQ(summary["scenario"]["stereo"]["culling"], "per_eye") << summary["scenario"].dump();
+    EXPECT_EQ(summary["scenario"]["stereo"]["eye_separation_m"], 0.065);
+    std::ifstream csv(out / "frames.csv");
+    std::string header, row;
+    std::getline(csv, header);
+    EXPECT_EQ(header.substr(header.size() - 36), "left_error_pixels,right_error_pixels");
+    size_t rows = 0;
+    while (std::getline(csv, row)) {
+        ++rows;
+        EXPECT_EQ(row.substr(row.size() - 4), ",0,0") << row;
+    }
+    EXPECT_EQ(rows, 6u) << "two configurations, three frames";
+
+    const auto refused = dir / "refused";
+    const Outcome bad =
+        runOccsim("bench " + file.string() + " --algos hzb --out " + refused.string());
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+    EXPECT_NE(bad.output.find("culler 'hzb' cannot cull a stereo view yet"), std::string::npos)
+        << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(refused));
 }
 
 // --sun lights any scene without a copy of its file: the run renders its shadow pass, measures
@@ -170,6 +206,7 @@ TEST(CliViews, ShadowCastersCullerRunsEachCullerInTheLightsView) {
         runOccsim("bench " + kSmall + " --algos masked --sun 20,40 --shadow-casters culler --out " +
                   out.string());
     EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_EQ(lineCount(refused.output), 1u) << refused.output;
     EXPECT_NE(refused.output.find("culler 'masked' cannot cull a light's view yet"),
               std::string::npos)
         << refused.output;

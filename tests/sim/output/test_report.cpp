@@ -278,14 +278,15 @@ TEST(Simulation, GpuDrivenCullersReadNothingBackInTheFrameAndTimeEachPhase) {
                        "test_gpu_ms,phase2_gpu_ms,read_backs,shadow_cpu_ms,shadow_gpu_ms,"
                        "shading_cpu_ms,shading_gpu_ms,shadow_casters,shadow_triangles,shadow_error_"
                        "pixels,missed_casters,"
-                       "shadow_seen_casters,shadow_tie_pixels,shadow_queries\n"),
+                       "shadow_seen_casters,shadow_tie_pixels,shadow_queries,left_error_pixels,"
+                       "right_error_pixels\n"),
               std::string::npos);
     EXPECT_NE(csv.find("\nvfc,0,0,"), std::string::npos);
     // vfc's rows hold six empty phase columns before read_backs (0), then a scene without
-    // lights has no shadow pass: four empty times and seven -1 counts.
+    // lights has no shadow pass: four empty times and seven -1 counts; nor stereo: two -1.
     const size_t vfc_row = csv.find("\nvfc,0,0,");
     const std::string row = csv.substr(vfc_row + 1, csv.find('\n', vfc_row + 1) - vfc_row - 1);
-    EXPECT_EQ(row.substr(row.size() - 33), ",,,,,,,0,,,,,-1,-1,-1,-1,-1,-1,-1") << row;
+    EXPECT_EQ(row.substr(row.size() - 39), ",,,,,,,0,,,,,-1,-1,-1,-1,-1,-1,-1,-1,-1") << row;
     EXPECT_TRUE(configurationJson(result.runs[0], result.runs)["shadow_pass"].is_null());
     const nlohmann::json j = configurationJson(result.runs[3], result.runs);
     ASSERT_TRUE(j["gpu_driven_phases"].is_object()) << j.dump();

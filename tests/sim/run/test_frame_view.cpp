@@ -3,7 +3,7 @@
 // lens's near radius and viewport handed to both; straight up or down still a camera; a light's
 // render view holds its whole box, nearer the light nearer in depth, next to the origin and far;
 // its culling view keeps a box inside the light's box and culls one beside it, its eye far up the
-// light so that the tree's front-to-back order follows the light.
+// light so that the tree's front-to-back order follows the light; stereo eyes either side.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -222,6 +222,39 @@ TEST(LightCullView, ItsFrustumIsTheLightsBoxAndItsEyeLiesUpTheLight) {
             EXPECT_EQ(view.eye[axis]<split, direction[axis]> 0.0) << axis;
         }
     }
+}
+
+// Stereo, eyes 1 m apart for clear margins: each eye half a metre to its side of the camera,
+// looking the same way; the enclosing view keeps what either eye sees 5 m ahead (the middle
+// camera's frustum there spans x in +-3.85 m, each eye's is shifted by 0.5 m) and culls what
+// neither does; the render view carries the separation and a near radius grown by half of it.
+TEST(FrameView, StereoEyesSitEitherSideOfTheCameraAndTheEnclosingViewKeepsWhatEitherSees) {
+    const CameraPose pose{{0.0, 2.0, 10.0}, {0.0, 2.0, 0.0}};
+    const FrameView middle = makeFrameView(lens(), pose, 320, 240, glm::dvec3(0.0));
+    const StereoViews stereo = makeStereoViews(lens(), pose, 1.0, 320, 240, glm::dvec3(0.0));
+    EXPECT_NEAR(stereo.left.eye.x, -0.5f, 1e-6f);
+    EXPECT_NEAR(stereo.right.eye.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(stereo.left.eye.z, 10.0f, 1e-6f);
+    EXPECT_EQ(stereo.left.kind, ViewKind::LeftEye);
+    EXPECT_EQ(stereo.right.kind, ViewKind::RightEye);
+    EXPECT_EQ(stereo.enclosing.kind, ViewKind::Camera);
+    EXPECT_EQ(stereo.render.eye_separation_m, 1.0);
+    EXPECT_FLOAT_EQ(stereo.render.near_radius, middle.render.near_radius + 0.5f);
+    EXPECT_FLOAT_EQ(stereo.enclosing.near_radius, middle.cull.near_radius + 0.5f);
+    const Aabb left_only = cubeAt({-4.1f, 2.0f, 5.0f}, 0.05f);
+    const Aabb right_only = cubeAt({4.1f, 2.0f, 5.0f}, 0.05f);
+    const Aabb neither = cubeAt({-4.6f, 2.0f, 5.0f}, 0.05f);
+    EXPECT_EQ(classify(middle.cull.frustum, left_only), FrustumTest::Outside);
+    EXPECT_EQ(classify(middle.cull.frustum, right_only), FrustumTest::Outside);
+    EXPECT_NE(classify(stereo.left.frustum, left_only), FrustumTest::Outside);
+    EXPECT_EQ(classify(stereo.right.frustum, left_only), FrustumTest::Outside);
+    EXPECT_NE(classify(stereo.right.frustum, right_only), FrustumTest::Outside);
+    EXPECT_NE(classify(stereo.enclosing.frustum, left_only), FrustumTest::Outside);
+    EXPECT_NE(classify(stereo.enclosing.frustum, right_only), FrustumTest::Outside);
+    EXPECT_EQ(classify(stereo.enclosing.frustum, neither), FrustumTest::Outside);
+    EXPECT_EQ(classify(stereo.enclosing.frustum, cubeAt({0.0f, 2.0f, 15.0f}, 0.05f)),
+              FrustumTest::Outside)
+        << "behind the eyes";
 }
 
 }  // namespace

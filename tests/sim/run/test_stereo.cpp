@@ -1,0 +1,208 @@
+// Stereo end to end (docs/views.md): two eyes rendered one above the other, ground truth of both,
+// culled by one pass over the enclosing frustum or by an instance of the culler per eye. Every
+// query culler draws every pixel either eye sees, in both modes, with eyes an IPD apart and 4 m
+// apart (where each eye sees much the middle camera does not); each eye's error is its own figure;
+// the same decisions on a second run; with a sun, the shadow pass keeps zero shadow error for
+// both eyes. What stereo does not take yet is refused with one line.
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "error_bench.h"
+#include "sim/run/runner.h"
+#include "sim/scenario/scenario.h"
+
+namespace occsim {
+namespace {
+
+using testing::kScenarios;
+
+Scenario stereoCity(double separation_m, StereoCulling culling) {
+    Scenario scenario = parseScenarioFile(kScenarios / "city-small.json");
+    scenario.stereo = StereoSpec{separation_m, culling};
+    return scenario;
+}
+
+BenchOptions stereoBench(std::initializer_list<const char*> cullers) {
+    BenchOptions options;
+    for (const char* name : cullers) options.algorithms.push_back(findCuller(name));
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = 12;
+    return options;
+}
+
+const std::initializer_list<const char*> kQueryCullers = {"vfc", "stop-and-wait", "statistical",
+                                                          "chc", "conditional"};
+
+TEST(Stereo, EveryQueryCullerDrawsEveryPixelEitherEyeSeesInBothCullingModes) {
+    const BenchOptions options = stereoBench(kQueryCullers);
+    const BenchResult mono = runBenchmark(parseScenarioFile(kScenarios / "city-small.json"), options);
+    for (const double separation : {0.064, 4.0}) {
+        for (const StereoCulling culling : {StereoCulling::Enclosing, StereoCulling::PerEye}) {
+            const std::string mode = std::string(culling == StereoCulling::PerEye ? "per eye" : "enclosing") +
+                                     ", " + std::to_string(separation) + " m";
+            const BenchResult stereo = runBenchmark(stereoCity(separation, culling), options);
+            testing::expectNoErrorAndNoMiss(stereo);
+            ASSERT_EQ(stereo.runs.size(), mono.runs.size());
+            int64_t more_visible = 0;
+            for (size_t r = 0; r < stereo.runs.size(); ++r) {
+                const std::string& label = stereo.runs[r].summary.label;
+                for (size_t f = 0; f < stereo.runs[r].frames.size(); ++f) {
+                    const FrameStats& s = stereo.runs[r].frames[f];
+                    EXPECT_EQ(s.left_error_pixels, 0) << mode << ", " << label << " frame " << f;
+                    EXPECT_EQ(s.right_error_pixels, 0) << mode << ", " << label << " frame " << f;
+                    EXPECT_GT(s.objects_drawn, 0) << mode << ", " << label << " frame " << f;
+                    const FrameStats& m = mono.runs[r].frames[f];
+                    EXPECT_EQ(m.left_error_pixels, -1) << "no stereo, no eyes";
+                    more_visible += s.visible_objects - m.visible_objects;
+                }
+            }
+            // Four metres apart, the eyes see well past the middle camera's frustum: the zero
+            // above held where a culler of the middle camera's view would have missed.
+            if (separation > 1.0) {
+                EXPECT_GT(more_visible, 0) << mode;
+            }
+        }
+    }
+}
+
+// Three teapots 20 m ahead of a still camera: one in the middle, one 16.8 m to each side, beyond
+// the camera's frustum there (it spans +-15.4 m) and inside one eye's when the eyes are 4 m apart
+// (each frustum is shifted by 2 m). A culler given the camera's frustum, or the left eye's for the
+// right eye, leaves a side teapot out: the zero error below is what that would break.
+Scenario sideTeapots(StereoCulling culling) {
+    std::string sources;
+    for (const double x : {0.0, -16.8, 16.8}) {
+        const std::string at = "[" + std::to_string(x) + ", 0, -20]";
+        sources += std::string(sources.empty() ? "" : ", ") +
+                   R"({"type": "teapots", "count": 1, "size": [1, 1], "region": {"min": )" + at +
+                   R"(, "max": )" + at + "}}";
+    }
+    Scenario scenario = parseScenarioText(R"({
+        "format_version": 1, "frames": 3, "viewport": {"width": 200, "height": 150},
+        "camera": {"fov_y": 60, "keyframes": [{"time": 0, "position": [0, 0.5, 0],
+                                                "target": [0, 0.5, -10]}]},
+        "scene": {"sources": [)" + sources + R"(]}})",
+                                          "side-teapots.json");
+    scenario.stereo = StereoSpec{4.0, culling};
+    return scenario;
+}
+
+TEST(Stereo, AnObjectOnlyOneEyeSeesIsDrawnForThatEye) {
+    const BenchOptions options = stereoBench({"vfc", "stop-and-wait", "statistical", "chc"});
+    for (const StereoCulling culling : {StereoCulling::Enclosing, StereoCulling::PerEye}) {
+        const BenchResult stereo = runBenchmark(sideTeapots(culling), options);
+        testing::expectNoErrorAndNoMiss(stereo);
+        for (const RunRecord& run : stereo.runs) {
+            for (const FrameStats& f : run.frames) {
+                EXPECT_EQ(f.visible_objects, 3) << run.summary.label << " frame " << f.frame;
+                EXPECT_EQ(f.left_error_pixels, 0);
+                EXPECT_EQ(f.right_error_pixels, 0);
+            }
+        }
+    }
+    Scenario mono = sideTeapots(StereoCulling::Enclosing);
+    mono.stereo.reset();
+    for (const RunRecord& run : runBenchmark(mono, options).runs) {
+        EXPECT_EQ(run.frames[0].visible_objects, 1) << "the camera alone sees the middle one";
+    }
+}
+
+// Each eye's error is counted in its own half: `async` (one query per object, an earlier frame's
+// answer, not conservative) misses pixels as the eyes move when answers come 100 commands late; the two halves add up to the frame's error on
+// every frame, and both eyes have some.
+TEST(Stereo, EachEyesErrorIsItsHalfOfTheFrames) {
+    BenchOptions options = stereoBench({"async"});
+    options.frames.reset();       // the whole walk: the camera turns late in it
+    options.latency = {true, 100};  // answers come late: async draws on stale ones
+    const BenchResult stereo = runBenchmark(stereoCity(4.0, StereoCulling::PerEye), options);
+    int64_t left = 0, right = 0;
+    for (const RunRecord& run : stereo.runs) {
+        for (const FrameStats& f : run.frames) {
+            ASSERT_GE(f.left_error_pixels, 0);
+            ASSERT_GE(f.right_error_pixels, 0);
+            EXPECT_EQ(f.left_error_pixels + f.right_error_pixels, f.error_pixels)
+                << run.summary.label << " frame " << f.frame;
+            left += f.left_error_pixels;
+            right += f.right_error_pixels;
+        }
+    }
+    EXPECT_GT(left, 0) << "async missed nothing in the left eye: the check above proves little";
+    EXPECT_GT(right, 0) << "async missed nothing in the right eye: the check above proves little";
+}
+
+TEST(Stereo, TheSameScenarioGivesTheSameDecisionsTwice) {
+    const BenchOptions options = stereoBench({"statistical", "chc"});
+    const BenchResult a = runBenchmark(stereoCity(0.064, StereoCulling::PerEye), options);
+    const BenchResult b = runBenchmark(stereoCity(0.064, StereoCulling::PerEye), options);
+    ASSERT_EQ(a.runs.size(), b.runs.size());
+    for (size_t r = 0; r < a.runs.size(); ++r) {
+        for (size_t f = 0; f < a.runs[r].frames.size(); ++f) {
+            EXPECT_EQ(a.runs[r].frames[f].objects_drawn, b.runs[r].frames[f].objects_drawn);
+            EXPECT_EQ(a.runs[r].frames[f].queries, b.runs[r].frames[f].queries);
+        }
+    }
+}
+
+// A low sun over the stereo city: the light's box holds both eyes' frusta, so light-frustum
+// culling and the cullers in the light's view leave no shadow pixel of either eye lit.
+TEST(Stereo, TheShadowPassServesBothEyes) {
+    for (const ShadowCasterCulling casters :
+         {ShadowCasterCulling::LightFrustum, ShadowCasterCulling::Culler}) {
+        Scenario scenario = stereoCity(4.0, StereoCulling::Enclosing);
+        LightSpec sun;
+        sun.direction = glm::normalize(glm::dvec3(1.0, -0.35, 0.25));
+        sun.shadow_map = 1024;
+        scenario.lights.push_back(sun);
+        BenchOptions options = stereoBench({"vfc", "chc"});
+        options.shadow_casters = casters;
+        const BenchResult lit = runBenchmark(scenario, options);
+        testing::expectNoErrorAndNoMiss(lit);
+        int64_t seen = 0;
+        for (const RunRecord& run : lit.runs) {
+            for (const FrameStats& f : run.frames) {
+                EXPECT_EQ(f.shadow_error_pixels, 0) << run.summary.label << " frame " << f.frame;
+                EXPECT_EQ(f.missed_casters, 0) << run.summary.label << " frame " << f.frame;
+                seen += f.shadow_seen_casters;
+            }
+        }
+        EXPECT_GT(seen, 0) << "ground truth shows no shadow: the check above proves nothing";
+    }
+}
+
+TEST(Stereo, WhatStereoDoesNotTakeYetIsRefusedWithOneLine) {
+    auto refusal = [](Scenario scenario, const char* culler, BenchOptions options) {
+        options.algorithms = {findCuller(culler)};
+        try {
+            runBenchmark(scenario, options);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const BenchOptions options = stereoBench({});
+    for (const char* culler : {"hzb", "masked", "raster"}) {
+        const std::string line = refusal(stereoCity(0.064, StereoCulling::Enclosing), culler, options);
+        EXPECT_NE(line.find("cannot cull a stereo view yet"), std::string::npos) << culler << ": " << line;
+        EXPECT_EQ(line.find('\n'), std::string::npos);
+    }
+    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::PerEye), "ideal", options)
+                  .find("cannot cull a stereo view yet"),
+              std::string::npos);
+    EXPECT_EQ(refusal(stereoCity(0.064, StereoCulling::Enclosing), "ideal", options), "")
+        << "the oracle draws what either eye sees";
+    BenchOptions receivers = options;
+    receivers.shadow_casters = ShadowCasterCulling::ReceiverMask;
+    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::Enclosing), "vfc", receivers).find("receiver mask"),
+              std::string::npos);
+    BenchOptions record = options;
+    record.record_objects = true;
+    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::PerEye), "vfc", record).find("--record objects"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace occsim
