@@ -25,7 +25,7 @@
 #include "sim/run/runner.h"
 #include "sim/scenario/culling_file.h"
 #include "sim/scenario/scenario.h"
-#include "sim/scenario/sun_override.h"
+#include "sim/scenario/view_overrides.h"
 
 namespace occsim_cli {
 namespace {
@@ -80,6 +80,12 @@ void addCommonFlags(CLI::App* cmd, CommonFlags& flags) {
                     "horizon and round from +x toward +z (map 2048 texels unless given), in place "
                     "of every light the scene names (docs/views.md)")
         ->each([&flags](const std::string&) { flags.sun_given = true; });
+    cmd->add_option("--stereo", flags.stereo,
+                    "SEPARATION[,MODE]: two eyes this many metres apart, the camera midway, "
+                    "culled by one pass over a frustum enclosing both (MODE enclosing, the "
+                    "default) or per eye (per_eye), in place of the scenario's stereo "
+                    "(docs/views.md)")
+        ->each([&flags](const std::string&) { flags.stereo_given = true; });
     cmd->add_option("--shadow-casters", flags.shadow_casters,
                     "Which casters a shadow pass draws: frustum (every object in the light's "
                     "box, the default), receivers (those that may shadow what the camera's "
@@ -127,6 +133,13 @@ RunRequest requestOf(const std::string& command, const std::string& command_line
             occsim::replaceLightsWith(request.scenario, occsim::parseSun(flags.sun));
         } catch (const std::invalid_argument& e) {
             throw occsim::InputError(std::string("--sun: ") + e.what());
+        }
+    }
+    if (flags.stereo_given) {
+        try {
+            request.scenario.stereo = occsim::parseStereo(flags.stereo);
+        } catch (const std::invalid_argument& e) {
+            throw occsim::InputError(std::string("--stereo: ") + e.what());
         }
     }
     return request;

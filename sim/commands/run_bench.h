@@ -37,6 +37,8 @@ struct CommonFlags {
     std::string frame_order = "balanced";    // --frame-order (bench)
     std::string sun;                         // --sun ELEVATION,AZIMUTH[,SHADOW_MAP]
     bool sun_given = false;                  // --sun on the command line (an empty one is refused)
+    std::string stereo;                      // --stereo SEPARATION[,MODE]
+    bool stereo_given = false;               // --stereo on the command line
     std::string shadow_casters = "frustum";  // --shadow-casters frustum|receivers
 };
 

@@ -93,8 +93,9 @@ TEST(CliViews, ARunWithAGoodLightSaysOnceWhatItRendersOfIt) {
 }
 
 // A stereo scenario culled per eye, from the command line with the error measured: summary.json
-// names the stereo, frames.csv has each eye's error (zero for chc), and a culler stereo does not
-// take yet is one line, exit 2, nothing written.
+// names the stereo, frames.csv has each eye's error (zero for chc); --stereo gives any scene two
+// eyes; a bad --stereo, and a culler stereo does not take yet, is one line, exit 2, nothing
+// written.
 TEST(CliViews, AStereoRunWritesEachEyesErrorAndRefusesWhatItCannotCullYet) {
     const auto dir = tempPath("views-stereo");
     const auto file = smallWith(dir, [](json& s) {
@@ -118,6 +119,24 @@ TEST(CliViews, AStereoRunWritesEachEyesErrorAndRefusesWhatItCannotCullYet) {
         EXPECT_EQ(row.substr(row.size() - 4), ",0,0") << row;
     }
     EXPECT_EQ(rows, 6u) << "two configurations, three frames";
+
+    // --stereo gives any scene two eyes, in place of the scenario's; a bad one is one line.
+    const auto flagged = dir / "flagged";
+    const Outcome f = runOccsim(
+        "run " + kSmall + " --algo chc --error --frames 3 --stereo 1.5 --out " + flagged.string());
+    ASSERT_EQ(f.exit_code, 0) << f.output;
+    std::ifstream flagged_in(flagged / "summary.json");
+    const json flagged_summary = json::parse(flagged_in);
+    EXPECT_EQ(flagged_summary["scenario"]["stereo"]["culling"], "enclosing");
+    EXPECT_EQ(flagged_summary["scenario"]["stereo"]["eye_separation_m"], 1.5);
+    EXPECT_EQ(flagged_summary["algorithms"][0]["error"]["pixels_total"], 0);
+    const Outcome bad_flag = runOccsim("run " + kSmall + " --algo chc --stereo 0.06,both --out " +
+                                       (dir / "bad-flag").string());
+    EXPECT_EQ(bad_flag.exit_code, 2) << bad_flag.output;
+    EXPECT_EQ(lineCount(bad_flag.output), 1u) << bad_flag.output;
+    EXPECT_NE(bad_flag.output.find("--stereo: expected SEPARATION[,MODE]"), std::string::npos)
+        << bad_flag.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad-flag"));
 
     const auto refused = dir / "refused";
     const Outcome bad =

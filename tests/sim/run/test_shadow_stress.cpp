@@ -10,7 +10,7 @@
 
 #include "error_bench.h"
 #include "shifted_teapots.h"
-#include "sim/scenario/sun_override.h"
+#include "sim/scenario/view_overrides.h"
 #include "sim/world/world.h"
 
 namespace occsim {

@@ -39,11 +39,13 @@ const std::initializer_list<const char*> kQueryCullers = {"vfc", "stop-and-wait"
 
 TEST(Stereo, EveryQueryCullerDrawsEveryPixelEitherEyeSeesInBothCullingModes) {
     const BenchOptions options = stereoBench(kQueryCullers);
-    const BenchResult mono = runBenchmark(parseScenarioFile(kScenarios / "city-small.json"), options);
+    const BenchResult mono =
+        runBenchmark(parseScenarioFile(kScenarios / "city-small.json"), options);
     for (const double separation : {0.064, 4.0}) {
         for (const StereoCulling culling : {StereoCulling::Enclosing, StereoCulling::PerEye}) {
-            const std::string mode = std::string(culling == StereoCulling::PerEye ? "per eye" : "enclosing") +
-                                     ", " + std::to_string(separation) + " m";
+            const std::string mode =
+                std::string(culling == StereoCulling::PerEye ? "per eye" : "enclosing") + ", " +
+                std::to_string(separation) + " m";
             const BenchResult stereo = runBenchmark(stereoCity(separation, culling), options);
             testing::expectNoErrorAndNoMiss(stereo);
             ASSERT_EQ(stereo.runs.size(), mono.runs.size());
@@ -112,11 +114,11 @@ TEST(Stereo, AnObjectOnlyOneEyeSeesIsDrawnForThatEye) {
 }
 
 // Each eye's error is counted in its own half: `async` (one query per object, an earlier frame's
-// answer, not conservative) misses pixels as the eyes move when answers come 100 commands late; the two halves add up to the frame's error on
-// every frame, and both eyes have some.
+// answer, not conservative) misses pixels as the eyes move when answers come 100 commands late; the
+// two halves add up to the frame's error on every frame, and both eyes have some.
 TEST(Stereo, EachEyesErrorIsItsHalfOfTheFrames) {
     BenchOptions options = stereoBench({"async"});
-    options.frames.reset();       // the whole walk: the camera turns late in it
+    options.frames.reset();         // the whole walk: the camera turns late in it
     options.latency = {true, 100};  // answers come late: async draws on stale ones
     const BenchResult stereo = runBenchmark(stereoCity(4.0, StereoCulling::PerEye), options);
     int64_t left = 0, right = 0;
@@ -185,8 +187,10 @@ TEST(Stereo, WhatStereoDoesNotTakeYetIsRefusedWithOneLine) {
     };
     const BenchOptions options = stereoBench({});
     for (const char* culler : {"hzb", "masked", "raster"}) {
-        const std::string line = refusal(stereoCity(0.064, StereoCulling::Enclosing), culler, options);
-        EXPECT_NE(line.find("cannot cull a stereo view yet"), std::string::npos) << culler << ": " << line;
+        const std::string line =
+            refusal(stereoCity(0.064, StereoCulling::Enclosing), culler, options);
+        EXPECT_NE(line.find("cannot cull a stereo view yet"), std::string::npos)
+            << culler << ": " << line;
         EXPECT_EQ(line.find('\n'), std::string::npos);
     }
     EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::PerEye), "ideal", options)
@@ -196,12 +200,14 @@ TEST(Stereo, WhatStereoDoesNotTakeYetIsRefusedWithOneLine) {
         << "the oracle draws what either eye sees";
     BenchOptions receivers = options;
     receivers.shadow_casters = ShadowCasterCulling::ReceiverMask;
-    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::Enclosing), "vfc", receivers).find("receiver mask"),
+    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::Enclosing), "vfc", receivers)
+                  .find("receiver mask"),
               std::string::npos);
     BenchOptions record = options;
     record.record_objects = true;
-    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::PerEye), "vfc", record).find("--record objects"),
-              std::string::npos);
+    EXPECT_NE(
+        refusal(stereoCity(0.064, StereoCulling::PerEye), "vfc", record).find("--record objects"),
+        std::string::npos);
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
-// The command line's sun (sim/scenario/sun_override.h): its direction from the elevation and
-// azimuth, its shadow map, what is refused, and that it is the scene's one light.
+// The command line's views (sim/scenario/view_overrides.h): the sun's direction from the elevation
+// and azimuth, its shadow map, what is refused, and that it is the scene's one light; stereo's
+// separation and mode, and what is refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <glm/glm.hpp>
 #include <stdexcept>
 
-#include "sim/scenario/sun_override.h"
+#include "sim/scenario/view_overrides.h"
 
 namespace occsim {
 namespace {
@@ -50,6 +51,29 @@ TEST(SunOverride, ItIsTheScenesOneLight) {
     ASSERT_EQ(scenario.lights.size(), 1u);
     EXPECT_NEAR(scenario.lights[0].direction.y, -std::sin(glm::radians(20.0)), 1e-12);
     EXPECT_EQ(std::get<GltfSourceSpec>(scenario.sources[1].spec).lights, GltfLights::Ignore);
+}
+
+TEST(StereoOverride, SeparationAndModeAreRead) {
+    const StereoSpec ipd = parseStereo("0.064");
+    EXPECT_EQ(ipd.eye_separation_m, 0.064);
+    EXPECT_EQ(ipd.culling, StereoCulling::Enclosing);
+    EXPECT_EQ(parseStereo("2,enclosing").culling, StereoCulling::Enclosing);
+    const StereoSpec per_eye = parseStereo("0.07,per_eye");
+    EXPECT_EQ(per_eye.eye_separation_m, 0.07);
+    EXPECT_EQ(per_eye.culling, StereoCulling::PerEye);
+}
+
+TEST(StereoOverride, WhatIsNoStereoIsRefusedSayingWhatWasExpected) {
+    for (const char* bad : {"", "0", "-0.06", "nan", "inf", "0.06,", "0.06,both", "0.06,per_eye,1",
+                            "a", ",per_eye"}) {
+        try {
+            parseStereo(bad);
+            ADD_FAILURE() << "accepted '" << bad << "'";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("expected SEPARATION[,MODE]"), std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 }  // namespace

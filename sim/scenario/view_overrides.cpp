@@ -1,5 +1,5 @@
-// See sun_override.h.
-#include "sim/scenario/sun_override.h"
+// See view_overrides.h.
+#include "sim/scenario/view_overrides.h"
 
 #include <cmath>
 #include <glm/glm.hpp>
@@ -63,6 +63,27 @@ void replaceLightsWith(Scenario& scenario, const LightSpec& sun) {
         if (auto* gltf = std::get_if<GltfSourceSpec>(&source.spec))
             gltf->lights = GltfLights::Ignore;
     }
+}
+
+StereoSpec parseStereo(const std::string& text) {
+    const std::string expected =
+        "expected SEPARATION[,MODE]: metres between the eyes, > 0, and enclosing (the default) "
+        "or per_eye; got '" +
+        text + "'";
+    const std::vector<std::string> parts = splitCommas(text);
+    StereoSpec stereo;
+    if (parts.size() > 2 || !parseFiniteNumber(parts[0], stereo.eye_separation_m) ||
+        !(stereo.eye_separation_m > 0.0)) {
+        throw std::invalid_argument(expected);
+    }
+    if (parts.size() == 2) {
+        if (parts[1] == "per_eye") {
+            stereo.culling = StereoCulling::PerEye;
+        } else if (parts[1] != "enclosing") {
+            throw std::invalid_argument(expected);
+        }
+    }
+    return stereo;
 }
 
 }  // namespace occsim

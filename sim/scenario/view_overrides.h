@@ -1,6 +1,7 @@
-// The command line's sun (`--sun ELEVATION,AZIMUTH[,SHADOW_MAP]` of run and bench,
-// docs/views.md): one directional light casting shadows, in place of every light the scene names,
-// so that any scene can be run under a low or a high sun without a copy of its file.
+// The command line's views (run and bench, docs/views.md): a sun (`--sun
+// ELEVATION,AZIMUTH[,SHADOW_MAP]`), one directional light casting shadows in place of every light
+// the scene names, and stereo (`--stereo SEPARATION[,MODE]`), so that any scene can be run under a
+// low or a high sun, or by two eyes, without a copy of its file.
 #pragma once
 
 #include <string>
@@ -20,5 +21,10 @@ LightSpec parseSun(const std::string& text);
 // The scenario's lights replaced by `sun`, and every glTF source's own lights left out
 // (GltfLights::Ignore): the scene has that one light.
 void replaceLightsWith(Scenario& scenario, const LightSpec& sun);
+
+// "SEPARATION[,MODE]": metres between the eyes, > 0; MODE `enclosing` (the default) or `per_eye`
+// (StereoCulling). std::invalid_argument saying what was expected, for the caller to prefix with
+// the flag.
+StereoSpec parseStereo(const std::string& text);
 
 }  // namespace occsim
