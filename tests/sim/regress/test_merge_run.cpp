@@ -44,7 +44,7 @@ TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
     runRegression(shortRun(root / "small", root / "update", {}, true));
 
     const ScenarioSet set = scenarioSetOf({root / "small"});
-    ASSERT_EQ(set.scenarios.size(), 7u);
+    ASSERT_EQ(set.scenarios.size(), 8u);
     std::vector<fs::path> dirs;
     for (uint32_t i = 0; i < 4; ++i) {
         const RegressOptions o =
@@ -64,8 +64,8 @@ TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
     EXPECT_EQ(merged.report.table(), one.table());
     size_t checks = 0;
     for (const auto& s : merged.report.scenarios) checks += s.checks.size();
-    EXPECT_GT(checks, 7u * 4u);
-    EXPECT_EQ(merged.shard_of, (std::vector<uint32_t>{0, 1, 2, 3, 0, 1, 2}));
+    EXPECT_GT(checks, 8u * 4u);
+    EXPECT_EQ(merged.shard_of, (std::vector<uint32_t>{0, 1, 2, 3, 0, 1, 2, 3}));
 
     // Every scenario's summary came along, and makes a history entry.
     std::vector<std::pair<std::string, Json>> summaries;
@@ -74,7 +74,7 @@ TEST(MergeRun, FourShardsMatchAOneMachineRunCheckForCheck) {
         summaries.emplace_back(merged.report.scenarios[k].name, merged.summaries[k]);
     }
     const HistoryEntry e = historyEntryNow(summaries, "test");
-    EXPECT_EQ(e.scenarios.size(), 7u);
+    EXPECT_EQ(e.scenarios.size(), 8u);
     EXPECT_FALSE(e.backend.empty());
     EXPECT_FALSE(e.renderer.empty());
     const AlgorithmFigures& f = e.scenarios.at("teapots-small").at("statistical");
