@@ -16,6 +16,8 @@ import json
 import os
 import sys
 
+from table_figures import fmt, load_text, mean_spread
+
 MODES = ("mono", "enclosing", "per_eye")
 
 
@@ -38,26 +40,8 @@ def config(summary, name):
     return next(a for a in summary["algorithms"] if a["configuration"] == name)
 
 
-def mean_spread(values):
-    if not values:
-        return None, None
-    return sum(values) / len(values), (max(values) - min(values)) / 2
-
-
-def fmt(value, spread=None, digits=1):
-    if value is None:
-        return "-"
-    text = f"{value:,.{digits}f}"
-    return text + (f" ±{spread:,.{digits}f}" if spread is not None else "")
-
-
 def loads(runs):
-    parts = []
-    for s, _ in runs:
-        m = s["machine"]
-        busy = " BUSY" if m.get("busy") else ""
-        parts.append(f"{m['load_average_before'][0]:.2f}→{m['load_average_after'][0]:.2f}{busy}")
-    return ", ".join(parts)
+    return ", ".join(load_text(s) for s, _ in runs)
 
 
 def eye_errors(runs, name):

@@ -20,6 +20,8 @@ import json
 import os
 import sys
 
+from table_figures import fmt, load_text, mean_spread
+
 
 def summaries(folder):
     runs = []
@@ -41,27 +43,8 @@ def vfc(summary):
     return config(summary, "vfc")
 
 
-def mean_spread(values):
-    if not values:
-        return None, None
-    return sum(values) / len(values), (max(values) - min(values)) / 2
-
-
-def fmt(value, spread=None, digits=1):
-    if value is None:
-        return "-"
-    text = f"{value:,.{digits}f}"
-    return text + (f" ±{spread:,.{digits}f}" if spread is not None else "")
-
-
 def loads(runs):
-    parts = []
-    for s in runs:
-        m = s["machine"]
-        busy = " BUSY" if m.get("busy") else ""
-        # The one-minute load average before and after the run.
-        parts.append(f"{m['load_average_before'][0]:.2f}→{m['load_average_after'][0]:.2f}{busy}")
-    return ", ".join(parts)
+    return ", ".join(load_text(s) for s in runs)
 
 
 def main(root):

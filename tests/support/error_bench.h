@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,17 @@ inline BenchResult errorBench(const std::filesystem::path& file,
     options.latency = {true, 8};
     if (frames > 0) options.frames = frames;
     return runBenchmark(parseScenarioFile(file), options);
+}
+
+// A bench of these cullers with the error measured, in deterministic latency (8 commands), cut
+// to `frames`: what the tests of a scenario built in code run.
+inline BenchOptions errorBenchOf(std::initializer_list<const char*> cullers, uint32_t frames) {
+    BenchOptions options;
+    for (const char* name : cullers) options.algorithms.push_back(findCuller(name));
+    options.measure_error = true;
+    options.latency = {true, 8};
+    options.frames = frames;
+    return options;
 }
 
 inline const RunSummary& summaryOf(const BenchResult& result, const std::string& name) {

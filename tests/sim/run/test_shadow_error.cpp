@@ -88,12 +88,7 @@ Scenario litCity(DepthConvention depth = DepthConvention::ReverseFloat) {
 
 // A bench of these cullers on litCity(): error measured, deterministic latency, 12 frames.
 BenchOptions litCityBench(std::initializer_list<const char*> cullers) {
-    BenchOptions options;
-    for (const char* name : cullers) options.algorithms.push_back(findCuller(name));
-    options.measure_error = true;
-    options.latency = {true, 8};
-    options.frames = 12;
-    return options;
+    return testing::errorBenchOf(cullers, 12);
 }
 
 TEST(ShadowError, LightFrustumCullingMissesNoCasterAndLeavesTheCameraFiguresAlone) {

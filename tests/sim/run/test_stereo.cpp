@@ -26,12 +26,7 @@ Scenario stereoCity(double separation_m, StereoCulling culling) {
 }
 
 BenchOptions stereoBench(std::initializer_list<const char*> cullers) {
-    BenchOptions options;
-    for (const char* name : cullers) options.algorithms.push_back(findCuller(name));
-    options.measure_error = true;
-    options.latency = {true, 8};
-    options.frames = 12;
-    return options;
+    return testing::errorBenchOf(cullers, 12);
 }
 
 const std::initializer_list<const char*> kQueryCullers = {"vfc", "stop-and-wait", "statistical",
