@@ -67,8 +67,12 @@ StereoViews makeStereoViews(const CameraSpec& camera, const CameraPose& pose, do
     const CameraPose left_pose{pose.position - half, pose.target - half};
     const CameraPose right_pose{pose.position + half, pose.target + half};
     StereoViews views;
-    views.left = makeFrameView(camera, left_pose, width, height, culling_origin, depth).cull;
-    views.right = makeFrameView(camera, right_pose, width, height, culling_origin, depth).cull;
+    const FrameView left = makeFrameView(camera, left_pose, width, height, culling_origin, depth);
+    const FrameView right = makeFrameView(camera, right_pose, width, height, culling_origin, depth);
+    views.left = left.cull;
+    views.right = right.cull;
+    views.left_render = left.render;
+    views.right_render = right.render;
     views.left.kind = ViewKind::LeftEye;
     views.right.kind = ViewKind::RightEye;
     const float grown = middle.cull.near_radius + static_cast<float>(0.5 * separation_m);

@@ -40,6 +40,9 @@ struct StereoViews {
     ViewSetup render;
     // Each eye's own culling view, for a culling pass per eye (ViewKind::LeftEye, RightEye).
     CullView left, right;
+    // Each eye's own render view (no separation): what turns a pixel of its half of the
+    // framebuffer back into a point (the receiver mask).
+    ViewSetup left_render, right_render;
     // One culling view around both (ViewKind::Camera): the left eye's left plane, the right eye's
     // right plane and the camera's other four, which the eyes share (an eye's top, bottom, near and
     // far planes contain the x axis it is shifted along). The camera's eye and view-projection, the

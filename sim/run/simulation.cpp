@@ -137,10 +137,11 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
         throw RegistryError("culler '" + algorithm.name + "' cannot cull a stereo view yet (" +
                             why + "): leave it out of --algos");
     }
-    if (masksReceivers(shadow_casters)) {
+    if (per_eye && masksReceivers(shadow_casters)) {
         throw RegistryError(
-            "--shadow-casters receivers and culler+receivers do not take a stereo scenario yet "
-            "(the receiver mask reads one eye's depth): use frustum or culler");
+            "--shadow-casters receivers and culler+receivers do not take a stereo scenario "
+            "culled per eye yet (the shading pass redraws one drawn set): use \"culling\": "
+            "\"enclosing\", or --shadow-casters frustum or culler");
     }
     if (per_eye && record_objects) {
         throw RegistryError(
@@ -431,8 +432,21 @@ void Simulation::selectCasters(const ShadowView& shadow) {
 void Simulation::buildReceiverMask(const ShadowView& shadow) {
     renderer_.readDepthRanks(camera_depth_);
     receiver_mask_.reset(shadow.box, kReceiverMaskResolution);
+    const double margin = 2.5 * shadow_lookup_.texel_m;
+    if (const StereoViews* stereo = world_->stereoViews()) {
+        // Each eye's half of the framebuffer, through that eye's own view.
+        const uint32_t width = renderer_.width(), eye_height = renderer_.height() / 2;
+        for (int eye = 0; eye < 2; ++eye) {
+            const size_t first = size_t{stereoEyeFirstRow(eye, renderer_.height())} * width;
+            addVisibleReceivers(std::span(camera_depth_).subspan(first, size_t{width} * eye_height),
+                                width, eye_height,
+                                eye == 0 ? stereo->left_render : stereo->right_render,
+                                renderer_.depthConvention(), margin, receiver_mask_);
+        }
+        return;
+    }
     addVisibleReceivers(camera_depth_, renderer_.width(), renderer_.height(), world_->view().render,
-                        renderer_.depthConvention(), 2.5 * shadow_lookup_.texel_m, receiver_mask_);
+                        renderer_.depthConvention(), margin, receiver_mask_);
 }
 
 // Receiver-masked: the camera's pass drawn again with the shadow term over its own depth, each

@@ -239,6 +239,9 @@ TEST(FrameView, StereoEyesSitEitherSideOfTheCameraAndTheEnclosingViewKeepsWhatEi
     EXPECT_EQ(stereo.right.kind, ViewKind::RightEye);
     EXPECT_EQ(stereo.enclosing.kind, ViewKind::Camera);
     EXPECT_EQ(stereo.render.eye_separation_m, 1.0);
+    EXPECT_NEAR(stereo.left_render.eye.x, -0.5, 1e-12) << "each eye's own render view";
+    EXPECT_NEAR(stereo.right_render.eye.x, 0.5, 1e-12);
+    EXPECT_EQ(stereo.right_render.eye_separation_m, 0.0);
     EXPECT_FLOAT_EQ(stereo.render.near_radius, middle.render.near_radius + 0.5f);
     EXPECT_FLOAT_EQ(stereo.enclosing.near_radius, middle.cull.near_radius + 0.5f);
     const Aabb left_only = cubeAt({-4.1f, 2.0f, 5.0f}, 0.05f);

@@ -66,26 +66,35 @@ TEST(Stereo, EveryQueryCullerDrawsEveryPixelEitherEyeSeesInBothCullingModes) {
     }
 }
 
-// Three teapots 20 m ahead of a still camera: one in the middle, one 16.8 m to each side, beyond
-// the camera's frustum there (it spans +-15.4 m) and inside one eye's when the eyes are 4 m apart
-// (each frustum is shifted by 2 m). A culler given the camera's frustum, or the left eye's for the
-// right eye, leaves a side teapot out: the zero error below is what that would break.
-Scenario sideTeapots(StereoCulling culling) {
+// Teapots on the ground (x, z, height) before a still camera at the origin looking down -z, seen
+// by two eyes 4 m apart (each frustum shifted by 2 m; the camera's spans +-15.4 m at 20 m).
+struct Teapot {
+    double x, z, size;
+};
+Scenario teapotsAt(std::initializer_list<Teapot> teapots, StereoCulling culling) {
     std::string sources;
-    for (const double x : {0.0, -16.8, 16.8}) {
-        const std::string at = "[" + std::to_string(x) + ", 0, -20]";
+    for (const Teapot& t : teapots) {
+        const std::string at = "[" + std::to_string(t.x) + ", 0, " + std::to_string(t.z) + "]";
+        const std::string size = "[" + std::to_string(t.size) + ", " + std::to_string(t.size) + "]";
         sources += std::string(sources.empty() ? "" : ", ") +
-                   R"({"type": "teapots", "count": 1, "size": [1, 1], "region": {"min": )" + at +
-                   R"(, "max": )" + at + "}}";
+                   R"({"type": "teapots", "count": 1, "size": )" + size +
+                   R"(, "region": {"min": )" + at + R"(, "max": )" + at + "}}";
     }
     Scenario scenario = parseScenarioText(R"({
         "format_version": 1, "frames": 3, "viewport": {"width": 200, "height": 150},
         "camera": {"fov_y": 60, "keyframes": [{"time": 0, "position": [0, 0.5, 0],
                                                 "target": [0, 0.5, -10]}]},
         "scene": {"sources": [)" + sources + R"(]}})",
-                                          "side-teapots.json");
+                                          "teapots.json");
     scenario.stereo = StereoSpec{4.0, culling};
     return scenario;
+}
+
+// Three teapots 20 m ahead: one in the middle, one 16.8 m to each side, beyond the camera's
+// frustum there and inside one eye's. A culler given the camera's frustum, or the left eye's for
+// the right eye, leaves a side teapot out: the zero error below is what that would break.
+Scenario sideTeapots(StereoCulling culling) {
+    return teapotsAt({{0.0, -20.0, 1.0}, {-16.8, -20.0, 1.0}, {16.8, -20.0, 1.0}}, culling);
 }
 
 TEST(Stereo, AnObjectOnlyOneEyeSeesIsDrawnForThatEye) {
@@ -144,11 +153,15 @@ TEST(Stereo, TheSameScenarioGivesTheSameDecisionsTwice) {
     }
 }
 
-// A low sun over the stereo city: the light's box holds both eyes' frusta, so light-frustum
-// culling and the cullers in the light's view leave no shadow pixel of either eye lit.
+// A low sun over the stereo city, eyes 4 m apart: the light's box holds both eyes' frusta, and
+// the receiver mask takes each eye's receivers through that eye's view, so light-frustum culling,
+// the receiver mask, the cullers in the light's view and both together leave no shadow pixel of
+// either eye lit; the mask draws fewer casters than light-frustum culling.
 TEST(Stereo, TheShadowPassServesBothEyes) {
+    int64_t frustum_casters = 0;
     for (const ShadowCasterCulling casters :
-         {ShadowCasterCulling::LightFrustum, ShadowCasterCulling::Culler}) {
+         {ShadowCasterCulling::LightFrustum, ShadowCasterCulling::Culler,
+          ShadowCasterCulling::ReceiverMask, ShadowCasterCulling::CullerWithReceiverMask}) {
         Scenario scenario = stereoCity(4.0, StereoCulling::Enclosing);
         LightSpec sun;
         sun.direction = glm::normalize(glm::dvec3(1.0, -0.35, 0.25));
@@ -158,15 +171,47 @@ TEST(Stereo, TheShadowPassServesBothEyes) {
         options.shadow_casters = casters;
         const BenchResult lit = runBenchmark(scenario, options);
         testing::expectNoErrorAndNoMiss(lit);
-        int64_t seen = 0;
+        int64_t seen = 0, drawn = 0;
         for (const RunRecord& run : lit.runs) {
             for (const FrameStats& f : run.frames) {
                 EXPECT_EQ(f.shadow_error_pixels, 0) << run.summary.label << " frame " << f.frame;
                 EXPECT_EQ(f.missed_casters, 0) << run.summary.label << " frame " << f.frame;
                 seen += f.shadow_seen_casters;
+                drawn += f.shadow_casters;
             }
         }
         EXPECT_GT(seen, 0) << "ground truth shows no shadow: the check above proves nothing";
+        if (casters == ShadowCasterCulling::LightFrustum) frustum_casters = drawn;
+        if (casters == ShadowCasterCulling::ReceiverMask) {
+            EXPECT_LT(drawn, frustum_casters);
+        }
+    }
+}
+
+// A sun low from +x; a teapot only the right eye sees (16.8 m to the right, 20 m ahead) lies in
+// the shadow of a large one neither eye sees (30 m to the right), a teapot 30 m ahead for both
+// eyes. The receiver mask must take the right eye's receivers too: from the left eye's alone it
+// would leave the large caster out (checked by mutation), and its shadow would be lost.
+TEST(Stereo, ACasterWhoseShadowOnlyOneEyeSeesIsDrawn) {
+    Scenario scenario = teapotsAt({{0.0, -30.0, 1.0}, {16.8, -20.0, 1.0}, {30.0, -20.0, 4.0}},
+                                  StereoCulling::Enclosing);
+    LightSpec sun;
+    sun.direction = glm::normalize(glm::dvec3(-1.0, -0.05, 0.0));
+    sun.shadow_map = 1024;
+    scenario.lights.push_back(sun);
+    for (const ShadowCasterCulling casters :
+         {ShadowCasterCulling::ReceiverMask, ShadowCasterCulling::CullerWithReceiverMask}) {
+        BenchOptions options = stereoBench({"vfc", "chc"});
+        options.shadow_casters = casters;
+        const BenchResult lit = runBenchmark(scenario, options);
+        testing::expectNoErrorAndNoMiss(lit);
+        for (const RunRecord& run : lit.runs) {
+            for (const FrameStats& f : run.frames) {
+                EXPECT_GT(f.shadow_seen_casters, 0) << "the large teapot's shadow shows";
+                EXPECT_EQ(f.shadow_error_pixels, 0) << run.summary.label << " frame " << f.frame;
+                EXPECT_EQ(f.missed_casters, 0) << run.summary.label << " frame " << f.frame;
+            }
+        }
     }
 }
 
@@ -195,9 +240,10 @@ TEST(Stereo, WhatStereoDoesNotTakeYetIsRefusedWithOneLine) {
         << "the oracle draws what either eye sees";
     BenchOptions receivers = options;
     receivers.shadow_casters = ShadowCasterCulling::ReceiverMask;
-    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::Enclosing), "vfc", receivers)
-                  .find("receiver mask"),
+    EXPECT_NE(refusal(stereoCity(0.064, StereoCulling::PerEye), "vfc", receivers)
+                  .find("do not take a stereo scenario culled per eye yet"),
               std::string::npos);
+    EXPECT_EQ(refusal(stereoCity(0.064, StereoCulling::Enclosing), "vfc", receivers), "");
     BenchOptions record = options;
     record.record_objects = true;
     EXPECT_NE(
