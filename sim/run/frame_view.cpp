@@ -17,19 +17,10 @@ FrameView makeFrameView(const CameraSpec& camera, double time_s, uint32_t width,
                          depth);
 }
 
-namespace {
-
-// Looking straight up or down: y cannot be the up vector, take z.
-glm::dvec3 cameraUp(const glm::dvec3& forward) {
-    return std::abs(forward.y) > 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
-}
-
-}  // namespace
-
 FrameView makeFrameView(const CameraSpec& camera, const CameraPose& pose, uint32_t width,
                         uint32_t height, const glm::dvec3& culling_origin, DepthConvention depth) {
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
-    const glm::dvec3 up = cameraUp(forward);
+    const glm::dvec3 up = cameraWorldUp(forward);
     const double aspect = static_cast<double>(width) / height;
     const double fov = glm::radians(camera.fov_y_deg);
 
@@ -63,7 +54,7 @@ StereoViews makeStereoViews(const CameraSpec& camera, const CameraPose& pose, do
     // The view's x axis in the world, as lookAt makes it (forward x up).
     const glm::dvec3 forward = glm::normalize(pose.target - pose.position);
     const glm::dvec3 half =
-        0.5 * separation_m * glm::normalize(glm::cross(forward, cameraUp(forward)));
+        0.5 * separation_m * glm::normalize(glm::cross(forward, cameraWorldUp(forward)));
     const CameraPose left_pose{pose.position - half, pose.target - half};
     const CameraPose right_pose{pose.position + half, pose.target + half};
     StereoViews views;

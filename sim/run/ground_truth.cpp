@@ -46,20 +46,14 @@ const GroundTruthFrame& GroundTruth::of(const SharedWorld& world, bool with_colo
     frame_.stray_fragments =
         markStrayFragments(frame_.ids, frame_.depth, nearest_rank_, frame_.stray);
     frame_.visible.assign(objects, 0);
+    const bool stereo = world.stereoViews() != nullptr;
+    frame_.eye_visible.assign(stereo ? objects : 0, 0);
+    // Stereo: the left eye's pixels are those from its first row on (stereoEyeFirstRow).
+    const size_t left_first = size_t{stereoEyeFirstRow(0, renderer_.height())} * renderer_.width();
     for (size_t i = 0; i < frame_.ids.size(); ++i) {
-        if (frame_.ids[i] != 0 && !frame_.stray[i]) frame_.visible[frame_.ids[i] - 1] = 1;
-    }
-    frame_.eye_visible.assign(world.stereoViews() != nullptr ? objects : 0, 0);
-    if (world.stereoViews() != nullptr) {
-        const size_t eye_pixels = frame_.ids.size() / 2;
-        for (int eye = 0; eye < 2; ++eye) {
-            const size_t first =
-                size_t{stereoEyeFirstRow(eye, renderer_.height())} * renderer_.width();
-            for (size_t i = first; i < first + eye_pixels; ++i) {
-                if (frame_.ids[i] != 0 && !frame_.stray[i])
-                    frame_.eye_visible[frame_.ids[i] - 1] |= static_cast<uint8_t>(1u << eye);
-            }
-        }
+        if (frame_.ids[i] == 0 || frame_.stray[i]) continue;
+        frame_.visible[frame_.ids[i] - 1] = 1;
+        if (stereo) frame_.eye_visible[frame_.ids[i] - 1] |= i >= left_first ? 1 : 2;
     }
     frame_.shadow_pixels.assign(frame_.has_shadow ? objects : 0, 0);
     if (frame_.has_shadow) {

@@ -256,12 +256,13 @@ void SharedWorld::advance() {
     const DepthConvention depth = depthConventionOf(scenario_);
     const CameraPose pose =
         live_.camera ? *live_.camera : sampleCameraPath(scenario_.camera, since_start_s);
-    view_ = makeFrameView(scenario_.camera, pose, width, height, scene_.culling_origin, depth);
     if (scenario_.stereo) {
         stereo_ = makeStereoViews(scenario_.camera, pose, scenario_.stereo->eye_separation_m, width,
                                   height, scene_.culling_origin, depth);
         view_.render = stereo_->render;
         view_.cull = cullsEachEye() ? stereo_->left : stereo_->enclosing;
+    } else {
+        view_ = makeFrameView(scenario_.camera, pose, width, height, scene_.culling_origin, depth);
     }
     computeModelViews();
     if (shadow_) computeShadowView(pose, static_cast<double>(width) / height, depth);

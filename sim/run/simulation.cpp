@@ -299,7 +299,6 @@ FrameStats Simulation::renderFrame() {
     GlQueryDevice::SkippedDraws skipped = gl_device_.skippedConditionalDraws();
     if (right_eye_) {
         // Stereo per eye: the frame's figures are both eyes' passes together.
-        right_eye_->gl_device.resolveConditionalDraws();
         right_eye_->culler->afterFrame(*right_eye_->device);
         const DeviceCounters& r = right_eye_->device->counters();
         read_backs += r.read_backs;
@@ -561,18 +560,16 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         }
     }
     if (world_->stereoViews() != nullptr) {
-        // Each eye's error apart: its half of the framebuffer (stereoEyeFirstRow).
+        // Each eye's error apart: the left eye's half of the framebuffer (stereoEyeFirstRow)
+        // compared again, the right eye's the rest of the frame's.
+        const size_t first = size_t{stereoEyeFirstRow(0, renderer_.height())} * renderer_.width();
         const size_t eye_pixels = culled_ids_.size() / 2;
-        for (int eye = 0; eye < 2; ++eye) {
-            const size_t first =
-                size_t{stereoEyeFirstRow(eye, renderer_.height())} * renderer_.width();
-            auto half = [&](const auto& v) { return std::span(v).subspan(first, eye_pixels); };
-            const int64_t error =
-                comparePixels(half(truth.ids), half(truth.depth), half(culled_ids_),
-                              half(culled_depth_), half(truth.stray), nullptr)
-                    .error;
-            (eye == 0 ? stats.left_error_pixels : stats.right_error_pixels) = error;
-        }
+        auto half = [&](const auto& v) { return std::span(v).subspan(first, eye_pixels); };
+        stats.left_error_pixels =
+            comparePixels(half(truth.ids), half(truth.depth), half(culled_ids_),
+                          half(culled_depth_), half(truth.stray), nullptr)
+                .error;
+        stats.right_error_pixels = pixels.error - stats.left_error_pixels;
     }
     stats.error_pixels = pixels.error;
     stats.tie_pixels = pixels.tie;

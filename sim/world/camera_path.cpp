@@ -49,4 +49,8 @@ CameraPose sampleCameraPath(const CameraSpec& camera, double time_s) {
             catmullRom(k0.target, k1.target, k2.target, k3.target, u)};
 }
 
+glm::dvec3 cameraWorldUp(const glm::dvec3& forward) {
+    return std::abs(forward.y) > 0.999 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
+}
+
 }  // namespace occsim

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/world/camera_path.h"
+
 namespace occsim {
 namespace {
 
@@ -28,11 +30,8 @@ std::array<glm::dvec3, 8> viewFrustumCorners(const glm::dvec3& eye, const glm::d
                                              double fov_y_deg, double aspect, double near_m,
                                              double far_m) {
     const glm::dvec3 forward = glm::normalize(target - eye);
-    // The camera's own up by the rule the renderer's camera uses (makeFrameView in
-    // sim/run/frame_view.cpp): world +y, or +z for a view straight up or down.
-    const glm::dvec3 world_up =
-        std::abs(forward.y) > 0.999 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
-    const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
+    // The camera's own axes by the rule the renderer's camera uses (makeFrameView).
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, cameraWorldUp(forward)));
     const glm::dvec3 up = glm::cross(right, forward);
     const double tan_half = std::tan(glm::radians(fov_y_deg) * 0.5);
     std::array<glm::dvec3, 8> corners;

@@ -44,5 +44,12 @@ TEST(CameraPath, LoopsWhenAsked) {
     EXPECT_NEAR(glm::length(a - b), 0.0, 1e-9);
 }
 
+TEST(CameraPath, TheCamerasUpIsYUnlessItLooksStraightUpOrDown) {
+    EXPECT_EQ(cameraWorldUp(glm::dvec3(0, 0, -1)), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(cameraWorldUp(glm::normalize(glm::dvec3(1, 0.9, 0))), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(cameraWorldUp(glm::dvec3(0, -1, 0)), glm::dvec3(0, 0, 1));
+    EXPECT_EQ(cameraWorldUp(glm::dvec3(0, 1, 0)), glm::dvec3(0, 0, 1));
+}
+
 }  // namespace
 }  // namespace occsim
