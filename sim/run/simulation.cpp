@@ -127,15 +127,17 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
     }
     if (!scenario.stereo) return;
     const bool per_eye = scenario.stereo->culling == StereoCulling::PerEye;
-    const char* why = algorithm.needs_meshes ? "it rasterises one view's depth itself"
-                      : (algorithm.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
-                          ? "its decisions are taken on the device against one view's depth"
-                      : algorithm.oracle && per_eye
-                          ? "it decides from ground truth of both eyes, not of one"
-                          : nullptr;
-    if (why != nullptr) {
-        throw RegistryError("culler '" + algorithm.name + "' cannot cull a stereo view yet (" +
-                            why + "): leave it out of --algos");
+    if ((algorithm.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0) {
+        throw RegistryError("culler '" + algorithm.name +
+                            "' cannot cull a stereo view yet (its decisions are taken on the "
+                            "device against one view's depth): leave it out of --algos");
+    }
+    // A software depth buffer is one eye's: per eye each eye has its own.
+    if (algorithm.needs_meshes && !per_eye) {
+        throw RegistryError("culler '" + algorithm.name +
+                            "' cannot cull a stereo view in one enclosing pass (it rasterises "
+                            "one eye's depth itself): use \"culling\": \"per_eye\" (--stereo "
+                            "SEPARATION,per_eye), or leave it out of --algos");
     }
     if (per_eye && masksReceivers(shadow_casters)) {
         throw RegistryError(
@@ -215,6 +217,11 @@ FrameStats Simulation::renderFrame() {
     if (needsGroundTruth()) {
         truth = &truth_->of(*world_, options_.keep_worst_error_frame);
         cull_frame.ground_truth_visible = truth->visible;
+        if (right_eye_ && algorithm_.oracle) {
+            // Per eye, each eye's oracle decides from what ground truth shows that eye alone.
+            splitEyeTruth(*truth);
+            cull_frame.ground_truth_visible = left_truth_visible_;
+        }
     }
     // The meshes and this frame's transforms, outside the timing (an engine keeps its transforms
     // anyway), for a culler that rasterises triangles itself.
@@ -397,11 +404,22 @@ void Simulation::cullRightEye(const CullFrame& camera) {
     CullFrame frame = camera;
     frame.view = world_->stereoViews()->right;
     frame.decisions = nullptr;
+    if (algorithm_.oracle) frame.ground_truth_visible = right_truth_visible_;
     right_eye_->device->resetCounters();
     right_eye_->gl_device.beginDrawnSet(world_->scene().objectCount());
     renderer_.setEyes(StereoEyes::Right);
     right_eye_->culler->cullAndRender(world_->tree(), frame, *right_eye_->device);
     renderer_.setEyes(StereoEyes::Both);
+}
+
+void Simulation::splitEyeTruth(const GroundTruthFrame& truth) {
+    const size_t objects = truth.eye_visible.size();
+    left_truth_visible_.resize(objects);
+    right_truth_visible_.resize(objects);
+    for (size_t o = 0; o < objects; ++o) {
+        left_truth_visible_[o] = truth.eye_visible[o] & 1u;
+        right_truth_visible_[o] = (truth.eye_visible[o] >> 1) & 1u;
+    }
 }
 
 // After the frame, outside the timing: the casters the light view's culler drew (a conditional

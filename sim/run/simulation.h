@@ -253,6 +253,7 @@ class Simulation {
     std::unique_ptr<ViewCulling> right_eye_;
     std::unique_ptr<ViewCulling> makeViewCulling(std::unique_ptr<Culler> culler);
     void cullRightEye(const CullFrame& camera);
+    void splitEyeTruth(const GroundTruthFrame& truth);
     ApproximationOptions approximation_;
     ReceiverMask receiver_mask_;             // masksReceivers()
     std::vector<uint8_t> may_shadow_;        // per object: the mask's draw filter (light view)
@@ -262,6 +263,8 @@ class Simulation {
     std::vector<float> truth_shadow_depth_, culled_shadow_depth_;  // on a frame with a difference
     std::vector<uint32_t> frame_latencies_;
     std::vector<uint32_t> right_latencies_;  // stereo per eye: the right eye's device's
+    // Stereo per eye with an oracle: what ground truth shows each eye (0/1 per object).
+    std::vector<uint8_t> left_truth_visible_, right_truth_visible_;
     std::vector<uint64_t> answer_latencies_;
     std::vector<uint32_t> culled_ids_;
     std::vector<uint32_t> culled_depth_;
