@@ -17,6 +17,7 @@ struct WhyFlags {
     bool overdraw = false;
     bool missed = false;
     uint32_t limit = 20;
+    std::string view = "camera";
 };
 
 CLI::App* addWhy(CLI::App& app, WhyFlags& flags);

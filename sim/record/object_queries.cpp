@@ -21,6 +21,19 @@ uint32_t optionalInteger(const sql::Statement& s, int column, uint32_t none) {
     return s.isNull(column) ? none : static_cast<uint32_t>(s.integer(column));
 }
 
+// A view's table, and its pixel columns as the camera's names (RecordedView).
+std::string tableOf(RecordedView view) {
+    switch (view) {
+        case RecordedView::RightEye:
+            return "right_eye_decisions";
+        case RecordedView::Light:
+            return "(SELECT *, shadow_pixels AS truth_pixels, missed_shadow_pixels AS "
+                   "error_pixels, 0 AS tie_pixels FROM light_decisions)";
+        default:
+            return "decisions";
+    }
+}
+
 }  // namespace
 
 std::vector<RecordedConfig> recordedConfigs(sql::Database& db) {
@@ -56,13 +69,20 @@ uint32_t recordedObjectCount(sql::Database& db) {
     return static_cast<uint32_t>(s.integer(0));
 }
 
+bool recordedViewHasRows(sql::Database& db, RecordedView view) {
+    sql::Statement s = db.prepare("SELECT EXISTS (SELECT 1 FROM " + tableOf(view) + ")");
+    s.step();
+    return s.integer(0) != 0;
+}
+
 std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t object, uint32_t config,
-                                                std::optional<uint32_t> frame) {
+                                                std::optional<uint32_t> frame, RecordedView view) {
     sql::Statement s = db.prepare(
         "SELECT frame, drawn, reason, query_frame, samples, flags, phase, level, interval, "
         "next_query, next_query_frame, visible_answers, history, truth_pixels, error_pixels, "
-        "tie_pixels, node, node_kind FROM decisions WHERE object = ?1 AND config = ?2 "
-        "AND (?3 IS NULL OR frame = ?3) ORDER BY frame");
+        "tie_pixels, node, node_kind FROM " +
+        tableOf(view) +
+        " WHERE object = ?1 AND config = ?2 AND (?3 IS NULL OR frame = ?3) ORDER BY frame");
     s.bind(1, object).bind(2, config).bind(3, frame);
     std::vector<RecordedDecision> out;
     while (s.step()) {
@@ -93,11 +113,12 @@ std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t obje
 }
 
 std::vector<NodeMember> nodeMembers(sql::Database& db, uint32_t config, uint32_t frame,
-                                    uint32_t node) {
-    sql::Statement s = db.prepare(
-        "SELECT d.object, o.name, d.drawn, d.truth_pixels FROM decisions d "
-        "JOIN objects o ON o.object = d.object "
-        "WHERE d.config = ?1 AND d.node = ?2 AND d.frame = ?3 ORDER BY d.object");
+                                    uint32_t node, RecordedView view) {
+    sql::Statement s =
+        db.prepare("SELECT d.object, o.name, d.drawn, d.truth_pixels FROM " + tableOf(view) +
+                   " d JOIN objects o ON o.object = d.object "
+                   "WHERE d.config = ?1 AND d.node = ?2 AND d.frame = ?3 "
+                   "ORDER BY d.object");
     s.bind(1, config).bind(2, node).bind(3, frame);
     std::vector<NodeMember> out;
     while (s.step()) {
@@ -111,11 +132,12 @@ namespace {
 
 // The answers are the rows `culled on query` (2) and `drawn on query` (3).
 std::optional<NodeAnswer> nodeAnswer(sql::Database& db, const char* where_and_order,
-                                     uint32_t config, uint32_t node, uint32_t frame) {
-    sql::Statement s = db.prepare(std::string("SELECT frame, reason, query_frame, samples "
-                                              "FROM decisions WHERE config = ?1 AND node = ?2 "
-                                              "AND reason IN (2, 3) AND ") +
-                                  where_and_order + " LIMIT 1");
+                                     uint32_t config, uint32_t node, uint32_t frame,
+                                     RecordedView view) {
+    sql::Statement s =
+        db.prepare("SELECT frame, reason, query_frame, samples FROM " + tableOf(view) +
+                   " WHERE config = ?1 AND node = ?2 AND reason IN (2, 3) AND " + where_and_order +
+                   " LIMIT 1");
     s.bind(1, config).bind(2, node).bind(3, frame);
     if (!s.step()) return std::nullopt;
     NodeAnswer a;
@@ -129,20 +151,21 @@ std::optional<NodeAnswer> nodeAnswer(sql::Database& db, const char* where_and_or
 }  // namespace
 
 std::optional<NodeAnswer> answerBefore(sql::Database& db, uint32_t config, uint32_t node,
-                                       uint32_t frame) {
-    return nodeAnswer(db, "frame < ?3 ORDER BY frame DESC", config, node, frame);
+                                       uint32_t frame, RecordedView view) {
+    return nodeAnswer(db, "frame < ?3 ORDER BY frame DESC", config, node, frame, view);
 }
 
 std::optional<NodeAnswer> answerFrom(sql::Database& db, uint32_t config, uint32_t node,
-                                     uint32_t frame) {
-    return nodeAnswer(db, "frame >= ?3 ORDER BY frame", config, node, frame);
+                                     uint32_t frame, RecordedView view) {
+    return nodeAnswer(db, "frame >= ?3 ORDER BY frame", config, node, frame, view);
 }
 
-std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config) {
-    sql::Statement s = db.prepare(
-        "SELECT d.object, o.name, o.triangles, d.frame FROM decisions d JOIN objects o "
-        "ON o.object = d.object WHERE d.config = ? AND d.drawn = 1 AND d.truth_pixels = 0 "
-        "ORDER BY d.object, d.frame");
+std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config,
+                                              RecordedView view) {
+    sql::Statement s =
+        db.prepare("SELECT d.object, o.name, o.triangles, d.frame FROM " + tableOf(view) +
+                   " d JOIN objects o ON o.object = d.object WHERE d.config = ? AND d.drawn = 1 "
+                   "AND d.truth_pixels = 0 ORDER BY d.object, d.frame");
     s.bind(1, config.id);
     std::vector<OverdrawnObject> out;
     uint32_t streak = 0, streak_first = 0, last_frame = 0;
@@ -179,11 +202,12 @@ std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedC
     return out;
 }
 
-std::vector<MissedObject> missedObjects(sql::Database& db, const RecordedConfig& config) {
-    sql::Statement s = db.prepare(
-        "SELECT d.object, o.name, d.frame, d.error_pixels FROM decisions d JOIN objects o "
-        "ON o.object = d.object WHERE d.config = ? AND d.drawn = 0 AND d.truth_pixels > 0 "
-        "ORDER BY d.object, d.frame");
+std::vector<MissedObject> missedObjects(sql::Database& db, const RecordedConfig& config,
+                                        RecordedView view) {
+    sql::Statement s =
+        db.prepare("SELECT d.object, o.name, d.frame, d.error_pixels FROM " + tableOf(view) +
+                   " d JOIN objects o ON o.object = d.object WHERE d.config = ? AND d.drawn = 0 "
+                   "AND d.truth_pixels > 0 ORDER BY d.object, d.frame");
     s.bind(1, config.id);
     std::vector<MissedObject> out;
     while (s.step()) {

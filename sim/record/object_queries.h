@@ -15,6 +15,12 @@
 
 namespace occsim {
 
+// The table a view's decisions are in (docs/objects.md): the camera's `decisions` (in a stereo
+// run culled per eye, the left eye's), `right_eye_decisions` (the right eye's, per eye) or
+// `light_decisions` (a light's view culled by the culler). The light's rows read as the camera's:
+// truth_pixels its shadow_pixels, error_pixels its missed_shadow_pixels, tie_pixels 0.
+enum class RecordedView : uint8_t { Camera, RightEye, Light };
+
 struct RecordedConfig {
     uint32_t id = 0;
     std::string label;
@@ -65,25 +71,30 @@ std::optional<RecordedObject> recordedObject(sql::Database& db, uint32_t index);
 // The objects of that name, by index.
 std::vector<RecordedObject> recordedObjectsNamed(sql::Database& db, const std::string& name);
 uint32_t recordedObjectCount(sql::Database& db);
+// Whether the view's table has a row (a run that recorded that view).
+bool recordedViewHasRows(sql::Database& db, RecordedView view);
 
 // The object's rows for one configuration, by frame; `frame` limits them to that frame.
 std::vector<RecordedDecision> recordedDecisions(sql::Database& db, uint32_t object, uint32_t config,
-                                                std::optional<uint32_t> frame = {});
+                                                std::optional<uint32_t> frame = {},
+                                                RecordedView view = RecordedView::Camera);
 
 // The objects the configuration decided with `node` in `frame`, by index (rows only: an object
 // frustum culled and unseen has none).
 std::vector<NodeMember> nodeMembers(sql::Database& db, uint32_t config, uint32_t frame,
-                                    uint32_t node);
+                                    uint32_t node, RecordedView view = RecordedView::Camera);
 // The last answer recorded for `node` before `frame`, and the first at or after it.
 std::optional<NodeAnswer> answerBefore(sql::Database& db, uint32_t config, uint32_t node,
-                                       uint32_t frame);
+                                       uint32_t frame, RecordedView view = RecordedView::Camera);
 std::optional<NodeAnswer> answerFrom(sql::Database& db, uint32_t config, uint32_t node,
-                                     uint32_t frame);
+                                     uint32_t frame, RecordedView view = RecordedView::Camera);
 
 // Every object the configuration drew while ground truth saw none of it, the most triangles drawn
 // that way (triangles x frames) first.
-std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config);
+std::vector<OverdrawnObject> overdrawnObjects(sql::Database& db, const RecordedConfig& config,
+                                              RecordedView view = RecordedView::Camera);
 // Every object ground truth saw that the configuration did not draw, by index.
-std::vector<MissedObject> missedObjects(sql::Database& db, const RecordedConfig& config);
+std::vector<MissedObject> missedObjects(sql::Database& db, const RecordedConfig& config,
+                                        RecordedView view = RecordedView::Camera);
 
 }  // namespace occsim

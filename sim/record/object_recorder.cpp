@@ -26,14 +26,20 @@ constexpr const char* kInsertDecision =
     "truth_pixels, error_pixels, tie_pixels, node, node_kind) "
     "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
+constexpr const char* kInsertRightEyeDecision =
+    "INSERT INTO right_eye_decisions (frame, config, object, drawn, reason, query_frame, "
+    "samples, flags, phase, level, interval, next_query, next_query_frame, visible_answers, "
+    "history, truth_pixels, error_pixels, tie_pixels, node, node_kind) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+
 constexpr const char* kInsertLightDecision =
     "INSERT INTO light_decisions (frame, config, object, drawn, reason, query_frame, samples, "
     "flags, phase, level, interval, next_query, next_query_frame, visible_answers, history, "
     "shadow_pixels, missed_shadow_pixels, light, node, node_kind) "
     "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
-// One object's row of either table: both share columns 1-15 and 19-20; 16-18 are the camera's
-// truth, error and tie pixels, or the light's shadow pixels, missed shadow pixels and light.
+// One object's row of any of the three tables: they share columns 1-15 and 19-20; 16-18 are an
+// eye's truth, error and tie pixels, or the light's shadow pixels, missed shadow pixels and light.
 void insertRow(sql::Statement& s, uint32_t frame, uint32_t config, uint32_t object,
                const ObjectFrame& f, uint32_t third) {
     const Decision& d = f.why;
@@ -92,6 +98,7 @@ ObjectRecorder::ObjectRecorder(const std::filesystem::path& folder)
         reason.reset();
     }
     insert_ = std::make_unique<sql::Statement>(db_->prepare(kInsertDecision));
+    insert_right_eye_ = std::make_unique<sql::Statement>(db_->prepare(kInsertRightEyeDecision));
     insert_light_ = std::make_unique<sql::Statement>(db_->prepare(kInsertLightDecision));
 }
 
@@ -171,6 +178,11 @@ void ObjectRecorder::onFrame(const FrameEvent& e) {
         if (!saysNothing(objects[o]))
             insertRow(*insert_, e.frame, config, o, objects[o], objects[o].pixels.tie);
     }
+    const std::vector<ObjectFrame>& right = e.simulation.rightEyeObjectFrames();
+    for (uint32_t o = 0; o < right.size(); ++o) {
+        if (!saysNothing(right[o]))
+            insertRow(*insert_right_eye_, e.frame, config, o, right[o], right[o].pixels.tie);
+    }
     const std::vector<ObjectFrame>& casters = e.simulation.lightObjectFrames();
     const uint32_t light = e.simulation.recordedLight();
     for (uint32_t o = 0; o < casters.size(); ++o) {
@@ -202,6 +214,7 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
     const uint32_t kept = started_ ? framesKept(result) : 0;
     db_->exec("BEGIN");
     db_->prepare("DELETE FROM decisions WHERE frame >= ?").bind(1, kept).run();
+    db_->prepare("DELETE FROM right_eye_decisions WHERE frame >= ?").bind(1, kept).run();
     db_->prepare("DELETE FROM light_decisions WHERE frame >= ?").bind(1, kept).run();
     db_->prepare(
            "UPDATE run SET command = ?, command_line = ?, frames = ?, frames_recorded = ?, "
@@ -234,15 +247,27 @@ ObjectHighlights ObjectRecorder::finish(const BenchResult& result, uint32_t over
     ObjectHighlights h;
     h.overdrawn_per_config = overdrawn_per_config;
     h.repetitions = m.repetitions;
+    // A stereo run culled per eye: the right eye's beside the left eye's (`decisions`), each
+    // named for its eye.
+    const bool per_eye = recordedViewHasRows(*db_, RecordedView::RightEye);
     for (const RecordedConfig& c : recordedConfigs(*db_)) {
         if (m.repetitions > 1) h.later_misses.push_back({c.label, c.missed_in_later_repetitions});
-        std::vector<OverdrawnObject> over = overdrawnObjects(*db_, c);
-        if (over.size() > overdrawn_per_config) over.resize(overdrawn_per_config);
-        h.overdrawn.insert(h.overdrawn.end(), over.begin(), over.end());
-        const std::vector<MissedObject> missed = missedObjects(*db_, c);
-        h.missed.insert(h.missed.end(), missed.begin(), missed.end());
+        for (const RecordedView view : {RecordedView::Camera, RecordedView::RightEye}) {
+            if (view == RecordedView::RightEye && !per_eye) continue;
+            const std::string eye = !per_eye                       ? ""
+                                    : view == RecordedView::Camera ? " (left eye)"
+                                                                   : " (right eye)";
+            std::vector<OverdrawnObject> over = overdrawnObjects(*db_, c, view);
+            if (over.size() > overdrawn_per_config) over.resize(overdrawn_per_config);
+            for (OverdrawnObject& o : over) o.config += eye;
+            h.overdrawn.insert(h.overdrawn.end(), over.begin(), over.end());
+            std::vector<MissedObject> missed = missedObjects(*db_, c, view);
+            for (MissedObject& o : missed) o.config += eye;
+            h.missed.insert(h.missed.end(), missed.begin(), missed.end());
+        }
     }
     insert_.reset();
+    insert_right_eye_.reset();
     insert_light_.reset();
     db_->exec("PRAGMA journal_mode = DELETE");  // removes the journal file beside it
     db_->close();

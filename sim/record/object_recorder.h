@@ -61,6 +61,7 @@ class ObjectRecorder {
     std::filesystem::path file_;
     std::unique_ptr<sql::Database> db_;
     std::unique_ptr<sql::Statement> insert_;
+    std::unique_ptr<sql::Statement> insert_right_eye_;
     std::unique_ptr<sql::Statement> insert_light_;
     std::map<std::string, uint32_t> configs_;
     bool started_ = false;

@@ -13,7 +13,8 @@ inline constexpr const char* kObjectsDatabaseFile = "objects.sqlite";
 //    has rows; what the later ones missed is counted, so the file agrees with summary.json).
 // 3: decisions.node and decisions.node_kind (the node a decision rests on), and an index by node.
 // 4: light_decisions, the decisions of a light's view culled by the configuration's culler.
-inline constexpr int kObjectsFormatVersion = 4;
+// 5: right_eye_decisions, the right eye's of a stereo run culled per eye (decisions: the left's).
+inline constexpr int kObjectsFormatVersion = 5;
 
 // The columns `decisions` and `light_decisions` share: a decision, its reason and what the culler
 // said of it (a macro, so that both tables' statements stay string literals).
@@ -36,7 +37,9 @@ inline constexpr int kObjectsFormatVersion = 4;
 
 // The tables. `decisions` holds a row per frame, configuration and object except the rows that
 // say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
-// no tie). Every drawn object, every visible one and every missed one has its row.
+// no tie). Every drawn object, every visible one and every missed one has its row. In a stereo
+// run culled per eye, `decisions` holds the left eye's (its pixels those of the left eye's half)
+// and `right_eye_decisions`, with the same columns, the right eye's.
 // `light_decisions` holds the same for a light's view, when the configuration's culler culls it
 // (`--shadow-casters culler`, `culler+receivers`): a caster's pixels are the visible pixels ground
 // truth shadows through it.
@@ -77,6 +80,16 @@ CREATE TABLE reasons (
   draws INTEGER
 );
 CREATE TABLE decisions (
+  frame INTEGER NOT NULL,
+  config INTEGER NOT NULL REFERENCES configurations(config),
+  object INTEGER NOT NULL REFERENCES objects(object),
+)sql" OCCSIM_DECISION_COLUMNS R"sql(
+  truth_pixels INTEGER NOT NULL,
+  error_pixels INTEGER NOT NULL,
+  tie_pixels INTEGER NOT NULL,
+  PRIMARY KEY (config, frame, object)
+) WITHOUT ROWID;
+CREATE TABLE right_eye_decisions (
   frame INTEGER NOT NULL,
   config INTEGER NOT NULL REFERENCES configurations(config),
   object INTEGER NOT NULL REFERENCES objects(object),

@@ -213,8 +213,9 @@ RecordedObject chosenObject(sql::Database& db, const std::string& text) {
 }
 
 // The decision at `frame`: its row, or the row that was left out (frustum culled, unseen).
-RecordedDecision decisionAt(sql::Database& db, uint32_t object, uint32_t config, uint32_t frame) {
-    std::vector<RecordedDecision> rows = recordedDecisions(db, object, config, frame);
+RecordedDecision decisionAt(sql::Database& db, uint32_t object, uint32_t config, uint32_t frame,
+                            RecordedView view) {
+    std::vector<RecordedDecision> rows = recordedDecisions(db, object, config, frame, view);
     if (!rows.empty()) return rows.front();
     RecordedDecision d;
     d.frame = frame;
@@ -273,7 +274,7 @@ std::string decisionCause(sql::Database& db, const WhyRequest& r, const Recorded
                           const RecordedDecision& d) {
     if (d.node_kind == DecidingNode::None) return "";
     std::ostringstream out;
-    const std::vector<NodeMember> members = nodeMembers(db, c.id, d.frame, d.node);
+    const std::vector<NodeMember> members = nodeMembers(db, c.id, d.frame, d.node, r.view);
     out << "  decided with " << nodeName(d) << ", which held "
         << plural(members.size(), "object", "objects") << " this frame:";
     constexpr size_t kListed = 6;
@@ -292,8 +293,8 @@ std::string decisionCause(sql::Database& db, const WhyRequest& r, const Recorded
         d.why.kind == DecisionKind::CulledOnQuery || d.why.kind == DecisionKind::DrawnOnQuery;
     bool visible_answer = d.why.kind == DecisionKind::DrawnOnQuery;
     if (!answered) {
-        const std::optional<NodeAnswer> before = answerBefore(db, c.id, d.node, d.frame);
-        const std::optional<NodeAnswer> next = answerFrom(db, c.id, d.node, d.frame);
+        const std::optional<NodeAnswer> before = answerBefore(db, c.id, d.node, d.frame, r.view);
+        const std::optional<NodeAnswer> next = answerFrom(db, c.id, d.node, d.frame, r.view);
         out << "  its last answer before: "
             << (before ? answerWords(*before, d.frame) : std::string("none recorded")) << "\n";
         if (next) out << "  its next answer: " << answerWords(*next, d.frame) << "\n";
@@ -305,6 +306,8 @@ std::string decisionCause(sql::Database& db, const WhyRequest& r, const Recorded
         out << "  its box answered visible though ground truth saw none of its objects: the box "
                "reaches past what it holds\n";
     }
+    // The bird's-eye picture is of the camera's culler (the left eye's, per eye).
+    if (r.view != RecordedView::Camera) return out.str();
     char name[200];
     std::snprintf(name, sizeof name, "birds-eye-%s-frame-%05u.png", safeFileName(c.label).c_str(),
                   d.frame);
@@ -324,15 +327,17 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
     out << objectLabel(object) << "\n";
     if (r.frame) {
         for (const RecordedConfig& c : configs) {
-            const RecordedDecision d = decisionAt(db, object.index, c.id, *r.frame);
-            out << "frame " << *r.frame << ", " << c.label << ": " << describeDecision(d) << "\n"
+            const RecordedDecision d = decisionAt(db, object.index, c.id, *r.frame, r.view);
+            out << "frame " << *r.frame << ", " << c.label << ": " << describeDecision(d, r.view)
+                << "\n"
                 << decisionCause(db, r, c, d);
         }
         return out.str();
     }
     const uint32_t frames = base.run().frames_recorded;
     for (const RecordedConfig& c : configs) {
-        const std::vector<RecordedDecision> rows = recordedDecisions(db, object.index, c.id);
+        const std::vector<RecordedDecision> rows =
+            recordedDecisions(db, object.index, c.id, std::nullopt, r.view);
         std::vector<uint32_t> missed, hidden;
         uint32_t drawn = 0, seen = 0;
         uint64_t error = 0;
@@ -345,11 +350,17 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
             }
             if (d.drawn && d.truth_pixels == 0) hidden.push_back(d.frame);
         }
-        out << c.label << ": drawn on " << drawn << " of " << frames
-            << " frames; ground truth saw it on " << seen << "; ";
+        const bool light = r.view == RecordedView::Light;
+        out << c.label << (light ? ": drawn into the shadow map on " : ": drawn on ") << drawn
+            << " of " << frames
+            << (light ? " frames; ground truth showed its shadow on "
+                      : " frames; ground truth saw it on ")
+            << seen << "; ";
         out << (missed.empty() ? "never missed"
                                : "missed on frames " + frameRanges(missed) + " (" +
-                                     plural(error, "error pixel", "error pixels") + ")");
+                                     plural(error, light ? "shadow pixel" : "error pixel",
+                                            light ? "shadow pixels" : "error pixels") +
+                                     (light ? " left lit)" : ")"));
         out << "; "
             << (hidden.empty()
                     ? "never drawn while hidden"
@@ -361,8 +372,8 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
             const auto row = std::find_if(rows.begin(), rows.end(), [&](const RecordedDecision& d) {
                 return d.frame == missed[i];
             });
-            out << "  frame " << missed[i] << ", " << c.label << ": " << describeDecision(*row)
-                << "\n";
+            out << "  frame " << missed[i] << ", " << c.label << ": "
+                << describeDecision(*row, r.view) << "\n";
             if (i == 0) out << indented(decisionCause(db, r, c, *row));
         }
         if (missed.size() > kShown)
@@ -372,7 +383,7 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
                 return d.frame == hidden.front();
             });
             out << "  frame " << hidden.front() << ", " << c.label
-                << " (first drawn while hidden): " << describeDecision(*row) << "\n"
+                << " (first drawn while hidden): " << describeDecision(*row, r.view) << "\n"
                 << indented(decisionCause(db, r, c, *row));
         }
     }
@@ -380,12 +391,14 @@ std::string oneObject(ObjectDatabase& base, const WhyRequest& r,
 }
 
 std::string overdrawList(sql::Database& db, const std::vector<RecordedConfig>& configs,
-                         uint32_t limit) {
+                         uint32_t limit, RecordedView view) {
     std::ostringstream out;
     for (const RecordedConfig& c : configs) {
-        const std::vector<OverdrawnObject> over = overdrawnObjects(db, c);
+        const std::vector<OverdrawnObject> over = overdrawnObjects(db, c, view);
         out << c.label << ": " << plural(over.size(), "object", "objects")
-            << " drawn while ground truth saw none of it";
+            << (view == RecordedView::Light
+                    ? " drawn into the shadow map while ground truth showed none of its shadow"
+                    : " drawn while ground truth saw none of it");
         if (over.size() > limit) out << " (the " << limit << " with the most triangles drawn so)";
         out << "\n";
         for (size_t i = 0; i < over.size() && i < limit; ++i) {
@@ -402,10 +415,10 @@ std::string overdrawList(sql::Database& db, const std::vector<RecordedConfig>& c
 }
 
 std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& configs,
-                       uint32_t repetitions) {
+                       uint32_t repetitions, RecordedView view) {
     std::ostringstream out;
     for (const RecordedConfig& c : configs) {
-        const std::vector<MissedObject> missed = missedObjects(db, c);
+        const std::vector<MissedObject> missed = missedObjects(db, c, view);
         out << c.label << ": " << plural(missed.size(), "object", "objects") << " missed";
         if (repetitions > 1) {
             out << " in repetition 1; "
@@ -415,7 +428,10 @@ std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& con
         for (const MissedObject& m : missed) {
             out << "  object " << m.object << " '" << m.name << "': frames "
                 << frameRanges(m.frames) << " ("
-                << plural(m.error_pixels, "error pixel", "error pixels") << ")\n";
+                << (view == RecordedView::Light
+                        ? plural(m.error_pixels, "shadow pixel", "shadow pixels") + " left lit"
+                        : plural(m.error_pixels, "error pixel", "error pixels"))
+                << ")\n";
         }
     }
     return out.str();
@@ -423,9 +439,19 @@ std::string missedList(sql::Database& db, const std::vector<RecordedConfig>& con
 
 }  // namespace
 
-std::string describeDecision(const RecordedDecision& d) {
+std::string describeDecision(const RecordedDecision& d, RecordedView view) {
     std::string s = d.drawn ? "drawn: " : "not drawn: ";
     s += reasonWords(d.why, d.frame, d.drawn);
+    if (view == RecordedView::Light) {
+        s += "; ground truth shadows " + std::to_string(d.truth_pixels) + " visible px through it";
+        if (!d.drawn && d.truth_pixels > 0) {
+            s += " (missed: " + plural(d.error_pixels, "shadow pixel", "shadow pixels") +
+                 " left lit)";
+        } else if (d.drawn && d.truth_pixels == 0) {
+            s += " (drawn while its shadow falls on nothing visible)";
+        }
+        return s;
+    }
     s += "; ground truth sees " + std::to_string(d.truth_pixels) + " px";
     if (!d.drawn && d.truth_pixels > 0) {
         s += " (missed: " + plural(d.error_pixels, "error pixel", "error pixels") + ")";
@@ -434,6 +460,42 @@ std::string describeDecision(const RecordedDecision& d) {
     }
     return s;
 }
+
+namespace {
+
+// --view: that the run recorded the view asked for, and a line saying whose decisions follow
+// where that is not plain (a stereo run culled per eye, a light's view).
+std::string viewHead(sql::Database& db, const WhyRequest& r) {
+    const bool per_eye = recordedViewHasRows(db, RecordedView::RightEye);
+    switch (r.view) {
+        case RecordedView::RightEye:
+            if (!per_eye) {
+                throw InputError(
+                    "--view right: this run recorded no right eye's decisions (a stereo run "
+                    "culled per eye records them); expected --view camera");
+            }
+            return "(the right eye's decisions, a stereo run culled per eye)\n";
+        case RecordedView::Light:
+            if (!recordedViewHasRows(db, RecordedView::Light)) {
+                throw InputError(
+                    "--view light: this run recorded no light view's decisions (--shadow-casters "
+                    "culler or culler+receivers records them); expected --view camera");
+            }
+            return "(the light view's decisions: drawn into the shadow map or not; pixels are "
+                   "the visible pixels ground truth shadows through the caster)\n";
+        default:
+            if (r.left_eye && !per_eye) {
+                throw InputError(
+                    "--view left: this run is not a stereo run culled per eye; expected --view "
+                    "camera");
+            }
+            return per_eye ? "(the left eye's decisions, a stereo run culled per eye; --view "
+                             "right for the right eye's)\n"
+                           : "";
+    }
+}
+
+}  // namespace
 
 std::string answerWhy(const WhyRequest& r) {
     const int modes = (!r.object.empty()) + r.overdraw + r.missed;
@@ -455,12 +517,13 @@ std::string answerWhy(const WhyRequest& r) {
                                                       : base.run().partial_reason) +
                    "; " + plural(base.run().frames_recorded, "frame", "frames") + " recorded)\n";
         }
-        if (r.overdraw) return head + overdrawList(db, configs, r.limit);
+        head += viewHead(db, r);
+        if (r.overdraw) return head + overdrawList(db, configs, r.limit, r.view);
         if (base.run().repetitions > 1) {
             head += "(repetition 1 of " + std::to_string(base.run().repetitions) +
                     " recorded: --record objects keeps the first repetition's decisions)\n";
         }
-        if (r.missed) return head + missedList(db, configs, base.run().repetitions);
+        if (r.missed) return head + missedList(db, configs, base.run().repetitions, r.view);
         const RecordedObject object = chosenObject(db, r.object);
         if (r.frame && *r.frame >= base.run().frames_recorded) {
             const uint32_t n = base.run().frames_recorded;

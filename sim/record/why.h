@@ -23,6 +23,10 @@ struct WhyRequest {
     bool overdraw = false;
     bool missed = false;
     uint32_t limit = 20;  // over-drawn objects listed per configuration
+    // Whose decisions (--view): the camera's (the left eye's in a stereo run culled per eye), the
+    // right eye's, or the light view's.
+    RecordedView view = RecordedView::Camera;
+    bool left_eye = false;  // --view left: the camera's, required to be a stereo run per eye
 };
 
 // Throws InputError (one line, naming the flag or file) for a folder without a database, one
@@ -32,6 +36,6 @@ std::string answerWhy(const WhyRequest& request);
 
 // One decision in words: "drawn: the query issued at frame 12 answered visible (84 samples);
 // ground truth sees 80 px". Exposed for tests.
-std::string describeDecision(const RecordedDecision& d);
+std::string describeDecision(const RecordedDecision& d, RecordedView view = RecordedView::Camera);
 
 }  // namespace occsim

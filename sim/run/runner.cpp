@@ -464,8 +464,7 @@ BenchResult runBenchmark(const Scenario& input, const BenchOptions& options) {
 
     // Before the scene is built: what the views cannot take yet is one line, and nothing else.
     for (const RunConfig& config : configs) {
-        requireViewSupport(*config.algorithm, scenario, options.shadow_casters,
-                           options.record_objects && options.measure_error);
+        requireViewSupport(*config.algorithm, scenario, options.shadow_casters);
     }
     const Scene scene = buildScene(scenario);
     printWarnings(scene, options.warnings_shown);

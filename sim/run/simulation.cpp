@@ -89,8 +89,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
       approximation_(options.approximation) {
     // Before any frame: a culler that needs what this device lacks is refused with one line.
     requireDeviceFeatures(algorithm_, device_->features());
-    requireViewSupport(algorithm_, world_->scenario(), options_.shadow_casters,
-                       options_.record_objects);
+    requireViewSupport(algorithm_, world_->scenario(), options_.shadow_casters);
     if (options_.record_objects && !options_.measure_error) {
         throw std::logic_error("Simulation: record_objects needs measure_error");
     }
@@ -104,7 +103,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
 }
 
 void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
-                        ShadowCasterCulling shadow_casters, bool record_objects) {
+                        ShadowCasterCulling shadow_casters) {
     if (shadow_casters == ShadowCasterCulling::ReceiverMask &&
         (algorithm.device_needs & kGpuDrivenDraws) != 0) {
         throw RegistryError(
@@ -145,11 +144,6 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
             "culled per eye yet (the shading pass redraws one drawn set): use \"culling\": "
             "\"enclosing\", or --shadow-casters frustum or culler");
     }
-    if (per_eye && record_objects) {
-        throw RegistryError(
-            "--record objects does not record a stereo scenario culled per eye yet (one "
-            "decision per object and frame): use \"culling\": \"enclosing\" to record it");
-    }
 }
 
 std::unique_ptr<Simulation::ViewCulling> Simulation::makeViewCulling(
@@ -177,6 +171,10 @@ void Simulation::cullRightEyeWith(std::unique_ptr<Culler> culler) {
         throw std::logic_error("Simulation::cullRightEyeWith: the eyes are not culled apart");
     }
     right_eye_ = makeViewCulling(std::move(culler));
+    if (options_.record_objects) {
+        right_eye_->decisions.reserve(
+            4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
+    }
 }
 
 uint32_t Simulation::recordedLight() const {
@@ -404,6 +402,10 @@ void Simulation::cullRightEye(const CullFrame& camera) {
     CullFrame frame = camera;
     frame.view = world_->stereoViews()->right;
     frame.decisions = nullptr;
+    if (options_.record_objects) {
+        right_eye_->decisions.clear();
+        frame.decisions = &right_eye_->decisions;
+    }
     if (algorithm_.oracle) frame.ground_truth_visible = right_truth_visible_;
     right_eye_->device->resetCounters();
     right_eye_->gl_device.beginDrawnSet(world_->scene().objectCount());
@@ -616,7 +618,23 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
     const uint32_t objects = world_->scene().objectCount();
     const BspTree& tree = world_->tree();
     resolveDecisions(tree, decisions_.records(), reasons_, resolve_stack_, &reason_subjects_);
-    attributePixels(truth.ids, truth.stray, culled_ids_, marks_, objects, object_pixels_);
+    if (!right_eye_) {
+        attributePixels(truth.ids, truth.stray, culled_ids_, marks_, objects, object_pixels_);
+    } else {
+        // Per eye, each eye's decisions go with its own half's pixels (stereoEyeFirstRow).
+        const size_t eye_pixels = culled_ids_.size() / 2;
+        auto half = [&](const auto& v, int eye) {
+            const size_t first =
+                size_t{stereoEyeFirstRow(eye, renderer_.height())} * renderer_.width();
+            return v.empty() ? std::span(v) : std::span(v).subspan(first, eye_pixels);
+        };
+        attributePixels(half(truth.ids, 0), half(truth.stray, 0), half(culled_ids_, 0),
+                        half(marks_, 0), objects, object_pixels_);
+        attributePixels(half(truth.ids, 1), half(truth.stray, 1), half(culled_ids_, 1),
+                        half(marks_, 1), objects, right_eye_pixels_);
+        resolveDecisions(tree, right_eye_->decisions.records(), right_eye_reasons_, resolve_stack_,
+                         &right_eye_subjects_);
+    }
     object_frames_.resize(objects);
     for (uint32_t o = 0; o < objects; ++o) {
         ObjectFrame& f = object_frames_[o];
@@ -624,6 +642,15 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
         f.drawn = gl_device_.drew(o);
         f.pixels = object_pixels_[o];
         setDecidingNode(tree, o < reason_subjects_.size() ? reason_subjects_[o] : QueryTag{}, f);
+    }
+    right_eye_object_frames_.resize(right_eye_ ? objects : 0);
+    for (uint32_t o = 0; o < right_eye_object_frames_.size(); ++o) {
+        ObjectFrame& f = right_eye_object_frames_[o];
+        f.why = o < right_eye_reasons_.size() ? right_eye_reasons_[o] : Decision{};
+        f.drawn = right_eye_->gl_device.drew(o);
+        f.pixels = right_eye_pixels_[o];
+        setDecidingNode(tree, o < right_eye_subjects_.size() ? right_eye_subjects_[o] : QueryTag{},
+                        f);
     }
 }
 

@@ -180,7 +180,13 @@ class Simulation {
     // saw them until the world's next advance().
     const FrameTrace* lastTrace() const { return traced_ ? &tracer_.trace() : nullptr; }
     // Per object, the last frame rendered (SimulationOptions::record_objects; empty otherwise).
+    // In a stereo run culled per eye, the left eye's: its pass's decisions, the pixels of its half.
     const std::vector<ObjectFrame>& objectFrames() const { return object_frames_; }
+    // The right eye's, in a stereo run culled per eye (its own culler's decisions, the pixels of
+    // its half); empty otherwise.
+    const std::vector<ObjectFrame>& rightEyeObjectFrames() const {
+        return right_eye_object_frames_;
+    }
     // The same for the light's view, when the culler culls it (cullsLightView) and the frame had a
     // shadow pass; empty otherwise. `pixels.truth` is the visible pixels ground truth shadows
     // through the caster (GroundTruthFrame::shadow_pixels), `pixels.error` those of them it left
@@ -277,6 +283,11 @@ class Simulation {
     std::vector<uint8_t> marks_;
     std::vector<ObjectPixels> object_pixels_;
     std::vector<ObjectFrame> object_frames_;
+    // record_objects in stereo per eye: the right eye's.
+    std::vector<Decision> right_eye_reasons_;
+    std::vector<QueryTag> right_eye_subjects_;
+    std::vector<ObjectPixels> right_eye_pixels_;
+    std::vector<ObjectFrame> right_eye_object_frames_;
     // record_objects with a culled light view: the same for it.
     std::vector<Decision> light_reasons_;
     std::vector<QueryTag> light_subjects_;
@@ -284,11 +295,11 @@ class Simulation {
 };
 
 // What the views of a run do not take yet (docs/views.md): a culler that cannot cull a light's
-// view or a stereo view, receiver masking with stereo or with a culler whose draws the device
-// decides, a stereo run culled per eye recorded per object. Throws RegistryError, one line; a
-// run checks every configuration before frame 0 and before it says anything of its views.
+// view or a stereo view, receiver masking with stereo culled per eye or with a culler whose draws
+// the device decides. Throws RegistryError, one line; a run checks every configuration before
+// frame 0 and before it says anything of its views.
 void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
-                        ShadowCasterCulling shadow_casters, bool record_objects);
+                        ShadowCasterCulling shadow_casters);
 
 // Uploads the scene's meshes and object-to-mesh table to the renderer (once per scene).
 void uploadScene(const Scene& scene, GlRenderer& renderer);

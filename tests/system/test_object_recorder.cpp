@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -167,6 +168,105 @@ TEST(ObjectsDatabase, ALightsViewCulledByEachCullerHasItsOwnRowsThatMatchFramesC
                            "(SELECT reason FROM reasons WHERE name = 'culled on query')"),
               0)
         << "some caster is hidden from the light";
+    // `why --view light` on a caster the light's chc hid: its query, and the shadow it casts.
+    sql::Statement hidden = db.prepare(
+        "SELECT d.object, d.frame FROM light_decisions d JOIN configurations c USING (config) "
+        "WHERE c.label = 'chc' AND d.reason = 2 ORDER BY d.frame, d.object LIMIT 1");
+    ASSERT_TRUE(hidden.step());
+    const Outcome why =
+        occsim("why " + out.string() + " --view light --algo chc --object " +
+               std::to_string(hidden.integer(0)) + " --frame " + std::to_string(hidden.integer(1)));
+    ASSERT_EQ(why.exit_code, 0) << why.output;
+    EXPECT_NE(why.output.find("the light view's decisions"), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("chc: not drawn: the query issued"), std::string::npos) << why.output;
+    EXPECT_NE(why.output.find("visible px through it"), std::string::npos) << why.output;
+    const Outcome right = occsim("why " + out.string() + " --missed --view right");
+    EXPECT_EQ(right.exit_code, 2) << right.output;
+    EXPECT_NE(right.output.find("--view right: this run recorded no right eye's"),
+              std::string::npos)
+        << right.output;
+}
+
+// A stereo run culled per eye (eyes 4 m apart, async answering 100 commands late, so both eyes
+// miss): `decisions` holds the left eye's decisions with its half's pixels, right_eye_decisions
+// the right eye's. Per configuration and frame each table's error pixels are that eye's figure in
+// frames.csv, the objects either table has missed are its missed_objects, and the two tables'
+// drawn rows its objects_drawn; `why --view left|right` reads each eye's, a view the run did
+// not record is one line.
+TEST(ObjectsDatabase, AStereoRunCulledPerEyeRecordsEachEyesDecisionsThatMatchFramesCsv) {
+    TempDir dir;
+    const fs::path out = dir.path() / "out";
+    const std::string city = std::string(OCCSIM_SOURCE_DIR) + "/scenarios/small/city-small.json";
+    const Outcome o = occsim("bench " + city + " --stereo 4,per_eye --algos chc,async " +
+                             "--deterministic-latency 100 --record objects --out " + out.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    const FramesCsv csv(out / "frames.csv");
+    ASSERT_FALSE(csv.rows.empty());
+    sql::Database db(out / kObjectsDatabaseFile, sql::Database::Mode::ReadOnly);
+    const auto sum = [&](const std::string& what, const std::string& table,
+                         const std::string& label, int64_t frame) {
+        return queryInteger(db,
+                            "SELECT COALESCE(" + what + ", 0) FROM " + table +
+                                " d JOIN configurations c ON c.config = d.config WHERE "
+                                "c.label = ? AND d.frame = ?",
+                            {label}, {frame});
+    };
+    int64_t left_error = 0, right_error = 0;
+    for (const auto& row : csv.rows) {
+        const std::string label = row.at("configuration");
+        const int64_t frame = std::stoll(row.at("frame"));
+        const std::string where = label + " frame " + std::to_string(frame);
+        EXPECT_EQ(sum("SUM(d.error_pixels)", "decisions", label, frame),
+                  std::stoll(row.at("left_error_pixels")))
+            << where;
+        EXPECT_EQ(sum("SUM(d.error_pixels)", "right_eye_decisions", label, frame),
+                  std::stoll(row.at("right_error_pixels")))
+            << where;
+        EXPECT_EQ(sum("SUM(d.drawn)", "decisions", label, frame) +
+                      sum("SUM(d.drawn)", "right_eye_decisions", label, frame),
+                  std::stoll(row.at("objects_drawn")))
+            << where;
+        EXPECT_EQ(queryInteger(db,
+                               "SELECT COUNT(DISTINCT object) FROM (SELECT * FROM decisions UNION "
+                               "ALL SELECT * FROM right_eye_decisions) d JOIN configurations c "
+                               "ON c.config = d.config WHERE c.label = ? AND d.frame = ? AND "
+                               "d.drawn = 0 AND d.truth_pixels > 0",
+                               {label}, {frame}),
+                  std::stoll(row.at("missed_objects")))
+            << where;
+        left_error += std::stoll(row.at("left_error_pixels"));
+        right_error += std::stoll(row.at("right_error_pixels"));
+    }
+    EXPECT_GT(left_error, 0) << "async missed nothing in the left eye: the checks prove little";
+    EXPECT_GT(right_error, 0) << "async missed nothing in the right eye: the checks prove little";
+    EXPECT_GT(queryInteger(db,
+                           "SELECT COUNT(*) FROM decisions l JOIN right_eye_decisions r "
+                           "USING (config, frame, object) WHERE l.drawn != r.drawn"),
+              0)
+        << "eyes 4 m apart decide apart";
+    EXPECT_EQ(queryInteger(db,
+                           "SELECT COUNT(*) FROM right_eye_decisions d JOIN reasons r ON "
+                           "r.reason = d.reason WHERE r.draws IS NOT NULL AND r.draws != d.drawn"),
+              0);
+    const std::string report = fileText(out / "report.md");
+    EXPECT_NE(report.find("async (right eye)"), std::string::npos) << report;
+
+    const Outcome right = occsim("why " + out.string() + " --missed --algo async --view right");
+    ASSERT_EQ(right.exit_code, 0) << right.output;
+    EXPECT_NE(right.output.find("the right eye's decisions"), std::string::npos) << right.output;
+    const Outcome left = occsim("why " + out.string() + " --missed --algo async --view left");
+    ASSERT_EQ(left.exit_code, 0) << left.output;
+    EXPECT_NE(left.output.find("the left eye's decisions"), std::string::npos) << left.output;
+    EXPECT_NE(left.output, right.output);
+    const Outcome light = occsim("why " + out.string() + " --missed --view light");
+    EXPECT_EQ(light.exit_code, 2) << light.output;
+    EXPECT_EQ(std::count(light.output.begin(), light.output.end(), '\n'), 1) << light.output;
+    EXPECT_NE(light.output.find("--view light"), std::string::npos) << light.output;
+    const Outcome bad = occsim("why " + out.string() + " --missed --view top");
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--view: expected camera, left, right or light, got 'top'"),
+              std::string::npos)
+        << bad.output;
 }
 
 TEST(ObjectsDatabase, OnAGltfLevelAsyncMissesTheTruckAndWhyNamesTheQueryThatHidIt) {

@@ -25,8 +25,8 @@ TEST(ObjectsSchema, DocsObjectsMdListsEveryTableColumnAndEveryReasonKind) {
     const std::string doc = fileText(fs::path(OCCSIM_SOURCE_DIR) / "docs/objects.md");
     ASSERT_FALSE(doc.empty());
     uint32_t columns = 0;
-    for (const char* table :
-         {"run", "configurations", "objects", "reasons", "decisions", "light_decisions"}) {
+    for (const char* table : {"run", "configurations", "objects", "reasons", "decisions",
+                              "right_eye_decisions", "light_decisions"}) {
         EXPECT_NE(doc.find("### `" + std::string(table) + "`"), std::string::npos) << table;
         sql::Statement s =
             db.prepare("SELECT name FROM pragma_table_xinfo('" + std::string(table) + "')");

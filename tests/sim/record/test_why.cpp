@@ -52,6 +52,18 @@ TEST(WhyWording, EachReasonIsSaidInWordsWithTheQueryFrameAndGroundTruth) {
               "drawn: the query issued this frame answered visible (1 sample, waited for); "
               "ground truth sees 40 px");
 
+    // A light view's decision speaks of the shadow the caster throws on what the camera sees.
+    RecordedDecision caster = decision(DecisionKind::CulledOnQuery, 7, false, 25);
+    caster.why.query_frame = 7;
+    caster.error_pixels = 25;
+    EXPECT_EQ(describeDecision(caster, RecordedView::Light),
+              "not drawn: the query issued this frame answered occluded (0 samples); ground "
+              "truth shadows 25 visible px through it (missed: 25 shadow pixels left lit)");
+    EXPECT_EQ(
+        describeDecision(decision(DecisionKind::DrawnNoTest, 7, true, 0), RecordedView::Light),
+        "drawn: with no test; ground truth shadows 0 visible px through it (drawn while its "
+        "shadow falls on nothing visible)");
+
     RecordedDecision skipped = decision(DecisionKind::DrawnConditional, 4, false, 0);
     skipped.why.query_frame = 4;
     EXPECT_NE(describeDecision(skipped).find("the device skipped it"), std::string::npos);
