@@ -3,6 +3,7 @@
 #include "culling/cullers/masked_culler.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "occsim/culling/declaration/culler_row.h"
@@ -12,6 +13,18 @@
 namespace occsim {
 
 namespace {
+
+// Every point of `box` strictly on the inner side of `plane` (Frustum's convention), with room for
+// the plane's rounding.
+bool whollyInside(const Aabb& box, const glm::vec4& plane) {
+    const glm::vec3 n(plane);
+    const glm::vec3 nearest(n.x >= 0.0f ? box.min.x : box.max.x,
+                            n.y >= 0.0f ? box.min.y : box.max.y,
+                            n.z >= 0.0f ? box.min.z : box.max.z);
+    const float reach = std::max(
+        {std::abs(nearest.x), std::abs(nearest.y), std::abs(nearest.z), std::abs(plane.w)});
+    return glm::dot(n, nearest) + plane.w > 1e-5f * (reach + 1.0f);
+}
 
 MaskedLayout layoutOf(const MaskedOptions& o) {
     MaskedLayout layout;
@@ -53,10 +66,14 @@ void MaskedCuller::tryOccluder(const BspTree& tree, const CullMeshes& meshes, ui
     const Aabb& box = tree.objectBox(object);
     uint32_t mesh = meshes.object_mesh[object];
     // Its inscribed occluder mesh where it has one, unless the eye may be inside its box: from
-    // there the object's surface need not lie in front of what is inside it.
+    // there the object's surface need not lie in front of what is inside it. An orthographic
+    // view's rays start on its near plane: the box must lie wholly beyond it.
+    const bool eye_outside =
+        orthographic_view_
+            ? whollyInside(box, near_plane_)
+            : !nearPlaneTouchesBox(box, view_eye_, view_near_radius_) && !contains(box, view_eye_);
     if (options_.simplified_occluders && object < meshes.object_occluder_mesh.size() &&
-        meshes.object_occluder_mesh[object] != kNoOccluderMesh &&
-        !nearPlaneTouchesBox(box, view_eye_, view_near_radius_) && !contains(box, view_eye_)) {
+        meshes.object_occluder_mesh[object] != kNoOccluderMesh && eye_outside) {
         mesh = meshes.object_occluder_mesh[object];
     }
     if (mesh >= meshes.meshes.size()) return;
@@ -122,6 +139,8 @@ void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     view_ = prepareView(frame);
     view_eye_ = frame.view.eye;
     view_near_radius_ = frame.view.near_radius;
+    orthographic_view_ = frame.view.kind == ViewKind::Light;
+    near_plane_ = frame.view.frustum.planes[4];
     if (rasterised_in_.size() != tree.objectCount()) {
         rasterised_in_.assign(tree.objectCount(), 0);
         occluder_in_.assign(tree.objectCount(), 0);
@@ -129,8 +148,13 @@ void MaskedCuller::cullAndRender(const BspTree& tree, const CullFrame& frame,
     ++stamp_;
     occluders_ = 0;
     budget_ = options_.occluder_triangles;
-    buffer_.beginFrame(frame.view.view_projection, frame.view.eye, frame.view.viewport_width,
-                       frame.view.viewport_height, options_.width);
+    if (frame.view.kind == ViewKind::Light) {  // a light's view is orthographic
+        buffer_.beginOrthographicFrame(frame.view.view_projection, frame.view.viewport_width,
+                                       frame.view.viewport_height, options_.width);
+    } else {
+        buffer_.beginFrame(frame.view.view_projection, frame.view.eye, frame.view.viewport_width,
+                           frame.view.viewport_height, options_.width);
+    }
     // Without meshes (a caller that gives none) nothing occludes: every box is found visible.
     const CullMeshes& meshes = frame.meshes;
     const bool have_meshes = meshes.object_mesh.size() == tree.objectCount();

@@ -85,6 +85,8 @@ class MaskedCuller final : public Culler {
     std::vector<uint8_t> has_neighbours_;
     glm::vec3 view_eye_{0.0f};
     float view_near_radius_ = 0.0f;
+    bool orthographic_view_ = false;  // a light's view
+    glm::vec4 near_plane_{0.0f};      // the view's (Frustum's planes[4])
     uint64_t stamp_ = 0;
     uint64_t budget_ = 0;
     uint32_t occluders_ = 0;

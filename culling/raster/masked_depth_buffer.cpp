@@ -161,6 +161,7 @@ bool MaskedDepthBuffer::layOut(uint32_t viewport_width, uint32_t viewport_height
 
 void MaskedDepthBuffer::beginClipFrame(uint32_t viewport_width, uint32_t viewport_height,
                                        double near_w, uint32_t max_width) {
+    ortho_scale_ = 0.0;
     if (!layOut(viewport_width, viewport_height, max_width)) return;
     view_projection_ = glm::dmat4(1.0);
     eye_ = glm::dvec3(0.0);
@@ -193,9 +194,51 @@ void MaskedDepthBuffer::rasteriseClipMesh(std::span<const glm::dvec4> clip,
     skip_facing_ = 0;
 }
 
+void MaskedDepthBuffer::beginOrthographicFrame(const glm::mat4& view_projection,
+                                               uint32_t viewport_width, uint32_t viewport_height,
+                                               uint32_t max_width) {
+    ortho_scale_ = 0.0;
+    if (!layOut(viewport_width, viewport_height, max_width)) return;
+    view_projection_ = glm::dmat4(view_projection);
+    const glm::dmat4& m = view_projection_;
+    const glm::dvec3 row_x(m[0][0], m[1][0], m[2][0]), row_y(m[0][1], m[1][1], m[2][1]);
+    const glm::dvec3 row_z(m[0][2], m[1][2], m[2][2]), row_w(m[0][3], m[1][3], m[2][3]);
+    const double w = m[3][3];
+    if (row_w != glm::dvec3(0.0) || !(w > 0.0) || !std::isfinite(w)) return;
+    // z after the divide moves this much per metre.
+    const double z_per_metre = glm::length(row_z) / w;
+    if (!(z_per_metre > 0.0) || !std::isfinite(z_per_metre)) return;
+    ortho_scale_ = std::min(1.0, 1.0 / z_per_metre);
+    eye_ = glm::dvec3(0.0);
+    // The near plane (z = -1) at w' = s / 3; the nearest w' is never below s / 3 inside the view.
+    near_ = ortho_scale_ / 3.0;
+    // A metre across is this many viewport pixels; w' <= s inside the view, so focal / w' bounds
+    // the pixels a metre's rounding moves a point by.
+    focal_px_ = std::max(0.5 * viewport_width * glm::length(row_x),
+                         0.5 * viewport_height * glm::length(row_y)) /
+                w * ortho_scale_;
+    // The rounding of the matrix, as the eye's in a perspective frame: of the coordinates of the
+    // view's centre (the point the matrix takes to the clip origin).
+    const glm::dmat3 linear(m);
+    if (!(std::abs(glm::determinant(linear)) > 0.0)) return;
+    const glm::dvec3 centre = -(glm::inverse(linear) * glm::dvec3(m[3]));
+    frame_error_ = kRoundingUlps * (maxAbs(centre) + 1.0);
+    active_ = std::isfinite(focal_px_) && focal_px_ > 0.0 && std::isfinite(frame_error_);
+    clip_scratch_.reserve(64);
+}
+
+glm::dvec4 MaskedDepthBuffer::bufferClip(const glm::dvec4& clip) const {
+    if (ortho_scale_ == 0.0) return clip;
+    const double z = clip.z / clip.w;
+    if (!(z < 1.0)) return glm::dvec4(NAN);
+    const double w = ortho_scale_ / (2.0 - z);
+    return glm::dvec4(clip.x / clip.w * w, clip.y / clip.w * w, z * w, w);
+}
+
 void MaskedDepthBuffer::beginFrame(const glm::mat4& view_projection, glm::vec3 eye,
                                    uint32_t viewport_width, uint32_t viewport_height,
                                    uint32_t max_width) {
+    ortho_scale_ = 0.0;
     if (!layOut(viewport_width, viewport_height, max_width)) return;
     view_projection_ = glm::dmat4(view_projection);
     eye_ = glm::dvec3(eye);
@@ -232,7 +275,7 @@ void MaskedDepthBuffer::rasteriseMesh(std::span<const glm::vec3> positions,
     for (size_t i = 0; i < positions.size(); ++i) {
         const glm::dvec3 p(positions[i]);
         radius = std::max(radius, maxAbs(p));
-        clip_scratch_[i] = to_clip * glm::dvec4(p, 1.0);
+        clip_scratch_[i] = bufferClip(to_clip * glm::dvec4(p, 1.0));
     }
     double scale = 0.0;
     for (int c = 0; c < 3; ++c) scale = std::max(scale, maxAbs(glm::dvec3(model[c])));
@@ -265,9 +308,9 @@ void MaskedDepthBuffer::rasteriseTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c)
     const glm::dvec3 p[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
     const double error =
         frame_error_ + kRoundingUlps * std::max({maxAbs(p[0]), maxAbs(p[1]), maxAbs(p[2])});
-    rasteriseClipTriangle(view_projection_ * glm::dvec4(p[0], 1.0),
-                          view_projection_ * glm::dvec4(p[1], 1.0),
-                          view_projection_ * glm::dvec4(p[2], 1.0), error);
+    rasteriseClipTriangle(bufferClip(view_projection_ * glm::dvec4(p[0], 1.0)),
+                          bufferClip(view_projection_ * glm::dvec4(p[1], 1.0)),
+                          bufferClip(view_projection_ * glm::dvec4(p[2], 1.0)), error);
 }
 
 void MaskedDepthBuffer::rasteriseClipTriangle(const glm::dvec4& a, const glm::dvec4& b,
@@ -563,8 +606,11 @@ struct ProjectedBox {
 
 }  // namespace
 
+// `ortho_scale`: an orthographic frame's s (MaskedDepthBuffer::beginOrthographicFrame), 0 for a
+// perspective one.
 static ProjectedBox projectBox(const glm::dmat4& view_projection, const Aabb& box,
-                               double frame_error, double near, uint32_t width, uint32_t height) {
+                               double frame_error, double near, uint32_t width, uint32_t height,
+                               double ortho_scale) {
     ProjectedBox p;
     if (!isFiniteAndOrdered(box)) return p;
     const glm::dvec3 lo(box.min), hi(box.max);
@@ -576,6 +622,12 @@ static ProjectedBox projectBox(const glm::dmat4& view_projection, const Aabb& bo
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
         clip[i] = view_projection * glm::dvec4(corner, 1.0);
+        if (ortho_scale > 0.0) {
+            // At the stand-in w' (bufferClip), a corner past the far plane taken nearer.
+            const double z = std::min(clip[i].z / clip[i].w, 1.5);
+            const double w = ortho_scale / (2.0 - z);
+            clip[i] = glm::dvec4(clip[i].x / clip[i].w * w, clip[i].y / clip[i].w * w, z * w, w);
+        }
         p.w_min = std::min(p.w_min, clip[i].w);
     }
     // w is linear, so its minimum over the box is at a corner. A box this close to the eye
@@ -596,8 +648,8 @@ static ProjectedBox projectBox(const glm::dmat4& view_projection, const Aabb& bo
 bool MaskedDepthBuffer::testBox(const Aabb& box) {
     ++stats_.boxes_tested;
     if (!active_) return true;
-    const ProjectedBox p =
-        projectBox(view_projection_, box, frame_error_, near_, viewport_width_, viewport_height_);
+    const ProjectedBox p = projectBox(view_projection_, box, frame_error_, near_, viewport_width_,
+                                      viewport_height_, ortho_scale_);
     if (!p.valid) return true;
     return testProjected(p.x_lo, p.x_hi, p.y_lo, p.y_hi, p.w_min, p.error);
 }
@@ -655,8 +707,8 @@ bool MaskedDepthBuffer::testProjected(double x_lo, double x_hi, double y_lo, dou
 double MaskedDepthBuffer::screenExtent(const Aabb& box) const {
     if (!active_) return INFINITY;
     if (isEmpty(box)) return 0.0;
-    const ProjectedBox p =
-        projectBox(view_projection_, box, frame_error_, near_, viewport_width_, viewport_height_);
+    const ProjectedBox p = projectBox(view_projection_, box, frame_error_, near_, viewport_width_,
+                                      viewport_height_, ortho_scale_);
     if (!p.valid) return INFINITY;
     return std::max(p.x_hi - p.x_lo, p.y_hi - p.y_lo) / viewport_height_;
 }

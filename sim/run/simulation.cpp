@@ -113,8 +113,7 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
             "--algos");
     }
     if (cullsLightView(shadow_casters)) {
-        const char* why = algorithm.oracle         ? "it decides from the camera's ground truth"
-                          : algorithm.needs_meshes ? "it rasterises the camera's view itself"
+        const char* why = algorithm.oracle ? "it decides from the camera's ground truth"
                           : (algorithm.device_needs & (kGpuDrivenDraws | kDepthPyramid)) != 0
                               ? "its decisions are taken on the device against the camera's depth"
                               : nullptr;
@@ -369,6 +368,7 @@ void Simulation::renderShadowPass(const ShadowView& shadow, const CullFrame& cam
         frame.time_s = camera.time_s;
         frame.view = shadow.cull;
         frame.object_triangles = camera.object_triangles;
+        frame.meshes = camera.meshes;  // a software depth buffer rasterises the light's view too
         if (options_.record_objects) {
             light_->decisions.clear();
             frame.decisions = &light_->decisions;

@@ -222,12 +222,11 @@ TEST(CliViews, ShadowCastersCullerRunsEachCullerInTheLightsView) {
     const auto dir = tempPath("views-culler");
     const auto out = dir / "out";
     const Outcome refused =
-        runOccsim("bench " + kSmall + " --algos masked --sun 20,40 --shadow-casters culler --out " +
+        runOccsim("bench " + kSmall + " --algos hzb --sun 20,40 --shadow-casters culler --out " +
                   out.string());
     EXPECT_EQ(refused.exit_code, 2) << refused.output;
     EXPECT_EQ(lineCount(refused.output), 1u) << refused.output;
-    EXPECT_NE(refused.output.find("culler 'masked' cannot cull a light's view yet"),
-              std::string::npos)
+    EXPECT_NE(refused.output.find("culler 'hzb' cannot cull a light's view yet"), std::string::npos)
         << refused.output;
     EXPECT_FALSE(std::filesystem::exists(out));
 

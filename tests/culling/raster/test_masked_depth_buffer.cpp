@@ -303,6 +303,71 @@ TEST(MaskedDepthBuffer, ASeamOfRepeatedVerticesIsWeldedShut) {
     EXPECT_EQ(welded, (std::vector<uint32_t>{0, 1, 2, 0, 2, 5}));
 }
 
+// An orthographic view (a light's): looking down -z from `at`, 20 m across, depth 1 to 50 m.
+// A wall 10 m down hides what lies behind it, not what is beside it or in front of it; a box
+// reaching through the near plane or past the far one is seen as a real rasteriser would; the
+// same 1 km from the origin. (A scene 10^6 m out is culled relative to its culling origin:
+// ShadowStress.AMillionMetresFromTheOriginTheShadowPassIsTheSame runs masked in the light's view
+// there.)
+TEST(MaskedDepthBuffer, AnOrthographicViewHidesWhatIsBehindAWallAndNotWhatIsBesideOrInFront) {
+    for (const glm::dvec3 at : {glm::dvec3(0.0), glm::dvec3(1e3, 0.0, -1e3)}) {
+        const glm::dmat4 view_projection =
+            glm::ortho(-10.0, 10.0, -10.0, 10.0, 1.0, 50.0) *
+            glm::lookAt(at, at + glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+        MaskedDepthBuffer buffer;
+        buffer.beginOrthographicFrame(glm::mat4(view_projection), 64, 64, 64);
+        ASSERT_TRUE(buffer.active());
+        const glm::vec3 o(at);
+        auto box = [&](glm::vec3 lo, glm::vec3 hi) { return makeAabb(o + lo, o + hi); };
+        // A square wall 10 m down, 10 m across, 1 mm thick... as two triangles.
+        const glm::vec3 corners[4] = {o + glm::vec3(-5, -5, -10), o + glm::vec3(5, -5, -10),
+                                      o + glm::vec3(5, 5, -10), o + glm::vec3(-5, 5, -10)};
+        const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+        buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
+        const std::string where = at.x == 0.0 ? "at the origin" : "1 km out";
+        EXPECT_FALSE(buffer.testBox(box({-3, -3, -21}, {3, 3, -20}))) << where;
+        EXPECT_FALSE(buffer.testBox(box({-3, -3, -60}, {3, 3, -45})))
+            << where << ": behind the wall, reaching past the far plane";
+        EXPECT_TRUE(buffer.testBox(box({3, -3, -21}, {7, 3, -20}))) << where << ": past its edge";
+        EXPECT_TRUE(buffer.testBox(box({-3, -3, -6}, {3, 3, -5}))) << where << ": in front";
+        EXPECT_TRUE(buffer.testBox(box({-3, -3, -10.5f}, {3, 3, -9.99f})))
+            << where << ": through the wall";
+        EXPECT_TRUE(buffer.testBox(box({-3, -3, -20}, {3, 3, 0})))
+            << where << ": through the near plane";
+    }
+}
+
+// In an orthographic view depth is affine across the screen: a wall sloping from 10 m down at
+// x = -5 to 30 m down at x = 5 is 20 m down in the middle. A box 19.8 m down there, just in front
+// of it, is visible (a depth interpolated as if it were not affine, such as a 1/w of a w linear
+// in the depth, puts the wall about 2 m nearer there and hides it: checked by mutation); one
+// behind the farthest point of the depth cells it touches (0.625 m wide: 21.25 m down) is hidden;
+// a triangle past the far plane hides nothing.
+TEST(MaskedDepthBuffer, AnOrthographicViewsDepthIsAffineAcrossTheScreen) {
+    const glm::dmat4 view_projection =
+        glm::ortho(-10.0, 10.0, -10.0, 10.0, 1.0, 50.0) *
+        glm::lookAt(glm::dvec3(0.0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+    MaskedDepthBuffer buffer;
+    buffer.beginOrthographicFrame(glm::mat4(view_projection), 256, 256, 256);
+    const glm::vec3 corners[4] = {{-5, -5, -10}, {5, -5, -30}, {5, 5, -30}, {-5, 5, -10}};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    buffer.rasteriseMesh(corners, indices, glm::mat4(1.0f), edgeNeighbours(indices));
+    EXPECT_TRUE(
+        buffer.testBox(makeAabb(glm::vec3(-0.05f, -1, -19.9f), glm::vec3(0.05f, 1, -19.8f))));
+    EXPECT_FALSE(buffer.testBox(makeAabb(glm::vec3(-0.05f, -1, -23), glm::vec3(0.05f, 1, -22))));
+
+    MaskedDepthBuffer far;
+    far.beginOrthographicFrame(glm::mat4(view_projection), 64, 64, 64);
+    far.rasteriseTriangle({-9, -9, -55}, {9, -9, -55}, {0, 9, -55});
+    EXPECT_TRUE(far.testBox(makeAabb(glm::vec3(-1, -1, -70), glm::vec3(1, 1, -60))));
+    EXPECT_EQ(far.stats().triangles_rasterised, 0u);
+    // A perspective matrix is not orthographic: the buffer stays off.
+    MaskedDepthBuffer perspective;
+    perspective.beginOrthographicFrame(cameraView({0, 0, 0}, {0, 0, -1}, 64, 64).view_projection,
+                                       64, 64, 64);
+    EXPECT_FALSE(perspective.active());
+}
+
 TEST(MaskedDepthBuffer, WithoutAPerspectiveCameraEverythingIsVisible) {
     MaskedDepthBuffer buffer;
     buffer.beginFrame(glm::mat4(1.0f), glm::vec3(0.0f), 64, 64, 64);

@@ -1,6 +1,7 @@
 // The shadow pass on the stress scenes (docs/views.md): a sun grazing the ground, a scene
 // 10^6 m from the origin, the camera inside a caster's box. Light-frustum and receiver-masked
-// caster culling, and the cullers in the light's view without and with the receiver mask, keep
+// caster culling, and the cullers in the light's view (masked's software buffer orthographic
+// there) without and with the receiver mask, keep
 // zero shadow error pixels and zero missed casters on every frame, with query cullers on the
 // camera's view; far from the origin they draw what they draw at it.
 #include <gtest/gtest.h>
@@ -28,7 +29,7 @@ Scenario teapotsUnder(const std::string& sun, const glm::dvec3& by = glm::dvec3(
 BenchResult shadowBench(const Scenario& scenario, ShadowCasterCulling casters,
                         uint32_t frames = 10) {
     BenchOptions options;
-    for (const char* name : {"vfc", "chc", "statistical"}) {
+    for (const char* name : {"vfc", "chc", "statistical", "masked"}) {
         options.algorithms.push_back(findCuller(name));
     }
     options.measure_error = true;

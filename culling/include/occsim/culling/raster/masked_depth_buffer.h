@@ -137,6 +137,18 @@ class MaskedDepthBuffer {
     // One triangle, in the culling frame (for tests).
     void rasteriseTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c);
 
+    // Starts a frame of an orthographic view (a light's: CullView::kind Light), `view_projection`
+    // an OpenGL-convention orthographic projection (clip w constant, z from -1 at the near plane
+    // to 1 at the far one after the divide). 1/w is not a depth there, so each point is stored at
+    // the w of a stand-in, w' = s / (2 - z) with z its depth after the divide and s =
+    // min(1, 1 / the metres per unit of z): the same screen point (x·w'/w' is x), 1/w' affine in
+    // screen space as the view's depth is, nearer larger, and a metre's rounding moving w' by no
+    // more than a metre, as the margins above take it. A triangle reaching past the far plane
+    // (z >= 1) is not an occluder; a box's corner past it is taken at z = 1.5 (nearer: safe).
+    // A matrix that is not orthographic or an empty viewport leave the buffer off.
+    void beginOrthographicFrame(const glm::mat4& view_projection, uint32_t viewport_width,
+                                uint32_t viewport_height, uint32_t max_width);
+
     // Starts a frame whose triangles come in clip coordinates (a recorded frame, such as those of
     // Intel's frame recorder): no camera; `near_w` is the w of the near plane. The inputs are
     // taken as exact: no rounding bound is added to the margins.
@@ -213,6 +225,11 @@ class MaskedDepthBuffer {
     bool active_ = false;
     glm::dmat4 view_projection_{1.0};  // the frame's, in double
     glm::dvec3 eye_{0.0};
+    // An orthographic frame's s (beginOrthographicFrame); 0 in a perspective one.
+    double ortho_scale_ = 0.0;
+    // A point's clip coordinates as the buffer takes them: as they are in a perspective frame,
+    // at the stand-in w' in an orthographic one (NaN past the far plane: not an occluder).
+    glm::dvec4 bufferClip(const glm::dvec4& clip) const;
     double near_ = 0.0;         // the near plane's view depth (metres)
     double clip_w_ = 0.0;       // triangles are clipped to w >= clip_w_ (a little beyond near_)
     double frame_error_ = 0.0;  // metres: the rounding of the eye and the matrix
