@@ -137,12 +137,6 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
                             "one eye's depth itself): use \"culling\": \"per_eye\" (--stereo "
                             "SEPARATION,per_eye), or leave it out of --algos");
     }
-    if (per_eye && masksReceivers(shadow_casters)) {
-        throw RegistryError(
-            "--shadow-casters receivers and culler+receivers do not take a stereo scenario "
-            "culled per eye yet (the shading pass redraws one drawn set): use \"culling\": "
-            "\"enclosing\", or --shadow-casters frustum or culler");
-    }
 }
 
 std::unique_ptr<Simulation::ViewCulling> Simulation::makeViewCulling(
@@ -276,6 +270,7 @@ FrameStats Simulation::renderFrame() {
         // The receivers are what the camera's pass drew: the shadow pass draws the casters they
         // may catch the shadow of, then the camera's pass is shaded from the map.
         gl_device_.markSubmitted(camera_submitted_);
+        if (right_eye_) right_eye_->gl_device.markSubmitted(right_eye_submitted_);
         renderShadowPass(*shadow, cull_frame, stats);
         shadeCameraPass(stats);
     }
@@ -476,8 +471,20 @@ void Simulation::shadeCameraPass(FrameStats& stats) {
     renderer_.setShadow(&shadow_lookup_);
     renderer_.resumeFrame();
     if (shading_gpu_timer_) shading_gpu_timer_->begin();
-    for (size_t o = 0; o < camera_submitted_.size(); ++o) {
-        if (camera_submitted_[o]) renderer_.redrawObject(static_cast<uint32_t>(o));
+    auto redraw = [&](const std::vector<uint8_t>& submitted) {
+        for (size_t o = 0; o < submitted.size(); ++o) {
+            if (submitted[o]) renderer_.redrawObject(static_cast<uint32_t>(o));
+        }
+    };
+    if (right_eye_) {
+        // Stereo per eye: each eye's half shaded with what that eye's pass drew.
+        renderer_.setEyes(StereoEyes::Left);
+        redraw(camera_submitted_);
+        renderer_.setEyes(StereoEyes::Right);
+        redraw(right_eye_submitted_);
+        renderer_.setEyes(StereoEyes::Both);
+    } else {
+        redraw(camera_submitted_);
     }
     if (shading_gpu_timer_) shading_gpu_timer_->end();
     stats.shading_cpu_ms = nowMs() - start;

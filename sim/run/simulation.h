@@ -261,10 +261,11 @@ class Simulation {
     void cullRightEye(const CullFrame& camera);
     void splitEyeTruth(const GroundTruthFrame& truth);
     ApproximationOptions approximation_;
-    ReceiverMask receiver_mask_;             // masksReceivers()
-    std::vector<uint8_t> may_shadow_;        // per object: the mask's draw filter (light view)
-    std::vector<uint8_t> camera_submitted_;  // per object: the camera's pass drew it
-    std::vector<uint32_t> camera_depth_;     // the camera pass's depth, for the receivers
+    ReceiverMask receiver_mask_;                // masksReceivers()
+    std::vector<uint8_t> may_shadow_;           // per object: the mask's draw filter (light view)
+    std::vector<uint8_t> camera_submitted_;     // per object: the camera's pass drew it
+    std::vector<uint8_t> right_eye_submitted_;  // stereo per eye: the right eye's pass drew it
+    std::vector<uint32_t> camera_depth_;        // the camera pass's depth, for the receivers
     std::vector<uint32_t> culled_shadow_texels_;
     std::vector<float> truth_shadow_depth_, culled_shadow_depth_;  // on a frame with a difference
     std::vector<uint32_t> frame_latencies_;
@@ -295,9 +296,9 @@ class Simulation {
 };
 
 // What the views of a run do not take yet (docs/views.md): a culler that cannot cull a light's
-// view or a stereo view, receiver masking with stereo culled per eye or with a culler whose draws
-// the device decides. Throws RegistryError, one line; a run checks every configuration before
-// frame 0 and before it says anything of its views.
+// view or a stereo view, receiver masking with a culler whose draws the device decides. Throws
+// RegistryError, one line; a run checks every configuration before frame 0 and before it says
+// anything of its views.
 void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
                         ShadowCasterCulling shadow_casters);
 
