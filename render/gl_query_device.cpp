@@ -210,15 +210,23 @@ QueryId GlQueryDevice::issueQuery(std::span<const Aabb> boxes,
         conditioned_.push_back(0);
     }
     near_eye_[id] = 0;
-    for (const Aabb& box : boxes) near_eye_[id] |= renderer_.queryBoxNearEye(box) ? 1 : 0;
+    size_t drawn_boxes = 0;
     OCCSIM_GL_CHECKED(glBeginQuery(GL_SAMPLES_PASSED, gl_queries_[id]));
-    for (const Aabb& box : boxes) renderer_.drawQueryBox(box);
+    for (const Aabb& box : boxes) {
+        if (may_matter_ && !may_matter_(box)) {  // setQueryFilter: it counts no sample
+            ++filtered_query_boxes_;
+            continue;
+        }
+        near_eye_[id] |= renderer_.queryBoxNearEye(box) ? 1 : 0;
+        renderer_.drawQueryBox(box);
+        ++drawn_boxes;
+    }
     OCCSIM_GL_CHECKED(glEndQuery(GL_SAMPLES_PASSED));
     issued_at_[id] = commands_++;
     answered_[id] = 0;
     live_[id] = 1;
     ++counters_.queries_issued;
-    counters_.query_boxes += boxes.size();
+    counters_.query_boxes += drawn_boxes;
     counters_.submit_seconds += steadySecondsSince(start);
     return id;
 }

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -82,6 +83,15 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     // view needs (a caster that shadows no visible receiver is not drawn, whatever the culler
     // decides). The span must stay valid while it is set.
     void setDrawFilter(std::span<const uint8_t> may_draw) { may_draw_ = may_draw; }
+    // Query boxes (culling frame) for which `may_matter` is false are not drawn into their
+    // query: they count no sample, so a node whose box may shadow no visible receiver is answered
+    // hidden and culled with its subtree, as the paper tests nodes against its mask. The query
+    // itself is still issued (answers keep their order and latency). Empty: every box is drawn.
+    void setQueryFilter(std::function<bool(const Aabb&)> may_matter) {
+        may_matter_ = std::move(may_matter);
+    }
+    // Query boxes the filter has left out, since the device was made.
+    uint64_t filteredQueryBoxes() const { return filtered_query_boxes_; }
     // Marks in `submitted` (resized to the set's objects) every object the current set submitted
     // a draw of, conditional draws included whatever their query says (no read-back): during the
     // frame, a superset of what it drew.
@@ -131,6 +141,8 @@ class GlQueryDevice final : public RenderDevice, private ConditionalRendering {
     std::vector<QueryId> free_ids_;
     std::vector<uint32_t> drawn_mark_;   // object -> drawn_set_ when drawn in the current set
     std::span<const uint8_t> may_draw_;  // setDrawFilter()
+    std::function<bool(const Aabb&)> may_matter_;  // setQueryFilter()
+    uint64_t filtered_query_boxes_ = 0;
     // Conditional draws of the current set: the object and the query it was conditioned on.
     struct ConditionalDraw {
         uint32_t object;

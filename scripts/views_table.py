@@ -43,6 +43,10 @@ def vfc(summary):
     return config(summary, "vfc")
 
 
+def has_vfc(summary):
+    return any(a["configuration"] == "vfc" for a in summary["algorithms"])
+
+
 def loads(runs):
     return ", ".join(load_text(s) for s in runs)
 
@@ -53,13 +57,15 @@ def main(root):
           "missed casters | load (before→after) |")
     print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for scene in sorted(os.listdir(root)):
-        none_runs = summaries(os.path.join(root, scene, "none"))
+        none_runs = [s for s in summaries(os.path.join(root, scene, "none")) if has_vfc(s)]
         plain_ms = mean_spread([vfc(s)["frame_ms"]["mean"] for s in none_runs])
         for sun, casters in [(s, c) for s in ("low", "high") for c in ("frustum", "receivers")]:
             folder = os.path.join(root, scene, f"{sun}-{casters}")
             if not os.path.isdir(folder):
                 continue
             runs = summaries(folder)
+            if not all(has_vfc(s) for s in runs):
+                continue  # a run of other cullers only (--algos without vfc): the second table
             shadows = [vfc(s)["shadow_pass"] for s in runs]
             if not runs or any(sh is None for sh in shadows):
                 print(f"| {scene} | {sun} | {casters} | no shadow pass | | | | | | | | |")

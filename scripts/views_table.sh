@@ -15,9 +15,9 @@
 #   within 15 minutes). The suns: low 15 degrees up, high 60, both from azimuth 40 (LOW_SUN,
 #   HIGH_SUN below). --views: only these of none, {low,high}-{frustum,receivers,culler,both}.
 #   --algos: the cullers of the light-frustum, culler and both runs (default
-#   vfc,statistical,chc,conditional).
-# Output: out/views/<scene>/<view>/run-<n>/{summary.json,frames.csv,report.md}, then the tables
-# of every scene under out/views (scripts/views_table.py) and how long it took.
+#   vfc,statistical,chc,conditional). --out DIR: the runs and tables there (default out/views).
+# Output: <out>/<scene>/<view>/run-<n>/{summary.json,frames.csv,report.md}, then the tables
+# of every scene under <out> (scripts/views_table.py) and how long it took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 LOW_SUN=15,40
@@ -26,6 +26,7 @@ algos_compared=vfc,statistical,chc,conditional
 views="none low-frustum low-receivers low-culler low-both high-frustum high-receivers high-culler high-both"
 frames=60
 map=2048
+out=out/views
 scenes="scenarios/paper/city.json scenarios/levels/courtyards.json scenarios/levels/canyon.json scenarios/levels/interior.json"
 bench_args=()
 while (($#)); do
@@ -37,13 +38,13 @@ while (($#)); do
     --scenes) scenes=$2; shift 2 ;;
     --views) views=$2; shift 2 ;;
     --algos) algos_compared=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
     *) bench_args+=("$1"); shift ;;
   esac
 done
 bash scripts/setup.sh
 bash scripts/build.sh release occsim
 command -v python3 >/dev/null || { echo "views_table.sh: the table needs python3 (apt-get install python3)" >&2; exit 1; }
-out=out/views
 start=$SECONDS
 for scene in $scenes; do
   name=$(basename "$scene" .json)

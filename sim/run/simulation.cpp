@@ -153,6 +153,14 @@ void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
         throw std::logic_error("Simulation::cullLightViewWith: the shadow casters are not culled");
     }
     light_ = makeViewCulling(std::move(culler));
+    if (masksReceivers(options_.shadow_casters)) {
+        // The paper's hierarchical test: a query on a node whose box may shadow no receiver the
+        // camera sees counts no sample, so the culler culls the node with its subtree. The mask
+        // is this frame's: built before the light's view is culled (receivers first).
+        light_->gl_device.setQueryFilter([this](const Aabb& box) {
+            return receiver_mask_.mayShadow(box, world_->scene().culling_origin);
+        });
+    }
     if (options_.record_objects) {
         light_->decisions.reserve(
             4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));

@@ -221,6 +221,29 @@ TEST_P(RenderTest, ADrawFilterLeavesItsObjectsOutOfEveryDraw) {
     EXPECT_TRUE(device.drew(2)) << "no filter: nothing left out";
 }
 
+// A query filter (setQueryFilter) leaves the boxes it rules out out of their query: a visible box
+// it rules out answers hidden, a multiquery counts only the boxes it keeps, and no filter draws
+// every box again.
+TEST_P(RenderTest, AQueryFilterLeavesTheBoxesItRulesOutOutOfTheirQuery) {
+    GlQueryDevice device(*renderer_, LatencyMode{});
+    renderer_->beginFrame();
+    const Aabb visible = boxes_[2];
+    const Aabb also_visible = boxes_[0];
+    ASSERT_TRUE(device.takeAnswer(device.issueQuery(visible)).visible);
+    device.setQueryFilter(
+        [&](const Aabb& box) { return box.min != visible.min || box.max != visible.max; });
+    const uint64_t boxes_before = device.counters().query_boxes;
+    EXPECT_FALSE(device.takeAnswer(device.issueQuery(visible)).visible);
+    const Aabb both[2] = {visible, also_visible};
+    const QueryTag tags[2] = {QueryTag::object(2), QueryTag::object(0)};
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(both, tags)).visible);
+    EXPECT_EQ(device.counters().query_boxes - boxes_before, 1u) << "one box of three drawn";
+    EXPECT_EQ(device.filteredQueryBoxes(), 2u);
+    EXPECT_EQ(device.counters().queries_issued, 3u) << "every query is still issued";
+    device.setQueryFilter({});
+    EXPECT_TRUE(device.takeAnswer(device.issueQuery(visible)).visible);
+}
+
 // Conditional rendering (occsim/culling/contract/conditional_rendering.h) on the GL device: the
 // driver skips what the query found hidden, nothing is read back, and the drawn set used for missed
 // objects counts a conditional draw as drawn when its query passed samples.
