@@ -13,7 +13,8 @@ before and after each run. A busy run is flagged: such a table is not a result.
 
 Then a second table from the <sun>-culler and <sun>-both runs: per scene, sun, culler and mode
 (the culler in the light's view alone, or with the receiver mask), the casters it drew against
-those light-frustum culling drew (the <sun>-frustum runs), the shadow pass's CPU time and the
+those light-frustum culling drew (the <sun>-frustum runs), the light view's queries a frame, the
+shadow pass's CPU time and the
 culler's frame time with each, the shadow error pixels and missed casters summed over the runs.
 """
 import json
@@ -86,10 +87,10 @@ def main(root):
 def culler_table(root):
     print()
     print("| scene | sun | culler | light view | casters drawn / frame | light-frustum | "
-          "light-frustum / this | shadow pass CPU ms | light-frustum | "
-          "frame ms | light-frustum | shadow err px | missed casters | "
+          "light-frustum / this | light-view queries / frame | shadow pass CPU ms | "
+          "light-frustum | frame ms | light-frustum | shadow err px | missed casters | "
           "load (before→after) |")
-    print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for scene in sorted(os.listdir(root)):
         for sun, mode in [(s, m) for s in ("low", "high") for m in ("culler", "both")]:
             culled = summaries(os.path.join(root, scene, f"{sun}-{mode}"))
@@ -99,13 +100,14 @@ def culler_table(root):
             for a in culled[0]["algorithms"]:
                 name = a["configuration"]
                 if any(config(s, name)["shadow_pass"] is None for s in culled + frustum):
-                    print(f"| {scene} | {sun} | {name} | {mode} | no shadow pass | | | | | | | | | |")
+                    print(f"| {scene} | {sun} | {name} | {mode} | no shadow pass | | | | | | | | | | |")
                     continue
                 c = [config(s, name)["shadow_pass"] for s in culled]
                 f = [config(s, name)["shadow_pass"] for s in frustum]
                 drawn = mean_spread([sh["casters_per_frame"] for sh in c])
                 frustum_drawn = mean_spread([sh["casters_per_frame"] for sh in f])
                 ratio = frustum_drawn[0] / drawn[0] if drawn[0] else None
+                queries = mean_spread([sh.get("queries_per_frame", 0.0) for sh in c])
                 cpu = mean_spread([sh["cpu_ms_mean"] for sh in c])
                 frustum_cpu = mean_spread([sh["cpu_ms_mean"] for sh in f])
                 frame = mean_spread([config(s, name)["frame_ms"]["mean"] for s in culled])
@@ -114,7 +116,8 @@ def culler_table(root):
                 missed = sum(sh["missed_casters_total"] for sh in c)
                 label = "culler" if mode == "culler" else "culler + receivers"
                 print(f"| {scene} | {sun} | {name} | {label} | {fmt(*drawn)} | {fmt(*frustum_drawn)} | "
-                      f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*cpu, digits=2)} | "
+                      f"{fmt(ratio, None, 2) + '×' if ratio else '-'} | {fmt(*queries)} | "
+                      f"{fmt(*cpu, digits=2)} | "
                       f"{fmt(*frustum_cpu, digits=2)} | {fmt(*frame, digits=2)} | "
                       f"{fmt(*frustum_frame, digits=2)} | {error} | {missed} | "
                       f"{loads(culled)} |")
