@@ -35,6 +35,20 @@ inline constexpr int kObjectsFormatVersion = 5;
     "  node INTEGER,\n"                                                        \
     "  node_kind INTEGER,\n"
 
+// A table of one camera view's decisions: `decisions` and `right_eye_decisions` (a macro, as
+// above).
+#define OCCSIM_VIEW_DECISIONS_TABLE(name)                                             \
+    "CREATE TABLE " name                                                              \
+    " (\n"                                                                            \
+    "  frame INTEGER NOT NULL,\n"                                                     \
+    "  config INTEGER NOT NULL REFERENCES configurations(config),\n"                  \
+    "  object INTEGER NOT NULL REFERENCES objects(object),\n" OCCSIM_DECISION_COLUMNS \
+    "  truth_pixels INTEGER NOT NULL,\n"                                              \
+    "  error_pixels INTEGER NOT NULL,\n"                                              \
+    "  tie_pixels INTEGER NOT NULL,\n"                                                \
+    "  PRIMARY KEY (config, frame, object)\n"                                         \
+    ") WITHOUT ROWID;\n"
+
 // The tables. `decisions` holds a row per frame, configuration and object except the rows that
 // say nothing: an object the frustum culled that ground truth does not see (no pixel, no error,
 // no tie). Every drawn object, every visible one and every missed one has its row. In a stereo
@@ -79,26 +93,8 @@ CREATE TABLE reasons (
   name TEXT NOT NULL UNIQUE,
   draws INTEGER
 );
-CREATE TABLE decisions (
-  frame INTEGER NOT NULL,
-  config INTEGER NOT NULL REFERENCES configurations(config),
-  object INTEGER NOT NULL REFERENCES objects(object),
-)sql" OCCSIM_DECISION_COLUMNS R"sql(
-  truth_pixels INTEGER NOT NULL,
-  error_pixels INTEGER NOT NULL,
-  tie_pixels INTEGER NOT NULL,
-  PRIMARY KEY (config, frame, object)
-) WITHOUT ROWID;
-CREATE TABLE right_eye_decisions (
-  frame INTEGER NOT NULL,
-  config INTEGER NOT NULL REFERENCES configurations(config),
-  object INTEGER NOT NULL REFERENCES objects(object),
-)sql" OCCSIM_DECISION_COLUMNS R"sql(
-  truth_pixels INTEGER NOT NULL,
-  error_pixels INTEGER NOT NULL,
-  tie_pixels INTEGER NOT NULL,
-  PRIMARY KEY (config, frame, object)
-) WITHOUT ROWID;
+)sql" OCCSIM_VIEW_DECISIONS_TABLE("decisions") OCCSIM_VIEW_DECISIONS_TABLE("right_eye_decisions")
+    R"sql(
 CREATE TABLE light_decisions (
   frame INTEGER NOT NULL,
   config INTEGER NOT NULL REFERENCES configurations(config),
