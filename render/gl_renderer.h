@@ -43,6 +43,14 @@ struct ViewSetup {
 // first row of its run in a read-back (row 0 at the bottom). The left eye is the upper half, so a
 // picture of the framebuffer shows it on top.
 inline uint32_t stereoEyeFirstRow(int eye, uint32_t height) { return eye == 0 ? height / 2 : 0; }
+// That eye's pixels of a read-back of such a framebuffer, `width` x `height` (its half, one run);
+// empty for an empty read-back (a buffer the frame did not fill, such as no stray fragments).
+template <class T>
+std::span<T> stereoEyePixels(std::span<T> pixels, int eye, uint32_t width, uint32_t height) {
+    if (pixels.empty()) return pixels;
+    return pixels.subspan(size_t{stereoEyeFirstRow(eye, height)} * width,
+                          size_t{width} * (height / 2));
+}
 
 // Which eyes of a stereo view the draws that follow go to (GlRenderer::setEyes).
 enum class StereoEyes : uint8_t { Both, Left, Right };

@@ -25,6 +25,22 @@ void setDecidingNode(const BspTree& tree, const QueryTag& subject, ObjectFrame& 
     }
 }
 
+// One camera view's record per object (the camera's, or an eye's): its culler's reasons resolved
+// on the tree and their subjects, what its device drew, and its pixels.
+void fillObjectFrames(const BspTree& tree, const std::vector<Decision>& reasons,
+                      const std::vector<QueryTag>& subjects, const GlQueryDevice& device,
+                      const std::vector<ObjectPixels>& pixels, uint32_t objects,
+                      std::vector<ObjectFrame>& out) {
+    out.resize(objects);
+    for (uint32_t o = 0; o < objects; ++o) {
+        ObjectFrame& f = out[o];
+        f.why = o < reasons.size() ? reasons[o] : Decision{};
+        f.drawn = device.drew(o);
+        f.pixels = pixels[o];
+        setDecidingNode(tree, o < subjects.size() ? subjects[o] : QueryTag{}, f);
+    }
+}
+
 }  // namespace
 
 // A view's culler on a device of its own (the light's, the right eye's): its queries, drawn set
@@ -93,10 +109,7 @@ Simulation::Simulation(std::unique_ptr<SharedWorld> own_world,
     if (options_.record_objects && !options_.measure_error) {
         throw std::logic_error("Simulation: record_objects needs measure_error");
     }
-    if (options_.record_objects) {
-        // A record or two per node and object a frame: room enough that a frame allocates nothing.
-        decisions_.reserve(4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
-    }
+    if (options_.record_objects) reserveDecisions(decisions_);
     if (options_.measure_gpu_time) gpu_timer_ = std::make_unique<GlFrameTimer>();
     segment_tallies_.reset(options_.segments, world_->scenario().warmup_frames);
     culler_->reset(world_->tree());
@@ -139,12 +152,18 @@ void requireViewSupport(const CullerRow& algorithm, const Scenario& scenario,
     }
 }
 
+// A record or two per node and object a frame: room enough that a frame allocates nothing.
+void Simulation::reserveDecisions(DecisionLog& log) const {
+    log.reserve(4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
+}
+
 std::unique_ptr<Simulation::ViewCulling> Simulation::makeViewCulling(
     std::unique_ptr<Culler> culler) {
     const bool approximate = algorithm_.issues_queries && approximation_.active();
     auto view = std::make_unique<ViewCulling>(std::move(culler), renderer_, options_.latency,
                                               approximate ? &approximation_ : nullptr);
     view->culler->reset(world_->tree());
+    if (options_.record_objects) reserveDecisions(view->decisions);
     return view;
 }
 
@@ -161,10 +180,6 @@ void Simulation::cullLightViewWith(std::unique_ptr<Culler> culler) {
             return receiver_mask_.mayShadow(box, world_->scene().culling_origin);
         });
     }
-    if (options_.record_objects) {
-        light_->decisions.reserve(
-            4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
-    }
 }
 
 void Simulation::cullRightEyeWith(std::unique_ptr<Culler> culler) {
@@ -172,10 +187,6 @@ void Simulation::cullRightEyeWith(std::unique_ptr<Culler> culler) {
         throw std::logic_error("Simulation::cullRightEyeWith: the eyes are not culled apart");
     }
     right_eye_ = makeViewCulling(std::move(culler));
-    if (options_.record_objects) {
-        right_eye_->decisions.reserve(
-            4 * (size_t{world_->tree().nodeCount()} + world_->tree().objectCount()));
-    }
 }
 
 uint32_t Simulation::recordedLight() const {
@@ -457,11 +468,9 @@ void Simulation::buildReceiverMask(const ShadowView& shadow) {
     const double margin = 2.5 * shadow_lookup_.texel_m;
     if (const StereoViews* stereo = world_->stereoViews()) {
         // Each eye's half of the framebuffer, through that eye's own view.
-        const uint32_t width = renderer_.width(), eye_height = renderer_.height() / 2;
         for (int eye = 0; eye < 2; ++eye) {
-            const size_t first = size_t{stereoEyeFirstRow(eye, renderer_.height())} * width;
-            addVisibleReceivers(std::span(camera_depth_).subspan(first, size_t{width} * eye_height),
-                                width, eye_height,
+            addVisibleReceivers(eyePixels(std::span<const uint32_t>(camera_depth_), eye),
+                                renderer_.width(), renderer_.height() / 2,
                                 eye == 0 ? stereo->left_render : stereo->right_render,
                                 renderer_.depthConvention(), margin, receiver_mask_);
         }
@@ -595,14 +604,12 @@ void Simulation::measureError(const GroundTruthFrame& truth, FrameStats& stats) 
         }
     }
     if (world_->stereoViews() != nullptr) {
-        // Each eye's error apart: the left eye's half of the framebuffer (stereoEyeFirstRow)
-        // compared again, the right eye's the rest of the frame's.
-        const size_t first = size_t{stereoEyeFirstRow(0, renderer_.height())} * renderer_.width();
-        const size_t eye_pixels = culled_ids_.size() / 2;
-        auto half = [&](const auto& v) { return std::span(v).subspan(first, eye_pixels); };
+        // Each eye's error apart: the left eye's half of the framebuffer compared again, the
+        // right eye's the rest of the frame's.
+        auto left = [&](const auto& v) { return eyePixels(std::span(v), 0); };
         stats.left_error_pixels =
-            comparePixels(half(truth.ids), half(truth.depth), half(culled_ids_),
-                          half(culled_depth_), half(truth.stray), nullptr)
+            comparePixels(left(truth.ids), left(truth.depth), left(culled_ids_),
+                          left(culled_depth_), left(truth.stray), nullptr)
                 .error;
         stats.right_error_pixels = pixels.error - stats.left_error_pixels;
     }
@@ -636,13 +643,8 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
     if (!right_eye_) {
         attributePixels(truth.ids, truth.stray, culled_ids_, marks_, objects, object_pixels_);
     } else {
-        // Per eye, each eye's decisions go with its own half's pixels (stereoEyeFirstRow).
-        const size_t eye_pixels = culled_ids_.size() / 2;
-        auto half = [&](const auto& v, int eye) {
-            const size_t first =
-                size_t{stereoEyeFirstRow(eye, renderer_.height())} * renderer_.width();
-            return v.empty() ? std::span(v) : std::span(v).subspan(first, eye_pixels);
-        };
+        // Per eye, each eye's decisions go with its own half's pixels.
+        auto half = [&](const auto& v, int eye) { return eyePixels(std::span(v), eye); };
         attributePixels(half(truth.ids, 0), half(truth.stray, 0), half(culled_ids_, 0),
                         half(marks_, 0), objects, object_pixels_);
         attributePixels(half(truth.ids, 1), half(truth.stray, 1), half(culled_ids_, 1),
@@ -650,22 +652,13 @@ void Simulation::recordObjects(const GroundTruthFrame& truth) {
         resolveDecisions(tree, right_eye_->decisions.records(), right_eye_reasons_, resolve_stack_,
                          &right_eye_subjects_);
     }
-    object_frames_.resize(objects);
-    for (uint32_t o = 0; o < objects; ++o) {
-        ObjectFrame& f = object_frames_[o];
-        f.why = o < reasons_.size() ? reasons_[o] : Decision{};
-        f.drawn = gl_device_.drew(o);
-        f.pixels = object_pixels_[o];
-        setDecidingNode(tree, o < reason_subjects_.size() ? reason_subjects_[o] : QueryTag{}, f);
-    }
-    right_eye_object_frames_.resize(right_eye_ ? objects : 0);
-    for (uint32_t o = 0; o < right_eye_object_frames_.size(); ++o) {
-        ObjectFrame& f = right_eye_object_frames_[o];
-        f.why = o < right_eye_reasons_.size() ? right_eye_reasons_[o] : Decision{};
-        f.drawn = right_eye_->gl_device.drew(o);
-        f.pixels = right_eye_pixels_[o];
-        setDecidingNode(tree, o < right_eye_subjects_.size() ? right_eye_subjects_[o] : QueryTag{},
-                        f);
+    fillObjectFrames(tree, reasons_, reason_subjects_, gl_device_, object_pixels_, objects,
+                     object_frames_);
+    if (right_eye_) {
+        fillObjectFrames(tree, right_eye_reasons_, right_eye_subjects_, right_eye_->gl_device,
+                         right_eye_pixels_, objects, right_eye_object_frames_);
+    } else {
+        right_eye_object_frames_.clear();
     }
 }
 

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "occsim/culling/contract/culler.h"
@@ -258,6 +259,12 @@ class Simulation {
     std::unique_ptr<ViewCulling> light_;
     std::unique_ptr<ViewCulling> right_eye_;
     std::unique_ptr<ViewCulling> makeViewCulling(std::unique_ptr<Culler> culler);
+    void reserveDecisions(DecisionLog& log) const;
+    // Eye `eye`'s half of a read-back of this frame's stereo framebuffer (stereoEyePixels).
+    template <class T>
+    std::span<T> eyePixels(std::span<T> pixels, int eye) const {
+        return stereoEyePixels(pixels, eye, renderer_.width(), renderer_.height());
+    }
     void cullRightEye(const CullFrame& camera);
     void splitEyeTruth(const GroundTruthFrame& truth);
     ApproximationOptions approximation_;
